@@ -1,0 +1,44 @@
+#pragma once
+/// \file surface_basis.h
+/// A basis of height functions h(x, y) on the patch square [-1, 1]^2 (METHOD.md step 8).
+/// OMP, the model and resampling talk to atoms only through this interface, so other bases
+/// (polynomials, learned atoms) can be added without touching them.
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// Value, gradient and Hessian of a height function at one point.
+  struct HeightSample
+  {
+    double value = 0.0;
+    Eigen::Vector2d gradient = Eigen::Vector2d::Zero ();  ///< (h_x, h_y)
+    Eigen::Matrix2d hessian = Eigen::Matrix2d::Zero ();   ///< [[h_xx, h_xy], [h_xy, h_yy]]
+  };
+
+  class SurfaceBasis
+  {
+  public:
+    using Ptr = std::shared_ptr<SurfaceBasis>;
+    using ConstPtr = std::shared_ptr<const SurfaceBasis>;
+
+    virtual ~SurfaceBasis () = default;
+
+    /// Number of atoms.
+    virtual int size () const = 0;
+
+    /// Shortest wavelength of atom \a atom in local units (2 / max(i, j) for cosines), +infinity for a
+    /// constant atom. The Nyquist cap of OMP compares it with the patch's sample spacing.
+    virtual double wavelength (int atom) const = 0;
+
+    /// Values of every atom at every point: \a values is #points by size().
+    virtual void evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const = 0;
+
+    /// sum_k coefficients[k] * atom_{atoms[k]} at (x, y), with analytic derivatives.
+    virtual HeightSample evaluateCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+                                       double x, double y) const = 0;
+  };
+} // namespace pcl_sparse

@@ -1,0 +1,63 @@
+#pragma once
+/// \file quadric_fit.h
+/// Least-squares height quadrics and the degree-2 jet (Monge form) they define.
+/// Shared by Harris 3D (METHOD.md step 3) and the patch frames (step 6).
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// z = c0 + c1 x + c2 y + c3 x^2 / 2 + c4 x y + c5 y^2 / 2 in some local frame.
+  /// (METHOD.md's Harris notation: p6 = c0, p4 = c1, p5 = c2, p1 = c3, p2 = c4, p3 = c5.)
+  struct HeightQuadric
+  {
+    Eigen::Matrix<double, 6, 1> c = Eigen::Matrix<double, 6, 1>::Zero ();
+
+    double value (double x, double y) const { return c[0] + c[1] * x + c[2] * y + 0.5 * c[3] * x * x + c[4] * x * y + 0.5 * c[5] * y * y; }
+  };
+
+  /// Fits a HeightQuadric to points given in the local frame (z = height) by least squares.
+  /// Columns are scaled by the points' extent first, so the fit is well conditioned at any scale.
+  ///   points  #P local positions, #P >= 6
+  ///   returns false (and leaves \a quadric untouched) when there are fewer than 6 points or the xy
+  ///   positions do not determine a quadric (collinear, coincident)
+  bool
+  fitHeightQuadric (const std::vector<Eigen::Vector3d>& points, HeightQuadric& quadric);
+
+  /// Principal curvatures and directions of a surface at one point.
+  /// Convention: curvature is positive where the surface bends away from its normal, so a sphere with
+  /// outward normals has k1 = k2 = 1 / r.
+  struct MongeJet
+  {
+    double k1 = 0.0;                                     ///< maximum principal curvature
+    double k2 = 0.0;                                     ///< minimum principal curvature
+    Eigen::Vector3d d1 = Eigen::Vector3d::UnitX ();      ///< unit direction of k1 (T1)
+    Eigen::Vector3d d2 = Eigen::Vector3d::UnitY ();      ///< unit direction of k2 (T2), d1 x d2 = normal
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ ();  ///< unit surface normal
+
+    /// The orthonormal frame R = (T1, T2, N) as columns.
+    Eigen::Matrix3d frame () const
+    {
+      Eigen::Matrix3d R;
+      R << d1, d2, normal;
+      return R;
+    }
+  };
+
+  /// The jet of a height quadric at (0, 0, c0), expressed in the quadric's own frame.
+  MongeJet
+  mongeJetOfQuadric (const HeightQuadric& quadric);
+
+  /// Any orthonormal frame whose third column is \a normal (unit).
+  Eigen::Matrix3d
+  frameAroundNormal (const Eigen::Vector3d& normal);
+
+  /// Fits a degree-2 jet to world points around \a origin: frame from \a normal_hint, quadric fit,
+  /// curvatures and directions mapped back to world coordinates. The returned normal is oriented like
+  /// \a normal_hint. Returns false when the fit is underdetermined (see fitHeightQuadric).
+  bool
+  fitMongeJet (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
+               const Eigen::Vector3d& normal_hint, MongeJet& jet);
+} // namespace pcl_sparse

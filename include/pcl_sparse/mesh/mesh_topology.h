@@ -1,0 +1,65 @@
+#pragma once
+/// \file mesh_topology.h
+/// Adjacency of a TriangleMesh: vertex -> faces, vertex -> vertices, undirected edges, face -> faces.
+/// Built once in O(#V + #F); every later stage walks the mesh through it.
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// A contiguous run of indices inside one of the CSR arrays below.
+  struct IndexRange
+  {
+    const int* first;
+    const int* last;
+    const int* begin () const { return first; }
+    const int* end () const { return last; }
+    std::size_t size () const { return static_cast<std::size_t> (last - first); }
+  };
+
+  /// Connectivity of a triangle mesh. Lists are stored compressed (CSR): the items of vertex v are
+  /// items[offsets[v] .. offsets[v + 1]). Everything is sorted, so the topology of a mesh is unique.
+  ///   vertex_faces        faces incident to each vertex, ascending
+  ///   vertex_neighbors    1-ring: vertices sharing an edge with each vertex, ascending
+  ///   edges               #E undirected edges (a, b), a < b, ascending by (a, b)
+  ///   edge_face_count     #E number of faces using each edge: 1 boundary, 2 manifold, > 2 non-manifold
+  ///   face_edges          #F edge ids; edge k of face f joins corners k and (k + 1) % 3; -1 where both
+  ///                       corners are the same vertex (degenerate face)
+  ///   face_neighbors      #F face across edge k, or -1 on a boundary or non-manifold edge (non-manifold
+  ///                       edges are cuts: nothing walks across them)
+  struct MeshTopology
+  {
+    std::vector<int> vertex_face_offsets;
+    std::vector<int> vertex_faces;
+    std::vector<int> vertex_neighbor_offsets;
+    std::vector<int> vertex_neighbors;
+    std::vector<Eigen::Vector2i> edges;
+    std::vector<int> edge_face_count;
+    std::vector<Eigen::Vector3i> face_edges;
+    std::vector<Eigen::Vector3i> face_neighbors;
+
+    std::size_t numVertices () const { return vertex_face_offsets.empty () ? 0 : vertex_face_offsets.size () - 1; }
+    std::size_t numEdges () const { return edges.size (); }
+
+    IndexRange facesOf (int v) const
+    {
+      return {vertex_faces.data () + vertex_face_offsets[v], vertex_faces.data () + vertex_face_offsets[v + 1]};
+    }
+    IndexRange neighborsOf (int v) const
+    {
+      return {vertex_neighbors.data () + vertex_neighbor_offsets[v],
+              vertex_neighbors.data () + vertex_neighbor_offsets[v + 1]};
+    }
+    bool isBoundaryEdge (int e) const { return edge_face_count[e] == 1; }
+    bool isNonManifoldEdge (int e) const { return edge_face_count[e] > 2; }
+  };
+
+  /// Builds the topology of \a mesh. Triangle indices must be valid (0 <= i < #V); faces with repeated
+  /// vertices are allowed and contribute only their proper edges.
+  MeshTopology
+  buildMeshTopology (const TriangleMesh& mesh);
+} // namespace pcl_sparse

@@ -1,0 +1,66 @@
+#pragma once
+/// \file sparse_surface_model.h
+/// The sparse-code surface model: overlapping height-field patches coded over a SurfaceBasis
+/// (METHOD.md steps 9-12). It is what the encoder produces, what resampling reads, and what the file
+/// format stores.
+
+#include <pcl_sparse/coding/surface_basis.h>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// Where a patch has data in its own tangent plane: a star-shaped region around the seed given by its
+  /// radial extent at K equally spaced angles (angle 2 pi k / K, measured from T1 towards T2), in local
+  /// scaled units (the unit disk holds every patch vertex). Between angles the extent is interpolated
+  /// linearly. Patches grow by geodesic distance from the seed, so they are star-shaped in practice.
+  struct PatchFootprint
+  {
+    std::vector<float> extent;  ///< K radii in [0, ~1]
+
+    /// Extent at \a angle (radians), linearly interpolated.
+    double extentAt (double angle) const;
+    /// Whether (x, y) lies inside the footprint.
+    bool contains (double x, double y) const;
+  };
+
+  /// One coded patch.
+  struct PatchCode
+  {
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero ();     ///< s, world position of the seed
+    Eigen::Matrix3d frame = Eigen::Matrix3d::Identity ();  ///< R = (T1, T2, N) as columns
+    double radius = 1.0;                                   ///< r_P, world units per local unit
+    std::vector<int> atoms;                                ///< selected atom indices, in selection order
+    std::vector<double> coefficients;                      ///< one per atom, for the atoms as defined
+    PatchFootprint footprint;
+
+    /// Input vertices this patch covers and their local (x', y'): needed only to reconstruct the input
+    /// vertices (METHOD.md step 10); empty in a model loaded without its mesh.
+    std::vector<int> vertices;
+    std::vector<Eigen::Vector2d> vertex_xy;
+
+    Eigen::Vector3d toWorld (const Eigen::Vector3d& local) const { return origin + radius * (frame * local); }
+  };
+
+  /// The whole model.
+  class SparseSurfaceModel
+  {
+  public:
+    using Ptr = std::shared_ptr<SparseSurfaceModel>;
+    using ConstPtr = std::shared_ptr<const SparseSurfaceModel>;
+
+    SurfaceBasis::ConstPtr basis;    ///< the dictionary every patch is coded over
+    std::vector<PatchCode> patches;
+    std::size_t num_input_vertices = 0;
+    double bbox_diagonal = 0.0;      ///< of the input mesh
+
+    std::size_t numPatches () const { return patches.size (); }
+    /// Total number of non-zero coefficients ||alpha||_0.
+    std::size_t numNonZeros () const;
+    /// Height, gradient and Hessian of patch \a p at local (x, y).
+    HeightSample evaluate (std::size_t p, double x, double y) const;
+  };
+} // namespace pcl_sparse

@@ -1,0 +1,27 @@
+#pragma once
+/// \file patch.h
+/// One surface patch: a disk-like set of mesh vertices around a seed, seen as a height field over the
+/// seed's tangent plane (METHOD.md steps 5 and 6).
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_sparse
+{
+  struct Patch
+  {
+    int seed = -1;                                      ///< seed vertex index
+    std::vector<int> vertices;                          ///< vertex indices, seed first, in growth order
+    std::vector<int> triangles;                         ///< faces whose three corners are all in the patch
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero ();  ///< s: the seed's position
+    Eigen::Matrix3d frame = Eigen::Matrix3d::Identity ();  ///< R = (T1, T2, N): jet principal directions, normal
+    double radius = 0.0;  ///< r_P: largest tangent-plane distance from s to a patch vertex (> 0)
+    /// p' = R^T (p - s) / r_P for every entry of `vertices` (same order): x', y' in the unit disk, z' the height.
+    std::vector<Eigen::Vector3d> local;
+
+    std::size_t size () const { return vertices.size (); }
+    Eigen::Vector3d toLocal (const Eigen::Vector3d& p) const { return frame.transpose () * (p - origin) / radius; }
+    Eigen::Vector3d toWorld (const Eigen::Vector3d& q) const { return origin + radius * (frame * q); }
+  };
+} // namespace pcl_sparse
