@@ -1,0 +1,39 @@
+#include <pcl_sparse/common/atomic_write.h>
+#include <pcl_sparse/common/error.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <unistd.h>
+
+namespace pcl_sparse
+{
+  void
+  writeFileAtomically (const std::string& path, const std::function<bool (const std::string&)>& write)
+  {
+    // Same directory as the target, so rename() stays within one file system; the pid keeps
+    // concurrent writers from sharing a temporary.
+    const std::string temporary = path + ".tmp" + std::to_string (::getpid ());
+    bool ok = false;
+    try
+    {
+      ok = write (temporary);
+    }
+    catch (...)
+    {
+      std::remove (temporary.c_str ());
+      throw;
+    }
+    if (!ok)
+    {
+      std::remove (temporary.c_str ());
+      throw Error (path + ": could not write the file");
+    }
+    if (std::rename (temporary.c_str (), path.c_str ()) != 0)
+    {
+      const std::string reason = std::strerror (errno);
+      std::remove (temporary.c_str ());
+      throw Error (path + ": could not write the file (" + reason + ")");
+    }
+  }
+} // namespace pcl_sparse
