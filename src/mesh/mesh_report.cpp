@@ -1,0 +1,313 @@
+#include <pcl_sparse/mesh/mesh_report.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    /// Union-find with path halving; joins attach the larger root under the smaller one, so the root
+    /// of a set is its smallest element (deterministic, and it does not depend on the join order).
+    class DisjointSets
+    {
+    public:
+      explicit DisjointSets (std::size_t n) : parent_ (n) { std::iota (parent_.begin (), parent_.end (), 0); }
+
+      int
+      find (int x)
+      {
+        while (parent_[x] != x)
+          x = parent_[x] = parent_[parent_[x]];
+        return x;
+      }
+
+      void
+      join (int a, int b)
+      {
+        a = find (a);
+        b = find (b);
+        if (a != b)
+          parent_[std::max (a, b)] = std::min (a, b);
+      }
+
+    private:
+      std::vector<int> parent_;
+    };
+
+    bool
+    hasRepeatedIndex (const Eigen::Vector3i& t)
+    {
+      return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+    }
+
+    /// Number of fans the faces around \a v form when glued across the manifold edges at \a v.
+    int
+    countFans (const TriangleMesh& mesh, const MeshTopology& topo, int v, std::vector<int>& local_parent)
+    {
+      const IndexRange faces = topo.facesOf (v);
+      const int n = static_cast<int> (faces.size ());
+      local_parent.resize (n);
+      std::iota (local_parent.begin (), local_parent.end (), 0);
+      auto find = [&local_parent] (int x) {
+        while (local_parent[x] != x)
+          x = local_parent[x] = local_parent[local_parent[x]];
+        return x;
+      };
+      int fans = n;
+      for (int i = 0; i < n; ++i)
+      {
+        const int f = faces.begin ()[i];
+        const auto& t = mesh.triangles[f];
+        for (int k = 0; k < 3; ++k)
+        {
+          const int e = topo.face_edges[f][k];
+          const int g = topo.face_neighbors[f][k];
+          if (e < 0 || g < 0 || (t[k] != v && t[(k + 1) % 3] != v))
+            continue;
+          const int j = static_cast<int> (std::lower_bound (faces.begin (), faces.end (), g) - faces.begin ());
+          if (j >= n || faces.begin ()[j] != g)
+            continue;
+          const int a = find (i), b = find (j);
+          if (a != b)
+          {
+            local_parent[std::max (a, b)] = std::min (a, b);
+            --fans;
+          }
+        }
+      }
+      return fans;
+    }
+
+    /// Tries to give every face an orientation sign so that neighbours traverse their shared edge in
+    /// opposite directions; false if some component cannot be oriented (Moebius band, Klein bottle).
+    /// Requires a manifold mesh (no repeated indices, every walked edge shared by exactly two faces).
+    bool
+    isOrientable (const TriangleMesh& mesh, const MeshTopology& topo)
+    {
+      const int num_faces = static_cast<int> (mesh.triangles.size ());
+      std::vector<signed char> sign (num_faces, 0);
+      std::vector<int> stack;
+      for (int seed = 0; seed < num_faces; ++seed)
+      {
+        if (sign[seed] != 0)
+          continue;
+        sign[seed] = 1;
+        stack.push_back (seed);
+        while (!stack.empty ())
+        {
+          const int f = stack.back ();
+          stack.pop_back ();
+          const auto& t = mesh.triangles[f];
+          for (int k = 0; k < 3; ++k)
+          {
+            const int g = topo.face_neighbors[f][k];
+            if (g < 0)
+              continue;
+            const int e = topo.face_edges[f][k];
+            const auto& u = mesh.triangles[g];
+            int j = 0;
+            while (j < 3 && topo.face_edges[g][j] != e)
+              ++j;
+            if (j == 3)
+              return false;
+            // g agrees with f when it walks the shared edge the other way round.
+            const bool agrees = u[j] == t[(k + 1) % 3];
+            const signed char wanted = agrees ? sign[f] : static_cast<signed char> (-sign[f]);
+            if (sign[g] == 0)
+            {
+              sign[g] = wanted;
+              stack.push_back (g);
+            }
+            else if (sign[g] != wanted)
+              return false;
+          }
+        }
+      }
+      return true;
+    }
+  } // namespace
+
+  bool
+  isDegenerateFace (const TriangleMesh& mesh, int f)
+  {
+    const auto& t = mesh.triangles[f];
+    if (hasRepeatedIndex (t))
+      return true;
+    const Eigen::Vector3d& a = mesh.vertices[t[0]];
+    const Eigen::Vector3d& b = mesh.vertices[t[1]];
+    const Eigen::Vector3d& c = mesh.vertices[t[2]];
+    if (!a.allFinite () || !b.allFinite () || !c.allFinite ())
+      return false;
+    const double longest2 = std::max ({(b - a).squaredNorm (), (c - b).squaredNorm (), (a - c).squaredNorm ()});
+    return (b - a).cross (c - a).norm () <= 1e-12 * longest2;
+  }
+
+  std::vector<int>
+  findDuplicateFaces (const TriangleMesh& mesh)
+  {
+    const int num_faces = static_cast<int> (mesh.triangles.size ());
+    const int num_vertices = static_cast<int> (mesh.vertices.size ());
+    std::vector<std::array<int, 3>> sorted (num_faces);
+    for (int f = 0; f < num_faces; ++f)
+    {
+      const auto& t = mesh.triangles[f];
+      sorted[f] = {t[0], t[1], t[2]};
+      std::sort (sorted[f].begin (), sorted[f].end ());
+    }
+    // Bucket the faces by their smallest vertex (counting sort), then sort each small bucket.
+    std::vector<int> offsets (num_vertices + 1, 0);
+    for (const auto& s : sorted)
+      ++offsets[s[0] + 1];
+    std::partial_sum (offsets.begin (), offsets.end (), offsets.begin ());
+    std::vector<int> order (num_faces);
+    {
+      std::vector<int> cursor (offsets.begin (), offsets.end () - 1);
+      for (int f = 0; f < num_faces; ++f)
+        order[cursor[sorted[f][0]]++] = f;
+    }
+    std::vector<int> first (num_faces);
+    for (int v = 0; v < num_vertices; ++v)
+    {
+      const auto begin = order.begin () + offsets[v], end = order.begin () + offsets[v + 1];
+      std::sort (begin, end, [&sorted] (int x, int y) { return sorted[x] != sorted[y] ? sorted[x] < sorted[y] : x < y; });
+      for (auto it = begin; it != end; ++it)
+        first[*it] = (it != begin && sorted[*(it - 1)] == sorted[*it]) ? first[*(it - 1)] : *it;
+    }
+    return first;
+  }
+
+  MeshReport
+  computeMeshReport (const TriangleMesh& mesh, const MeshTopology& topo)
+  {
+    const int num_vertices = static_cast<int> (mesh.vertices.size ());
+    const int num_faces = static_cast<int> (mesh.triangles.size ());
+    MeshReport report;
+    report.vertices = mesh.vertices.size ();
+    report.faces = mesh.triangles.size ();
+    report.edges = topo.numEdges ();
+
+    // Vertices: references, finiteness, bounding box.
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
+    Eigen::Vector3d hi = -lo;
+    std::size_t referenced = 0;
+    for (int v = 0; v < num_vertices; ++v)
+    {
+      if (topo.facesOf (v).size () == 0)
+        ++report.unreferenced_vertices;
+      else
+        ++referenced;
+      const Eigen::Vector3d& p = mesh.vertices[v];
+      if (!p.allFinite ())
+      {
+        ++report.non_finite_vertices;
+        continue;
+      }
+      lo = lo.cwiseMin (p);
+      hi = hi.cwiseMax (p);
+    }
+    if (report.non_finite_vertices < report.vertices)
+      report.bbox_diagonal = (hi - lo).norm ();
+
+    // Faces: degenerate and duplicate.
+    bool repeated_index = false;
+    for (int f = 0; f < num_faces; ++f)
+    {
+      repeated_index = repeated_index || hasRepeatedIndex (mesh.triangles[f]);
+      if (isDegenerateFace (mesh, f))
+        ++report.degenerate_faces;
+    }
+    const std::vector<int> first_copy = findDuplicateFaces (mesh);
+    for (int f = 0; f < num_faces; ++f)
+      if (first_copy[f] != f)
+        ++report.duplicate_faces;
+
+    // Edges: boundary, non-manifold, mean length.
+    double length_sum = 0.0;
+    std::size_t length_count = 0;
+    for (std::size_t e = 0; e < topo.numEdges (); ++e)
+    {
+      const int count = topo.edge_face_count[e];
+      report.boundary_edges += count == 1;
+      report.nonmanifold_edges += count > 2;
+      const double length = (mesh.vertices[topo.edges[e][0]] - mesh.vertices[topo.edges[e][1]]).norm ();
+      if (std::isfinite (length))
+      {
+        length_sum += length;
+        ++length_count;
+      }
+    }
+    if (length_count > 0)
+      report.mean_edge_length = length_sum / static_cast<double> (length_count);
+
+    // Vertices whose faces do not form a single fan.
+    std::vector<int> local_parent;
+    for (int v = 0; v < num_vertices; ++v)
+      if (countFans (mesh, topo, v, local_parent) > 1)
+        ++report.nonmanifold_vertices;
+
+    // Components over faces (through shared vertices) and boundary loops (through boundary edges).
+    DisjointSets components (num_vertices);
+    for (const auto& t : mesh.triangles)
+    {
+      components.join (t[0], t[1]);
+      components.join (t[1], t[2]);
+    }
+    DisjointSets loops (num_vertices);
+    for (std::size_t e = 0; e < topo.numEdges (); ++e)
+      if (topo.isBoundaryEdge (static_cast<int> (e)))
+        loops.join (topo.edges[e][0], topo.edges[e][1]);
+
+    // Per component (indexed by its root): V, E, F and boundary loops, for chi_c = V_c - E_c + F_c.
+    std::vector<long> comp_chi (num_vertices, 0), comp_loops (num_vertices, 0);
+    std::vector<char> is_root (num_vertices, 0), loop_seen (num_vertices, 0);
+    for (int v = 0; v < num_vertices; ++v)
+      if (topo.facesOf (v).size () > 0)
+      {
+        const int c = components.find (v);
+        ++comp_chi[c];
+        if (!is_root[c])
+        {
+          is_root[c] = 1;
+          ++report.components;
+        }
+      }
+    for (std::size_t e = 0; e < topo.numEdges (); ++e)
+    {
+      const int a = topo.edges[e][0];
+      --comp_chi[components.find (a)];
+      if (topo.isBoundaryEdge (static_cast<int> (e)))
+      {
+        const int loop = loops.find (a);
+        if (!loop_seen[loop])
+        {
+          loop_seen[loop] = 1;
+          ++report.boundary_loops;
+          ++comp_loops[components.find (a)];
+        }
+      }
+    }
+    for (const auto& t : mesh.triangles)
+      ++comp_chi[components.find (t[0])];
+    report.euler_characteristic =
+        static_cast<long> (referenced) - static_cast<long> (report.edges) + static_cast<long> (report.faces);
+
+    report.manifold = report.nonmanifold_edges == 0 && report.nonmanifold_vertices == 0 && !repeated_index;
+    report.orientable = report.manifold && isOrientable (mesh, topo);
+    report.closed = report.manifold && report.boundary_edges == 0;
+    if (report.orientable)
+    {
+      long twice_genus = 0;
+      for (int c = 0; c < num_vertices; ++c)
+        if (is_root[c])
+          twice_genus += 2 - comp_chi[c] - comp_loops[c];
+      report.genus = static_cast<int> (twice_genus / 2);
+    }
+    return report;
+  }
+} // namespace pcl_sparse

@@ -1,0 +1,302 @@
+#include <pcl_sparse/mesh/mesh_cleaning.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/mesh/mesh_report.h>
+#include <pcl_sparse/mesh/mesh_topology.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  MeshReport
+  reportOf (const TriangleMesh& mesh)
+  {
+    return computeMeshReport (mesh, buildMeshTopology (mesh));
+  }
+
+  /// Two triangles sharing one edge: an open square made of (0, 1, 2) and (0, 2, 3).
+  TriangleMesh
+  makeSquare ()
+  {
+    TriangleMesh mesh;
+    mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    return mesh;
+  }
+
+  void
+  expectCleanClosedManifold (const MeshReport& r)
+  {
+    EXPECT_EQ (r.unreferenced_vertices, 0u);
+    EXPECT_EQ (r.non_finite_vertices, 0u);
+    EXPECT_EQ (r.degenerate_faces, 0u);
+    EXPECT_EQ (r.duplicate_faces, 0u);
+    EXPECT_EQ (r.boundary_edges, 0u);
+    EXPECT_EQ (r.boundary_loops, 0u);
+    EXPECT_EQ (r.nonmanifold_edges, 0u);
+    EXPECT_EQ (r.nonmanifold_vertices, 0u);
+    EXPECT_TRUE (r.manifold);
+    EXPECT_TRUE (r.orientable);
+    EXPECT_TRUE (r.closed);
+  }
+} // namespace
+
+TEST (MeshReport, Tetrahedron)
+{
+  const MeshReport r = reportOf (makeTetrahedron ());
+  EXPECT_EQ (r.vertices, 4u);
+  EXPECT_EQ (r.faces, 4u);
+  EXPECT_EQ (r.edges, 6u);
+  expectCleanClosedManifold (r);
+  EXPECT_EQ (r.components, 1u);
+  EXPECT_EQ (r.euler_characteristic, 2);
+  EXPECT_EQ (r.genus, 0);
+  // Inscribed in the unit sphere: edge length sqrt(8/3); the box is [-a, a]^3 with a = 1/sqrt(3) when the
+  // corners are (+-1, +-1, +-1)/sqrt(3), so its diagonal is 2.
+  EXPECT_NEAR (r.mean_edge_length, std::sqrt (8.0 / 3.0), 1e-9);
+  EXPECT_NEAR (r.bbox_diagonal, 2.0, 1e-9);
+}
+
+TEST (MeshReport, Cube)
+{
+  const int n = 3;
+  const MeshReport r = reportOf (makeCube (n, 0.5));
+  EXPECT_EQ (r.vertices, 6u * n * n + 2);
+  EXPECT_EQ (r.faces, 12u * n * n);
+  expectCleanClosedManifold (r);
+  EXPECT_EQ (r.components, 1u);
+  EXPECT_EQ (r.genus, 0);
+  EXPECT_NEAR (r.bbox_diagonal, std::sqrt (3.0), 1e-12);
+}
+
+TEST (MeshReport, OpenDiskHasOneBoundaryLoop)
+{
+  const int rings = 4;
+  const MeshReport r = reportOf (makeDisk (rings, 2.0));
+  EXPECT_EQ (r.boundary_edges, 6u * rings);
+  EXPECT_EQ (r.boundary_loops, 1u);
+  EXPECT_EQ (r.nonmanifold_edges, 0u);
+  EXPECT_EQ (r.nonmanifold_vertices, 0u);
+  EXPECT_TRUE (r.manifold);
+  EXPECT_TRUE (r.orientable);
+  EXPECT_FALSE (r.closed);
+  EXPECT_EQ (r.components, 1u);
+  EXPECT_EQ (r.euler_characteristic, 1);
+  EXPECT_EQ (r.genus, 0);
+  EXPECT_NEAR (r.bbox_diagonal, std::hypot (4.0, 4.0), 1e-9);  // 24 outer vertices every 15 degrees
+}
+
+TEST (MeshReport, CylinderHasTwoBoundaryLoopsAndGenusZero)
+{
+  const MeshReport r = reportOf (makeCylinder (16, 5));
+  EXPECT_EQ (r.boundary_edges, 32u);
+  EXPECT_EQ (r.boundary_loops, 2u);
+  EXPECT_EQ (r.euler_characteristic, 0);
+  EXPECT_EQ (r.genus, 0);
+}
+
+TEST (MeshReport, TorusHasGenusOne)
+{
+  const MeshReport r = reportOf (makeTorus (24, 12));
+  expectCleanClosedManifold (r);
+  EXPECT_EQ (r.components, 1u);
+  EXPECT_EQ (r.euler_characteristic, 0);
+  EXPECT_EQ (r.genus, 1);
+}
+
+TEST (MeshReport, TwoTorusComponentsAddTheirGenus)
+{
+  TriangleMesh mesh = makeTorus (16, 8);
+  TriangleMesh other = makeTorus (16, 8);
+  for (auto& p : other.vertices)
+    p.x () += 5.0;
+  appendMesh (mesh, other);
+  appendMesh (mesh, makeIcosphere (1, 1.0, Eigen::Vector3d (0, 5, 0)));
+  const MeshReport r = reportOf (mesh);
+  EXPECT_EQ (r.components, 3u);
+  EXPECT_EQ (r.euler_characteristic, 2);
+  EXPECT_EQ (r.genus, 2);
+}
+
+TEST (MeshReport, TwoDisjointSpheres)
+{
+  TriangleMesh mesh = makeIcosphere (2, 1.0);
+  appendMesh (mesh, makeIcosphere (2, 1.0, Eigen::Vector3d (3, 0, 0)));
+  const MeshReport r = reportOf (mesh);
+  EXPECT_EQ (r.vertices, 2u * 162);
+  expectCleanClosedManifold (r);
+  EXPECT_EQ (r.components, 2u);
+  EXPECT_EQ (r.euler_characteristic, 4);
+  EXPECT_EQ (r.genus, 0);
+  EXPECT_NEAR (r.bbox_diagonal, std::sqrt (25.0 + 4.0 + 4.0), 1e-9);  // x in [-1, 4]
+}
+
+TEST (MeshReport, DuplicatedFace)
+{
+  TriangleMesh mesh = makeTetrahedron ();
+  const Eigen::Vector3i t = mesh.triangles[2];
+  mesh.triangles.emplace_back (t[1], t[2], t[0]);  // same vertex set, rotated
+  mesh.triangles.emplace_back (t[2], t[1], t[0]);  // same vertex set, flipped
+  const MeshReport r = reportOf (mesh);
+  EXPECT_EQ (r.duplicate_faces, 2u);
+  EXPECT_EQ (r.nonmanifold_edges, 3u);  // the copies' three edges now have 4 faces
+  EXPECT_FALSE (r.manifold);
+  EXPECT_EQ (r.genus, -1);
+  const std::vector<int> first = findDuplicateFaces (mesh);
+  EXPECT_EQ (first, (std::vector<int>{0, 1, 2, 3, 2, 2}));
+}
+
+TEST (MeshReport, DegenerateFaces)
+{
+  TriangleMesh mesh = makeSquare ();
+  mesh.vertices.emplace_back (2, 0, 0);
+  mesh.vertices.emplace_back (3, 0, 0);
+  mesh.triangles.emplace_back (1, 4, 5);  // collinear corners: zero area
+  mesh.triangles.emplace_back (1, 1, 4);  // repeated index
+  const MeshReport r = reportOf (mesh);
+  EXPECT_EQ (r.degenerate_faces, 2u);
+  EXPECT_TRUE (isDegenerateFace (mesh, 2));
+  EXPECT_TRUE (isDegenerateFace (mesh, 3));
+  EXPECT_FALSE (isDegenerateFace (mesh, 0));
+  EXPECT_FALSE (r.manifold);  // a repeated index makes the topology meaningless
+  EXPECT_EQ (r.genus, -1);
+}
+
+TEST (MeshReport, UnreferencedAndNonFiniteVertices)
+{
+  TriangleMesh mesh = makeTetrahedron ();
+  mesh.vertices.emplace_back (10, 10, 10);  // unreferenced, far away: counts in the box
+  mesh.vertices.emplace_back (std::numeric_limits<double>::quiet_NaN (), 0, 0);
+  const MeshReport r = reportOf (mesh);
+  EXPECT_EQ (r.vertices, 6u);
+  EXPECT_EQ (r.unreferenced_vertices, 2u);
+  EXPECT_EQ (r.non_finite_vertices, 1u);
+  EXPECT_EQ (r.components, 1u);  // isolated vertices are not components
+  EXPECT_EQ (r.euler_characteristic, 2);
+  EXPECT_EQ (r.genus, 0);
+  const double a = 1.0 / std::sqrt (3.0);
+  EXPECT_NEAR (r.bbox_diagonal, std::sqrt (3.0) * (10.0 + a), 1e-9);
+}
+
+TEST (MeshReport, NonManifoldEdge)
+{
+  // Three triangles sharing edge (0, 1).
+  TriangleMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  mesh.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  const MeshReport r = reportOf (mesh);
+  EXPECT_EQ (r.nonmanifold_edges, 1u);
+  EXPECT_EQ (r.boundary_edges, 6u);
+  EXPECT_EQ (r.nonmanifold_vertices, 2u);  // 0 and 1: three single-face fans each
+  EXPECT_EQ (r.components, 1u);
+  EXPECT_FALSE (r.manifold);
+  EXPECT_EQ (r.genus, -1);
+}
+
+TEST (MeshReport, BowTieVertex)
+{
+  // Two triangles touching only at vertex 0.
+  TriangleMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 3, 4}};
+  const MeshReport r = reportOf (mesh);
+  EXPECT_EQ (r.nonmanifold_edges, 0u);
+  EXPECT_EQ (r.nonmanifold_vertices, 1u);
+  EXPECT_EQ (r.boundary_edges, 6u);
+  EXPECT_EQ (r.boundary_loops, 1u);  // the two loops touch at vertex 0
+  EXPECT_EQ (r.components, 1u);
+  EXPECT_FALSE (r.manifold);
+  EXPECT_EQ (r.genus, -1);
+}
+
+TEST (MeshReport, MoebiusBandIsNotOrientable)
+{
+  // A strip of 2 x n quads whose ends are glued with a half twist.
+  const int n = 8;
+  TriangleMesh mesh;
+  for (int i = 0; i < n; ++i)
+  {
+    const double a = 2.0 * M_PI * i / n;
+    for (int s : {-1, 1})
+    {
+      const double w = 0.3 * s * std::cos (a / 2), h = 0.3 * s * std::sin (a / 2);
+      mesh.vertices.emplace_back ((1 + w) * std::cos (a), (1 + w) * std::sin (a), h);
+    }
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    const int a0 = 2 * i, a1 = 2 * i + 1;
+    const bool last = i + 1 == n;
+    const int b0 = last ? 1 : 2 * i + 2, b1 = last ? 0 : 2 * i + 3;  // the twist swaps the sides
+    mesh.triangles.emplace_back (a0, b0, b1);
+    mesh.triangles.emplace_back (a0, b1, a1);
+  }
+  const MeshReport r = reportOf (mesh);
+  EXPECT_TRUE (r.manifold);
+  EXPECT_EQ (r.boundary_loops, 1u);
+  EXPECT_EQ (r.boundary_edges, static_cast<std::size_t> (2 * n));
+  EXPECT_FALSE (r.orientable);
+  EXPECT_EQ (r.genus, -1);
+}
+
+TEST (MeshReport, FlippedFaceIsStillOrientable)
+{
+  TriangleMesh mesh = makeTorus (12, 6);
+  std::swap (mesh.triangles[5][0], mesh.triangles[5][1]);
+  const MeshReport r = reportOf (mesh);
+  EXPECT_TRUE (r.orientable);
+  EXPECT_EQ (r.genus, 1);
+}
+
+TEST (MeshReport, EmptyMesh)
+{
+  const MeshReport r = reportOf (TriangleMesh ());
+  EXPECT_EQ (r.vertices, 0u);
+  EXPECT_EQ (r.components, 0u);
+  EXPECT_EQ (r.genus, 0);
+  EXPECT_EQ (r.bbox_diagonal, 0.0);
+  EXPECT_EQ (r.mean_edge_length, 0.0);
+}
+
+TEST (MeshCleaning, IndexMaps)
+{
+  TriangleMesh mesh = makeSquare ();                                // faces 0, 1 on vertices 0..3
+  mesh.vertices.insert (mesh.vertices.begin () + 1, {7, 7, 7});     // input vertex 1: unreferenced
+  mesh.triangles = {{0, 2, 3}, {0, 3, 4}};
+  mesh.vertices.emplace_back (std::numeric_limits<double>::infinity (), 0, 0);  // 5: non-finite
+  mesh.vertices.emplace_back (2, 0, 0);                                         // 6
+  mesh.vertices.emplace_back (3, 0, 0);                                         // 7
+  mesh.triangles.emplace_back (2, 5, 3);  // 2: uses the non-finite vertex
+  mesh.triangles.emplace_back (3, 4, 0);  // 3: duplicate of face 1
+  mesh.triangles.emplace_back (2, 6, 7);  // 4: zero area
+  mesh.triangles.emplace_back (3, 3, 6);  // 5: repeated index
+  mesh.triangles.emplace_back (2, 6, 3);  // 6: a proper face
+
+  const CleanedMesh all = cleanMesh (mesh);
+  EXPECT_EQ (all.face_to_input, (std::vector<int>{0, 1, 6}));
+  EXPECT_EQ (all.vertex_to_input, (std::vector<int>{0, 2, 3, 4, 6}));
+  EXPECT_EQ (all.input_to_vertex, (std::vector<int>{0, -1, 1, 2, 3, -1, 4, -1}));
+  ASSERT_EQ (all.mesh.numTriangles (), 3u);
+  EXPECT_EQ (all.mesh.triangles[2], Eigen::Vector3i (1, 4, 2));
+  for (std::size_t v = 0; v < all.mesh.numVertices (); ++v)
+    EXPECT_EQ (all.mesh.vertices[v], mesh.vertices[all.vertex_to_input[v]]);
+  const MeshReport r = reportOf (all.mesh);
+  EXPECT_EQ (r.unreferenced_vertices + r.non_finite_vertices + r.degenerate_faces + r.duplicate_faces, 0u);
+
+  CleaningOptions keep_vertices;
+  keep_vertices.drop_unreferenced_vertices = false;
+  keep_vertices.drop_non_finite_vertices = false;
+  const CleanedMesh faces_only = cleanMesh (mesh, keep_vertices);
+  EXPECT_EQ (faces_only.face_to_input, (std::vector<int>{0, 1, 2, 6}));
+  EXPECT_EQ (faces_only.mesh.numVertices (), mesh.numVertices ());
+  for (int v = 0; v < 8; ++v)
+    EXPECT_EQ (faces_only.input_to_vertex[v], v);
+
+  const CleanedMesh nothing = cleanMesh (mesh, CleaningOptions{false, false, false, false});
+  EXPECT_EQ (nothing.mesh.numTriangles (), mesh.numTriangles ());
+  EXPECT_EQ (nothing.mesh.triangles, mesh.triangles);
+}
