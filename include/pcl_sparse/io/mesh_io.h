@@ -1,0 +1,62 @@
+#pragma once
+/// \file mesh_io.h
+/// Reading and writing triangle meshes: OBJ, OFF, PLY (ascii and binary), STL (ascii and binary).
+///
+/// Why our own readers and not PCL's (pcl::io::loadPolygonFile, loadPLYFile, loadOBJFile):
+///  - strictness: PCL's readers accept truncated binary files, lying headers and out-of-range face
+///    indices (or crash on them); ours refuse each with a one-line message naming the file and problem;
+///  - vertex count: the file's vertices are kept as they are, unreferenced ones included, so the counts
+///    match the file (PCL's VTK-based loadPolygonFile merges/renumbers points);
+///  - speed: one read into memory and std::from_chars on the buffer; bench/results/load.md has the
+///    numbers against PCL on the shared meshes;
+///  - no heavy PCL/VTK headers in this header (see polygon_mesh_conversion.h for pcl::PolygonMesh).
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// Options for loadTriangleMesh.
+  struct MeshLoadOptions
+  {
+    /// Keep vertices with NaN/Inf coordinates instead of refusing the file (default: refuse).
+    bool allow_non_finite = false;
+    /// Accept a file with vertices but no faces (the result has no triangles). Default: refuse, since
+    /// every mesh stage needs triangles; loadPointCloud sets it.
+    bool allow_no_faces = false;
+  };
+
+  /// Loads a triangle mesh from \a path, dispatching on the extension (.obj .off .ply .stl, any case).
+  /// Polygons are fan-triangulated (v0, vi, vi+1). Every vertex of the file is kept, in file order,
+  /// unreferenced ones too; binary STL, which has no shared vertices, is welded on exactly equal positions
+  /// (in first-appearance order). Throws pcl_sparse::Error with a one-line message naming the file and the
+  /// problem for: a missing file, a directory, an unknown extension, an empty file, binary garbage, a
+  /// truncated file, a header whose counts the file cannot hold, a face index out of range, a face with
+  /// fewer than 3 vertices, a NaN/Inf coordinate (unless options.allow_non_finite), no vertices, no faces
+  /// (unless options.allow_no_faces).
+  TriangleMesh
+  loadTriangleMesh (const std::string& path, const MeshLoadOptions& options = MeshLoadOptions ());
+
+  /// Writes \a mesh to \a path in the format given by the extension:
+  ///   .obj, .off  ascii, coordinates with the shortest representation that reads back exactly (double);
+  ///   .ply        binary little endian, double coordinates (exact), int32 indices in uchar lists;
+  ///   .stl        binary, float coordinates (the format's precision), facet normals computed.
+  /// Written atomically (writeFileAtomically); throws pcl_sparse::Error on an unknown extension, an
+  /// invalid face index or a failed write.
+  void
+  saveTriangleMesh (const std::string& path, const TriangleMesh& mesh);
+
+  /// Writes \a mesh with one RGB colour per vertex as binary little endian PLY (properties x y z as float,
+  /// red green blue as uchar), for viewing keypoint responses, patches and error maps in MeshLab or
+  /// CloudCompare. \a path must end in .ply and \a colors must have one entry per vertex.
+  void
+  saveColoredMesh (const std::string& path, const TriangleMesh& mesh, const std::vector<std::array<std::uint8_t, 3>>& colors);
+
+  /// True if \a path has one of the extensions loadTriangleMesh reads (.obj .off .ply .stl, any case).
+  bool
+  isMeshFileExtension (const std::string& path);
+} // namespace pcl_sparse

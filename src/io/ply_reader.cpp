@@ -1,0 +1,457 @@
+/// Stanford PLY: ascii, binary_little_endian and binary_big_endian. The vertex element gives x, y, z of any
+/// numeric type (other vertex properties skipped); the face element's list "vertex_indices" (or
+/// "vertex_index") of any integer count and index type gives polygons, fan-triangulated; other elements and
+/// properties are skipped. Every count is checked against the bytes left before anything is reserved.
+
+#include "mesh_readers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace pcl_sparse
+{
+  namespace io_detail
+  {
+    namespace
+    {
+      enum class PlyType
+      {
+        Int8,
+        UInt8,
+        Int16,
+        UInt16,
+        Int32,
+        UInt32,
+        Float32,
+        Float64
+      };
+
+      bool
+      parsePlyType (const std::string& name, PlyType& type)
+      {
+        if (name == "char" || name == "int8")
+          type = PlyType::Int8;
+        else if (name == "uchar" || name == "uint8")
+          type = PlyType::UInt8;
+        else if (name == "short" || name == "int16")
+          type = PlyType::Int16;
+        else if (name == "ushort" || name == "uint16")
+          type = PlyType::UInt16;
+        else if (name == "int" || name == "int32")
+          type = PlyType::Int32;
+        else if (name == "uint" || name == "uint32")
+          type = PlyType::UInt32;
+        else if (name == "float" || name == "float32")
+          type = PlyType::Float32;
+        else if (name == "double" || name == "float64")
+          type = PlyType::Float64;
+        else
+          return false;
+        return true;
+      }
+
+      std::size_t
+      sizeOf (PlyType type)
+      {
+        switch (type)
+        {
+          case PlyType::Int8:
+          case PlyType::UInt8:
+            return 1;
+          case PlyType::Int16:
+          case PlyType::UInt16:
+            return 2;
+          case PlyType::Int32:
+          case PlyType::UInt32:
+          case PlyType::Float32:
+            return 4;
+          case PlyType::Float64:
+            return 8;
+        }
+        return 0;
+      }
+
+      bool
+      isInteger (PlyType type)
+      {
+        return type != PlyType::Float32 && type != PlyType::Float64;
+      }
+
+      struct PlyProperty
+      {
+        std::string name;
+        PlyType type = PlyType::Float32;  // the value type (list entries for lists)
+        bool is_list = false;
+        PlyType count_type = PlyType::UInt8;
+      };
+
+      struct PlyElement
+      {
+        std::string name;
+        long long count = 0;
+        std::vector<PlyProperty> properties;
+      };
+
+      enum class PlyFormat
+      {
+        Ascii,
+        BinaryLittleEndian,
+        BinaryBigEndian
+      };
+
+      /// Reads one binary value of \a type at \a p (which has at least sizeOf (type) bytes) as double.
+      template <bool swap>
+      double
+      readBinary (const char* p, PlyType type)
+      {
+        unsigned char bytes[8];
+        const std::size_t n = sizeOf (type);
+        if (swap)
+          for (std::size_t i = 0; i < n; ++i)
+            bytes[i] = static_cast<unsigned char> (p[n - 1 - i]);
+        else
+          std::memcpy (bytes, p, n);
+        switch (type)
+        {
+          case PlyType::Int8: { std::int8_t v; std::memcpy (&v, bytes, 1); return v; }
+          case PlyType::UInt8: { std::uint8_t v; std::memcpy (&v, bytes, 1); return v; }
+          case PlyType::Int16: { std::int16_t v; std::memcpy (&v, bytes, 2); return v; }
+          case PlyType::UInt16: { std::uint16_t v; std::memcpy (&v, bytes, 2); return v; }
+          case PlyType::Int32: { std::int32_t v; std::memcpy (&v, bytes, 4); return v; }
+          case PlyType::UInt32: { std::uint32_t v; std::memcpy (&v, bytes, 4); return v; }
+          case PlyType::Float32: { float v; std::memcpy (&v, bytes, 4); return v; }
+          case PlyType::Float64: { double v; std::memcpy (&v, bytes, 8); return v; }
+        }
+        return 0.0;
+      }
+
+      /// Splits a header line into words.
+      std::vector<std::string>
+      splitWords (const char* begin, const char* end)
+      {
+        std::vector<std::string> words;
+        const char* p = begin;
+        while (p < end)
+        {
+          while (p < end && TextCursor::isBlank (*p))
+            ++p;
+          const char* start = p;
+          while (p < end && !TextCursor::isBlank (*p))
+            ++p;
+          if (p > start)
+            words.emplace_back (start, p);
+        }
+        return words;
+      }
+
+      /// The parts of the body the mesh needs: which element and properties are the vertices and faces.
+      struct PlyLayout
+      {
+        std::vector<PlyElement> elements;
+        PlyFormat format = PlyFormat::Ascii;
+        std::size_t body_offset = 0;
+      };
+
+      PlyLayout
+      parseHeader (const std::string& data, const std::string& path)
+      {
+        PlyLayout layout;
+        if (data.size () < 4 || data.compare (0, 3, "ply") != 0 || (data[3] != '\n' && data[3] != '\r'))
+          throw Error (path + ": not a PLY file (it does not start with 'ply')");
+        const char* p = data.data ();
+        const char* end = data.data () + data.size ();
+        std::size_t line = 0;
+        bool have_format = false;
+        while (true)
+        {
+          const char* nl = static_cast<const char*> (std::memchr (p, '\n', static_cast<std::size_t> (end - p)));
+          if (!nl)
+            throw Error (path + ": truncated PLY header (no end_header)");
+          ++line;
+          const std::vector<std::string> words = splitWords (p, nl);
+          p = nl + 1;
+          if (line == 1 || words.empty () || words[0] == "comment" || words[0] == "obj_info")
+            continue;
+          if (words[0] == "end_header")
+            break;
+          if (words[0] == "format")
+          {
+            if (words.size () < 2)
+              throw Error (atLine (path, line, "bad PLY format line"));
+            if (words[1] == "ascii")
+              layout.format = PlyFormat::Ascii;
+            else if (words[1] == "binary_little_endian")
+              layout.format = PlyFormat::BinaryLittleEndian;
+            else if (words[1] == "binary_big_endian")
+              layout.format = PlyFormat::BinaryBigEndian;
+            else
+              throw Error (atLine (path, line, "unknown PLY format '" + words[1] + "'"));
+            have_format = true;
+          }
+          else if (words[0] == "element")
+          {
+            PlyElement element;
+            long long count = -1;
+            if (words.size () == 3)
+            {
+              const auto result = std::from_chars (words[2].data (), words[2].data () + words[2].size (), count);
+              if (result.ec != std::errc () || result.ptr != words[2].data () + words[2].size ())
+                count = -1;
+            }
+            if (count < 0)
+              throw Error (atLine (path, line, "bad PLY element line"));
+            element.name = words[1];
+            element.count = count;
+            layout.elements.push_back (element);
+          }
+          else if (words[0] == "property")
+          {
+            if (layout.elements.empty ())
+              throw Error (atLine (path, line, "PLY property before any element"));
+            PlyProperty property;
+            bool ok = false;
+            if (words.size () == 3)
+              ok = parsePlyType (words[1], property.type);
+            else if (words.size () == 5 && words[1] == "list")
+            {
+              property.is_list = true;
+              ok = parsePlyType (words[2], property.count_type) && isInteger (property.count_type) &&
+                   parsePlyType (words[3], property.type);
+            }
+            if (!ok)
+              throw Error (atLine (path, line, "bad PLY property line"));
+            property.name = words.back ();
+            layout.elements.back ().properties.push_back (property);
+          }
+          else
+            throw Error (atLine (path, line, "unknown PLY header line '" + words[0] + "'"));
+        }
+        if (!have_format)
+          throw Error (path + ": PLY header without a format line");
+        layout.body_offset = static_cast<std::size_t> (p - data.data ());
+        return layout;
+      }
+
+      /// Reads the body: binary (templated on byte swapping) or ascii.
+      class PlyBodyReader
+      {
+      public:
+        PlyBodyReader (const std::string& data, const std::string& path, const PlyLayout& layout)
+        : data_ (data), path_ (path), layout_ (layout)
+        {
+        }
+
+        void
+        read (TriangleMesh& mesh)
+        {
+          const char* p = data_.data () + layout_.body_offset;
+          const char* end = data_.data () + data_.size ();
+          TextCursor cursor (data_);
+          cursor.p = p;
+          cursor.line = 1 + static_cast<std::size_t> (std::count (data_.data (), p, '\n'));
+          for (const PlyElement& element : layout_.elements)
+          {
+            const bool is_vertex = element.name == "vertex";
+            const bool is_face = element.name == "face";
+            int x = -1, y = -1, z = -1, indices = -1;
+            std::size_t min_record = 0;
+            for (std::size_t i = 0; i < element.properties.size (); ++i)
+            {
+              const PlyProperty& property = element.properties[i];
+              min_record += property.is_list ? sizeOf (property.count_type) : sizeOf (property.type);
+              if (is_vertex && !property.is_list)
+              {
+                if (property.name == "x")
+                  x = static_cast<int> (i);
+                else if (property.name == "y")
+                  y = static_cast<int> (i);
+                else if (property.name == "z")
+                  z = static_cast<int> (i);
+              }
+              if (is_face && property.is_list && (property.name == "vertex_indices" || property.name == "vertex_index"))
+              {
+                if (!isInteger (property.type))
+                  throw Error (path_ + ": PLY face indices of a floating-point type");
+                indices = static_cast<int> (i);
+              }
+            }
+            if (is_vertex && (x < 0 || y < 0 || z < 0))
+              throw Error (path_ + ": the PLY vertex element has no x, y, z properties");
+            if (is_face && indices < 0)
+              throw Error (path_ + ": the PLY face element has no vertex_indices list");
+            if (is_vertex && !mesh.vertices.empty ())
+              throw Error (path_ + ": two PLY vertex elements");
+            if (is_vertex && element.count > std::numeric_limits<int>::max ())
+              throw Error (path_ + ": too many vertices (" + std::to_string (element.count) + ")");
+
+            // Refuse a lying header before reserving: in binary every record has at least min_record bytes,
+            // in ascii every value at least one character and one separator.
+            const long long remaining =
+                layout_.format == PlyFormat::Ascii ? static_cast<long long> (end - cursor.p) : static_cast<long long> (end - p);
+            const long long min_bytes =
+                layout_.format == PlyFormat::Ascii ? 2 * static_cast<long long> (element.properties.size ()) - 1
+                                                   : static_cast<long long> (min_record);
+            if (element.count > 0 && min_bytes > 0 && element.count > (remaining + 1) / min_bytes)
+              throw Error (path_ + ": truncated or lying header: the PLY element '" + element.name + "' announces " +
+                           std::to_string (element.count) + " records, more than the " + std::to_string (remaining) +
+                           " remaining bytes can hold");
+
+            if (is_vertex)
+              mesh.vertices.resize (static_cast<std::size_t> (element.count));
+            if (is_face)
+              mesh.triangles.reserve (mesh.triangles.size () + static_cast<std::size_t> (element.count));
+
+            const Target target{is_vertex, is_face, x, y, z, indices};
+            switch (layout_.format)
+            {
+              case PlyFormat::Ascii:
+                readAscii (cursor, element, target, mesh);
+                break;
+              case PlyFormat::BinaryLittleEndian:
+                p = readBinaryElement<false> (p, end, element, target, mesh);
+                break;
+              case PlyFormat::BinaryBigEndian:
+                p = readBinaryElement<true> (p, end, element, target, mesh);
+                break;
+            }
+          }
+          // Trailing bytes after the last element are tolerated (some writers pad).
+          const long long num_vertices = static_cast<long long> (mesh.vertices.size ());
+          for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+            for (int k = 0; k < 3; ++k)
+            {
+              const int index = mesh.triangles[f][k];
+              if (index < 0 || index >= num_vertices)
+                throw Error (path_ + ": face index " + std::to_string (index) + " is out of range (the file has " +
+                             std::to_string (num_vertices) + " vertices)");
+            }
+        }
+
+      private:
+        struct Target
+        {
+          bool is_vertex, is_face;
+          int x, y, z, indices;
+        };
+
+        void
+        addPolygon (const std::vector<long long>& polygon, long long record, TriangleMesh& mesh) const
+        {
+          if (polygon.size () < 3)
+            throw Error (path_ + ": PLY face " + std::to_string (record) + " has " + std::to_string (polygon.size ()) +
+                         " vertices (at least 3 needed)");
+          for (long long index : polygon)
+            if (index < 0 || index > std::numeric_limits<int>::max ())
+              throw Error (path_ + ": face index " + std::to_string (index) + " is out of range");
+          for (std::size_t i = 1; i + 1 < polygon.size (); ++i)
+            mesh.triangles.emplace_back (static_cast<int> (polygon[0]), static_cast<int> (polygon[i]),
+                                         static_cast<int> (polygon[i + 1]));
+        }
+
+        [[noreturn]] void
+        truncated (const PlyElement& element, long long record) const
+        {
+          throw Error (path_ + ": truncated: the file ends in PLY " + element.name + " " + std::to_string (record) +
+                       " of " + std::to_string (element.count));
+        }
+
+        template <bool swap>
+        const char*
+        readBinaryElement (const char* p, const char* end, const PlyElement& element, const Target& target,
+                           TriangleMesh& mesh) const
+        {
+          std::vector<long long> polygon;
+          for (long long r = 0; r < element.count; ++r)
+          {
+            for (std::size_t i = 0; i < element.properties.size (); ++i)
+            {
+              const PlyProperty& property = element.properties[i];
+              const int pi = static_cast<int> (i);
+              if (!property.is_list)
+              {
+                const std::size_t size = sizeOf (property.type);
+                if (static_cast<std::size_t> (end - p) < size)
+                  truncated (element, r);
+                if (target.is_vertex && (pi == target.x || pi == target.y || pi == target.z))
+                  mesh.vertices[static_cast<std::size_t> (r)][pi == target.x ? 0 : (pi == target.y ? 1 : 2)] =
+                      readBinary<swap> (p, property.type);
+                p += size;
+                continue;
+              }
+              const std::size_t count_size = sizeOf (property.count_type);
+              if (static_cast<std::size_t> (end - p) < count_size)
+                truncated (element, r);
+              const double count_value = readBinary<swap> (p, property.count_type);
+              p += count_size;
+              const std::size_t size = sizeOf (property.type);
+              if (count_value < 0 || count_value * static_cast<double> (size) > static_cast<double> (end - p))
+                truncated (element, r);
+              const std::size_t count = static_cast<std::size_t> (count_value);
+              if (target.is_face && pi == target.indices)
+              {
+                polygon.resize (count);
+                for (std::size_t k = 0; k < count; ++k)
+                  polygon[k] = static_cast<long long> (readBinary<swap> (p + k * size, property.type));
+                addPolygon (polygon, r, mesh);
+              }
+              p += count * size;
+            }
+          }
+          return p;
+        }
+
+        void
+        readAscii (TextCursor& cursor, const PlyElement& element, const Target& target, TriangleMesh& mesh) const
+        {
+          std::vector<long long> polygon;
+          auto value = [&] (long long record, PlyType type) {
+            double v;
+            if (!cursor.skipToToken ())
+              truncated (element, record);
+            if (!cursor.parseDouble (v) || !cursor.atDelimiter ())
+              throw Error (atLine (path_, cursor.line, "bad PLY value " + cursor.tokenForMessage ()));
+            if (isInteger (type) && v != std::floor (v))
+              throw Error (atLine (path_, cursor.line, "non-integer value for an integer PLY property"));
+            return v;
+          };
+          for (long long r = 0; r < element.count; ++r)
+          {
+            for (std::size_t i = 0; i < element.properties.size (); ++i)
+            {
+              const PlyProperty& property = element.properties[i];
+              const int pi = static_cast<int> (i);
+              if (!property.is_list)
+              {
+                const double v = value (r, property.type);
+                if (target.is_vertex && (pi == target.x || pi == target.y || pi == target.z))
+                  mesh.vertices[static_cast<std::size_t> (r)][pi == target.x ? 0 : (pi == target.y ? 1 : 2)] = v;
+                continue;
+              }
+              const double count_value = value (r, property.count_type);
+              if (count_value < 0 || count_value > static_cast<double> (cursor.end - cursor.p))
+                throw Error (atLine (path_, cursor.line, "bad PLY list size"));
+              const std::size_t count = static_cast<std::size_t> (count_value);
+              polygon.resize (count);
+              for (std::size_t k = 0; k < count; ++k)
+                polygon[k] = static_cast<long long> (value (r, property.type));
+              if (target.is_face && pi == target.indices)
+                addPolygon (polygon, r, mesh);
+            }
+          }
+        }
+
+        const std::string& data_;
+        const std::string& path_;
+        const PlyLayout& layout_;
+      };
+    } // namespace
+
+    void
+    readPly (const std::string& data, const std::string& path, TriangleMesh& mesh)
+    {
+      const PlyLayout layout = parseHeader (data, path);
+      PlyBodyReader (data, path, layout).read (mesh);
+    }
+  } // namespace io_detail
+} // namespace pcl_sparse

@@ -1,0 +1,198 @@
+/// STL, ascii ("solid ... facet normal ... outer loop vertex x y z ... endsolid") and binary (80-byte header,
+/// uint32 triangle count, 50 bytes per triangle). STL repeats every corner in every triangle; we weld corners
+/// with exactly equal coordinates (no tolerance: anything else would change the geometry) so that the mesh is
+/// indexed and has topology, numbering vertices in order of first appearance.
+
+#include "mesh_readers.h"
+
+#include <unordered_map>
+#include <vector>
+
+namespace pcl_sparse
+{
+  namespace io_detail
+  {
+    namespace
+    {
+      struct PositionKey
+      {
+        std::uint64_t bits[3];
+        bool
+        operator== (const PositionKey& other) const
+        {
+          return bits[0] == other.bits[0] && bits[1] == other.bits[1] && bits[2] == other.bits[2];
+        }
+      };
+
+      struct PositionKeyHash
+      {
+        std::size_t
+        operator() (const PositionKey& key) const
+        {
+          std::uint64_t h = 0x9e3779b97f4a7c15ull;
+          for (std::uint64_t b : key.bits)
+          {
+            h ^= b + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+            h *= 0xff51afd7ed558ccdull;
+          }
+          return static_cast<std::size_t> (h ^ (h >> 32));
+        }
+      };
+
+      /// Welds corners with identical positions (+0 and -0 are the same position).
+      class Welder
+      {
+      public:
+        Welder (TriangleMesh& mesh, std::size_t expected_corners) : mesh_ (mesh)
+        {
+          index_.reserve (expected_corners / 4 + 16);
+        }
+
+        int
+        add (const Eigen::Vector3d& position)
+        {
+          PositionKey key;
+          for (int k = 0; k < 3; ++k)
+          {
+            const double value = position[k] == 0.0 ? 0.0 : position[k];
+            std::memcpy (&key.bits[k], &value, sizeof (double));
+          }
+          const auto inserted = index_.emplace (key, static_cast<int> (mesh_.vertices.size ()));
+          if (inserted.second)
+            mesh_.vertices.push_back (position);
+          return inserted.first->second;
+        }
+
+      private:
+        TriangleMesh& mesh_;
+        std::unordered_map<PositionKey, int, PositionKeyHash> index_;
+      };
+
+      void
+      readBinaryStl (const std::string& data, const std::string& path, TriangleMesh& mesh)
+      {
+        std::uint32_t count;
+        std::memcpy (&count, data.data () + 80, 4);  // little endian by the format; we assume a little-endian host
+        const std::uint64_t needed = 84 + 50ull * count;
+        if (data.size () < needed)
+          throw Error (path + ": truncated binary STL: the header announces " + std::to_string (count) +
+                       " triangles (" + std::to_string (needed) + " bytes) but the file has " +
+                       std::to_string (data.size ()) + " bytes");
+        mesh.triangles.reserve (count);
+        Welder welder (mesh, 3ull * count);
+        const char* p = data.data () + 84;
+        for (std::uint32_t t = 0; t < count; ++t, p += 50)
+        {
+          int corner[3];
+          for (int c = 0; c < 3; ++c)
+          {
+            float xyz[3];
+            std::memcpy (xyz, p + 12 + 12 * c, 12);  // skip the 12-byte facet normal
+            corner[c] = welder.add (Eigen::Vector3d (xyz[0], xyz[1], xyz[2]));
+          }
+          mesh.triangles.emplace_back (corner[0], corner[1], corner[2]);
+        }
+      }
+
+      bool
+      matchWord (TextCursor& cursor, const char* word)
+      {
+        const std::size_t n = std::strlen (word);
+        if (static_cast<std::size_t> (cursor.end - cursor.p) < n || std::memcmp (cursor.p, word, n) != 0)
+          return false;
+        const char* after = cursor.p + n;
+        if (after != cursor.end && !TextCursor::isBlank (*after) && *after != '\n')
+          return false;
+        cursor.p = after;
+        return true;
+      }
+
+      void
+      readAsciiStl (const std::string& data, const std::string& path, TriangleMesh& mesh)
+      {
+        requireText (data, path, "ascii STL");
+        TextCursor cursor (data);
+        cursor.skipLine ();  // "solid name"
+        Welder welder (mesh, data.size () / 40);
+        std::vector<int> polygon;
+        bool in_facet = false;
+        bool ended = false;
+        // Token-driven: "facet" opens a facet, "vertex" adds a corner, "endfacet" closes it; "normal",
+        // "outer loop", "endloop" carry nothing we need. Names after "solid"/"endsolid" are skipped.
+        while (cursor.skipToToken ())
+        {
+          if (matchWord (cursor, "facet"))
+          {
+            if (in_facet)
+              throw Error (atLine (path, cursor.line, "'facet' inside a facet"));
+            in_facet = true;
+            polygon.clear ();
+            cursor.skipLine ();  // the normal
+          }
+          else if (matchWord (cursor, "vertex"))
+          {
+            if (!in_facet)
+              throw Error (atLine (path, cursor.line, "'vertex' outside a facet"));
+            Eigen::Vector3d v;
+            for (int k = 0; k < 3; ++k)
+            {
+              cursor.skipBlanks ();
+              if (!cursor.parseDouble (v[k]) || !cursor.atDelimiter ())
+                throw Error (atLine (path, cursor.line, "bad vertex coordinate " + cursor.tokenForMessage ()));
+            }
+            polygon.push_back (welder.add (v));
+          }
+          else if (matchWord (cursor, "endfacet"))
+          {
+            if (!in_facet || polygon.size () < 3)
+              throw Error (atLine (path, cursor.line, "facet with " + std::to_string (polygon.size ()) + " vertices"));
+            for (std::size_t i = 1; i + 1 < polygon.size (); ++i)
+              mesh.triangles.emplace_back (polygon[0], polygon[i], polygon[i + 1]);
+            in_facet = false;
+          }
+          else if (matchWord (cursor, "outer") || matchWord (cursor, "loop") || matchWord (cursor, "endloop"))
+          {
+          }
+          else if (matchWord (cursor, "endsolid"))
+          {
+            ended = true;
+            cursor.skipLine ();
+          }
+          else if (matchWord (cursor, "solid"))  // several solids in one file
+          {
+            ended = false;
+            cursor.skipLine ();
+          }
+          else
+            throw Error (atLine (path, cursor.line, "unexpected " + cursor.tokenForMessage () + " in ascii STL"));
+        }
+        if (in_facet || !ended)
+          throw Error (path + ": truncated ascii STL (no endsolid)");
+      }
+    } // namespace
+
+    void
+    readStl (const std::string& data, const std::string& path, TriangleMesh& mesh)
+    {
+      // Binary files may also start with "solid" (some exporters write it into the 80-byte header), so a file
+      // whose size is exactly that of a binary STL with its announced count is binary.
+      bool binary_size = false;
+      if (data.size () >= 84)
+      {
+        std::uint32_t count;
+        std::memcpy (&count, data.data () + 80, 4);
+        binary_size = data.size () == 84 + 50ull * count;
+      }
+      std::size_t start = 0;
+      while (start < data.size () && (TextCursor::isBlank (data[start]) || data[start] == '\n'))
+        ++start;
+      const bool starts_solid = data.compare (start, 5, "solid") == 0;
+      if (starts_solid && !binary_size)
+        readAsciiStl (data, path, mesh);
+      else if (data.size () < 84)
+        throw Error (path + ": not an STL file (too short for binary STL and not ascii STL)");
+      else
+        readBinaryStl (data, path, mesh);
+    }
+  } // namespace io_detail
+} // namespace pcl_sparse
