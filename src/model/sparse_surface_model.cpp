@@ -1,6 +1,8 @@
 #include <pcl_sparse/model/sparse_surface_model.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pcl_sparse
 {
@@ -39,5 +41,82 @@ namespace pcl_sparse
   {
     const PatchCode& code = patches[p];
     return basis->evaluateCode (code.atoms, code.coefficients, x, y);
+  }
+} // namespace pcl_sparse
+
+namespace pcl_sparse
+{
+  double
+  SparseSurfaceModel::compressionRatio () const
+  {
+    if (num_input_vertices == 0)
+      return 0.0;
+    return (13.0 * patches.size () + numNonZeros ()) / (3.0 * num_input_vertices);
+  }
+
+  std::vector<Eigen::Vector3d>
+  SparseSurfaceModel::reconstructVertices (std::size_t num_vertices) const
+  {
+    std::vector<Eigen::Vector3d> sum (num_vertices, Eigen::Vector3d::Zero ());
+    std::vector<int> count (num_vertices, 0);
+    for (const PatchCode& code : patches)
+    {
+      const std::size_t n = std::min (code.vertices.size (), code.vertex_xy.size ());
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        const int v = code.vertices[k];
+        if (v < 0 || static_cast<std::size_t> (v) >= num_vertices)
+          continue;
+        const Eigen::Vector2d& xy = code.vertex_xy[k];
+        const double h = basis ? basis->evaluateCodeValue (code.atoms, code.coefficients, xy.x (), xy.y ()) : 0.0;
+        sum[v] += code.toWorld (Eigen::Vector3d (xy.x (), xy.y (), h));
+        ++count[v];
+      }
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN ();
+    for (std::size_t v = 0; v < num_vertices; ++v)
+      sum[v] = count[v] > 0 ? Eigen::Vector3d (sum[v] / count[v]) : Eigen::Vector3d (nan, nan, nan);
+    return sum;
+  }
+
+  ModelStatistics
+  SparseSurfaceModel::statistics (const std::vector<Eigen::Vector3d>& input_vertices, std::vector<double>* errors) const
+  {
+    ModelStatistics stats;
+    stats.num_vertices = input_vertices.size ();
+    stats.num_patches = patches.size ();
+    stats.num_nonzeros = numNonZeros ();
+    stats.compression_ratio =
+        stats.num_vertices > 0 ? (13.0 * stats.num_patches + stats.num_nonzeros) / (3.0 * stats.num_vertices) : 0.0;
+    const std::vector<Eigen::Vector3d> reconstructed = reconstructVertices (input_vertices.size ());
+    if (errors)
+      errors->assign (input_vertices.size (), 0.0);
+    double sum = 0.0;
+    std::size_t covered = 0;
+    for (std::size_t v = 0; v < input_vertices.size (); ++v)
+    {
+      if (!reconstructed[v].allFinite ())
+      {
+        ++stats.uncovered;
+        continue;
+      }
+      const double e = (reconstructed[v] - input_vertices[v]).norm ();
+      if (errors)
+        (*errors)[v] = e;
+      sum += e * e;
+      stats.max_error = std::max (stats.max_error, e);
+      ++covered;
+    }
+    stats.rmse = covered > 0 ? std::sqrt (sum / covered) : 0.0;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ()), hi = -lo;
+    for (const Eigen::Vector3d& p : input_vertices)
+      if (p.allFinite ())
+      {
+        lo = lo.cwiseMin (p);
+        hi = hi.cwiseMax (p);
+      }
+    const double diagonal = bbox_diagonal > 0.0 ? bbox_diagonal : (input_vertices.empty () ? 0.0 : (hi - lo).norm ());
+    stats.rmse_over_diagonal = diagonal > 0.0 ? stats.rmse / diagonal : 0.0;
+    return stats;
   }
 } // namespace pcl_sparse

@@ -40,5 +40,12 @@ namespace pcl_sparse
     /// sum_k coefficients[k] * atom_{atoms[k]} at (x, y), with analytic derivatives.
     virtual HeightSample evaluateCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                                        double x, double y) const = 0;
+
+    /// Value only of the code at (x, y); override when it is cheaper than evaluateCode.
+    virtual double evaluateCodeValue (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+                                      double x, double y) const
+    {
+      return evaluateCode (atoms, coefficients, x, y).value;
+    }
   };
 } // namespace pcl_sparse

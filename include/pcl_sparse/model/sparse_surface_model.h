@@ -45,6 +45,19 @@ namespace pcl_sparse
     Eigen::Vector3d toWorld (const Eigen::Vector3d& local) const { return origin + radius * (frame * local); }
   };
 
+  /// Figures of a model against its input mesh (METHOD.md step 11).
+  struct ModelStatistics
+  {
+    std::size_t num_vertices = 0;      ///< N_V, input vertices
+    std::size_t num_patches = 0;       ///< M
+    std::size_t num_nonzeros = 0;      ///< ||alpha||_0
+    std::size_t uncovered = 0;         ///< input vertices in no patch (left out of the errors)
+    double rmse = 0.0;                 ///< sqrt(mean |v - v^|^2) over covered vertices
+    double rmse_over_diagonal = 0.0;   ///< rmse / bounding-box diagonal of the input
+    double max_error = 0.0;            ///< largest |v - v^|
+    double compression_ratio = 0.0;    ///< CR = (13 M + nnz) / (3 N_V)
+  };
+
   /// The whole model.
   class SparseSurfaceModel
   {
@@ -62,5 +75,19 @@ namespace pcl_sparse
     std::size_t numNonZeros () const;
     /// Height, gradient and Hessian of patch \a p at local (x, y).
     HeightSample evaluate (std::size_t p, double x, double y) const;
+
+    /// CR = (13 M + nnz) / (3 N_V) (METHOD.md step 11: 9 frame + 3 seed + 1 radius values per patch; counts
+    /// values, not bytes). 0 when num_input_vertices is 0.
+    double compressionRatio () const;
+
+    /// Blended input vertices (METHOD.md step 10): vertex v is the mean over the patches listing it of
+    /// s + r R (x', y', h(x', y')), with its stored x', y'. Vertices in no patch (and indices >=
+    /// \a num_vertices are ignored) come back as NaN. Needs the patches' vertices / vertex_xy.
+    std::vector<Eigen::Vector3d> reconstructVertices (std::size_t num_vertices) const;
+
+    /// Statistics against the input vertices; \a errors (optional) receives |v - v^| per vertex (0 for
+    /// uncovered ones).
+    ModelStatistics statistics (const std::vector<Eigen::Vector3d>& input_vertices,
+                                std::vector<double>* errors = nullptr) const;
   };
 } // namespace pcl_sparse

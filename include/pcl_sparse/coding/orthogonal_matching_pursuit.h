@@ -1,0 +1,34 @@
+#pragma once
+/// \file orthogonal_matching_pursuit.h
+/// Orthogonal Matching Pursuit over an explicit dictionary matrix, restricted to allowed atoms
+/// (METHOD.md step 9; the Nyquist cap of nyquist_cap.h supplies the mask).
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// A sparse code: atoms in selection order and their coefficients.
+  struct OmpResult
+  {
+    std::vector<int> atoms;             ///< selected columns, in selection order
+    std::vector<double> coefficients;   ///< one per atom, for the columns as given (not normalised)
+    double residual_norm = 0.0;         ///< ||y - D_S alpha||
+  };
+
+  /// Greedy sparse approximation y ~ D alpha.
+  ///   signal      #P values y
+  ///   dictionary  #P by K matrix D (columns need not be normalised)
+  ///   allowed     K flags (non-zero = may be selected); empty means every atom is allowed
+  ///   tolerance   stop once ||r|| <= tolerance * ||y|| (METHOD.md eps = 0.01)
+  ///   max_atoms   stop after this many atoms (METHOD.md L = 12)
+  /// Each step selects the allowed atom maximising |<r, d_k>| / ||d_k|| (normalised columns), then
+  /// re-solves least squares on the whole support through an incrementally updated Cholesky factor of
+  /// D_S^T D_S (O(#P |S|) per step, no pseudo-inverse). It also stops when no allowed atom correlates
+  /// with the residual any more; an atom numerically dependent on the support is skipped, never added.
+  /// A zero signal gives the empty code.
+  OmpResult
+  orthogonalMatchingPursuit (const Eigen::VectorXd& signal, const Eigen::MatrixXd& dictionary,
+                             const std::vector<char>& allowed, double tolerance, int max_atoms);
+} // namespace pcl_sparse

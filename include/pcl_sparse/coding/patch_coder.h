@@ -1,0 +1,45 @@
+#pragma once
+/// \file patch_coder.h
+/// Codes one patch as a sparse height field (METHOD.md steps 7-9): samples, Nyquist cap, OMP, footprint.
+
+#include <pcl_sparse/coding/nyquist_cap.h>
+#include <pcl_sparse/coding/surface_basis.h>
+#include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/patches/patch.h>
+
+#include <cstdint>
+
+namespace pcl_sparse
+{
+  /// Options of the sparse coding stage. Defaults are the paper's.
+  struct SparseCodingOptions
+  {
+    double nyquist_factor = 0.5;                  ///< f in [0, 1]; 0 = plain OMP (paper's experiments: 0.5)
+    NyquistRule nyquist_rule = NyquistRule::Paper;  ///< paper: lambda / 2 > f mu; authors' code: lambda >= f mu
+    int max_atoms = 12;                           ///< L, atoms per patch at most
+    double tolerance = 0.01;                      ///< eps: stop at ||r|| <= eps ||y||
+    int min_samples = 64;                         ///< m_min: fewer points get extra samples (authors' code: 128)
+    int footprint_angles = 16;                    ///< K, angles of the stored footprint
+    std::uint64_t seed = 42;                      ///< global seed of the extra samples (per patch: mixSeed)
+  };
+
+  /// Diagnostics of one coded patch (not stored in the model).
+  struct PatchCodingInfo
+  {
+    int num_samples = 0;          ///< points coded: vertices plus extra samples
+    double spacing = 0.0;         ///< mu, local units
+    int allowed_atoms = 0;        ///< atoms passing the Nyquist cap
+    double relative_residual = 0.0;  ///< ||r|| / ||y|| (0 for a zero signal)
+  };
+
+  /// Codes \a patch (frame, radius, local coordinates set) over \a basis. The signal is the local height
+  /// z' at the patch's vertices plus, if there are fewer than options.min_samples of them, that many
+  /// minus the vertex count of extra points on its triangles (seeded by mixSeed (options.seed,
+  /// \a patch_index)). The returned code carries origin, frame, radius, atoms, coefficients, footprint,
+  /// vertices and their local x', y'.
+  PatchCode
+  codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh, const MeshTopology& topology,
+             const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr);
+} // namespace pcl_sparse

@@ -1,0 +1,23 @@
+#pragma once
+/// \file patch_footprint.h
+/// The region of its tangent plane where a patch has data (PatchFootprint), from the patch's triangles.
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/patches/patch.h>
+
+namespace pcl_sparse
+{
+  /// Star-shaped footprint with \a angles extents covering the patch's own triangles projected on its
+  /// tangent plane (local x', y'), and its vertices.
+  ///
+  /// Choice: the exact maximum radius of the projected triangles inside each angular sector
+  /// [2 pi k / K, 2 pi (k + 1) / K) is found from their edges (|p| is convex along a segment, so the
+  /// maximum over a segment clipped to a sector is at a clip point: an endpoint or a crossing of a sector
+  /// ray). Extent k is the larger of the two sector maxima adjacent to angle k, so the linear
+  /// interpolation of PatchFootprint never cuts a triangle: every point of every projected triangle
+  /// satisfies footprint.contains() (it may also admit a little outside, never less). A projected
+  /// triangle containing the origin cannot exceed its edges' radii, so edges suffice.
+  PatchFootprint
+  computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles = 16);
+} // namespace pcl_sparse

@@ -1,0 +1,31 @@
+#pragma once
+/// \file patch_samples.h
+/// The samples a patch is coded from (METHOD.md step 7) and their spacing (step 9's mu).
+
+#include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/patches/patch.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// mu: median over the patch's vertices of their mean 1-ring edge length (the full 1-ring in the mesh,
+  /// 3D lengths), divided by r_P so it is in the patch's local scaled units. 0 for an empty patch.
+  double
+  patchSampleSpacing (const Patch& patch, const TriangleMesh& mesh, const MeshTopology& topology);
+
+  /// \a count points drawn uniformly by area on the patch's own triangles (patch.triangles, face ids of
+  /// \a mesh), in local coordinates
+  /// (x', y', z'): a random triangle by area, a uniform barycentric point in it, and the barycentric
+  /// combination of the corners' local coordinates (the mesh's own surface there, since the local map is
+  /// affine). Deterministic for a given \a seed. Empty when the patch has no triangle of positive area.
+  std::vector<Eigen::Vector3d>
+  drawPatchSurfaceSamples (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed);
+
+  /// A well-mixed 64-bit seed for item \a index under \a seed (splitmix64), so per-patch random streams do
+  /// not depend on the thread that codes the patch.
+  std::uint64_t
+  mixSeed (std::uint64_t seed, std::uint64_t index);
+} // namespace pcl_sparse

@@ -1,0 +1,59 @@
+#include <pcl_sparse/coding/orthogonal_matching_pursuit.h>
+#include <pcl_sparse/coding/patch_coder.h>
+#include <pcl_sparse/coding/patch_footprint.h>
+#include <pcl_sparse/coding/patch_samples.h>
+
+namespace pcl_sparse
+{
+  PatchCode
+  codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh, const MeshTopology& topology,
+             const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info)
+  {
+    PatchCode code;
+    code.origin = patch.origin;
+    code.frame = patch.frame;
+    code.radius = patch.radius;
+    code.vertices = patch.vertices;
+    code.vertex_xy.reserve (patch.local.size ());
+    for (const Eigen::Vector3d& p : patch.local)
+      code.vertex_xy.emplace_back (p.x (), p.y ());
+    code.footprint = computePatchFootprint (patch, mesh, options.footprint_angles);
+
+    // Samples: the vertices, then extra points on the patch's own triangles (METHOD.md step 7).
+    std::vector<Eigen::Vector2d> positions (code.vertex_xy);
+    std::vector<double> heights;
+    heights.reserve (patch.local.size ());
+    for (const Eigen::Vector3d& p : patch.local)
+      heights.push_back (p.z ());
+    const int missing = options.min_samples - static_cast<int> (patch.local.size ());
+    if (missing > 0)
+      for (const Eigen::Vector3d& p : drawPatchSurfaceSamples (patch, mesh, missing, mixSeed (options.seed, patch_index)))
+      {
+        positions.emplace_back (p.x (), p.y ());
+        heights.push_back (p.z ());
+      }
+
+    const double spacing = patchSampleSpacing (patch, mesh, topology);
+    const std::vector<char> allowed =
+        nyquistAllowedAtoms (basis, spacing, options.nyquist_factor, options.nyquist_rule);
+
+    Eigen::MatrixXd dictionary;
+    basis.evaluate (positions, dictionary);
+    const Eigen::VectorXd signal = Eigen::Map<const Eigen::VectorXd> (heights.data (), heights.size ());
+    OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, allowed, options.tolerance, options.max_atoms);
+    code.atoms = std::move (omp.atoms);
+    code.coefficients = std::move (omp.coefficients);
+
+    if (info)
+    {
+      info->num_samples = static_cast<int> (positions.size ());
+      info->spacing = spacing;
+      info->allowed_atoms = 0;
+      for (char a : allowed)
+        info->allowed_atoms += a != 0;
+      const double norm = signal.norm ();
+      info->relative_residual = norm > 0.0 ? omp.residual_norm / norm : 0.0;
+    }
+    return code;
+  }
+} // namespace pcl_sparse

@@ -1,0 +1,114 @@
+#include <pcl_sparse/coding/patch_samples.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <utility>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    std::uint64_t
+    splitmix64 (std::uint64_t x)
+    {
+      x += 0x9e3779b97f4a7c15ULL;
+      x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+      return x ^ (x >> 31);
+    }
+  } // namespace
+
+  std::uint64_t
+  mixSeed (std::uint64_t seed, std::uint64_t index)
+  {
+    return splitmix64 (splitmix64 (seed) ^ (index * 0xd1b54a32d192ed03ULL + 1));
+  }
+
+  double
+  patchSampleSpacing (const Patch& patch, const TriangleMesh& mesh, const MeshTopology& topology)
+  {
+    std::vector<double> means;
+    means.reserve (patch.vertices.size ());
+    for (int v : patch.vertices)
+    {
+      const IndexRange ring = topology.neighborsOf (v);
+      if (ring.size () == 0)
+        continue;
+      double sum = 0.0;
+      for (int u : ring)
+        sum += (mesh.vertices[u] - mesh.vertices[v]).norm ();
+      means.push_back (sum / ring.size ());
+    }
+    if (means.empty () || !(patch.radius > 0.0))
+      return 0.0;
+    const std::size_t half = means.size () / 2;
+    std::nth_element (means.begin (), means.begin () + half, means.end ());
+    double median = means[half];
+    if (means.size () % 2 == 0)
+      median = 0.5 * (median + *std::max_element (means.begin (), means.begin () + half));
+    return median / patch.radius;
+  }
+
+  std::vector<Eigen::Vector3d>
+  drawPatchSurfaceSamples (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed)
+  {
+    std::vector<Eigen::Vector3d> samples;
+    if (count <= 0 || patch.triangles.empty () || patch.local.size () != patch.vertices.size ())
+      return samples;
+
+    // Local index of each patch vertex (faces hold mesh vertex ids).
+    std::vector<std::pair<int, int>> lookup (patch.vertices.size ());
+    for (std::size_t i = 0; i < patch.vertices.size (); ++i)
+      lookup[i] = {patch.vertices[i], static_cast<int> (i)};
+    std::sort (lookup.begin (), lookup.end ());
+    auto local_index = [&] (int v) {
+      const auto it = std::lower_bound (lookup.begin (), lookup.end (), std::make_pair (v, -1));
+      return (it != lookup.end () && it->first == v) ? it->second : -1;
+    };
+
+    // Corners as local indices and the cumulative area (local units: same ratios as world ones).
+    std::vector<Eigen::Vector3i> corners;
+    std::vector<double> cumulative;
+    corners.reserve (patch.triangles.size ());
+    cumulative.reserve (patch.triangles.size ());
+    double total = 0.0;
+    for (int f : patch.triangles)
+    {
+      if (f < 0 || static_cast<std::size_t> (f) >= mesh.triangles.size ())
+        continue;
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      const Eigen::Vector3i c (local_index (t[0]), local_index (t[1]), local_index (t[2]));
+      if (c.minCoeff () < 0)
+        continue;
+      const double area =
+          0.5 * (patch.local[c[1]] - patch.local[c[0]]).cross (patch.local[c[2]] - patch.local[c[0]]).norm ();
+      if (!(area > 0.0))
+        continue;
+      total += area;
+      corners.push_back (c);
+      cumulative.push_back (total);
+    }
+    if (corners.empty ())
+      return samples;
+
+    std::mt19937_64 generator (seed);
+    std::uniform_real_distribution<double> uniform (0.0, 1.0);
+    samples.reserve (count);
+    for (int s = 0; s < count; ++s)
+    {
+      const double pick = uniform (generator) * total;
+      const std::size_t t = std::min<std::size_t> (
+          std::upper_bound (cumulative.begin (), cumulative.end (), pick) - cumulative.begin (), corners.size () - 1);
+      // Uniform point in a triangle: (1 - sqrt(u), sqrt(u) (1 - v), sqrt(u) v).
+      const double su = std::sqrt (uniform (generator));
+      const double v = uniform (generator);
+      const Eigen::Vector3i& c = corners[t];
+      samples.push_back ((1.0 - su) * patch.local[c[0]] + su * (1.0 - v) * patch.local[c[1]] +
+                         su * v * patch.local[c[2]]);
+    }
+    return samples;
+  }
+} // namespace pcl_sparse

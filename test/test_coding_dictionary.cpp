@@ -1,0 +1,108 @@
+#include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/coding/nyquist_cap.h>
+#include <pcl_sparse/common/error.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace pcl_sparse;
+
+TEST (CosineDictionary, LayoutAndWavelengths)
+{
+  const CosineDictionary dictionary;
+  EXPECT_EQ (dictionary.size (), 144);
+  EXPECT_EQ (dictionary.atomIndex (3, 5), 41);
+  EXPECT_EQ (dictionary.frequencyX (41), 3);
+  EXPECT_EQ (dictionary.frequencyY (41), 5);
+  EXPECT_TRUE (std::isinf (dictionary.wavelength (0)));
+  EXPECT_DOUBLE_EQ (dictionary.wavelength (dictionary.atomIndex (0, 4)), 0.5);
+  EXPECT_DOUBLE_EQ (dictionary.wavelength (dictionary.atomIndex (11, 2)), 2.0 / 11.0);
+  EXPECT_THROW (CosineDictionary (0), Error);
+  EXPECT_THROW (CosineDictionary (1000), Error);
+}
+
+TEST (CosineDictionary, EvaluateMatchesDirectCosines)
+{
+  const CosineDictionary dictionary (12);
+  std::mt19937 rng (42);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  std::vector<Eigen::Vector2d> points;
+  for (int k = 0; k < 50; ++k)
+    points.emplace_back (u (rng), u (rng));
+  Eigen::MatrixXd values;
+  dictionary.evaluate (points, values);
+  ASSERT_EQ (values.rows (), 50);
+  ASSERT_EQ (values.cols (), 144);
+  double worst = 0.0;
+  for (int p = 0; p < 50; ++p)
+    for (int i = 0; i < 12; ++i)
+      for (int j = 0; j < 12; ++j)
+        worst = std::max (worst, std::abs (values (p, i * 12 + j) -
+                                           std::cos (i * M_PI * points[p].x ()) * std::cos (j * M_PI * points[p].y ())));
+  EXPECT_LT (worst, 1e-12);
+}
+
+TEST (CosineDictionary, CodeDerivativesMatchFiniteDifferences)
+{
+  const CosineDictionary dictionary (12);
+  std::mt19937 rng (7);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  std::uniform_int_distribution<int> atom (0, 143);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    std::vector<int> atoms;
+    std::vector<double> coefficients;
+    for (int k = 0; k < 10; ++k)
+    {
+      atoms.push_back (atom (rng));
+      coefficients.push_back (u (rng));
+    }
+    const double x = 0.9 * u (rng), y = 0.9 * u (rng);
+    const HeightSample s = dictionary.evaluateCode (atoms, coefficients, x, y);
+    double direct = 0.0;
+    for (int k = 0; k < 10; ++k)
+      direct += coefficients[k] * std::cos (M_PI * dictionary.frequencyX (atoms[k]) * x) *
+                std::cos (M_PI * dictionary.frequencyY (atoms[k]) * y);
+    EXPECT_NEAR (s.value, direct, 1e-12);
+    EXPECT_NEAR (dictionary.evaluateCodeValue (atoms, coefficients, x, y), direct, 1e-12);
+
+    const double h = 1e-5;
+    auto f = [&] (double a, double b) { return dictionary.evaluateCode (atoms, coefficients, a, b); };
+    const double scale = 1.0 + s.gradient.norm ();
+    EXPECT_NEAR (s.gradient.x (), (f (x + h, y).value - f (x - h, y).value) / (2 * h), 1e-6 * scale * 100);
+    EXPECT_NEAR (s.gradient.y (), (f (x, y + h).value - f (x, y - h).value) / (2 * h), 1e-6 * scale * 100);
+    const double hscale = 1.0 + s.hessian.norm ();
+    EXPECT_NEAR (s.hessian (0, 0), (f (x + h, y).gradient.x () - f (x - h, y).gradient.x ()) / (2 * h), 1e-5 * hscale * 100);
+    EXPECT_NEAR (s.hessian (0, 1), (f (x, y + h).gradient.x () - f (x, y - h).gradient.x ()) / (2 * h), 1e-5 * hscale * 100);
+    EXPECT_NEAR (s.hessian (1, 0), (f (x + h, y).gradient.y () - f (x - h, y).gradient.y ()) / (2 * h), 1e-5 * hscale * 100);
+    EXPECT_NEAR (s.hessian (1, 1), (f (x, y + h).gradient.y () - f (x, y - h).gradient.y ()) / (2 * h), 1e-5 * hscale * 100);
+  }
+}
+
+TEST (NyquistCap, Conventions)
+{
+  const CosineDictionary dictionary (12);
+  // mu = 0.25, f = 0.5: paper allows 1 / max(i, j) > 0.125, i.e. max(i, j) < 8; authors' code
+  // 2 / max(i, j) >= 0.125, i.e. max(i, j) <= 16 (all 144).
+  const std::vector<char> paper = nyquistAllowedAtoms (dictionary, 0.25, 0.5, NyquistRule::Paper);
+  const std::vector<char> authors = nyquistAllowedAtoms (dictionary, 0.25, 0.5, NyquistRule::AuthorsCode);
+  int paper_count = 0, authors_count = 0;
+  for (int k = 0; k < 144; ++k)
+  {
+    paper_count += paper[k];
+    authors_count += authors[k];
+    EXPECT_EQ (paper[k] != 0, std::max (dictionary.frequencyX (k), dictionary.frequencyY (k)) < 8);
+  }
+  EXPECT_EQ (paper_count, 64);
+  EXPECT_EQ (authors_count, 144);
+  const std::vector<char> plain = nyquistAllowedAtoms (dictionary, 10.0, 0.0, NyquistRule::Paper);
+  for (char a : plain)
+    EXPECT_TRUE (a);
+  // Very coarse sampling: only the constant atom survives.
+  const std::vector<char> coarse = nyquistAllowedAtoms (dictionary, 10.0, 0.5, NyquistRule::Paper);
+  EXPECT_TRUE (coarse[0]);
+  for (int k = 1; k < 144; ++k)
+    EXPECT_FALSE (coarse[k]);
+}

@@ -1,0 +1,184 @@
+#include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/coding/nyquist_cap.h>
+#include <pcl_sparse/coding/orthogonal_matching_pursuit.h>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  Eigen::MatrixXd
+  randomMatrix (int rows, int cols, std::mt19937& rng)
+  {
+    std::normal_distribution<double> n (0.0, 1.0);
+    Eigen::MatrixXd m (rows, cols);
+    for (int c = 0; c < cols; ++c)
+      for (int r = 0; r < rows; ++r)
+        m (r, c) = n (rng) * (1.0 + c % 3);  // unequal column norms: selection must normalise
+    return m;
+  }
+} // namespace
+
+// Every step's coefficients equal the brute-force least squares on the selected support, and each
+// selected atom is the best normalised correlation with the residual of the previous support.
+TEST (OrthogonalMatchingPursuit, MatchesBruteForceGreedyLeastSquares)
+{
+  std::mt19937 rng (1);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    const Eigen::MatrixXd D = randomMatrix (30, 12, rng);
+    const Eigen::VectorXd y = randomMatrix (30, 1, rng).col (0);
+    const OmpResult result = orthogonalMatchingPursuit (y, D, {}, 1e-9, 6);
+    ASSERT_EQ (result.atoms.size (), 6u);
+
+    std::vector<int> support;
+    Eigen::VectorXd residual = y;
+    for (int step = 0; step < 6; ++step)
+    {
+      int best = -1;
+      double best_score = -1.0;
+      for (int k = 0; k < 12; ++k)
+      {
+        if (std::find (support.begin (), support.end (), k) != support.end ())
+          continue;
+        const double score = std::abs (D.col (k).dot (residual)) / D.col (k).norm ();
+        if (score > best_score)
+        {
+          best_score = score;
+          best = k;
+        }
+      }
+      EXPECT_EQ (result.atoms[step], best);
+      support.push_back (best);
+      Eigen::MatrixXd Ds (30, support.size ());
+      for (std::size_t s = 0; s < support.size (); ++s)
+        Ds.col (s) = D.col (support[s]);
+      const Eigen::VectorXd a = Ds.colPivHouseholderQr ().solve (y);
+      residual = y - Ds * a;
+      if (step == 5)
+      {
+        for (int s = 0; s < 6; ++s)
+          EXPECT_NEAR (result.coefficients[s], a[s], 1e-9);
+        EXPECT_NEAR (result.residual_norm, residual.norm (), 1e-9);
+      }
+    }
+  }
+}
+
+TEST (OrthogonalMatchingPursuit, StopsAtTolerance)
+{
+  std::mt19937 rng (3);
+  const Eigen::MatrixXd D = randomMatrix (40, 20, rng);
+  const Eigen::VectorXd y = randomMatrix (40, 1, rng).col (0);
+  const OmpResult loose = orthogonalMatchingPursuit (y, D, {}, 0.9, 20);
+  EXPECT_LE (loose.residual_norm, 0.9 * y.norm ());
+  ASSERT_GE (loose.atoms.size (), 1u);
+  EXPECT_LT (loose.atoms.size (), 20u);
+  // It stopped at the first support meeting the tolerance: one atom fewer does not.
+  const int fewer = static_cast<int> (loose.atoms.size ()) - 1;
+  if (fewer > 0)
+    EXPECT_GT (orthogonalMatchingPursuit (y, D, {}, 0.9, fewer).residual_norm, 0.9 * y.norm ());
+  const OmpResult none = orthogonalMatchingPursuit (Eigen::VectorXd::Zero (40), D, {}, 0.01, 5);
+  EXPECT_TRUE (none.atoms.empty ());
+  EXPECT_TRUE (none.coefficients.empty ());
+}
+
+// A signal made of a few atoms at random points is recovered exactly (atoms and coefficients).
+TEST (OrthogonalMatchingPursuit, RecoversSyntheticSparseCosineSignals)
+{
+  const CosineDictionary dictionary (12);
+  std::mt19937 rng (11);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  std::uniform_int_distribution<int> atom (0, 143);
+  int recovered = 0;
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    std::vector<Eigen::Vector2d> points;
+    for (int p = 0; p < 400; ++p)
+      points.emplace_back (u (rng), u (rng));
+    Eigen::MatrixXd D;
+    dictionary.evaluate (points, D);
+    std::vector<int> truth;
+    while (truth.size () < 4)
+    {
+      const int a = atom (rng);
+      if (std::find (truth.begin (), truth.end (), a) == truth.end ())
+        truth.push_back (a);
+    }
+    std::vector<double> coefficients;
+    Eigen::VectorXd y = Eigen::VectorXd::Zero (400);
+    for (int a : truth)
+    {
+      const double c = (u (rng) > 0 ? 1.0 : -1.0) * (0.5 + 0.5 * std::abs (u (rng)));
+      coefficients.push_back (c);
+      y += c * D.col (a);
+    }
+    const OmpResult result = orthogonalMatchingPursuit (y, D, {}, 1e-8, 12);
+    std::vector<int> got = result.atoms, want = truth;
+    std::sort (got.begin (), got.end ());
+    std::sort (want.begin (), want.end ());
+    if (got == want)
+    {
+      ++recovered;
+      for (std::size_t k = 0; k < result.atoms.size (); ++k)
+      {
+        const std::size_t t = std::find (truth.begin (), truth.end (), result.atoms[k]) - truth.begin ();
+        EXPECT_NEAR (result.coefficients[k], coefficients[t], 1e-8);
+      }
+    }
+    EXPECT_LE (result.residual_norm, 1e-8 * y.norm ());
+  }
+  // 400 random points, 144 nearly orthogonal atoms: greedy recovery of 4 atoms should always work.
+  EXPECT_EQ (recovered, 30);
+}
+
+TEST (OrthogonalMatchingPursuit, NeverSelectsForbiddenAtoms)
+{
+  const CosineDictionary dictionary (12);
+  std::mt19937 rng (5);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    std::vector<Eigen::Vector2d> points;
+    for (int p = 0; p < 64; ++p)
+      points.emplace_back (u (rng), u (rng));
+    Eigen::MatrixXd D;
+    dictionary.evaluate (points, D);
+    // High-frequency signal that the forbidden atoms would fit best.
+    Eigen::VectorXd y (64);
+    for (int p = 0; p < 64; ++p)
+      y[p] = std::cos (10 * M_PI * points[p].x ()) + 0.3 * std::cos (9 * M_PI * points[p].y ()) + 0.1 * u (rng);
+    const double spacing = 0.1 + 0.05 * trial;
+    const std::vector<char> allowed = nyquistAllowedAtoms (dictionary, spacing, 0.5, NyquistRule::Paper);
+    const OmpResult result = orthogonalMatchingPursuit (y, D, allowed, 0.01, 12);
+    EXPECT_FALSE (result.atoms.empty ());
+    for (int a : result.atoms)
+    {
+      EXPECT_TRUE (allowed[a]) << "atom " << a;
+      EXPECT_GT (dictionary.wavelength (a) / 2.0, 0.5 * spacing);
+    }
+    // Nothing allowed: nothing selected.
+    const OmpResult empty = orthogonalMatchingPursuit (y, D, std::vector<char> (144, 0), 0.01, 12);
+    EXPECT_TRUE (empty.atoms.empty ());
+  }
+}
+
+// More atoms than points / dependent atoms: the factor stays valid, the fit is exact at the points.
+TEST (OrthogonalMatchingPursuit, HandlesDependentColumns)
+{
+  std::mt19937 rng (9);
+  Eigen::MatrixXd D = randomMatrix (5, 8, rng);
+  D.col (3) = 2.0 * D.col (1);  // exactly dependent
+  const Eigen::VectorXd y = randomMatrix (5, 1, rng).col (0);
+  const OmpResult result = orthogonalMatchingPursuit (y, D, {}, 1e-12, 12);
+  EXPECT_LE (result.atoms.size (), 5u);
+  EXPECT_LT (result.residual_norm, 1e-8 * y.norm ());
+  const bool both = std::find (result.atoms.begin (), result.atoms.end (), 1) != result.atoms.end () &&
+                    std::find (result.atoms.begin (), result.atoms.end (), 3) != result.atoms.end ();
+  EXPECT_FALSE (both);
+}
