@@ -1,3 +1,4 @@
+#include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_cleaning.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_report.h>
@@ -5,8 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <fstream>
+#include <iostream>
 #include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
 
 using namespace pcl_sparse;
 
@@ -299,4 +307,145 @@ TEST (MeshCleaning, IndexMaps)
   const CleanedMesh nothing = cleanMesh (mesh, CleaningOptions{false, false, false, false});
   EXPECT_EQ (nothing.mesh.numTriangles (), mesh.numTriangles ());
   EXPECT_EQ (nothing.mesh.triangles, mesh.triangles);
+}
+
+// ---- the shared real meshes -------------------------------------------------------------------------
+
+namespace
+{
+  /// One row of the table in ../shared/meshes/README.md.
+  struct SharedMeshRow
+  {
+    std::string file;
+    std::size_t vertices = 0;
+    std::size_t faces = 0;
+    std::string closed_manifold;  // "yes" / "no"
+    std::string genus;            // empty when not given
+    double bbox_diagonal = 0.0;
+  };
+
+  std::string
+  trim (const std::string& s)
+  {
+    const auto first = s.find_first_not_of (" \t\r");
+    const auto last = s.find_last_not_of (" \t\r");
+    return first == std::string::npos ? std::string () : s.substr (first, last - first + 1);
+  }
+
+  std::vector<std::string>
+  splitRow (const std::string& line)
+  {
+    std::vector<std::string> cells;
+    std::stringstream stream (line);
+    std::string cell;
+    std::getline (stream, cell, '|');  // before the leading '|'
+    while (std::getline (stream, cell, '|'))
+      cells.push_back (trim (cell));
+    return cells;
+  }
+
+  /// Parses the markdown table; the columns are found by their header names, so reordering is harmless.
+  std::vector<SharedMeshRow>
+  readSharedMeshTable (const std::string& readme)
+  {
+    std::ifstream in (readme);
+    std::vector<SharedMeshRow> rows;
+    std::vector<std::string> header;
+    auto column = [&header] (const std::string& name) {
+      return static_cast<std::size_t> (std::find (header.begin (), header.end (), name) - header.begin ());
+    };
+    std::string line;
+    while (std::getline (in, line))
+    {
+      if (trim (line).rfind ("|", 0) != 0)
+        continue;
+      const std::vector<std::string> cells = splitRow (trim (line));
+      if (header.empty ())
+      {
+        header = cells;
+        continue;
+      }
+      if (cells.empty () || cells[0].rfind ("---", 0) == 0 || cells.size () < header.size ())
+        continue;
+      SharedMeshRow row;
+      row.file = cells[column ("file")];
+      row.vertices = std::stoul (cells[column ("V")]);
+      row.faces = std::stoul (cells[column ("F")]);
+      row.closed_manifold = cells[column ("closed manifold")];
+      row.genus = cells[column ("genus")];
+      row.bbox_diagonal = std::stod (cells[column ("bbox diagonal")]);
+      rows.push_back (row);
+    }
+    return rows;
+  }
+
+  std::string
+  sharedMeshes ()
+  {
+    return PCL_SPARSE_SHARED_MESHES;
+  }
+} // namespace
+
+TEST (MeshReportSharedMeshes, AgreeWithTheReadmeTable)
+{
+  const std::string readme = sharedMeshes () + "/README.md";
+  if (!std::ifstream (readme))
+    GTEST_SKIP () << "no shared meshes at " << sharedMeshes ();
+  const std::vector<SharedMeshRow> rows = readSharedMeshTable (readme);
+  ASSERT_EQ (rows.size (), 13u) << "table in " << readme;
+  for (const SharedMeshRow& row : rows)
+  {
+    SCOPED_TRACE (row.file);
+    const TriangleMesh mesh = loadTriangleMesh (sharedMeshes () + "/" + row.file);
+    const MeshReport r = reportOf (mesh);
+    EXPECT_EQ (r.vertices, row.vertices);
+    EXPECT_EQ (r.faces, row.faces);
+    EXPECT_EQ (r.closed, row.closed_manifold == "yes");
+    if (!row.genus.empty ())
+      EXPECT_EQ (r.genus, std::stoi (row.genus));
+    // The table gives 4 significant digits.
+    EXPECT_NEAR (r.bbox_diagonal, row.bbox_diagonal, 6e-4 * row.bbox_diagonal);
+    EXPECT_EQ (r.nonmanifold_edges, 0u);
+    EXPECT_EQ (r.components, 1u);
+  }
+}
+
+TEST (MeshReportSharedMeshes, KnownTopology)
+{
+  if (!std::ifstream (sharedMeshes () + "/README.md"))
+    GTEST_SKIP () << "no shared meshes at " << sharedMeshes ();
+  auto report = [] (const std::string& name) { return reportOf (loadTriangleMesh (sharedMeshes () + "/" + name)); };
+
+  const MeshReport fandisk = report ("fandisk.off");
+  EXPECT_TRUE (fandisk.closed);
+  EXPECT_EQ (fandisk.genus, 0);
+  EXPECT_EQ (fandisk.euler_characteristic, 2);
+
+  EXPECT_EQ (report ("anchor-dense.off").genus, 4);
+  EXPECT_EQ (report ("turbine.off").genus, 11);
+
+  const MeshReport blade = report ("blade.off");
+  EXPECT_FALSE (blade.closed);
+  EXPECT_TRUE (blade.manifold);
+  EXPECT_EQ (blade.boundary_edges, 240u);
+
+  const MeshReport bunny = report ("stanford-bunny.obj");
+  EXPECT_EQ (bunny.unreferenced_vertices, 1113u);
+  EXPECT_GT (bunny.boundary_loops, 0u);
+}
+
+TEST (MeshReportSharedMeshes, LinearTimeOn200kVertices)
+{
+  const std::string path = sharedMeshes () + "/koala-loop1-200k.ply";
+  if (!std::ifstream (path))
+    GTEST_SKIP () << "no " << path;
+  const TriangleMesh mesh = loadTriangleMesh (path);
+  const auto start = std::chrono::steady_clock::now ();
+  const MeshTopology topology = buildMeshTopology (mesh);
+  const MeshReport r = computeMeshReport (mesh, topology);
+  const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+  RecordProperty ("topology_and_report_seconds", std::to_string (seconds));
+  std::cout << "koala-loop1-200k: topology + report in " << seconds << " s" << std::endl;
+  EXPECT_EQ (r.genus, 0);
+  EXPECT_LT (seconds, 2.0);  // about 0.1 s in Release; generous for loaded CI machines and sanitizers
 }
