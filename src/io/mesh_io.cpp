@@ -11,16 +11,33 @@ namespace pcl_sparse
 {
   namespace io_detail
   {
+    namespace
+    {
+      struct stat
+      statFile (const std::string& path)
+      {
+        struct stat info;
+        if (::stat (path.c_str (), &info) != 0)
+          throw Error (path + ": cannot open the file (" + std::strerror (errno) + ")");
+        if (S_ISDIR (info.st_mode))
+          throw Error (path + ": is a directory, not a file");
+        if (!S_ISREG (info.st_mode))
+          throw Error (path + ": is not a regular file");
+        return info;
+      }
+    } // namespace
+
+    void
+    checkReadableFile (const std::string& path)
+    {
+      if (statFile (path).st_size == 0)
+        throw Error (path + ": empty file");
+    }
+
     std::string
     readWholeFile (const std::string& path)
     {
-      struct stat info;
-      if (::stat (path.c_str (), &info) != 0)
-        throw Error (path + ": cannot open the file (" + std::strerror (errno) + ")");
-      if (S_ISDIR (info.st_mode))
-        throw Error (path + ": is a directory, not a mesh file");
-      if (!S_ISREG (info.st_mode))
-        throw Error (path + ": is not a regular file");
+      const struct stat info = statFile (path);
       std::FILE* file = std::fopen (path.c_str (), "rb");
       if (!file)
         throw Error (path + ": cannot open the file (" + std::strerror (errno) + ")");

@@ -19,6 +19,10 @@ namespace pcl_sparse
 {
   namespace io_detail
   {
+    /// Refuses a missing file, a directory, something that is not a regular file, an empty file.
+    void
+    checkReadableFile (const std::string& path);
+
     /// Reads the whole file; refuses a missing file, a directory, an unreadable or empty file.
     std::string
     readWholeFile (const std::string& path);

@@ -1,0 +1,26 @@
+#pragma once
+/// \file cloud_io.h
+/// Point cloud input/output with the same error discipline as mesh_io.h: one pcl_sparse::Error whose message
+/// names the file and the problem, and atomic writes.
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <string>
+
+namespace pcl_sparse
+{
+  /// Loads the points of \a path into \a cloud (width = #points, height = 1 for mesh formats).
+  ///   .pcd                    PCL's PCD reader (any fields; x, y, z required);
+  ///   .ply (with or without faces), .obj, .off, .stl   the vertices, read by loadTriangleMesh.
+  /// NaN/Inf points are kept (PCL's convention) and make is_dense false. Throws pcl_sparse::Error for a
+  /// missing, empty, malformed or truncated file, a directory or an unknown extension.
+  void
+  loadPointCloud (const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud);
+
+  /// Writes points with normals and curvature: .pcd through PCL's writer (binary by default, ascii when
+  /// \a binary is false) or .ply (binary little endian or ascii) with float properties
+  /// x y z nx ny nz curvature. Atomic; throws pcl_sparse::Error on an unknown extension or a failed write.
+  void
+  savePointNormalCloud (const std::string& path, const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary = true);
+} // namespace pcl_sparse

@@ -1,0 +1,138 @@
+#include <pcl_sparse/io/polygon_mesh_conversion.h>
+
+#include <pcl_sparse/common/error.h>
+
+#include <pcl/conversions.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <cstring>
+#include <limits>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    /// Reads one value of a PCLPointField datatype as double.
+    double
+    readFieldValue (const std::uint8_t* p, std::uint8_t datatype)
+    {
+      switch (datatype)
+      {
+        case pcl::PCLPointField::INT8: { std::int8_t v; std::memcpy (&v, p, 1); return v; }
+        case pcl::PCLPointField::UINT8: { std::uint8_t v; std::memcpy (&v, p, 1); return v; }
+        case pcl::PCLPointField::INT16: { std::int16_t v; std::memcpy (&v, p, 2); return v; }
+        case pcl::PCLPointField::UINT16: { std::uint16_t v; std::memcpy (&v, p, 2); return v; }
+        case pcl::PCLPointField::INT32: { std::int32_t v; std::memcpy (&v, p, 4); return v; }
+        case pcl::PCLPointField::UINT32: { std::uint32_t v; std::memcpy (&v, p, 4); return v; }
+        case pcl::PCLPointField::FLOAT32: { float v; std::memcpy (&v, p, 4); return v; }
+        case pcl::PCLPointField::FLOAT64: { double v; std::memcpy (&v, p, 8); return v; }
+        default: return std::numeric_limits<double>::quiet_NaN ();
+      }
+    }
+
+    std::size_t
+    fieldSize (std::uint8_t datatype)
+    {
+      switch (datatype)
+      {
+        case pcl::PCLPointField::INT8:
+        case pcl::PCLPointField::UINT8: return 1;
+        case pcl::PCLPointField::INT16:
+        case pcl::PCLPointField::UINT16: return 2;
+        case pcl::PCLPointField::INT32:
+        case pcl::PCLPointField::UINT32:
+        case pcl::PCLPointField::FLOAT32: return 4;
+        case pcl::PCLPointField::FLOAT64: return 8;
+        default: return 0;
+      }
+    }
+  } // namespace
+
+  pcl::PolygonMesh
+  toPolygonMesh (const TriangleMesh& mesh)
+  {
+    pcl::PointCloud<pcl::PointXYZ> cloud;
+    cloud.resize (mesh.vertices.size ());
+    bool dense = true;
+    for (std::size_t i = 0; i < mesh.vertices.size (); ++i)
+    {
+      cloud[i].getVector3fMap () = mesh.vertices[i].cast<float> ();
+      dense = dense && mesh.vertices[i].allFinite ();
+    }
+    cloud.width = static_cast<std::uint32_t> (cloud.size ());
+    cloud.height = 1;
+    cloud.is_dense = dense;
+
+    pcl::PolygonMesh polygon_mesh;
+    pcl::toPCLPointCloud2 (cloud, polygon_mesh.cloud);
+    polygon_mesh.polygons.resize (mesh.triangles.size ());
+    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+    {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      polygon_mesh.polygons[f].vertices = {static_cast<pcl::index_t> (t[0]), static_cast<pcl::index_t> (t[1]),
+                                           static_cast<pcl::index_t> (t[2])};
+    }
+    return polygon_mesh;
+  }
+
+  TriangleMesh
+  fromPolygonMesh (const pcl::PolygonMesh& polygon_mesh)
+  {
+    const pcl::PCLPointCloud2& cloud = polygon_mesh.cloud;
+    const pcl::PCLPointField* fields[3] = {nullptr, nullptr, nullptr};
+    for (const pcl::PCLPointField& field : cloud.fields)
+      for (int k = 0; k < 3; ++k)
+        if (field.name == std::string (1, static_cast<char> ('x' + k)))
+          fields[k] = &field;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (!fields[k])
+        throw Error (std::string ("PolygonMesh: the cloud has no '") + static_cast<char> ('x' + k) + "' field");
+      const std::size_t size = fieldSize (fields[k]->datatype);
+      if (size == 0 || fields[k]->offset + size > cloud.point_step)
+        throw Error (std::string ("PolygonMesh: bad '") + static_cast<char> ('x' + k) + "' field");
+    }
+    const std::size_t num_points = static_cast<std::size_t> (cloud.width) * cloud.height;
+    if (cloud.height > 0 &&
+        (static_cast<std::size_t> (cloud.row_step) * (cloud.height - 1) + static_cast<std::size_t> (cloud.point_step) * cloud.width >
+             cloud.data.size () ||
+         static_cast<std::size_t> (cloud.point_step) * cloud.width > cloud.row_step))
+      throw Error ("PolygonMesh: the cloud data is shorter than width, height and row_step say");
+
+    TriangleMesh mesh;
+    mesh.vertices.resize (num_points);
+    for (std::uint32_t row = 0; row < cloud.height; ++row)
+      for (std::uint32_t col = 0; col < cloud.width; ++col)
+      {
+        const std::uint8_t* point = cloud.data.data () + static_cast<std::size_t> (row) * cloud.row_step +
+                                    static_cast<std::size_t> (col) * cloud.point_step;
+        Eigen::Vector3d& v = mesh.vertices[static_cast<std::size_t> (row) * cloud.width + col];
+        for (int k = 0; k < 3; ++k)
+          v[k] = readFieldValue (point + fields[k]->offset, fields[k]->datatype);
+      }
+
+    mesh.triangles.reserve (polygon_mesh.polygons.size ());
+    for (std::size_t f = 0; f < polygon_mesh.polygons.size (); ++f)
+    {
+      const auto& indices = polygon_mesh.polygons[f].vertices;
+      if (indices.size () < 3)
+        throw Error ("PolygonMesh: polygon " + std::to_string (f) + " has " + std::to_string (indices.size ()) +
+                     " vertices (at least 3 needed)");
+      for (const auto index : indices)
+        if (index < 0 || static_cast<std::size_t> (index) >= num_points)
+          throw Error ("PolygonMesh: polygon " + std::to_string (f) + " has vertex index " + std::to_string (index) +
+                       " out of range (" + std::to_string (num_points) + " points)");
+      for (std::size_t i = 1; i + 1 < indices.size (); ++i)
+        mesh.triangles.emplace_back (static_cast<int> (indices[0]), static_cast<int> (indices[i]),
+                                     static_cast<int> (indices[i + 1]));
+    }
+    return mesh;
+  }
+
+  void
+  loadPolygonMesh (const std::string& path, pcl::PolygonMesh& polygon_mesh, const MeshLoadOptions& options)
+  {
+    polygon_mesh = toPolygonMesh (loadTriangleMesh (path, options));
+  }
+} // namespace pcl_sparse
