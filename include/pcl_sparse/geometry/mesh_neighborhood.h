@@ -1,0 +1,101 @@
+#pragma once
+/// \file mesh_neighborhood.h
+/// Ring neighbourhoods of a mesh vertex: k rings and adaptive rings (METHOD.md step 3).
+///
+/// The walks reuse a VertexMarks scratch (a visit stamp per vertex), so collecting a neighbourhood costs
+/// O(size of the neighbourhood), never O(#V): no per-call clears, no per-call allocation once the output
+/// vector has grown. One scratch per thread.
+
+#include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/mesh/triangle_mesh.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// "Visited" flags for all vertices of a mesh that are cleared in O(1): a vertex is marked when its
+  /// stamp equals the current one, and clear () just advances the current stamp.
+  class VertexMarks
+  {
+  public:
+    VertexMarks () = default;
+    explicit VertexMarks (std::size_t num_vertices) { resize (num_vertices); }
+
+    /// Sizes the scratch for a mesh with \a num_vertices vertices and clears all marks.
+    void
+    resize (std::size_t num_vertices)
+    {
+      stamps_.assign (num_vertices, 0u);
+      current_ = 1u;
+    }
+
+    std::size_t size () const { return stamps_.size (); }
+
+    /// Unmarks every vertex in O(1) (O(#V) once every 2^32 calls, when the stamp wraps).
+    void
+    clear ()
+    {
+      if (++current_ == 0u)
+      {
+        std::fill (stamps_.begin (), stamps_.end (), 0u);
+        current_ = 1u;
+      }
+    }
+
+    bool isMarked (int v) const { return stamps_[v] == current_; }
+
+    /// Marks \a v; returns true if it was not marked before.
+    bool
+    mark (int v)
+    {
+      if (stamps_[v] == current_)
+        return false;
+      stamps_[v] = current_;
+      return true;
+    }
+
+  private:
+    std::vector<std::uint32_t> stamps_;
+    std::uint32_t current_ = 1u;
+  };
+
+  /// Collects the k-ring of \a v: v itself, then its 1-ring, then the vertices at edge distance 2, ... up
+  /// to \a rings, each ring in breadth-first order (deterministic: the topology's lists are sorted).
+  ///   marks     scratch sized for the mesh; cleared on entry, left marking exactly \a out
+  ///   out       overwritten with the neighbourhood, out[0] == v
+  ///   returns   the number of rings actually collected (smaller than \a rings when the component of v
+  ///             is exhausted earlier)
+  int
+  collectKRing (const MeshTopology& topology, int v, int rings, VertexMarks& marks, std::vector<int>& out);
+
+  /// Options of the adaptive ring neighbourhood.
+  struct AdaptiveRingOptions
+  {
+    /// Stop adding rings once the neighbourhood radius (largest distance from v to a collected vertex)
+    /// exceeds this absolute length. Harris 3D uses 0.01 x bounding-box diagonal (Sipiran & Bustos).
+    double radius = 0.0;
+    /// Keep adding rings while fewer than this many neighbours (v excluded) are collected, even past
+    /// \a radius: a height quadric needs 6 points. 0 disables the rule.
+    int min_neighbors = 6;
+    /// Never collect more than this many rings (guards against long thin needles and huge radii).
+    int max_rings = 16;
+  };
+
+  /// Collects rings around \a v (as collectKRing) until the neighbourhood radius exceeds
+  /// options.radius and at least options.min_neighbors neighbours are collected, or options.max_rings
+  /// is reached, or the component of v is exhausted. At least one ring is always collected.
+  ///   returns  the number of rings collected
+  int
+  collectAdaptiveRing (const TriangleMesh& mesh, const MeshTopology& topology, int v, const AdaptiveRingOptions& options,
+                       VertexMarks& marks, std::vector<int>& out);
+
+  /// Convenience overload allocating its own scratch (O(#V) per call): for tests and one-off queries.
+  std::vector<int>
+  kRing (const MeshTopology& topology, int v, int rings);
+
+  /// Length of the diagonal of the axis-aligned bounding box of the mesh's vertices (0 for no vertices).
+  /// Non-finite coordinates are ignored.
+  double
+  boundingBoxDiagonal (const TriangleMesh& mesh);
+} // namespace pcl_sparse
