@@ -1,0 +1,140 @@
+#include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/coding/patch_coder.h>
+#include <pcl_sparse/coding/patch_footprint.h>
+#include <pcl_sparse/coding/patch_samples.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/mesh/mesh_topology.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  /// The whole mesh as one patch with the identity frame at the origin and the given radius.
+  Patch
+  wholeMeshPatch (const TriangleMesh& mesh, double radius)
+  {
+    Patch patch;
+    patch.seed = 0;
+    patch.radius = radius;
+    for (std::size_t v = 0; v < mesh.vertices.size (); ++v)
+    {
+      patch.vertices.push_back (static_cast<int> (v));
+      patch.local.push_back (patch.toLocal (mesh.vertices[v]));
+    }
+    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+      patch.triangles.push_back (static_cast<int> (f));
+    return patch;
+  }
+
+  double
+  paraboloid (double x, double y)
+  {
+    return 0.3 * x * x - 0.2 * y * y + 0.1 * x * y;
+  }
+} // namespace
+
+TEST (PatchSamples, SpacingOfRegularGrid)
+{
+  // 10 x 10 cells on [-1, 1]^2: edges 0.2 (axis) and 0.2 sqrt 2 (diagonals); radius 2 halves them.
+  const TriangleMesh mesh = makePlaneGrid (10, 1.0);
+  const MeshTopology topology = buildMeshTopology (mesh);
+  const Patch patch = wholeMeshPatch (mesh, 2.0);
+  const double mu = patchSampleSpacing (patch, mesh, topology);
+  EXPECT_GT (mu, 0.1 * 0.99);
+  EXPECT_LT (mu, 0.1 * std::sqrt (2.0) * 1.01);
+}
+
+TEST (PatchSamples, ExtraSamplesLieOnTheSurfaceAndAreDeterministic)
+{
+  const TriangleMesh mesh = makeHeightFieldGrid (6, 6, 1.0, 1.0, paraboloid);
+  const Patch patch = wholeMeshPatch (mesh, 1.0);
+  const std::vector<Eigen::Vector3d> a = drawPatchSurfaceSamples (patch, mesh, 500, 7);
+  const std::vector<Eigen::Vector3d> b = drawPatchSurfaceSamples (patch, mesh, 500, 7);
+  const std::vector<Eigen::Vector3d> c = drawPatchSurfaceSamples (patch, mesh, 500, 8);
+  ASSERT_EQ (a.size (), 500u);
+  EXPECT_EQ (a, b);
+  EXPECT_NE (a, c);
+  // Uniform by area over [-1, 1]^2: mean near 0, every point inside, heights close to the surface
+  // (the piecewise-linear interpolant of a quadric on a 1/3 grid: error < h^2 max|curvature| / 8).
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero ();
+  for (const Eigen::Vector3d& p : a)
+  {
+    EXPECT_LE (std::abs (p.x ()), 1.0 + 1e-12);
+    EXPECT_LE (std::abs (p.y ()), 1.0 + 1e-12);
+    EXPECT_NEAR (p.z (), paraboloid (p.x (), p.y ()), 0.05);
+    mean += p.head<2> () / 500.0;
+  }
+  EXPECT_LT (mean.norm (), 0.1);
+  EXPECT_TRUE (drawPatchSurfaceSamples (patch, mesh, 0, 1).empty ());
+  EXPECT_NE (mixSeed (1, 2), mixSeed (1, 3));
+  EXPECT_NE (mixSeed (1, 2), mixSeed (2, 2));
+}
+
+TEST (PatchFootprint, CoversEveryProjectedTriangle)
+{
+  // An off-centre, irregular patch: a disk shifted so the seed is not at the centre.
+  TriangleMesh mesh = makeDisk (6, 1.0);
+  for (Eigen::Vector3d& v : mesh.vertices)
+    v += Eigen::Vector3d (0.35, -0.2, 0.0);
+  const Patch patch = wholeMeshPatch (mesh, 1.5);
+  const PatchFootprint footprint = computePatchFootprint (patch, mesh, 16);
+  ASSERT_EQ (footprint.extent.size (), 16u);
+  std::mt19937 rng (3);
+  std::uniform_real_distribution<double> u (0.0, 1.0);
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int s = 0; s < 30; ++s)
+    {
+      double a = u (rng), b = u (rng);
+      if (a + b > 1.0)
+      {
+        a = 1.0 - a;
+        b = 1.0 - b;
+      }
+      const Eigen::Vector3d p =
+          (1.0 - a - b) * patch.local[t[0]] + a * patch.local[t[1]] + b * patch.local[t[2]];
+      EXPECT_TRUE (footprint.contains (p.x (), p.y ()));
+    }
+  for (const Eigen::Vector3d& p : patch.local)
+    EXPECT_TRUE (footprint.contains (p.x (), p.y ()));
+  // Tight: the disk of radius 1 / 1.5 centred at (0.35, -0.2) / 1.5 has extent at angle 0 about
+  // 0.233 + sqrt(0.444 - 0.0178) = 0.886; and points well outside are refused.
+  EXPECT_NEAR (footprint.extentAt (0.0), 0.886, 0.05);
+  EXPECT_FALSE (footprint.contains (-0.9, 0.0));
+  EXPECT_FALSE (footprint.contains (0.0, 0.9));
+}
+
+TEST (PatchCoder, CodesAParaboloidPatch)
+{
+  // Principal axes along x and y, as in a patch's jet frame: the even cosines fit it closely.
+  const auto even = [] (double x, double y) { return 0.3 * x * x - 0.2 * y * y; };
+  const TriangleMesh mesh = makeHeightFieldGrid (8, 8, 1.0, 1.0, even);
+  const MeshTopology topology = buildMeshTopology (mesh);
+  const Patch patch = wholeMeshPatch (mesh, 1.5);
+  const CosineDictionary dictionary (12);
+  SparseCodingOptions options;
+  PatchCodingInfo info;
+  const PatchCode code = codePatch (patch, 0, mesh, topology, dictionary, options, &info);
+  EXPECT_EQ (info.num_samples, 81);
+  EXPECT_LE (code.atoms.size (), 12u);
+  EXPECT_EQ (code.atoms.size (), code.coefficients.size ());
+  EXPECT_LE (info.relative_residual, options.tolerance);
+  EXPECT_EQ (code.vertices.size (), 81u);
+  EXPECT_EQ (code.vertex_xy.size (), 81u);
+  // Cap: mu ~ 0.25 / 1.5 (mean of 0.25 and 0.35 edges), so with f = 0.5 no atom above max(i, j) ~ 23;
+  // every selected atom satisfies it.
+  for (int a : code.atoms)
+    EXPECT_GT (dictionary.wavelength (a) / 2.0, 0.5 * info.spacing);
+  // Small patch: extra samples up to m_min.
+  const TriangleMesh small = makeHeightFieldGrid (2, 2, 1.0, 1.0, even);
+  const MeshTopology small_topology = buildMeshTopology (small);
+  codePatch (wholeMeshPatch (small, 1.5), 3, small, small_topology, dictionary, options, &info);
+  EXPECT_EQ (info.num_samples, 64);
+  options.min_samples = 128;
+  codePatch (wholeMeshPatch (small, 1.5), 3, small, small_topology, dictionary, options, &info);
+  EXPECT_EQ (info.num_samples, 128);
+}
