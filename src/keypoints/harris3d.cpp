@@ -1,0 +1,261 @@
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/geometry/mesh_neighborhood.h>
+#include <pcl_sparse/keypoints/harris3d.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <unordered_map>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    constexpr double kNoResponse = std::numeric_limits<double>::quiet_NaN ();
+
+    /// Per-thread scratch: reused across the vertices a thread handles.
+    struct ResponseScratch
+    {
+      VertexMarks marks;
+      std::vector<int> neighborhood;
+      std::vector<Eigen::Vector3d> local;
+    };
+
+    double
+    responseOfVertex (const TriangleMesh& mesh, const MeshTopology& topology, int v, const Harris3DOptions& options,
+                      const AdaptiveRingOptions& adaptive, ResponseScratch& scratch)
+    {
+      if (options.rings > 0)
+        collectKRing (topology, v, options.rings, scratch.marks, scratch.neighborhood);
+      else
+        collectAdaptiveRing (mesh, topology, v, adaptive, scratch.marks, scratch.neighborhood);
+      const auto& hood = scratch.neighborhood;
+      if (static_cast<int> (hood.size ()) - 1 < options.min_neighbors || hood.size () < 6)
+        return kNoResponse;
+
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero ();
+      for (int u : hood)
+        centroid += mesh.vertices[u];
+      centroid /= static_cast<double> (hood.size ());
+      if (!centroid.allFinite ())
+        return kNoResponse;
+      Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero ();
+      for (int u : hood)
+      {
+        const Eigen::Vector3d d = mesh.vertices[u] - centroid;
+        covariance.noalias () += d * d.transpose ();
+      }
+      // Eigenvalues ascending: column 0 (smallest) becomes z, the two others span the fitting plane.
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca (covariance);
+      if (pca.info () != Eigen::Success)
+        return kNoResponse;
+      Eigen::Matrix3d axes;
+      axes << pca.eigenvectors ().col (2), pca.eigenvectors ().col (1), pca.eigenvectors ().col (0);
+      const Eigen::Vector3d v_local = axes.transpose () * (mesh.vertices[v] - centroid);
+
+      scratch.local.clear ();
+      for (int u : hood)
+      {
+        Eigen::Vector3d p = axes.transpose () * (mesh.vertices[u] - centroid);
+        p.x () -= v_local.x ();
+        p.y () -= v_local.y ();
+        scratch.local.push_back (p);
+      }
+      HeightQuadric quadric;
+      if (!fitHeightQuadric (scratch.local, quadric))
+        return kNoResponse;
+      return harris3DResponseOfQuadric (quadric, options.k);
+    }
+
+    std::vector<double>
+    computeResponses (const TriangleMesh& mesh, const MeshTopology& topology, const Harris3DOptions& options,
+                      const std::vector<int>* indices)
+    {
+      validateHarris3DOptions (options);
+      const std::size_t num_vertices = mesh.numVertices ();
+      if (topology.numVertices () != num_vertices)
+        throw Error ("computeHarris3DResponses: the topology does not belong to the mesh (vertex counts differ)");
+      if (indices)
+        for (int v : *indices)
+          if (v < 0 || static_cast<std::size_t> (v) >= num_vertices)
+            throw Error ("computeHarris3DResponses: vertex index " + std::to_string (v) + " out of range");
+
+      AdaptiveRingOptions adaptive;
+      adaptive.radius = options.adaptive_fraction * boundingBoxDiagonal (mesh);
+      adaptive.min_neighbors = options.min_neighbors;
+      adaptive.max_rings = options.max_rings;
+
+      std::vector<double> responses (num_vertices, kNoResponse);
+      const std::int64_t count = indices ? static_cast<std::int64_t> (indices->size ()) : static_cast<std::int64_t> (num_vertices);
+      const int threads = options.num_threads > 0 ? options.num_threads : omp_get_max_threads ();
+#pragma omp parallel num_threads(threads)
+      {
+        ResponseScratch scratch;
+        scratch.marks.resize (num_vertices);
+#pragma omp for schedule(dynamic, 256)
+        for (std::int64_t i = 0; i < count; ++i)
+        {
+          const int v = indices ? (*indices)[i] : static_cast<int> (i);
+          responses[v] = responseOfVertex (mesh, topology, v, options, adaptive, scratch);
+        }
+      }
+      return responses;
+    }
+
+    /// Strict total order "a ranks before b": larger response first, then smaller index; NaN last.
+    struct RanksBefore
+    {
+      const std::vector<double>& responses;
+      bool
+      operator() (int a, int b) const
+      {
+        const double ra = responses[a], rb = responses[b];
+        const bool fa = !std::isnan (ra), fb = !std::isnan (rb);
+        if (fa != fb)
+          return fa;
+        if (fa && ra != rb)
+          return ra > rb;
+        return a < b;
+      }
+    };
+  } // namespace
+
+  void
+  validateHarris3DOptions (const Harris3DOptions& options)
+  {
+    auto refuse = [] (const std::string& what) { throw Error ("Harris 3D option " + what); };
+    if (!std::isfinite (options.k))
+      refuse ("k must be finite");
+    if (options.rings < 0)
+      refuse ("rings must be >= 0 (0 = adaptive)");
+    if (options.rings == 0 && !(options.adaptive_fraction > 0.0 && std::isfinite (options.adaptive_fraction)))
+      refuse ("adaptive_fraction must be > 0");
+    if (options.max_rings < 1)
+      refuse ("max_rings must be >= 1");
+    if (options.min_neighbors < 0)
+      refuse ("min_neighbors must be >= 0");
+    if (!(options.selection_fraction > 0.0 && options.selection_fraction <= 1.0))
+      refuse ("selection_fraction must be in (0, 1]");
+    if (!(options.cluster_fraction >= 0.0 && std::isfinite (options.cluster_fraction)))
+      refuse ("cluster_fraction must be >= 0");
+    if (options.num_threads < 0)
+      refuse ("num_threads must be >= 0");
+  }
+
+  double
+  harris3DResponseOfQuadric (const HeightQuadric& quadric, double k)
+  {
+    const double p1 = quadric.c[3], p2 = quadric.c[4], p3 = quadric.c[5], p4 = quadric.c[1], p5 = quadric.c[2];
+    const double A = p4 * p4 + 2.0 * p1 * p1 + 2.0 * p2 * p2;
+    const double B = p5 * p5 + 2.0 * p2 * p2 + 2.0 * p3 * p3;
+    const double C = p4 * p5 + 2.0 * p1 * p2 + 2.0 * p2 * p3;
+    const double trace = A + B;
+    return A * B - C * C - k * trace * trace;
+  }
+
+  std::vector<double>
+  computeHarris3DResponses (const TriangleMesh& mesh, const MeshTopology& topology, const Harris3DOptions& options)
+  {
+    return computeResponses (mesh, topology, options, nullptr);
+  }
+
+  std::vector<double>
+  computeHarris3DResponses (const TriangleMesh& mesh, const MeshTopology& topology, const Harris3DOptions& options,
+                            const std::vector<int>& indices)
+  {
+    return computeResponses (mesh, topology, options, &indices);
+  }
+
+  std::vector<int>
+  orderVerticesByResponse (const std::vector<double>& responses)
+  {
+    std::vector<int> order (responses.size ());
+    for (std::size_t i = 0; i < order.size (); ++i)
+      order[i] = static_cast<int> (i);
+    std::sort (order.begin (), order.end (), RanksBefore{responses});
+    return order;
+  }
+
+  bool
+  isHarris3DLocalMaximum (const MeshTopology& topology, const std::vector<double>& responses, int v)
+  {
+    if (std::isnan (responses[v]))
+      return false;
+    const RanksBefore before{responses};
+    for (int u : topology.neighborsOf (v))
+      if (!before (v, u))
+        return false;
+    return true;
+  }
+
+  std::vector<int>
+  selectHarris3DKeypoints (const TriangleMesh& mesh, const MeshTopology& topology, const std::vector<double>& responses,
+                           const Harris3DOptions& options, std::size_t num_candidates)
+  {
+    validateHarris3DOptions (options);
+    if (responses.size () != mesh.numVertices () || topology.numVertices () != mesh.numVertices ())
+      throw Error ("selectHarris3DKeypoints: responses, topology and mesh disagree on the vertex count");
+    std::vector<int> maxima;
+    for (int v = 0; v < static_cast<int> (responses.size ()); ++v)
+      if (isHarris3DLocalMaximum (topology, responses, v))
+        maxima.push_back (v);
+    std::sort (maxima.begin (), maxima.end (), RanksBefore{responses});
+
+    if (options.selection == Harris3DSelection::Fraction)
+    {
+      const long wanted = std::max (1L, std::lround (options.selection_fraction * static_cast<double> (num_candidates)));
+      if (static_cast<long> (maxima.size ()) > wanted)
+        maxima.resize (static_cast<std::size_t> (wanted));
+      return maxima;
+    }
+
+    // Clustering: a uniform grid with cells of the cluster radius; a candidate is dropped if a kept
+    // keypoint lies within the radius (only the 27 surrounding cells can hold one).
+    const double radius = options.cluster_fraction * boundingBoxDiagonal (mesh);
+    if (!(radius > 0.0))
+      return maxima;
+    auto cellOf = [radius] (const Eigen::Vector3d& p) {
+      return Eigen::Vector3i (static_cast<int> (std::floor (p.x () / radius)), static_cast<int> (std::floor (p.y () / radius)),
+                              static_cast<int> (std::floor (p.z () / radius)));
+    };
+    auto key = [] (const Eigen::Vector3i& c) {
+      return (static_cast<std::uint64_t> (static_cast<std::uint32_t> (c.x ()) & 0x1fffffu) << 42) |
+             (static_cast<std::uint64_t> (static_cast<std::uint32_t> (c.y ()) & 0x1fffffu) << 21) |
+             static_cast<std::uint64_t> (static_cast<std::uint32_t> (c.z ()) & 0x1fffffu);
+    };
+    std::unordered_map<std::uint64_t, std::vector<int>> grid;
+    std::vector<int> kept;
+    const double radius_squared = radius * radius;
+    for (int v : maxima)
+    {
+      const Eigen::Vector3d& p = mesh.vertices[v];
+      const Eigen::Vector3i c = cellOf (p);
+      bool near = false;
+      for (int dx = -1; dx <= 1 && !near; ++dx)
+        for (int dy = -1; dy <= 1 && !near; ++dy)
+          for (int dz = -1; dz <= 1 && !near; ++dz)
+          {
+            const auto it = grid.find (key (c + Eigen::Vector3i (dx, dy, dz)));
+            if (it == grid.end ())
+              continue;
+            for (int u : it->second)
+              if ((mesh.vertices[u] - p).squaredNorm () < radius_squared)
+              {
+                near = true;
+                break;
+              }
+          }
+      if (near)
+        continue;
+      kept.push_back (v);
+      grid[key (c)].push_back (v);
+    }
+    return kept;
+  }
+} // namespace pcl_sparse
