@@ -1,0 +1,14 @@
+#pragma once
+/// \file crc32.h
+/// CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320, as in zlib and PNG) for the per-section
+/// checksums of the model file format. Table-driven, a few lines: not worth a dependency.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace pcl_sparse
+{
+  /// CRC-32 of \a size bytes at \a data; crc32 ("123456789") == 0xCBF43926.
+  std::uint32_t
+  crc32 (const std::uint8_t* data, std::size_t size);
+} // namespace pcl_sparse

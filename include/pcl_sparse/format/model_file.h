@@ -1,0 +1,91 @@
+#pragma once
+/// \file model_file.h
+/// The .psm file format for SparseSurfaceModel: save, load, and inspect. docs/FORMAT.md is the
+/// byte-level specification; this header is the API.
+///
+/// Two modes:
+///  - lossless (tolerance 0): every double and float stored as it is in memory; a loaded model has
+///    bit-identical fields and therefore resamples to a bit-identical cloud;
+///  - quantised (tolerance t > 0): seeds, frames (quaternions), radii (log scale), coefficients and
+///    footprint extents are quantised with steps chosen so that every surface point s + r R (x, y, h(x, y))
+///    of every patch, at any (x, y) of its footprint, moves by at most t * bbox_diagonal (worst case;
+///    see docs/FORMAT.md for the error budget). Atoms of a patch are stored sorted by index.
+/// All streams are zstd-coded; every section carries a CRC-32; the loader refuses anything malformed
+/// with pcl_sparse::Error and never allocates more than the file's declared, bounds-checked sizes.
+
+#include <pcl_sparse/model/sparse_surface_model.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// Options for saveModel / encodeModel.
+  struct ModelWriteOptions
+  {
+    /// Largest displacement of any surface point, as a fraction of the model's bbox_diagonal.
+    /// 0 (default) stores everything losslessly. 1e-4 is well below what resampling shows.
+    double tolerance = 0.0;
+    /// Bits per footprint extent in quantised mode (2..8). Extents only bound where resampling draws
+    /// points, they do not move the surface; 6 bits = 1/63 of the largest extent.
+    int extent_bits = 6;
+    /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
+    /// input vertices, METHOD.md step 10). Off by default: decoding and resampling do not need them.
+    bool include_vertices = false;
+    /// zstd level (1..22); 19 compresses well and still writes a 1 MB model in well under a second.
+    int zstd_level = 19;
+  };
+
+  /// One section of a model file as stored.
+  struct ModelFileSection
+  {
+    std::string tag;                ///< four letters, e.g. "COEF"
+    std::uint64_t stored_bytes = 0; ///< bytes in the file (compressed), excluding its 32-byte header
+    std::uint64_t raw_bytes = 0;    ///< bytes after decompression
+  };
+
+  /// What a model file holds, without decoding its patches (for pcl_sparse_info).
+  struct ModelFileInfo
+  {
+    std::uint16_t version = 0;
+    bool quantised = false;
+    bool has_vertices = false;
+    std::string basis;             ///< e.g. "cosine 12x12"
+    std::uint32_t num_patches = 0;
+    std::uint64_t num_input_vertices = 0;
+    double bbox_diagonal = 0.0;
+    double tolerance = 0.0;        ///< as written (fraction of bbox_diagonal)
+    std::uint64_t file_bytes = 0;
+    std::vector<ModelFileSection> sections;
+  };
+
+  /// Encodes \a model into the bytes of a .psm file. Throws pcl_sparse::Error for a model the format
+  /// cannot hold (basis other than CosineDictionary, non-finite values, tolerance > 0 with
+  /// bbox_diagonal <= 0, options out of range).
+  std::vector<std::uint8_t>
+  encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options = ModelWriteOptions ());
+
+  /// Decodes the bytes of a .psm file. \a name is used in error messages. Throws pcl_sparse::Error
+  /// with a one-line message for anything malformed.
+  SparseSurfaceModel
+  decodeModel (const std::uint8_t* data, std::size_t size, const std::string& name = "model");
+
+  /// Header and section sizes of the bytes of a .psm file (checksums verified, patches not decoded).
+  ModelFileInfo
+  inspectModel (const std::uint8_t* data, std::size_t size, const std::string& name = "model");
+
+  /// encodeModel, written atomically to \a path (writeFileAtomically).
+  void
+  saveModel (const std::string& path, const SparseSurfaceModel& model,
+             const ModelWriteOptions& options = ModelWriteOptions ());
+
+  /// Reads \a path and decodes it; errors name the file.
+  SparseSurfaceModel
+  loadModel (const std::string& path);
+
+  /// Reads \a path and inspects it; errors name the file.
+  ModelFileInfo
+  inspectModelFile (const std::string& path);
+} // namespace pcl_sparse

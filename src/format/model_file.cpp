@@ -1,0 +1,863 @@
+#include <pcl_sparse/format/model_file.h>
+
+#include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/common/atomic_write.h>
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/byte_stream.h>
+#include <pcl_sparse/format/crc32.h>
+#include <pcl_sparse/format/frame_quantization.h>
+#include <pcl_sparse/format/zstd_codec.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <numeric>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    // ---- constants of format version 1 (docs/FORMAT.md) -------------------------------------------
+    constexpr std::uint8_t kMagic[8] = {0x89, 'P', 'S', 'M', '\r', '\n', 0x1a, '\n'};
+    constexpr std::uint16_t kVersion = 1;
+    constexpr std::size_t kHeaderBytes = 52;
+    constexpr std::size_t kSectionHeaderBytes = 32;
+    constexpr std::uint16_t kFlagQuantised = 1;
+    constexpr std::uint16_t kFlagVertices = 2;
+    constexpr std::uint8_t kBasisCosine = 1;
+    constexpr std::uint8_t kCodecStored = 0;
+    constexpr std::uint8_t kCodecZstd = 1;
+    constexpr std::uint64_t kMaxPatches = std::numeric_limits<std::int32_t>::max ();
+    constexpr std::uint64_t kMaxFootprintAngles = 4096;
+    // A zstd section may decompress to at most kMaxExpansion times its stored size plus kExpansionSlack
+    // bytes: bounds every allocation by what the file can justify, zip bombs included. Real sections
+    // compress 1-10x; the writer stores a section uncompressed if it would exceed the bound.
+    constexpr std::uint64_t kMaxExpansion = 64;
+    constexpr std::uint64_t kExpansionSlack = 4096;
+    // Share of the tolerance given to each quantised quantity; the remaining 5 % covers the
+    // second-order cross terms (docs/FORMAT.md, "Error budget").
+    constexpr double kSeedShare = 0.2;
+    constexpr double kRadiusShare = 0.1;
+    constexpr double kFrameShare = 0.2;
+    constexpr double kCoefficientShare = 0.45;
+
+    const char* const kLosslessTags[] = {"SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF", "VERT"};
+    const char* const kQuantisedTags[] = {"QUAN", "SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF", "VERT"};
+
+    /// Quantisation parameters of a quantised file (section QUAN, stored uncompressed).
+    struct QuantisationParameters
+    {
+      double seed_min[3] = {0.0, 0.0, 0.0};
+      double seed_step = 1.0;
+      int seed_bytes = 1;
+      double log_radius_min = 0.0;
+      double log_radius_step = 1.0;
+      int radius_bytes = 1;
+      double extent_max = 1.0;
+      int extent_bits = 6;
+      double frame_budget = 0.0;
+      double coefficient_budget = 0.0;
+
+      double extentStep () const { return extent_max / static_cast<double> ((1 << extent_bits) - 1); }
+    };
+
+    struct Section
+    {
+      std::string tag;
+      std::uint8_t codec = kCodecZstd;
+      std::vector<std::uint8_t> raw;
+    };
+
+    int
+    bytesFor (std::uint64_t max_value)
+    {
+      int bytes = 1;
+      while (bytes < 8 && (max_value >> (8 * bytes)) != 0)
+        ++bytes;
+      return bytes;
+    }
+
+    /// Byte planes: all low bytes, then all second bytes, ... (zstd finds the slowly varying high
+    /// bytes much easier this way).
+    void
+    putPlanes (ByteWriter& out, const std::vector<std::uint64_t>& values, int bytes)
+    {
+      for (int b = 0; b < bytes; ++b)
+        for (std::uint64_t v : values)
+          out.putU8 (static_cast<std::uint8_t> (v >> (8 * b)));
+    }
+
+    std::vector<std::uint64_t>
+    getPlanes (ByteReader& in, std::size_t count, int bytes, const char* field)
+    {
+      const std::uint8_t* p = in.getBytes (count * static_cast<std::size_t> (bytes), field);
+      std::vector<std::uint64_t> values (count, 0);
+      for (int b = 0; b < bytes; ++b)
+        for (std::size_t i = 0; i < count; ++i)
+          values[i] |= static_cast<std::uint64_t> (p[b * count + i]) << (8 * b);
+      return values;
+    }
+
+    double
+    sumAbs (const std::vector<double>& values)
+    {
+      double s = 0.0;
+      for (double v : values)
+        s += std::abs (v);
+      return s;
+    }
+
+    double
+    maxExtent (const PatchFootprint& footprint)
+    {
+      double m = 0.0;
+      for (float e : footprint.extent)
+        m = std::max (m, static_cast<double> (e));
+      return m;
+    }
+
+    /// Bound on |(x, y, h(x, y))| over a decoded patch's footprint, from decoded values only, so that
+    /// the encoder and the decoder derive the same frame step (docs/FORMAT.md).
+    double
+    decodedReach (const PatchCode& patch, const QuantisationParameters& q)
+    {
+      const double step = coefficientStep (q.coefficient_budget, patch.radius, patch.atoms.size ());
+      const double e = maxExtent (patch.footprint) + q.extentStep ();
+      const double h = sumAbs (patch.coefficients) + 0.5 * step * static_cast<double> (patch.coefficients.size ());
+      return std::max (std::sqrt (e * e + h * h), 1e-12);
+    }
+
+    void
+    requireFinite (double v, const std::string& what)
+    {
+      if (!std::isfinite (v))
+        throw Error ("encodeModel: " + what + " is not finite");
+    }
+
+    int
+    cosineFrequencies (const SparseSurfaceModel& model)
+    {
+      if (!model.basis)
+        throw Error ("encodeModel: the model has no basis");
+      const auto* cosine = dynamic_cast<const CosineDictionary*> (model.basis.get ());
+      if (!cosine)
+        throw Error ("encodeModel: the file format stores only models over a CosineDictionary basis");
+      return cosine->frequencies ();
+    }
+
+    void
+    validateModel (const SparseSurfaceModel& model, int basis_size)
+    {
+      if (model.patches.size () > kMaxPatches)
+        throw Error ("encodeModel: too many patches");
+      requireFinite (model.bbox_diagonal, "bbox_diagonal");
+      if (model.bbox_diagonal < 0.0)
+        throw Error ("encodeModel: bbox_diagonal is negative");
+      for (std::size_t p = 0; p < model.patches.size (); ++p)
+      {
+        const PatchCode& patch = model.patches[p];
+        const std::string name = "patch " + std::to_string (p);
+        for (int i = 0; i < 3; ++i)
+          requireFinite (patch.origin[i], name + " origin");
+        for (int i = 0; i < 9; ++i)
+          requireFinite (patch.frame (i), name + " frame");
+        requireFinite (patch.radius, name + " radius");
+        if (!(patch.radius > 0.0))
+          throw Error ("encodeModel: " + name + " radius is not positive");
+        if (patch.atoms.size () != patch.coefficients.size ())
+          throw Error ("encodeModel: " + name + " has " + std::to_string (patch.atoms.size ()) + " atoms but " +
+                       std::to_string (patch.coefficients.size ()) + " coefficients");
+        if (patch.atoms.size () > static_cast<std::size_t> (basis_size))
+          throw Error ("encodeModel: " + name + " has more atoms than the basis");
+        for (int a : patch.atoms)
+          if (a < 0 || a >= basis_size)
+            throw Error ("encodeModel: " + name + " has atom index " + std::to_string (a) + " outside the basis");
+        for (double c : patch.coefficients)
+          requireFinite (c, name + " coefficient");
+        if (patch.footprint.extent.size () > kMaxFootprintAngles)
+          throw Error ("encodeModel: " + name + " footprint has too many angles");
+        for (float e : patch.footprint.extent)
+          if (!std::isfinite (e) || e < 0.0f)
+            throw Error ("encodeModel: " + name + " footprint extent is negative or not finite");
+        if (patch.vertices.size () != patch.vertex_xy.size ())
+          throw Error ("encodeModel: " + name + " vertices and vertex_xy differ in size");
+      }
+    }
+
+    // ---- lossless sections ------------------------------------------------------------------------
+
+    std::vector<Section>
+    encodeLossless (const SparseSurfaceModel& model)
+    {
+      ByteWriter seed, frame, radius, foot, atom, coef;
+      for (const PatchCode& patch : model.patches)
+      {
+        for (int i = 0; i < 3; ++i)
+          seed.putF64 (patch.origin[i]);
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r)
+            frame.putF64 (patch.frame (r, c));
+        radius.putF64 (patch.radius);
+        foot.putVarint (patch.footprint.extent.size ());
+        for (float e : patch.footprint.extent)
+          foot.putF32 (e);
+        atom.putVarint (patch.atoms.size ());
+        for (int a : patch.atoms)
+          atom.putVarint (static_cast<std::uint64_t> (a));
+        for (double c : patch.coefficients)
+          coef.putF64 (c);
+      }
+      return {{"SEED", kCodecZstd, std::move (seed.bytes ())}, {"FRAM", kCodecZstd, std::move (frame.bytes ())},
+              {"RADI", kCodecZstd, std::move (radius.bytes ())}, {"FOOT", kCodecZstd, std::move (foot.bytes ())},
+              {"ATOM", kCodecZstd, std::move (atom.bytes ())},   {"COEF", kCodecZstd, std::move (coef.bytes ())}};
+    }
+
+    // ---- quantised sections -----------------------------------------------------------------------
+
+    std::vector<Section>
+    encodeQuantised (const SparseSurfaceModel& model, const ModelWriteOptions& options)
+    {
+      const std::size_t m = model.patches.size ();
+      const double tolerance = options.tolerance * model.bbox_diagonal;
+      QuantisationParameters q;
+      q.seed_step = 2.0 * kSeedShare * tolerance / std::sqrt (3.0);
+      q.frame_budget = kFrameShare * tolerance;
+      q.coefficient_budget = kCoefficientShare * tolerance;
+      q.extent_bits = options.extent_bits;
+
+      // Seeds: integer steps from the smallest corner.
+      for (int i = 0; i < 3; ++i)
+      {
+        q.seed_min[i] = m ? std::numeric_limits<double>::infinity () : 0.0;
+        for (const PatchCode& patch : model.patches)
+          q.seed_min[i] = std::min (q.seed_min[i], patch.origin[i]);
+      }
+      std::vector<std::vector<std::uint64_t>> seeds (3, std::vector<std::uint64_t> (m));
+      std::uint64_t seed_max = 0;
+      for (std::size_t p = 0; p < m; ++p)
+        for (int i = 0; i < 3; ++i)
+        {
+          const double steps = std::round ((model.patches[p].origin[i] - q.seed_min[i]) / q.seed_step);
+          if (!(steps < 4294967295.0))
+            throw Error ("encodeModel: tolerance too small for the seed range (more than 2^32 steps)");
+          seeds[i][p] = static_cast<std::uint64_t> (steps);
+          seed_max = std::max (seed_max, seeds[i][p]);
+        }
+      q.seed_bytes = bytesFor (seed_max);
+
+      // Extents: a common scale, (2^bits - 1) levels.
+      q.extent_max = 0.0;
+      for (const PatchCode& patch : model.patches)
+        q.extent_max = std::max (q.extent_max, maxExtent (patch.footprint));
+      if (!(q.extent_max > 0.0))
+        q.extent_max = 1.0;
+
+      // Radii: log scale, step from the largest radius * reach over the patches (original values).
+      double largest_arm = 0.0;
+      q.log_radius_min = m ? std::numeric_limits<double>::infinity () : 0.0;
+      for (const PatchCode& patch : model.patches)
+      {
+        const double e = maxExtent (patch.footprint);
+        const double h = sumAbs (patch.coefficients);
+        largest_arm = std::max (largest_arm, patch.radius * std::sqrt (e * e + h * h));
+        q.log_radius_min = std::min (q.log_radius_min, std::log (patch.radius));
+      }
+      const double relative = kRadiusShare * tolerance / std::max (largest_arm, 1e-300);
+      q.log_radius_step = 2.0 * std::log1p (std::min (relative, 1.0));
+
+      // Decode as we go, so that the steps derived from decoded values match the decoder's.
+      const unsigned extent_mask = (1u << q.extent_bits) - 1u;
+      std::vector<std::uint64_t> radii (m);
+      std::uint64_t radius_max = 0;
+      ByteWriter frame, foot, atom, coef;
+      for (std::size_t p = 0; p < m; ++p)
+      {
+        const PatchCode& patch = model.patches[p];
+        PatchCode decoded;
+        const double radius_steps = std::round ((std::log (patch.radius) - q.log_radius_min) / q.log_radius_step);
+        if (!(radius_steps < 4294967295.0))
+          throw Error ("encodeModel: tolerance too small for the radius range");
+        radii[p] = static_cast<std::uint64_t> (radius_steps);
+        radius_max = std::max (radius_max, radii[p]);
+        decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
+
+        foot.putVarint (patch.footprint.extent.size ());
+        unsigned previous = 0;
+        for (float e : patch.footprint.extent)
+        {
+          const unsigned level =
+            std::min (extent_mask, static_cast<unsigned> (std::lround (static_cast<double> (e) / q.extentStep ())));
+          foot.putU8 (static_cast<std::uint8_t> ((level - previous) & extent_mask));
+          previous = level;
+          decoded.footprint.extent.push_back (static_cast<float> (level * q.extentStep ()));
+        }
+
+        // Atoms sorted by index: the deltas are small and the code is the same sum.
+        std::vector<std::size_t> order (patch.atoms.size ());
+        std::iota (order.begin (), order.end (), 0);
+        std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) { return patch.atoms[a] < patch.atoms[b]; });
+        atom.putVarint (order.size ());
+        int previous_atom = -1;
+        for (std::size_t k : order)
+        {
+          if (patch.atoms[k] == previous_atom)
+            throw Error ("encodeModel: patch " + std::to_string (p) + " repeats atom " + std::to_string (previous_atom));
+          atom.putVarint (static_cast<std::uint64_t> (patch.atoms[k] - previous_atom - 1));
+          previous_atom = patch.atoms[k];
+          decoded.atoms.push_back (patch.atoms[k]);
+        }
+        const double step = coefficientStep (q.coefficient_budget, decoded.radius, order.size ());
+        for (std::size_t k : order)
+        {
+          const double steps = std::round (patch.coefficients[k] / step);
+          if (!(std::abs (steps) < 9.0e15))
+            throw Error ("encodeModel: coefficient too large for the tolerance");
+          coef.putSignedVarint (static_cast<std::int64_t> (steps));
+          decoded.coefficients.push_back (steps * step);
+        }
+
+        const double frame_step = frameStep (q.frame_budget, decoded.radius, decodedReach (decoded, q));
+        const QuantisedFrame code = quantiseFrame (patch.frame, frame_step);
+        frame.putU8 (static_cast<std::uint8_t> (code.largest | (code.reflected ? 4 : 0)));
+        for (std::int64_t v : code.q)
+          frame.putSignedVarint (v);
+      }
+      q.radius_bytes = bytesFor (radius_max);
+
+      ByteWriter params;
+      for (double v : q.seed_min)
+        params.putF64 (v);
+      params.putF64 (q.seed_step);
+      params.putU8 (static_cast<std::uint8_t> (q.seed_bytes));
+      params.putF64 (q.log_radius_min);
+      params.putF64 (q.log_radius_step);
+      params.putU8 (static_cast<std::uint8_t> (q.radius_bytes));
+      params.putF64 (q.extent_max);
+      params.putU8 (static_cast<std::uint8_t> (q.extent_bits));
+      params.putF64 (q.frame_budget);
+      params.putF64 (q.coefficient_budget);
+
+      ByteWriter seed, radius;
+      for (int i = 0; i < 3; ++i)
+        putPlanes (seed, seeds[i], q.seed_bytes);
+      putPlanes (radius, radii, q.radius_bytes);
+      return {{"QUAN", kCodecStored, std::move (params.bytes ())}, {"SEED", kCodecZstd, std::move (seed.bytes ())},
+              {"FRAM", kCodecZstd, std::move (frame.bytes ())},    {"RADI", kCodecZstd, std::move (radius.bytes ())},
+              {"FOOT", kCodecZstd, std::move (foot.bytes ())},     {"ATOM", kCodecZstd, std::move (atom.bytes ())},
+              {"COEF", kCodecZstd, std::move (coef.bytes ())}};
+    }
+
+    Section
+    encodeVertices (const SparseSurfaceModel& model, bool quantised)
+    {
+      ByteWriter out;
+      for (const PatchCode& patch : model.patches)
+      {
+        out.putVarint (patch.vertices.size ());
+        std::int64_t previous = 0;
+        for (int v : patch.vertices)
+        {
+          if (v < 0 || static_cast<std::uint64_t> (v) >= model.num_input_vertices)
+            throw Error ("encodeModel: vertex index " + std::to_string (v) + " outside num_input_vertices");
+          out.putSignedVarint (v - previous);
+          previous = v;
+        }
+        for (const Eigen::Vector2d& xy : patch.vertex_xy)
+          for (int i = 0; i < 2; ++i)
+          {
+            requireFinite (xy[i], "vertex_xy");
+            if (quantised)
+              out.putF32 (static_cast<float> (xy[i]));
+            else
+              out.putF64 (xy[i]);
+          }
+      }
+      return {"VERT", kCodecZstd, std::move (out.bytes ())};
+    }
+
+    // ---- container --------------------------------------------------------------------------------
+
+    struct Header
+    {
+      std::uint16_t version = 0;
+      std::uint16_t flags = 0;
+      std::uint8_t basis_kind = 0;
+      std::uint16_t basis_parameter = 0;
+      std::uint32_t num_patches = 0;
+      std::uint32_t num_sections = 0;
+      std::uint64_t num_input_vertices = 0;
+      double bbox_diagonal = 0.0;
+      double tolerance = 0.0;
+    };
+
+    struct StoredSection
+    {
+      std::string tag;
+      std::uint8_t codec = 0;
+      std::uint64_t stored = 0;
+      std::uint64_t raw = 0;
+      const std::uint8_t* payload = nullptr;
+    };
+
+    struct Container
+    {
+      Header header;
+      std::vector<StoredSection> sections;
+    };
+
+    /// Parses and checks the header and the section table (CRCs, sizes, tags, expansion bound).
+    Container
+    readContainer (const std::uint8_t* data, std::size_t size, const std::string& name)
+    {
+      const std::string what = name;
+      if (size < sizeof kMagic || std::memcmp (data, kMagic, sizeof kMagic) != 0)
+        throw Error (what + ": not a pcl_sparse model file (wrong magic bytes)");
+      ByteReader in (data, size, what);
+      in.getBytes (sizeof kMagic, "magic");
+      Container c;
+      Header& h = c.header;
+      h.version = in.getU16 ("version");
+      if (h.version != kVersion)
+        throw Error (what + ": unsupported model file version " + std::to_string (h.version) + " (this build reads version " +
+                     std::to_string (kVersion) + ")");
+      h.flags = in.getU16 ("flags");
+      h.basis_kind = in.getU8 ("basis kind");
+      const std::uint8_t reserved = in.getU8 ("reserved");
+      h.basis_parameter = in.getU16 ("basis parameter");
+      h.num_patches = in.getU32 ("number of patches");
+      h.num_sections = in.getU32 ("number of sections");
+      h.num_input_vertices = in.getU64 ("number of input vertices");
+      h.bbox_diagonal = in.getF64 ("bbox diagonal");
+      h.tolerance = in.getF64 ("tolerance");
+      const std::uint32_t header_crc = in.getU32 ("header checksum");
+      if (crc32 (data, kHeaderBytes - 4) != header_crc)
+        throw Error (what + ": header checksum mismatch (corrupt file)");
+      if ((h.flags & ~(kFlagQuantised | kFlagVertices)) != 0 || reserved != 0)
+        throw Error (what + ": unknown header flags");
+      if (h.basis_kind != kBasisCosine)
+        throw Error (what + ": unknown basis kind " + std::to_string (h.basis_kind));
+      if (h.basis_parameter < 1 || h.basis_parameter > CosineDictionary::max_frequencies)
+        throw Error (what + ": cosine basis with " + std::to_string (h.basis_parameter) + " frequencies is out of range");
+      if (h.num_patches > kMaxPatches)
+        throw Error (what + ": number of patches " + std::to_string (h.num_patches) + " out of range");
+      if (h.num_input_vertices > static_cast<std::uint64_t> (std::numeric_limits<std::int32_t>::max ()))
+        throw Error (what + ": number of input vertices out of range");
+      if (!std::isfinite (h.bbox_diagonal) || h.bbox_diagonal < 0.0)
+        throw Error (what + ": bbox diagonal is negative or not finite");
+      const bool quantised = h.flags & kFlagQuantised;
+      if (!std::isfinite (h.tolerance) || h.tolerance < 0.0 || (h.tolerance > 0.0) != quantised ||
+          (quantised && !(h.bbox_diagonal > 0.0)))
+        throw Error (what + ": tolerance does not match the quantised flag");
+      const std::size_t expected_sections = (quantised ? 7 : 6) + ((h.flags & kFlagVertices) ? 1 : 0);
+      if (h.num_sections != expected_sections)
+        throw Error (what + ": " + std::to_string (h.num_sections) + " sections, expected " + std::to_string (expected_sections));
+
+      const char* const* tags = quantised ? kQuantisedTags : kLosslessTags;
+      for (std::uint32_t s = 0; s < h.num_sections; ++s)
+      {
+        const std::size_t start = in.position ();
+        StoredSection section;
+        const std::uint8_t* tag = in.getBytes (4, "section tag");
+        section.tag.assign (reinterpret_cast<const char*> (tag), 4);
+        section.codec = in.getU8 ("section codec");
+        const std::uint8_t* pad = in.getBytes (3, "section padding");
+        section.stored = in.getU64 ("section size");
+        section.raw = in.getU64 ("section raw size");
+        const std::uint32_t payload_crc = in.getU32 ("section checksum");
+        const std::uint32_t section_header_crc = in.getU32 ("section header checksum");
+        if (crc32 (data + start, kSectionHeaderBytes - 4) != section_header_crc)
+          throw Error (what + ": section " + std::to_string (s) + " header checksum mismatch (corrupt file)");
+        if (section.tag != tags[s])
+          throw Error (what + ": section " + std::to_string (s) + " is '" + section.tag + "', expected '" + tags[s] + "'");
+        if (pad[0] || pad[1] || pad[2] || (section.codec != kCodecStored && section.codec != kCodecZstd))
+          throw Error (what + ": section " + section.tag + " has an unknown codec");
+        if (section.stored > in.remaining ())
+          throw Error (what + ": section " + section.tag + " claims " + std::to_string (section.stored) + " bytes, only " +
+                       std::to_string (in.remaining ()) + " left (truncated file?)");
+        if (section.codec == kCodecStored && section.raw != section.stored)
+          throw Error (what + ": stored section " + section.tag + " has different raw and stored sizes");
+        if (section.codec == kCodecZstd && section.raw > kMaxExpansion * section.stored + kExpansionSlack)
+          throw Error (what + ": section " + section.tag + " claims " + std::to_string (section.raw) +
+                       " decompressed bytes, more than its " + std::to_string (section.stored) + " stored bytes can justify");
+        section.payload = in.getBytes (static_cast<std::size_t> (section.stored), "section payload");
+        if (crc32 (section.payload, static_cast<std::size_t> (section.stored)) != payload_crc)
+          throw Error (what + ": section " + section.tag + " checksum mismatch (corrupt file)");
+        c.sections.push_back (section);
+      }
+      if (!in.atEnd ())
+        throw Error (what + ": " + std::to_string (in.remaining ()) + " trailing bytes after the last section");
+      return c;
+    }
+
+    std::vector<std::uint8_t>
+    sectionBytes (const StoredSection& section, const std::string& name)
+    {
+      const std::string what = name + ": section " + section.tag;
+      if (section.codec == kCodecStored)
+        return std::vector<std::uint8_t> (section.payload, section.payload + section.stored);
+      return decompressBytes (section.payload, static_cast<std::size_t> (section.stored),
+                              static_cast<std::size_t> (section.raw), what);
+    }
+
+    double
+    readFinite (ByteReader& in, const char* field)
+    {
+      const double v = in.getF64 (field);
+      if (!std::isfinite (v))
+        in.fail (std::string (field) + " is not finite");
+      return v;
+    }
+
+    QuantisationParameters
+    readQuantisation (ByteReader& in)
+    {
+      QuantisationParameters q;
+      for (double& v : q.seed_min)
+        v = readFinite (in, "seed minimum");
+      q.seed_step = readFinite (in, "seed step");
+      q.seed_bytes = in.getU8 ("seed bytes");
+      q.log_radius_min = readFinite (in, "log radius minimum");
+      q.log_radius_step = readFinite (in, "log radius step");
+      q.radius_bytes = in.getU8 ("radius bytes");
+      q.extent_max = readFinite (in, "extent maximum");
+      q.extent_bits = in.getU8 ("extent bits");
+      q.frame_budget = readFinite (in, "frame budget");
+      q.coefficient_budget = readFinite (in, "coefficient budget");
+      in.expectEnd ();
+      if (!(q.seed_step > 0.0) || !(q.log_radius_step > 0.0) || !(q.extent_max > 0.0) || !(q.frame_budget > 0.0) ||
+          !(q.coefficient_budget > 0.0))
+        in.fail ("quantisation steps must be positive");
+      if (q.seed_bytes < 1 || q.seed_bytes > 4 || q.radius_bytes < 1 || q.radius_bytes > 4 || q.extent_bits < 2 ||
+          q.extent_bits > 8)
+        in.fail ("quantisation widths out of range");
+      return q;
+    }
+  } // namespace
+
+  std::vector<std::uint8_t>
+  encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options)
+  {
+    const int frequencies = cosineFrequencies (model);
+    validateModel (model, frequencies * frequencies);
+    if (!std::isfinite (options.tolerance) || options.tolerance < 0.0)
+      throw Error ("encodeModel: tolerance must be >= 0");
+    if (options.extent_bits < 2 || options.extent_bits > 8)
+      throw Error ("encodeModel: extent_bits must be in 2..8");
+    if (options.zstd_level < 1 || options.zstd_level > 22)
+      throw Error ("encodeModel: zstd_level must be in 1..22");
+    if (model.num_input_vertices > static_cast<std::uint64_t> (std::numeric_limits<std::int32_t>::max ()))
+      throw Error ("encodeModel: num_input_vertices out of range");
+    const bool quantised = options.tolerance > 0.0;
+    if (quantised && !(model.bbox_diagonal > 0.0))
+      throw Error ("encodeModel: a tolerance needs the model's bbox_diagonal (> 0)");
+
+    std::vector<Section> sections = quantised ? encodeQuantised (model, options) : encodeLossless (model);
+    if (options.include_vertices)
+      sections.push_back (encodeVertices (model, quantised));
+
+    ByteWriter out;
+    out.putBytes (kMagic, sizeof kMagic);
+    out.putU16 (kVersion);
+    out.putU16 (static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0)));
+    out.putU8 (kBasisCosine);
+    out.putU8 (0);
+    out.putU16 (static_cast<std::uint16_t> (frequencies));
+    out.putU32 (static_cast<std::uint32_t> (model.patches.size ()));
+    out.putU32 (static_cast<std::uint32_t> (sections.size ()));
+    out.putU64 (model.num_input_vertices);
+    out.putF64 (model.bbox_diagonal);
+    out.putF64 (options.tolerance);
+    out.putU32 (crc32 (out.bytes ().data (), out.size ()));
+    for (Section& section : sections)
+    {
+      std::vector<std::uint8_t> payload = section.raw;
+      if (section.codec == kCodecZstd)
+      {
+        payload = compressBytes (section.raw.data (), section.raw.size (), options.zstd_level);
+        if (section.raw.size () > kMaxExpansion * payload.size () + kExpansionSlack)
+        {
+          section.codec = kCodecStored;  // the reader would refuse this ratio: store it as it is
+          payload = section.raw;
+        }
+      }
+      const std::size_t start = out.size ();
+      out.putBytes (reinterpret_cast<const std::uint8_t*> (section.tag.data ()), 4);
+      out.putU8 (section.codec);
+      out.putU8 (0);
+      out.putU8 (0);
+      out.putU8 (0);
+      out.putU64 (payload.size ());
+      out.putU64 (section.raw.size ());
+      out.putU32 (crc32 (payload.data (), payload.size ()));
+      out.putU32 (crc32 (out.bytes ().data () + start, kSectionHeaderBytes - 4));
+      out.putBytes (payload.data (), payload.size ());
+    }
+    return std::move (out.bytes ());
+  }
+
+  SparseSurfaceModel
+  decodeModel (const std::uint8_t* data, std::size_t size, const std::string& name)
+  {
+    const Container container = readContainer (data, size, name);
+    const Header& h = container.header;
+    const bool quantised = h.flags & kFlagQuantised;
+    const std::size_t m = h.num_patches;
+    const int basis_size = h.basis_parameter * h.basis_parameter;
+
+    SparseSurfaceModel model;
+    model.basis = std::make_shared<CosineDictionary> (h.basis_parameter);
+    model.num_input_vertices = h.num_input_vertices;
+    model.bbox_diagonal = h.bbox_diagonal;
+
+    std::size_t next = 0;
+    auto open = [&] (std::vector<std::uint8_t>& storage) {
+      const StoredSection& section = container.sections[next++];
+      storage = sectionBytes (section, name);
+      return ByteReader (storage.data (), storage.size (), name + ": section " + section.tag);
+    };
+
+    QuantisationParameters q;
+    std::vector<std::uint8_t> quan_bytes, seed_bytes, frame_bytes, radius_bytes, foot_bytes, atom_bytes, coef_bytes;
+    if (quantised)
+    {
+      ByteReader in = open (quan_bytes);
+      q = readQuantisation (in);
+    }
+    ByteReader seed = open (seed_bytes);
+    ByteReader frame = open (frame_bytes);
+    ByteReader radius = open (radius_bytes);
+    ByteReader foot = open (foot_bytes);
+    ByteReader atom = open (atom_bytes);
+    ByteReader coef = open (coef_bytes);
+
+    // Fixed-size sections must hold exactly num_patches entries: checked before allocating patches.
+    const std::size_t seed_entry = quantised ? 3 * static_cast<std::size_t> (q.seed_bytes) : 24;
+    const std::size_t radius_entry = quantised ? static_cast<std::size_t> (q.radius_bytes) : 8;
+    if (seed.remaining () != m * seed_entry)
+      seed.fail ("holds " + std::to_string (seed.remaining ()) + " bytes, " + std::to_string (m) + " patches need " +
+                 std::to_string (m * seed_entry));
+    if (radius.remaining () != m * radius_entry)
+      radius.fail ("holds " + std::to_string (radius.remaining ()) + " bytes, " + std::to_string (m) + " patches need " +
+                   std::to_string (m * radius_entry));
+    // Every patch takes at least one byte in each variable-size section.
+    if (frame.remaining () < m * (quantised ? 4 : 72) || foot.remaining () < m || atom.remaining () < m)
+      frame.fail ("too short for " + std::to_string (m) + " patches");
+    model.patches.resize (m);
+
+    std::vector<std::vector<std::uint64_t>> seeds;
+    std::vector<std::uint64_t> radii;
+    if (quantised)
+    {
+      for (int i = 0; i < 3; ++i)
+        seeds.push_back (getPlanes (seed, m, q.seed_bytes, "seed"));
+      radii = getPlanes (radius, m, q.radius_bytes, "radius");
+    }
+    const unsigned extent_mask = (1u << q.extent_bits) - 1u;
+
+    for (std::size_t p = 0; p < m; ++p)
+    {
+      PatchCode& patch = model.patches[p];
+      if (quantised)
+      {
+        for (int i = 0; i < 3; ++i)
+          patch.origin[i] = q.seed_min[i] + static_cast<double> (seeds[i][p]) * q.seed_step;
+        patch.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
+      }
+      else
+      {
+        for (int i = 0; i < 3; ++i)
+          patch.origin[i] = readFinite (seed, "seed");
+        patch.radius = readFinite (radius, "radius");
+      }
+      if (!(patch.radius > 0.0) || !std::isfinite (patch.radius))
+        radius.fail ("patch " + std::to_string (p) + " radius is not a positive finite number");
+
+      const std::size_t k = foot.getCount ("footprint angles", std::min<std::uint64_t> (kMaxFootprintAngles, foot.remaining ()));
+      patch.footprint.extent.resize (k);
+      unsigned level = 0;
+      for (std::size_t i = 0; i < k; ++i)
+      {
+        if (quantised)
+        {
+          const unsigned delta = foot.getU8 ("extent");
+          if (delta > extent_mask)
+            foot.fail ("extent delta out of range");
+          level = (level + delta) & extent_mask;
+          patch.footprint.extent[i] = static_cast<float> (level * q.extentStep ());
+        }
+        else
+        {
+          const float e = foot.getF32 ("extent");
+          if (!std::isfinite (e) || e < 0.0f)
+            foot.fail ("patch " + std::to_string (p) + " extent is negative or not finite");
+          patch.footprint.extent[i] = e;
+        }
+      }
+
+      const std::size_t n = atom.getCount ("atom count", std::min<std::uint64_t> (basis_size, atom.remaining ()));
+      patch.atoms.resize (n);
+      std::int64_t previous = -1;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const std::uint64_t v = atom.getCount ("atom index", static_cast<std::uint64_t> (basis_size));
+        const std::int64_t index = quantised ? previous + 1 + static_cast<std::int64_t> (v) : static_cast<std::int64_t> (v);
+        if (index >= basis_size)
+          atom.fail ("patch " + std::to_string (p) + " atom index " + std::to_string (index) + " outside the basis of " +
+                     std::to_string (basis_size));
+        patch.atoms[i] = static_cast<int> (index);
+        previous = index;
+      }
+      patch.coefficients.resize (n);
+      const double step = quantised ? coefficientStep (q.coefficient_budget, patch.radius, n) : 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        if (quantised)
+        {
+          const std::int64_t v = coef.getSignedVarint ("coefficient");
+          patch.coefficients[i] = static_cast<double> (v) * step;
+          if (!std::isfinite (patch.coefficients[i]))
+            coef.fail ("coefficient is not finite");
+        }
+        else
+          patch.coefficients[i] = readFinite (coef, "coefficient");
+      }
+
+      if (quantised)
+      {
+        QuantisedFrame code;
+        const std::uint8_t header = frame.getU8 ("frame header");
+        if (header > 7)
+          frame.fail ("frame header out of range");
+        code.largest = header & 3;
+        code.reflected = header & 4;
+        for (std::int64_t& v : code.q)
+          v = frame.getSignedVarint ("frame component");
+        const double frame_step = frameStep (q.frame_budget, patch.radius, decodedReach (patch, q));
+        if (!std::isfinite (frame_step) || !dequantiseFrame (code, frame_step, patch.frame))
+          frame.fail ("patch " + std::to_string (p) + " frame is not a unit quaternion");
+      }
+      else
+      {
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r)
+            patch.frame (r, c) = readFinite (frame, "frame");
+        const double off = (patch.frame.transpose () * patch.frame - Eigen::Matrix3d::Identity ()).cwiseAbs ().maxCoeff ();
+        if (!(off <= 1e-6))
+          frame.fail ("patch " + std::to_string (p) + " frame is not orthonormal");
+      }
+    }
+    seed.expectEnd ();
+    frame.expectEnd ();
+    radius.expectEnd ();
+    foot.expectEnd ();
+    atom.expectEnd ();
+    coef.expectEnd ();
+
+    if (h.flags & kFlagVertices)
+    {
+      std::vector<std::uint8_t> vertex_bytes;
+      ByteReader vert = open (vertex_bytes);
+      const std::size_t xy_bytes = quantised ? 8 : 16;
+      for (std::size_t p = 0; p < m; ++p)
+      {
+        PatchCode& patch = model.patches[p];
+        // Each vertex needs >= 1 index byte and xy_bytes coordinate bytes: bound before resizing.
+        const std::size_t count =
+          vert.getCount ("vertex count", std::min<std::uint64_t> (h.num_input_vertices, vert.remaining () / (1 + xy_bytes)));
+        patch.vertices.resize (count);
+        patch.vertex_xy.resize (count);
+        std::int64_t previous = 0;
+        for (std::size_t i = 0; i < count; ++i)
+        {
+          const std::int64_t delta = vert.getSignedVarint ("vertex index");
+          if (delta < -previous || delta >= static_cast<std::int64_t> (h.num_input_vertices) - previous)
+            vert.fail ("patch " + std::to_string (p) + " vertex index outside num_input_vertices");
+          previous += delta;
+          patch.vertices[i] = static_cast<int> (previous);
+        }
+        for (std::size_t i = 0; i < count; ++i)
+          for (int c = 0; c < 2; ++c)
+          {
+            const double v = quantised ? static_cast<double> (vert.getF32 ("vertex_xy")) : vert.getF64 ("vertex_xy");
+            if (!std::isfinite (v))
+              vert.fail ("vertex_xy is not finite");
+            patch.vertex_xy[i][c] = v;
+          }
+      }
+      vert.expectEnd ();
+    }
+    return model;
+  }
+
+  ModelFileInfo
+  inspectModel (const std::uint8_t* data, std::size_t size, const std::string& name)
+  {
+    const Container container = readContainer (data, size, name);
+    ModelFileInfo info;
+    info.version = container.header.version;
+    info.quantised = container.header.flags & kFlagQuantised;
+    info.has_vertices = container.header.flags & kFlagVertices;
+    info.basis = "cosine " + std::to_string (container.header.basis_parameter) + "x" +
+                 std::to_string (container.header.basis_parameter);
+    info.num_patches = container.header.num_patches;
+    info.num_input_vertices = container.header.num_input_vertices;
+    info.bbox_diagonal = container.header.bbox_diagonal;
+    info.tolerance = container.header.tolerance;
+    info.file_bytes = size;
+    for (const StoredSection& s : container.sections)
+      info.sections.push_back ({s.tag, s.stored, s.raw});
+    return info;
+  }
+
+  void
+  saveModel (const std::string& path, const SparseSurfaceModel& model, const ModelWriteOptions& options)
+  {
+    const std::vector<std::uint8_t> bytes = encodeModel (model, options);
+    writeFileAtomically (path, [&] (const std::string& temporary) {
+      std::ofstream out (temporary, std::ios::binary);
+      out.write (reinterpret_cast<const char*> (bytes.data ()), static_cast<std::streamsize> (bytes.size ()));
+      out.close ();
+      return static_cast<bool> (out);
+    });
+  }
+
+  namespace
+  {
+    std::vector<std::uint8_t>
+    readWholeFile (const std::string& path)
+    {
+      std::error_code error;
+      if (!std::filesystem::is_regular_file (path, error))
+        throw Error (path + ": no such model file (or not a regular file)");
+      std::ifstream in (path, std::ios::binary | std::ios::ate);
+      if (!in)
+        throw Error (path + ": cannot open model file");
+      const std::streamoff size = in.tellg ();
+      if (size < 0)
+        throw Error (path + ": cannot read model file (not a regular file?)");
+      in.seekg (0);
+      std::vector<std::uint8_t> bytes (static_cast<std::size_t> (size));
+      if (size > 0 && !in.read (reinterpret_cast<char*> (bytes.data ()), size))
+        throw Error (path + ": cannot read model file");
+      return bytes;
+    }
+  } // namespace
+
+  SparseSurfaceModel
+  loadModel (const std::string& path)
+  {
+    const std::vector<std::uint8_t> bytes = readWholeFile (path);
+    return decodeModel (bytes.data (), bytes.size (), path);
+  }
+
+  ModelFileInfo
+  inspectModelFile (const std::string& path)
+  {
+    const std::vector<std::uint8_t> bytes = readWholeFile (path);
+    return inspectModel (bytes.data (), bytes.size (), path);
+  }
+} // namespace pcl_sparse

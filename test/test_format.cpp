@@ -1,0 +1,386 @@
+/// Round trips and bad files for the .psm model file format (src/format).
+
+#include "format_test_models.h"
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/byte_stream.h>
+#include <pcl_sparse/format/crc32.h>
+#include <pcl_sparse/format/frame_quantization.h>
+#include <pcl_sparse/format/model_file.h>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  template <typename T>
+  bool
+  sameBits (const T& a, const T& b)
+  {
+    return std::memcmp (&a, &b, sizeof (T)) == 0;
+  }
+
+  void
+  expectBitIdentical (const SparseSurfaceModel& a, const SparseSurfaceModel& b, bool with_vertices)
+  {
+    ASSERT_EQ (a.patches.size (), b.patches.size ());
+    EXPECT_EQ (a.num_input_vertices, b.num_input_vertices);
+    EXPECT_TRUE (sameBits (a.bbox_diagonal, b.bbox_diagonal));
+    EXPECT_EQ (a.basis->size (), b.basis->size ());
+    for (std::size_t p = 0; p < a.patches.size (); ++p)
+    {
+      const PatchCode& x = a.patches[p];
+      const PatchCode& y = b.patches[p];
+      for (int i = 0; i < 3; ++i)
+        EXPECT_TRUE (sameBits (x.origin[i], y.origin[i]));
+      for (int i = 0; i < 9; ++i)
+        EXPECT_TRUE (sameBits (x.frame (i), y.frame (i)));
+      EXPECT_TRUE (sameBits (x.radius, y.radius));
+      EXPECT_EQ (x.atoms, y.atoms);
+      ASSERT_EQ (x.coefficients.size (), y.coefficients.size ());
+      for (std::size_t k = 0; k < x.coefficients.size (); ++k)
+        EXPECT_TRUE (sameBits (x.coefficients[k], y.coefficients[k]));
+      ASSERT_EQ (x.footprint.extent.size (), y.footprint.extent.size ());
+      for (std::size_t k = 0; k < x.footprint.extent.size (); ++k)
+        EXPECT_TRUE (sameBits (x.footprint.extent[k], y.footprint.extent[k]));
+      if (with_vertices)
+      {
+        EXPECT_EQ (x.vertices, y.vertices);
+        ASSERT_EQ (x.vertex_xy.size (), y.vertex_xy.size ());
+        for (std::size_t k = 0; k < x.vertex_xy.size (); ++k)
+          EXPECT_TRUE (sameBits (x.vertex_xy[k], y.vertex_xy[k]));
+      }
+      else
+      {
+        EXPECT_TRUE (y.vertices.empty ());
+        EXPECT_TRUE (y.vertex_xy.empty ());
+      }
+    }
+  }
+
+  /// Largest world displacement of surface points s + r R (x, y, h(x, y)) over a polar grid of each
+  /// original patch's footprint.
+  double
+  largestSurfaceDisplacement (const SparseSurfaceModel& a, const SparseSurfaceModel& b)
+  {
+    double worst = 0.0;
+    for (std::size_t p = 0; p < a.patches.size (); ++p)
+      for (int k = 0; k < 32; ++k)
+        for (int j = 0; j <= 8; ++j)
+        {
+          const double angle = 2.0 * M_PI * k / 32.0;
+          const double r = a.patches[p].footprint.extentAt (angle) * j / 8.0;
+          const double x = r * std::cos (angle), y = r * std::sin (angle);
+          const Eigen::Vector3d pa = a.patches[p].toWorld (Eigen::Vector3d (x, y, a.evaluate (p, x, y).value));
+          const Eigen::Vector3d pb = b.patches[p].toWorld (Eigen::Vector3d (x, y, b.evaluate (p, x, y).value));
+          worst = std::max (worst, (pa - pb).norm ());
+        }
+    return worst;
+  }
+
+  std::vector<std::uint8_t>
+  smallFile (bool quantised)
+  {
+    ModelWriteOptions options;
+    options.tolerance = quantised ? 1e-3 : 0.0;
+    options.include_vertices = false;
+    return encodeModel (test::makeSyntheticModel (2, 5, false, 4), options);
+  }
+
+  void
+  expectErrorContaining (const std::vector<std::uint8_t>& bytes, const std::string& text)
+  {
+    try
+    {
+      decodeModel (bytes.data (), bytes.size (), "bad.psm");
+      ADD_FAILURE () << "no error, expected one containing '" << text << "'";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find (text), std::string::npos) << e.what ();
+      EXPECT_EQ (std::string (e.what ()).rfind ("bad.psm", 0), 0u) << "message should name the file: " << e.what ();
+    }
+  }
+
+  void
+  putU32At (std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t v)
+  {
+    for (int i = 0; i < 4; ++i)
+      bytes[at + i] = static_cast<std::uint8_t> (v >> (8 * i));
+  }
+
+  void
+  putU64At (std::vector<std::uint8_t>& bytes, std::size_t at, std::uint64_t v)
+  {
+    for (int i = 0; i < 8; ++i)
+      bytes[at + i] = static_cast<std::uint8_t> (v >> (8 * i));
+  }
+
+  /// Recomputes the header CRC, as a forger would, so that the field checks themselves are tested.
+  void
+  resealHeader (std::vector<std::uint8_t>& bytes)
+  {
+    putU32At (bytes, 48, crc32 (bytes.data (), 48));
+  }
+
+  void
+  resealSectionHeader (std::vector<std::uint8_t>& bytes, std::size_t start)
+  {
+    putU32At (bytes, start + 28, crc32 (bytes.data () + start, 28));
+  }
+} // namespace
+
+TEST (Crc32, KnownAnswer)
+{
+  const char* text = "123456789";
+  EXPECT_EQ (crc32 (reinterpret_cast<const std::uint8_t*> (text), 9), 0xCBF43926u);
+}
+
+TEST (ByteStream, VarintsRoundTripAndRefuseOverlong)
+{
+  ByteWriter out;
+  const std::int64_t values[] = {0, -1, 1, 63, -64, 64, 1 << 20, -(1ll << 40), std::numeric_limits<std::int64_t>::max (),
+                                 std::numeric_limits<std::int64_t>::min ()};
+  for (std::int64_t v : values)
+    out.putSignedVarint (v);
+  ByteReader in (out.bytes ().data (), out.size (), "test");
+  for (std::int64_t v : values)
+    EXPECT_EQ (in.getSignedVarint ("v"), v);
+  EXPECT_TRUE (in.atEnd ());
+  const std::vector<std::uint8_t> overlong (11, 0x80);
+  ByteReader bad (overlong.data (), overlong.size (), "test");
+  EXPECT_THROW (bad.getVarint ("v"), Error);
+}
+
+TEST (FrameQuantization, AngleErrorWithinBound)
+{
+  const auto model = test::makeSyntheticModel (300, 11);
+  for (double step : {1e-2, 1e-3, 1e-5})
+    for (const PatchCode& patch : model.patches)
+    {
+      Eigen::Matrix3d decoded;
+      ASSERT_TRUE (dequantiseFrame (quantiseFrame (patch.frame, step), step, decoded));
+      EXPECT_NEAR (decoded.determinant (), patch.frame.determinant (), 1e-9);
+      const Eigen::Matrix3d relative = decoded.transpose () * patch.frame;
+      const double angle = std::acos (std::clamp ((relative.trace () - 1.0) / 2.0, -1.0, 1.0));
+      EXPECT_LE (angle, 1.1 * 2.0 * std::sqrt (3.0) * step);
+    }
+}
+
+TEST (ModelFile, LosslessRoundTripIsBitIdentical)
+{
+  for (bool with_vertices : {false, true})
+  {
+    const auto model = test::makeSyntheticModel (200, 1, true);
+    ModelWriteOptions options;
+    options.include_vertices = with_vertices;
+    const auto bytes = encodeModel (model, options);
+    const auto decoded = decodeModel (bytes.data (), bytes.size ());
+    expectBitIdentical (model, decoded, with_vertices);
+    EXPECT_EQ (largestSurfaceDisplacement (model, decoded), 0.0);
+    // and again: the decoded model encodes to the same bytes
+    EXPECT_EQ (encodeModel (decoded, options), bytes);
+  }
+}
+
+TEST (ModelFile, EmptyModelRoundTrips)
+{
+  SparseSurfaceModel model;
+  model.basis = std::make_shared<CosineDictionary> (12);
+  model.bbox_diagonal = 2.0;
+  for (double tolerance : {0.0, 1e-4})
+  {
+    ModelWriteOptions options;
+    options.tolerance = tolerance;
+    const auto bytes = encodeModel (model, options);
+    const auto decoded = decodeModel (bytes.data (), bytes.size ());
+    EXPECT_EQ (decoded.numPatches (), 0u);
+    EXPECT_EQ (decoded.bbox_diagonal, 2.0);
+  }
+}
+
+TEST (ModelFile, QuantisedRoundTripWithinTolerance)
+{
+  const auto model = test::makeSyntheticModel (300, 2, true);
+  const std::size_t lossless = encodeModel (model).size ();
+  std::size_t previous = 0;
+  for (double tolerance : {1e-5, 1e-4, 1e-3})
+  {
+    ModelWriteOptions options;
+    options.tolerance = tolerance;
+    const auto bytes = encodeModel (model, options);
+    const auto decoded = decodeModel (bytes.data (), bytes.size ());
+    ASSERT_EQ (decoded.numPatches (), model.numPatches ());
+    const double bound = tolerance * model.bbox_diagonal;
+    const double moved = largestSurfaceDisplacement (model, decoded);
+    EXPECT_LE (moved, bound) << "tolerance " << tolerance;
+    EXPECT_GE (moved, 0.02 * bound) << "the steps should use the budget, tolerance " << tolerance;
+    for (std::size_t p = 0; p < model.numPatches (); ++p)
+    {
+      std::vector<int> sorted = model.patches[p].atoms;
+      std::sort (sorted.begin (), sorted.end ());
+      EXPECT_EQ (decoded.patches[p].atoms, sorted);
+      const double error = (decoded.patches[p].frame.transpose () * decoded.patches[p].frame -
+                            Eigen::Matrix3d::Identity ()).cwiseAbs ().maxCoeff ();
+      EXPECT_LT (error, 1e-12);
+      for (std::size_t k = 0; k < model.patches[p].footprint.extent.size (); ++k)
+        EXPECT_NEAR (decoded.patches[p].footprint.extent[k], model.patches[p].footprint.extent[k], 0.5 / 63.0 + 1e-6);
+    }
+    EXPECT_LT (bytes.size (), lossless / 3) << "tolerance " << tolerance;
+    if (previous)
+      EXPECT_LT (bytes.size (), previous);
+    previous = bytes.size ();
+  }
+}
+
+TEST (ModelFile, QuantisedKeepsVertices)
+{
+  const auto model = test::makeSyntheticModel (20, 3, true);
+  ModelWriteOptions options;
+  options.tolerance = 1e-4;
+  options.include_vertices = true;
+  const auto bytes = encodeModel (model, options);
+  const auto decoded = decodeModel (bytes.data (), bytes.size ());
+  for (std::size_t p = 0; p < model.numPatches (); ++p)
+  {
+    EXPECT_EQ (decoded.patches[p].vertices, model.patches[p].vertices);
+    for (std::size_t k = 0; k < model.patches[p].vertex_xy.size (); ++k)
+      EXPECT_NEAR ((decoded.patches[p].vertex_xy[k] - model.patches[p].vertex_xy[k]).norm (), 0.0, 1e-7);
+  }
+}
+
+TEST (ModelFile, EncoderRefusesWhatItCannotStore)
+{
+  auto model = test::makeSyntheticModel (3, 4);
+  model.patches[1].coefficients[0] = std::nan ("");
+  EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4);
+  model.patches[2].atoms[0] = 144;
+  EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4);
+  model.patches[0].radius = 0.0;
+  EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4);
+  model.bbox_diagonal = 0.0;
+  ModelWriteOptions options;
+  options.tolerance = 1e-4;
+  EXPECT_THROW (encodeModel (model, options), Error);
+  model.basis.reset ();
+  EXPECT_THROW (encodeModel (model), Error);
+}
+
+TEST (ModelFile, EveryTruncationIsAnError)
+{
+  for (bool quantised : {false, true})
+  {
+    const auto bytes = smallFile (quantised);
+    for (std::size_t length = 0; length < bytes.size (); ++length)
+    {
+      std::vector<std::uint8_t> cut (bytes.begin (), bytes.begin () + length);
+      EXPECT_THROW (decodeModel (cut.data (), cut.size (), "cut.psm"), Error) << "length " << length;
+    }
+    std::vector<std::uint8_t> longer = bytes;
+    longer.push_back (0);
+    expectErrorContaining (longer, "trailing bytes");
+  }
+}
+
+TEST (ModelFile, EverySingleBitFlipIsAnError)
+{
+  for (bool quantised : {false, true})
+  {
+    const auto bytes = smallFile (quantised);
+    for (std::size_t bit = 0; bit < 8 * bytes.size (); ++bit)
+    {
+      std::vector<std::uint8_t> flipped = bytes;
+      flipped[bit / 8] ^= static_cast<std::uint8_t> (1u << (bit % 8));
+      EXPECT_THROW (decodeModel (flipped.data (), flipped.size (), "flip.psm"), Error) << "bit " << bit;
+    }
+  }
+}
+
+TEST (ModelFile, ForgedHeadersGiveClearErrors)
+{
+  const auto good = smallFile (false);
+  auto bytes = good;
+  bytes[1] = 'X';
+  expectErrorContaining (bytes, "wrong magic");
+
+  bytes = good;  // the version is checked first: a later version may lay out its header differently
+  bytes[8] = 2;
+  expectErrorContaining (bytes, "unsupported model file version 2");
+
+  bytes = good;
+  bytes[17] ^= 1;
+  expectErrorContaining (bytes, "header checksum");
+
+  bytes = good;  // lying patch count, checksum forged
+  putU32At (bytes, 16, 1000000);
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "patches need");
+
+  bytes = good;
+  putU32At (bytes, 16, 0xFFFFFFFFu);
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "number of patches");
+
+  bytes = good;
+  bytes[14] = 200;  // basis with 200 frequencies
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "frequencies is out of range");
+
+  bytes = good;
+  putU32At (bytes, 20, 99);
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "sections, expected");
+
+  bytes = good;  // a huge declared decompressed size in the first section, checksum forged
+  putU64At (bytes, 52 + 16, std::uint64_t (1) << 40);
+  resealSectionHeader (bytes, 52);
+  expectErrorContaining (bytes, "can justify");
+
+  bytes = good;  // a huge stored size
+  putU64At (bytes, 52 + 8, std::uint64_t (1) << 62);
+  resealSectionHeader (bytes, 52);
+  expectErrorContaining (bytes, "truncated file");
+
+  bytes = good;
+  bytes[52] = 'X';
+  resealSectionHeader (bytes, 52);
+  expectErrorContaining (bytes, "expected 'SEED'");
+
+  bytes = good;
+  bytes[40 + 7] = 0x7F;  // tolerance becomes a huge number on a lossless file
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "tolerance");
+}
+
+TEST (ModelFile, SaveAndLoadFiles)
+{
+  const std::string directory = std::string (PCL_SPARSE_BINARY_DIR) + "/test_format_files";
+  std::filesystem::create_directories (directory);
+  const std::string path = directory + "/model.psm";
+  const auto model = test::makeSyntheticModel (50, 9);
+  saveModel (path, model);
+  expectBitIdentical (model, loadModel (path), false);
+  const ModelFileInfo info = inspectModelFile (path);
+  EXPECT_EQ (info.num_patches, 50u);
+  EXPECT_EQ (info.sections.size (), 6u);
+  EXPECT_EQ (info.file_bytes, std::filesystem::file_size (path));
+  EXPECT_EQ (info.basis, "cosine 12x12");
+
+  EXPECT_THROW (loadModel (directory + "/missing.psm"), Error);
+  EXPECT_THROW (loadModel (directory), Error);
+  // a failed write leaves nothing behind
+  EXPECT_THROW (saveModel (directory + "/no/such/dir/model.psm", model), Error);
+  auto bad = model;
+  bad.patches[0].radius = -1.0;
+  EXPECT_THROW (saveModel (directory + "/bad.psm", bad), Error);
+  EXPECT_FALSE (std::filesystem::exists (directory + "/bad.psm"));
+  std::filesystem::remove_all (directory);
+}
