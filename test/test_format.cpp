@@ -1,6 +1,6 @@
 /// Round trips and bad files for the .psm model file format (src/format).
 
-#include "format_test_models.h"
+#include "test_format_models.h"
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/byte_stream.h>

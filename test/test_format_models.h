@@ -1,5 +1,5 @@
 #pragma once
-/// \file format_test_models.h
+/// \file test_format_models.h
 /// Synthetic sparse models for the file-format tests and the fuzzer's seed corpus: random patches with
 /// orthonormal frames (some reflected), log-uniform radii, star-shaped footprints and random sparse
 /// codes over the 144-atom cosine dictionary. Seeded, so every run builds the same models.
