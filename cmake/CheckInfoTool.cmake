@@ -1,0 +1,42 @@
+# Runs pcl_sparse_info on a small mesh, on bad input and (when present) on the shared Fandisk, and checks
+# the output lines, the JSON keys and the exit codes.
+# Run as: cmake -DTOOL=<pcl_sparse_info> -DWORK_DIR=<dir> [-DSHARED_MESHES=<dir>] -P
+cmake_minimum_required(VERSION 3.16)
+
+file(MAKE_DIRECTORY "${WORK_DIR}")
+set(off "${WORK_DIR}/tetrahedron.off")
+file(WRITE "${off}" "OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 -1\n-1 -1 1\n3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n")
+
+function(expect_output args)
+  execute_process(COMMAND "${TOOL}" ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pcl_sparse_info ${args}: exit ${rc}: ${err}")
+  endif()
+  foreach(pattern ${ARGN})
+    if(NOT out MATCHES "${pattern}")
+      message(FATAL_ERROR "pcl_sparse_info ${args}: output lacks '${pattern}':\n${out}")
+    endif()
+  endforeach()
+endfunction()
+
+function(expect_refusal args name)
+  execute_process(COMMAND "${TOOL}" ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(STRIP "${err}" err)
+  if(rc EQUAL 0 OR err STREQUAL "" OR err MATCHES "\n" OR NOT err MATCHES "${name}")
+    message(FATAL_ERROR "pcl_sparse_info ${args}: expected exit 1 and one error line naming '${name}', "
+                        "got exit ${rc}, stderr '${err}'")
+  endif()
+endfunction()
+
+expect_output("${off}" "(^|\n)vertices: 4\n" "\nfaces: 4\n" "\nedges: 6\n" "\ngenus: 0\n" "\nclosed: yes\n")
+expect_output("${off};--json" "^{.*}\n$" "\"vertices\": 4," "\"faces\": 4," "\"components\": 1,"
+              "\"boundary_edges\": 0," "\"nonmanifold_edges\": 0," "\"genus\": 0," "\"bbox_diagonal\": 3.464"
+              "\"seconds\": ")
+expect_refusal("${WORK_DIR}/missing.off" "missing.off")
+expect_refusal("${WORK_DIR}" "${WORK_DIR}")
+expect_refusal("${off};--no-such-option" "--no-such-option")
+expect_refusal("${WORK_DIR}/model.psm" "model.psm")
+
+if(SHARED_MESHES AND EXISTS "${SHARED_MESHES}/fandisk.off")
+  expect_output("${SHARED_MESHES}/fandisk.off" "\nvertices: 6475\n" "\nfaces: 12946\n" "\ngenus: 0\n")
+endif()
