@@ -1,0 +1,381 @@
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/resampling/patch_geometry.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    /// splitmix64 finaliser: a stateless hash, so a random number is a function of (seed, patch, cell,
+    /// draw) and the result does not depend on the order patches are processed in. (A per-patch
+    /// std::mt19937 would cost more to seed than drawing a small patch's points.)
+    inline std::uint64_t
+    mix (std::uint64_t z)
+    {
+      z += 0x9e3779b97f4a7c15ULL;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      return z ^ (z >> 31);
+    }
+
+    /// Uniform in [0, 1) from (key, index).
+    inline double
+    uniform (std::uint64_t key, std::uint64_t index)
+    {
+      return static_cast<double> (mix (key ^ mix (index)) >> 11) * 0x1.0p-53;
+    }
+
+    /// Key of patch \a p in pass \a pass for \a seed.
+    inline std::uint64_t
+    patchKey (std::uint64_t seed, std::size_t p, std::uint64_t pass)
+    {
+      return mix (mix (seed) ^ mix (static_cast<std::uint64_t> (p) * 4 + pass));
+    }
+
+    /// A candidate place kept by its patch: local position, area weight sqrt(1 + |grad h|^2) and cell.
+    struct Candidate
+    {
+      float x, y, weight;
+      std::int32_t cell;
+    };
+
+    /// The stratification grid of one patch: n x n cells of side `cell` centred on the seed.
+    struct PatchGrid
+    {
+      double cell = 1.0;
+      int n = 1;
+      double start = 0.0;
+    };
+
+    PatchGrid
+    makeGrid (double max_extent, double cell)
+    {
+      PatchGrid grid;
+      grid.cell = cell;
+      grid.n = std::max (1, static_cast<int> (std::ceil (2.0 * max_extent / cell)));
+      grid.start = -0.5 * grid.n * cell;
+      return grid;
+    }
+
+    class PatchSampler
+    {
+    public:
+      PatchSampler (const SparseSurfaceModel& model, const PatchOwnership& ownership, double jitter)
+        : model_ (model), ownership_ (ownership), jitter_ (jitter)
+      {}
+
+      /// Whether patch \a p keeps the place (x, y): inside its footprint and owned by it.
+      bool
+      keeps (std::size_t p, double x, double y, HeightSample& h) const
+      {
+        const double c = footprintCentrality (model_.patches[p].footprint, x, y);
+        if (c > 1.0)
+          return false;
+        h = model_.evaluate (p, x, y);
+        const PatchCode& code = model_.patches[p];
+        return ownership_.owns (p, patchPoint (code, x, y, h), patchNormal (code, h), c);
+      }
+
+      /// One jittered candidate per cell, kept ones in serpentine cell order; returns their weight sum.
+      double
+      drawCandidates (std::size_t p, const PatchGrid& grid, std::uint64_t key, std::vector<Candidate>& out) const
+      {
+        out.clear ();
+        double sum = 0.0;
+        HeightSample h;
+        for (int row = 0; row < grid.n; ++row)
+          for (int k = 0; k < grid.n; ++k)
+          {
+            const int col = (row % 2 == 0) ? k : grid.n - 1 - k;
+            const std::int32_t cell = row * grid.n + col;
+            const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
+            const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
+            if (!keeps (p, x, y, h))
+              continue;
+            const double w = std::sqrt (1.0 + h.gradient.squaredNorm ());
+            out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell});
+            sum += w;
+          }
+        return sum;
+      }
+
+      /// Exactly \a count points from \a candidates by systematic sampling of their cumulative weight.
+      void
+      selectPoints (std::size_t p, const PatchGrid& grid, std::uint64_t key, const std::vector<Candidate>& candidates,
+                    std::size_t count, SparseSurfaceResampling::PointCloud::VectorType& out) const
+      {
+        out.clear ();
+        if (count == 0 || candidates.empty ())
+          return;
+        out.reserve (count);
+        double total = 0.0;
+        for (const Candidate& c : candidates)
+          total += c.weight;
+        const double step = total / static_cast<double> (count);
+        double t = uniform (key, ~0ULL) * step;
+        double cumulative = 0.0;
+        const std::uint64_t cells = static_cast<std::uint64_t> (grid.n) * grid.n;
+        for (std::size_t k = 0; k < candidates.size () && out.size () < count; ++k)
+        {
+          const Candidate& c = candidates[k];
+          const double high = (k + 1 == candidates.size ()) ? std::numeric_limits<double>::infinity () : cumulative + c.weight;
+          for (int draw = 0; t < high && out.size () < count; ++draw, t += step)
+            emit (p, grid, key, c, draw, cells, out);
+          cumulative = high;
+        }
+      }
+
+    private:
+      /// The first point of a cell is its candidate; further ones are fresh places in the same cell.
+      void
+      emit (std::size_t p, const PatchGrid& grid, std::uint64_t key, const Candidate& c, int draw, std::uint64_t cells,
+            SparseSurfaceResampling::PointCloud::VectorType& out) const
+      {
+        double x = c.x, y = c.y;
+        HeightSample h;
+        bool found = false;
+        if (draw > 0)
+        {
+          const int row = c.cell / grid.n, col = c.cell % grid.n;
+          for (int attempt = 0; attempt < 8 && !found; ++attempt)
+          {
+            const std::uint64_t index = 2 * (cells * (8 * static_cast<std::uint64_t> (draw) + attempt) + c.cell);
+            const double xa = grid.start + (col + uniform (key, index)) * grid.cell;
+            const double ya = grid.start + (row + uniform (key, index + 1)) * grid.cell;
+            if (keeps (p, xa, ya, h))
+            {
+              x = xa;
+              y = ya;
+              found = true;
+            }
+          }
+        }
+        if (!found)
+          h = model_.evaluate (p, x, y);
+        const PatchCode& code = model_.patches[p];
+        const Eigen::Vector3d position = patchPoint (code, x, y, h);
+        const Eigen::Vector3d normal = patchNormal (code, h);
+        pcl::PointNormal point;
+        point.x = static_cast<float> (position.x ());
+        point.y = static_cast<float> (position.y ());
+        point.z = static_cast<float> (position.z ());
+        point.normal_x = static_cast<float> (normal.x ());
+        point.normal_y = static_cast<float> (normal.y ());
+        point.normal_z = static_cast<float> (normal.z ());
+        point.curvature = static_cast<float> (patchMeanCurvature (code, h));
+        out.push_back (point);
+      }
+
+      const SparseSurfaceModel& model_;
+      const PatchOwnership& ownership_;
+      double jitter_;
+    };
+
+    /// Largest-remainder split of \a total into parts proportional to \a weights.
+    std::vector<std::size_t>
+    largestRemainder (const std::vector<double>& weights, std::size_t total)
+    {
+      const double sum = std::accumulate (weights.begin (), weights.end (), 0.0);
+      std::vector<std::size_t> parts (weights.size (), 0);
+      std::vector<std::pair<double, std::size_t>> remainders;
+      std::size_t given = 0;
+      for (std::size_t i = 0; i < weights.size (); ++i)
+      {
+        if (weights[i] <= 0.0)
+          continue;
+        const double exact = static_cast<double> (total) * weights[i] / sum;
+        parts[i] = static_cast<std::size_t> (std::floor (exact));
+        given += parts[i];
+        remainders.emplace_back (exact - std::floor (exact), i);
+      }
+      // Larger remainder first, lower index on ties: deterministic.
+      std::sort (remainders.begin (), remainders.end (), [] (const auto& a, const auto& b) {
+        return a.first != b.first ? a.first > b.first : a.second < b.second;
+      });
+      for (std::size_t k = 0; given < total && !remainders.empty (); ++k, ++given)
+        ++parts[remainders[k % remainders.size ()].second];
+      return parts;
+    }
+  } // namespace
+
+  void
+  SparseSurfaceResampling::setInputModel (const SparseSurfaceModel::ConstPtr& model)
+  {
+    if (model != model_)
+      ownership_.reset ();
+    model_ = model;
+  }
+
+  void
+  SparseSurfaceResampling::setPointCount (std::size_t count)
+  {
+    if (count == 0 || count > max_points)
+      throw Error (class_name_ + ": point count must be in [1, " + std::to_string (max_points) + "], got " +
+                   std::to_string (count));
+    mode_ = Mode::Count;
+    count_ = count;
+  }
+
+  void
+  SparseSurfaceResampling::setDensity (double density)
+  {
+    if (!(density > 0.0) || !std::isfinite (density))
+      throw Error (class_name_ + ": density must be a positive number of points per unit area");
+    mode_ = Mode::Density;
+    density_ = density;
+  }
+
+  void
+  SparseSurfaceResampling::setSpacing (double spacing)
+  {
+    if (!(spacing > 0.0) || !std::isfinite (spacing))
+      throw Error (class_name_ + ": spacing must be a positive length");
+    setDensity (1.0 / (spacing * spacing));
+  }
+
+  void
+  SparseSurfaceResampling::compute (PointCloud& output)
+  {
+    if (!model_)
+      throw Error (class_name_ + "::compute: no input model (setInputModel)");
+    if (!model_->basis)
+      throw Error (class_name_ + "::compute: the model has no basis");
+    if (model_->patches.empty ())
+      throw Error (class_name_ + "::compute: the model has no patches");
+    if (mode_ == Mode::None)
+      throw Error (class_name_ + "::compute: no density given (setPointCount, setDensity or setSpacing)");
+    if (!(options_.jitter >= 0.0 && options_.jitter <= 1.0))
+      throw Error (class_name_ + "::compute: jitter must be in [0, 1]");
+    for (const PatchCode& code : model_->patches)
+      if (!(code.radius > 0.0) || !std::isfinite (code.radius))
+        throw Error (class_name_ + "::compute: a patch has a non-positive radius");
+    computeResampling (output);
+  }
+
+  void
+  SparseSurfaceResampling::computeResampling (PointCloud& output)
+  {
+    const SparseSurfaceModel& model = *model_;
+    const std::size_t m = model.numPatches ();
+    const int threads = threads_ > 0 ? threads_ : omp_get_max_threads ();
+    if (!ownership_)
+      ownership_ = std::make_shared<PatchOwnership> (model, options_.ownership);
+    const PatchOwnership& ownership = *ownership_;
+    const PatchSampler sampler (model, ownership, options_.jitter);
+    const std::uint64_t seed = options_.seed;
+
+    // Density: given, or from a coarse area pass when a total count is asked for.
+    double density = density_;
+    if (mode_ == Mode::Count)
+    {
+      std::vector<double> areas (m, 0.0);
+      const double cells_per_axis = std::sqrt (std::max (1, options_.area_pass_cells));
+#pragma omp parallel for schedule(dynamic, 8) num_threads(threads)
+      for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
+      {
+        const std::size_t p = static_cast<std::size_t> (pi);
+        const double e = ownership.maxExtent (p);
+        const PatchGrid grid = makeGrid (e, 2.0 * e / cells_per_axis);
+        std::vector<Candidate> candidates;
+        const double r = model.patches[p].radius;
+        areas[p] = sampler.drawCandidates (p, grid, patchKey (seed, p, 0), candidates) * grid.cell * grid.cell * r * r;
+      }
+      const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
+      if (!(area > 0.0))
+        throw Error (class_name_ + "::compute: the model has no surface area to sample");
+      density = static_cast<double> (count_) / area;
+    }
+
+    // Guard against absurd densities before drawing: every grid square bounds its patch's candidates.
+    double bound = 0.0;
+    for (std::size_t p = 0; p < m; ++p)
+    {
+      const double side = 2.0 * ownership.maxExtent (p) * model.patches[p].radius;
+      bound += side * side * density;
+    }
+    if (bound > 4.0 * static_cast<double> (max_points))
+    {
+      std::ostringstream message;
+      message << class_name_ << "::compute: density " << density << " would give about " << bound / 4.0
+              << " points, more than the limit " << max_points;
+      throw Error (message.str ());
+    }
+
+    // Candidate pass: every patch's kept places and owned area at the final density.
+    std::vector<std::vector<Candidate>> candidates (m);
+    std::vector<double> weights (m, 0.0);
+    std::vector<PatchGrid> grids (m);
+    std::atomic<std::size_t> done (0);
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+    for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
+    {
+      const std::size_t p = static_cast<std::size_t> (pi);
+      const double r = model.patches[p].radius;
+      grids[p] = makeGrid (ownership.maxExtent (p), 1.0 / (r * std::sqrt (density)));
+      weights[p] = sampler.drawCandidates (p, grids[p], patchKey (seed, p, 1), candidates[p]);
+      const std::size_t finished = ++done;
+      if (progress_ && omp_get_thread_num () == 0)
+        progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
+    }
+    // A cell holds one expected point on flat ground, so weights are areas in units of 1 / density.
+    estimated_area_ = std::accumulate (weights.begin (), weights.end (), 0.0) / density;
+    density_used_ = density;
+
+    std::vector<std::size_t> counts (m, 0);
+    if (mode_ == Mode::Count)
+      counts = largestRemainder (weights, count_);
+    else
+    {
+      double total = 0.0;
+      for (std::size_t p = 0; p < m; ++p)
+      {
+        const double whole = std::floor (weights[p]);
+        counts[p] = static_cast<std::size_t> (whole) + (uniform (patchKey (seed, p, 2), 0) < weights[p] - whole ? 1 : 0);
+        total += static_cast<double> (counts[p]);
+      }
+      if (total > static_cast<double> (max_points))
+        throw Error (class_name_ + "::compute: density gives more than " + std::to_string (max_points) + " points");
+    }
+
+    // Selection pass, then concatenation in patch order.
+    std::vector<PointCloud::VectorType> points (m);
+    done = 0;
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+    for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
+    {
+      const std::size_t p = static_cast<std::size_t> (pi);
+      sampler.selectPoints (p, grids[p], patchKey (seed, p, 3), candidates[p], counts[p], points[p]);
+      std::vector<Candidate> ().swap (candidates[p]);
+      const std::size_t finished = ++done;
+      if (progress_ && omp_get_thread_num () == 0)
+        progress_ ("resample", 0.5 + 0.5 * static_cast<double> (finished) / static_cast<double> (m));
+    }
+    std::vector<std::size_t> offsets (m + 1, 0);
+    for (std::size_t p = 0; p < m; ++p)
+      offsets[p + 1] = offsets[p] + points[p].size ();
+    output.clear ();
+    output.resize (offsets[m]);
+    point_patches_.assign (offsets[m], 0);
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
+    {
+      const std::size_t p = static_cast<std::size_t> (pi);
+      std::copy (points[p].begin (), points[p].end (), output.begin () + offsets[p]);
+      std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
+    }
+    output.width = static_cast<std::uint32_t> (output.size ());
+    output.height = 1;
+    output.is_dense = true;
+    if (progress_)
+      progress_ ("resample", 1.0);
+  }
+} // namespace pcl_sparse

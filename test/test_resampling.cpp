@@ -1,0 +1,336 @@
+// Tests of SparseSurfaceResampling on hand-made models with known surfaces: a flat sheet of disk
+// patches and a sphere covered by overlapping caps, both coded over the CosineDictionary by least squares.
+#include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/resampling/patch_geometry.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+
+#include <pcl/kdtree/kdtree_flann.h>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <functional>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  /// A frame (T1, T2, N) with the given normal.
+  Eigen::Matrix3d
+  frameFromNormal (const Eigen::Vector3d& normal)
+  {
+    const Eigen::Vector3d n = normal.normalized ();
+    const Eigen::Vector3d helper = std::abs (n.x ()) < 0.9 ? Eigen::Vector3d::UnitX () : Eigen::Vector3d::UnitY ();
+    const Eigen::Vector3d t1 = (helper - helper.dot (n) * n).normalized ();
+    Eigen::Matrix3d frame;
+    frame << t1, n.cross (t1), n;
+    return frame;
+  }
+
+  /// Codes height(x, y) over the unit disk with the cosine atoms of frequency < 8, least squares.
+  void
+  codeHeight (const CosineDictionary& basis, const std::function<double (double, double)>& height, PatchCode& code)
+  {
+    std::vector<Eigen::Vector2d> points;
+    std::vector<double> values;
+    for (int a = -24; a <= 24; ++a)
+      for (int b = -24; b <= 24; ++b)
+      {
+        const double x = a / 22.0, y = b / 22.0;
+        if (x * x + y * y <= 1.0)
+        {
+          points.emplace_back (x, y);
+          values.push_back (height (x, y));
+        }
+      }
+    Eigen::MatrixXd all;
+    basis.evaluate (points, all);
+    std::vector<int> atoms;
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j)
+        atoms.push_back (basis.atomIndex (i, j));
+    Eigen::MatrixXd design (points.size (), atoms.size ());
+    for (std::size_t k = 0; k < atoms.size (); ++k)
+      design.col (k) = all.col (atoms[k]);
+    const Eigen::VectorXd rhs = Eigen::Map<const Eigen::VectorXd> (values.data (), values.size ());
+    const Eigen::VectorXd solution = design.colPivHouseholderQr ().solve (rhs);
+    code.atoms = atoms;
+    code.coefficients.assign (solution.data (), solution.data () + solution.size ());
+  }
+
+  PatchFootprint
+  diskFootprint (double radius)
+  {
+    PatchFootprint footprint;
+    footprint.extent.assign (32, static_cast<float> (radius));
+    return footprint;
+  }
+
+  /// Flat square sheet z = 0: a 5 x 5 grid of disk patches of radius 0.4, seeds 0.5 apart.
+  SparseSurfaceModel::Ptr
+  makePlaneModel ()
+  {
+    auto model = std::make_shared<SparseSurfaceModel> ();
+    model->basis = std::make_shared<CosineDictionary> (12);
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j)
+      {
+        PatchCode code;
+        code.origin = Eigen::Vector3d (-1.0 + 0.5 * i, -1.0 + 0.5 * j, 0.0);
+        // Rotate each frame differently about z so the patch grids do not line up.
+        const double angle = 0.37 * (5 * i + j);
+        code.frame = Eigen::AngleAxisd (angle, Eigen::Vector3d::UnitZ ()).toRotationMatrix ();
+        code.radius = 0.4;
+        code.footprint = diskFootprint (1.0);
+        model->patches.push_back (code);
+      }
+    model->bbox_diagonal = std::sqrt (2.0) * 2.8;
+    return model;
+  }
+
+  /// Unit sphere covered by caps around the icosphere(1) vertices (42 seeds), cap radius 0.5: r_P = 0.625
+  /// and footprint extent 0.8, so the footprint stays away from the square's edges, where every cosine
+  /// atom has zero slope.
+  SparseSurfaceModel::Ptr
+  makeSphereModel ()
+  {
+    auto model = std::make_shared<SparseSurfaceModel> ();
+    auto basis = std::make_shared<CosineDictionary> (12);
+    model->basis = basis;
+    const TriangleMesh seeds = makeIcosphere (1);
+    const double r = 0.625;
+    for (const Eigen::Vector3d& s : seeds.vertices)
+    {
+      PatchCode code;
+      code.origin = s;
+      code.frame = frameFromNormal (s);
+      code.radius = r;
+      // The sphere seen from its tangent plane at s, in local units: z' = (sqrt(1 - r^2 |x|^2) - 1) / r.
+      codeHeight (*basis, [r] (double x, double y) { return (std::sqrt (std::max (0.0, 1.0 - r * r * (x * x + y * y))) - 1.0) / r; },
+                  code);
+      code.footprint = diskFootprint (0.8);
+      model->patches.push_back (code);
+    }
+    model->bbox_diagonal = 2.0 * std::sqrt (3.0);
+    return model;
+  }
+
+  /// Nearest-neighbour distances of every point.
+  std::vector<double>
+  nearestDistances (const pcl::PointCloud<pcl::PointNormal>::ConstPtr& cloud)
+  {
+    pcl::KdTreeFLANN<pcl::PointNormal> tree;
+    tree.setInputCloud (cloud);
+    std::vector<int> index (2);
+    std::vector<float> d2 (2);
+    std::vector<double> distances;
+    for (const auto& p : *cloud)
+    {
+      tree.nearestKSearch (p, 2, index, d2);
+      distances.push_back (std::sqrt (d2[1]));
+    }
+    return distances;
+  }
+
+  double
+  coefficientOfVariation (const std::vector<double>& values)
+  {
+    double mean = 0.0, square = 0.0;
+    for (double v : values)
+      mean += v;
+    mean /= values.size ();
+    for (double v : values)
+      square += (v - mean) * (v - mean);
+    return std::sqrt (square / values.size ()) / mean;
+  }
+
+  pcl::PointCloud<pcl::PointNormal>::Ptr
+  resample (const SparseSurfaceModel::Ptr& model, std::size_t count, int threads = 0, std::uint64_t seed = 42)
+  {
+    SparseSurfaceResampling resampling;
+    resampling.setInputModel (model);
+    resampling.setPointCount (count);
+    SparseSurfaceResamplingOptions options;
+    options.seed = seed;
+    resampling.setOptions (options);
+    resampling.setNumberOfThreads (threads);
+    pcl::PointCloud<pcl::PointNormal>::Ptr cloud (new pcl::PointCloud<pcl::PointNormal>);
+    resampling.compute (*cloud);
+    return cloud;
+  }
+} // namespace
+
+TEST (PatchGeometry, MeanCurvatureOfSphereCap)
+{
+  // z = r h(x / r, y / r) with h(x, y) = (sqrt(1 - r^2 |x|^2) - 1) / r: sphere of radius 1 below its
+  // tangent plane, normal outward: H = +1 at the seed.
+  PatchCode code;
+  code.radius = 0.5;
+  HeightSample h;
+  h.hessian << -0.5, 0.0, 0.0, -0.5;  // h_xx = -r at the centre
+  EXPECT_NEAR (patchMeanCurvature (code, h), 1.0, 1e-12);
+  EXPECT_NEAR (patchAreaElement (code, h), 0.25, 1e-12);
+}
+
+TEST (Resampling, PlaneExactCountOnSurfaceUniform)
+{
+  const auto model = makePlaneModel ();
+  const auto cloud = resample (model, 20000);
+  ASSERT_EQ (cloud->size (), 20000u);
+  for (const auto& p : *cloud)
+  {
+    ASSERT_NEAR (p.z, 0.0, 1e-6);
+    ASSERT_NEAR (p.normal_z, 1.0, 1e-6);
+    ASSERT_NEAR (p.curvature, 0.0, 1e-6);
+  }
+  // Area of the union of the disks by a fine grid; the density must match it (no double counting).
+  double inside = 0.0;
+  const int n = 1000;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+    {
+      const double x = -1.5 + 3.0 * (a + 0.5) / n, y = -1.5 + 3.0 * (b + 0.5) / n;
+      bool covered = false;
+      for (const auto& code : model->patches)
+        covered = covered || (Eigen::Vector2d (x, y) - code.origin.head<2> ()).norm () <= code.radius;
+      inside += covered ? 1.0 : 0.0;
+    }
+  const double area = inside * 9.0 / (n * n);
+  SparseSurfaceResampling resampling;
+  resampling.setInputModel (model);
+  resampling.setDensity (10000.0);
+  pcl::PointCloud<pcl::PointNormal> by_density;
+  resampling.compute (by_density);
+  EXPECT_NEAR (resampling.getEstimatedArea (), area, 0.01 * area);
+  EXPECT_NEAR (static_cast<double> (by_density.size ()), 10000.0 * area, 0.01 * 10000.0 * area);
+  // The inner square [-0.75, 0.75]^2 (covered by several patches everywhere) holds its share of points.
+  std::size_t in_square = 0;
+  for (const auto& p : by_density)
+    in_square += (std::abs (p.x) < 0.75 && std::abs (p.y) < 0.75) ? 1 : 0;
+  EXPECT_NEAR (static_cast<double> (in_square), 10000.0 * 2.25, 0.01 * 10000.0 * 2.25);
+  const double cv = coefficientOfVariation (nearestDistances (cloud));
+  std::cout << "plane nearest-neighbour CV " << cv << std::endl;
+  EXPECT_LT (cv, 0.25);
+}
+
+TEST (Resampling, SphereOnSurfaceNormalsCompleteUniform)
+{
+  const auto model = makeSphereModel ();
+  const std::size_t n = 30000;
+  const auto cloud = resample (model, n);
+  ASSERT_EQ (cloud->size (), n);
+  double square = 0.0, curvature = 0.0, worst_normal = 1.0;
+  std::array<std::size_t, 8> octants {};
+  for (const auto& p : *cloud)
+  {
+    const Eigen::Vector3d q (p.x, p.y, p.z);
+    square += (q.norm () - 1.0) * (q.norm () - 1.0);
+    worst_normal = std::min (worst_normal, Eigen::Vector3d (p.normal_x, p.normal_y, p.normal_z).dot (q.normalized ()));
+    curvature += p.curvature;
+    ++octants[(q.x () > 0) + 2 * (q.y () > 0) + 4 * (q.z () > 0)];
+  }
+  // Bounds of the test model's own least-squares code (its error is about 5e-4 near the footprint edge).
+  EXPECT_LT (std::sqrt (square / n), 1e-3);
+  EXPECT_GT (worst_normal, std::cos (3.0 * M_PI / 180.0));
+  EXPECT_NEAR (curvature / n, 1.0, 0.05);
+  for (std::size_t count : octants)  // equal areas, equal counts: overlaps are not double counted
+    EXPECT_NEAR (static_cast<double> (count), n / 8.0, 0.03 * n / 8.0);
+
+  const std::vector<double> distances = nearestDistances (cloud);
+  const double cv = coefficientOfVariation (distances);
+  std::cout << "sphere nearest-neighbour CV " << cv << std::endl;
+  EXPECT_LT (cv, 0.25);
+
+  // No holes: every point of a dense Fibonacci sampling of the sphere has a point within 3 spacings.
+  const double spacing = std::sqrt (4.0 * M_PI / n);
+  pcl::KdTreeFLANN<pcl::PointNormal> tree;
+  tree.setInputCloud (cloud);
+  std::vector<int> index (1);
+  std::vector<float> d2 (1);
+  double worst = 0.0;
+  const int probes = 100000;
+  for (int k = 0; k < probes; ++k)
+  {
+    const double z = 1.0 - 2.0 * (k + 0.5) / probes, rho = std::sqrt (1.0 - z * z), phi = k * M_PI * (3.0 - std::sqrt (5.0));
+    pcl::PointNormal probe;
+    probe.x = static_cast<float> (rho * std::cos (phi));
+    probe.y = static_cast<float> (rho * std::sin (phi));
+    probe.z = static_cast<float> (z);
+    tree.nearestKSearch (probe, 1, index, d2);
+    worst = std::max (worst, std::sqrt (static_cast<double> (d2[0])));
+  }
+  EXPECT_LT (worst, 3.0 * spacing);
+}
+
+TEST (Resampling, PointsLieOnTheirPatchCode)
+{
+  const auto model = makeSphereModel ();
+  SparseSurfaceResampling resampling;
+  resampling.setInputModel (model);
+  resampling.setPointCount (3000);
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  resampling.compute (cloud);
+  ASSERT_EQ (resampling.getPointPatches ().size (), cloud.size ());
+  for (std::size_t i = 0; i < cloud.size (); ++i)
+  {
+    const PatchCode& code = model->patches[resampling.getPointPatches ()[i]];
+    const Eigen::Vector3d q (cloud[i].x, cloud[i].y, cloud[i].z);
+    const Eigen::Vector3d local = code.frame.transpose () * (q - code.origin) / code.radius;
+    ASSERT_LE (local.head<2> ().norm (), 0.8 + 1e-5);  // inside its own footprint
+    const HeightSample h = model->evaluate (resampling.getPointPatches ()[i], local.x (), local.y ());
+    ASSERT_NEAR (local.z (), h.value, 1e-5);
+    const Eigen::Vector3d normal = patchNormal (code, h);
+    ASSERT_GT (normal.dot (Eigen::Vector3d (cloud[i].normal_x, cloud[i].normal_y, cloud[i].normal_z)), 1.0 - 1e-5);
+  }
+}
+
+TEST (Resampling, DeterministicForAnyThreadCount)
+{
+  const auto model = makeSphereModel ();
+  const auto one = resample (model, 5000, 1);
+  const auto two = resample (model, 5000, 2);
+  const auto again = resample (model, 5000, 2);
+  const auto other_seed = resample (model, 5000, 2, 7);
+  ASSERT_EQ (one->size (), two->size ());
+  ASSERT_EQ (other_seed->size (), two->size ());
+  bool differs = false;
+  for (std::size_t i = 0; i < one->size (); ++i)
+  {
+    ASSERT_EQ (0, std::memcmp (&(*one)[i], &(*two)[i], sizeof (pcl::PointNormal)));
+    ASSERT_EQ (0, std::memcmp (&(*two)[i], &(*again)[i], sizeof (pcl::PointNormal)));
+    differs = differs || (*one)[i].x != (*other_seed)[i].x;
+  }
+  EXPECT_TRUE (differs);
+}
+
+TEST (Resampling, SmallCountsAreExact)
+{
+  const auto model = makeSphereModel ();
+  for (std::size_t n : {1u, 7u, 41u, 42u, 43u, 1000u})
+    EXPECT_EQ (resample (model, n)->size (), n);
+}
+
+TEST (Resampling, RefusesBadSetup)
+{
+  SparseSurfaceResampling resampling;
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  EXPECT_THROW (resampling.compute (cloud), Error);  // no model
+  resampling.setInputModel (makePlaneModel ());
+  EXPECT_THROW (resampling.compute (cloud), Error);  // no density
+  EXPECT_THROW (resampling.setPointCount (0), Error);
+  EXPECT_THROW (resampling.setPointCount (SparseSurfaceResampling::max_points + 1), Error);
+  EXPECT_THROW (resampling.setDensity (-1.0), Error);
+  EXPECT_THROW (resampling.setDensity (std::nan ("")), Error);
+  EXPECT_THROW (resampling.setSpacing (0.0), Error);
+  resampling.setDensity (1e12);  // about 6e12 points
+  EXPECT_THROW (resampling.compute (cloud), Error);
+  auto empty = std::make_shared<SparseSurfaceModel> ();
+  empty->basis = std::make_shared<CosineDictionary> (12);
+  resampling.setInputModel (empty);
+  resampling.setDensity (1.0);
+  EXPECT_THROW (resampling.compute (cloud), Error);
+}
