@@ -1,0 +1,36 @@
+#pragma once
+/// \file patch_frame.h
+/// The local frame of a grown patch (METHOD.md step 6): R = (T1, T2, N) from a degree-2 jet fitted in the
+/// seed's tangent frame, the radius r_P and the local scaled coordinates p' = R^T (p - s) / r_P.
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/patches/patch.h>
+
+#include <Eigen/Core>
+
+namespace pcl_sparse
+{
+  /// How computePatchFrame chose the frame.
+  enum class PatchFrameKind
+  {
+    Jet,          ///< the jet's principal directions and normal (the method)
+    SeedNormal,   ///< N = the seed's vertex normal, T1 = the jet's max direction projected on its plane:
+                  ///< used when the jet normal would flip a patch triangle in projection
+    NormalOnly    ///< N = the seed's vertex normal, any tangent basis: fewer than 6 vertices or a
+                  ///< degenerate layout (jet underdetermined)
+  };
+
+  /// Fills frame, radius and local of \a patch (vertices, triangles, origin already set).
+  ///   seed_normal    unit vertex normal of the seed (the growth's tangent plane); zero for a vertex
+  ///                  without a surface, then +z is used
+  ///   radius_guard   r_P used when every vertex lies on the normal line through the seed (one-vertex
+  ///                  patches): must be > 0, e.g. the seed's mean edge length
+  /// N is oriented like \a seed_normal. Every patch triangle projects on the frame's tangent plane with
+  /// positive signed area when it does so on the seed's tangent plane (which growth guarantees).
+  PatchFrameKind
+  computePatchFrame (const TriangleMesh& mesh, const Eigen::Vector3d& seed_normal, double radius_guard, Patch& patch);
+
+  /// Signed area of triangle \a f projected on the tangent plane of \a normal (positive: same orientation).
+  double
+  projectedSignedArea (const TriangleMesh& mesh, int f, const Eigen::Vector3d& normal);
+} // namespace pcl_sparse

@@ -1,0 +1,91 @@
+#pragma once
+/// \file patch_growth.h
+/// Growing one patch from a seed vertex (METHOD.md step 5, the paper's "create_patch").
+///
+/// Vertices are visited by increasing geodesic distance from the seed (Dijkstra over edges; the authors
+/// use fast marching). A vertex u joins if some non-degenerate triangle t incident to u and to an already
+/// accepted corner w satisfies all of:
+///   - smooth variation  angle(n_t, n_w) < delta               (n_w: vertex normal of w)
+///   - normal cone       angle(n_t, n_s) < cone_angle           (n_s: vertex normal of the seed)
+///                       and angle(n_t, n_m) < cone_angle for every patch triangle m (pairwise_cone)
+///   - no flip           n_t . n_s > 0, so t projects on the seed's tangent plane with its orientation
+///   - area              A_p / A <= rho  or  A_p / A_p^proj <= eta
+/// where A_p is the area of the patch triangles once u has joined, t included, A_p^proj its projection on
+/// the seed's tangent plane and A the mesh's total area. The area condition is checked with and without
+/// t when t is not yet a patch triangle, so it holds for the final patch too.
+/// Patch triangles are the faces whose three corners joined and which pass the cone and no-flip tests and
+/// the smooth variation test for at least one corner.
+
+#include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/patches/patch.h>
+#include <pcl_sparse/patches/patch_options.h>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// Per-mesh quantities every growth reads, computed once per mesh.
+  ///   face_normals    #F unit normals (zero for degenerate faces)
+  ///   face_areas      #F
+  ///   vertex_normals  #V unit, area weighted (zero for vertices with no proper face)
+  struct PatchGrowthGeometry
+  {
+    std::vector<Eigen::Vector3d> face_normals;
+    std::vector<double> face_areas;
+    std::vector<Eigen::Vector3d> vertex_normals;
+    double total_area = 0.0;
+  };
+
+  /// Face normals, areas, area-weighted vertex normals and total area of \a mesh (parallel, deterministic).
+  PatchGrowthGeometry
+  computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology);
+
+  /// Grows patches on one mesh. Scratch arrays are sized once for the mesh and only the entries a growth
+  /// touched are reset, so one growth costs O(R log R) for R visited vertices, independent of the mesh
+  /// size. Not thread-safe: one object per thread.
+  class PatchGrower
+  {
+  public:
+    /// All arguments must outlive the grower. \a options must be valid (PatchOptions::validate).
+    PatchGrower (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                 const PatchOptions& options);
+
+    /// Grows the patch of \a seed into \a patch: sets seed, origin, vertices (seed first, growth order) and
+    /// triangles; leaves frame, radius and local to computePatchFrame. A seed without a normal (isolated,
+    /// or only degenerate faces) gives the one-vertex patch.
+    ///   returns  the growth radius: largest distance from the seed to a patch vertex in the tangent plane
+    ///            of the seed's vertex normal (0 for a one-vertex patch)
+    double
+    grow (int seed, Patch& patch);
+
+  private:
+    enum : std::uint8_t { Untouched = 0, Queued = 1, Accepted = 2, Refused = 3 };
+
+    bool areaConditionHolds (double area, double projected_area) const;
+    void reset ();
+
+    const TriangleMesh& mesh_;
+    const MeshTopology& topology_;
+    const PatchGrowthGeometry& geometry_;
+    double cos_delta_;
+    double cos_cone_;
+    double cos_half_cone_;
+    bool pairwise_cone_;
+    double eta_;
+    double rho_area_;  // rho * A
+    bool stop_at_first_refusal_;
+
+    std::vector<std::uint8_t> state_;
+    std::vector<double> distance_;
+    std::vector<int> touched_;
+    std::vector<std::pair<double, int>> heap_;
+    std::vector<int> completed_;  // faces completed by the vertex being tested
+    std::vector<Eigen::Vector3d> patch_normals_;  // normals of the patch triangles so far
+    std::vector<Eigen::Vector3d> wide_normals_;   // those further than half the cone from n_s
+  };
+} // namespace pcl_sparse

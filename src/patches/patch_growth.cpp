@@ -1,0 +1,261 @@
+#include <pcl_sparse/patches/patch_growth.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    /// A triangle nearly perpendicular to the seed's tangent plane projects to a sliver whose orientation
+    /// rounding could flip: such triangles are refused (n_t . n_s must exceed this).
+    constexpr double kMinProjectionCosine = 1e-6;
+
+    /// Min-heap order on (distance, vertex): ties by vertex index, so growth is deterministic.
+    struct HeapGreater
+    {
+      bool operator() (const std::pair<double, int>& a, const std::pair<double, int>& b) const
+      {
+        return a.first != b.first ? a.first > b.first : a.second > b.second;
+      }
+    };
+  } // namespace
+
+  PatchGrowthGeometry
+  computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology)
+  {
+    PatchGrowthGeometry g;
+    const int num_faces = static_cast<int> (mesh.triangles.size ());
+    const int num_vertices = static_cast<int> (mesh.vertices.size ());
+    g.face_normals.resize (num_faces);
+    g.face_areas.resize (num_faces);
+    std::vector<Eigen::Vector3d> crosses (num_faces);
+#pragma omp parallel for schedule(static)
+    for (int f = 0; f < num_faces; ++f)
+    {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      const Eigen::Vector3d& a = mesh.vertices[t[0]];
+      Eigen::Vector3d c = (mesh.vertices[t[1]] - a).cross (mesh.vertices[t[2]] - a);
+      if (!c.allFinite ())
+        c.setZero ();
+      crosses[f] = c;
+      const double n = c.norm ();
+      g.face_areas[f] = 0.5 * n;
+      g.face_normals[f] = n > 0.0 ? Eigen::Vector3d (c / n) : Eigen::Vector3d::Zero ();
+    }
+    g.vertex_normals.resize (num_vertices);
+#pragma omp parallel for schedule(static)
+    for (int v = 0; v < num_vertices; ++v)
+    {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
+      for (int f : topology.facesOf (v))
+        sum += crosses[f];
+      const double n = sum.norm ();
+      g.vertex_normals[v] = n > 0.0 ? Eigen::Vector3d (sum / n) : Eigen::Vector3d::Zero ();
+    }
+    // Sequential sum: the total must not depend on the thread count.
+    for (double a : g.face_areas)
+      g.total_area += a;
+    return g;
+  }
+
+  PatchGrower::PatchGrower (const TriangleMesh& mesh, const MeshTopology& topology,
+                            const PatchGrowthGeometry& geometry, const PatchOptions& options)
+    : mesh_ (mesh)
+    , topology_ (topology)
+    , geometry_ (geometry)
+    , cos_delta_ (std::cos (options.delta))
+    , cos_cone_ (std::cos (options.cone_angle))
+    , cos_half_cone_ (std::cos (0.5 * options.cone_angle))
+    , pairwise_cone_ (options.pairwise_cone)
+    , eta_ (options.eta)
+    , rho_area_ (options.rho * geometry.total_area)
+    , stop_at_first_refusal_ (options.stop_at_first_refusal)
+    , state_ (mesh.vertices.size (), Untouched)
+    , distance_ (mesh.vertices.size (), 0.0)
+  {
+  }
+
+  bool
+  PatchGrower::areaConditionHolds (double area, double projected_area) const
+  {
+    return area <= rho_area_ || area <= eta_ * projected_area;
+  }
+
+  void
+  PatchGrower::reset ()
+  {
+    for (int v : touched_)
+      state_[v] = Untouched;
+    touched_.clear ();
+    heap_.clear ();
+  }
+
+  double
+  PatchGrower::grow (int seed, Patch& patch)
+  {
+    reset ();
+    patch.seed = seed;
+    patch.origin = mesh_.vertices[seed];
+    patch.vertices.assign (1, seed);
+    patch.triangles.clear ();
+    patch.local.clear ();
+
+    const Eigen::Vector3d& ns = geometry_.vertex_normals[seed];
+    if (ns.isZero () || !patch.origin.allFinite ())
+      return 0.0;
+    const Eigen::Vector3d s = patch.origin;
+    const auto& normals = geometry_.face_normals;
+    const auto& areas = geometry_.face_areas;
+    const auto& vnormals = geometry_.vertex_normals;
+
+    // Cone and no-flip test of a face against the seed normal; returns n_t . n_s or -1 when it fails.
+    auto coneCosine = [&] (int f) {
+      if (!(areas[f] > 0.0))
+        return -1.0;
+      const double c = normals[f].dot (ns);
+      return c > cos_cone_ && c > kMinProjectionCosine ? c : -1.0;
+    };
+    auto smoothAt = [&] (int f, int w) { return normals[f].dot (vnormals[w]) > cos_delta_; };
+    // Pairwise cone: angle(n_t, n_m) < cone for every patch triangle m. Only pairs whose angles to n_s
+    // add up to more than the cone can fail, so a triangle within half the cone of n_s is compared with
+    // the wide patch triangles only (usually none).
+    patch_normals_.clear ();
+    wide_normals_.clear ();
+    auto pairwiseConeHolds = [&] (int f, double c) {
+      const auto& others = c >= cos_half_cone_ ? wide_normals_ : patch_normals_;
+      for (const auto& m : others)
+        if (!(normals[f].dot (m) > cos_cone_))
+          return false;
+      return true;
+    };
+    auto addPatchNormal = [&] (int f, double c) {
+      patch_normals_.push_back (normals[f]);
+      if (c < cos_half_cone_)
+        wide_normals_.push_back (normals[f]);
+    };
+
+    double area = 0.0, projected = 0.0, growth_radius = 0.0;
+    auto push = [&] (int u, double d) {
+      if (state_[u] == Untouched)
+        touched_.push_back (u);
+      distance_[u] = d;
+      state_[u] = Queued;
+      heap_.emplace_back (d, u);
+      std::push_heap (heap_.begin (), heap_.end (), HeapGreater ());
+    };
+    auto accept = [&] (int u) {
+      if (state_[u] == Untouched)
+        touched_.push_back (u);
+      state_[u] = Accepted;
+      const Eigen::Vector3d& p = mesh_.vertices[u];
+      for (int w : topology_.neighborsOf (u))
+      {
+        const std::uint8_t st = state_[w];
+        if (st == Accepted)
+          continue;
+        const double d = distance_[u] + (mesh_.vertices[w] - p).norm ();
+        if (st == Untouched || d < distance_[w])
+          push (w, d);
+        else if (st == Refused)  // a new accepted neighbour may justify it now (non-stopping growth)
+          push (w, distance_[w]);
+      }
+    };
+
+    distance_[seed] = 0.0;
+    accept (seed);
+    while (!heap_.empty ())
+    {
+      std::pop_heap (heap_.begin (), heap_.end (), HeapGreater ());
+      const auto [d, u] = heap_.back ();
+      heap_.pop_back ();
+      if (state_[u] != Queued || d > distance_[u])
+        continue;
+
+      // Faces u would complete, and the area they add.
+      completed_.clear ();
+      double new_area = 0.0, new_projected = 0.0;
+      for (int f : topology_.facesOf (u))
+      {
+        const Eigen::Vector3i& t = mesh_.triangles[f];
+        bool others_accepted = true;
+        for (int k = 0; k < 3; ++k)
+          if (t[k] != u && state_[t[k]] != Accepted)
+            others_accepted = false;
+        if (!others_accepted)
+          continue;
+        const double c = coneCosine (f);
+        if (c < 0.0 || !(smoothAt (f, t[0]) || smoothAt (f, t[1]) || smoothAt (f, t[2])))
+          continue;
+        if (pairwise_cone_ && !pairwiseConeHolds (f, c))
+          continue;
+        if (pairwise_cone_)
+          addPatchNormal (f, c);  // provisional: compared with the next completed faces; undone on refusal
+        completed_.push_back (f);
+        new_area += areas[f];
+        new_projected += areas[f] * c;
+      }
+      const double area_after = area + new_area, projected_after = projected + new_projected;
+
+      // Is there a justifying triangle t (u and an accepted corner w)?
+      bool ok = false;
+      for (int f : topology_.facesOf (u))
+      {
+        const double c = coneCosine (f);
+        if (c < 0.0)
+          continue;
+        const Eigen::Vector3i& t = mesh_.triangles[f];
+        bool smooth = false, complete = true;
+        for (int k = 0; k < 3; ++k)
+        {
+          const int w = t[k];
+          if (w == u)
+            continue;
+          if (state_[w] == Accepted)
+            smooth = smooth || smoothAt (f, w);
+          else
+            complete = false;
+        }
+        if (!smooth)
+          continue;
+        if (pairwise_cone_ && !complete && !pairwiseConeHolds (f, c))
+          continue;
+        if (complete && std::find (completed_.begin (), completed_.end (), f) == completed_.end ())
+          continue;  // complete but not a patch triangle (failed the pairwise cone)
+        if (complete)
+          ok = areaConditionHolds (area_after, projected_after);
+        else
+          ok = areaConditionHolds (area_after + areas[f], projected_after + areas[f] * c) &&
+               areaConditionHolds (area_after, projected_after);
+        if (ok)
+          break;
+      }
+
+      if (!ok)
+      {
+        if (pairwise_cone_)  // undo the provisional normals of this vertex's completed faces
+          for (int f : completed_)
+          {
+            patch_normals_.pop_back ();
+            if (normals[f].dot (ns) < cos_half_cone_)
+              wide_normals_.pop_back ();
+          }
+        if (stop_at_first_refusal_)
+          break;
+        state_[u] = Refused;
+        continue;
+      }
+      area = area_after;
+      projected = projected_after;
+      patch.vertices.push_back (u);
+      patch.triangles.insert (patch.triangles.end (), completed_.begin (), completed_.end ());
+      const Eigen::Vector3d r = mesh_.vertices[u] - s;
+      growth_radius = std::max (growth_radius, (r - r.dot (ns) * ns).norm ());
+      accept (u);
+    }
+    return growth_radius;
+  }
+} // namespace pcl_sparse

@@ -1,0 +1,26 @@
+#include <pcl_sparse/patches/patch_options.h>
+
+#include <pcl_sparse/common/error.h>
+
+namespace pcl_sparse
+{
+  void
+  PatchOptions::validate () const
+  {
+    auto fail = [] (const std::string& field, double value, const std::string& range) {
+      throw Error ("PatchOptions: " + field + " = " + std::to_string (value) + " is out of range (" + range + ")");
+    };
+    if (!(delta > 0.0 && delta <= M_PI))
+      fail ("delta", delta, "0 < delta <= pi");
+    if (!(cone_angle > 0.0 && cone_angle <= M_PI))
+      fail ("cone_angle", cone_angle, "0 < cone_angle <= pi");
+    if (!(eta >= 1.0) || !std::isfinite (eta))
+      fail ("eta", eta, "eta >= 1, finite");
+    if (!(rho >= 0.0) || !std::isfinite (rho))
+      fail ("rho", rho, "rho >= 0, finite");
+    if (!(sigma >= 0.0) || !std::isfinite (sigma))
+      fail ("sigma", sigma, "sigma >= 0, finite");
+    if (min_patch_size < 1)
+      fail ("min_patch_size", min_patch_size, "min_patch_size >= 1");
+  }
+} // namespace pcl_sparse

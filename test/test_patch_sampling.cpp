@@ -1,0 +1,388 @@
+// Feature-aware seed sampling and patch construction (METHOD.md steps 4-6, issue 4): invariants on
+// generated meshes with known answers, and on the shared real meshes.
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/patches/feature_aware_patch_sampling.h>
+#include <pcl_sparse/patches/non_manifold_split.h>
+#include <pcl_sparse/patches/patch_checks.h>
+#include <pcl_sparse/patches/patch_growth.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  std::vector<Patch>
+  sample (const TriangleMesh& mesh, const PatchOptions& options = PatchOptions (),
+          const std::vector<double>& responses = std::vector<double> (), int threads = 0)
+  {
+    FeatureAwarePatchSampling sampling;
+    sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+    sampling.setOptions (options);
+    sampling.setResponses (responses.empty () ? std::vector<double> (mesh.vertices.size (), 0.0) : responses);
+    sampling.setNumberOfThreads (threads);
+    std::vector<Patch> patches;
+    sampling.compute (patches);
+    EXPECT_TRUE (sampling.getUncoveredVertices ().empty ());
+    return patches;
+  }
+
+  /// Every invariant of issue 4 on one partition; returns the number of violating patches.
+  void
+  expectValidPartition (const TriangleMesh& mesh, const std::vector<Patch>& patches, const PatchOptions& options,
+                        const std::string& name)
+  {
+    PatchInvariantChecker checker (mesh, options);
+    int bad = 0;
+    for (const Patch& p : patches)
+    {
+      const std::string why = checker.check (p);
+      if (!why.empty () && ++bad <= 3)
+        ADD_FAILURE () << name << ": patch of seed " << p.seed << " (" << p.size () << " vertices): " << why;
+    }
+    EXPECT_EQ (bad, 0) << name;
+    const auto uncovered = checker.uncoveredVertices (patches);
+    EXPECT_TRUE (uncovered.empty ()) << name << ": " << uncovered.size () << " uncovered vertices, first "
+                                     << (uncovered.empty () ? -1 : uncovered[0]);
+  }
+
+  std::vector<double>
+  minusDistanceTo (const TriangleMesh& mesh, const Eigen::Vector3d& c)
+  {
+    std::vector<double> r (mesh.vertices.size ());
+    for (std::size_t v = 0; v < r.size (); ++v)
+      r[v] = -(mesh.vertices[v] - c).norm ();
+    return r;
+  }
+
+  bool
+  samePartition (const std::vector<Patch>& a, const std::vector<Patch>& b)
+  {
+    if (a.size () != b.size ())
+      return false;
+    for (std::size_t i = 0; i < a.size (); ++i)
+      if (a[i].vertices != b[i].vertices || a[i].triangles != b[i].triangles || a[i].frame != b[i].frame ||
+          a[i].radius != b[i].radius || a[i].local != b[i].local)
+        return false;
+    return true;
+  }
+} // namespace
+
+TEST (PatchSampling, FlatPlaneIsOnePatchAroundTheCentre)
+{
+  const TriangleMesh plane = makePlaneGrid (10, 1.0);
+  const PatchOptions options;
+  const auto patches = sample (plane, options, minusDistanceTo (plane, Eigen::Vector3d::Zero ()));
+  ASSERT_EQ (patches.size (), 1u);  // flat: A_p / A_p^proj = 1 <= eta, the patch takes everything
+  const Patch& p = patches[0];
+  EXPECT_EQ (p.size (), plane.vertices.size ());
+  EXPECT_EQ (p.triangles.size (), plane.triangles.size ());
+  EXPECT_NEAR (plane.vertices[p.seed].norm (), 0.0, 1e-12);
+  EXPECT_NEAR (p.radius, std::sqrt (2.0), 1e-12);
+  EXPECT_NEAR (p.frame.col (2).z (), 1.0, 1e-12);
+  for (const auto& q : p.local)
+    EXPECT_NEAR (q.z (), 0.0, 1e-12);
+  expectValidPartition (plane, patches, options, "plane");
+}
+
+TEST (PatchSampling, GrowthVisitsByGeodesicDistanceAndStopsAtAFold)
+{
+  // Two flat 10 x 10 half planes folded at x = 0 by 90 degrees: growth from the flat side never crosses.
+  TriangleMesh fold = makeHeightFieldGrid (20, 10, 1.0, 1.0, [] (double x, double) { return x > 0.0 ? x : 0.0; });
+  const MeshTopology topology = buildMeshTopology (fold);
+  const PatchGrowthGeometry geometry = computePatchGrowthGeometry (fold, topology);
+  PatchOptions options;
+  options.rho = 0.0;  // growth limited by flatness only
+  PatchGrower grower (fold, topology, geometry, options);
+  int seed = -1;
+  for (std::size_t v = 0; v < fold.vertices.size (); ++v)
+    if ((fold.vertices[v] - Eigen::Vector3d (-0.5, 0.0, 0.0)).norm () < 1e-9)
+      seed = static_cast<int> (v);
+  ASSERT_GE (seed, 0);
+  Patch patch;
+  grower.grow (seed, patch);
+  EXPECT_EQ (patch.vertices[0], seed);
+  double last = 0.0;
+  for (int v : patch.vertices)
+  {
+    EXPECT_LE (fold.vertices[v].x (), 1e-12) << "crossed the 45 degree fold";
+    const double d = (fold.vertices[v] - fold.vertices[seed]).norm ();
+    EXPECT_GE (d, last - 0.2);  // roughly increasing (Dijkstra order, edge paths)
+    last = std::max (last, d);
+  }
+  EXPECT_GT (patch.size (), 50u);
+}
+
+TEST (PatchSampling, InvariantsOnGeneratedMeshes)
+{
+  TriangleMesh two_spheres = makeIcosphere (3, 1.0);
+  appendMesh (two_spheres, makeIcosphere (3, 0.5, Eigen::Vector3d (3.0, 0.0, 0.0)));
+  TriangleMesh with_tiny = makeIcosphere (3);
+  appendMesh (with_tiny, makeTetrahedron ());  // a 4-vertex component: no patch of 7 can exist there
+  const std::vector<std::pair<std::string, TriangleMesh>> meshes = {
+    {"plane", makePlaneGrid (16)},
+    {"sphere", makeIcosphere (4)},
+    {"cube", makeCube (8)},
+    {"torus", makeTorus (48, 16)},
+    {"open disk", makeDisk (12)},
+    {"cylinder", makeCylinder (32, 8)},
+    {"two spheres", two_spheres},
+    {"sphere + tetrahedron", with_tiny},
+  };
+  for (const auto& [name, mesh] : meshes)
+    for (double cone : {M_PI / 2.0, M_PI / 2.5})
+    {
+      PatchOptions options;
+      options.cone_angle = cone;
+      const auto patches = sample (mesh, options);
+      expectValidPartition (mesh, patches, options, name);
+      EXPECT_GT (patches.size (), 0u);
+    }
+}
+
+TEST (PatchSampling, CubePatchesStayOnOneFace)
+{
+  const TriangleMesh cube = makeCube (8);
+  const auto patches = sample (cube);
+  const auto normals = computePatchGrowthGeometry (cube, buildMeshTopology (cube)).face_normals;
+  for (const Patch& p : patches)
+    for (int f : p.triangles)
+      EXPECT_NEAR (normals[f].dot (normals[p.triangles[0]]), 1.0, 1e-9);
+}
+
+TEST (PatchSampling, PatchCountFallsAsRhoGrows)
+{
+  // Bumps of curvature radius ~0.1 on a 2 x 2 square: flat enough for eta only within a few rings,
+  // so the size bound rho decides where growth stops.
+  const TriangleMesh bumps = makeHeightFieldGrid (120, 120, 1.0, 1.0, [] (double x, double y) {
+    return 0.1 * std::sin (10.0 * x) * std::sin (10.0 * y);
+  });
+  std::vector<std::size_t> counts;
+  for (double rho : {0.0002, 0.001, 0.005})
+  {
+    PatchOptions options;
+    options.rho = rho;
+    const auto patches = sample (bumps, options);
+    expectValidPartition (bumps, patches, options, "bumps rho " + std::to_string (rho));
+    counts.push_back (patches.size ());
+    std::printf ("rho %g: M = %zu\n", rho, patches.size ());
+  }
+  EXPECT_GT (counts[0], counts[1]);
+  EXPECT_GT (counts[1], counts[2]);
+}
+
+TEST (PatchSampling, UnreferencedAndIsolatedVertices)
+{
+  TriangleMesh mesh = makeIcosphere (2);
+  mesh.vertices.emplace_back (5.0, 5.0, 5.0);  // in no face
+  const int lonely = static_cast<int> (mesh.vertices.size ()) - 1;
+
+  PatchOptions options;
+  auto patches = sample (mesh, options);
+  const auto it = std::find_if (patches.begin (), patches.end (), [&] (const Patch& p) { return p.seed == lonely; });
+  ASSERT_NE (it, patches.end ());
+  EXPECT_EQ (it->size (), 1u);
+  EXPECT_GT (it->radius, 0.0);
+  EXPECT_TRUE (it->local[0].isZero ());
+
+  options.cover_unreferenced_vertices = false;
+  FeatureAwarePatchSampling sampling;
+  sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  sampling.setOptions (options);
+  sampling.setResponses (std::vector<double> (mesh.vertices.size (), 0.0));
+  sampling.compute (patches);
+  ASSERT_EQ (sampling.getUncoveredVertices ().size (), 1u);
+  EXPECT_EQ (sampling.getUncoveredVertices ()[0], lonely);
+  expectValidPartition (mesh, patches, options, "sphere + lonely vertex");
+}
+
+TEST (PatchSampling, NonManifoldEdgeIsABorder)
+{
+  // Three half planes ("book pages") sharing the spine x = z = 0, at 0, 160 and 200 degrees around it,
+  // oriented consistently with the first: page 1 + page 2 (or 3) is a 20 degree fold that growth would
+  // cross if the non-manifold spine were not a border.
+  TriangleMesh book;
+  for (double degrees : {0.0, 160.0, 200.0})
+  {
+    const double angle = degrees * M_PI / 180.0;
+    TriangleMesh page = makeHeightFieldGrid (6, 12, 0.5, 1.0, [] (double, double) { return 0.0; });
+    for (auto& p : page.vertices)
+    {
+      const double r = p.x () + 0.5;  // 0 on the spine
+      p = Eigen::Vector3d (r * std::cos (angle), p.y (), r * std::sin (angle));
+    }
+    if (degrees > 0.0)
+      for (auto& t : page.triangles)
+        std::swap (t[1], t[2]);
+    appendMesh (book, page);
+  }
+  // Weld the spine vertices of pages 2 and 3 onto page 1's (theirs stay, unreferenced).
+  const std::size_t per_page = book.vertices.size () / 3;
+  for (auto& t : book.triangles)
+    for (int k = 0; k < 3; ++k)
+      if (static_cast<std::size_t> (t[k]) >= per_page && std::abs (book.vertices[t[k]].x ()) < 1e-12 &&
+          std::abs (book.vertices[t[k]].z ()) < 1e-12)
+      {
+        for (std::size_t v = 0; v < per_page; ++v)
+          if ((book.vertices[v] - book.vertices[t[k]]).norm () < 1e-12)
+          {
+            t[k] = static_cast<int> (v);
+            break;
+          }
+      }
+  const MeshTopology topology = buildMeshTopology (book);
+  EXPECT_GT (std::count_if (topology.edge_face_count.begin (), topology.edge_face_count.end (), [] (int c) { return c > 2; }), 0);
+  NonManifoldSplit split;
+  ASSERT_TRUE (splitNonManifoldVertices (book, topology, split));
+  EXPECT_EQ (split.mesh.vertices.size (), book.vertices.size () + 2 * 13);  // two extra copies per spine vertex
+
+  PatchOptions options;
+  options.delta = M_PI;  // allow anything smooth-wise: only the cut must keep pages apart
+  const auto patches = sample (book, options);
+  expectValidPartition (book, patches, options, "book");
+  const auto normals = computePatchGrowthGeometry (book, topology).face_normals;
+  for (const Patch& p : patches)
+    for (int f : p.triangles)
+      EXPECT_NEAR (normals[f].dot (normals[p.triangles[0]]), 1.0, 1e-9) << "patch crosses the non-manifold edge";
+}
+
+TEST (PatchSampling, SameOutputForAnyThreadCount)
+{
+  const TriangleMesh torus = makeTorus (64, 24);
+  PatchOptions options;
+  const auto one = sample (torus, options, std::vector<double> (), 1);
+  const auto two = sample (torus, options, std::vector<double> (), 2);
+  EXPECT_TRUE (samePartition (one, two));
+}
+
+TEST (PatchSampling, BadInputThrows)
+{
+  FeatureAwarePatchSampling sampling;
+  std::vector<Patch> patches;
+  EXPECT_THROW (sampling.compute (patches), Error);
+  auto mesh = std::make_shared<TriangleMesh> (makeIcosphere (1));
+  sampling.setInputMesh (mesh);
+  PatchOptions options;
+  options.eta = 0.5;
+  sampling.setOptions (options);
+  EXPECT_THROW (sampling.compute (patches), Error);
+  sampling.setOptions (PatchOptions ());
+  sampling.setResponses (std::vector<double> (3, 0.0));
+  EXPECT_THROW (sampling.compute (patches), Error);
+  sampling.setResponses (std::vector<double> ());
+  sampling.setKeypoints ({-1});
+  EXPECT_THROW (sampling.compute (patches), Error);
+  auto broken = std::make_shared<TriangleMesh> (*mesh);
+  broken->triangles[0][1] = 1000;
+  sampling.setInputMesh (broken);
+  sampling.setKeypoints ({});
+  EXPECT_THROW (sampling.compute (patches), Error);
+}
+
+// ---- shared real meshes ---------------------------------------------------------------------------
+
+namespace
+{
+  std::string
+  sharedMesh (const std::string& name)
+  {
+    return std::string (PCL_SPARSE_SHARED_MESHES) + "/" + name;
+  }
+} // namespace
+
+TEST (PatchSamplingShared, InvariantsOnEverySharedMesh)
+{
+  if (!std::filesystem::is_directory (PCL_SPARSE_SHARED_MESHES))
+    GTEST_SKIP () << "shared meshes not found at " << PCL_SPARSE_SHARED_MESHES;
+  for (const char* name : {"fandisk.off", "bunny-npm-1k.obj", "bunny-hr-closed.obj", "spot.obj", "blub.obj",
+                           "wingnut.obj", "anchor-dense.off", "turbine.off", "blade.off", "stanford-bunny.obj",
+                           "koala.obj", "koala-loop1-200k.ply", "sword.obj"})
+  {
+    const std::string path = sharedMesh (name);
+    if (!std::filesystem::exists (path))
+    {
+      ADD_FAILURE () << "missing " << path;
+      continue;
+    }
+    const TriangleMesh mesh = loadTriangleMesh (path);
+    FeatureAwarePatchSampling sampling;
+    sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+    std::vector<Patch> patches;
+    sampling.compute (patches);
+    EXPECT_TRUE (sampling.getUncoveredVertices ().empty ()) << name;
+    expectValidPartition (mesh, patches, sampling.getOptions (), name);
+  }
+}
+
+TEST (PatchSamplingShared, FandiskPatchesAreSmallerAtSharpEdges)
+{
+  const std::string path = sharedMesh ("fandisk.off");
+  if (!std::filesystem::exists (path))
+    GTEST_SKIP () << "shared mesh not found: " << path;
+  const TriangleMesh mesh = loadTriangleMesh (path);
+  FeatureAwarePatchSampling sampling;
+  sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  std::vector<Patch> patches;
+  sampling.compute (patches);
+  const PatchOptions& options = sampling.getOptions ();
+
+  // Vertices within 2 rings of an edge whose dihedral angle exceeds 60 degrees.
+  const MeshTopology topology = buildMeshTopology (mesh);
+  const auto geometry = computePatchGrowthGeometry (mesh, topology);
+  std::vector<int> ring (mesh.vertices.size (), -1);
+  std::vector<int> frontier;
+  for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+    for (int k = 0; k < 3; ++k)
+    {
+      const int g = topology.face_neighbors[f][k];
+      if (g >= 0 && geometry.face_normals[f].dot (geometry.face_normals[g]) < std::cos (M_PI / 3.0))
+        for (int c : {mesh.triangles[f][k], mesh.triangles[f][(k + 1) % 3]})
+          if (ring[c] < 0)
+          {
+            ring[c] = 0;
+            frontier.push_back (c);
+          }
+    }
+  for (int r = 1; r <= 2; ++r)
+  {
+    std::vector<int> next;
+    for (int v : frontier)
+      for (int w : topology.neighborsOf (v))
+        if (ring[w] < 0)
+        {
+          ring[w] = r;
+          next.push_back (w);
+        }
+    frontier.swap (next);
+  }
+  std::vector<double> near, far;
+  for (const Patch& p : patches)
+    (ring[p.seed] >= 0 ? near : far).push_back (p.radius);
+  ASSERT_GT (near.size (), 10u);
+  ASSERT_GT (far.size (), 10u);
+  auto median = [] (std::vector<double> x) {
+    std::nth_element (x.begin (), x.begin () + x.size () / 2, x.end ());
+    return x[x.size () / 2];
+  };
+  EXPECT_LT (median (near), median (far));
+
+  // No patch holds two triangles whose normals differ by more than the cone angle.
+  for (const Patch& p : patches)
+  {
+    double min_cos = 1.0;
+    for (int f : p.triangles)
+      for (int g : p.triangles)
+        min_cos = std::min (min_cos, geometry.face_normals[f].dot (geometry.face_normals[g]));
+    EXPECT_GT (min_cos, std::cos (options.cone_angle)) << "patch of seed " << p.seed;
+  }
+}
