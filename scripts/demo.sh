@@ -8,7 +8,12 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build="${BUILD_DIR:-$root/build}"
 cache="${PCL_SPARSE_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/pcl_sparse}"
 sudo=""
-[ "$(id -u)" -eq 0 ] || sudo="sudo"
+apt_download=(apt-get download -q)
+if [ "$(id -u)" -eq 0 ]; then
+  apt_download+=(-o APT::Sandbox::User=root)  # root: skip the _apt sandbox, which cannot enter mktemp's dir
+else
+  sudo="sudo"
+fi
 
 "$root/scripts/install_deps.sh"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release
@@ -21,9 +26,9 @@ if [ ! -s "$mesh" ]; then
   work=$(mktemp -d)
   trap 'rm -rf "$work"' EXIT
   # apt-get download needs the package lists; a fresh machine may have none yet.
-  if ! (cd "$work" && apt-get download -q libcgal-demo); then
+  if ! (cd "$work" && "${apt_download[@]}" libcgal-demo); then
     $sudo apt-get update -q
-    (cd "$work" && apt-get download -q libcgal-demo)
+    (cd "$work" && "${apt_download[@]}" libcgal-demo)
   fi
   dpkg-deb --fsys-tarfile "$work"/libcgal-demo_*.deb \
     | tar -xO ./usr/share/doc/libcgal-dev/data.tar.gz \
