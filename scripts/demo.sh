@@ -16,7 +16,9 @@ else
 fi
 
 "$root/scripts/install_deps.sh"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release
+launcher=()
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)  # faster rebuilds, if present
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}"
 cmake --build "$build" -j "$(nproc)"
 
 # Fandisk: usr/share/doc/libcgal-dev/data.tar.gz inside the .deb holds data/meshes/fandisk.off.
