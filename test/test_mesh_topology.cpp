@@ -97,3 +97,75 @@ TEST (MeshNormals, SphereVertexNormalsPointOutward)
     EXPECT_GT (worst, 0.999);
   }
 }
+
+TEST (MeshTopology, AdjacencyIsConsistentOnClosedAndOpenMeshes)
+{
+  TriangleMesh two_spheres = makeIcosphere (2);
+  appendMesh (two_spheres, makeIcosphere (1, 1.0, Eigen::Vector3d (3, 0, 0)));
+  for (const TriangleMesh& mesh : {makeTetrahedron (), makeCube (3), makeDisk (4), makeTorus (16, 8), two_spheres})
+  {
+    const MeshTopology topo = buildMeshTopology (mesh);
+    const int num_faces = static_cast<int> (mesh.numTriangles ());
+    for (int f = 0; f < num_faces; ++f)
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+        const int e = topo.face_edges[f][k];
+        ASSERT_GE (e, 0);
+        EXPECT_EQ (topo.edges[e], Eigen::Vector2i (std::min (a, b), std::max (a, b)));
+        // Each corner's vertex lists the face; each edge end lists the other end.
+        const auto faces = topo.facesOf (a);
+        EXPECT_TRUE (std::binary_search (faces.begin (), faces.end (), f));
+        const auto ring = topo.neighborsOf (a);
+        EXPECT_TRUE (std::binary_search (ring.begin (), ring.end (), b));
+        // Neighbours are symmetric, share the edge, and walk it the other way (consistent orientation).
+        const int g = topo.face_neighbors[f][k];
+        if (topo.edge_face_count[e] == 1)
+        {
+          EXPECT_EQ (g, -1);
+          continue;
+        }
+        ASSERT_GE (g, 0);
+        int j = 0;
+        while (j < 3 && topo.face_edges[g][j] != e)
+          ++j;
+        ASSERT_LT (j, 3);
+        EXPECT_EQ (topo.face_neighbors[g][j], f);
+        EXPECT_EQ (mesh.triangles[g][j], b);
+      }
+    // Sum of valences = 2 #E; sum of vertex-face incidences = 3 #F.
+    EXPECT_EQ (topo.vertex_neighbors.size (), 2 * topo.numEdges ());
+    EXPECT_EQ (topo.vertex_faces.size (), 3 * mesh.numTriangles ());
+  }
+}
+
+TEST (MeshTopology, DiskValencesAndBoundaryVertices)
+{
+  const int rings = 3;
+  const TriangleMesh mesh = makeDisk (rings);
+  const MeshTopology topo = buildMeshTopology (mesh);
+  EXPECT_EQ (topo.neighborsOf (0).size (), 6u);  // the centre
+  EXPECT_EQ (topo.facesOf (0).size (), 6u);
+  // Outer-ring vertices: on exactly two boundary edges each; inner vertices on none.
+  std::vector<int> boundary_degree (mesh.numVertices (), 0);
+  for (std::size_t e = 0; e < topo.numEdges (); ++e)
+    if (topo.isBoundaryEdge (static_cast<int> (e)))
+    {
+      ++boundary_degree[topo.edges[e][0]];
+      ++boundary_degree[topo.edges[e][1]];
+    }
+  const int first_outer = 1 + 6 * (rings - 1) * rings / 2;  // 1 + 6 (1 + ... + (rings - 1))
+  for (int v = 0; v < static_cast<int> (mesh.numVertices ()); ++v)
+    EXPECT_EQ (boundary_degree[v], v >= first_outer ? 2 : 0) << "vertex " << v;
+}
+
+TEST (MeshTopology, RepeatedIndexFaceHasNoSelfEdge)
+{
+  TriangleMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.triangles = {{0, 1, 2}, {1, 1, 2}};
+  const MeshTopology topo = buildMeshTopology (mesh);
+  EXPECT_EQ (topo.numEdges (), 3u);
+  EXPECT_EQ (topo.face_edges[1][0], -1);  // corners 0 and 1 are both vertex 1
+  EXPECT_EQ (topo.facesOf (1).size (), 2u);  // counted once per face
+}
