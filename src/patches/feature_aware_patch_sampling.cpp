@@ -1,6 +1,7 @@
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/non_manifold_split.h>
 #include <pcl_sparse/patches/patch_growth.h>
@@ -101,9 +102,20 @@ namespace pcl_sparse
     const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
     const TriangleMesh& input = *mesh_;
     const int num_input = static_cast<int> (input.vertices.size ());
+    MeshTopology topology = buildMeshTopology (input);
+
+    // Default feature order: Harris 3D with its default options (METHOD.md step 3).
+    used_responses_ = responses_;
+    used_keypoints_ = keypoints_;
+    if (responses_.empty () && keypoints_.empty ())
+    {
+      Harris3DOptions harris;
+      harris.num_threads = num_threads_;
+      used_responses_ = computeHarris3DResponses (input, topology, harris);
+      used_keypoints_ = selectHarris3DKeypoints (input, topology, used_responses_, harris, input.vertices.size ());
+    }
 
     // Cut non-manifold edges and vertices: growth then cannot cross them.
-    MeshTopology topology = buildMeshTopology (input);
     NonManifoldSplit split;
     const bool is_split = splitNonManifoldVertices (input, topology, split);
     if (is_split)
@@ -115,7 +127,7 @@ namespace pcl_sparse
     const PatchGrowthGeometry geometry = computePatchGrowthGeometry (mesh, topology);
 
     // Candidates on the input's vertices, each followed by its split copies.
-    const std::vector<int> input_order = candidateOrder (num_input, responses_, keypoints_);
+    const std::vector<int> input_order = candidateOrder (num_input, used_responses_, used_keypoints_);
     std::vector<int> order;
     order.reserve (num_vertices);
     {

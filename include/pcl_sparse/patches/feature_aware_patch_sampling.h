@@ -54,8 +54,8 @@ namespace pcl_sparse
     void setOptions (const PatchOptions& options) { options_ = options; }
     const PatchOptions& getOptions () const { return options_; }
 
-    /// Per-vertex feature response ordering the candidates (#V entries, NaN = none). Empty (default):
-    /// Harris 3D responses with default options are computed.
+    /// Per-vertex feature response ordering the candidates (#V entries, NaN = none). Empty (default), with
+    /// no keypoints either: Harris 3D responses and keypoints with default options (keypoints/harris3d.h).
     void setResponses (const std::vector<double>& responses) { responses_ = responses; }
     /// Keypoints tried first (vertex indices). Empty with empty responses (default): Harris 3D keypoints.
     /// Empty with responses given: no keypoints, candidates purely by response.
@@ -69,6 +69,10 @@ namespace pcl_sparse
     /// Throws pcl_sparse::Error for a missing mesh, invalid face indices, options out of range or
     /// responses / keypoints that do not fit the mesh.
     void compute (std::vector<Patch>& patches);
+
+    /// Responses and keypoints the last compute ordered its candidates with (given or Harris 3D).
+    const std::vector<double>& getResponses () const { return used_responses_; }
+    const std::vector<int>& getKeypoints () const { return used_keypoints_; }
 
     /// Vertices in no patch after the last compute (unreferenced vertices when
     /// cover_unreferenced_vertices is false; otherwise empty), ascending.
@@ -94,6 +98,8 @@ namespace pcl_sparse
     int num_threads_ = 0;
     ProgressCallback progress_;
 
+    std::vector<double> used_responses_;
+    std::vector<int> used_keypoints_;
     std::vector<int> uncovered_;
     std::vector<int> unreferenced_;
     std::size_t num_coverage_patches_ = 0;
