@@ -1,5 +1,6 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
+#include <pcl_sparse/geometry/sharp_edges.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/keypoints/harris_keypoint3d_mesh.h>
@@ -33,35 +34,6 @@ namespace
   isCubeCorner (const Eigen::Vector3d& p, double half)
   {
     return (p.cwiseAbs ().array () - half).abs ().maxCoeff () < 1e-12;
-  }
-
-  /// Vertices within \a rings rings of an endpoint of an edge whose faces' normals differ by more than
-  /// \a degrees (the dihedral-angle test of the issue).
-  std::vector<bool>
-  nearSharpEdges (const TriangleMesh& mesh, const MeshTopology& topo, double degrees, int rings)
-  {
-    const auto face_normals = computeFaceNormals (mesh);
-    std::vector<std::vector<int>> edge_faces (topo.numEdges ());
-    for (int f = 0; f < static_cast<int> (mesh.numTriangles ()); ++f)
-      for (int k = 0; k < 3; ++k)
-        if (topo.face_edges[f][k] >= 0)
-          edge_faces[topo.face_edges[f][k]].push_back (f);
-    const double cos_limit = std::cos (degrees * M_PI / 180.0);
-    std::vector<bool> near (mesh.numVertices (), false);
-    VertexMarks marks (mesh.numVertices ());
-    std::vector<int> ring;
-    for (std::size_t e = 0; e < topo.numEdges (); ++e)
-    {
-      if (edge_faces[e].size () != 2 || face_normals[edge_faces[e][0]].dot (face_normals[edge_faces[e][1]]) >= cos_limit)
-        continue;
-      for (int end : {topo.edges[e][0], topo.edges[e][1]})
-      {
-        collectKRing (topo, end, rings, marks, ring);
-        for (int u : ring)
-          near[u] = true;
-      }
-    }
-    return near;
   }
 
   TriangleMesh
@@ -330,7 +302,7 @@ TEST (Harris3D, FandiskTopKeypointsLieOnSharpEdges)
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path.string ()));
   ASSERT_EQ (mesh->numVertices (), 6475u);
   const MeshTopology topo = buildMeshTopology (*mesh);
-  const std::vector<bool> near = nearSharpEdges (*mesh, topo, 60.0, 2);
+  const std::vector<bool> near = verticesNearSharpEdges (*mesh, topo, 60.0, 2);
 
   for (int rings : {0, 2})
   {
@@ -348,4 +320,22 @@ TEST (Harris3D, FandiskTopKeypointsLieOnSharpEdges)
     EXPECT_GE (fraction, 0.8) << "rings " << rings;
     std::cout << "fandisk (rings " << rings << "): " << on_edges << " / " << indices.size () << " keypoints within 2 rings of a sharp edge\n";
   }
+}
+
+TEST (SharpEdges, CubeEdgesAreSharpAndSpheresHaveNone)
+{
+  const TriangleMesh cube = makeCube (4, 1.0);
+  const MeshTopology topo = buildMeshTopology (cube);
+  const std::vector<int> sharp = findSharpEdges (cube, topo, 60.0);
+  EXPECT_EQ (sharp.size (), 12u * 4u);  // 12 cube edges of 4 segments, dihedral 90 degrees
+  for (int e : sharp)
+  {
+    const Eigen::Vector3d mid = 0.5 * (cube.vertices[topo.edges[e][0]] + cube.vertices[topo.edges[e][1]]);
+    EXPECT_EQ ((mid.cwiseAbs ().array () > 1.0 - 1e-12).count (), 2);  // on two cube faces at once
+  }
+  EXPECT_TRUE (findSharpEdges (cube, topo, 90.5).empty ());
+  const std::vector<bool> near = verticesNearSharpEdges (cube, topo, 60.0, 0);
+  EXPECT_EQ (std::count (near.begin (), near.end (), true), 12 * 3 + 8);  // edge vertices and corners
+  const TriangleMesh sphere = makeIcosphere (3);
+  EXPECT_TRUE (findSharpEdges (sphere, buildMeshTopology (sphere), 60.0).empty ());
 }
