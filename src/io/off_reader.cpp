@@ -76,10 +76,11 @@ namespace pcl_sparse
       // The edge count is optional in practice; whatever else is on the counts line is ignored.
       cursor.skipLine ();
 
-      // A lying header must not make us allocate: a vertex needs at least "0 0 0\n", a face "3 0 1 2\n".
+      // A lying header must not make us allocate: a vertex needs at least "0 0 0\n", a face at least two
+      // bytes (a looser bound than a valid face, so that a malformed face gets its own message).
       const long long remaining = static_cast<long long> (cursor.end - cursor.p);
       if (num_vertices > std::numeric_limits<int>::max () || num_faces > std::numeric_limits<int>::max () ||
-          num_vertices * 6 + num_faces * 8 > remaining + 1)
+          num_vertices * 6 + num_faces * 2 > remaining + 1)
         throw Error (path + ": the header announces " + std::to_string (num_vertices) + " vertices and " +
                      std::to_string (num_faces) + " faces, more than the file's " + std::to_string (remaining) +
                      " remaining bytes can hold");

@@ -282,8 +282,6 @@ namespace pcl_sparse
               throw Error (path_ + ": the PLY face element has no vertex_indices list");
             if (is_vertex && !mesh.vertices.empty ())
               throw Error (path_ + ": two PLY vertex elements");
-            if (is_vertex && element.count > std::numeric_limits<int>::max ())
-              throw Error (path_ + ": too many vertices (" + std::to_string (element.count) + ")");
 
             // Refuse a lying header before reserving: in binary every record has at least min_record bytes,
             // in ascii every value at least one character and one separator.
@@ -296,6 +294,9 @@ namespace pcl_sparse
               throw Error (path_ + ": truncated or lying header: the PLY element '" + element.name + "' announces " +
                            std::to_string (element.count) + " records, more than the " + std::to_string (remaining) +
                            " remaining bytes can hold");
+
+            if (is_vertex && element.count > std::numeric_limits<int>::max ())
+              throw Error (path_ + ": too many vertices (" + std::to_string (element.count) + ")");
 
             if (is_vertex)
               mesh.vertices.resize (static_cast<std::size_t> (element.count));

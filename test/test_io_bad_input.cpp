@@ -1,0 +1,414 @@
+// Bad input files: each is refused with one pcl_sparse::Error whose one-line message names the file; nothing
+// crashes, hangs or allocates what a lying header asks for. The bad files are written into a temporary
+// directory by the tests.
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/io/cloud_io.h>
+#include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sys/stat.h>
+#include <unistd.h>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  class TempDir
+  {
+  public:
+    TempDir ()
+    {
+      char pattern[] = "/tmp/pcl_sparse_io_bad_XXXXXX";
+      const char* made = ::mkdtemp (pattern);
+      if (!made)
+        throw std::runtime_error ("mkdtemp failed");
+      path_ = made;
+    }
+    ~TempDir () { std::system (("rm -rf '" + path_ + "'").c_str ()); }
+    std::string
+    file (const std::string& name) const
+    {
+      return path_ + "/" + name;
+    }
+
+  private:
+    std::string path_;
+  };
+
+  void
+  writeBytes (const std::string& path, const std::string& bytes)
+  {
+    std::ofstream out (path, std::ios::binary);
+    out.write (bytes.data (), static_cast<std::streamsize> (bytes.size ()));
+  }
+
+  std::string
+  readBytes (const std::string& path)
+  {
+    std::ifstream in (path, std::ios::binary);
+    return std::string (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
+  }
+
+  template <typename T>
+  void
+  put (std::string& out, T value)
+  {
+    out.append (reinterpret_cast<const char*> (&value), sizeof (T));
+  }
+
+  /// Loads \a path expecting a refusal; returns the message (empty if it loaded).
+  std::string
+  refusal (const std::string& path, const MeshLoadOptions& options = MeshLoadOptions ())
+  {
+    try
+    {
+      loadTriangleMesh (path, options);
+    }
+    catch (const Error& e)
+    {
+      return e.what ();
+    }
+    return "";
+  }
+
+  /// The message is one line, names the file and contains \a problem.
+  void
+  expectRefused (const std::string& path, const std::string& problem,
+                 const MeshLoadOptions& options = MeshLoadOptions ())
+  {
+    SCOPED_TRACE (path);
+    const std::string message = refusal (path, options);
+    ASSERT_FALSE (message.empty ()) << "loaded without error";
+    EXPECT_NE (message.find (path), std::string::npos) << message;
+    EXPECT_EQ (message.find ('\n'), std::string::npos) << message;
+    EXPECT_NE (message.find (problem), std::string::npos) << "message: " << message << "\nexpected: " << problem;
+  }
+
+  /// Writes \a bytes to \a name in a fresh file and expects a refusal mentioning \a problem.
+  void
+  expectFileRefused (const TempDir& dir, const std::string& name, const std::string& bytes, const std::string& problem)
+  {
+    const std::string path = dir.file (name);
+    writeBytes (path, bytes);
+    expectRefused (path, problem);
+  }
+
+  std::string
+  randomBytes (std::size_t size, unsigned seed)
+  {
+    std::mt19937 random (seed);
+    std::uniform_int_distribution<int> byte (0, 255);
+    std::string bytes (size, '\0');
+    for (char& c : bytes)
+      c = static_cast<char> (byte (random));
+    return bytes;
+  }
+} // namespace
+
+TEST (IoBadInput, MissingFileDirectoryAndUnknownExtension)
+{
+  TempDir dir;
+  expectRefused (dir.file ("missing.obj"), "cannot open");
+  const std::string directory = dir.file ("folder.ply");
+  ASSERT_EQ (::mkdir (directory.c_str (), 0755), 0);
+  expectRefused (directory, "directory");
+  expectFileRefused (dir, "mesh.xyz", "v 0 0 0\n", "unknown mesh file extension");
+  expectFileRefused (dir, "mesh", "v 0 0 0\n", "unknown mesh file extension");
+  expectFileRefused (dir, "dotted.dir/mesh", "v 0 0 0\n", "unknown mesh file extension");
+}
+
+TEST (IoBadInput, EmptyFiles)
+{
+  TempDir dir;
+  for (const char* name : {"empty.obj", "empty.off", "empty.ply", "empty.stl"})
+    expectFileRefused (dir, name, "", "empty file");
+  expectFileRefused (dir, "blank.obj", "\n\n# only comments\n", "no vertices");
+  expectFileRefused (dir, "blank.off", "  \n", "no OFF header");
+}
+
+TEST (IoBadInput, BinaryGarbage)
+{
+  TempDir dir;
+  for (unsigned seed = 1; seed <= 20; ++seed)
+    for (const char* extension : {".obj", ".off", ".ply", ".stl"})
+    {
+      const std::string path = dir.file ("garbage" + std::to_string (seed) + extension);
+      writeBytes (path, randomBytes (100 + 97 * seed, seed));
+      SCOPED_TRACE (path);
+      const std::string message = refusal (path);
+      EXPECT_NE (message.find (path), std::string::npos) << message;
+    }
+  expectFileRefused (dir, "text.ply", "hello world\n", "not a PLY file");
+  expectFileRefused (dir, "text.off", "hello world\n", "not an OFF file");
+  expectFileRefused (dir, "text.stl", "hello world\n", "not an STL file");
+  expectFileRefused (dir, "text.obj", "hello world\n", "no vertices");
+  expectFileRefused (dir, "nul.obj", std::string ("v 0 0 0\nv 1 0 0\0\nv 0 1 0\nf 1 2 3\n", 33), "binary data");
+  expectFileRefused (dir, "symbols.obj", "v 0 0 0\n%%%\n", "not an OBJ statement");
+}
+
+TEST (IoBadInput, TruncatedBinaryPlyAndStlAtEveryLength)
+{
+  TempDir dir;
+  const TriangleMesh mesh = makeTetrahedron ();  // small: one file write per length
+  for (const char* name : {"whole.ply", "whole.stl"})
+  {
+    const std::string whole = dir.file (name);
+    saveTriangleMesh (whole, mesh);
+    const std::string bytes = readBytes (whole);
+    ASSERT_EQ (loadTriangleMesh (whole).numTriangles (), mesh.numTriangles ());
+    const std::string cut = dir.file (std::string ("cut_") + name);
+    for (std::size_t length = 1; length < bytes.size (); ++length)
+    {
+      writeBytes (cut, bytes.substr (0, length));
+      const std::string message = refusal (cut);
+      ASSERT_FALSE (message.empty ()) << name << " cut at " << length << " of " << bytes.size () << " loaded";
+      ASSERT_NE (message.find (cut), std::string::npos) << message;
+    }
+  }
+  const std::string bytes = readBytes (dir.file ("whole.ply"));
+  expectFileRefused (dir, "half.ply", bytes.substr (0, bytes.size () / 2), "truncated");
+  const std::string stl = readBytes (dir.file ("whole.stl"));
+  expectFileRefused (dir, "half.stl", stl.substr (0, stl.size () / 2), "truncated binary STL");
+}
+
+TEST (IoBadInput, TruncatedTextFiles)
+{
+  TempDir dir;
+  expectFileRefused (dir, "short.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n", "truncated");
+  expectFileRefused (dir, "short.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n",
+                     "truncated");
+  expectFileRefused (dir, "noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n", "no end_header");
+  expectFileRefused (dir, "short.stl",
+                     "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n",
+                     "truncated ascii STL");
+}
+
+TEST (IoBadInput, LyingHeadersAreRefusedBeforeAllocating)
+{
+  TempDir dir;
+  // Counts far beyond what the few bytes can hold: refused up front (no multi-gigabyte reservation).
+  expectFileRefused (dir, "lie.off", "OFF\n2000000000 2000000000 0\n0 0 0\n", "remaining bytes");
+  expectFileRefused (dir, "lie_vertices.ply",
+                     "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty double x\n"
+                     "property double y\nproperty double z\nend_header\n0123456789",
+                     "announces 2000000000");
+  expectFileRefused (dir, "lie_faces.ply",
+                     "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+                     "property float z\nelement face 4000000000\nproperty list uchar int vertex_indices\nend_header\n"
+                     "0123456789",
+                     "announces 4000000000");
+  expectFileRefused (dir, "lie_ascii.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 900000000000\nproperty float x\nproperty float y\n"
+                     "property float z\nend_header\n0 0 0\n",
+                     "remaining bytes");
+  std::string stl (80, ' ');
+  put (stl, std::uint32_t (4000000000u));
+  stl += std::string (50, '\0');
+  expectFileRefused (dir, "lie.stl", stl, "truncated binary STL");
+  // A list size larger than the file in a binary PLY.
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n";
+  for (int i = 0; i < 9; ++i)
+    put (ply, 0.0f);
+  put (ply, std::uint32_t (3000000000u));
+  put (ply, std::int32_t (0));
+  expectFileRefused (dir, "lie_list.ply", ply, "truncated");
+  expectFileRefused (dir, "negative.off", "OFF\n-3 1 0\n", "bad vertex count");
+}
+
+TEST (IoBadInput, FaceIndexOutOfRange)
+{
+  TempDir dir;
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expectFileRefused (dir, "big.obj", vertices + "f 1 2 3\nf 1 2 4\n", "face index 4 is out of range");
+  expectFileRefused (dir, "zero.obj", vertices + "f 0 1 2\n", "face index 0");
+  expectFileRefused (dir, "relative.obj", vertices + "f -1 -2 -4\n", "points before the first vertex");
+  expectFileRefused (dir, "big.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "face index 3 is out of range");
+  expectFileRefused (dir, "negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "face index -1 is out of range");
+  expectFileRefused (dir, "big.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n",
+                     "face index 7 is out of range");
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < 9; ++i)
+    put (ply, 0.0f);
+  put (ply, std::uint8_t (3));
+  for (std::int32_t i : {0, -5, 2})
+    put (ply, i);
+  expectFileRefused (dir, "negative.ply", ply, "out of range");
+}
+
+TEST (IoBadInput, MalformedRecords)
+{
+  TempDir dir;
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expectFileRefused (dir, "two.obj", vertices + "f 1 2\n", "face with 2 vertices");
+  expectFileRefused (dir, "letters.obj", vertices + "f 1 2 x\n", "bad face index");
+  expectFileRefused (dir, "coordinate.obj", "v 0 0 zero\n", "bad vertex coordinate");
+  expectFileRefused (dir, "comma.obj", "v 0,0 0 0\n", "bad vertex coordinate");
+  expectFileRefused (dir, "short.obj", "v 0 0\nf 1 1 1\n", "bad vertex coordinate");
+  expectFileRefused (dir, "two.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", "face with 2 vertices");
+  expectFileRefused (dir, "binary.off", "OFF BINARY\n3 1 0\n", "binary OFF");
+  expectFileRefused (dir, "four.off", "4OFF\n3 1 0\n", "unsupported OFF variant");
+  expectFileRefused (dir, "format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n", "unknown PLY format");
+  expectFileRefused (dir, "noxyz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n",
+                     "no x, y, z");
+  expectFileRefused (dir, "floatindex.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                     "floating-point");
+  expectFileRefused (dir, "type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n",
+                     "bad PLY property");
+  expectFileRefused (dir, "noface.stl", "solid s\nvertex 0 0 0\nendsolid s\n", "outside a facet");
+}
+
+TEST (IoBadInput, NonFiniteVertices)
+{
+  TempDir dir;
+  expectFileRefused (dir, "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 1 has a non-finite coordinate");
+  expectFileRefused (dir, "inf.off", "OFF\n3 1 0\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n", "non-finite");
+  expectFileRefused (dir, "overflow.off", "OFF\n3 1 0\n0 0 0\n1 1e999 0\n0 1 0\n3 0 1 2\n", "non-finite");
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < 8; ++i)
+    put (ply, 0.0f);
+  put (ply, std::numeric_limits<float>::quiet_NaN ());
+  put (ply, std::uint8_t (3));
+  for (std::int32_t i : {0, 1, 2})
+    put (ply, i);
+  expectFileRefused (dir, "nan.ply", ply, "vertex 2 has a non-finite coordinate");
+  // The tolerant mode keeps them.
+  MeshLoadOptions options;
+  options.allow_non_finite = true;
+  const TriangleMesh mesh = loadTriangleMesh (dir.file ("nan.ply"), options);
+  EXPECT_EQ (mesh.numVertices (), 3u);
+  EXPECT_TRUE (std::isnan (mesh.vertices[2].z ()));
+}
+
+TEST (IoBadInput, RandomCorruptionNeverCrashes)
+{
+  // Flip bytes of valid small files of every format: each load either succeeds or throws pcl_sparse::Error.
+  TempDir dir;
+  const TriangleMesh mesh = makeIcosphere (1);
+  std::mt19937 random (42);
+  int refused = 0, loaded = 0;
+  for (const char* name : {"m.obj", "m.off", "m.ply", "m.stl"})
+  {
+    const std::string whole = dir.file (name);
+    saveTriangleMesh (whole, mesh);
+    const std::string bytes = readBytes (whole);
+    const std::string corrupt = dir.file (std::string ("corrupt_") + name);
+    std::uniform_int_distribution<std::size_t> position (0, bytes.size () - 1);
+    std::uniform_int_distribution<int> value (0, 255);
+    for (int trial = 0; trial < 100; ++trial)
+    {
+      std::string changed = bytes;
+      for (int k = 0; k < 1 + trial % 4; ++k)
+        changed[position (random)] = static_cast<char> (value (random));
+      writeBytes (corrupt, changed);
+      try
+      {
+        const TriangleMesh result = loadTriangleMesh (corrupt);
+        for (const Eigen::Vector3i& t : result.triangles)
+          for (int c = 0; c < 3; ++c)
+            ASSERT_TRUE (t[c] >= 0 && t[c] < static_cast<int> (result.numVertices ()));
+        ++loaded;
+      }
+      catch (const Error& e)
+      {
+        ASSERT_NE (std::string (e.what ()).find (corrupt), std::string::npos) << e.what ();
+        ++refused;
+      }
+    }
+  }
+  EXPECT_GT (refused, 0);
+  EXPECT_GT (loaded, 0);
+}
+
+TEST (IoBadInput, RandomCorruptionOfPcdNeverCrashes)
+{
+  // PCL's PCD reader crashes on some malformed headers; loadPointCloud validates the header first.
+  TempDir dir;
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  for (int i = 0; i < 20; ++i)
+  {
+    pcl::PointNormal p;
+    p.x = static_cast<float> (i);
+    p.y = 0.5f * i;
+    p.z = -1.0f * i;
+    cloud.push_back (p);
+  }
+  std::mt19937 random (7);
+  int refused = 0;
+  for (bool binary : {true, false})
+  {
+    const std::string whole = dir.file ("whole.pcd");
+    savePointNormalCloud (whole, cloud, binary);
+    const std::string bytes = readBytes (whole);
+    const std::size_t header = bytes.find ("DATA") + 12;
+    const std::string corrupt = dir.file ("corrupt.pcd");
+    for (int trial = 0; trial < 100; ++trial)
+    {
+      std::string changed = bytes;
+      for (int k = 0; k < 1 + trial % 3; ++k)
+        changed[random () % (trial % 2 ? header : changed.size ())] = static_cast<char> (random () % 256);
+      writeBytes (corrupt, changed);
+      pcl::PointCloud<pcl::PointXYZ> loaded;
+      try
+      {
+        loadPointCloud (corrupt, loaded);
+      }
+      catch (const Error& e)
+      {
+        ASSERT_NE (std::string (e.what ()).find (corrupt), std::string::npos) << e.what ();
+        ++refused;
+      }
+    }
+  }
+  EXPECT_GT (refused, 0);
+}
+
+TEST (IoBadInput, PointCloudsAreRefusedTheSameWay)
+{
+  TempDir dir;
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  const auto expectCloudRefused = [&] (const std::string& path, const std::string& problem) {
+    SCOPED_TRACE (path);
+    try
+    {
+      loadPointCloud (path, cloud);
+      FAIL () << "loaded";
+    }
+    catch (const Error& e)
+    {
+      const std::string message = e.what ();
+      EXPECT_NE (message.find (path), std::string::npos) << message;
+      EXPECT_NE (message.find (problem), std::string::npos) << message;
+    }
+  };
+  expectCloudRefused (dir.file ("missing.pcd"), "cannot open");
+  writeBytes (dir.file ("empty.pcd"), "");
+  expectCloudRefused (dir.file ("empty.pcd"), "empty file");
+  writeBytes (dir.file ("garbage.pcd"), randomBytes (3000, 7));
+  expectCloudRefused (dir.file ("garbage.pcd"), "PCD");
+  writeBytes (dir.file ("short.pcd"), "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                                      "WIDTH 1000\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1000\nDATA binary\n0123");
+  expectCloudRefused (dir.file ("short.pcd"), "PCD");
+  writeBytes (dir.file ("cloud.xyz"), "0 0 0\n");
+  expectCloudRefused (dir.file ("cloud.xyz"), "unknown point cloud file extension");
+  ASSERT_EQ (::mkdir (dir.file ("folder.pcd").c_str (), 0755), 0);
+  expectCloudRefused (dir.file ("folder.pcd"), "directory");
+  writeBytes (dir.file ("nofields.pcd"), "VERSION 0.7\nFIELDS a b\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 1\nHEIGHT 1\n"
+                                         "POINTS 1\nDATA ascii\n1 2\n");
+  expectCloudRefused (dir.file ("nofields.pcd"), "no x, y, z");
+}
