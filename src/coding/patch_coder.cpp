@@ -6,9 +6,21 @@
 namespace pcl_sparse
 {
   PatchCode
-  codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh, const MeshTopology& topology,
+  codePatch (const Patch& input_patch, std::size_t patch_index, const TriangleMesh& mesh, const MeshTopology& topology,
              const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info)
   {
+    // A support scale s > 1 is the same patch with radius s r_P (local coordinates divided by s).
+    Patch scaled;
+    const bool rescale = options.support_scale != 1.0 && options.support_scale > 0.0;
+    if (rescale)
+    {
+      scaled = input_patch;
+      scaled.radius *= options.support_scale;
+      for (Eigen::Vector3d& p : scaled.local)
+        p /= options.support_scale;
+    }
+    const Patch& patch = rescale ? scaled : input_patch;
+
     PatchCode code;
     code.origin = patch.origin;
     code.frame = patch.frame;

@@ -23,6 +23,11 @@ namespace pcl_sparse
     int min_samples = 64;                         ///< m_min: fewer points get extra samples (authors' code: 128)
     int footprint_angles = 16;                    ///< K, angles of the stored footprint
     std::uint64_t seed = 42;                      ///< global seed of the extra samples (per patch: mixSeed)
+    /// Basis support over patch radius: local coordinates are p' = R^T (p - s) / (support_scale r_P), so the
+    /// patch fills the disk of radius 1 / support_scale inside the basis square [-1, 1]^2 and the stored
+    /// radius is support_scale r_P. Paper and authors' code: 1 (the patch touches the square's sides, where
+    /// every cosine atom has zero slope, which costs accuracy on curved patches); > 1 is our option.
+    double support_scale = 1.0;
   };
 
   /// Diagnostics of one coded patch (not stored in the model).
