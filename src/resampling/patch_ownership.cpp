@@ -8,32 +8,12 @@
 
 namespace pcl_sparse
 {
-  double
-  footprintCentrality (const PatchFootprint& footprint, double x, double y)
+  PatchOwnership::PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options)
+    : evaluator_ (evaluator), options_ (options)
   {
-    const double r = std::hypot (x, y);
-    if (footprint.extent.empty ())
-      return r;
-    if (r == 0.0)
-      return 0.0;
-    const double e = footprint.extentAt (std::atan2 (y, x));
-    return e > 0.0 ? r / e : std::numeric_limits<double>::infinity ();
-  }
-
-  double
-  footprintMaxExtent (const PatchFootprint& footprint)
-  {
-    if (footprint.extent.empty ())
-      return 1.0;
-    return *std::max_element (footprint.extent.begin (), footprint.extent.end ());
-  }
-
-  PatchOwnership::PatchOwnership (const SparseSurfaceModel& model, const PatchOwnershipOptions& options)
-    : model_ (model), options_ (options)
-  {
+    const SparseSurfaceModel& model = evaluator.model ();
     const std::size_t m = model.numPatches ();
-    neighbours_.assign (m, {});
-    max_extent_.assign (m, 0.0);
+    contender_begin_.assign (m + 1, 0);
     if (m == 0)
       return;
 
@@ -44,16 +24,15 @@ namespace pcl_sparse
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
-      const double e = footprintMaxExtent (model.patches[p].footprint);
-      max_extent_[p] = e;
+      const double e = evaluator.maxExtent (p);
       double h_max = 0.0;
-      const int n = 8;
+      const int n = 6;
       for (int a = 0; a <= n; ++a)
         for (int b = 0; b <= n; ++b)
         {
           const double x = e * (2.0 * a / n - 1.0), y = e * (2.0 * b / n - 1.0);
-          if (footprintCentrality (model.patches[p].footprint, x, y) <= 1.0)
-            h_max = std::max (h_max, std::abs (model.evaluate (p, x, y).value));
+          if (evaluator.centrality (p, x, y) <= 1.0)
+            h_max = std::max (h_max, std::abs (evaluator.height (p, x, y)));
         }
       reach[p] = model.patches[p].radius * (std::sqrt (e * e + h_max * h_max) * 1.1 + 0.05);
     }
@@ -66,6 +45,7 @@ namespace pcl_sparse
     pcl::KdTreeFLANN<pcl::PointXYZ> tree (false);
     tree.setInputCloud (seeds);
 
+    std::vector<std::vector<int>> lists (m);
 #pragma omp parallel for schedule(dynamic, 16)
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
@@ -73,43 +53,49 @@ namespace pcl_sparse
       std::vector<int> found;
       std::vector<float> distances;
       tree.radiusSearch ((*seeds)[p], static_cast<float> ((reach[p] + reach_max) * 1.001), found, distances);
-      std::vector<int>& list = neighbours_[p];
       for (int q : found)
       {
         if (static_cast<std::size_t> (q) == p)
           continue;
         const double d = (model.patches[p].origin - model.patches[q].origin).norm ();
         if (d <= reach[p] + reach[q])
-          list.push_back (q);
+          lists[p].push_back (q);
       }
-      std::sort (list.begin (), list.end ());
+      std::sort (lists[p].begin (), lists[p].end ());
+    }
+    for (std::size_t p = 0; p < m; ++p)
+    {
+      for (int q : lists[p])
+      {
+        const PatchCode& code = model.patches[q];
+        const double inverse = 1.0 / code.radius;
+        contenders_.push_back ({code.origin, code.frame.col (0) * inverse, code.frame.col (1) * inverse,
+                                code.frame.col (2) * inverse, code.frame.col (2), evaluator.maxExtent (q),
+                                static_cast<std::size_t> (q)});
+      }
+      contender_begin_[p + 1] = contenders_.size ();
     }
   }
 
   bool
-  PatchOwnership::owns (std::size_t p, const Eigen::Vector3d& q, const Eigen::Vector3d& n, double centrality) const
+  PatchOwnership::beats (const Contender& other, std::size_t p, const Eigen::Vector3d& d, double x, double y,
+                         const Eigen::Vector3d& n, double centrality) const
   {
-    for (int other : neighbours_[p])
-    {
-      const PatchCode& code = model_.patches[other];
-      const Eigen::Vector3d d = q - code.origin;
-      const double x = code.frame.col (0).dot (d) / code.radius;
-      const double y = code.frame.col (1).dot (d) / code.radius;
-      // Cheap bound first: the centrality in `other` is at least |(x, y)| / its largest extent.
-      const double r2 = x * x + y * y;
-      const double bound = max_extent_[other] * centrality;
-      if (r2 > bound * bound)
-        continue;
-      const double c = footprintCentrality (code.footprint, x, y);
-      if (c > 1.0 || c > centrality || (c == centrality && static_cast<std::size_t> (other) > p))
-        continue;
-      if (code.frame.col (2).dot (n) < options_.min_normal_cosine)
-        continue;
-      const double z = code.frame.col (2).dot (d) / code.radius;
-      if (std::abs (z - model_.evaluate (other, x, y).value) > options_.height_tolerance)
-        continue;
+    const double c = evaluator_.centrality (other.patch, x, y);
+    if (c > 1.0 || c > centrality || (c == centrality && other.patch > p))
       return false;
-    }
-    return true;
+    if (other.normal.dot (n) < options_.min_normal_cosine)
+      return false;
+    const double z = other.n.dot (d);
+    return std::abs (z - evaluator_.height (other.patch, x, y)) <= options_.height_tolerance;
+  }
+
+  std::vector<int>
+  PatchOwnership::neighbours (std::size_t p) const
+  {
+    std::vector<int> list;
+    for (std::size_t k = contender_begin_[p]; k < contender_begin_[p + 1]; ++k)
+      list.push_back (static_cast<int> (contenders_[k].patch));
+    return list;
   }
 } // namespace pcl_sparse

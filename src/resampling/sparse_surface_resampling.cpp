@@ -69,18 +69,18 @@ namespace pcl_sparse
     class PatchSampler
     {
     public:
-      PatchSampler (const SparseSurfaceModel& model, const PatchOwnership& ownership, double jitter)
-        : model_ (model), ownership_ (ownership), jitter_ (jitter)
+      PatchSampler (const PatchEvaluator& evaluator, const PatchOwnership& ownership, double jitter)
+        : model_ (evaluator.model ()), evaluator_ (evaluator), ownership_ (ownership), jitter_ (jitter)
       {}
 
       /// Whether patch \a p keeps the place (x, y): inside its footprint and owned by it.
       bool
       keeps (std::size_t p, double x, double y, HeightSample& h) const
       {
-        const double c = footprintCentrality (model_.patches[p].footprint, x, y);
+        const double c = evaluator_.centrality (p, x, y);
         if (c > 1.0)
           return false;
-        h = model_.evaluate (p, x, y);
+        h = evaluator_.sample (p, x, y);
         const PatchCode& code = model_.patches[p];
         return ownership_.owns (p, patchPoint (code, x, y, h), patchNormal (code, h), c);
       }
@@ -111,12 +111,10 @@ namespace pcl_sparse
       /// Exactly \a count points from \a candidates by systematic sampling of their cumulative weight.
       void
       selectPoints (std::size_t p, const PatchGrid& grid, std::uint64_t key, const std::vector<Candidate>& candidates,
-                    std::size_t count, SparseSurfaceResampling::PointCloud::VectorType& out) const
+                    std::size_t count, pcl::PointNormal* out) const
       {
-        out.clear ();
         if (count == 0 || candidates.empty ())
           return;
-        out.reserve (count);
         double total = 0.0;
         for (const Candidate& c : candidates)
           total += c.weight;
@@ -124,12 +122,13 @@ namespace pcl_sparse
         double t = uniform (key, ~0ULL) * step;
         double cumulative = 0.0;
         const std::uint64_t cells = static_cast<std::uint64_t> (grid.n) * grid.n;
-        for (std::size_t k = 0; k < candidates.size () && out.size () < count; ++k)
+        std::size_t emitted = 0;
+        for (std::size_t k = 0; k < candidates.size () && emitted < count; ++k)
         {
           const Candidate& c = candidates[k];
           const double high = (k + 1 == candidates.size ()) ? std::numeric_limits<double>::infinity () : cumulative + c.weight;
-          for (int draw = 0; t < high && out.size () < count; ++draw, t += step)
-            emit (p, grid, key, c, draw, cells, out);
+          for (int draw = 0; t < high && emitted < count; ++draw, t += step)
+            emit (p, grid, key, c, draw, cells, out[emitted++]);
           cumulative = high;
         }
       }
@@ -138,7 +137,7 @@ namespace pcl_sparse
       /// The first point of a cell is its candidate; further ones are fresh places in the same cell.
       void
       emit (std::size_t p, const PatchGrid& grid, std::uint64_t key, const Candidate& c, int draw, std::uint64_t cells,
-            SparseSurfaceResampling::PointCloud::VectorType& out) const
+            pcl::PointNormal& point) const
       {
         double x = c.x, y = c.y;
         HeightSample h;
@@ -160,11 +159,10 @@ namespace pcl_sparse
           }
         }
         if (!found)
-          h = model_.evaluate (p, x, y);
+          h = evaluator_.sample (p, x, y);
         const PatchCode& code = model_.patches[p];
         const Eigen::Vector3d position = patchPoint (code, x, y, h);
         const Eigen::Vector3d normal = patchNormal (code, h);
-        pcl::PointNormal point;
         point.x = static_cast<float> (position.x ());
         point.y = static_cast<float> (position.y ());
         point.z = static_cast<float> (position.z ());
@@ -172,10 +170,10 @@ namespace pcl_sparse
         point.normal_y = static_cast<float> (normal.y ());
         point.normal_z = static_cast<float> (normal.z ());
         point.curvature = static_cast<float> (patchMeanCurvature (code, h));
-        out.push_back (point);
       }
 
       const SparseSurfaceModel& model_;
+      const PatchEvaluator& evaluator_;
       const PatchOwnership& ownership_;
       double jitter_;
     };
@@ -210,8 +208,9 @@ namespace pcl_sparse
   void
   SparseSurfaceResampling::setInputModel (const SparseSurfaceModel::ConstPtr& model)
   {
-    if (model != model_)
-      ownership_.reset ();
+    // The tables of the previous model are dropped even for the same pointer: it may have changed.
+    ownership_.reset ();
+    evaluator_.reset ();
     model_ = model;
   }
 
@@ -267,10 +266,13 @@ namespace pcl_sparse
     const SparseSurfaceModel& model = *model_;
     const std::size_t m = model.numPatches ();
     const int threads = threads_ > 0 ? threads_ : omp_get_max_threads ();
+    if (!evaluator_)
+      evaluator_ = std::make_shared<PatchEvaluator> (model);
     if (!ownership_)
-      ownership_ = std::make_shared<PatchOwnership> (model, options_.ownership);
+      ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership);
+    const PatchEvaluator& evaluator = *evaluator_;
     const PatchOwnership& ownership = *ownership_;
-    const PatchSampler sampler (model, ownership, options_.jitter);
+    const PatchSampler sampler (evaluator, ownership, options_.jitter);
     const std::uint64_t seed = options_.seed;
 
     // Density: given, or from a coarse area pass when a total count is asked for.
@@ -283,7 +285,7 @@ namespace pcl_sparse
       for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
       {
         const std::size_t p = static_cast<std::size_t> (pi);
-        const double e = ownership.maxExtent (p);
+        const double e = evaluator.maxExtent (p);
         const PatchGrid grid = makeGrid (e, 2.0 * e / cells_per_axis);
         std::vector<Candidate> candidates;
         const double r = model.patches[p].radius;
@@ -299,7 +301,7 @@ namespace pcl_sparse
     double bound = 0.0;
     for (std::size_t p = 0; p < m; ++p)
     {
-      const double side = 2.0 * ownership.maxExtent (p) * model.patches[p].radius;
+      const double side = 2.0 * evaluator.maxExtent (p) * model.patches[p].radius;
       bound += side * side * density;
     }
     if (bound > 4.0 * static_cast<double> (max_points))
@@ -320,7 +322,7 @@ namespace pcl_sparse
     {
       const std::size_t p = static_cast<std::size_t> (pi);
       const double r = model.patches[p].radius;
-      grids[p] = makeGrid (ownership.maxExtent (p), 1.0 / (r * std::sqrt (density)));
+      grids[p] = makeGrid (evaluator.maxExtent (p), 1.0 / (r * std::sqrt (density)));
       weights[p] = sampler.drawCandidates (p, grids[p], patchKey (seed, p, 1), candidates[p]);
       const std::size_t finished = ++done;
       if (progress_ && omp_get_thread_num () == 0)
@@ -346,31 +348,24 @@ namespace pcl_sparse
         throw Error (class_name_ + "::compute: density gives more than " + std::to_string (max_points) + " points");
     }
 
-    // Selection pass, then concatenation in patch order.
-    std::vector<PointCloud::VectorType> points (m);
+    // Selection pass: every patch writes its own slice of the output, in patch order.
+    std::vector<std::size_t> offsets (m + 1, 0);
+    for (std::size_t p = 0; p < m; ++p)
+      offsets[p + 1] = offsets[p] + counts[p];
+    output.clear ();
+    output.resize (offsets[m]);
+    point_patches_.assign (offsets[m], 0);
     done = 0;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
-      sampler.selectPoints (p, grids[p], patchKey (seed, p, 3), candidates[p], counts[p], points[p]);
+      sampler.selectPoints (p, grids[p], patchKey (seed, p, 3), candidates[p], counts[p], output.data () + offsets[p]);
+      std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
       std::vector<Candidate> ().swap (candidates[p]);
       const std::size_t finished = ++done;
       if (progress_ && omp_get_thread_num () == 0)
         progress_ ("resample", 0.5 + 0.5 * static_cast<double> (finished) / static_cast<double> (m));
-    }
-    std::vector<std::size_t> offsets (m + 1, 0);
-    for (std::size_t p = 0; p < m; ++p)
-      offsets[p + 1] = offsets[p] + points[p].size ();
-    output.clear ();
-    output.resize (offsets[m]);
-    point_patches_.assign (offsets[m], 0);
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
-    {
-      const std::size_t p = static_cast<std::size_t> (pi);
-      std::copy (points[p].begin (), points[p].end (), output.begin () + offsets[p]);
-      std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
     }
     output.width = static_cast<std::uint32_t> (output.size ());
     output.height = 1;

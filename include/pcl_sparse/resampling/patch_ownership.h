@@ -11,7 +11,7 @@
 /// other's places. Patches sample their own surface, so two patches see a seam place at slightly
 /// different positions (their coding errors); the seams are consistent up to that error.
 
-#include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/resampling/patch_evaluator.h>
 
 #include <Eigen/Core>
 
@@ -29,36 +29,53 @@ namespace pcl_sparse
     double min_normal_cosine = 0.0;
   };
 
-  /// Centrality of local (x, y) in \a footprint: |(x, y)| / extent(angle); <= 1 inside, > 1 outside.
-  /// An empty footprint (no extents) stands for the unit disk.
-  double
-  footprintCentrality (const PatchFootprint& footprint, double x, double y);
-
-  /// Largest extent of \a footprint (1 for an empty footprint).
-  double
-  footprintMaxExtent (const PatchFootprint& footprint);
-
   /// Overlap structure of a model: for each patch, the patches whose extent may reach into it, and the
-  /// ownership test. Holds a reference to the model, which must outlive it.
+  /// ownership test. Holds a reference to the evaluator, which must outlive it.
   class PatchOwnership
   {
   public:
-    PatchOwnership (const SparseSurfaceModel& model, const PatchOwnershipOptions& options = PatchOwnershipOptions ());
+    PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options = PatchOwnershipOptions ());
 
     /// Whether patch \a p owns the place \a q (a point of p's surface) with unit normal \a n, where
-    /// \a centrality is footprintCentrality of q in p (must be <= 1).
+    /// \a centrality is the centrality of q in p (must be <= 1).
     bool
-    owns (std::size_t p, const Eigen::Vector3d& q, const Eigen::Vector3d& n, double centrality) const;
+    owns (std::size_t p, const Eigen::Vector3d& q, const Eigen::Vector3d& n, double centrality) const
+    {
+      for (std::size_t k = contender_begin_[p]; k < contender_begin_[p + 1]; ++k)
+      {
+        const Contender& other = contenders_[k];
+        const Eigen::Vector3d d = q - other.origin;
+        const double x = other.t1.dot (d), y = other.t2.dot (d);
+        // Cheap bound first: the centrality in `other` is at least |(x, y)| / its largest extent.
+        const double bound = other.max_extent * centrality;
+        if (x * x + y * y > bound * bound)
+          continue;
+        if (beats (other, p, d, x, y, n, centrality))
+          return false;
+      }
+      return true;
+    }
 
     /// Patches that may overlap patch \a p (never p itself), in increasing index order.
-    const std::vector<int>& neighbours (std::size_t p) const { return neighbours_[p]; }
-    /// Largest footprint extent of patch \a p, local units.
-    double maxExtent (std::size_t p) const { return max_extent_[p]; }
+    std::vector<int> neighbours (std::size_t p) const;
 
   private:
-    const SparseSurfaceModel& model_;
+    /// A patch that may own places of another: its frame rows pre-divided by its radius.
+    struct Contender
+    {
+      Eigen::Vector3d origin, t1, t2, n;  ///< s; T1 / r, T2 / r, N / r
+      Eigen::Vector3d normal;             ///< N
+      double max_extent;
+      std::size_t patch;
+    };
+
+    bool
+    beats (const Contender& other, std::size_t p, const Eigen::Vector3d& d, double x, double y, const Eigen::Vector3d& n,
+           double centrality) const;
+
+    const PatchEvaluator& evaluator_;
     PatchOwnershipOptions options_;
-    std::vector<std::vector<int>> neighbours_;
-    std::vector<double> max_extent_;
+    std::vector<Contender> contenders_;
+    std::vector<std::size_t> contender_begin_;  ///< #patches + 1 offsets into contenders_
   };
 } // namespace pcl_sparse

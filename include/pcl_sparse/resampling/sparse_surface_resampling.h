@@ -24,6 +24,7 @@
 
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/resampling/patch_evaluator.h>
 #include <pcl_sparse/resampling/patch_ownership.h>
 
 #include <pcl/point_cloud.h>
@@ -63,6 +64,7 @@ namespace pcl_sparse
     /// Largest point count compute accepts (a guard against typos such as -n 1e12).
     static constexpr std::size_t max_points = 1000000000;
 
+    /// The model to resample. Tables built from it are kept across computes: call again after changing it.
     void setInputModel (const SparseSurfaceModel::ConstPtr& model);
     const SparseSurfaceModel::ConstPtr& getInputModel () const { return model_; }
 
@@ -107,7 +109,9 @@ namespace pcl_sparse
     double density_ = 0.0;
     int threads_ = 0;
     ProgressCallback progress_;
-    std::shared_ptr<PatchOwnership> ownership_;  ///< built on first compute, kept while the model is the same
+    // Built on the first compute, kept while the model and options are the same.
+    std::shared_ptr<PatchEvaluator> evaluator_;
+    std::shared_ptr<PatchOwnership> ownership_;
     std::vector<int> point_patches_;
     double estimated_area_ = 0.0;
     double density_used_ = 0.0;

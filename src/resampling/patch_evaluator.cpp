@@ -1,0 +1,110 @@
+#include <pcl_sparse/resampling/patch_evaluator.h>
+
+#include <pcl_sparse/coding/cosine_dictionary.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_sparse
+{
+  PatchEvaluator::PatchEvaluator (const SparseSurfaceModel& model) : model_ (model)
+  {
+    const std::size_t m = model.numPatches ();
+    const auto* cosine = dynamic_cast<const CosineDictionary*> (model.basis.get ());
+    cosine_ = cosine != nullptr;
+    term_begin_.assign (1, 0);
+    extent_begin_.assign (1, 0);
+    count_x_.assign (m, 1);
+    count_y_.assign (m, 1);
+    max_extent_.assign (m, 1.0);
+    for (std::size_t p = 0; p < m; ++p)
+    {
+      const PatchCode& code = model.patches[p];
+      if (cosine_)
+      {
+        const std::size_t count = std::min (code.atoms.size (), code.coefficients.size ());
+        for (std::size_t k = 0; k < count; ++k)
+        {
+          const Term term {cosine->frequencyX (code.atoms[k]), cosine->frequencyY (code.atoms[k]), code.coefficients[k]};
+          count_x_[p] = std::max (count_x_[p], term.i + 1);
+          count_y_[p] = std::max (count_y_[p], term.j + 1);
+          terms_.push_back (term);
+        }
+        term_begin_.push_back (terms_.size ());
+      }
+      extents_.insert (extents_.end (), code.footprint.extent.begin (), code.footprint.extent.end ());
+      extent_begin_.push_back (extents_.size ());
+      if (!code.footprint.extent.empty ())
+        max_extent_[p] = *std::max_element (code.footprint.extent.begin (), code.footprint.extent.end ());
+    }
+  }
+
+  double
+  PatchEvaluator::height (std::size_t p, double x, double y) const
+  {
+    if (!cosine_)
+      return model_.evaluate (p, x, y).value;
+    // cos(k pi t) by the Chebyshev recurrence from one cosine per axis.
+    double cx[CosineDictionary::max_frequencies], cy[CosineDictionary::max_frequencies];
+    const int nx = count_x_[p], ny = count_y_[p];
+    const double c1x = std::cos (M_PI * x), c1y = std::cos (M_PI * y);
+    cx[0] = cy[0] = 1.0;
+    if (nx > 1)
+      cx[1] = c1x;
+    if (ny > 1)
+      cy[1] = c1y;
+    for (int k = 2; k < nx; ++k)
+      cx[k] = 2.0 * c1x * cx[k - 1] - cx[k - 2];
+    for (int k = 2; k < ny; ++k)
+      cy[k] = 2.0 * c1y * cy[k - 1] - cy[k - 2];
+    double v = 0.0;
+    for (std::size_t t = term_begin_[p]; t < term_begin_[p + 1]; ++t)
+      v += terms_[t].coefficient * cx[terms_[t].i] * cy[terms_[t].j];
+    return v;
+  }
+
+  HeightSample
+  PatchEvaluator::sample (std::size_t p, double x, double y) const
+  {
+    if (!cosine_)
+      return model_.evaluate (p, x, y);
+    // cos and sin of k pi t by angle addition from one sin/cos pair per axis.
+    double cx[CosineDictionary::max_frequencies], sx[CosineDictionary::max_frequencies];
+    double cy[CosineDictionary::max_frequencies], sy[CosineDictionary::max_frequencies];
+    const int nx = count_x_[p], ny = count_y_[p];
+    const double c1x = std::cos (M_PI * x), s1x = std::sin (M_PI * x);
+    const double c1y = std::cos (M_PI * y), s1y = std::sin (M_PI * y);
+    cx[0] = cy[0] = 1.0;
+    sx[0] = sy[0] = 0.0;
+    for (int k = 1; k < nx; ++k)
+    {
+      cx[k] = cx[k - 1] * c1x - sx[k - 1] * s1x;
+      sx[k] = sx[k - 1] * c1x + cx[k - 1] * s1x;
+    }
+    for (int k = 1; k < ny; ++k)
+    {
+      cy[k] = cy[k - 1] * c1y - sy[k - 1] * s1y;
+      sy[k] = sy[k - 1] * c1y + cy[k - 1] * s1y;
+    }
+    // d/dx cos(i pi x) = -i pi sin(i pi x), d2/dx2 = -(i pi)^2 cos(i pi x).
+    double v = 0.0, gx = 0.0, gy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0;
+    for (std::size_t t = term_begin_[p]; t < term_begin_[p + 1]; ++t)
+    {
+      const Term& term = terms_[t];
+      const double a = term.coefficient, fi = term.i, fj = term.j;
+      const double cc = a * cx[term.i] * cy[term.j];
+      v += cc;
+      gx -= a * fi * sx[term.i] * cy[term.j];
+      gy -= a * fj * cx[term.i] * sy[term.j];
+      hxx -= fi * fi * cc;
+      hxy += a * fi * fj * sx[term.i] * sy[term.j];
+      hyy -= fj * fj * cc;
+    }
+    HeightSample sample;
+    sample.value = v;
+    sample.gradient = Eigen::Vector2d (M_PI * gx, M_PI * gy);
+    const double pi2 = M_PI * M_PI;
+    sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
+    return sample;
+  }
+} // namespace pcl_sparse
