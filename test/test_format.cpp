@@ -188,6 +188,24 @@ TEST (ModelFile, LosslessRoundTripIsBitIdentical)
   }
 }
 
+TEST (ModelFile, UncompressedSectionsRoundTrip)
+{
+  const auto model = test::makeSyntheticModel (30, 6, true);
+  for (double tolerance : {0.0, 1e-4})
+  {
+    ModelWriteOptions options;
+    options.tolerance = tolerance;
+    options.include_vertices = true;
+    const auto compressed = encodeModel (model, options);
+    options.zstd_level = 0;
+    const auto stored = encodeModel (model, options);
+    EXPECT_GT (stored.size (), compressed.size ());
+    const auto a = decodeModel (compressed.data (), compressed.size ());
+    const auto b = decodeModel (stored.data (), stored.size ());
+    expectBitIdentical (a, b, true);
+  }
+}
+
 TEST (ModelFile, EmptyModelRoundTrips)
 {
   SparseSurfaceModel model;
@@ -264,6 +282,12 @@ TEST (ModelFile, EncoderRefusesWhatItCannotStore)
   EXPECT_THROW (encodeModel (model), Error);
   model = test::makeSyntheticModel (3, 4);
   model.patches[0].radius = 0.0;
+  EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4);
+  model.patches[2].atoms[1] = model.patches[2].atoms[0];
+  EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4);
+  model.patches[2].frame (0, 0) = 1.5;
   EXPECT_THROW (encodeModel (model), Error);
   model = test::makeSyntheticModel (3, 4);
   model.bbox_diagonal = 0.0;

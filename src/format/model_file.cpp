@@ -65,6 +65,13 @@ namespace pcl_sparse
       double extentStep () const { return extent_max / static_cast<double> ((1 << extent_bits) - 1); }
     };
 
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+    // The fuzzer would otherwise spend all its time failing checksums, never reaching the decoder.
+    constexpr bool kVerifyChecksums = false;
+#else
+    constexpr bool kVerifyChecksums = true;
+#endif
+
     struct Section
     {
       std::string tag;
@@ -165,6 +172,9 @@ namespace pcl_sparse
           requireFinite (patch.origin[i], name + " origin");
         for (int i = 0; i < 9; ++i)
           requireFinite (patch.frame (i), name + " frame");
+        const double off = (patch.frame.transpose () * patch.frame - Eigen::Matrix3d::Identity ()).cwiseAbs ().maxCoeff ();
+        if (!(off <= 1e-6))
+          throw Error ("encodeModel: " + name + " frame is not orthonormal");
         requireFinite (patch.radius, name + " radius");
         if (!(patch.radius > 0.0))
           throw Error ("encodeModel: " + name + " radius is not positive");
@@ -173,9 +183,15 @@ namespace pcl_sparse
                        std::to_string (patch.coefficients.size ()) + " coefficients");
         if (patch.atoms.size () > static_cast<std::size_t> (basis_size))
           throw Error ("encodeModel: " + name + " has more atoms than the basis");
+        std::vector<bool> used (basis_size, false);
         for (int a : patch.atoms)
+        {
           if (a < 0 || a >= basis_size)
             throw Error ("encodeModel: " + name + " has atom index " + std::to_string (a) + " outside the basis");
+          if (used[a])
+            throw Error ("encodeModel: " + name + " repeats atom " + std::to_string (a));
+          used[a] = true;
+        }
         for (double c : patch.coefficients)
           requireFinite (c, name + " coefficient");
         if (patch.footprint.extent.size () > kMaxFootprintAngles)
@@ -434,7 +450,7 @@ namespace pcl_sparse
       h.bbox_diagonal = in.getF64 ("bbox diagonal");
       h.tolerance = in.getF64 ("tolerance");
       const std::uint32_t header_crc = in.getU32 ("header checksum");
-      if (crc32 (data, kHeaderBytes - 4) != header_crc)
+      if (kVerifyChecksums && crc32 (data, kHeaderBytes - 4) != header_crc)
         throw Error (what + ": header checksum mismatch (corrupt file)");
       if ((h.flags & ~(kFlagQuantised | kFlagVertices)) != 0 || reserved != 0)
         throw Error (what + ": unknown header flags");
@@ -469,7 +485,7 @@ namespace pcl_sparse
         section.raw = in.getU64 ("section raw size");
         const std::uint32_t payload_crc = in.getU32 ("section checksum");
         const std::uint32_t section_header_crc = in.getU32 ("section header checksum");
-        if (crc32 (data + start, kSectionHeaderBytes - 4) != section_header_crc)
+        if (kVerifyChecksums && crc32 (data + start, kSectionHeaderBytes - 4) != section_header_crc)
           throw Error (what + ": section " + std::to_string (s) + " header checksum mismatch (corrupt file)");
         if (section.tag != tags[s])
           throw Error (what + ": section " + std::to_string (s) + " is '" + section.tag + "', expected '" + tags[s] + "'");
@@ -484,7 +500,7 @@ namespace pcl_sparse
           throw Error (what + ": section " + section.tag + " claims " + std::to_string (section.raw) +
                        " decompressed bytes, more than its " + std::to_string (section.stored) + " stored bytes can justify");
         section.payload = in.getBytes (static_cast<std::size_t> (section.stored), "section payload");
-        if (crc32 (section.payload, static_cast<std::size_t> (section.stored)) != payload_crc)
+        if (kVerifyChecksums && crc32 (section.payload, static_cast<std::size_t> (section.stored)) != payload_crc)
           throw Error (what + ": section " + section.tag + " checksum mismatch (corrupt file)");
         c.sections.push_back (section);
       }
@@ -547,8 +563,8 @@ namespace pcl_sparse
       throw Error ("encodeModel: tolerance must be >= 0");
     if (options.extent_bits < 2 || options.extent_bits > 8)
       throw Error ("encodeModel: extent_bits must be in 2..8");
-    if (options.zstd_level < 1 || options.zstd_level > 22)
-      throw Error ("encodeModel: zstd_level must be in 1..22");
+    if (options.zstd_level < 0 || options.zstd_level > 22)
+      throw Error ("encodeModel: zstd_level must be in 0..22");
     if (model.num_input_vertices > static_cast<std::uint64_t> (std::numeric_limits<std::int32_t>::max ()))
       throw Error ("encodeModel: num_input_vertices out of range");
     const bool quantised = options.tolerance > 0.0;
@@ -575,6 +591,8 @@ namespace pcl_sparse
     for (Section& section : sections)
     {
       std::vector<std::uint8_t> payload = section.raw;
+      if (options.zstd_level == 0)
+        section.codec = kCodecStored;
       if (section.codec == kCodecZstd)
       {
         payload = compressBytes (section.raw.data (), section.raw.size (), options.zstd_level);
@@ -666,6 +684,8 @@ namespace pcl_sparse
         for (int i = 0; i < 3; ++i)
           patch.origin[i] = q.seed_min[i] + static_cast<double> (seeds[i][p]) * q.seed_step;
         patch.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
+        if (!patch.origin.allFinite ())
+          seed.fail ("patch " + std::to_string (p) + " seed is not finite");
       }
       else
       {
@@ -688,6 +708,8 @@ namespace pcl_sparse
             foot.fail ("extent delta out of range");
           level = (level + delta) & extent_mask;
           patch.footprint.extent[i] = static_cast<float> (level * q.extentStep ());
+          if (!std::isfinite (patch.footprint.extent[i]))
+            foot.fail ("patch " + std::to_string (p) + " extent is not finite");
         }
         else
         {
@@ -701,6 +723,7 @@ namespace pcl_sparse
       const std::size_t n = atom.getCount ("atom count", std::min<std::uint64_t> (basis_size, atom.remaining ()));
       patch.atoms.resize (n);
       std::int64_t previous = -1;
+      std::vector<bool> used (basis_size, false);
       for (std::size_t i = 0; i < n; ++i)
       {
         const std::uint64_t v = atom.getCount ("atom index", static_cast<std::uint64_t> (basis_size));
@@ -708,6 +731,9 @@ namespace pcl_sparse
         if (index >= basis_size)
           atom.fail ("patch " + std::to_string (p) + " atom index " + std::to_string (index) + " outside the basis of " +
                      std::to_string (basis_size));
+        if (used[index])
+          atom.fail ("patch " + std::to_string (p) + " repeats atom " + std::to_string (index));
+        used[index] = true;
         patch.atoms[i] = static_cast<int> (index);
         previous = index;
       }

@@ -35,6 +35,7 @@ namespace pcl_sparse
     /// input vertices, METHOD.md step 10). Off by default: decoding and resampling do not need them.
     bool include_vertices = false;
     /// zstd level (1..22); 19 compresses well and still writes a 1 MB model in well under a second.
+    /// 0 stores every section uncompressed (for inspection and the fuzzer's seed corpus).
     int zstd_level = 19;
   };
 
