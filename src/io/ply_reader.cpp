@@ -290,7 +290,9 @@ namespace pcl_sparse
             const long long min_bytes =
                 layout_.format == PlyFormat::Ascii ? 2 * static_cast<long long> (element.properties.size ()) - 1
                                                    : static_cast<long long> (min_record);
-            if (element.count > 0 && min_bytes > 0 && element.count > (remaining + 1) / min_bytes)
+            // (+1 in ascii: the last value of the file needs no separator.)
+            const long long slack = layout_.format == PlyFormat::Ascii ? 1 : 0;
+            if (element.count > 0 && min_bytes > 0 && element.count > (remaining + slack) / min_bytes)
               throw Error (path_ + ": truncated or lying header: the PLY element '" + element.name + "' announces " +
                            std::to_string (element.count) + " records, more than the " + std::to_string (remaining) +
                            " remaining bytes can hold");
@@ -362,8 +364,65 @@ namespace pcl_sparse
         readBinaryElement (const char* p, const char* end, const PlyElement& element, const Target& target,
                            TriangleMesh& mesh) const
         {
+          // Fast path: fixed-size records (no lists), e.g. the vertex element of almost every file. The caller
+          // has checked that count * record size bytes are left.
+          std::size_t stride = 0;
+          bool fixed = true;
+          std::size_t offset[3] = {0, 0, 0};
+          PlyType type[3] = {PlyType::Float32, PlyType::Float32, PlyType::Float32};
+          for (std::size_t i = 0; i < element.properties.size (); ++i)
+          {
+            const PlyProperty& property = element.properties[i];
+            fixed = fixed && !property.is_list;
+            const int pi = static_cast<int> (i);
+            for (int k = 0; k < 3; ++k)
+              if (pi == (k == 0 ? target.x : (k == 1 ? target.y : target.z)))
+              {
+                offset[k] = stride;
+                type[k] = property.type;
+              }
+            stride += sizeOf (property.type);
+          }
+          if (fixed)
+          {
+            if (target.is_vertex)
+              for (long long r = 0; r < element.count; ++r)
+              {
+                const char* record = p + static_cast<std::size_t> (r) * stride;
+                Eigen::Vector3d& v = mesh.vertices[static_cast<std::size_t> (r)];
+                for (int k = 0; k < 3; ++k)
+                  v[k] = readBinary<swap> (record + offset[k], type[k]);
+              }
+            return p + static_cast<std::size_t> (element.count) * stride;
+          }
+
+          long long r = 0;
+          // Fast path: a face element holding only the index list, with triangles as uchar-counted lists of
+          // 32-bit indices (what most writers, ours included, write). Leaves at the first other record.
+          if (target.is_face && element.properties.size () == 1 && sizeOf (element.properties[0].count_type) == 1 &&
+              sizeOf (element.properties[0].type) == 4)
+          {
+            const bool is_signed = element.properties[0].type == PlyType::Int32;
+            for (; r < element.count && end - p >= 13 && *p == 3; ++r, p += 13)
+            {
+              long long index[3];
+              for (int k = 0; k < 3; ++k)
+              {
+                std::uint32_t bits;
+                std::memcpy (&bits, p + 1 + 4 * k, 4);
+                if (swap)
+                  bits = __builtin_bswap32 (bits);
+                index[k] = is_signed ? static_cast<long long> (static_cast<std::int32_t> (bits)) : static_cast<long long> (bits);
+                if (index[k] < 0 || index[k] > std::numeric_limits<int>::max ())
+                  throw Error (path_ + ": face index " + std::to_string (index[k]) + " is out of range");
+              }
+              mesh.triangles.emplace_back (static_cast<int> (index[0]), static_cast<int> (index[1]),
+                                           static_cast<int> (index[2]));
+            }
+          }
+
           std::vector<long long> polygon;
-          for (long long r = 0; r < element.count; ++r)
+          for (; r < element.count; ++r)
           {
             for (std::size_t i = 0; i < element.properties.size (); ++i)
             {
