@@ -1,0 +1,50 @@
+#pragma once
+/// \file cloud_quality.h
+/// How well a point cloud with normals samples a triangle mesh: distance to the surface, normal error,
+/// flipped normals, holes, spacing uniformity. Used by the resampling tests and bench/bench_resample, and
+/// handy for comparing resamplers (e.g. against pcl::MovingLeastSquares).
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <cstdint>
+
+namespace pcl_sparse
+{
+  struct CloudQualityOptions
+  {
+    /// Points drawn uniformly by area on the mesh to look for holes.
+    std::size_t probes = 50000;
+    /// A probe is covered if a cloud point lies within this many spacings, spacing = sqrt(area / #points).
+    double hole_spacings = 3.0;
+    /// Nearest triangles (by centroid) searched exactly per point for the distance to the surface.
+    int nearest_triangles = 16;
+    std::uint64_t seed = 1;
+  };
+
+  struct CloudQuality
+  {
+    double rms_distance = 0.0;   ///< RMS distance of the points to the mesh (world units)
+    double mean_distance = 0.0;
+    double max_distance = 0.0;
+    double mean_normal_angle = 0.0;  ///< mean angle (degrees) between a point's normal and its nearest face's normal
+    std::size_t flipped = 0;         ///< points whose normal is more than 90 degrees from the nearest face normal
+    std::size_t invalid = 0;         ///< points with a non-finite position or normal (ignored above)
+    double completeness = 0.0;       ///< fraction of probes with a point within hole_spacings spacings
+    double largest_gap = 0.0;        ///< largest probe-to-point distance, in spacings
+    double spacing = 0.0;            ///< sqrt(mesh area / #points)
+    double nn_cv = 0.0;              ///< coefficient of variation of nearest-neighbour distances
+    double bbox_diagonal = 0.0;      ///< of the mesh
+  };
+
+  /// Measures \a cloud against \a mesh (see CloudQuality). Points with a non-finite normal count as invalid.
+  CloudQuality
+  evaluateCloudQuality (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& cloud,
+                        const CloudQualityOptions& options = CloudQualityOptions ());
+
+  /// Distance from \a p to the triangle (a, b, c), exact (Ericson's closest point on a triangle).
+  double
+  pointTriangleDistance (const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+} // namespace pcl_sparse
