@@ -2,11 +2,12 @@
 /// (N_V, M, rho, nnz, RMSE, RMSE / diag, CR) and the seconds per stage.
 ///
 ///   pcl_sparse_encode MESH [-rho R] [-f F] [-L N] [-eps E] [-min-samples N] [-recon RECON.ply]
-///                     [-error ERR.ply] [--json] [-q]
+///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [--store-vertices]] [--json] [-q]
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 
 #include <pcl/console/parse.h>
@@ -42,14 +43,17 @@ namespace
     pcl::console::print_info ("  -threads N        OpenMP threads (default: all; the model does not depend on it)\n");
     pcl::console::print_info ("  -recon RECON      write the reconstructed mesh (input vertex order and faces)\n");
     pcl::console::print_info ("  -error ERR.ply    write the reconstruction coloured by vertex error, blue (0) to red (max)\n");
+    pcl::console::print_info ("  -o MODEL.psm      write the model file (docs/FORMAT.md)\n");
+    pcl::console::print_info ("  -tolerance T      model file: largest surface displacement / bbox diagonal (default 0 = lossless)\n");
+    pcl::console::print_info ("  --store-vertices  model file: also store the patch vertices (for -recon from the file)\n");
     pcl::console::print_info ("  --json            print one JSON object on stdout instead of the table row\n");
     pcl::console::print_info ("  -q                quiet (no progress, only the result and errors)\n");
   }
 
   /// Options taking a value, and switches; anything else starting with '-' is refused.
   const std::vector<std::string> value_options = {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads",
-                                                  "-recon", "-error"};
-  const std::vector<std::string> switches = {"--json", "-q", "--authors-nyquist", "-h", "--help"};
+                                                  "-recon", "-error", "-o", "-tolerance"};
+  const std::vector<std::string> switches = {"--json", "-q", "--authors-nyquist", "-h", "--help", "--store-vertices"};
 
   /// The value of option \a name as a double, \a fallback when absent; throws Error when it does not parse.
   double
@@ -172,7 +176,14 @@ main (int argc, char** argv)
       throw Error ("option -threads: expected >= 0, got " + std::to_string (threads));
     const std::string recon_path = stringOption (argc, argv, "-recon");
     const std::string error_path = stringOption (argc, argv, "-error");
-    // (-o MODEL.psm: the model file output goes here.)
+    const std::string model_path = stringOption (argc, argv, "-o");
+    ModelWriteOptions write_options;
+    write_options.tolerance = numberOption (argc, argv, "-tolerance", 0.0);
+    write_options.include_vertices = pcl::console::find_switch (argc, argv, "--store-vertices");
+    if (write_options.tolerance < 0.0 || write_options.tolerance > 0.1)
+      throw Error ("option -tolerance: expected a fraction of the bbox diagonal in [0, 0.1]");
+    if (model_path.empty () && (write_options.tolerance > 0.0 || write_options.include_vertices))
+      throw Error ("options -tolerance and --store-vertices need -o MODEL.psm");
     options.validate ();
     if (!recon_path.empty () && !isMeshFileExtension (recon_path))
       throw Error ("option -recon: '" + recon_path + "' has no mesh extension (.obj .off .ply .stl)");
@@ -198,6 +209,8 @@ main (int argc, char** argv)
     const double statistics_seconds = timer.toc () / 1000.0;
 
     timer.tic ();
+    if (!model_path.empty ())
+      saveModel (model_path, model, write_options);
     if (!recon_path.empty () || !error_path.empty ())
     {
       TriangleMesh reconstructed = *mesh;
