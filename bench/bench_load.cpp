@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -150,9 +151,22 @@ main (int argc, char** argv)
   std::printf ("%s", table.c_str ());
   if (!output.empty ())
   {
+    // The machine's load matters on shared build machines: record it next to the numbers.
+    std::string load_average = "?";
+    if (std::FILE* file = std::fopen ("/proc/loadavg", "r"))
+    {
+      char text[64] = {0};
+      if (std::fgets (text, sizeof (text), file))
+        load_average = std::string (text).substr (0, std::string (text).find (' '));
+      std::fclose (file);
+    }
     const std::string text = "# Mesh load time\n\nMedian of " + std::to_string (reps) +
                              " runs after one warm-up run (file in the page cache), Release build, produced by "
-                             "bench/load.sh. `time / ours` is relative to pcl_sparse::loadTriangleMesh.\n\n" +
+                             "bench/load.sh; " + std::to_string (std::thread::hardware_concurrency ()) +
+                             " hardware threads, 1-minute load average " + load_average +
+                             " when measured (the ratios are steadier than the absolute times). `time / ours` is "
+                             "relative to pcl_sparse::loadTriangleMesh; loadPolygonMesh includes the conversion to "
+                             "pcl::PolygonMesh (one std::vector per polygon), which is most of its time.\n\n" +
                              table;
     pcl_sparse::writeFileAtomically (output, [&text] (const std::string& temporary) {
       std::FILE* file = std::fopen (temporary.c_str (), "w");

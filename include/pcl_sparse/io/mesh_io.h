@@ -7,8 +7,8 @@
 ///    loadPLYFile throws std::bad_alloc on a header announcing 2e9 vertices in a 10-byte body, and the
 ///    VTK-based pcl::io::loadPolygonFile crashes (SIGSEGV) on a 7-line OBJ with "f a//c" and negative
 ///    indices; ours refuse each bad file with a one-line message naming the file and the problem;
-///  - speed: one read into memory and std::from_chars on the buffer: about 8x faster than loadPLYFile on
-///    the 200k-vertex binary PLY and 10x faster than loadOBJFile on sword.obj;
+///  - speed: one read into memory and std::from_chars on the buffer: 5-8x faster than loadPLYFile on the
+///    200k-vertex binary PLY and 10-20x faster than loadOBJFile on sword.obj;
 ///  - formats: PCL has no OFF reader (four of the shared meshes are OFF); we also triangulate polygons
 ///    and keep every vertex of the file, unreferenced ones too (the counts match the file's);
 ///  - no heavy PCL/VTK headers in this header (see polygon_mesh_conversion.h for pcl::PolygonMesh).
