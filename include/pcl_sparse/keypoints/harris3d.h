@@ -10,7 +10,8 @@
 /// E = [[A, C], [C, B]] with A = p4^2 + 2 p1^2 + 2 p2^2, B = p5^2 + 2 p2^2 + 2 p3^2,
 /// C = p4 p5 + 2 p1 p2 + 2 p2 p3 (the Gaussian-integrated structure tensor of the fitted height);
 /// R = det E - k (tr E)^2. R is invariant to rotations of the xy axes, so the PCA's axis signs and
-/// in-plane order do not matter.
+/// in-plane order do not matter. It is not scale invariant (p1..p3 scale like 1 / length, p4, p5 not):
+/// compare responses within one mesh, as the selection does.
 ///
 /// Not to be confused with pcl::HarrisKeypoint3D (covariance of normals in a radius): a different
 /// detector, compared in bench/results/harris.md.
