@@ -52,26 +52,52 @@ namespace pcl_sparse
     return m == 0 ? std::numeric_limits<double>::infinity () : 2.0 / m;
   }
 
+  namespace
+  {
+    /// Per-axis tables: cx (p, k) = cos(k pi x_p), cy (p, k) = cos(k pi y_p), k < count.
+    void
+    axisTables (const std::vector<Eigen::Vector2d>& points, int count, Eigen::MatrixXd& cx, Eigen::MatrixXd& cy)
+    {
+      const Eigen::Index size = static_cast<Eigen::Index> (points.size ());
+      cx.resize (size, count);
+      cy.resize (size, count);
+      double c[CosineDictionary::max_frequencies];
+      for (Eigen::Index p = 0; p < size; ++p)
+      {
+        cosines (points[p].x (), count, c);
+        for (int k = 0; k < count; ++k)
+          cx (p, k) = c[k];
+        cosines (points[p].y (), count, c);
+        for (int k = 0; k < count; ++k)
+          cy (p, k) = c[k];
+      }
+    }
+  } // namespace
+
   void
   CosineDictionary::evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const
   {
-    const Eigen::Index count = static_cast<Eigen::Index> (points.size ());
     // Per-axis tables first, then each atom column is one vectorised product of two table columns.
-    Eigen::MatrixXd cx (count, n_), cy (count, n_);
-    double c[max_frequencies];
-    for (Eigen::Index p = 0; p < count; ++p)
-    {
-      cosines (points[p].x (), n_, c);
-      for (int k = 0; k < n_; ++k)
-        cx (p, k) = c[k];
-      cosines (points[p].y (), n_, c);
-      for (int k = 0; k < n_; ++k)
-        cy (p, k) = c[k];
-    }
-    values.resize (count, n_ * n_);
+    Eigen::MatrixXd cx, cy;
+    axisTables (points, n_, cx, cy);
+    values.resize (static_cast<Eigen::Index> (points.size ()), n_ * n_);
     for (int i = 0; i < n_; ++i)
       for (int j = 0; j < n_; ++j)
         values.col (i * n_ + j) = cx.col (i).cwiseProduct (cy.col (j));
+  }
+
+  void
+  CosineDictionary::evaluate (const std::vector<Eigen::Vector2d>& points, const std::vector<int>& atoms,
+                              Eigen::MatrixXd& values) const
+  {
+    int count = 1;
+    for (int a : atoms)
+      count = std::max ({count, a / n_ + 1, a % n_ + 1});
+    Eigen::MatrixXd cx, cy;
+    axisTables (points, count, cx, cy);
+    values.resize (static_cast<Eigen::Index> (points.size ()), static_cast<Eigen::Index> (atoms.size ()));
+    for (std::size_t k = 0; k < atoms.size (); ++k)
+      values.col (static_cast<Eigen::Index> (k)) = cx.col (atoms[k] / n_).cwiseProduct (cy.col (atoms[k] % n_));
   }
 
   HeightSample

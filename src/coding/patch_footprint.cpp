@@ -24,30 +24,57 @@ namespace pcl_sparse
       return a.x () * b.y () - a.y () * b.x ();
     }
 
-    /// Raises sector maxima with the points of segment [a, b].
+    /// One projected vertex: position, radius and sector.
+    struct Corner
+    {
+      Eigen::Vector2d p;
+      double r;
+      int sector;
+    };
+
+    /// Raises the maximum of sector \a k and of its predecessor with the crossing of ray k by [a, b].
     void
-    addSegment (const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::vector<Eigen::Vector2d>& rays,
+    addRayCrossing (const Corner& a, const Corner& b, int k, const std::vector<Eigen::Vector2d>& rays,
+                    std::vector<double>& sector_max)
+    {
+      const int angles = static_cast<int> (rays.size ());
+      const double ca = cross2 (rays[k], a.p), cb = cross2 (rays[k], b.p);
+      if ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0) || ca == cb)
+        return;
+      const double t = ca / (ca - cb);
+      const double r = rays[k].dot (a.p + t * (b.p - a.p));
+      if (r <= 0.0)
+        return;
+      sector_max[k] = std::max (sector_max[k], r);
+      sector_max[(k + angles - 1) % angles] = std::max (sector_max[(k + angles - 1) % angles], r);
+    }
+
+    /// Raises sector maxima with the points of segment [a, b] (endpoints are counted by the caller).
+    /// The segment sweeps the shorter arc between its endpoints' directions unless it passes through the
+    /// origin; only the rays on that arc can cross it.
+    void
+    addSegment (const Corner& a, const Corner& b, const std::vector<Eigen::Vector2d>& rays,
                 std::vector<double>& sector_max)
     {
       const int angles = static_cast<int> (rays.size ());
-      const double ra = a.norm (), rb = b.norm ();
-      if (ra > 0.0)
-        sector_max[sectorOf (a, angles)] = std::max (sector_max[sectorOf (a, angles)], ra);
-      if (rb > 0.0)
-        sector_max[sectorOf (b, angles)] = std::max (sector_max[sectorOf (b, angles)], rb);
-      // Crossings of the sector rays: a point on ray k belongs to sectors k - 1 and k.
-      for (int k = 0; k < angles; ++k)
+      if (a.r == 0.0 || b.r == 0.0 || a.sector == b.sector)
+        return;  // from the origin the segment is one direction; within one sector no ray is crossed
+      const double cross = cross2 (a.p, b.p);
+      if (std::abs (cross) <= 1e-12 * a.r * b.r)
       {
-        const double ca = cross2 (rays[k], a), cb = cross2 (rays[k], b);
-        if ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0) || ca == cb)
-          continue;
-        const double t = ca / (ca - cb);
-        const Eigen::Vector2d p = a + t * (b - a);
-        const double r = rays[k].dot (p);
-        if (r <= 0.0)
-          continue;
-        sector_max[k] = std::max (sector_max[k], r);
-        sector_max[(k + angles - 1) % angles] = std::max (sector_max[(k + angles - 1) % angles], r);
+        // Collinear with the origin: either one direction or through the origin; test every ray.
+        for (int k = 0; k < angles; ++k)
+          addRayCrossing (a, b, k, rays, sector_max);
+        return;
+      }
+      // Counter-clockwise from a to b if cross > 0: rays a.sector + 1 .. b.sector are crossed.
+      const Corner& from = cross > 0.0 ? a : b;
+      const Corner& to = cross > 0.0 ? b : a;
+      for (int k = (from.sector + 1) % angles;; k = (k + 1) % angles)
+      {
+        addRayCrossing (a, b, k, rays, sector_max);
+        if (k == to.sector)
+          break;
       }
     }
   } // namespace
@@ -64,31 +91,36 @@ namespace pcl_sparse
 
     std::vector<double> sector_max (angles, 0.0);
     std::unordered_map<int, int> local_index;
-    local_index.reserve (patch.vertices.size () * 2);
-    for (std::size_t i = 0; i < patch.vertices.size () && i < patch.local.size (); ++i)
+    const std::size_t count = std::min (patch.vertices.size (), patch.local.size ());
+    local_index.reserve (count * 2);
+    std::vector<Corner> corners (count);
+    for (std::size_t i = 0; i < count; ++i)
     {
       local_index.emplace (patch.vertices[i], static_cast<int> (i));
-      const Eigen::Vector2d p = patch.local[i].head<2> ();
-      if (p.norm () > 0.0)
-        sector_max[sectorOf (p, angles)] = std::max (sector_max[sectorOf (p, angles)], p.norm ());
+      Corner& c = corners[i];
+      c.p = patch.local[i].head<2> ();
+      c.r = c.p.norm ();
+      c.sector = c.r > 0.0 ? sectorOf (c.p, angles) : 0;
+      if (c.r > 0.0)
+        sector_max[c.sector] = std::max (sector_max[c.sector], c.r);
     }
     for (int f : patch.triangles)
     {
       if (f < 0 || static_cast<std::size_t> (f) >= mesh.triangles.size ())
         continue;
-      Eigen::Vector2d corner[3];
+      int corner[3];
       bool ok = true;
       for (int c = 0; c < 3 && ok; ++c)
       {
         const auto it = local_index.find (mesh.triangles[f][c]);
         ok = it != local_index.end ();
         if (ok)
-          corner[c] = patch.local[it->second].head<2> ();
+          corner[c] = it->second;
       }
       if (!ok)
         continue;
       for (int c = 0; c < 3; ++c)
-        addSegment (corner[c], corner[(c + 1) % 3], rays, sector_max);
+        addSegment (corners[corner[c]], corners[corner[(c + 1) % 3]], rays, sector_max);
     }
 
     footprint.extent.resize (angles);

@@ -41,6 +41,10 @@ namespace pcl_sparse
     /// \a values: #points by n^2, column atomIndex (i, j) = cos(i pi x) cos(j pi y).
     void evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const override;
 
+    /// Only the columns of \a atoms (cost proportional to their number).
+    void evaluate (const std::vector<Eigen::Vector2d>& points, const std::vector<int>& atoms,
+                   Eigen::MatrixXd& values) const override;
+
     HeightSample evaluateCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                                double x, double y) const override;
 

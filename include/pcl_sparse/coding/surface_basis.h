@@ -37,6 +37,18 @@ namespace pcl_sparse
     /// Values of every atom at every point: \a values is #points by size().
     virtual void evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const = 0;
 
+    /// Values of the atoms listed in \a atoms only: \a values is #points by atoms.size(), column k holding
+    /// atom atoms[k]. Override when cheaper than the full matrix.
+    virtual void evaluate (const std::vector<Eigen::Vector2d>& points, const std::vector<int>& atoms,
+                           Eigen::MatrixXd& values) const
+    {
+      Eigen::MatrixXd all;
+      evaluate (points, all);
+      values.resize (all.rows (), static_cast<Eigen::Index> (atoms.size ()));
+      for (std::size_t k = 0; k < atoms.size (); ++k)
+        values.col (static_cast<Eigen::Index> (k)) = all.col (atoms[k]);
+    }
+
     /// sum_k coefficients[k] * atom_{atoms[k]} at (x, y), with analytic derivatives.
     virtual HeightSample evaluateCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                                        double x, double y) const = 0;
