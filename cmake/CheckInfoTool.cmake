@@ -22,7 +22,8 @@ endfunction()
 function(expect_refusal args name)
   execute_process(COMMAND "${TOOL}" ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   string(STRIP "${err}" err)
-  if(rc EQUAL 0 OR err STREQUAL "" OR err MATCHES "\n" OR NOT err MATCHES "${name}")
+  string(FIND "${err}" "${name}" name_at)
+  if(rc EQUAL 0 OR err STREQUAL "" OR err MATCHES "\n" OR name_at EQUAL -1)
     message(FATAL_ERROR "pcl_sparse_info ${args}: expected exit 1 and one error line naming '${name}', "
                         "got exit ${rc}, stderr '${err}'")
   endif()
@@ -32,6 +33,21 @@ expect_output("${off}" "(^|\n)vertices: 4\n" "\nfaces: 4\n" "\nedges: 6\n" "\nge
 expect_output("${off};--json" "^{.*}\n$" "\"vertices\": 4," "\"faces\": 4," "\"components\": 1,"
               "\"boundary_edges\": 0," "\"nonmanifold_edges\": 0," "\"genus\": 0," "\"bbox_diagonal\": 3.464"
               "\"seconds\": ")
+# The JSON parses (string(JSON) needs CMake 3.19) and holds the right values.
+if(NOT CMAKE_VERSION VERSION_LESS 3.19)
+  execute_process(COMMAND "${TOOL}" "${off}" --json OUTPUT_VARIABLE json RESULT_VARIABLE rc)
+  foreach(check "vertices=4" "faces=4" "edges=6" "components=1" "boundary_loops=0" "nonmanifold_vertices=0"
+                "genus=0" "closed=ON" "manifold=ON")
+    string(REPLACE "=" ";" check "${check}")
+    list(GET check 0 key)
+    list(GET check 1 expected)
+    string(JSON value ERROR_VARIABLE json_error GET "${json}" "${key}")
+    if(json_error OR NOT value STREQUAL expected)
+      message(FATAL_ERROR "pcl_sparse_info --json: ${key} is '${value}' (${json_error}), expected ${expected}:\n${json}")
+    endif()
+  endforeach()
+endif()
+
 expect_refusal("${WORK_DIR}/missing.off" "missing.off")
 expect_refusal("${WORK_DIR}" "${WORK_DIR}")
 expect_refusal("${off};--no-such-option" "--no-such-option")
