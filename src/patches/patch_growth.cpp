@@ -56,6 +56,11 @@ namespace pcl_sparse
       const double n = sum.norm ();
       g.vertex_normals[v] = n > 0.0 ? Eigen::Vector3d (sum / n) : Eigen::Vector3d::Zero ();
     }
+    g.edge_lengths.resize (topology.vertex_neighbors.size ());
+#pragma omp parallel for schedule(static)
+    for (int v = 0; v < num_vertices; ++v)
+      for (int i = topology.vertex_neighbor_offsets[v]; i < topology.vertex_neighbor_offsets[v + 1]; ++i)
+        g.edge_lengths[i] = (mesh.vertices[topology.vertex_neighbors[i]] - mesh.vertices[v]).norm ();
     // Sequential sum: the total must not depend on the thread count.
     for (double a : g.face_areas)
       g.total_area += a;
@@ -151,13 +156,14 @@ namespace pcl_sparse
       if (state_[u] == Untouched)
         touched_.push_back (u);
       state_[u] = Accepted;
-      const Eigen::Vector3d& p = mesh_.vertices[u];
-      for (int w : topology_.neighborsOf (u))
+      const int first = topology_.vertex_neighbor_offsets[u], last = topology_.vertex_neighbor_offsets[u + 1];
+      for (int i = first; i < last; ++i)
       {
+        const int w = topology_.vertex_neighbors[i];
         const std::uint8_t st = state_[w];
         if (st == Accepted)
           continue;
-        const double d = distance_[u] + (mesh_.vertices[w] - p).norm ();
+        const double d = distance_[u] + geometry_.edge_lengths[i];
         if (st == Untouched || d < distance_[w])
           push (w, d);
         else if (st == Refused)  // a new accepted neighbour may justify it now (non-stopping growth)
@@ -175,40 +181,18 @@ namespace pcl_sparse
       if (state_[u] != Queued || d > distance_[u])
         continue;
 
-      // Faces u would complete, and the area they add.
+      // One pass over the faces of u: the faces u would complete (patch triangles, and the area they
+      // add) and the candidate justifying faces (cone, and smooth at an accepted corner other than u).
       completed_.clear ();
+      candidates_.clear ();
       double new_area = 0.0, new_projected = 0.0;
-      for (int f : topology_.facesOf (u))
-      {
-        const Eigen::Vector3i& t = mesh_.triangles[f];
-        bool others_accepted = true;
-        for (int k = 0; k < 3; ++k)
-          if (t[k] != u && state_[t[k]] != Accepted)
-            others_accepted = false;
-        if (!others_accepted)
-          continue;
-        const double c = coneCosine (f);
-        if (c < 0.0 || !(smoothAt (f, t[0]) || smoothAt (f, t[1]) || smoothAt (f, t[2])))
-          continue;
-        if (pairwise_cone_ && !pairwiseConeHolds (f, c))
-          continue;
-        if (pairwise_cone_)
-          addPatchNormal (f, c);  // provisional: compared with the next completed faces; undone on refusal
-        completed_.push_back (f);
-        new_area += areas[f];
-        new_projected += areas[f] * c;
-      }
-      const double area_after = area + new_area, projected_after = projected + new_projected;
-
-      // Is there a justifying triangle t (u and an accepted corner w)?
-      bool ok = false;
       for (int f : topology_.facesOf (u))
       {
         const double c = coneCosine (f);
         if (c < 0.0)
           continue;
         const Eigen::Vector3i& t = mesh_.triangles[f];
-        bool smooth = false, complete = true;
+        bool complete = true, smooth = false;
         for (int k = 0; k < 3; ++k)
         {
           const int w = t[k];
@@ -219,20 +203,38 @@ namespace pcl_sparse
           else
             complete = false;
         }
-        if (!smooth)
-          continue;
-        if (pairwise_cone_ && !complete && !pairwiseConeHolds (f, c))
-          continue;
-        if (complete && std::find (completed_.begin (), completed_.end (), f) == completed_.end ())
-          continue;  // complete but not a patch triangle (failed the pairwise cone)
         if (complete)
-          ok = areaConditionHolds (area_after, projected_after);
-        else
-          ok = areaConditionHolds (area_after + areas[f], projected_after + areas[f] * c) &&
-               areaConditionHolds (area_after, projected_after);
-        if (ok)
-          break;
+        {
+          if (!(smooth || smoothAt (f, u)))
+            continue;
+          if (pairwise_cone_ && !pairwiseConeHolds (f, c))
+            continue;
+          if (pairwise_cone_)
+            addPatchNormal (f, c);  // provisional: compared with the next completed faces; undone on refusal
+          completed_.push_back (f);
+          new_area += areas[f];
+          new_projected += areas[f] * c;
+          if (smooth)
+            candidates_.emplace_back (f, -1.0);  // justifies u, already counted in the area
+        }
+        else if (smooth)
+          candidates_.emplace_back (f, c);
       }
+      const double area_after = area + new_area, projected_after = projected + new_projected;
+
+      // Is there a justifying face t? Its area counts in A_p even while t is not complete.
+      bool ok = false;
+      if (areaConditionHolds (area_after, projected_after))
+        for (const auto& [f, c] : candidates_)
+        {
+          if (c < 0.0)
+            ok = true;
+          else
+            ok = areaConditionHolds (area_after + areas[f], projected_after + areas[f] * c) &&
+                 (!pairwise_cone_ || pairwiseConeHolds (f, c));
+          if (ok)
+            break;
+        }
 
       if (!ok)
       {

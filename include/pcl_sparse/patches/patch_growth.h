@@ -33,11 +33,13 @@ namespace pcl_sparse
   ///   face_normals    #F unit normals (zero for degenerate faces)
   ///   face_areas      #F
   ///   vertex_normals  #V unit, area weighted (zero for vertices with no proper face)
+  ///   edge_lengths    length of each 1-ring entry of the topology (CSR, as vertex_neighbors)
   struct PatchGrowthGeometry
   {
     std::vector<Eigen::Vector3d> face_normals;
     std::vector<double> face_areas;
     std::vector<Eigen::Vector3d> vertex_normals;
+    std::vector<double> edge_lengths;  ///< parallel to MeshTopology::vertex_neighbors
     double total_area = 0.0;
   };
 
@@ -85,6 +87,7 @@ namespace pcl_sparse
     std::vector<int> touched_;
     std::vector<std::pair<double, int>> heap_;
     std::vector<int> completed_;  // faces completed by the vertex being tested
+    std::vector<std::pair<int, double>> candidates_;  // its justifying faces (face, n_t . n_s; -1: complete)
     std::vector<Eigen::Vector3d> patch_normals_;  // normals of the patch triangles so far
     std::vector<Eigen::Vector3d> wide_normals_;   // those further than half the cone from n_s
   };
