@@ -92,6 +92,38 @@ TEST (MongeJet, TiltedQuadricUsesTheTrueNormal)
   EXPECT_NEAR (jet.normal.dot (tilt * Eigen::Vector3d::UnitZ ()), 1.0, 1e-6);
 }
 
+TEST (MongeJet, GivenFrameGivesTheSameJetAsTheNormalHint)
+{
+  // Saddle z = (x^2 - y^2) / 2 sampled around the origin; a frame rotated about the normal, and the
+  // normal-hint version, must agree on curvatures and (up to sign) directions.
+  std::vector<Eigen::Vector3d> points;
+  for (int i = -5; i <= 5; ++i)
+    for (int j = -5; j <= 5; ++j)
+    {
+      const double x = 0.02 * i, y = 0.02 * j;
+      points.emplace_back (x, y, 0.5 * (x * x - y * y));
+    }
+  const Eigen::Matrix3d frame = Eigen::AngleAxisd (0.6, Eigen::Vector3d::UnitZ ()).toRotationMatrix ();
+  MongeJet in_frame, hinted;
+  ASSERT_TRUE (fitMongeJetInFrame (points, Eigen::Vector3d::Zero (), frame, in_frame));
+  ASSERT_TRUE (fitMongeJet (points, Eigen::Vector3d::Zero (), Eigen::Vector3d::UnitZ (), hinted));
+  EXPECT_NEAR (in_frame.k1, 1.0, 1e-9);
+  EXPECT_NEAR (in_frame.k2, -1.0, 1e-9);
+  EXPECT_NEAR (std::abs (in_frame.d1.dot (hinted.d1)), 1.0, 1e-9);
+  EXPECT_NEAR (std::abs (in_frame.d1.y ()), 1.0, 1e-9);
+  EXPECT_NEAR (in_frame.normal.z (), 1.0, 1e-12);
+  // Flipping the frame's normal flips the jet's normal and the curvature signs.
+  Eigen::Matrix3d flipped = frame;
+  flipped.col (1) *= -1.0;
+  flipped.col (2) *= -1.0;
+  MongeJet down;
+  ASSERT_TRUE (fitMongeJetInFrame (points, Eigen::Vector3d::Zero (), flipped, down));
+  EXPECT_NEAR (down.k1, 1.0, 1e-9);
+  EXPECT_NEAR (down.k2, -1.0, 1e-9);
+  EXPECT_NEAR (down.normal.z (), -1.0, 1e-12);
+  EXPECT_NEAR (std::abs (down.d1.x ()), 1.0, 1e-9);  // k = +1 is now along x
+}
+
 TEST (VertexCurvature, SphereHasUmbilicCurvatureOneOverR)
 {
   const double r = 2.0;

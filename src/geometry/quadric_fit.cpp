@@ -94,20 +94,28 @@ namespace pcl_sparse
   fitMongeJet (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
                const Eigen::Vector3d& normal_hint, MongeJet& jet)
   {
-    const Eigen::Matrix3d R = frameAroundNormal (normal_hint.normalized ());
+    return fitMongeJetInFrame (points, origin, frameAroundNormal (normal_hint.normalized ()), jet);
+  }
+
+  bool
+  fitMongeJetInFrame (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
+                      const Eigen::Matrix3d& frame, MongeJet& jet)
+  {
+    if (!frame.allFinite ())
+      return false;
     std::vector<Eigen::Vector3d> local;
     local.reserve (points.size ());
     for (const auto& p : points)
-      local.push_back (R.transpose () * (p - origin));
+      local.push_back (frame.transpose () * (p - origin));
     HeightQuadric quadric;
     if (!fitHeightQuadric (local, quadric))
       return false;
     const MongeJet in_frame = mongeJetOfQuadric (quadric);
     jet.k1 = in_frame.k1;
     jet.k2 = in_frame.k2;
-    jet.d1 = R * in_frame.d1;
-    jet.d2 = R * in_frame.d2;
-    jet.normal = R * in_frame.normal;
+    jet.d1 = frame * in_frame.d1;
+    jet.d2 = frame * in_frame.d2;
+    jet.normal = frame * in_frame.normal;
     return true;
   }
 } // namespace pcl_sparse

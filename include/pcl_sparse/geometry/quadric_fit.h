@@ -60,4 +60,11 @@ namespace pcl_sparse
   bool
   fitMongeJet (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
                const Eigen::Vector3d& normal_hint, MongeJet& jet);
+
+  /// As fitMongeJet, in a given orthonormal \a frame (columns: two tangents and the normal the heights
+  /// are measured along, e.g. a seed's frame): the quadric is fitted to frame^T (p - origin) and the jet
+  /// is mapped back to world coordinates; its normal is oriented like frame.col (2).
+  bool
+  fitMongeJetInFrame (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
+                      const Eigen::Matrix3d& frame, MongeJet& jet);
 } // namespace pcl_sparse
