@@ -388,6 +388,11 @@ TEST (IoStl, BinaryEvenWithSolidInItsHeader)
   EXPECT_EQ (mesh.numVertices (), 4u);
   expectTriangles (mesh, {{0, 1, 2}, {0, 2, 3}});
   EXPECT_EQ (mesh.vertices[3], Eigen::Vector3d (0, 1, 0.25));
+  // Padded after the last triangle (some exporters do): still binary, the padding is ignored.
+  writeBytes (path, out + std::string (3, '\0'));
+  const TriangleMesh padded = loadTriangleMesh (path);
+  EXPECT_EQ (padded.numVertices (), 4u);
+  EXPECT_EQ (padded.numTriangles (), 2u);
 }
 
 // ---- PCL types and point clouds ----------------------------------------------------------------------------

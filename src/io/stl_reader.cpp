@@ -187,7 +187,9 @@ namespace pcl_sparse
       while (start < data.size () && (TextCursor::isBlank (data[start]) || data[start] == '\n'))
         ++start;
       const bool starts_solid = data.compare (start, 5, "solid") == 0;
-      if (starts_solid && !binary_size)
+      // Binary STL almost always has NUL bytes early (counts, small floats); ascii never has.
+      const bool looks_text = !std::memchr (data.data (), '\0', std::min<std::size_t> (data.size (), 4096));
+      if (starts_solid && !binary_size && looks_text)
         readAsciiStl (data, path, mesh);
       else if (data.size () < 84)
         throw Error (path + ": not an STL file (too short for binary STL and not ascii STL)");
