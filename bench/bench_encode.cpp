@@ -1,15 +1,19 @@
 /// bench_encode: the paper-style table (N_V, M, rho, nnz, RMSE, RMSE / diag, CR, seconds) of the sparse
 /// surface encoder for meshes at several rho, as Markdown on stdout.
 ///
-///   bench_encode [-rho R1,R2,...] [-threads N] [-repeat K] MESH...
+///   bench_encode [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-threads N] [-repeat K] [-header 0|1] MESH...
+///   bench_encode -evaluate      (throughput of CosineDictionary::evaluateCode / evaluateCodeValue, one thread)
 ///
 /// Seconds are the encoder's wall clock (patches + coding; load and statistics excluded), best of K runs.
 
+#include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 
 #include <algorithm>
+#include <chrono>
+#include <random>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -19,11 +23,55 @@
 
 using namespace pcl_sparse;
 
+namespace
+{
+  /// Evaluations per second of a random 10-atom code at random points (value + gradient + Hessian, and
+  /// value only).
+  void
+  benchEvaluate ()
+  {
+    const CosineDictionary dictionary (12);
+    std::mt19937 rng (1);
+    std::uniform_real_distribution<double> u (-1.0, 1.0);
+    std::uniform_int_distribution<int> atom (0, 143);
+    std::vector<int> atoms;
+    std::vector<double> coefficients;
+    for (int k = 0; k < 10; ++k)
+    {
+      atoms.push_back (atom (rng));
+      coefficients.push_back (u (rng));
+    }
+    std::vector<Eigen::Vector2d> points (1 << 20);
+    for (Eigen::Vector2d& p : points)
+      p = Eigen::Vector2d (u (rng), u (rng));
+    for (int mode = 0; mode < 2; ++mode)
+    {
+      double sink = 0.0;
+      const auto start = std::chrono::steady_clock::now ();
+      for (int repeat = 0; repeat < 8; ++repeat)
+        for (const Eigen::Vector2d& p : points)
+          sink += mode == 0 ? dictionary.evaluateCode (atoms, coefficients, p.x (), p.y ()).hessian (0, 1)
+                            : dictionary.evaluateCodeValue (atoms, coefficients, p.x (), p.y ());
+      const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+      std::printf ("%s: %.1f million evaluations / s (10-atom code, one thread; checksum %.3g)\n",
+                   mode == 0 ? "evaluateCode (value, gradient, Hessian)" : "evaluateCodeValue",
+                   8.0 * points.size () / seconds / 1e6, sink);
+    }
+  }
+} // namespace
+
 int
 main (int argc, char** argv)
 {
+  if (argc == 2 && std::string (argv[1]) == "-evaluate")
+  {
+    benchEvaluate ();
+    return 0;
+  }
   std::vector<double> rhos = {0.005, 0.001, 0.0002};
   int threads = 0, repeat = 1;
+  bool header = true;
+  SparseSurfaceEncoderOptions base;
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i)
   {
@@ -38,14 +86,25 @@ main (int argc, char** argv)
     }
     else if (arg == "-threads" && i + 1 < argc)
       threads = std::atoi (argv[++i]);
+    else if (arg == "-f" && i + 1 < argc)
+      base.coding.nyquist_factor = std::atof (argv[++i]);
+    else if (arg == "-L" && i + 1 < argc)
+      base.coding.max_atoms = std::atoi (argv[++i]);
+    else if (arg == "-min-samples" && i + 1 < argc)
+      base.coding.min_samples = std::atoi (argv[++i]);
+    else if (arg == "-header" && i + 1 < argc)
+      header = std::atoi (argv[++i]) != 0;
     else if (arg == "-repeat" && i + 1 < argc)
       repeat = std::max (1, std::atoi (argv[++i]));
     else
       meshes.push_back (arg);
   }
 
-  std::printf ("| mesh | N_V | rho | M | nnz | RMSE | RMSE/diag | CR | uncovered | patches s | coding s | total s |\n");
-  std::printf ("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  if (header)
+  {
+    std::printf ("| mesh | N_V | rho | f | L | m_min | M | nnz | RMSE | RMSE/diag | CR | uncovered | patches s | coding s | total s |\n");
+    std::printf ("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  }
   for (const std::string& path : meshes)
   {
     TriangleMesh::ConstPtr mesh;
@@ -61,7 +120,7 @@ main (int argc, char** argv)
     const std::string name = std::filesystem::path (path).filename ().string ();
     for (double rho : rhos)
     {
-      SparseSurfaceEncoderOptions options;
+      SparseSurfaceEncoderOptions options = base;
       options.patches.rho = rho;
       SparseSurfaceEncoder encoder;
       encoder.setInputMesh (mesh);
@@ -85,8 +144,9 @@ main (int argc, char** argv)
         continue;
       }
       const ModelStatistics s = model.statistics (mesh->vertices);
-      std::printf ("| %s | %zu | %g | %zu | %zu | %.3e | %.2e | %.3f | %zu | %.3f | %.3f | %.3f |\n", name.c_str (),
-                   s.num_vertices, rho, s.num_patches, s.num_nonzeros, s.rmse, s.rmse_over_diagonal,
+      std::printf ("| %s | %zu | %g | %g | %d | %d | %zu | %zu | %.3e | %.2e | %.3f | %zu | %.3f | %.3f | %.3f |\n",
+                   name.c_str (), s.num_vertices, rho, options.coding.nyquist_factor, options.coding.max_atoms,
+                   options.coding.min_samples, s.num_patches, s.num_nonzeros, s.rmse, s.rmse_over_diagonal,
                    s.compression_ratio, s.uncovered, best.patches, best.coding, best.total);
       std::fflush (stdout);
     }
