@@ -223,6 +223,13 @@ TEST (IoBadInput, LyingHeadersAreRefusedBeforeAllocating)
   put (ply, std::int32_t (0));
   expectFileRefused (dir, "lie_list.ply", ply, "truncated");
   expectFileRefused (dir, "negative.off", "OFF\n-3 1 0\n", "bad vertex count");
+  // An element without properties and a huge count: nothing to read, no hang; then the faces are missing.
+  for (const char* format : {"ascii", "binary_little_endian"})
+    expectFileRefused (dir, std::string ("empty_element_") + format + ".ply",
+                       std::string ("ply\nformat ") + format +
+                           " 1.0\nelement nothing 999999999999\nelement vertex 1\nproperty float x\nproperty float y\n"
+                           "property float z\nend_header\n",
+                       "truncated");
 }
 
 TEST (IoBadInput, FaceIndexOutOfRange)

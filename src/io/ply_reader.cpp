@@ -305,6 +305,10 @@ namespace pcl_sparse
             if (is_face)
               mesh.triangles.reserve (mesh.triangles.size () + static_cast<std::size_t> (element.count));
 
+            // An element without properties has nothing in the body, whatever its count says (and looping
+            // over a count of 1e12 would hang).
+            if (element.properties.empty ())
+              continue;
             const Target target{is_vertex, is_face, x, y, z, indices};
             switch (layout_.format)
             {
