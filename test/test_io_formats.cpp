@@ -474,6 +474,23 @@ TEST (IoCloud, PointNormalCloudRoundTripsThroughPcdAndPly)
   EXPECT_THROW (savePointNormalCloud (dir.file ("c.txt"), cloud), Error);
 }
 
+TEST (IoCloud, PcdWithDoubleFieldsAndExtraFields)
+{
+  // pcl::fromPCLPointCloud2 would leave double x/y/z at zero: loadPointCloud reads them at their own type.
+  TempDir dir;
+  const std::string path = dir.file ("double.pcd");
+  writeBytes (path, "# .PCD v0.7\nVERSION 0.7\nFIELDS intensity x y z\nSIZE 4 8 8 8\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                    "WIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n"
+                    "0.5 1.25 -2 3e2\n0.5 0.1 0.2 0.3\n");
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  loadPointCloud (path, cloud);
+  ASSERT_EQ (cloud.size (), 2u);
+  EXPECT_EQ (cloud[0].x, 1.25f);
+  EXPECT_EQ (cloud[0].y, -2.0f);
+  EXPECT_EQ (cloud[0].z, 300.0f);
+  EXPECT_EQ (cloud[1].z, 0.3f);
+}
+
 TEST (IoCloud, PlyWithoutFacesIsACloudNotAMesh)
 {
   TempDir dir;

@@ -2,11 +2,11 @@
 
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/polygon_mesh_conversion.h>
 
 #include "mesh_readers.h"
 
 #include <pcl/console/print.h>
-#include <pcl/conversions.h>
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
@@ -148,15 +148,20 @@ namespace pcl_sparse
         if (result < 0)
           throw Error (path + ": not a readable PCD file (bad header or truncated data)");
       }
-      int found = 0;
-      for (const pcl::PCLPointField& field : blob.fields)
-        found += field.name == "x" || field.name == "y" || field.name == "z";
-      if (found != 3)
-        throw Error (path + ": the PCD file has no x, y, z fields");
-      if (static_cast<std::size_t> (blob.row_step) * blob.height > blob.data.size ())
-        throw Error (path + ": truncated PCD data");
-      QuietPclConsole quiet;
-      pcl::fromPCLPointCloud2 (blob, cloud);
+      // Read x, y, z at their own type: pcl::fromPCLPointCloud2 silently leaves fields whose type differs
+      // from PointXYZ's (e.g. double x) at zero.
+      const std::vector<Eigen::Vector3d> positions = positionsFromCloud (blob, path);
+      cloud.clear ();
+      cloud.resize (positions.size ());
+      bool dense = true;
+      for (std::size_t i = 0; i < positions.size (); ++i)
+      {
+        cloud[i].getVector3fMap () = positions[i].cast<float> ();
+        dense = dense && cloud[i].getVector3fMap ().allFinite ();
+      }
+      cloud.width = blob.width;
+      cloud.height = blob.height;
+      cloud.is_dense = dense;
     }
   } // namespace
 

@@ -111,7 +111,7 @@ namespace pcl_sparse
         {
           const Eigen::Vector3d& v = mesh.vertices[i];
           char text[128];
-          std::snprintf (text, sizeof (text), "vertex %zu has a non-finite coordinate (%g %g %g)", i, v.x (), v.y (),
+          std::snprintf (text, sizeof (text), "vertex %zu has a non-finite coordinate (%g %g %g; vertices counted from 0)", i, v.x (), v.y (),
                          v.z ());
           throw Error (path + ": " + text);
         }

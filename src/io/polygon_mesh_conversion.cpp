@@ -76,10 +76,9 @@ namespace pcl_sparse
     return polygon_mesh;
   }
 
-  TriangleMesh
-  fromPolygonMesh (const pcl::PolygonMesh& polygon_mesh)
+  std::vector<Eigen::Vector3d>
+  positionsFromCloud (const pcl::PCLPointCloud2& cloud, const std::string& what)
   {
-    const pcl::PCLPointCloud2& cloud = polygon_mesh.cloud;
     const pcl::PCLPointField* fields[3] = {nullptr, nullptr, nullptr};
     for (const pcl::PCLPointField& field : cloud.fields)
       for (int k = 0; k < 3; ++k)
@@ -88,29 +87,36 @@ namespace pcl_sparse
     for (int k = 0; k < 3; ++k)
     {
       if (!fields[k])
-        throw Error (std::string ("PolygonMesh: the cloud has no '") + static_cast<char> ('x' + k) + "' field");
+        throw Error (what + ": the cloud has no '" + static_cast<char> ('x' + k) + "' field");
       const std::size_t size = fieldSize (fields[k]->datatype);
       if (size == 0 || fields[k]->offset + size > cloud.point_step)
-        throw Error (std::string ("PolygonMesh: bad '") + static_cast<char> ('x' + k) + "' field");
+        throw Error (what + ": bad '" + static_cast<char> ('x' + k) + "' field");
     }
-    const std::size_t num_points = static_cast<std::size_t> (cloud.width) * cloud.height;
     if (cloud.height > 0 &&
         (static_cast<std::size_t> (cloud.row_step) * (cloud.height - 1) + static_cast<std::size_t> (cloud.point_step) * cloud.width >
              cloud.data.size () ||
          static_cast<std::size_t> (cloud.point_step) * cloud.width > cloud.row_step))
-      throw Error ("PolygonMesh: the cloud data is shorter than width, height and row_step say");
+      throw Error (what + ": the cloud data is shorter than width, height and row_step say");
 
-    TriangleMesh mesh;
-    mesh.vertices.resize (num_points);
+    std::vector<Eigen::Vector3d> positions (static_cast<std::size_t> (cloud.width) * cloud.height);
     for (std::uint32_t row = 0; row < cloud.height; ++row)
       for (std::uint32_t col = 0; col < cloud.width; ++col)
       {
         const std::uint8_t* point = cloud.data.data () + static_cast<std::size_t> (row) * cloud.row_step +
                                     static_cast<std::size_t> (col) * cloud.point_step;
-        Eigen::Vector3d& v = mesh.vertices[static_cast<std::size_t> (row) * cloud.width + col];
+        Eigen::Vector3d& v = positions[static_cast<std::size_t> (row) * cloud.width + col];
         for (int k = 0; k < 3; ++k)
           v[k] = readFieldValue (point + fields[k]->offset, fields[k]->datatype);
       }
+    return positions;
+  }
+
+  TriangleMesh
+  fromPolygonMesh (const pcl::PolygonMesh& polygon_mesh)
+  {
+    TriangleMesh mesh;
+    mesh.vertices = positionsFromCloud (polygon_mesh.cloud);
+    const std::size_t num_points = mesh.vertices.size ();
 
     mesh.triangles.reserve (polygon_mesh.polygons.size ());
     for (std::size_t f = 0; f < polygon_mesh.polygons.size (); ++f)

@@ -8,6 +8,7 @@
 #include <pcl/PolygonMesh.h>
 
 #include <string>
+#include <vector>
 
 namespace pcl_sparse
 {
@@ -22,6 +23,12 @@ namespace pcl_sparse
   /// fewer than 3 vertices or an index is out of range.
   TriangleMesh
   fromPolygonMesh (const pcl::PolygonMesh& polygon_mesh);
+
+  /// The x, y, z fields of every point of \a cloud (any numeric field type, read at its own precision), in
+  /// storage order. Throws pcl_sparse::Error naming \a what if a field is missing or the data is shorter than
+  /// width, height and row_step say.
+  std::vector<Eigen::Vector3d>
+  positionsFromCloud (const pcl::PCLPointCloud2& cloud, const std::string& what = "PolygonMesh");
 
   /// loadTriangleMesh (path, options) followed by toPolygonMesh: the same formats and the same errors.
   void
