@@ -160,6 +160,39 @@ TEST (PatchSampling, CubePatchesStayOnOneFace)
       EXPECT_NEAR (normals[f].dot (normals[p.triangles[0]]), 1.0, 1e-9);
 }
 
+TEST (PatchSampling, CoveragePassCoversCreaseOnlyMeshes)
+{
+  // A cube with one cell per face: every vertex is a corner whose normal is 54.7 degrees from all its
+  // faces, so the method's growth never leaves its seed. The coverage pass grows from faces instead.
+  const TriangleMesh cube = makeCube (1);
+  FeatureAwarePatchSampling sampling;
+  sampling.setInputMesh (std::make_shared<TriangleMesh> (cube));
+  sampling.setResponses (std::vector<double> (cube.vertices.size (), 0.0));
+  std::vector<Patch> patches;
+  sampling.compute (patches);
+  const PatchOptions options;
+  expectValidPartition (cube, patches, options, "cube (1 cell per face)");
+  EXPECT_EQ (sampling.getNumCoveragePatches (), patches.size ());
+  EXPECT_LE (patches.size (), 4u);
+  const auto normals = computePatchGrowthGeometry (cube, buildMeshTopology (cube)).face_normals;
+  for (const Patch& p : patches)
+  {
+    EXPECT_GE (p.seed_face, 0);
+    EXPECT_EQ (p.size (), 4u);  // one square face: two coplanar triangles
+    ASSERT_EQ (p.triangles.size (), 2u);
+    EXPECT_NEAR (normals[p.triangles[0]].dot (normals[p.triangles[1]]), 1.0, 1e-12);
+    EXPECT_NEAR (p.frame.col (2).dot (normals[p.seed_face]), 1.0, 1e-9);
+  }
+
+  // The authors' behaviour (no coverage pass) leaves them all uncovered.
+  PatchOptions authors;
+  authors.cover_all_vertices = false;
+  sampling.setOptions (authors);
+  sampling.compute (patches);
+  EXPECT_EQ (patches.size (), 0u);
+  EXPECT_EQ (sampling.getUncoveredVertices ().size (), 8u);
+}
+
 TEST (PatchSampling, PatchCountFallsAsRhoGrows)
 {
   // Bumps of curvature radius ~0.1 on a 2 x 2 square: flat enough for eta only within a few rings,

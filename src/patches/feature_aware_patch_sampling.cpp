@@ -196,8 +196,18 @@ namespace pcl_sparse
     }
     const std::size_t num_sampled = patches.size ();
 
-    // Coverage pass: a vertex the loop left uncovered seeds its own patch, whatever its size.
+    // Coverage pass (ours): a vertex the loop left uncovered seeds its own patch, whatever its size. Such
+    // vertices are mostly on creases or in strips of faces between creases, where no vertex normal is
+    // within delta of the faces, so the method's growth from them stops at once. Growth from each of
+    // their faces, with smooth variation between adjacent faces (growFromFace), covers whole strips: the
+    // variant covering most uncovered vertices is kept (ties: the larger patch, then the method's growth,
+    // then the lowest face).
     if (options_.cover_all_vertices)
+    {
+      Patch trial;
+      auto newlyCovered = [&] (const Patch& p) {
+        return std::count_if (p.vertices.begin (), p.vertices.end (), [&] (int u) { return covered[u] == 0; });
+      };
       for (int v : order)
       {
         if (num_covered >= target)
@@ -205,8 +215,22 @@ namespace pcl_sparse
         if (covered[v] || !referenced[v])
           continue;
         grower.grow (v, patch);
+        long best = newlyCovered (patch);
+        for (int f : topology.facesOf (v))
+        {
+          if (!(geometry.face_areas[f] > 0.0))
+            continue;
+          grower.growFromFace (v, f, trial);
+          const long n = newlyCovered (trial);
+          if (n > best || (n == best && trial.size () > patch.size ()))
+          {
+            best = n;
+            std::swap (patch, trial);
+          }
+        }
         keep (patch);
       }
+    }
     if (progress_)
       progress_ ("patches", 1.0);
     for (int v = 0; v < num_vertices; ++v)
@@ -238,7 +262,9 @@ namespace pcl_sparse
     {
       Patch& p = patches[i];
       const double guard = meanEdgeLength (mesh, topology, p.seed);
-      frame_kinds_[i] = computePatchFrame (mesh, geometry.vertex_normals[p.seed], guard > 0.0 ? guard : global_edge, p);
+      const Eigen::Vector3d& seed_normal =
+        p.seed_face >= 0 ? geometry.face_normals[p.seed_face] : geometry.vertex_normals[p.seed];
+      frame_kinds_[i] = computePatchFrame (mesh, seed_normal, guard > 0.0 ? guard : global_edge, p);
     }
 
     // Back to the input's vertex indices; a patch holding two copies of one vertex keeps the first.

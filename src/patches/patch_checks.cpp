@@ -51,6 +51,12 @@ namespace pcl_sparse
         if (mesh_.triangles[patch.triangles[0]][k] == patch.seed)
           ns = geometry_.vertex_normals[t[k]];
     }
+    if (patch.seed_face >= 0)
+    {
+      if (std::find (patch.triangles.begin (), patch.triangles.end (), patch.seed_face) == patch.triangles.end ())
+        return "seed face not in the patch";
+      ns = geometry_.face_normals[patch.seed_face];
+    }
     if (!ns.isZero () && !(N.dot (ns) > 0.0))
       return "frame normal opposes the seed normal";
     for (std::size_t i = 0; i < patch.vertices.size (); ++i)
@@ -80,13 +86,44 @@ namespace pcl_sparse
         return "triangle " + std::to_string (f) + " flips on the seed's tangent plane";
       if (!(nt.dot (ns) > cos_cone))
         return "triangle " + std::to_string (f) + " outside the normal cone";
-      bool smooth = false;
+      bool smooth = patch.seed_face >= 0;  // face-grown: checked below, between adjacent faces
       for (int k = 0; k < 3; ++k)
         smooth = smooth || nt.dot (geometry_.vertex_normals[tg[k]]) > cos_delta;
       if (!smooth)
         return "triangle " + std::to_string (f) + " fails smooth variation";
       area += a;
       projected += a * nt.dot (ns);
+    }
+    if (patch.seed_face >= 0)
+    {
+      // Every triangle is reached from the seed face through adjacent patch triangles (across manifold
+      // edges) whose normals differ by less than delta.
+      std::vector<int> tris = patch.triangles, stack = {patch.seed_face};
+      std::sort (tris.begin (), tris.end ());
+      std::vector<char> reached (tris.size (), 0);
+      reached[std::lower_bound (tris.begin (), tris.end (), patch.seed_face) - tris.begin ()] = 1;
+      std::size_t count = 1;
+      while (!stack.empty ())
+      {
+        const int f = stack.back ();
+        stack.pop_back ();
+        for (int k = 0; k < 3; ++k)
+        {
+          const int g = topology_.face_neighbors[f][k];
+          if (g < 0)
+            continue;
+          const auto it = std::lower_bound (tris.begin (), tris.end (), g);
+          if (it == tris.end () || *it != g || reached[it - tris.begin ()])
+            continue;
+          if (!(geometry_.face_normals[f].dot (geometry_.face_normals[g]) > cos_delta))
+            continue;
+          reached[it - tris.begin ()] = 1;
+          ++count;
+          stack.push_back (g);
+        }
+      }
+      if (count != tris.size ())
+        return "face-grown patch: a triangle is not reached from the seed face by smooth steps";
     }
     if (options_.pairwise_cone)
     {

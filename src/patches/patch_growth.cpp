@@ -104,6 +104,7 @@ namespace pcl_sparse
   {
     reset ();
     patch.seed = seed;
+    patch.seed_face = -1;
     patch.origin = mesh_.vertices[seed];
     patch.vertices.assign (1, seed);
     patch.triangles.clear ();
@@ -257,6 +258,114 @@ namespace pcl_sparse
       const Eigen::Vector3d r = mesh_.vertices[u] - s;
       growth_radius = std::max (growth_radius, (r - r.dot (ns) * ns).norm ());
       accept (u);
+    }
+    return growth_radius;
+  }
+
+  double
+  PatchGrower::growFromFace (int seed, int seed_face, Patch& patch)
+  {
+    reset ();
+    for (int f : touched_faces_)
+      face_state_[f] = Untouched;
+    touched_faces_.clear ();
+    if (face_state_.empty ())
+    {
+      face_state_.assign (mesh_.triangles.size (), Untouched);
+      face_distance_.assign (mesh_.triangles.size (), 0.0);
+    }
+    patch.seed = seed;
+    patch.seed_face = seed_face;
+    patch.origin = mesh_.vertices[seed];
+    patch.vertices.assign (1, seed);
+    patch.triangles.clear ();
+    patch.local.clear ();
+    const auto& normals = geometry_.face_normals;
+    const auto& areas = geometry_.face_areas;
+    const Eigen::Vector3d ns = normals[seed_face];
+    if (!(areas[seed_face] > 0.0) || !patch.origin.allFinite ())
+      return 0.0;
+    state_[seed] = Accepted;  // vertex membership, reset by the next growth
+    touched_.push_back (seed);
+
+    auto centroid = [&] (int f) {
+      const Eigen::Vector3i& t = mesh_.triangles[f];
+      return Eigen::Vector3d ((mesh_.vertices[t[0]] + mesh_.vertices[t[1]] + mesh_.vertices[t[2]]) / 3.0);
+    };
+    patch_normals_.clear ();
+    wide_normals_.clear ();
+    double area = 0.0, projected = 0.0, growth_radius = 0.0;
+    auto accept = [&] (int f, double c) {
+      face_state_[f] = Accepted;
+      patch.triangles.push_back (f);
+      area += areas[f];
+      projected += areas[f] * c;
+      patch_normals_.push_back (normals[f]);
+      if (c < cos_half_cone_)
+        wide_normals_.push_back (normals[f]);
+      for (int k = 0; k < 3; ++k)
+      {
+        const int u = mesh_.triangles[f][k];
+        if (state_[u] != Accepted)
+        {
+          state_[u] = Accepted;
+          touched_.push_back (u);
+          patch.vertices.push_back (u);
+          const Eigen::Vector3d r = mesh_.vertices[u] - patch.origin;
+          growth_radius = std::max (growth_radius, (r - r.dot (ns) * ns).norm ());
+        }
+      }
+      const Eigen::Vector3d cf = centroid (f);
+      for (int k = 0; k < 3; ++k)
+      {
+        const int g = topology_.face_neighbors[f][k];
+        if (g < 0 || face_state_[g] == Accepted)
+          continue;
+        const double d = face_distance_[f] + (centroid (g) - cf).norm ();
+        if (face_state_[g] == Untouched || d < face_distance_[g] || face_state_[g] == Refused)
+        {
+          if (face_state_[g] == Untouched)
+            touched_faces_.push_back (g);
+          face_distance_[g] = face_state_[g] == Refused ? std::min (d, face_distance_[g]) : d;
+          face_state_[g] = Queued;
+          heap_.emplace_back (face_distance_[g], g);
+          std::push_heap (heap_.begin (), heap_.end (), HeapGreater ());
+        }
+      }
+    };
+
+    touched_faces_.push_back (seed_face);
+    face_distance_[seed_face] = 0.0;
+    accept (seed_face, 1.0);
+    while (!heap_.empty ())
+    {
+      std::pop_heap (heap_.begin (), heap_.end (), HeapGreater ());
+      const auto [d, g] = heap_.back ();
+      heap_.pop_back ();
+      if (face_state_[g] != Queued || d > face_distance_[g])
+        continue;
+      bool ok = false;
+      const double c = areas[g] > 0.0 ? normals[g].dot (ns) : -1.0;
+      if (c > cos_cone_ && c > kMinProjectionCosine && areaConditionHolds (area + areas[g], projected + areas[g] * c))
+      {
+        for (int k = 0; k < 3 && !ok; ++k)
+        {
+          const int h = topology_.face_neighbors[g][k];
+          ok = h >= 0 && face_state_[h] == Accepted && normals[g].dot (normals[h]) > cos_delta_;
+        }
+        if (ok && pairwise_cone_)
+          for (const auto& m : (c >= cos_half_cone_ ? wide_normals_ : patch_normals_))
+            if (!(normals[g].dot (m) > cos_cone_))
+              ok = false;
+      }
+      if (!ok)
+      {
+        if (stop_at_first_refusal_)
+          break;
+        face_state_[g] = Refused;
+        continue;
+      }
+      accept (g, c);
     }
     return growth_radius;
   }

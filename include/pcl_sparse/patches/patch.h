@@ -12,6 +12,10 @@ namespace pcl_sparse
   struct Patch
   {
     int seed = -1;                                      ///< seed vertex index
+    /// -1 for patches grown by the method (tangent plane of the seed's vertex normal). Coverage patches
+    /// grown from a face (FeatureAwarePatchSampling's coverage pass, growFromFace) hold that face here:
+    /// its normal stands for the seed normal, and smooth variation is measured between adjacent faces.
+    int seed_face = -1;
     std::vector<int> vertices;                          ///< vertex indices, seed first, in growth order
     std::vector<int> triangles;                         ///< faces whose three corners are all in the patch
     Eigen::Vector3d origin = Eigen::Vector3d::Zero ();  ///< s: the seed's position

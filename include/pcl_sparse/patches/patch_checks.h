@@ -29,6 +29,8 @@ namespace pcl_sparse
     /// the frame's tangent plane and on the seed's, angle(n_t, n_s) < cone_angle, and
     /// angle(n_t, n_w) < delta for some corner w;
     /// any two triangles differ by less than cone_angle (when options.pairwise_cone); A_p / A <= rho or A_p / A_p^proj <= eta.
+    /// Face-grown coverage patches (seed_face >= 0) use n_{seed_face} for n_s, and smooth variation means
+    /// every triangle is reached from the seed face through adjacent patch triangles less than delta apart.
     /// Otherwise a one-line description of the first violation.
     std::string check (const Patch& patch) const;
 

@@ -65,6 +65,17 @@ namespace pcl_sparse
     double
     grow (int seed, Patch& patch);
 
+    /// Coverage growth (ours) for vertices the method cannot cover: creases and corners whose vertex
+    /// normal is more than delta from every incident face, strips of faces between two creases. Grows
+    /// over faces from \a seed_face (a face of \a seed), by increasing centroid distance along manifold
+    /// edges: a face g joins if it is adjacent to a joined face h with angle(n_g, n_h) < delta, and the
+    /// cone (against n_{seed_face}), no-flip and area conditions hold as in grow (). Stops at the first
+    /// refused face when stop_at_first_refusal. Patch vertices are the corners of the joined faces (seed
+    /// first), patch triangles the joined faces; sets patch.seed_face.
+    ///   returns  the growth radius in the tangent plane of n_{seed_face}
+    double
+    growFromFace (int seed, int seed_face, Patch& patch);
+
   private:
     enum : std::uint8_t { Untouched = 0, Queued = 1, Accepted = 2, Refused = 3 };
 
@@ -90,5 +101,8 @@ namespace pcl_sparse
     std::vector<std::pair<int, double>> candidates_;  // its justifying faces (face, n_t . n_s; -1: complete)
     std::vector<Eigen::Vector3d> patch_normals_;  // normals of the patch triangles so far
     std::vector<Eigen::Vector3d> wide_normals_;   // those further than half the cone from n_s
+    std::vector<std::uint8_t> face_state_;        // face growth scratch (sized on first use)
+    std::vector<double> face_distance_;
+    std::vector<int> touched_faces_;
   };
 } // namespace pcl_sparse
