@@ -45,6 +45,7 @@ TEST (PatchSamples, SpacingOfRegularGrid)
   const MeshTopology topology = buildMeshTopology (mesh);
   const Patch patch = wholeMeshPatch (mesh, 2.0);
   const double mu = patchSampleSpacing (patch, mesh, topology);
+  EXPECT_DOUBLE_EQ (patchSampleSpacing (patch, meanRingEdgeLengths (mesh, topology)), mu);
   EXPECT_GT (mu, 0.1 * 0.99);
   EXPECT_LT (mu, 0.1 * std::sqrt (2.0) * 1.01);
 }
@@ -118,7 +119,7 @@ TEST (PatchCoder, CodesAParaboloidPatch)
   const CosineDictionary dictionary (12);
   SparseCodingOptions options;
   PatchCodingInfo info;
-  const PatchCode code = codePatch (patch, 0, mesh, topology, dictionary, options, &info);
+  const PatchCode code = codePatch (patch, 0, mesh, meanRingEdgeLengths (mesh, topology), dictionary, options, &info);
   EXPECT_EQ (info.num_samples, 81);
   EXPECT_LE (code.atoms.size (), 12u);
   EXPECT_EQ (code.atoms.size (), code.coefficients.size ());
@@ -132,9 +133,9 @@ TEST (PatchCoder, CodesAParaboloidPatch)
   // Small patch: extra samples up to m_min.
   const TriangleMesh small = makeHeightFieldGrid (2, 2, 1.0, 1.0, even);
   const MeshTopology small_topology = buildMeshTopology (small);
-  codePatch (wholeMeshPatch (small, 1.5), 3, small, small_topology, dictionary, options, &info);
+  codePatch (wholeMeshPatch (small, 1.5), 3, small, meanRingEdgeLengths (small, small_topology), dictionary, options, &info);
   EXPECT_EQ (info.num_samples, 64);
   options.min_samples = 128;
-  codePatch (wholeMeshPatch (small, 1.5), 3, small, small_topology, dictionary, options, &info);
+  codePatch (wholeMeshPatch (small, 1.5), 3, small, meanRingEdgeLengths (small, small_topology), dictionary, options, &info);
   EXPECT_EQ (info.num_samples, 128);
 }

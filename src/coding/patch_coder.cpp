@@ -6,8 +6,8 @@
 namespace pcl_sparse
 {
   PatchCode
-  codePatch (const Patch& input_patch, std::size_t patch_index, const TriangleMesh& mesh, const MeshTopology& topology,
-             const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info)
+  codePatch (const Patch& input_patch, std::size_t patch_index, const TriangleMesh& mesh,
+             const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info)
   {
     // A support scale s > 1 is the same patch with radius s r_P (local coordinates divided by s).
     Patch scaled;
@@ -45,7 +45,7 @@ namespace pcl_sparse
         heights.push_back (p.z ());
       }
 
-    const double spacing = patchSampleSpacing (patch, mesh, topology);
+    const double spacing = patchSampleSpacing (patch, mean_ring_edge_lengths);
     const std::vector<char> allowed =
         nyquistAllowedAtoms (basis, spacing, options.nyquist_factor, options.nyquist_rule);
 

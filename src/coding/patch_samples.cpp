@@ -52,6 +52,41 @@ namespace pcl_sparse
     return median / patch.radius;
   }
 
+  std::vector<double>
+  meanRingEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology)
+  {
+    std::vector<double> lengths (mesh.vertices.size (), 0.0);
+    for (std::size_t v = 0; v < lengths.size () && v < topology.numVertices (); ++v)
+    {
+      const IndexRange ring = topology.neighborsOf (static_cast<int> (v));
+      if (ring.size () == 0)
+        continue;
+      double sum = 0.0;
+      for (int u : ring)
+        sum += (mesh.vertices[u] - mesh.vertices[v]).norm ();
+      lengths[v] = sum / ring.size ();
+    }
+    return lengths;
+  }
+
+  double
+  patchSampleSpacing (const Patch& patch, const std::vector<double>& mean_ring_edge_lengths)
+  {
+    std::vector<double> means;
+    means.reserve (patch.vertices.size ());
+    for (int v : patch.vertices)
+      if (v >= 0 && static_cast<std::size_t> (v) < mean_ring_edge_lengths.size () && mean_ring_edge_lengths[v] > 0.0)
+        means.push_back (mean_ring_edge_lengths[v]);
+    if (means.empty () || !(patch.radius > 0.0))
+      return 0.0;
+    const std::size_t half = means.size () / 2;
+    std::nth_element (means.begin (), means.begin () + half, means.end ());
+    double median = means[half];
+    if (means.size () % 2 == 0)
+      median = 0.5 * (median + *std::max_element (means.begin (), means.begin () + half));
+    return median / patch.radius;
+  }
+
   std::vector<Eigen::Vector3d>
   drawPatchSurfaceSamples (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed)
   {

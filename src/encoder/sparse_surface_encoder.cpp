@@ -1,4 +1,5 @@
 #include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/coding/patch_samples.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -79,7 +80,7 @@ namespace pcl_sparse
 
     // Steps 7-9: code every patch into its own slot.
     const auto coding_start = std::chrono::steady_clock::now ();
-    const MeshTopology topology = buildMeshTopology (mesh);
+    const std::vector<double> ring_lengths = meanRingEdgeLengths (mesh, buildMeshTopology (mesh));
     const long num_patches = static_cast<long> (patches_.size ());
     std::vector<PatchCode> codes (patches_.size ());
     coding_info_.assign (patches_.size (), PatchCodingInfo ());
@@ -88,7 +89,7 @@ namespace pcl_sparse
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
     for (long p = 0; p < num_patches; ++p)
     {
-      codes[p] = codePatch (patches_[p], static_cast<std::size_t> (p), mesh, topology, *basis, options_.coding,
+      codes[p] = codePatch (patches_[p], static_cast<std::size_t> (p), mesh, ring_lengths, *basis, options_.coding,
                             &coding_info_[p]);
       const long finished = ++done;
       if (progress_ && omp_get_thread_num () == 0 && finished % 64 == 0)

@@ -5,6 +5,8 @@
 
 #include <pcl_sparse/coding/surface_basis.h>
 
+#include <cstdint>
+
 namespace pcl_sparse
 {
   /// Atom index = i * n + j for frequencies (i, j): atom 0 is the constant, atom j varies along y only,
@@ -53,6 +55,11 @@ namespace pcl_sparse
                               double x, double y) const override;
 
   private:
+    HeightSample evaluateLongCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+                                   double x, double y) const;
+
     int n_;
+    std::vector<std::uint8_t> frequency_x_;  ///< i of each atom (avoids integer division in the hot path)
+    std::vector<std::uint8_t> frequency_y_;  ///< j of each atom
   };
 } // namespace pcl_sparse

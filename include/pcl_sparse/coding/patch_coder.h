@@ -39,12 +39,13 @@ namespace pcl_sparse
     double relative_residual = 0.0;  ///< ||r|| / ||y|| (0 for a zero signal)
   };
 
-  /// Codes \a patch (frame, radius, local coordinates set) over \a basis. The signal is the local height
+  /// Codes \a patch (frame, radius, local coordinates set) over \a basis; \a mean_ring_edge_lengths
+  /// (#V, meanRingEdgeLengths) gives the sample spacing mu of the Nyquist cap. The signal is the local height
   /// z' at the patch's vertices plus, if there are fewer than options.min_samples of them, that many
   /// minus the vertex count of extra points on its triangles (seeded by mixSeed (options.seed,
   /// \a patch_index)). The returned code carries origin, frame, radius, atoms, coefficients, footprint,
   /// vertices and their local x', y'.
   PatchCode
-  codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh, const MeshTopology& topology,
-             const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr);
+  codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh,
+             const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr);
 } // namespace pcl_sparse

@@ -16,6 +16,15 @@ namespace pcl_sparse
   double
   patchSampleSpacing (const Patch& patch, const TriangleMesh& mesh, const MeshTopology& topology);
 
+  /// The same from precomputed per-vertex mean 1-ring edge lengths (meanRingEdgeLengths), so vertices
+  /// shared by several patches are measured once. Vertices with no neighbour (length <= 0) are skipped.
+  double
+  patchSampleSpacing (const Patch& patch, const std::vector<double>& mean_ring_edge_lengths);
+
+  /// Mean length of the edges from each vertex to its 1-ring (#V; 0 for a vertex without neighbours).
+  std::vector<double>
+  meanRingEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology);
+
   /// \a count points drawn uniformly by area on the patch's own triangles (patch.triangles, face ids of
   /// \a mesh), in local coordinates
   /// (x', y', z'): a random triangle by area, a uniform barycentric point in it, and the barycentric
