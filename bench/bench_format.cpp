@@ -3,6 +3,8 @@
 ///   bench_format convert IN OUT                 re-save a mesh (positions and faces only) for draco_encoder
 ///   bench_format mesh ORIGINAL DECODED [-n N]    symmetric surface distance of a decoded mesh (Draco)
 ///   bench_format model ORIGINAL MODEL.psm [-n N] same for a .psm model file, plus its load + resample time
+///   bench_format requantise IN.psm OUT.psm T [EXTENT_BITS]   re-save a (lossless) model at tolerance T;
+///                                               prints the encode seconds
 ///
 /// Distance: A = N points drawn uniformly by area on the decoded surface, B = N points on the original
 /// mesh. d(a, original) is the exact point-to-triangle distance (candidate triangles from a dense sampling
@@ -240,6 +242,18 @@ main (int argc, char** argv)
     if (argc >= 4 && std::string (argv[1]) == "convert")
     {
       saveTriangleMesh (argv[3], loadTriangleMesh (argv[2]));
+      return 0;
+    }
+    if (argc >= 5 && std::string (argv[1]) == "requantise")
+    {
+      const SparseSurfaceModel model = loadModel (argv[2]);
+      ModelWriteOptions options;
+      options.tolerance = std::stod (argv[4]);
+      if (argc >= 6)
+        options.extent_bits = std::stoi (argv[5]);
+      const auto start = std::chrono::steady_clock::now ();
+      saveModel (argv[3], model, options);
+      std::printf ("%.4f\n", std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ());
       return 0;
     }
     if (argc < 4 || (std::string (argv[1]) != "mesh" && std::string (argv[1]) != "model"))

@@ -247,7 +247,7 @@ TEST (ModelFile, QuantisedRoundTripWithinTolerance)
                             Eigen::Matrix3d::Identity ()).cwiseAbs ().maxCoeff ();
       EXPECT_LT (error, 1e-12);
       for (std::size_t k = 0; k < model.patches[p].footprint.extent.size (); ++k)
-        EXPECT_NEAR (decoded.patches[p].footprint.extent[k], model.patches[p].footprint.extent[k], 0.5 / 63.0 + 1e-6);
+        EXPECT_NEAR (decoded.patches[p].footprint.extent[k], model.patches[p].footprint.extent[k], 0.5 / 15.0 + 1e-6);
     }
     EXPECT_LT (bytes.size (), lossless / 3) << "tolerance " << tolerance;
     if (previous)

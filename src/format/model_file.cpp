@@ -38,12 +38,14 @@ namespace pcl_sparse
     // compress 1-10x; the writer stores a section uncompressed if it would exceed the bound.
     constexpr std::uint64_t kMaxExpansion = 64;
     constexpr std::uint64_t kExpansionSlack = 4096;
-    // Share of the tolerance given to each quantised quantity; the remaining 5 % covers the
-    // second-order cross terms (docs/FORMAT.md, "Error budget").
-    constexpr double kSeedShare = 0.2;
-    constexpr double kRadiusShare = 0.1;
-    constexpr double kFrameShare = 0.2;
-    constexpr double kCoefficientShare = 0.45;
+    // Share of the tolerance given to each quantised quantity, about proportional to how many values
+    // of each a model has (3 seed, 3 frame, 1 radius, ~12 coefficient values per patch), which minimises
+    // the total bits for a given sum of bounds; the remaining 5 % covers the second-order cross terms
+    // (docs/FORMAT.md, "Error budget").
+    constexpr double kSeedShare = 0.16;
+    constexpr double kRadiusShare = 0.05;
+    constexpr double kFrameShare = 0.16;
+    constexpr double kCoefficientShare = 0.58;
 
     const char* const kLosslessTags[] = {"SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF", "VERT"};
     const char* const kQuantisedTags[] = {"QUAN", "SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF", "VERT"};

@@ -29,8 +29,9 @@ namespace pcl_sparse
     /// 0 (default) stores everything losslessly. 1e-4 is well below what resampling shows.
     double tolerance = 0.0;
     /// Bits per footprint extent in quantised mode (2..8). Extents only bound where resampling draws
-    /// points, they do not move the surface; 6 bits = 1/63 of the largest extent.
-    int extent_bits = 6;
+    /// points, they do not move the surface; 4 bits = 1/15 of the largest extent (on spot, 6 bits cost
+    /// 10 % more bytes for no measurable change of the Chamfer distance).
+    int extent_bits = 4;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
     /// input vertices, METHOD.md step 10). Off by default: decoding and resampling do not need them.
     bool include_vertices = false;
