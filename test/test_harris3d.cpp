@@ -253,6 +253,15 @@ TEST (Harris3D, IndicesRestrictDetection)
   EXPECT_EQ (some.size (), static_cast<std::size_t> (std::lround (0.01 * indices->size ())));
   for (int v : harris.getKeypointsIndices ()->indices)
     EXPECT_EQ (v % 3, 0);
+  // Repeated indices are harmless.
+  auto repeated = std::make_shared<std::vector<int>> (*indices);
+  repeated->insert (repeated->end (), indices->begin (), indices->end ());
+  harris.setIndices (repeated);
+  pcl::PointCloud<pcl::PointXYZI> twice;
+  harris.compute (twice);
+  for (int v = 0; v < static_cast<int> (mesh->numVertices ()); v += 3)
+    EXPECT_EQ (harris.getResponses ()[v], full[v]);
+  EXPECT_EQ (twice.size (), some.size ());  // the fraction counts distinct vertices
   // Back to all vertices.
   harris.setIndices (nullptr);
   harris.compute (some);

@@ -2,6 +2,8 @@
 
 #include <pcl/console/print.h>
 
+#include <algorithm>
+
 namespace pcl_sparse
 {
   void
@@ -44,7 +46,9 @@ namespace pcl_sparse
     if (indices_)
     {
       responses_ = computeHarris3DResponses (mesh, topology, options_, *indices_);
-      num_candidates = indices_->size ();
+      std::vector<int> distinct (*indices_);
+      std::sort (distinct.begin (), distinct.end ());
+      num_candidates = static_cast<std::size_t> (std::unique (distinct.begin (), distinct.end ()) - distinct.begin ());
     }
     else
       responses_ = computeHarris3DResponses (mesh, topology, options_);
