@@ -5,6 +5,8 @@
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 
+#include <Eigen/Geometry>
+
 #include <omp.h>
 
 #include <atomic>
@@ -54,6 +56,26 @@ namespace pcl_sparse
   {
     if (!mesh_ || mesh_->vertices.empty () || mesh_->triangles.empty ())
       throw Error ("[" + name_ + "::compute] no input mesh or an empty one (set a mesh with triangles)");
+    // Every face degenerate: no surface to code (rho bounds A_p / A with A = 0, normals are arbitrary).
+    // Faces with invalid indices are left to the sampling stage, which names them.
+    const long num_vertices = static_cast<long> (mesh_->vertices.size ());
+    bool has_area = false;
+    for (const Eigen::Vector3i& t : mesh_->triangles)
+      if (t.minCoeff () >= 0 && t.maxCoeff () < num_vertices)
+      {
+        const Eigen::Vector3d& a = mesh_->vertices[t[0]];
+        const Eigen::Vector3d n = (mesh_->vertices[t[1]] - a).cross (mesh_->vertices[t[2]] - a);
+        if (n.allFinite () && n.stableNorm () > 0.0)
+        {
+          has_area = true;
+          break;
+        }
+      }
+      else
+        has_area = true;
+    if (!has_area)
+      throw Error ("[" + name_ + "::compute] the mesh has no area: all " + std::to_string (mesh_->triangles.size ()) +
+                   " faces are degenerate");
     options_.validate ();
     computeModel (model);
   }
