@@ -1,0 +1,101 @@
+// The pcl_sparse_encode tool: output formats, written files, option validation and exit codes.
+
+#include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  const std::string tool = std::string (PCL_SPARSE_BINARY_DIR) + "/apps/pcl_sparse_encode";
+
+  /// Runs \a arguments through the shell; returns the exit code and fills \a out with stdout.
+  int
+  run (const std::string& arguments, std::string& out)
+  {
+    out.clear ();
+    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen ((tool + " " + arguments + " 2>/dev/null").c_str (), "r"),
+                                                 pclose);
+    if (!pipe)
+      return -1;
+    char buffer[4096];
+    std::size_t n;
+    while ((n = std::fread (buffer, 1, sizeof (buffer), pipe.get ())) > 0)
+      out.append (buffer, n);
+    const int status = pclose (pipe.release ());
+    return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
+  }
+
+  class EncodeTool : public ::testing::Test
+  {
+  protected:
+    void
+    SetUp () override
+    {
+      if (!std::filesystem::exists (tool))
+        GTEST_SKIP () << tool << " not built";
+      dir_ = std::filesystem::temp_directory_path () / ("pcl_sparse_encode_test_" + std::to_string (::getpid ()));
+      std::filesystem::create_directories (dir_);
+      mesh_ = makeIcosphere (3, 1.0);
+      input_ = (dir_ / "sphere.off").string ();
+      saveTriangleMesh (input_, mesh_);
+    }
+    void
+    TearDown () override
+    {
+      if (!dir_.empty ())
+        std::filesystem::remove_all (dir_);
+    }
+
+    std::filesystem::path dir_;
+    TriangleMesh mesh_;
+    std::string input_;
+  };
+} // namespace
+
+TEST_F (EncodeTool, JsonAndFiles)
+{
+  const std::string recon = (dir_ / "recon.ply").string (), error = (dir_ / "error.ply").string ();
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q --json -recon " + recon + " -error " + error, out), 0);
+  for (const char* key : {"\"vertices\": 642", "\"patches\":", "\"nnz\":", "\"cr\":", "\"rmse\":", "\"rmse_over_diag\":",
+                          "\"uncovered\": 0", "\"seconds\":"})
+    EXPECT_NE (out.find (key), std::string::npos) << key << " in " << out;
+  EXPECT_EQ (out.front (), '{');
+  const TriangleMesh r = loadTriangleMesh (recon);
+  EXPECT_EQ (r.vertices.size (), mesh_.vertices.size ());
+  EXPECT_EQ (r.triangles, mesh_.triangles);
+  for (std::size_t v = 0; v < r.vertices.size (); ++v)
+    EXPECT_NEAR (r.vertices[v].norm (), 1.0, 0.02);
+  EXPECT_EQ (loadTriangleMesh (error).vertices.size (), mesh_.vertices.size ());
+}
+
+TEST_F (EncodeTool, TableRow)
+{
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q -rho 0.005 -f 0 -L 8 -eps 0.05 -min-samples 128", out), 0);
+  EXPECT_NE (out.find ("RMSE/diag"), std::string::npos);
+  EXPECT_NE (out.find ("seconds:"), std::string::npos);
+}
+
+TEST_F (EncodeTool, RefusesBadOptionsWithoutWriting)
+{
+  const std::string recon = (dir_ / "bad.ply").string ();
+  std::string out;
+  for (const std::string& bad : {"-rho 0", "-rho -1", "-rho abc", "-f 1.5", "-f -0.1", "-L 0", "-L 2.5", "-eps 0",
+                                 "-eps 1", "-min-samples -3", "-bogus", "-rho"})
+  {
+    EXPECT_EQ (run (input_ + " -q " + bad + " -recon " + recon, out), 1) << bad;
+    EXPECT_FALSE (std::filesystem::exists (recon)) << bad;
+  }
+  EXPECT_EQ (run ((dir_ / "missing.off").string () + " -q", out), 1);
+  EXPECT_EQ (run (input_ + " -q -error " + (dir_ / "e.obj").string (), out), 1);
+  EXPECT_EQ (run ("", out), 1);
+}
