@@ -1,7 +1,7 @@
 /// bench_encode: the paper-style table (N_V, M, rho, nnz, RMSE, RMSE / diag, CR, seconds) of the sparse
 /// surface encoder for meshes at several rho, as Markdown on stdout.
 ///
-///   bench_encode [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-threads N] [-repeat K] [-header 0|1] MESH...
+///   bench_encode [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-authors-nyquist] [-threads N] [-repeat K] [-header 0|1] MESH...
 ///   bench_encode -evaluate      (throughput of CosineDictionary::evaluateCode / evaluateCodeValue, one thread)
 ///
 /// Seconds are the encoder's wall clock (patches + coding; load and statistics excluded), best of K runs.
@@ -96,6 +96,8 @@ main (int argc, char** argv)
       base.coding.max_atoms = std::atoi (argv[++i]);
     else if (arg == "-min-samples" && i + 1 < argc)
       base.coding.min_samples = std::atoi (argv[++i]);
+    else if (arg == "-authors-nyquist")
+      base.coding.nyquist_rule = NyquistRule::AuthorsCode;
     else if (arg == "-header" && i + 1 < argc)
       header = std::atoi (argv[++i]) != 0;
     else if (arg == "-repeat" && i + 1 < argc)
@@ -106,7 +108,7 @@ main (int argc, char** argv)
 
   if (header)
   {
-    std::printf ("| mesh | N_V | rho | f | L | m_min | M | nnz | RMSE | RMSE/diag | CR | uncovered | patches s | coding s | total s |\n");
+    std::printf ("| mesh | N_V | rho | f (rule) | L | m_min | M | nnz | RMSE | RMSE/diag | CR | uncovered | patches s | coding s | total s |\n");
     std::printf ("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   }
   for (const std::string& path : meshes)
@@ -148,8 +150,9 @@ main (int argc, char** argv)
         continue;
       }
       const ModelStatistics s = model.statistics (mesh->vertices);
-      std::printf ("| %s | %zu | %g | %g | %d | %d | %zu | %zu | %.3e | %.2e | %.3f | %zu | %.3f | %.3f | %.3f |\n",
-                   name.c_str (), s.num_vertices, rho, options.coding.nyquist_factor, options.coding.max_atoms,
+      std::printf ("| %s | %zu | %g | %g (%s) | %d | %d | %zu | %zu | %.3e | %.2e | %.3f | %zu | %.3f | %.3f | %.3f |\n",
+                   name.c_str (), s.num_vertices, rho, options.coding.nyquist_factor,
+                   options.coding.nyquist_rule == NyquistRule::Paper ? "paper" : "authors", options.coding.max_atoms,
                    options.coding.min_samples, s.num_patches, s.num_nonzeros, s.rmse, s.rmse_over_diagonal,
                    s.compression_ratio, s.uncovered, best.patches, best.coding, best.total);
       std::fflush (stdout);

@@ -36,6 +36,10 @@ targets="$meshes/bunny-hr-closed.obj $meshes/fandisk.off $meshes/spot.obj"
   # shellcheck disable=SC2086
   "$bench" -repeat 3 -rho 0.001 $targets
   # shellcheck disable=SC2086
+  "$bench" -repeat 3 -rho 0.001 -header 0 -authors-nyquist $targets
+  # shellcheck disable=SC2086
+  "$bench" -repeat 3 -rho 0.001 -header 0 -authors-nyquist -min-samples 128 $targets
+  # shellcheck disable=SC2086
   "$bench" -repeat 3 -rho 0.001 -header 0 -f 0 $targets
   # shellcheck disable=SC2086
   "$bench" -repeat 3 -rho 0.001 -header 0 -f 0 -min-samples 0 $targets
