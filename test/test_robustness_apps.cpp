@@ -1,0 +1,402 @@
+/// Every tool on every bad or awkward mesh of robustness_cases.h and on bad options: each run either
+/// succeeds with a valid output file or prints one error line on stderr and exits with 1; it never
+/// crashes (signal), never hangs (timeout), and never leaves an output file behind when it fails.
+
+#include "robustness_cases.h"
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/io/cloud_io.h>
+#include <pcl_sparse/io/mesh_io.h>
+
+#include <gtest/gtest.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace pcl_sparse;
+using namespace pcl_sparse::robustness;
+
+namespace
+{
+  const int kTimeoutSeconds = 60;
+
+  std::string
+  appPath (const std::string& name)
+  {
+    return std::string (PCL_SPARSE_BINARY_DIR) + "/apps/pcl_sparse_" + name;
+  }
+
+  bool
+  appsBuilt ()
+  {
+    for (const char* name : {"info", "keypoints", "patches", "encode", "resample", "decode"})
+      if (!fs::exists (appPath (name)))
+        return false;
+    return true;
+  }
+
+  std::string
+  readText (const fs::path& path)
+  {
+    std::ifstream in (path, std::ios::binary);
+    std::stringstream buffer;
+    buffer << in.rdbuf ();
+    return buffer.str ();
+  }
+
+  std::string
+  quote (const std::string& s)
+  {
+    std::string out = "'";
+    for (const char c : s)
+      out += c == '\'' ? std::string ("'\\''") : std::string (1, c);
+    return out + "'";
+  }
+
+  struct RunResult
+  {
+    bool signaled = false;    ///< killed by a signal (crash), seen directly or through timeout's 128 + signal
+    bool timed_out = false;
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+    std::string command;
+  };
+
+  /// Runs tool \a app with \a args under `timeout`, stdout and stderr to files in \a dir.
+  RunResult
+  runApp (const std::string& app, const std::vector<std::string>& args, const fs::path& dir,
+          const std::string& env = "")
+  {
+    RunResult r;
+    std::string command = env + (env.empty () ? "" : " ") + "timeout -k 5 " + std::to_string (kTimeoutSeconds) +
+                          " " + quote (appPath (app));
+    for (const std::string& a : args)
+      command += " " + quote (a);
+    r.command = command;
+    const fs::path out = dir / "stdout.txt";
+    const fs::path err = dir / "stderr.txt";
+    const int status = std::system ((command + " > " + quote (out.string ()) + " 2> " + quote (err.string ())).c_str ());
+    if (WIFSIGNALED (status))
+      r.signaled = true;
+    else if (WIFEXITED (status))
+    {
+      r.exit_code = WEXITSTATUS (status);
+      r.timed_out = r.exit_code == 124 || r.exit_code == 137;
+      r.signaled = r.exit_code > 128 && !r.timed_out;
+    }
+    r.out = readText (out);
+    r.err = readText (err);
+    fs::remove (out);
+    fs::remove (err);
+    return r;
+  }
+
+  int
+  nonEmptyLines (const std::string& text)
+  {
+    int lines = 0;
+    std::istringstream in (text);
+    for (std::string line; std::getline (in, line);)
+      if (line.find_first_not_of (" \t\r") != std::string::npos)
+        ++lines;
+    return lines;
+  }
+
+  /// Files in \a dir (the outputs a run left behind, including temporaries of atomic writes).
+  std::vector<std::string>
+  filesIn (const fs::path& dir)
+  {
+    std::vector<std::string> names;
+    for (const fs::directory_entry& e : fs::directory_iterator (dir))
+      names.push_back (e.path ().filename ().string ());
+    return names;
+  }
+
+  /// Checks the contract of one run; \a output (may be empty) is the file a successful run must write.
+  /// Returns true when the run succeeded. \a out_dir must hold nothing but what the run wrote.
+  bool
+  checkRun (const RunResult& r, const fs::path& out_dir, const std::string& output)
+  {
+    SCOPED_TRACE (r.command + "\nstderr: " + r.err);
+    EXPECT_FALSE (r.signaled) << "crashed";
+    EXPECT_FALSE (r.timed_out) << "did not finish in " << kTimeoutSeconds << " s";
+    EXPECT_TRUE (r.exit_code == 0 || r.exit_code == 1) << "exit code " << r.exit_code;
+    EXPECT_EQ (r.err.find ("Sanitizer"), std::string::npos);
+    EXPECT_EQ (r.err.find ("runtime error"), std::string::npos);
+    if (r.exit_code == 0)
+    {
+      if (!output.empty ())
+        EXPECT_TRUE (fs::exists (out_dir / output)) << "success without the output file";
+      return true;
+    }
+    EXPECT_EQ (nonEmptyLines (r.err), 1) << "expected exactly one error line on stderr";
+    EXPECT_TRUE (filesIn (out_dir).empty ()) << "failure left " << filesIn (out_dir).size () << " file(s) behind, e.g. "
+                                             << (filesIn (out_dir).empty () ? "" : filesIn (out_dir).front ());
+    return false;
+  }
+
+  /// A cloud file written by a tool: loads, has \a expected points (or any number > 0 when 0), all finite.
+  void
+  expectValidCloud (const fs::path& path, std::size_t expected)
+  {
+    pcl::PointCloud<pcl::PointXYZ> cloud;
+    ASSERT_NO_THROW (loadPointCloud (path.string (), cloud)) << path;
+    if (expected > 0)
+      EXPECT_EQ (cloud.size (), expected) << path;
+    for (const pcl::PointXYZ& p : cloud.points)
+      ASSERT_TRUE (std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z)) << path;
+  }
+
+  class RobustnessApps : public ::testing::TestWithParam<MeshCase>
+  {
+  protected:
+    void
+    SetUp () override
+    {
+      if (!appsBuilt ())
+        GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR
+                      << "/apps (build all targets, as scripts/test.sh does)";
+      dir_ = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_apps" / GetParam ().name;
+      fs::remove_all (dir_);
+      fs::create_directories (dir_ / "out");
+      input_ = (dir_ / (GetParam ().name + ".obj")).string ();
+      std::ofstream (input_, std::ios::binary) << GetParam ().obj;
+    }
+
+    /// Runs \a app, checks the contract, and the case's expectation. Returns true on success.
+    bool
+    run (const std::string& app, const std::vector<std::string>& args, const std::string& output)
+    {
+      const fs::path out_dir = dir_ / "out";
+      for (const fs::directory_entry& e : fs::directory_iterator (out_dir))
+        fs::remove_all (e.path ());
+      const RunResult r = runApp (app, args, dir_);
+      const bool ok = checkRun (r, out_dir, output);
+      const bool coding = app == "encode" || app == "resample" || app == "decode";
+      const Expect expect = coding && GetParam ().override_coding ? GetParam ().coding : GetParam ().expect;
+      if (expect == Expect::Success)
+        EXPECT_TRUE (ok) << app << " should accept " << GetParam ().name << "; stderr: " << r.err;
+      if (expect == Expect::Failure)
+        EXPECT_FALSE (ok) << app << " should refuse " << GetParam ().name;
+      return ok;
+    }
+
+    fs::path
+    out (const std::string& name) const
+    {
+      return dir_ / "out" / name;
+    }
+
+    fs::path dir_;
+    std::string input_;
+  };
+
+  TEST_P (RobustnessApps, Info)
+  {
+    if (run ("info", {input_, "-q"}, ""))
+      EXPECT_TRUE (true);
+  }
+
+  TEST_P (RobustnessApps, Keypoints)
+  {
+    if (run ("keypoints", {input_, out ("k.pcd").string (), "-q"}, "k.pcd"))
+      expectValidCloud (out ("k.pcd"), 0);
+  }
+
+  TEST_P (RobustnessApps, Patches)
+  {
+    if (run ("patches", {input_, out ("p.ply").string (), "-q"}, "p.ply"))
+    {
+      TriangleMesh input, coloured;
+      ASSERT_NO_THROW (input = loadTriangleMesh (input_));
+      ASSERT_NO_THROW (coloured = loadTriangleMesh (out ("p.ply").string ()));
+      EXPECT_EQ (coloured.vertices.size (), input.vertices.size ());
+    }
+  }
+
+  TEST_P (RobustnessApps, EncodeAndDecode)
+  {
+    if (!run ("encode", {input_, "-o", out ("m.psm").string (), "-q"}, "m.psm"))
+      return;
+    SparseSurfaceModel model;
+    ASSERT_NO_THROW (model = loadModel (out ("m.psm").string ()));
+    EXPECT_GT (model.patches.size (), 0u);
+    // Decode the model just written (moved out of the output folder, which must be empty before a run).
+    const fs::path psm = dir_ / "m.psm";
+    fs::rename (out ("m.psm"), psm);
+    if (run ("decode", {psm.string (), out ("d.pcd").string (), "-n", "300", "-q"}, "d.pcd"))
+      expectValidCloud (out ("d.pcd"), 300);
+  }
+
+  TEST_P (RobustnessApps, Resample)
+  {
+    if (run ("resample", {input_, out ("r.pcd").string (), "-n", "500", "-q"}, "r.pcd"))
+      expectValidCloud (out ("r.pcd"), 500);
+  }
+
+  INSTANTIATE_TEST_SUITE_P (Meshes, RobustnessApps, ::testing::ValuesIn (meshCases ()),
+                            [] (const ::testing::TestParamInfo<MeshCase>& info) {
+                              std::string name = info.param.name;
+                              for (char& c : name)
+                                if (!std::isalnum (static_cast<unsigned char> (c)))
+                                  c = '_';
+                              return name;
+                            });
+
+  /// A bad command line: must fail with one error line and leave nothing behind.
+  struct OptionCase
+  {
+    std::string label;
+    std::string app;
+    std::vector<std::string> args;  ///< "IN" = a good mesh, "OUT.x" = output file x in the output folder, "PSM" = a good model
+    Expect expect = Expect::Failure;
+  };
+
+  void
+  PrintTo (const OptionCase& c, std::ostream* os)
+  {
+    *os << c.label;
+  }
+
+  std::vector<OptionCase>
+  optionCases ()
+  {
+    return {
+      // pcl_sparse_encode
+      {"encode_negative_rho", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "-0.01"}},
+      {"encode_zero_rho", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "0"}},
+      // rho > 1 bounds nothing more than rho = 1 (the encoder accepts it, the resampler refuses it).
+      {"encode_rho_above_one", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "2"}, Expect::Either},
+      {"encode_f_above_one", "encode", {"IN", "-o", "OUT.m.psm", "-f", "1.5"}},
+      {"encode_negative_f", "encode", {"IN", "-o", "OUT.m.psm", "-f", "-0.5"}},
+      {"encode_zero_atoms", "encode", {"IN", "-o", "OUT.m.psm", "-L", "0"}},
+      {"encode_huge_atoms", "encode", {"IN", "-o", "OUT.m.psm", "-L", "1e12"}},
+      {"encode_eps_above_one", "encode", {"IN", "-o", "OUT.m.psm", "-eps", "1.5"}},
+      {"encode_negative_threads", "encode", {"IN", "-o", "OUT.m.psm", "-threads", "-1"}},
+      {"encode_rho_not_a_number", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "abc"}},
+      {"encode_rho_nan", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "nan"}},
+      {"encode_rho_missing_value", "encode", {"IN", "-o", "OUT.m.psm", "-rho"}},
+      {"encode_unknown_flag", "encode", {"IN", "-o", "OUT.m.psm", "--bogus"}},
+      {"encode_no_arguments", "encode", {}},
+      {"encode_two_inputs", "encode", {"IN", "IN", "-o", "OUT.m.psm"}},
+      {"encode_missing_input", "encode", {"MISSING.obj", "-o", "OUT.m.psm"}},
+      {"encode_directory_input", "encode", {"DIR", "-o", "OUT.m.psm"}},
+      {"encode_unwritable_output", "encode", {"IN", "-o", "/nonexistent_dir/m.psm"}},
+      {"encode_negative_tolerance", "encode", {"IN", "-o", "OUT.m.psm", "-tolerance", "-1"}},
+      {"encode_f_zero", "encode", {"IN", "-o", "OUT.m.psm", "-f", "0"}, Expect::Success},
+      {"encode_f_one", "encode", {"IN", "-o", "OUT.m.psm", "-f", "1"}, Expect::Success},
+      {"encode_rho_one", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "1"}, Expect::Success},
+      // pcl_sparse_resample
+      {"resample_n_zero", "resample", {"IN", "OUT.r.pcd", "-n", "0"}},
+      {"resample_n_negative", "resample", {"IN", "OUT.r.pcd", "-n", "-5"}},
+      {"resample_n_fraction", "resample", {"IN", "OUT.r.pcd", "-n", "2.5"}},
+      {"resample_n_huge", "resample", {"IN", "OUT.r.pcd", "-n", "1e15"}},
+      {"resample_density_huge", "resample", {"IN", "OUT.r.pcd", "-density", "1e300"}},
+      {"resample_spacing_tiny", "resample", {"IN", "OUT.r.pcd", "-spacing", "1e-300"}},
+      {"resample_negative_density", "resample", {"IN", "OUT.r.pcd", "-density", "-1"}},
+      {"resample_negative_rho", "resample", {"IN", "OUT.r.pcd", "-rho", "-1"}},
+      {"resample_f_above_one", "resample", {"IN", "OUT.r.pcd", "-f", "2"}},
+      {"resample_unknown_flag", "resample", {"IN", "OUT.r.pcd", "--bogus"}},
+      {"resample_missing_output", "resample", {"IN"}},
+      {"resample_bad_output_extension", "resample", {"IN", "OUT.r.txt"}},
+      {"resample_n_one", "resample", {"IN", "OUT.r.pcd", "-n", "1"}, Expect::Success},
+      // pcl_sparse_decode
+      {"decode_n_zero", "decode", {"PSM", "OUT.d.pcd", "-n", "0"}},
+      {"decode_n_huge", "decode", {"PSM", "OUT.d.pcd", "-n", "1e15"}},
+      {"decode_mesh_as_model", "decode", {"IN", "OUT.d.pcd"}},
+      {"decode_garbage_model", "decode", {"GARBAGE.psm", "OUT.d.pcd"}},
+      {"decode_unknown_flag", "decode", {"PSM", "OUT.d.pcd", "--bogus"}},
+      {"decode_missing_output", "decode", {"PSM"}},
+      {"decode_recon_without_vertices", "decode", {"PSM", "OUT.d.pcd", "-recon", "IN", "OUT.recon.obj"}},
+      // pcl_sparse_keypoints
+      {"keypoints_fraction_above_one", "keypoints", {"IN", "OUT.k.pcd", "-fraction", "2"}},
+      {"keypoints_fraction_zero", "keypoints", {"IN", "OUT.k.pcd", "-fraction", "0"}},
+      {"keypoints_rings_zero", "keypoints", {"IN", "OUT.k.pcd", "-rings", "0"}},
+      {"keypoints_negative_adaptive", "keypoints", {"IN", "OUT.k.pcd", "-adaptive", "-1"}},
+      {"keypoints_k_nan", "keypoints", {"IN", "OUT.k.pcd", "-k", "nan"}},
+      {"keypoints_unknown_flag", "keypoints", {"IN", "OUT.k.pcd", "--bogus"}},
+      {"keypoints_missing_output", "keypoints", {"IN"}},
+      // pcl_sparse_patches
+      {"patches_negative_rho", "patches", {"IN", "OUT.p.ply", "-rho", "-1"}},
+      {"patches_negative_delta", "patches", {"IN", "OUT.p.ply", "-delta", "-5"}},
+      {"patches_eta_below_one", "patches", {"IN", "OUT.p.ply", "-eta", "0.5"}},
+      {"patches_negative_min_size", "patches", {"IN", "OUT.p.ply", "-min-size", "-1"}},
+      {"patches_unknown_flag", "patches", {"IN", "OUT.p.ply", "--bogus"}},
+      {"patches_wrong_output_extension", "patches", {"IN", "OUT.p.pcd"}},
+      // pcl_sparse_info
+      {"info_unknown_flag", "info", {"IN", "--bogus"}},
+      {"info_no_arguments", "info", {}},
+      {"info_missing_input", "info", {"MISSING.obj"}},
+    };
+  }
+
+  class RobustnessOptions : public ::testing::TestWithParam<OptionCase>
+  {
+  };
+
+  TEST_P (RobustnessOptions, RefusedCleanly)
+  {
+    if (!appsBuilt ())
+      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
+    const OptionCase& c = GetParam ();
+    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_options" / c.label;
+    fs::remove_all (dir);
+    fs::create_directories (dir / "out");
+    fs::create_directories (dir / "a_directory.obj");
+    const std::string mesh = (dir / "good.obj").string ();
+    std::ofstream (mesh) << objText (baseMesh ());
+    const std::string garbage = (dir / "garbage.psm").string ();
+    std::ofstream (garbage) << "PSM\x01 this is not a model";
+    const std::string psm = (dir / "good.psm").string ();
+    if (std::find (c.args.begin (), c.args.end (), "PSM") != c.args.end ())
+    {
+      const RunResult r = runApp ("encode", {mesh, "-o", psm, "-q"}, dir);
+      ASSERT_EQ (r.exit_code, 0) << r.err;
+    }
+    std::vector<std::string> args;
+    std::string output;
+    for (const std::string& a : c.args)
+      if (a == "IN")
+        args.push_back (mesh);
+      else if (a == "PSM")
+        args.push_back (psm);
+      else if (a == "GARBAGE.psm")
+        args.push_back (garbage);
+      else if (a == "MISSING.obj")
+        args.push_back ((dir / "missing.obj").string ());
+      else if (a == "DIR")
+        args.push_back ((dir / "a_directory.obj").string ());
+      else if (a.rfind ("OUT.", 0) == 0)
+      {
+        output = a.substr (4);
+        args.push_back ((dir / "out" / output).string ());
+      }
+      else
+        args.push_back (a);
+    if (!args.empty ())
+      args.push_back ("-q");
+    const RunResult r = runApp (c.app, args, dir);
+    const bool ok = checkRun (r, dir / "out", output);
+    if (c.expect == Expect::Success)
+      EXPECT_TRUE (ok) << r.command << "\n" << r.err;
+    if (c.expect == Expect::Failure)
+      EXPECT_FALSE (ok) << r.command << " should have been refused";
+    fs::remove_all (dir);
+  }
+
+  INSTANTIATE_TEST_SUITE_P (Options, RobustnessOptions, ::testing::ValuesIn (optionCases ()),
+                            [] (const ::testing::TestParamInfo<OptionCase>& info) { return info.param.label; });
+} // namespace
