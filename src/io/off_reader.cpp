@@ -100,7 +100,8 @@ namespace pcl_sparse
         cursor.skipLine ();  // normals, colours, texture coordinates
       }
 
-      mesh.triangles.reserve (static_cast<std::size_t> (num_faces));
+      // Reserve only what full triangle lines ("3 0 1 2\n") in the remaining bytes could need.
+      mesh.triangles.reserve (static_cast<std::size_t> (std::min<long long> (num_faces, (cursor.end - cursor.p) / 8 + 1)));
       std::vector<int> polygon;
       for (long long f = 0; f < num_faces; ++f)
       {

@@ -303,7 +303,16 @@ namespace pcl_sparse
             if (is_vertex)
               mesh.vertices.resize (static_cast<std::size_t> (element.count));
             if (is_face)
-              mesh.triangles.reserve (mesh.triangles.size () + static_cast<std::size_t> (element.count));
+            {
+              // At most as many triangles as full triangle records fit in the bytes left (a lying header with
+              // one-byte empty lists must not reserve 12 bytes per claimed face).
+              const PlyProperty& list = element.properties[static_cast<std::size_t> (indices)];
+              const long long triangle_bytes = layout_.format == PlyFormat::Ascii
+                                                   ? 8
+                                                   : static_cast<long long> (sizeOf (list.count_type) + 3 * sizeOf (list.type));
+              const long long fit = std::min (element.count, (remaining + 1) / triangle_bytes);
+              mesh.triangles.reserve (mesh.triangles.size () + static_cast<std::size_t> (fit));
+            }
 
             // An element without properties has nothing in the body, whatever its count says (and looping
             // over a count of 1e12 would hang).
