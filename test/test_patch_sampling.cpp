@@ -15,7 +15,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 using namespace pcl_sparse;
@@ -289,13 +292,27 @@ TEST (PatchSampling, NonManifoldEdgeIsABorder)
       EXPECT_NEAR (normals[f].dot (normals[p.triangles[0]]), 1.0, 1e-9) << "patch crosses the non-manifold edge";
 }
 
-TEST (PatchSampling, SameOutputForAnyThreadCount)
+TEST (PatchSampling, SameOutputForAnyThreadCountAndGivenTopology)
 {
-  const TriangleMesh torus = makeTorus (64, 24);
-  PatchOptions options;
-  const auto one = sample (torus, options, std::vector<double> (), 1);
-  const auto two = sample (torus, options, std::vector<double> (), 2);
-  EXPECT_TRUE (samePartition (one, two));
+  // Default candidate order (Harris 3D computed inside), a bumpy torus so that responses vary.
+  TriangleMesh torus = makeTorus (64, 24);
+  for (auto& p : torus.vertices)
+    p *= 1.0 + 0.05 * std::sin (7.0 * std::atan2 (p.y (), p.x ()));
+  auto mesh = std::make_shared<TriangleMesh> (torus);
+  std::vector<std::vector<Patch>> results;
+  for (int threads : {1, 2})
+  {
+    FeatureAwarePatchSampling sampling;
+    sampling.setInputMesh (mesh);
+    sampling.setNumberOfThreads (threads);
+    if (threads == 2)
+      sampling.setTopology (std::make_shared<MeshTopology> (buildMeshTopology (*mesh)));
+    results.emplace_back ();
+    sampling.compute (results.back ());
+    EXPECT_FALSE (sampling.getKeypoints ().empty ());
+    expectValidPartition (torus, results.back (), sampling.getOptions (), "bumpy torus");
+  }
+  EXPECT_TRUE (samePartition (results[0], results[1]));
 }
 
 TEST (PatchSampling, BadInputThrows)
@@ -320,6 +337,36 @@ TEST (PatchSampling, BadInputThrows)
   sampling.setInputMesh (broken);
   sampling.setKeypoints ({});
   EXPECT_THROW (sampling.compute (patches), Error);
+}
+
+TEST (PatchSampling, ToolWritesAColouredMeshAndRefusesBadOptions)
+{
+  const std::string tool = std::string (PCL_SPARSE_BINARY_DIR) + "/apps/pcl_sparse_patches";
+  if (!std::filesystem::exists (tool))
+    GTEST_SKIP () << "tool not built: " << tool;
+  const std::string dir = std::string (PCL_SPARSE_BINARY_DIR) + "/test_patch_sampling_tool";
+  std::filesystem::create_directories (dir);
+  const std::string input = dir + "/sphere.off", output = dir + "/patches.ply";
+  saveTriangleMesh (input, makeIcosphere (3));
+  std::filesystem::remove (output);
+  const std::string json = dir + "/out.json";
+  ASSERT_EQ (std::system ((tool + " " + input + " " + output + " -rho 0.005 --json -q > " + json).c_str ()), 0);
+  ASSERT_TRUE (std::filesystem::exists (output));
+  const TriangleMesh written = loadTriangleMesh (output);
+  EXPECT_EQ (written.vertices.size (), 642u);
+  std::ifstream in (json);
+  const std::string text ((std::istreambuf_iterator<char> (in)), std::istreambuf_iterator<char> ());
+  EXPECT_NE (text.find ("\"uncovered\": 0,"), std::string::npos) << text;
+  EXPECT_NE (text.find ("\"patches\": "), std::string::npos);
+  EXPECT_NE (text.find ("\"seconds\": "), std::string::npos);
+
+  std::filesystem::remove (output);
+  EXPECT_NE (std::system ((tool + " " + input + " " + output + " -rho -1 -q 2> /dev/null").c_str ()), 0);
+  EXPECT_NE (std::system ((tool + " " + input + " " + output + " -eta abc -q 2> /dev/null").c_str ()), 0);
+  EXPECT_NE (std::system ((tool + " " + input + " " + output + " -bogus -q 2> /dev/null").c_str ()), 0);
+  EXPECT_NE (std::system ((tool + " " + dir + "/missing.off " + output + " -q 2> /dev/null").c_str ()), 0);
+  EXPECT_NE (std::system ((tool + " " + input + " " + dir + "/out.obj -q 2> /dev/null").c_str ()), 0);
+  EXPECT_FALSE (std::filesystem::exists (output));
 }
 
 // ---- shared real meshes ---------------------------------------------------------------------------
@@ -365,8 +412,12 @@ TEST (PatchSamplingShared, FandiskPatchesAreSmallerAtSharpEdges)
   const TriangleMesh mesh = loadTriangleMesh (path);
   FeatureAwarePatchSampling sampling;
   sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
-  std::vector<Patch> patches;
+  sampling.setNumberOfThreads (1);
+  std::vector<Patch> patches, patches_two_threads;
   sampling.compute (patches);
+  sampling.setNumberOfThreads (2);
+  sampling.compute (patches_two_threads);
+  EXPECT_TRUE (samePartition (patches, patches_two_threads));
   const PatchOptions& options = sampling.getOptions ();
 
   // Vertices within 2 rings of an edge whose dihedral angle exceeds 60 degrees.

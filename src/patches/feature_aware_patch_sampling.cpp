@@ -91,6 +91,8 @@ namespace pcl_sparse
     if (!responses_.empty () && responses_.size () != num_vertices)
       throw Error ("[" + name_ + "::compute] " + std::to_string (responses_.size ()) + " responses for " +
                    std::to_string (num_vertices) + " vertices");
+    if (topology_ && topology_->numVertices () != num_vertices)
+      throw Error ("[" + name_ + "::compute] the topology (setTopology) is not the input mesh's");
     for (int k : keypoints_)
       if (k < 0 || static_cast<std::size_t> (k) >= num_vertices)
         throw Error ("[" + name_ + "::compute] keypoint " + std::to_string (k) + " out of range");
@@ -103,7 +105,10 @@ namespace pcl_sparse
     const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
     const TriangleMesh& input = *mesh_;
     const int num_input = static_cast<int> (input.vertices.size ());
-    MeshTopology topology = buildMeshTopology (input);
+    MeshTopology own_topology;
+    if (!topology_)
+      own_topology = buildMeshTopology (input);
+    const MeshTopology& input_topology = topology_ ? *topology_ : own_topology;
 
     // Default feature order: Harris 3D with its default options (METHOD.md step 3).
     used_responses_ = responses_;
@@ -112,15 +117,17 @@ namespace pcl_sparse
     {
       Harris3DOptions harris;
       harris.num_threads = num_threads_;
-      used_responses_ = computeHarris3DResponses (input, topology, harris);
-      used_keypoints_ = selectHarris3DKeypoints (input, topology, used_responses_, harris, input.vertices.size ());
+      used_responses_ = computeHarris3DResponses (input, input_topology, harris);
+      used_keypoints_ = selectHarris3DKeypoints (input, input_topology, used_responses_, harris, input.vertices.size ());
     }
 
     // Cut non-manifold edges and vertices: growth then cannot cross them.
     NonManifoldSplit split;
-    const bool is_split = splitNonManifoldVertices (input, topology, split);
+    const bool is_split = splitNonManifoldVertices (input, input_topology, split);
+    MeshTopology split_topology;
     if (is_split)
-      topology = buildMeshTopology (split.mesh);
+      split_topology = buildMeshTopology (split.mesh);
+    const MeshTopology& topology = is_split ? split_topology : input_topology;
     const TriangleMesh& mesh = is_split ? split.mesh : input;
     const int num_vertices = static_cast<int> (mesh.vertices.size ());
     auto originalOf = [&] (int v) { return is_split ? split.original[v] : v; };

@@ -27,6 +27,7 @@
 /// parallel. The output is the same for any thread count.
 
 #include <pcl_sparse/common/progress.h>
+#include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_frame.h>
@@ -48,8 +49,11 @@ namespace pcl_sparse
     virtual ~FeatureAwarePatchSampling () = default;
 
     /// The mesh to partition (required). Face indices must be valid.
-    void setInputMesh (const TriangleMesh::ConstPtr& mesh) { mesh_ = mesh; }
+    void setInputMesh (const TriangleMesh::ConstPtr& mesh) { mesh_ = mesh; topology_.reset (); }
     const TriangleMesh::ConstPtr& getInputMesh () const { return mesh_; }
+
+    /// Topology of the input mesh, if already built (otherwise compute builds it). Set after setInputMesh.
+    void setTopology (const std::shared_ptr<const MeshTopology>& topology) { topology_ = topology; }
 
     void setOptions (const PatchOptions& options) { options_ = options; }
     const PatchOptions& getOptions () const { return options_; }
@@ -92,6 +96,7 @@ namespace pcl_sparse
     virtual void computePatches (std::vector<Patch>& patches);
 
     TriangleMesh::ConstPtr mesh_;
+    std::shared_ptr<const MeshTopology> topology_;
     PatchOptions options_;
     std::vector<double> responses_;
     std::vector<int> keypoints_;
