@@ -1,8 +1,8 @@
 /// pcl_sparse_resample: a mesh (encoded first) or a saved model (.psm) to a point cloud with analytic
 /// normals and curvature, at any density (METHOD.md step 12).
 ///
-///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-seed S] [-threads T]
-///                       [-ascii] [-q] [--json]
+///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-seed S]
+///                       [-threads T] [-ascii] [-q] [--json]
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
@@ -39,6 +39,8 @@ namespace
     pcl::console::print_info ("  -spacing S    mean spacing S between neighbouring points instead (density 1 / S^2)\n");
     pcl::console::print_info ("  -rho R        encoder: patch area bound rho (default: 0.001, paper)\n");
     pcl::console::print_info ("  -f F          encoder: Nyquist factor f in [0, 1] (default: 0.5, paper)\n");
+    pcl::console::print_info ("  -angles K     encoder: footprint angles (default: 64 here, 16 in the encoder: finer footprints\n");
+    pcl::console::print_info ("                overshoot open borders and sharp edges less, halving the distance error)\n");
     pcl::console::print_info ("  -seed S       seed of the sampling (default: 42)\n");
     pcl::console::print_info ("  -threads T    threads (default: all; the cloud does not depend on it)\n");
     pcl::console::print_info ("  -ascii        write ascii instead of binary\n");
@@ -124,7 +126,8 @@ namespace
     for (int i = 1; i < argc; ++i)
     {
       const std::string a = argv[i];
-      if (a == "-n" || a == "-density" || a == "-spacing" || a == "-rho" || a == "-f" || a == "-seed" || a == "-threads")
+      if (a == "-n" || a == "-density" || a == "-spacing" || a == "-rho" || a == "-f" || a == "-seed" || a == "-threads" ||
+          a == "-angles")
         ++i;
       else if (a == "-ascii" || a == "-q" || a == "--json")
         continue;
@@ -183,6 +186,13 @@ namespace
       if (!(value >= 0.0 && value <= 1.0))
         throw Error ("option -f: must be in [0, 1]");
       s.encoder.coding.nyquist_factor = value;
+    }
+    s.encoder.coding.footprint_angles = 64;
+    if (numberOption (argc, argv, "-angles", value))
+    {
+      if (!(value >= 3.0 && value <= 4096.0) || value != std::floor (value))
+        throw Error ("option -angles: must be an integer in [3, 4096]");
+      s.encoder.coding.footprint_angles = static_cast<int> (value);
     }
     if (numberOption (argc, argv, "-seed", value))
     {

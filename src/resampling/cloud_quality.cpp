@@ -117,7 +117,7 @@ namespace pcl_sparse
       quality.mean_distance += distance[i];
       quality.max_distance = std::max (quality.max_distance, distance[i]);
       quality.mean_normal_angle += angle[i];
-      quality.flipped += angle[i] > 90.0 ? 1 : 0;
+      quality.flipped += angle[i] > 120.0 ? 1 : 0;
     }
     quality.rms_distance = std::sqrt (quality.rms_distance / n);
     quality.mean_distance /= n;

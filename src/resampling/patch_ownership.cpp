@@ -5,12 +5,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pcl_sparse
 {
   PatchOwnership::PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options)
     : evaluator_ (evaluator), options_ (options)
   {
+    const double slope = std::tan (std::min (options.max_slope_angle, 90.0) * M_PI / 180.0);
+    max_slope_squared_ = options.max_slope_angle >= 90.0 ? std::numeric_limits<double>::infinity () : slope * slope;
     const SparseSurfaceModel& model = evaluator.model ();
     const std::size_t m = model.numPatches ();
     contender_begin_.assign (m + 1, 0);
@@ -34,7 +37,9 @@ namespace pcl_sparse
           if (evaluator.centrality (p, x, y) <= 1.0)
             h_max = std::max (h_max, std::abs (evaluator.height (p, x, y)));
         }
-      reach[p] = model.patches[p].radius * (std::sqrt (e * e + h_max * h_max) * 1.1 + 0.05);
+      // Places above max_height are never the patch's (see beats), which also bounds the reach.
+      h_max = std::min (h_max * 1.5 + 0.05, options.max_height);
+      reach[p] = model.patches[p].radius * std::sqrt (e * e + h_max * h_max) * 1.01;
     }
     const double reach_max = *std::max_element (reach.begin (), reach.end ());
 
@@ -63,31 +68,69 @@ namespace pcl_sparse
       }
       std::sort (lists[p].begin (), lists[p].end ());
     }
+    // Contenders of each patch, and per angular sector of its plane those whose ball can reach the
+    // sector (the ball projects to a disk in the plane), nearest seed first so owners are found early.
+    // Patches with an opposite normal never beat (see beats), so they are left out here already.
+    bin_begin_.assign (m * sectors + 1, 0);
+    std::vector<std::vector<std::uint32_t>> bins (m * sectors);
     for (std::size_t p = 0; p < m; ++p)
     {
+      const PatchCode& self = model.patches[p];
+      std::vector<std::pair<double, int>> sorted;
       for (int q : lists[p])
+        if (model.patches[q].frame.col (2).dot (self.frame.col (2)) >= options_.min_normal_cosine)
+          sorted.emplace_back ((model.patches[q].origin - self.origin).squaredNorm (), q);
+      std::sort (sorted.begin (), sorted.end ());
+      for (const auto& entry : sorted)
       {
+        const int q = entry.second;
         const PatchCode& code = model.patches[q];
         const double inverse = 1.0 / code.radius;
+        const std::uint32_t index = static_cast<std::uint32_t> (contenders_.size ());
         contenders_.push_back ({code.origin, code.frame.col (0) * inverse, code.frame.col (1) * inverse,
-                                code.frame.col (2) * inverse, code.frame.col (2), evaluator.maxExtent (q),
-                                static_cast<std::size_t> (q)});
+                                code.frame.col (2) * inverse, evaluator.maxExtent (q), static_cast<std::size_t> (q)});
+        const Eigen::Vector3d centre = self.frame.transpose () * (code.origin - self.origin) / self.radius;
+        const double distance = centre.head<2> ().norm (), disk = reach[q] / self.radius;
+        if (distance <= disk * 1.0001)
+        {
+          for (int s = 0; s < sectors; ++s)
+            bins[p * sectors + s].push_back (index);
+          continue;
+        }
+        // Angular interval of the disk seen from the seed, as fractions of a turn.
+        const double middle = std::atan2 (centre.y (), centre.x ()) * (0.5 / M_PI);
+        const double half = std::asin (std::min (1.0, disk / distance)) * (0.5 / M_PI) + 1e-6;
+        for (int s = 0; s < sectors; ++s)
+        {
+          // Sector s spans [s, s + 1) / sectors; compare on the circle.
+          const double sector_middle = (s + 0.5) / sectors;
+          double gap = std::abs (sector_middle - middle);
+          gap -= std::floor (gap);
+          gap = std::min (gap, 1.0 - gap);
+          if (gap <= half + 0.5 / sectors)
+            bins[p * sectors + s].push_back (index);
+        }
       }
       contender_begin_[p + 1] = contenders_.size ();
+    }
+    for (std::size_t b = 0; b < bins.size (); ++b)
+    {
+      bin_contenders_.insert (bin_contenders_.end (), bins[b].begin (), bins[b].end ());
+      bin_begin_[b + 1] = bin_contenders_.size ();
     }
   }
 
   bool
   PatchOwnership::beats (const Contender& other, std::size_t p, const Eigen::Vector3d& d, double x, double y,
-                         const Eigen::Vector3d& n, double centrality) const
+                         double centrality) const
   {
     const double c = evaluator_.centrality (other.patch, x, y);
     if (c > 1.0 || c > centrality || (c == centrality && other.patch > p))
       return false;
-    if (other.normal.dot (n) < options_.min_normal_cosine)
+    const double z = other.n.dot (d), h = evaluator_.height (other.patch, x, y);
+    if (!(std::abs (h) <= options_.max_height && std::abs (z - h) <= options_.height_tolerance))
       return false;
-    const double z = other.n.dot (d);
-    return std::abs (z - evaluator_.height (other.patch, x, y)) <= options_.height_tolerance;
+    return isValidPlace (evaluator_.sample (other.patch, x, y), options_, max_slope_squared_);
   }
 
   std::vector<int>

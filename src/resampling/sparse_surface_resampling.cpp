@@ -69,20 +69,23 @@ namespace pcl_sparse
     class PatchSampler
     {
     public:
-      PatchSampler (const PatchEvaluator& evaluator, const PatchOwnership& ownership, double jitter)
-        : model_ (evaluator.model ()), evaluator_ (evaluator), ownership_ (ownership), jitter_ (jitter)
+      PatchSampler (const PatchEvaluator& evaluator, const PatchOwnership& ownership, double jitter, double max_weight)
+        : model_ (evaluator.model ()), evaluator_ (evaluator), ownership_ (ownership), jitter_ (jitter), max_weight_ (max_weight)
       {}
 
-      /// Whether patch \a p keeps the place (x, y): inside its footprint and owned by it.
+      /// Whether patch \a p keeps the place (x, y): inside its footprint and owned by it. Only the height
+      /// is evaluated here; the caller evaluates derivatives for the places kept.
       bool
-      keeps (std::size_t p, double x, double y, HeightSample& h) const
+      keeps (std::size_t p, double x, double y) const
       {
-        const double c = evaluator_.centrality (p, x, y);
+        double turn;
+        const double c = evaluator_.centrality (p, x, y, turn);
         if (c > 1.0)
           return false;
-        h = evaluator_.sample (p, x, y);
-        const PatchCode& code = model_.patches[p];
-        return ownership_.owns (p, patchPoint (code, x, y, h), patchNormal (code, h), c);
+        const double z = evaluator_.height (p, x, y);
+        if (!(std::abs (z) <= ownership_.options ().max_height))
+          return false;
+        return ownership_.owns (p, model_.patches[p].toWorld (Eigen::Vector3d (x, y, z)), c, turn);
       }
 
       /// One jittered candidate per cell, kept ones in serpentine cell order; returns their weight sum.
@@ -99,9 +102,12 @@ namespace pcl_sparse
             const std::int32_t cell = row * grid.n + col;
             const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
             const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
-            if (!keeps (p, x, y, h))
+            if (!keeps (p, x, y))
               continue;
-            const double w = std::sqrt (1.0 + h.gradient.squaredNorm ());
+            h = evaluator_.sample (p, x, y);
+            if (!isValidPlace (h, ownership_.options (), ownership_.maxSlopeSquared ()))
+              continue;
+            const double w = std::min (max_weight_, std::sqrt (1.0 + h.gradient.squaredNorm ()));
             out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell});
             sum += w;
           }
@@ -150,7 +156,7 @@ namespace pcl_sparse
             const std::uint64_t index = 2 * (cells * (8 * static_cast<std::uint64_t> (draw) + attempt) + c.cell);
             const double xa = grid.start + (col + uniform (key, index)) * grid.cell;
             const double ya = grid.start + (row + uniform (key, index + 1)) * grid.cell;
-            if (keeps (p, xa, ya, h))
+            if (keeps (p, xa, ya) && isValidPlace (evaluator_.sample (p, xa, ya), ownership_.options (), ownership_.maxSlopeSquared ()))
             {
               x = xa;
               y = ya;
@@ -158,8 +164,7 @@ namespace pcl_sparse
             }
           }
         }
-        if (!found)
-          h = evaluator_.sample (p, x, y);
+        h = evaluator_.sample (p, x, y);
         const PatchCode& code = model_.patches[p];
         const Eigen::Vector3d position = patchPoint (code, x, y, h);
         const Eigen::Vector3d normal = patchNormal (code, h);
@@ -176,6 +181,7 @@ namespace pcl_sparse
       const PatchEvaluator& evaluator_;
       const PatchOwnership& ownership_;
       double jitter_;
+      double max_weight_;
     };
 
     /// Largest-remainder split of \a total into parts proportional to \a weights.
@@ -254,6 +260,8 @@ namespace pcl_sparse
       throw Error (class_name_ + "::compute: no density given (setPointCount, setDensity or setSpacing)");
     if (!(options_.jitter >= 0.0 && options_.jitter <= 1.0))
       throw Error (class_name_ + "::compute: jitter must be in [0, 1]");
+    if (!(options_.max_area_weight >= 1.0))
+      throw Error (class_name_ + "::compute: max_area_weight must be at least 1");
     for (const PatchCode& code : model_->patches)
       if (!(code.radius > 0.0) || !std::isfinite (code.radius))
         throw Error (class_name_ + "::compute: a patch has a non-positive radius");
@@ -272,7 +280,7 @@ namespace pcl_sparse
       ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership);
     const PatchEvaluator& evaluator = *evaluator_;
     const PatchOwnership& ownership = *ownership_;
-    const PatchSampler sampler (evaluator, ownership, options_.jitter);
+    const PatchSampler sampler (evaluator, ownership, options_.jitter, options_.max_area_weight);
     const std::uint64_t seed = options_.seed;
 
     // Density: given, or from a coarse area pass when a total count is asked for.

@@ -30,7 +30,9 @@ namespace pcl_sparse
     double mean_distance = 0.0;
     double max_distance = 0.0;
     double mean_normal_angle = 0.0;  ///< mean angle (degrees) between a point's normal and its nearest face's normal
-    std::size_t flipped = 0;         ///< points whose normal is more than 90 degrees from the nearest face normal
+    /// Points whose normal is more than 120 degrees from the nearest face normal: pointing to the other side.
+    /// (Not 90: at a sharp 90-degree edge a point may be nearest to the other face.)
+    std::size_t flipped = 0;
     std::size_t invalid = 0;         ///< points with a non-finite position or normal (ignored above)
     double completeness = 0.0;       ///< fraction of probes with a point within hole_spacings spacings
     double largest_gap = 0.0;        ///< largest probe-to-point distance, in spacings

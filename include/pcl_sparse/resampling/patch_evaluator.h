@@ -24,18 +24,22 @@ namespace pcl_sparse
     const SparseSurfaceModel& model () const { return model_; }
 
     /// |(x, y)| / extent(angle) of patch \a p: <= 1 inside its footprint (an empty footprint is the unit disk).
+    /// \a turn receives the angle of (x, y) as a fraction of a full turn, in [0, 1).
     double
-    centrality (std::size_t p, double x, double y) const
+    centrality (std::size_t p, double x, double y, double& turn) const
     {
       const std::size_t begin = extent_begin_[p], k = extent_begin_[p + 1] - begin;
       const double r = std::sqrt (x * x + y * y);
+      turn = fastAtan2 (y, x) * (0.5 / M_PI);
+      if (turn < 0.0)
+        turn += 1.0;
+      if (turn >= 1.0)
+        turn = 0.0;
       if (k == 0)
         return r;
       if (r == 0.0)
         return 0.0;
-      double t = fastAtan2 (y, x) * (static_cast<double> (k) / (2.0 * M_PI));
-      if (t < 0.0)
-        t += static_cast<double> (k);
+      const double t = turn * static_cast<double> (k);
       std::size_t i = static_cast<std::size_t> (t);
       const double w = t - static_cast<double> (i);
       if (i >= k)
@@ -43,6 +47,13 @@ namespace pcl_sparse
       const std::size_t j = (i + 1 == k) ? 0 : i + 1;
       const double e = (1.0 - w) * extents_[begin + i] + w * extents_[begin + j];
       return e > 0.0 ? r / e : std::numeric_limits<double>::infinity ();
+    }
+
+    double
+    centrality (std::size_t p, double x, double y) const
+    {
+      double turn;
+      return centrality (p, x, y, turn);
     }
 
     /// Largest footprint extent of patch \a p (1 for an empty footprint).

@@ -6,15 +6,17 @@
 /// The rule uses the model alone: a place q sampled from patch P is owned by the patch whose footprint
 /// holds q most centrally, centrality c = |(x, y)| / extent(angle) in that patch's local coordinates
 /// (c <= 1 inside the footprint), ties to the lower patch index. A patch Q is only a contender for q if
-/// q also lies on Q's surface: |z' - h_Q(x', y')| <= height_tolerance (local units of Q) and Q's normal
-/// N_Q faces the same side as the normal at q, so the two sides of a thin sheet do not steal each
-/// other's places. Patches sample their own surface, so two patches see a seam place at slightly
+/// q also lies on Q's surface: |z' - h_Q(x', y')| <= height_tolerance (local units of Q) and Q's frame
+/// normal N_Q faces the same side as P's (N_Q . N_P >= min_normal_cosine), so the two sides of a thin
+/// sheet do not steal each other's places, and only where Q's code is valid (isValidPlace). Patches sample their own surface, so two patches see a seam place at slightly
 /// different positions (their coding errors); the seams are consistent up to that error.
 
 #include <pcl_sparse/resampling/patch_evaluator.h>
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace pcl_sparse
@@ -25,9 +27,24 @@ namespace pcl_sparse
     /// Largest distance from a patch's surface, in local units of that patch (fraction of r_P), at which
     /// a place still counts as lying on it.
     double height_tolerance = 0.1;
-    /// Smallest cosine between a contender's frame normal N_Q and the normal at the place.
+    /// Smallest cosine between a contender's frame normal N_Q and the sampling patch's frame normal N_P.
     double min_normal_cosine = 0.0;
+    /// Places where a patch's code leaves the slab |h| <= max_height (local units) are extrapolation of a
+    /// badly conditioned code, not surface: no patch samples or claims them there. Patches fit the unit
+    /// disk and their normals stay within 90 degrees of N, so true heights stay well inside |h| <= 1.
+    double max_height = 1.0;
+    /// Likewise places where the code's normal leaves the cone of this half-angle (degrees) around N:
+    /// the patch growth keeps face normals within 90 degrees of N, and a code steeper than this has left
+    /// its data (tiny patches on thin features oscillate). Another patch samples such places.
+    double max_slope_angle = 75.0;
   };
+
+  /// Whether height sample \a h is a place of its patch's surface under \a options (height and slope bounds).
+  inline bool
+  isValidPlace (const HeightSample& h, const PatchOwnershipOptions& options, double max_slope_squared)
+  {
+    return std::abs (h.value) <= options.max_height && h.gradient.squaredNorm () <= max_slope_squared;
+  }
 
   /// Overlap structure of a model: for each patch, the patches whose extent may reach into it, and the
   /// ownership test. Holds a reference to the evaluator, which must outlive it.
@@ -36,27 +53,35 @@ namespace pcl_sparse
   public:
     PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options = PatchOwnershipOptions ());
 
-    /// Whether patch \a p owns the place \a q (a point of p's surface) with unit normal \a n, where
-    /// \a centrality is the centrality of q in p (must be <= 1).
+    /// Angular sectors of a patch's local plane; each keeps only the contenders that can reach it.
+    static constexpr int sectors = 16;
+
+    /// Whether patch \a p owns the place \a q (a point of p's surface), where \a centrality is the
+    /// centrality of q in p (must be <= 1) and \a turn its angle in p as a fraction of a turn.
     bool
-    owns (std::size_t p, const Eigen::Vector3d& q, const Eigen::Vector3d& n, double centrality) const
+    owns (std::size_t p, const Eigen::Vector3d& q, double centrality, double turn) const
     {
-      for (std::size_t k = contender_begin_[p]; k < contender_begin_[p + 1]; ++k)
+      const std::size_t bin = p * sectors + std::min<std::size_t> (sectors - 1, static_cast<std::size_t> (turn * sectors));
+      for (std::size_t k = bin_begin_[bin]; k < bin_begin_[bin + 1]; ++k)
       {
-        const Contender& other = contenders_[k];
+        const Contender& other = contenders_[bin_contenders_[k]];
         const Eigen::Vector3d d = q - other.origin;
         const double x = other.t1.dot (d), y = other.t2.dot (d);
         // Cheap bound first: the centrality in `other` is at least |(x, y)| / its largest extent.
         const double bound = other.max_extent * centrality;
         if (x * x + y * y > bound * bound)
           continue;
-        if (beats (other, p, d, x, y, n, centrality))
+        if (beats (other, p, d, x, y, centrality))
           return false;
       }
       return true;
     }
 
-    /// Patches that may overlap patch \a p (never p itself), in increasing index order.
+    const PatchOwnershipOptions& options () const { return options_; }
+    /// tan(max_slope_angle)^2.
+    double maxSlopeSquared () const { return max_slope_squared_; }
+
+    /// Patches that may overlap patch \a p (never p itself), nearest seed first.
     std::vector<int> neighbours (std::size_t p) const;
 
   private:
@@ -64,18 +89,19 @@ namespace pcl_sparse
     struct Contender
     {
       Eigen::Vector3d origin, t1, t2, n;  ///< s; T1 / r, T2 / r, N / r
-      Eigen::Vector3d normal;             ///< N
       double max_extent;
       std::size_t patch;
     };
 
     bool
-    beats (const Contender& other, std::size_t p, const Eigen::Vector3d& d, double x, double y, const Eigen::Vector3d& n,
-           double centrality) const;
+    beats (const Contender& other, std::size_t p, const Eigen::Vector3d& d, double x, double y, double centrality) const;
 
     const PatchEvaluator& evaluator_;
     PatchOwnershipOptions options_;
+    double max_slope_squared_ = 0.0;
     std::vector<Contender> contenders_;
     std::vector<std::size_t> contender_begin_;  ///< #patches + 1 offsets into contenders_
+    std::vector<std::uint32_t> bin_contenders_;  ///< per (patch, sector): indices into contenders_, nearest seed first
+    std::vector<std::size_t> bin_begin_;         ///< #patches * sectors + 1 offsets into bin_contenders_
   };
 } // namespace pcl_sparse

@@ -46,6 +46,9 @@ namespace pcl_sparse
     /// sampling, 0 = a regular grid per patch). The default trades a little regularity for no visible
     /// grid pattern; nearest-neighbour CV grows with it.
     double jitter = 0.6;
+    /// Cap on the area element sqrt(1 + |grad h|^2) used as a place's weight (10: slopes up to 84 degrees
+    /// count fully), so a patch whose code oscillates steeply cannot absorb the point budget.
+    double max_area_weight = 10.0;
     /// Cells per patch in the area pass that sizes the cells when a total count is requested.
     int area_pass_cells = 64;
     /// Ownership of overlapping places.
