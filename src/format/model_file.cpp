@@ -111,6 +111,28 @@ namespace pcl_sparse
       return values;
     }
 
+    /// Rank of cosine atom (i, j) in "shell order": by max(i, j) first (the Nyquist cap allows exactly
+    /// the shells up to a frequency, and OMP picks low shells most), so a patch's sorted ranks form a
+    /// near-prefix with small deltas. Shell m = max(i, j) holds ranks m^2 .. m^2 + 2m.
+    int
+    shellRank (int atom, int n)
+    {
+      const int i = atom / n, j = atom % n, m = std::max (i, j);
+      return m * m + (i == m ? j : m + 1 + i);
+    }
+
+    int
+    atomOfShellRank (int rank, int n)
+    {
+      int m = static_cast<int> (std::sqrt (static_cast<double> (rank)));
+      while (m * m > rank)
+        --m;
+      while ((m + 1) * (m + 1) <= rank)
+        ++m;
+      const int o = rank - m * m;
+      return o <= m ? m * n + o : (o - m - 1) * n + m;
+    }
+
     double
     sumAbs (const std::vector<double>& values)
     {
@@ -135,7 +157,9 @@ namespace pcl_sparse
     decodedReach (const PatchCode& patch, const QuantisationParameters& q)
     {
       const double step = coefficientStep (q.coefficient_budget, patch.radius, patch.atoms.size ());
-      const double e = maxExtent (patch.footprint) + q.extentStep ();
+      // The largest extent over the whole model (stored, exact), not the patch's decoded extents: those
+      // are rounded and may have lost angles (max_footprint_angles).
+      const double e = q.extent_max;
       const double h = sumAbs (patch.coefficients) + 0.5 * step * static_cast<double> (patch.coefficients.size ());
       return std::max (std::sqrt (e * e + h * h), 1e-12);
     }
@@ -237,7 +261,7 @@ namespace pcl_sparse
     // ---- quantised sections -----------------------------------------------------------------------
 
     std::vector<Section>
-    encodeQuantised (const SparseSurfaceModel& model, const ModelWriteOptions& options)
+    encodeQuantised (const SparseSurfaceModel& model, const ModelWriteOptions& options, int frequencies)
     {
       const std::size_t m = model.patches.size ();
       const double tolerance = options.tolerance * model.bbox_diagonal;
@@ -303,10 +327,17 @@ namespace pcl_sparse
         radius_max = std::max (radius_max, radii[p]);
         decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
 
-        foot.putVarint (patch.footprint.extent.size ());
+        // Fewer angles: keep every stride-th extent (docs/FORMAT.md: no measurable change on spot).
+        std::size_t stride = 1;
+        const std::size_t k_in = patch.footprint.extent.size ();
+        while (options.max_footprint_angles > 0 && k_in / stride > static_cast<std::size_t> (options.max_footprint_angles) &&
+               k_in % (2 * stride) == 0)
+          stride *= 2;
+        foot.putVarint (k_in / stride);
         unsigned previous = 0;
-        for (float e : patch.footprint.extent)
+        for (std::size_t k = 0; k < k_in; k += stride)
         {
+          const float e = patch.footprint.extent[k];
           const unsigned level =
             std::min (extent_mask, static_cast<unsigned> (std::lround (static_cast<double> (e) / q.extentStep ())));
           foot.putU8 (static_cast<std::uint8_t> ((level - previous) & extent_mask));
@@ -314,18 +345,19 @@ namespace pcl_sparse
           decoded.footprint.extent.push_back (static_cast<float> (level * q.extentStep ()));
         }
 
-        // Atoms sorted by index: the deltas are small and the code is the same sum.
+        // Atoms sorted by shell rank: the deltas are small and the code is the same sum.
         std::vector<std::size_t> order (patch.atoms.size ());
         std::iota (order.begin (), order.end (), 0);
-        std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) { return patch.atoms[a] < patch.atoms[b]; });
+        std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
+          return shellRank (patch.atoms[a], frequencies) < shellRank (patch.atoms[b], frequencies);
+        });
         atom.putVarint (order.size ());
-        int previous_atom = -1;
+        int previous_rank = -1;
         for (std::size_t k : order)
         {
-          if (patch.atoms[k] == previous_atom)
-            throw Error ("encodeModel: patch " + std::to_string (p) + " repeats atom " + std::to_string (previous_atom));
-          atom.putVarint (static_cast<std::uint64_t> (patch.atoms[k] - previous_atom - 1));
-          previous_atom = patch.atoms[k];
+          const int rank = shellRank (patch.atoms[k], frequencies);
+          atom.putVarint (static_cast<std::uint64_t> (rank - previous_rank - 1));
+          previous_rank = rank;
           decoded.atoms.push_back (patch.atoms[k]);
         }
         const double step = coefficientStep (q.coefficient_budget, decoded.radius, order.size ());
@@ -563,6 +595,8 @@ namespace pcl_sparse
     validateModel (model, frequencies * frequencies);
     if (!std::isfinite (options.tolerance) || options.tolerance < 0.0)
       throw Error ("encodeModel: tolerance must be >= 0");
+    if (options.max_footprint_angles < 0)
+      throw Error ("encodeModel: max_footprint_angles must be >= 0");
     if (options.extent_bits < 2 || options.extent_bits > 8)
       throw Error ("encodeModel: extent_bits must be in 2..8");
     if (options.zstd_level < 0 || options.zstd_level > 22)
@@ -573,7 +607,7 @@ namespace pcl_sparse
     if (quantised && !(model.bbox_diagonal > 0.0))
       throw Error ("encodeModel: a tolerance needs the model's bbox_diagonal (> 0)");
 
-    std::vector<Section> sections = quantised ? encodeQuantised (model, options) : encodeLossless (model);
+    std::vector<Section> sections = quantised ? encodeQuantised (model, options, frequencies) : encodeLossless (model);
     if (options.include_vertices)
       sections.push_back (encodeVertices (model, quantised));
 
@@ -729,7 +763,13 @@ namespace pcl_sparse
       for (std::size_t i = 0; i < n; ++i)
       {
         const std::uint64_t v = atom.getCount ("atom index", static_cast<std::uint64_t> (basis_size));
-        const std::int64_t index = quantised ? previous + 1 + static_cast<std::int64_t> (v) : static_cast<std::int64_t> (v);
+        std::int64_t index = quantised ? previous + 1 + static_cast<std::int64_t> (v) : static_cast<std::int64_t> (v);
+        if (index >= basis_size)
+          atom.fail ("patch " + std::to_string (p) + " atom " + std::to_string (index) + " outside the basis of " +
+                     std::to_string (basis_size));
+        previous = index;
+        if (quantised)
+          index = atomOfShellRank (static_cast<int> (index), h.basis_parameter);
         if (index >= basis_size)
           atom.fail ("patch " + std::to_string (p) + " atom index " + std::to_string (index) + " outside the basis of " +
                      std::to_string (basis_size));
@@ -737,7 +777,6 @@ namespace pcl_sparse
           atom.fail ("patch " + std::to_string (p) + " repeats atom " + std::to_string (index));
         used[index] = true;
         patch.atoms[i] = static_cast<int> (index);
-        previous = index;
       }
       patch.coefficients.resize (n);
       const double step = quantised ? coefficientStep (q.coefficient_budget, patch.radius, n) : 0.0;
