@@ -127,6 +127,28 @@ TEST (IoRoundTrip, StlIsWeldedBackToTheSameMeshAtFloatPrecision)
       EXPECT_EQ (loaded.vertices[loaded.triangles[f][k]], mesh.vertices[mesh.triangles[f][k]].cast<float> ().cast<double> ());
 }
 
+TEST (IoRoundTrip, StlTriangleSoupStaysUnwelded)
+{
+  // Every triangle with its own three corners, slightly moved: nothing is equal, nothing may be welded
+  // (and the weld table has to grow well past its initial size).
+  TempDir dir;
+  const TriangleMesh sphere = makeIcosphere (3);
+  TriangleMesh soup;
+  for (const Eigen::Vector3i& t : sphere.triangles)
+  {
+    const int base = static_cast<int> (soup.vertices.size ());
+    for (int k = 0; k < 3; ++k)
+      soup.vertices.push_back (sphere.vertices[t[k]] * (1.0 + 1e-5 * static_cast<double> (soup.vertices.size ())));
+    soup.triangles.emplace_back (base, base + 1, base + 2);
+  }
+  const std::string path = dir.file ("soup.stl");
+  saveTriangleMesh (path, soup);
+  const TriangleMesh loaded = loadTriangleMesh (path);
+  ASSERT_EQ (loaded.numVertices (), soup.numVertices ());
+  for (std::size_t i = 0; i < soup.vertices.size (); ++i)
+    EXPECT_EQ (loaded.vertices[i], soup.vertices[i].cast<float> ().cast<double> ());
+}
+
 TEST (IoRoundTrip, ColoredPlyKeepsPositionsAndColours)
 {
   TempDir dir;

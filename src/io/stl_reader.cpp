@@ -5,7 +5,6 @@
 
 #include "mesh_readers.h"
 
-#include <unordered_map>
 #include <vector>
 
 namespace pcl_sparse
@@ -14,58 +13,76 @@ namespace pcl_sparse
   {
     namespace
     {
-      struct PositionKey
-      {
-        std::uint64_t bits[3];
-        bool
-        operator== (const PositionKey& other) const
-        {
-          return bits[0] == other.bits[0] && bits[1] == other.bits[1] && bits[2] == other.bits[2];
-        }
-      };
-
-      struct PositionKeyHash
-      {
-        std::size_t
-        operator() (const PositionKey& key) const
-        {
-          std::uint64_t h = 0x9e3779b97f4a7c15ull;
-          for (std::uint64_t b : key.bits)
-          {
-            h ^= b + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
-            h *= 0xff51afd7ed558ccdull;
-          }
-          return static_cast<std::size_t> (h ^ (h >> 32));
-        }
-      };
-
-      /// Welds corners with identical positions (+0 and -0 are the same position).
+      /// Welds corners with identical positions (+0 and -0 are the same position; NaN never welds). An
+      /// open-addressing table of vertex indices: several times faster than std::unordered_map here (one
+      /// lookup per corner, 1.2 million for a 400k-triangle file).
       class Welder
       {
       public:
         Welder (TriangleMesh& mesh, std::size_t expected_corners) : mesh_ (mesh)
         {
-          index_.reserve (expected_corners / 4 + 16);
+          // Closed meshes have about corners / 6 distinct vertices; the table grows when half full.
+          std::size_t capacity = 64;
+          while (capacity < expected_corners / 3)
+            capacity *= 2;
+          slots_.assign (capacity, -1);
         }
 
         int
         add (const Eigen::Vector3d& position)
         {
-          PositionKey key;
-          for (int k = 0; k < 3; ++k)
+          if (2 * (mesh_.vertices.size () + 1) > slots_.size ())
+            grow ();
+          const std::size_t mask = slots_.size () - 1;
+          for (std::size_t slot = hash (position) & mask;; slot = (slot + 1) & mask)
           {
-            const double value = position[k] == 0.0 ? 0.0 : position[k];
-            std::memcpy (&key.bits[k], &value, sizeof (double));
+            const int index = slots_[slot];
+            if (index < 0)
+            {
+              slots_[slot] = static_cast<int> (mesh_.vertices.size ());
+              mesh_.vertices.push_back (position);
+              return slots_[slot];
+            }
+            if (mesh_.vertices[static_cast<std::size_t> (index)] == position)
+              return index;
           }
-          const auto inserted = index_.emplace (key, static_cast<int> (mesh_.vertices.size ()));
-          if (inserted.second)
-            mesh_.vertices.push_back (position);
-          return inserted.first->second;
         }
 
       private:
+        static std::size_t
+        hash (const Eigen::Vector3d& position)
+        {
+          std::uint64_t h = 0x9e3779b97f4a7c15ull;
+          for (int k = 0; k < 3; ++k)
+          {
+            const double value = position[k] == 0.0 ? 0.0 : position[k];  // -0 hashes like +0
+            std::uint64_t bits;
+            std::memcpy (&bits, &value, sizeof (double));
+            h = (h ^ bits) * 0xff51afd7ed558ccdull;
+            h ^= h >> 32;
+          }
+          return static_cast<std::size_t> (h);
+        }
+
+        void
+        grow ()
+        {
+          std::vector<int> old;
+          old.swap (slots_);
+          slots_.assign (old.size () * 2, -1);
+          const std::size_t mask = slots_.size () - 1;
+          for (int index : old)
+            if (index >= 0)
+            {
+              std::size_t slot = hash (mesh_.vertices[static_cast<std::size_t> (index)]) & mask;
+              while (slots_[slot] >= 0)
+                slot = (slot + 1) & mask;
+              slots_[slot] = index;
+            }
+        }
+
         TriangleMesh& mesh_;
-        std::unordered_map<PositionKey, int, PositionKeyHash> index_;
+        std::vector<int> slots_;
       };
 
       void
