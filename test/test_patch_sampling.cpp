@@ -242,6 +242,34 @@ TEST (PatchSampling, UnreferencedAndIsolatedVertices)
   expectValidPartition (mesh, patches, options, "sphere + lonely vertex");
 }
 
+TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
+{
+  // Duplicate face, zero-area face, face with a repeated corner, a NaN vertex in two faces.
+  TriangleMesh mesh = makeIcosphere (2);
+  mesh.triangles.push_back (mesh.triangles[0]);
+  mesh.triangles.emplace_back (0, 1, 1);
+  mesh.vertices.emplace_back (0.5 * (mesh.vertices[2] + mesh.vertices[3]));
+  mesh.triangles.emplace_back (2, 3, static_cast<int> (mesh.vertices.size ()) - 1);
+  mesh.vertices.emplace_back (NAN, 0.0, 0.0);
+  const int nan_vertex = static_cast<int> (mesh.vertices.size ()) - 1;
+  mesh.triangles.emplace_back (4, 5, nan_vertex);
+  mesh.triangles.emplace_back (5, 4, nan_vertex);
+  const auto patches = sample (mesh);
+  PatchInvariantChecker checker (mesh, PatchOptions ());
+  EXPECT_TRUE (checker.uncoveredVertices (patches).empty ());
+  for (const Patch& p : patches)
+    if (p.seed != nan_vertex)
+      EXPECT_EQ (checker.check (p), "") << "seed " << p.seed;
+    else
+      EXPECT_EQ (p.size (), 1u);
+
+  // No faces at all: every vertex is unreferenced and gets its own one-vertex patch.
+  TriangleMesh cloud;
+  cloud.vertices = {Eigen::Vector3d (0, 0, 0), Eigen::Vector3d (1, 0, 0)};
+  EXPECT_EQ (sample (cloud).size (), 2u);
+  EXPECT_TRUE (sample (TriangleMesh ()).empty ());
+}
+
 TEST (PatchSampling, NonManifoldEdgeIsABorder)
 {
   // Three half planes ("book pages") sharing the spine x = z = 0, at 0, 160 and 200 degrees around it,

@@ -1,6 +1,7 @@
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/geometry/mesh_neighborhood.h>
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/non_manifold_split.h>
@@ -117,8 +118,22 @@ namespace pcl_sparse
     {
       Harris3DOptions harris;
       harris.num_threads = num_threads_;
-      used_responses_ = computeHarris3DResponses (input, input_topology, harris);
-      used_keypoints_ = selectHarris3DKeypoints (input, input_topology, used_responses_, harris, input.vertices.size ());
+      // Harris 3D responses depend on the length unit (harris3d.h): computed on the mesh scaled to a unit
+      // bbox diagonal, the seeds, and so the whole model, do not depend on the input's units.
+      const double diagonal = boundingBoxDiagonal (input);
+      TriangleMesh unit;
+      const bool rescale = diagonal > 0.0 && std::isfinite (diagonal) && diagonal != 1.0;
+      if (rescale)
+      {
+        unit.triangles = input.triangles;
+        unit.vertices.resize (input.vertices.size ());
+        for (std::size_t v = 0; v < input.vertices.size (); ++v)
+          unit.vertices[v] = input.vertices[v] / diagonal;
+      }
+      const TriangleMesh& harris_mesh = rescale ? unit : input;
+      used_responses_ = computeHarris3DResponses (harris_mesh, input_topology, harris);
+      used_keypoints_ =
+        selectHarris3DKeypoints (harris_mesh, input_topology, used_responses_, harris, input.vertices.size ());
     }
 
     // Cut non-manifold edges and vertices: growth then cannot cross them.

@@ -1,5 +1,7 @@
 #include <pcl_sparse/patches/non_manifold_split.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <numeric>
 
@@ -34,8 +36,12 @@ namespace pcl_sparse
         continue;
       parent.resize (n);
       std::iota (parent.begin (), parent.end (), 0);
-      auto slotOf = [&] (int face) {  // -1 for a face using v twice
+      auto slotOf = [&] (int face) {  // -1 for a face using v twice or of zero area
         const Eigen::Vector3i& t = mesh.triangles[face];
+        const Eigen::Vector3d& a = mesh.vertices[t[0]];
+        const Eigen::Vector3d cross = (mesh.vertices[t[1]] - a).cross (mesh.vertices[t[2]] - a);
+        if (!(cross.squaredNorm () > 0.0) || !cross.allFinite ())
+          return -1;
         int count = 0, slot = -1;
         for (int k = 0; k < 3; ++k)
           if (t[k] == v)

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace pcl_sparse
 {
@@ -60,7 +61,11 @@ namespace pcl_sparse
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < num_vertices; ++v)
       for (int i = topology.vertex_neighbor_offsets[v]; i < topology.vertex_neighbor_offsets[v + 1]; ++i)
-        g.edge_lengths[i] = (mesh.vertices[topology.vertex_neighbors[i]] - mesh.vertices[v]).norm ();
+      {
+        // A non-finite length (NaN coordinates) becomes +inf: such vertices come last and are refused.
+        const double l = (mesh.vertices[topology.vertex_neighbors[i]] - mesh.vertices[v]).norm ();
+        g.edge_lengths[i] = std::isfinite (l) ? l : std::numeric_limits<double>::infinity ();
+      }
     // Sequential sum: the total must not depend on the thread count.
     for (double a : g.face_areas)
       g.total_area += a;

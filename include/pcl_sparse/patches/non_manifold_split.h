@@ -21,7 +21,8 @@ namespace pcl_sparse
   };
 
   /// Splits the vertices of \a mesh that have more than one umbrella (non-manifold edges and vertices,
-  /// "bow ties"). Faces with a repeated corner stay with the vertex's first umbrella.
+  /// "bow ties"). Degenerate faces (a repeated corner, zero or non-finite area) belong to no umbrella of
+  /// their own: they stay with the vertex's first umbrella.
   ///   returns  false (and leaves \a split untouched) when every vertex has at most one umbrella
   bool
   splitNonManifoldVertices (const TriangleMesh& mesh, const MeshTopology& topology, NonManifoldSplit& split);
