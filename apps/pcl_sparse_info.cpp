@@ -3,6 +3,7 @@
 ///   pcl_sparse_info FILE [--json] [--allow-non-finite]
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_report.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -25,7 +26,7 @@ namespace
   printHelp (const char* program)
   {
     pcl::console::print_error ("Syntax is: %s FILE [options]\n", program);
-    pcl::console::print_info ("  FILE                a triangle mesh: .obj .off .ply .stl\n");
+    pcl::console::print_info ("  FILE                a triangle mesh: .obj .off .ply .stl, or a model file .psm\n");
     pcl::console::print_info ("  --json              print one JSON object on stdout instead of 'name: value' lines\n");
     pcl::console::print_info ("  --allow-non-finite  count NaN/Inf vertices instead of refusing the file\n");
     pcl::console::print_info ("  -q                  quiet (no messages besides the report and errors)\n");
@@ -105,6 +106,50 @@ namespace
                  r.manifold ? "true" : "false", r.orientable ? "true" : "false", r.closed ? "true" : "false",
                  r.genus, r.bbox_diagonal, r.mean_edge_length, seconds);
   }
+  /// Summary of a .psm model file: header, patches, atoms and the bytes of each section.
+  void
+  printModelInfo (const std::string& path, bool json, pcl::console::TicToc& timer)
+  {
+    const ModelFileInfo info = inspectModelFile (path);
+    const SparseSurfaceModel model = loadModel (path);
+    const double seconds = timer.toc () / 1000.0;
+    const double bits = info.num_input_vertices ? 8.0 * info.file_bytes / info.num_input_vertices : 0.0;
+    if (json)
+    {
+      std::printf ("{\"file\": %s, \"version\": %u, \"quantised\": %s, \"tolerance\": %.17g, \"basis\": %s, "
+                   "\"patches\": %u, \"atoms\": %zu, \"input_vertices\": %llu, \"bbox_diagonal\": %.17g, "
+                   "\"vertices_stored\": %s, \"bytes\": %llu, \"bits_per_input_vertex\": %.6g, \"sections\": {",
+                   jsonString (path).c_str (), info.version, info.quantised ? "true" : "false", info.tolerance,
+                   jsonString (info.basis).c_str (), info.num_patches, model.numNonZeros (),
+                   static_cast<unsigned long long> (info.num_input_vertices), info.bbox_diagonal,
+                   info.has_vertices ? "true" : "false", static_cast<unsigned long long> (info.file_bytes), bits);
+      for (std::size_t i = 0; i < info.sections.size (); ++i)
+        std::printf ("%s\"%s\": {\"bytes\": %llu, \"raw_bytes\": %llu}", i ? ", " : "", info.sections[i].tag.c_str (),
+                     static_cast<unsigned long long> (info.sections[i].stored_bytes),
+                     static_cast<unsigned long long> (info.sections[i].raw_bytes));
+      std::printf ("}, \"seconds\": %.6f}\n", seconds);
+      return;
+    }
+    std::printf ("file: %s\n", path.c_str ());
+    std::printf ("format version: %u\n", info.version);
+    if (info.quantised)
+      std::printf ("mode: quantised, surface tolerance %g of the bbox diagonal\n", info.tolerance);
+    else
+      std::printf ("mode: lossless\n");
+    std::printf ("basis: %s\n", info.basis.c_str ());
+    std::printf ("patches: %u\n", info.num_patches);
+    std::printf ("atoms (nnz): %zu (%.2f per patch)\n", model.numNonZeros (),
+                 info.num_patches ? static_cast<double> (model.numNonZeros ()) / info.num_patches : 0.0);
+    std::printf ("input vertices: %llu\n", static_cast<unsigned long long> (info.num_input_vertices));
+    std::printf ("bbox diagonal: %.6g\n", info.bbox_diagonal);
+    std::printf ("patch vertices stored: %s\n", info.has_vertices ? "yes" : "no");
+    std::printf ("bytes: %llu (%.3f bits per input vertex)\n", static_cast<unsigned long long> (info.file_bytes), bits);
+    for (const ModelFileSection& section : info.sections)
+      std::printf ("section %s: %llu bytes (%llu decompressed)\n", section.tag.c_str (),
+                   static_cast<unsigned long long> (section.stored_bytes),
+                   static_cast<unsigned long long> (section.raw_bytes));
+    std::printf ("seconds: %.3f\n", seconds);
+  }
 } // namespace
 
 int
@@ -148,9 +193,8 @@ main (int argc, char** argv)
     timer.tic ();
     if (hasExtension (path, ".psm"))
     {
-      // Saved sparse models (.psm): to be filled in by the model file format, which will load the
-      // SparseSurfaceModel here and print its own summary (patches, atoms, bytes) in both output styles.
-      throw Error (path + ": reading saved models (.psm) is not supported yet");
+      printModelInfo (path, json, timer);
+      return 0;
     }
     const TriangleMesh mesh = loadTriangleMesh (path, load_options);
     const MeshTopology topology = buildMeshTopology (mesh);
