@@ -447,5 +447,7 @@ TEST (MeshReportSharedMeshes, LinearTimeOn200kVertices)
   RecordProperty ("topology_and_report_seconds", std::to_string (seconds));
   std::cout << "koala-loop1-200k: topology + report in " << seconds << " s" << std::endl;
   EXPECT_EQ (r.genus, 0);
-  EXPECT_LT (seconds, 2.0);  // about 0.1 s in Release; generous for loaded CI machines and sanitizers
+#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
+  EXPECT_LT (seconds, 2.0);  // about 0.1-0.3 s in Release; generous for loaded CI machines
+#endif
 }
