@@ -213,6 +213,9 @@ main (int argc, char** argv)
         ++covered;
         memberships += static_cast<std::size_t> (c);
       }
+    std::size_t kinds[3] = {0, 0, 0};
+    for (PatchFrameKind k : sampling.getFrameKinds ())
+      ++kinds[static_cast<int> (k)];
     const double per_vertex = covered > 0 ? static_cast<double> (memberships) / covered : 0.0;
     const std::size_t smin = sizes.empty () ? 0 : sizes.front (), smax = sizes.empty () ? 0 : sizes.back ();
     const std::size_t smed = sizes.empty () ? 0 : sizes[sizes.size () / 2];
@@ -244,10 +247,12 @@ main (int argc, char** argv)
     if (json)
       std::printf ("{\"file\": %s, \"vertices\": %zu, \"patches\": %zu, \"uncovered\": %zu, \"unreferenced\": %zu, "
                    "\"coverage_patches\": %zu, \"keypoints\": %zu, \"size_min\": %zu, \"size_median\": %zu, "
-                   "\"size_max\": %zu, \"patches_per_vertex\": %.6f, \"invalid_patches\": %zu, \"seconds\": %.6f}\n",
+                   "\"size_max\": %zu, \"patches_per_vertex\": %.6f, \"invalid_patches\": %zu, \"frames_jet\": %zu, "
+                   "\"frames_seed_normal\": %zu, \"frames_normal_only\": %zu, \"seconds\": %.6f}\n",
                    jsonString (input).c_str (), mesh->vertices.size (), patches.size (), uncovered,
                    sampling.getUnreferencedVertices ().size (), sampling.getNumCoveragePatches (),
-                   sampling.getKeypoints ().size (), smin, smed, smax, per_vertex, invalid, seconds);
+                   sampling.getKeypoints ().size (), smin, smed, smax, per_vertex, invalid, kinds[0], kinds[1], kinds[2],
+                   seconds);
     else
     {
       std::printf ("file: %s\n", input.c_str ());
@@ -259,6 +264,7 @@ main (int argc, char** argv)
       std::printf ("patch size min/median/max: %zu / %zu / %zu\n", smin, smed, smax);
       std::printf ("mean patches per vertex: %.3f\n", per_vertex);
       std::printf ("patches violating an invariant: %zu\n", invalid);
+      std::printf ("frames jet / seed normal / normal only: %zu / %zu / %zu\n", kinds[0], kinds[1], kinds[2]);
       std::printf ("seconds: %.3f\n", seconds);
     }
   }
