@@ -182,6 +182,7 @@ TEST (IoRoundTrip, WritersRefuseBadIndicesAndLeaveNoFile)
   mesh.triangles[2][1] = 4;
   EXPECT_THROW (saveTriangleMesh (dir.file ("bad.ply"), mesh), Error);
   EXPECT_THROW (saveTriangleMesh (dir.file ("bad.xyz"), makeTetrahedron ()), Error);
+  EXPECT_THROW (saveTriangleMesh (dir.file ("missing_folder/mesh.obj"), makeTetrahedron ()), Error);
   struct stat info;
   EXPECT_NE (::stat (dir.file ("bad.ply").c_str (), &info), 0);
 }
@@ -494,6 +495,19 @@ TEST (IoCloud, PointNormalCloudRoundTripsThroughPcdAndPly)
       }
     }
   EXPECT_THROW (savePointNormalCloud (dir.file ("c.txt"), cloud), Error);
+  EXPECT_THROW (savePointNormalCloud (dir.file ("missing_folder/c.pcd"), cloud), Error);
+
+  // An empty cloud is a valid result (e.g. nothing resampled) and reads back empty.
+  for (const char* name : {"empty.pcd", "empty.ply"})
+    for (bool binary : {true, false})
+    {
+      SCOPED_TRACE (std::string (name) + (binary ? " binary" : " ascii"));
+      savePointNormalCloud (dir.file (name), pcl::PointCloud<pcl::PointNormal> (), binary);
+      pcl::PointCloud<pcl::PointXYZ> loaded;
+      loaded.resize (3);
+      loadPointCloud (dir.file (name), loaded);
+      EXPECT_EQ (loaded.size (), 0u);
+    }
 }
 
 TEST (IoCloud, PcdWithDoubleFieldsAndExtraFields)

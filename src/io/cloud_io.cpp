@@ -176,10 +176,8 @@ namespace pcl_sparse
     }
     if (!isMeshFileExtension (path))
       throw Error (path + ": unknown point cloud file extension '" + extension + "' (expected .pcd, .ply, .obj, .off or .stl)");
-    MeshLoadOptions options;
-    options.allow_no_faces = true;
-    options.allow_non_finite = true;
-    const TriangleMesh mesh = loadTriangleMesh (path, options);
+    // The vertices as they are: no faces, no points and NaN points are all fine for a cloud.
+    const TriangleMesh mesh = io_detail::readMeshFile (path);
     cloud.clear ();
     cloud.resize (mesh.vertices.size ());
     bool dense = true;

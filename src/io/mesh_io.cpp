@@ -84,22 +84,28 @@ namespace pcl_sparse
   }
 
   TriangleMesh
-  loadTriangleMesh (const std::string& path, const MeshLoadOptions& options)
+  io_detail::readMeshFile (const std::string& path)
   {
-    const std::string extension = io_detail::lowerCaseExtension (path);
+    const std::string extension = lowerCaseExtension (path);
     if (!isMeshFileExtension (path))
       throw Error (path + ": unknown mesh file extension '" + extension + "' (expected .obj, .off, .ply or .stl)");
-    const std::string data = io_detail::readWholeFile (path);
-
+    const std::string data = readWholeFile (path);
     TriangleMesh mesh;
     if (extension == ".obj")
-      io_detail::readObj (data, path, mesh);
+      readObj (data, path, mesh);
     else if (extension == ".off")
-      io_detail::readOff (data, path, mesh);
+      readOff (data, path, mesh);
     else if (extension == ".ply")
-      io_detail::readPly (data, path, mesh);
+      readPly (data, path, mesh);
     else
-      io_detail::readStl (data, path, mesh);
+      readStl (data, path, mesh);
+    return mesh;
+  }
+
+  TriangleMesh
+  loadTriangleMesh (const std::string& path, const MeshLoadOptions& options)
+  {
+    TriangleMesh mesh = io_detail::readMeshFile (path);
 
     if (mesh.vertices.empty ())
       throw Error (path + ": no vertices");

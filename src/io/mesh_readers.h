@@ -35,6 +35,11 @@ namespace pcl_sparse
     void
     requireText (const std::string& data, const std::string& path, const char* format);
 
+    /// Dispatches on the extension and reads the file with the format's reader: every check of the format,
+    /// but none of loadTriangleMesh's checks on the result (empty, no faces, non-finite).
+    TriangleMesh
+    readMeshFile (const std::string& path);
+
     /// Format readers: fill \a mesh with every vertex of the file and the fan-triangulated faces, and
     /// check face indices. Non-finite coordinates and empty results are checked by the caller.
     void

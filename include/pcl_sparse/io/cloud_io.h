@@ -13,7 +13,8 @@ namespace pcl_sparse
   /// Loads the points of \a path into \a cloud (width = #points, height = 1 for mesh formats).
   ///   .pcd                    PCL's PCD reader (any fields; x, y, z required);
   ///   .ply (with or without faces), .obj, .off, .stl   the vertices, read by loadTriangleMesh.
-  /// NaN/Inf points are kept (PCL's convention) and make is_dense false. Throws pcl_sparse::Error for a
+  /// NaN/Inf points are kept (PCL's convention) and make is_dense false; a file with no points gives an
+  /// empty cloud. Throws pcl_sparse::Error for a
   /// missing, empty, malformed or truncated file, a directory or an unknown extension.
   void
   loadPointCloud (const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud);
