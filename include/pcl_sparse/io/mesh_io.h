@@ -5,8 +5,9 @@
 /// Why our own readers and not PCL's (measured with PCL 1.13 on Debian bookworm, bench/results/load.md):
 ///  - strictness: pcl::io::loadPLYFile and loadOBJFile accept face indices beyond the vertex count,
 ///    loadPLYFile throws std::bad_alloc on a header announcing 2e9 vertices in a 10-byte body, and the
-///    VTK-based pcl::io::loadPolygonFile crashes (SIGSEGV) on a 7-line OBJ with "f a//c" and negative
-///    indices; ours refuse each bad file with a one-line message naming the file and the problem;
+///    VTK-based pcl::io::loadPolygonFile crashes (SIGSEGV) on an OBJ face "f 1//1" without a "vn" line and
+///    drops the unreferenced vertices of OBJ files that have normals; ours refuse each bad file with a
+///    one-line message naming the file and the problem;
 ///  - speed: one read into memory and std::from_chars on the buffer: 5-8x faster than loadPLYFile on the
 ///    200k-vertex binary PLY and 10-20x faster than loadOBJFile on sword.obj;
 ///  - formats: PCL has no OFF reader (four of the shared meshes are OFF); we also triangulate polygons
