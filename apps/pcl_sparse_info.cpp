@@ -4,6 +4,7 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_report.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -60,6 +62,25 @@ namespace
         out += static_cast<char> (c);
     }
     return out + "\"";
+  }
+
+  /// A mesh file, or a point cloud as a mesh without faces (every point is an unreferenced vertex).
+  TriangleMesh
+  loadInput (const std::string& path, const MeshLoadOptions& options)
+  {
+    if (!hasExtension (path, ".pcd"))
+      return loadTriangleMesh (path, options);
+    pcl::PointCloud<pcl::PointXYZ> cloud;
+    loadPointCloud (path, cloud);
+    TriangleMesh mesh;
+    mesh.vertices.reserve (cloud.size ());
+    for (const auto& p : cloud)
+    {
+      if (!options.allow_non_finite && !std::isfinite (p.x + p.y + p.z))
+        throw Error (path + ": point " + std::to_string (mesh.vertices.size ()) + " has a non-finite coordinate");
+      mesh.vertices.emplace_back (p.x, p.y, p.z);
+    }
+    return mesh;
   }
 
   void
@@ -163,6 +184,7 @@ main (int argc, char** argv)
   const bool json = pcl::console::find_switch (argc, argv, "--json");
   const bool quiet = pcl::console::find_switch (argc, argv, "-q");
   MeshLoadOptions load_options;
+  load_options.allow_no_faces = true;  // a PLY/OBJ of points is a cloud: reported with faces: 0
   load_options.allow_non_finite = pcl::console::find_switch (argc, argv, "--allow-non-finite");
 
   std::vector<std::string> files;
@@ -196,7 +218,7 @@ main (int argc, char** argv)
       printModelInfo (path, json, timer);
       return 0;
     }
-    const TriangleMesh mesh = loadTriangleMesh (path, load_options);
+    const TriangleMesh mesh = loadInput (path, load_options);
     const MeshTopology topology = buildMeshTopology (mesh);
     const MeshReport report = computeMeshReport (mesh, topology);
     const double seconds = timer.toc () / 1000.0;

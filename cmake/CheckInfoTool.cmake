@@ -48,6 +48,14 @@ if(NOT CMAKE_VERSION VERSION_LESS 3.19)
   endforeach()
 endif()
 
+# Point clouds: a PLY without faces and a PCD are reported with faces: 0 and no genus.
+file(WRITE "${WORK_DIR}/points.ply" "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+           "property float z\nend_header\n0 0 0\n3 4 0\n1 1 1\n")
+expect_output("${WORK_DIR}/points.ply" "\nvertices: 3\n" "\nfaces: 0\n" "\ngenus: unknown")
+file(WRITE "${WORK_DIR}/points.pcd" "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\n"
+           "HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n0 0 0\n3 4 0\n")
+expect_output("${WORK_DIR}/points.pcd" "\nvertices: 2\n" "\nfaces: 0\n" "\nbbox_diagonal: 5\n")
+
 expect_refusal("${WORK_DIR}/missing.off" "missing.off")
 expect_refusal("${WORK_DIR}" "${WORK_DIR}")
 expect_refusal("${off};--no-such-option" "--no-such-option")

@@ -265,9 +265,24 @@ TEST (MeshReport, EmptyMesh)
   const MeshReport r = reportOf (TriangleMesh ());
   EXPECT_EQ (r.vertices, 0u);
   EXPECT_EQ (r.components, 0u);
-  EXPECT_EQ (r.genus, 0);
+  EXPECT_FALSE (r.manifold);  // no surface, no genus
+  EXPECT_FALSE (r.closed);
+  EXPECT_EQ (r.genus, -1);
   EXPECT_EQ (r.bbox_diagonal, 0.0);
   EXPECT_EQ (r.mean_edge_length, 0.0);
+}
+
+TEST (MeshReport, PointsWithoutFaces)
+{
+  TriangleMesh cloud;
+  cloud.vertices = {{0, 0, 0}, {3, 4, 0}, {1, 1, 1}};
+  const MeshReport r = reportOf (cloud);
+  EXPECT_EQ (r.vertices, 3u);
+  EXPECT_EQ (r.faces, 0u);
+  EXPECT_EQ (r.unreferenced_vertices, 3u);
+  EXPECT_EQ (r.components, 0u);
+  EXPECT_EQ (r.genus, -1);
+  EXPECT_NEAR (r.bbox_diagonal, std::sqrt (9.0 + 16.0 + 1.0), 1e-12);
 }
 
 TEST (MeshCleaning, IndexMaps)

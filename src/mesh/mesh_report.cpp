@@ -305,7 +305,8 @@ namespace pcl_sparse
     report.euler_characteristic =
         static_cast<long> (referenced) - static_cast<long> (report.edges) + static_cast<long> (report.faces);
 
-    report.manifold = report.nonmanifold_edges == 0 && report.nonmanifold_vertices == 0 && repeated_index == 0;
+    report.manifold = report.faces > 0 && report.nonmanifold_edges == 0 && report.nonmanifold_vertices == 0 &&
+                      repeated_index == 0;
     report.orientable = report.manifold && isOrientable (mesh, topo);
     report.closed = report.manifold && report.boundary_edges == 0;
     if (report.orientable)

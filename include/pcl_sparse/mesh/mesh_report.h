@@ -29,7 +29,8 @@ namespace pcl_sparse
     std::size_t components = 0;             ///< face components (faces joined through shared vertices);
                                             ///< unreferenced vertices are not components
     long euler_characteristic = 0;          ///< V - E + F over referenced vertices
-    bool manifold = false;                  ///< no non-manifold edge or vertex, no face with a repeated index
+    bool manifold = false;                  ///< has faces, no non-manifold edge or vertex, no face with a
+                                            ///< repeated index (a point cloud is not a manifold mesh)
     bool orientable = false;                ///< manifold and every component can be oriented consistently
     bool closed = false;                    ///< manifold and no boundary edge
     int genus = -1;                         ///< sum over components of (2 - chi_c - b_c) / 2; -1 (unknown)
