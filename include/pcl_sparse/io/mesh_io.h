@@ -29,7 +29,7 @@ namespace pcl_sparse
     /// Keep vertices with NaN/Inf coordinates instead of refusing the file (default: refuse).
     bool allow_non_finite = false;
     /// Accept a file with vertices but no faces (the result has no triangles). Default: refuse, since
-    /// every mesh stage needs triangles; loadPointCloud sets it.
+    /// every mesh stage needs triangles.
     bool allow_no_faces = false;
   };
 
