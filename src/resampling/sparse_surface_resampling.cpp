@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <numeric>
@@ -88,26 +89,106 @@ namespace pcl_sparse
         return ownership_.owns (p, model_.patches[p].toWorld (Eigen::Vector3d (x, y, z)), c, turn);
       }
 
+      /// Weight of the place (x, y) of patch \a p: its capped area element if p keeps it and its code is
+      /// valid there, 0 otherwise.
+      double
+      placeWeight (std::size_t p, double x, double y) const
+      {
+        if (!keeps (p, x, y))
+          return 0.0;
+        const HeightSample h = evaluator_.sample (p, x, y);
+        if (!isValidPlace (h, ownership_.options (), ownership_.maxSlopeSquared ()))
+          return 0.0;
+        return std::min (max_weight_, std::sqrt (1.0 + h.gradient.squaredNorm ()));
+      }
+
+      /// At high density most cells lie well inside or well outside the part a patch keeps. A quadtree over
+      /// the cell corners finds them: a block whose four corners agree is taken whole (kept cells get the
+      /// bilinear weight of the corners), a block whose corners disagree is split, down to single cells
+      /// that are tested candidate by candidate. Blocks start at 1/8 of the grid (a quarter of the
+      /// footprint radius), far smaller than the curvature of ownership borders and footprints.
+      /// \a cells receives per cell: 0 dropped, > 0 kept with that weight, < 0 to be tested.
+      /// Returns false (and leaves \a cells empty) when the grid is too coarse for blocks to pay.
+      bool
+      classifyCells (std::size_t p, const PatchGrid& grid, std::vector<float>& cells, std::vector<float>& nodes) const
+      {
+        const int n = grid.n;
+        int top = 1;
+        while (top * 2 <= n / 8)
+          top *= 2;
+        cells.clear ();
+        if (top < 4)
+          return false;
+        const int stride = n + 1;
+        nodes.assign (static_cast<std::size_t> (stride) * stride, -1.0f);
+        cells.assign (static_cast<std::size_t> (n) * n, -1.0f);
+        auto node = [&] (int a, int b) {
+          float& w = nodes[static_cast<std::size_t> (b) * stride + a];
+          if (w < 0.0f)
+            w = static_cast<float> (placeWeight (p, grid.start + a * grid.cell, grid.start + b * grid.cell));
+          return static_cast<double> (w);
+        };
+        std::vector<std::array<int, 3>> stack;
+        for (int j = 0; j < n; j += top)
+          for (int i = 0; i < n; i += top)
+            stack.push_back ({i, j, top});
+        while (!stack.empty ())
+        {
+          const auto [i0, j0, size] = stack.back ();
+          stack.pop_back ();
+          const int i1 = std::min (i0 + size, n), j1 = std::min (j0 + size, n);
+          const double w00 = node (i0, j0), w10 = node (i1, j0), w01 = node (i0, j1), w11 = node (i1, j1);
+          const bool all_in = w00 > 0.0 && w10 > 0.0 && w01 > 0.0 && w11 > 0.0;
+          const bool all_out = w00 == 0.0 && w10 == 0.0 && w01 == 0.0 && w11 == 0.0;
+          if (!all_in && !all_out)
+          {
+            if (size > 1)
+            {
+              const int half = size / 2;
+              for (int dj = 0; dj < size; dj += half)
+                for (int di = 0; di < size; di += half)
+                  if (i0 + di < n && j0 + dj < n)
+                    stack.push_back ({i0 + di, j0 + dj, half});
+            }
+            continue;  // single mixed cells stay -1: tested candidate by candidate
+          }
+          for (int j = j0; j < j1; ++j)
+            for (int i = i0; i < i1; ++i)
+            {
+              float& cell = cells[static_cast<std::size_t> (j) * n + i];
+              if (all_out)
+                cell = 0.0f;
+              else
+              {
+                const double u = (i + 0.5 - i0) / (i1 - i0), v = (j + 0.5 - j0) / (j1 - j0);
+                cell = static_cast<float> ((1 - u) * (1 - v) * w00 + u * (1 - v) * w10 + (1 - u) * v * w01 + u * v * w11);
+              }
+            }
+        }
+        return true;
+      }
+
       /// One jittered candidate per cell, kept ones in serpentine cell order; returns their weight sum.
       double
       drawCandidates (std::size_t p, const PatchGrid& grid, std::uint64_t key, std::vector<Candidate>& out) const
       {
         out.clear ();
+        std::vector<float> cells, nodes;
+        const bool classified = classifyCells (p, grid, cells, nodes);
         double sum = 0.0;
-        HeightSample h;
         for (int row = 0; row < grid.n; ++row)
           for (int k = 0; k < grid.n; ++k)
           {
             const int col = (row % 2 == 0) ? k : grid.n - 1 - k;
             const std::int32_t cell = row * grid.n + col;
+            const float state = classified ? cells[cell] : -1.0f;
+            if (state == 0.0f)
+              continue;
             const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
             const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
-            if (!keeps (p, x, y))
+            const double w = state > 0.0f ? state : placeWeight (p, x, y);
+            if (w == 0.0)
               continue;
-            h = evaluator_.sample (p, x, y);
-            if (!isValidPlace (h, ownership_.options (), ownership_.maxSlopeSquared ()))
-              continue;
-            const double w = std::min (max_weight_, std::sqrt (1.0 + h.gradient.squaredNorm ()));
             out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell});
             sum += w;
           }
@@ -320,22 +401,44 @@ namespace pcl_sparse
       throw Error (message.str ());
     }
 
-    // Candidate pass: every patch's kept places and owned area at the final density.
+    // Candidate pass: every patch's kept places and owned area at the final density. With a total count,
+    // cells hold one point each only if the area pass was right: if the measured area differs by more
+    // than 2%, the pass is redone once at the corrected density (systematic sampling at a step off by
+    // x% skips or doubles every (100/x)-th cell, which shows in the spacing).
     std::vector<std::vector<Candidate>> candidates (m);
     std::vector<double> weights (m, 0.0);
     std::vector<PatchGrid> grids (m);
     std::atomic<std::size_t> done (0);
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
-    for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
+    // (A count so small that no cell keeps a candidate also retries, at 4 x the density.)
+    for (int attempt = 0, corrections = 0; attempt < 16; ++attempt)
     {
-      const std::size_t p = static_cast<std::size_t> (pi);
-      const double r = model.patches[p].radius;
-      grids[p] = makeGrid (evaluator.maxExtent (p), 1.0 / (r * std::sqrt (density)));
-      weights[p] = sampler.drawCandidates (p, grids[p], patchKey (seed, p, 1), candidates[p]);
-      const std::size_t finished = ++done;
-      if (progress_ && omp_get_thread_num () == 0)
-        progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
+      done = 0;
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+      for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
+      {
+        const std::size_t p = static_cast<std::size_t> (pi);
+        const double r = model.patches[p].radius;
+        grids[p] = makeGrid (evaluator.maxExtent (p), 1.0 / (r * std::sqrt (density)));
+        weights[p] = sampler.drawCandidates (p, grids[p], patchKey (seed, p, 1), candidates[p]);
+        const std::size_t finished = ++done;
+        if (progress_ && omp_get_thread_num () == 0)
+          progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
+      }
+      if (mode_ != Mode::Count)
+        break;
+      const double expected = std::accumulate (weights.begin (), weights.end (), 0.0);
+      if (!(expected > 0.0))
+      {
+        density *= 4.0;
+        continue;
+      }
+      const double ratio = static_cast<double> (count_) / expected;
+      if (std::abs (ratio - 1.0) <= 0.02 || corrections++ > 0)
+        break;
+      density *= ratio;
     }
+    if (!(std::accumulate (weights.begin (), weights.end (), 0.0) > 0.0))
+      throw Error (class_name_ + "::compute: the model has no surface area to sample");
     // A cell holds one expected point on flat ground, so weights are areas in units of 1 / density.
     estimated_area_ = std::accumulate (weights.begin (), weights.end (), 0.0) / density;
     density_used_ = density;
