@@ -28,7 +28,8 @@ namespace
   printHelp (const char* program)
   {
     pcl::console::print_error ("Syntax is: %s FILE [options]\n", program);
-    pcl::console::print_info ("  FILE                a triangle mesh: .obj .off .ply .stl, or a model file .psm\n");
+    pcl::console::print_info ("  FILE                a triangle mesh: .obj .off .ply .stl, or a model file .psm; a point cloud\n");
+    pcl::console::print_info ("                      (.pcd, or one of those without faces) is reported with faces: 0\n");
     pcl::console::print_info ("  --json              print one JSON object on stdout instead of 'name: value' lines\n");
     pcl::console::print_info ("  --allow-non-finite  count NaN/Inf vertices instead of refusing the file\n");
     pcl::console::print_info ("  -q                  quiet (no messages besides the report and errors)\n");
