@@ -9,7 +9,6 @@
 /// seeds grown by the sampling loop, coverage-pass patches, patch size median, mean patches per vertex.
 
 #include <pcl_sparse/io/mesh_io.h>
-#include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 
@@ -74,9 +73,9 @@ main (int argc, char** argv)
     auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
     double t0 = now ();
     const MeshTopology topology = buildMeshTopology (*mesh);
-    const Harris3DOptions harris;
-    const std::vector<double> responses = computeHarris3DResponses (*mesh, topology, harris);
-    const std::vector<int> keypoints = selectHarris3DKeypoints (*mesh, topology, responses, harris, mesh->vertices.size ());
+    std::vector<double> responses;
+    std::vector<int> keypoints;
+    computeUnitScaleHarris3D (*mesh, topology, 0, responses, keypoints);  // the sampling's default order
     const double harris_seconds = now () - t0;
 
     FeatureAwarePatchSampling sampling;

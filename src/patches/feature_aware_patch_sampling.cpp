@@ -72,6 +72,29 @@ namespace pcl_sparse
   } // namespace
 
   void
+  computeUnitScaleHarris3D (const TriangleMesh& mesh, const MeshTopology& topology, int num_threads,
+                            std::vector<double>& responses, std::vector<int>& keypoints)
+  {
+    Harris3DOptions harris;
+    harris.num_threads = num_threads;
+    // Harris 3D responses depend on the length unit (harris3d.h): computed on the mesh scaled to a unit
+    // bbox diagonal, the seeds, and so the whole model, do not depend on the input's units.
+    const double diagonal = boundingBoxDiagonal (mesh);
+    TriangleMesh unit;
+    const bool rescale = diagonal > 0.0 && std::isfinite (diagonal) && diagonal != 1.0;
+    if (rescale)
+    {
+      unit.triangles = mesh.triangles;
+      unit.vertices.resize (mesh.vertices.size ());
+      for (std::size_t v = 0; v < mesh.vertices.size (); ++v)
+        unit.vertices[v] = mesh.vertices[v] / diagonal;
+    }
+    const TriangleMesh& harris_mesh = rescale ? unit : mesh;
+    responses = computeHarris3DResponses (harris_mesh, topology, harris);
+    keypoints = selectHarris3DKeypoints (harris_mesh, topology, responses, harris, mesh.vertices.size ());
+  }
+
+  void
   FeatureAwarePatchSampling::compute (std::vector<Patch>& patches)
   {
     patches.clear ();
@@ -116,24 +139,7 @@ namespace pcl_sparse
     used_keypoints_ = keypoints_;
     if (responses_.empty () && keypoints_.empty ())
     {
-      Harris3DOptions harris;
-      harris.num_threads = num_threads_;
-      // Harris 3D responses depend on the length unit (harris3d.h): computed on the mesh scaled to a unit
-      // bbox diagonal, the seeds, and so the whole model, do not depend on the input's units.
-      const double diagonal = boundingBoxDiagonal (input);
-      TriangleMesh unit;
-      const bool rescale = diagonal > 0.0 && std::isfinite (diagonal) && diagonal != 1.0;
-      if (rescale)
-      {
-        unit.triangles = input.triangles;
-        unit.vertices.resize (input.vertices.size ());
-        for (std::size_t v = 0; v < input.vertices.size (); ++v)
-          unit.vertices[v] = input.vertices[v] / diagonal;
-      }
-      const TriangleMesh& harris_mesh = rescale ? unit : input;
-      used_responses_ = computeHarris3DResponses (harris_mesh, input_topology, harris);
-      used_keypoints_ =
-        selectHarris3DKeypoints (harris_mesh, input_topology, used_responses_, harris, input.vertices.size ());
+      computeUnitScaleHarris3D (input, input_topology, num_threads_, used_responses_, used_keypoints_);
     }
 
     // Cut non-manifold edges and vertices: growth then cannot cross them.

@@ -39,6 +39,16 @@
 
 namespace pcl_sparse
 {
+  /// The default candidate order's input: Harris 3D responses and keypoints (default Harris3DOptions,
+  /// \a num_threads OpenMP threads, 0 = default) computed on \a mesh scaled to a unit bounding-box
+  /// diagonal. Harris 3D is not scale invariant (harris3d.h), so this makes the seeds, and everything
+  /// downstream, independent of the mesh's length unit.
+  ///   responses  #V (NaN: none)
+  ///   keypoints  vertex indices, decreasing response
+  void
+  computeUnitScaleHarris3D (const TriangleMesh& mesh, const MeshTopology& topology, int num_threads,
+                            std::vector<double>& responses, std::vector<int>& keypoints);
+
   class FeatureAwarePatchSampling
   {
   public:
@@ -59,7 +69,7 @@ namespace pcl_sparse
     const PatchOptions& getOptions () const { return options_; }
 
     /// Per-vertex feature response ordering the candidates (#V entries, NaN = none). Empty (default), with
-    /// no keypoints either: Harris 3D responses and keypoints with default options (keypoints/harris3d.h).
+    /// no keypoints either: computeUnitScaleHarris3D (Harris 3D, default options, unit-diagonal scale).
     void setResponses (const std::vector<double>& responses) { responses_ = responses; }
     /// Keypoints tried first (vertex indices). Empty with empty responses (default): Harris 3D keypoints.
     /// Empty with responses given: no keypoints, candidates purely by response.
