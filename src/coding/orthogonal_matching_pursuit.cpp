@@ -35,9 +35,10 @@ namespace pcl_sparse
     const double target = tolerance * signal_norm;
     int size = 0;
 
+    Eigen::VectorXd correlation (num_atoms);
     while (size < capacity && result.residual_norm > target)
     {
-      const Eigen::VectorXd correlation = dictionary.transpose () * residual;
+      correlation.noalias () = dictionary.transpose () * residual;
       int best = -1;
       double best_score = 0.0;
       for (Eigen::Index k = 0; k < num_atoms; ++k)
