@@ -343,6 +343,30 @@ TEST (PatchSampling, SameOutputForAnyThreadCountAndGivenTopology)
   EXPECT_TRUE (samePartition (results[0], results[1]));
 }
 
+TEST (PatchSampling, IndependentOfTheLengthUnit)
+{
+  // Scaling by a power of two is exact in floating point: the partition must be the same, radii scaled.
+  TriangleMesh torus = makeTorus (48, 20);
+  for (auto& p : torus.vertices)
+    p *= 1.0 + 0.05 * std::sin (5.0 * std::atan2 (p.y (), p.x ()));
+  TriangleMesh big = torus;
+  for (auto& p : big.vertices)
+    p *= 1024.0;
+  std::vector<Patch> a, b;
+  FeatureAwarePatchSampling sampling;
+  sampling.setInputMesh (std::make_shared<TriangleMesh> (torus));
+  sampling.compute (a);
+  sampling.setInputMesh (std::make_shared<TriangleMesh> (big));
+  sampling.compute (b);
+  ASSERT_EQ (a.size (), b.size ());
+  for (std::size_t i = 0; i < a.size (); ++i)
+  {
+    EXPECT_EQ (a[i].vertices, b[i].vertices);
+    EXPECT_EQ (a[i].triangles, b[i].triangles);
+    EXPECT_NEAR (b[i].radius, 1024.0 * a[i].radius, 1e-9 * b[i].radius);
+  }
+}
+
 TEST (PatchSampling, BadInputThrows)
 {
   FeatureAwarePatchSampling sampling;
