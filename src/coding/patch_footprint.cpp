@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace pcl_sparse
@@ -90,13 +90,13 @@ namespace pcl_sparse
       rays[k] = Eigen::Vector2d (std::cos (2.0 * M_PI * k / angles), std::sin (2.0 * M_PI * k / angles));
 
     std::vector<double> sector_max (angles, 0.0);
-    std::unordered_map<int, int> local_index;
+    // Mesh vertex id -> local index, as a sorted array (patches are small: cheaper than a hash map).
     const std::size_t count = std::min (patch.vertices.size (), patch.local.size ());
-    local_index.reserve (count * 2);
+    std::vector<std::pair<int, int>> lookup (count);
     std::vector<Corner> corners (count);
     for (std::size_t i = 0; i < count; ++i)
     {
-      local_index.emplace (patch.vertices[i], static_cast<int> (i));
+      lookup[i] = {patch.vertices[i], static_cast<int> (i)};
       Corner& c = corners[i];
       c.p = patch.local[i].head<2> ();
       c.r = c.p.norm ();
@@ -104,6 +104,7 @@ namespace pcl_sparse
       if (c.r > 0.0)
         sector_max[c.sector] = std::max (sector_max[c.sector], c.r);
     }
+    std::sort (lookup.begin (), lookup.end ());
     for (int f : patch.triangles)
     {
       if (f < 0 || static_cast<std::size_t> (f) >= mesh.triangles.size ())
@@ -112,8 +113,9 @@ namespace pcl_sparse
       bool ok = true;
       for (int c = 0; c < 3 && ok; ++c)
       {
-        const auto it = local_index.find (mesh.triangles[f][c]);
-        ok = it != local_index.end ();
+        const int v = mesh.triangles[f][c];
+        const auto it = std::lower_bound (lookup.begin (), lookup.end (), std::make_pair (v, -1));
+        ok = it != lookup.end () && it->first == v;
         if (ok)
           corner[c] = it->second;
       }
