@@ -21,6 +21,10 @@ scaling="$meshes/fandisk.off $meshes/bunny-hr-closed.obj $meshes/koala.obj $mesh
   echo "cone, coverage pass, non-manifold cuts. Partition seconds: FeatureAwarePatchSampling::compute with"
   echo "the Harris 3D order given (topology, normals, sampling loop, growth, frames), best of 3; Harris 3D"
   echo "(responses + keypoints) timed apart. 'authors': cone 72 degrees, no pairwise cone, no coverage pass."
+  echo "Partition CPU s is the process CPU time (all threads): with other jobs on the cores it is the figure"
+  echo "that says what a quiet 2-core machine would take (target: 200k vertices in < 3 s). The sampling loop"
+  echo "is sequential; normals, edge lengths and frames run in parallel. 'uncovered' counts vertices in no"
+  echo "patch (stanford-bunny has 1113 unreferenced vertices: one-vertex patches in 'ours')."
   echo
   echo "## Scaling (rho = 0.001): time per vertex should stay flat"
   echo
