@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <functional>
+#include <random>
 
 using namespace pcl_sparse;
 
@@ -119,6 +120,14 @@ namespace
     return model;
   }
 
+  /// |(x, y)| / extent, from PatchFootprint's own interpolation (the unit disk when empty).
+  double
+  footprintCentralityReference (const PatchFootprint& footprint, double x, double y)
+  {
+    const double r = std::hypot (x, y);
+    return footprint.extent.empty () ? r : r / footprint.extentAt (std::atan2 (y, x));
+  }
+
   /// Nearest-neighbour distances of every point.
   std::vector<double>
   nearestDistances (const pcl::PointCloud<pcl::PointNormal>::ConstPtr& cloud)
@@ -174,6 +183,29 @@ TEST (PatchGeometry, MeanCurvatureOfSphereCap)
   h.hessian << -0.5, 0.0, 0.0, -0.5;  // h_xx = -r at the centre
   EXPECT_NEAR (patchMeanCurvature (code, h), 1.0, 1e-12);
   EXPECT_NEAR (patchAreaElement (code, h), 0.25, 1e-12);
+}
+
+TEST (PatchEvaluator, MatchesTheBasis)
+{
+  const auto model = makeSphereModel ();
+  // Some extents, so the footprint path is exercised too.
+  model->patches[0].footprint.extent = {0.5f, 1.0f, 0.25f, 0.75f};
+  const PatchEvaluator evaluator (*model);
+  std::mt19937 random (42);
+  std::uniform_real_distribution<double> uniform (-1.6, 1.6);
+  for (int k = 0; k < 2000; ++k)
+  {
+    const std::size_t p = k % model->numPatches ();
+    const double x = uniform (random), y = uniform (random);
+    const HeightSample expected = model->evaluate (p, x, y);
+    const HeightSample fast = evaluator.sample (p, x, y);
+    ASSERT_NEAR (fast.value, expected.value, 1e-12);
+    ASSERT_NEAR (evaluator.height (p, x, y), expected.value, 1e-12);
+    ASSERT_NEAR ((fast.gradient - expected.gradient).norm (), 0.0, 1e-10);
+    ASSERT_NEAR ((fast.hessian - expected.hessian).norm (), 0.0, 1e-9);
+    ASSERT_NEAR (PatchEvaluator::fastAtan2 (y, x), std::atan2 (y, x), 1e-9);
+    ASSERT_NEAR (evaluator.centrality (p, x, y), footprintCentralityReference (model->patches[p].footprint, x, y), 1e-8);
+  }
 }
 
 TEST (Resampling, PlaneExactCountOnSurfaceUniform)

@@ -7,6 +7,31 @@
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// sin(pi t) and cos(pi t): reduction to the nearest quarter turn, then Taylor polynomials on
+    /// [-pi/4, pi/4] (truncation below 1e-16), a few times faster than std::sin and std::cos.
+    inline void
+    sinCosPi (double t, double& s, double& c)
+    {
+      const double k = std::nearbyint (2.0 * t);
+      const double r = (t - 0.5 * k) * M_PI, r2 = r * r;
+      const double sr =
+        r * (1.0 + r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362880.0 + r2 * (-1.0 / 39916800.0 +
+        r2 * (1.0 / 6227020800.0 + r2 * (-1.0 / 1307674368000.0))))))));
+      const double cr =
+        1.0 + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40320.0 + r2 * (-1.0 / 3628800.0 +
+        r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0 + r2 * (1.0 / 20922789888000.0))))))));
+      switch (static_cast<long long> (k) & 3)
+      {
+        case 0: s = sr; c = cr; break;
+        case 1: s = cr; c = -sr; break;
+        case 2: s = -sr; c = -cr; break;
+        default: s = -cr; c = sr; break;
+      }
+    }
+  } // namespace
+
   PatchEvaluator::PatchEvaluator (const SparseSurfaceModel& model) : model_ (model)
   {
     const std::size_t m = model.numPatches ();
@@ -47,7 +72,9 @@ namespace pcl_sparse
     // cos(k pi t) by the Chebyshev recurrence from one cosine per axis.
     double cx[CosineDictionary::max_frequencies], cy[CosineDictionary::max_frequencies];
     const int nx = count_x_[p], ny = count_y_[p];
-    const double c1x = std::cos (M_PI * x), c1y = std::cos (M_PI * y);
+    double s1x, c1x, s1y, c1y;
+    sinCosPi (x, s1x, c1x);
+    sinCosPi (y, s1y, c1y);
     cx[0] = cy[0] = 1.0;
     if (nx > 1)
       cx[1] = c1x;
@@ -72,8 +99,9 @@ namespace pcl_sparse
     double cx[CosineDictionary::max_frequencies], sx[CosineDictionary::max_frequencies];
     double cy[CosineDictionary::max_frequencies], sy[CosineDictionary::max_frequencies];
     const int nx = count_x_[p], ny = count_y_[p];
-    const double c1x = std::cos (M_PI * x), s1x = std::sin (M_PI * x);
-    const double c1y = std::cos (M_PI * y), s1y = std::sin (M_PI * y);
+    double s1x, c1x, s1y, c1y;
+    sinCosPi (x, s1x, c1x);
+    sinCosPi (y, s1y, c1y);
     cx[0] = cy[0] = 1.0;
     sx[0] = sy[0] = 0.0;
     for (int k = 1; k < nx; ++k)

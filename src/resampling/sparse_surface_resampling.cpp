@@ -47,7 +47,10 @@ namespace pcl_sparse
     {
       float x, y, weight;
       std::int32_t cell;
+      std::int32_t evaluated;  ///< index of its already evaluated point, or -1
     };
+
+    using Points = SparseSurfaceResampling::PointCloud::VectorType;
 
     /// The stratification grid of one patch: n x n cells of side `cell` centred on the seed.
     struct PatchGrid
@@ -92,14 +95,30 @@ namespace pcl_sparse
       /// Weight of the place (x, y) of patch \a p: its capped area element if p keeps it and its code is
       /// valid there, 0 otherwise.
       double
-      placeWeight (std::size_t p, double x, double y) const
+      placeWeight (std::size_t p, double x, double y, HeightSample& h) const
       {
         if (!keeps (p, x, y))
           return 0.0;
-        const HeightSample h = evaluator_.sample (p, x, y);
+        h = evaluator_.sample (p, x, y);
         if (!isValidPlace (h, ownership_.options (), ownership_.maxSlopeSquared ()))
           return 0.0;
         return std::min (max_weight_, std::sqrt (1.0 + h.gradient.squaredNorm ()));
+      }
+
+      /// The output point of patch \a p at (x, y) with height sample \a h.
+      void
+      makePoint (std::size_t p, double x, double y, const HeightSample& h, pcl::PointNormal& point) const
+      {
+        const PatchCode& code = model_.patches[p];
+        const Eigen::Vector3d position = patchPoint (code, x, y, h);
+        const Eigen::Vector3d normal = patchNormal (code, h);
+        point.x = static_cast<float> (position.x ());
+        point.y = static_cast<float> (position.y ());
+        point.z = static_cast<float> (position.z ());
+        point.normal_x = static_cast<float> (normal.x ());
+        point.normal_y = static_cast<float> (normal.y ());
+        point.normal_z = static_cast<float> (normal.z ());
+        point.curvature = static_cast<float> (patchMeanCurvature (code, h));
       }
 
       /// At high density most cells lie well inside or well outside the part a patch keeps. A quadtree over
@@ -125,7 +144,10 @@ namespace pcl_sparse
         auto node = [&] (int a, int b) {
           float& w = nodes[static_cast<std::size_t> (b) * stride + a];
           if (w < 0.0f)
-            w = static_cast<float> (placeWeight (p, grid.start + a * grid.cell, grid.start + b * grid.cell));
+          {
+            HeightSample h;
+            w = static_cast<float> (placeWeight (p, grid.start + a * grid.cell, grid.start + b * grid.cell, h));
+          }
           return static_cast<double> (w);
         };
         std::vector<std::array<int, 3>> stack;
@@ -169,10 +191,13 @@ namespace pcl_sparse
       }
 
       /// One jittered candidate per cell, kept ones in serpentine cell order; returns their weight sum.
+      /// Candidates tested one by one keep their evaluated point in \a evaluated, for the selection.
       double
-      drawCandidates (std::size_t p, const PatchGrid& grid, std::uint64_t key, std::vector<Candidate>& out) const
+      drawCandidates (std::size_t p, const PatchGrid& grid, std::uint64_t key, std::vector<Candidate>& out,
+                      Points& evaluated) const
       {
         out.clear ();
+        evaluated.clear ();
         std::vector<float> cells, nodes;
         const bool classified = classifyCells (p, grid, cells, nodes);
         double sum = 0.0;
@@ -186,10 +211,19 @@ namespace pcl_sparse
               continue;
             const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
             const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
-            const double w = state > 0.0f ? state : placeWeight (p, x, y);
-            if (w == 0.0)
-              continue;
-            out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell});
+            std::int32_t index = -1;
+            double w = state;
+            if (state < 0.0f)
+            {
+              HeightSample h;
+              w = placeWeight (p, x, y, h);
+              if (w == 0.0)
+                continue;
+              index = static_cast<std::int32_t> (evaluated.size ());
+              evaluated.emplace_back ();
+              makePoint (p, x, y, h, evaluated.back ());
+            }
+            out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell, index});
             sum += w;
           }
         return sum;
@@ -198,7 +232,7 @@ namespace pcl_sparse
       /// Exactly \a count points from \a candidates by systematic sampling of their cumulative weight.
       void
       selectPoints (std::size_t p, const PatchGrid& grid, std::uint64_t key, const std::vector<Candidate>& candidates,
-                    std::size_t count, pcl::PointNormal* out) const
+                    const Points& evaluated, std::size_t count, pcl::PointNormal* out) const
       {
         if (count == 0 || candidates.empty ())
           return;
@@ -215,7 +249,12 @@ namespace pcl_sparse
           const Candidate& c = candidates[k];
           const double high = (k + 1 == candidates.size ()) ? std::numeric_limits<double>::infinity () : cumulative + c.weight;
           for (int draw = 0; t < high && emitted < count; ++draw, t += step)
-            emit (p, grid, key, c, draw, cells, out[emitted++]);
+          {
+            if (draw == 0 && c.evaluated >= 0)
+              out[emitted++] = evaluated[c.evaluated];
+            else
+              emit (p, grid, key, c, draw, cells, out[emitted++]);
+          }
           cumulative = high;
         }
       }
@@ -237,7 +276,7 @@ namespace pcl_sparse
             const std::uint64_t index = 2 * (cells * (8 * static_cast<std::uint64_t> (draw) + attempt) + c.cell);
             const double xa = grid.start + (col + uniform (key, index)) * grid.cell;
             const double ya = grid.start + (row + uniform (key, index + 1)) * grid.cell;
-            if (keeps (p, xa, ya) && isValidPlace (evaluator_.sample (p, xa, ya), ownership_.options (), ownership_.maxSlopeSquared ()))
+            if (placeWeight (p, xa, ya, h) > 0.0)
             {
               x = xa;
               y = ya;
@@ -246,16 +285,7 @@ namespace pcl_sparse
           }
         }
         h = evaluator_.sample (p, x, y);
-        const PatchCode& code = model_.patches[p];
-        const Eigen::Vector3d position = patchPoint (code, x, y, h);
-        const Eigen::Vector3d normal = patchNormal (code, h);
-        point.x = static_cast<float> (position.x ());
-        point.y = static_cast<float> (position.y ());
-        point.z = static_cast<float> (position.z ());
-        point.normal_x = static_cast<float> (normal.x ());
-        point.normal_y = static_cast<float> (normal.y ());
-        point.normal_z = static_cast<float> (normal.z ());
-        point.curvature = static_cast<float> (patchMeanCurvature (code, h));
+        makePoint (p, x, y, h, point);
       }
 
       const SparseSurfaceModel& model_;
@@ -377,8 +407,9 @@ namespace pcl_sparse
         const double e = evaluator.maxExtent (p);
         const PatchGrid grid = makeGrid (e, 2.0 * e / cells_per_axis);
         std::vector<Candidate> candidates;
+        Points evaluated;
         const double r = model.patches[p].radius;
-        areas[p] = sampler.drawCandidates (p, grid, patchKey (seed, p, 0), candidates) * grid.cell * grid.cell * r * r;
+        areas[p] = sampler.drawCandidates (p, grid, patchKey (seed, p, 0), candidates, evaluated) * grid.cell * grid.cell * r * r;
       }
       const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
       if (!(area > 0.0))
@@ -406,6 +437,7 @@ namespace pcl_sparse
     // than 2%, the pass is redone once at the corrected density (systematic sampling at a step off by
     // x% skips or doubles every (100/x)-th cell, which shows in the spacing).
     std::vector<std::vector<Candidate>> candidates (m);
+    std::vector<Points> evaluated (m);
     std::vector<double> weights (m, 0.0);
     std::vector<PatchGrid> grids (m);
     std::atomic<std::size_t> done (0);
@@ -419,7 +451,7 @@ namespace pcl_sparse
         const std::size_t p = static_cast<std::size_t> (pi);
         const double r = model.patches[p].radius;
         grids[p] = makeGrid (evaluator.maxExtent (p), 1.0 / (r * std::sqrt (density)));
-        weights[p] = sampler.drawCandidates (p, grids[p], patchKey (seed, p, 1), candidates[p]);
+        weights[p] = sampler.drawCandidates (p, grids[p], patchKey (seed, p, 1), candidates[p], evaluated[p]);
         const std::size_t finished = ++done;
         if (progress_ && omp_get_thread_num () == 0)
           progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
@@ -471,9 +503,11 @@ namespace pcl_sparse
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
-      sampler.selectPoints (p, grids[p], patchKey (seed, p, 3), candidates[p], counts[p], output.data () + offsets[p]);
+      sampler.selectPoints (p, grids[p], patchKey (seed, p, 3), candidates[p], evaluated[p], counts[p],
+                            output.data () + offsets[p]);
       std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
       std::vector<Candidate> ().swap (candidates[p]);
+      Points ().swap (evaluated[p]);
       const std::size_t finished = ++done;
       if (progress_ && omp_get_thread_num () == 0)
         progress_ ("resample", 0.5 + 0.5 * static_cast<double> (finished) / static_cast<double> (m));

@@ -2,8 +2,7 @@
 /// \file patch_evaluator.h
 /// Fast evaluation of a model's patches for resampling, which evaluates codes and footprints tens of
 /// millions of times: frequencies of cosine atoms decoded once per patch (no integer division per atom,
-/// no virtual call), footprint centrality with a polynomial atan2 (error below 1e-5 rad, far below the
-/// footprint's own angular resolution). Any other SurfaceBasis goes through SparseSurfaceModel::evaluate.
+/// no virtual call), footprint centrality with a polynomial atan2 (error below 1e-9 rad). Any other SurfaceBasis goes through SparseSurfaceModel::evaluate.
 
 #include <pcl_sparse/coding/surface_basis.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
@@ -64,7 +63,8 @@ namespace pcl_sparse
     /// Height, gradient and Hessian of patch \a p at (x, y); equal to SparseSurfaceModel::evaluate.
     HeightSample sample (std::size_t p, double x, double y) const;
 
-    /// atan2 by a minimax polynomial, absolute error below 1e-5 rad.
+    /// atan2 with absolute error below 1e-9 rad: octant reduction, atan(a) = pi/6 + atan((sqrt(3) a - 1) /
+    /// (a + sqrt(3))) above tan(pi/12), then the Taylor series to z^15.
     static double
     fastAtan2 (double y, double x)
     {
@@ -72,8 +72,15 @@ namespace pcl_sparse
       const double high = std::max (ax, ay);
       if (high == 0.0)
         return 0.0;
-      const double a = std::min (ax, ay) / high, s = a * a;
-      double r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
+      double z = std::min (ax, ay) / high, offset = 0.0;
+      if (z > 0.2679491924311227)
+      {
+        z = (z * 1.7320508075688772 - 1.0) / (z + 1.7320508075688772);
+        offset = M_PI / 6.0;
+      }
+      const double z2 = z * z;
+      double r = offset + z * (1.0 + z2 * (-1.0 / 3.0 + z2 * (1.0 / 5.0 + z2 * (-1.0 / 7.0 + z2 * (1.0 / 9.0 + z2 * (-1.0 / 11.0 +
+                 z2 * (1.0 / 13.0 - z2 / 15.0)))))));
       if (ay > ax)
         r = 0.5 * M_PI - r;
       if (x < 0.0)
