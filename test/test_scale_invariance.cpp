@@ -1,0 +1,124 @@
+/// Scale invariance of the whole encoder: a mesh scaled by s gives the same model up to s, so the same
+/// M, nnz, chosen atoms and RMSE / diagonal. Every threshold of the pipeline must therefore be relative
+/// (to the bbox diagonal, the mean edge length, the total area ...), never an absolute epsilon.
+///
+/// Tolerances: for s a power of two (2^-20, 2^20), scaling is exact in floating point, and so must be
+/// the result: identical M, nnz, seeds and atoms, RMSE / diagonal equal to 1e-12 relative. Any absolute
+/// epsilon left in the pipeline shows here (before Harris 3D ran on the unit-diagonal mesh, 2^20 turned
+/// M = 188, RMSE / diag 2.4e-4 into M = 140, 6.7e-4 on the generated mesh).
+/// For s = 1e-6 and 1e6 every coordinate is rounded once (relative 1.1e-16). That reorders vertices whose
+/// Harris responses tie (flat parts, where the response is rounding noise, and the cube's symmetric
+/// vertices), and the greedy, sequential seed sampling then takes other seeds from there on: a
+/// different but equally valid model. Measured: fandisk M 504 -> 523 (+4 %), RMSE / diag within 5 %;
+/// the symmetric cube M 172 -> 155..165. So decimal scales are held to M and nnz within 12 % and
+/// RMSE / diagonal within 10 %.
+
+#include "robustness_cases.h"
+
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  struct Encoded
+  {
+    ModelStatistics stats;
+    std::vector<std::vector<int>> atoms;  ///< per patch
+    std::vector<Eigen::Vector3d> origins;
+  };
+
+  Encoded
+  encode (const TriangleMesh& mesh)
+  {
+    SparseSurfaceEncoder encoder;
+    encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+    SparseSurfaceModel model;
+    encoder.compute (model);
+    Encoded e;
+    e.stats = model.statistics (mesh.vertices);
+    for (const PatchCode& p : model.patches)
+    {
+      e.atoms.push_back (p.atoms);
+      e.origins.push_back (p.origin);
+    }
+    return e;
+  }
+
+  /// A mesh with sharp edges, corners, curved parts and a boundary: a cube with a bumpy height field.
+  TriangleMesh
+  featureMesh ()
+  {
+    TriangleMesh mesh = makeCube (10, 1.0);
+    TriangleMesh bumps = makeHeightFieldGrid (24, 24, 1.0, 1.0, [] (double x, double y) {
+      return 2.0 + 0.25 * std::sin (3.0 * x) * std::cos (2.0 * y);
+    });
+    appendMesh (mesh, bumps);
+    return mesh;
+  }
+
+  void
+  expectSameModel (const TriangleMesh& mesh, const std::string& name)
+  {
+    const Encoded reference = encode (mesh);
+    ASSERT_GT (reference.stats.num_patches, 0u);
+    std::cout << name << ": M " << reference.stats.num_patches << ", nnz " << reference.stats.num_nonzeros
+              << ", RMSE/diag " << reference.stats.rmse_over_diagonal << std::endl;
+    for (const double scale : {std::ldexp (1.0, -20), std::ldexp (1.0, 20), 1e-6, 1e6})
+    {
+      SCOPED_TRACE (name + " scaled by " + std::to_string (scale));
+      int exponent = 0;
+      const bool exact = std::frexp (scale, &exponent) == 0.5;
+      const Encoded e = encode (robustness::scaled (mesh, scale));
+      std::cout << "  x " << scale << ": M " << e.stats.num_patches << ", nnz " << e.stats.num_nonzeros
+                << ", RMSE/diag " << e.stats.rmse_over_diagonal << std::endl;
+      if (exact)
+      {
+        EXPECT_EQ (e.stats.num_patches, reference.stats.num_patches);
+        EXPECT_EQ (e.stats.num_nonzeros, reference.stats.num_nonzeros);
+        EXPECT_EQ (e.stats.uncovered, reference.stats.uncovered);
+        EXPECT_NEAR (e.stats.rmse_over_diagonal, reference.stats.rmse_over_diagonal,
+                     1e-12 * reference.stats.rmse_over_diagonal);
+        EXPECT_NEAR (e.stats.rmse / scale, reference.stats.rmse, 1e-12 * reference.stats.rmse);
+      }
+      else
+      {
+        EXPECT_NEAR (static_cast<double> (e.stats.num_patches), static_cast<double> (reference.stats.num_patches),
+                     0.12 * reference.stats.num_patches);
+        EXPECT_NEAR (static_cast<double> (e.stats.num_nonzeros), static_cast<double> (reference.stats.num_nonzeros),
+                     0.12 * reference.stats.num_nonzeros);
+        EXPECT_EQ (e.stats.uncovered, reference.stats.uncovered);
+        EXPECT_NEAR (e.stats.rmse_over_diagonal, reference.stats.rmse_over_diagonal,
+                     0.1 * reference.stats.rmse_over_diagonal);
+      }
+      if (exact && e.atoms.size () == reference.atoms.size ())
+      {
+        std::size_t different = 0;
+        for (std::size_t p = 0; p < e.atoms.size (); ++p)
+          different += e.atoms[p] != reference.atoms[p] || e.origins[p] != reference.origins[p] * scale;
+        EXPECT_EQ (different, 0u) << "patches whose seed or atoms differ";
+      }
+    }
+  }
+} // namespace
+
+TEST (ScaleInvariance, GeneratedMeshWithFeatures)
+{
+  expectSameModel (featureMesh (), "cube + bumpy sheet");
+}
+
+TEST (ScaleInvariance, Fandisk)
+{
+  const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
+  if (!std::filesystem::exists (path))
+    GTEST_SKIP () << path << " is absent";
+  expectSameModel (loadTriangleMesh (path), "fandisk");
+}
