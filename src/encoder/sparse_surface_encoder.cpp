@@ -108,7 +108,7 @@ namespace pcl_sparse
     coding_info_.assign (patches_.size (), PatchCodingInfo ());
     std::atomic<long> done (0);
     const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) if(num_patches > 64)
     for (long p = 0; p < num_patches; ++p)
     {
       codes[p] = codePatch (patches_[p], static_cast<std::size_t> (p), mesh, ring_lengths, *basis, options_.coding,
