@@ -522,3 +522,32 @@ TEST (PatchSamplingShared, FandiskPatchesAreSmallerAtSharpEdges)
     EXPECT_GT (min_cos, std::cos (options.cone_angle)) << "patch of seed " << p.seed;
   }
 }
+
+TEST (PatchSamplingShared, SpotPatchCountFallsAsRhoGrows)
+{
+  const std::string path = sharedMesh ("spot.obj");
+  if (!std::filesystem::exists (path))
+    GTEST_SKIP () << "shared mesh not found: " << path;
+  auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
+  auto topology = std::make_shared<MeshTopology> (buildMeshTopology (*mesh));
+  std::vector<double> responses;
+  std::vector<int> keypoints;
+  computeUnitScaleHarris3D (*mesh, *topology, 0, responses, keypoints);
+  std::vector<std::size_t> counts;
+  for (double rho : {0.0002, 0.001, 0.005})
+  {
+    FeatureAwarePatchSampling sampling;
+    sampling.setInputMesh (mesh);
+    sampling.setTopology (topology);
+    sampling.setResponses (responses);
+    sampling.setKeypoints (keypoints);
+    PatchOptions options;
+    options.rho = rho;
+    sampling.setOptions (options);
+    std::vector<Patch> patches;
+    sampling.compute (patches);
+    counts.push_back (patches.size ());
+  }
+  EXPECT_GT (counts[0], counts[1]);
+  EXPECT_GT (counts[1], counts[2]);
+}
