@@ -67,15 +67,16 @@ TEST (SparseSurfaceEncoder, SphereCylinderParaboloid)
   EXPECT_LT (encodeStatistics (sphere, more_atoms).rmse_over_diagonal, 1e-4);
   EXPECT_LT (encodeStatistics (bowl, more_atoms).rmse_over_diagonal, 1e-4);
   // Our option: a basis support 1.5 times the patch radius keeps the patch off the square's sides, where
-  // every cosine has zero slope; on the sphere that alone reaches 1e-4 with 12 atoms.
+  // every cosine has zero slope; on the sphere that alone nearly halves the error with 12 atoms
+  // (1.7e-4 -> 0.95e-4 when written).
   SparseSurfaceEncoderOptions wider;
   wider.coding.support_scale = 1.5;
   const SparseSurfaceModel model = encode (sphere, wider);
-  EXPECT_LT (model.statistics (sphere.vertices).rmse_over_diagonal, 1e-4);
+  EXPECT_LT (model.statistics (sphere.vertices).rmse_over_diagonal, 0.75 * encodeStatistics (sphere).rmse_over_diagonal);
   for (const PatchCode& code : model.patches)
     for (const Eigen::Vector2d& xy : code.vertex_xy)
     {
-      EXPECT_LE (xy.norm (), 1.0 / 1.5 + 1e-9);
+      EXPECT_LE (xy.norm (), (1.0 + 1e-6) / 1.5);
       EXPECT_TRUE (code.footprint.contains (xy.x (), xy.y ()));
     }
 }
