@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The demo: installs what is needed (Debian bookworm), builds pcl_sparse in Release, fetches the Fandisk
 # mesh (CC0, CGAL's data from Debian's libcgal-demo package) into a cache outside the repository, and runs
-# the tools on it. Idempotent: installed packages, the build and the cached mesh are reused.
+# the tools on it: report, encode to a sparse model, resample the model into a point cloud. Idempotent: installed packages, the build and the cached mesh are reused.
 # Environment: BUILD_DIR (default <repo>/build), PCL_SPARSE_CACHE (default ~/.cache/pcl_sparse).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -42,8 +42,13 @@ echo "== $mesh"
 # The main job. Step 1: what is in the mesh.
 "$build/apps/pcl_sparse_info" "$mesh"
 
-# Step 2 (comes with pcl_sparse_resample): code the mesh as a sparse model and resample it, e.g.
-#   "$build/apps/pcl_sparse_resample" "$mesh" "$cache/fandisk-resampled.ply"
-if [ -x "$build/apps/pcl_sparse_resample" ]; then
-  echo "(pcl_sparse_resample is built; its demo call goes here)"
-fi
+# Step 2: code it as a sparse model (.psm) with the paper's figures (N_V, M, rho, nnz, RMSE, CR), and show
+# what the model file holds.
+echo "== encode"
+"$build/apps/pcl_sparse_encode" "$mesh" -o "$cache/fandisk.psm" -q
+"$build/apps/pcl_sparse_info" "$cache/fandisk.psm"
+
+# Step 3: resample the model into a point cloud with normals and curvature, at any density.
+echo "== resample"
+"$build/apps/pcl_sparse_resample" "$cache/fandisk.psm" "$cache/fandisk-100k.ply" -n 100000 -q
+echo "wrote $cache/fandisk-100k.ply (100000 points with normals; view it in MeshLab or CloudCompare)"
