@@ -195,3 +195,37 @@ TEST (SparseSurfaceEncoder, Fandisk)
   EXPECT_LT (stats.rmse_over_diagonal, 3e-4);
   EXPECT_LT (stats.compression_ratio, 0.8);
 }
+
+// Resampling draws points only inside the footprints: every point of every patch triangle must be inside.
+TEST (SparseSurfaceEncoder, FootprintsCoverTheirTrianglesOnFandisk)
+{
+  const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
+  if (!std::filesystem::exists (path))
+    GTEST_SKIP () << "shared mesh " << path << " not found";
+  const TriangleMesh mesh = loadTriangleMesh (path);
+  SparseSurfaceEncoder encoder;
+  encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  SparseSurfaceModel model;
+  encoder.compute (model);
+  const std::vector<Patch>& patches = encoder.getPatches ();
+  ASSERT_EQ (patches.size (), model.patches.size ());
+  std::size_t checked = 0, outside = 0;
+  for (std::size_t p = 0; p < patches.size (); ++p)
+  {
+    std::map<int, int> index;
+    for (std::size_t k = 0; k < patches[p].vertices.size (); ++k)
+      index[patches[p].vertices[k]] = static_cast<int> (k);
+    for (int f : patches[p].triangles)
+      for (const Eigen::Vector3d& b : {Eigen::Vector3d (1, 0, 0), Eigen::Vector3d (0.5, 0.5, 0),
+                                       Eigen::Vector3d (0.2, 0.3, 0.5), Eigen::Vector3d (0.05, 0.9, 0.05)})
+      {
+        Eigen::Vector3d q = Eigen::Vector3d::Zero ();
+        for (int c = 0; c < 3; ++c)
+          q += b[c] * patches[p].local[index.at (mesh.triangles[f][c])];
+        ++checked;
+        outside += !model.patches[p].footprint.contains (q.x (), q.y ());
+      }
+  }
+  EXPECT_GT (checked, 10000u);
+  EXPECT_EQ (outside, 0u);
+}
