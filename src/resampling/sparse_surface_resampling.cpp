@@ -398,6 +398,19 @@ namespace pcl_sparse
     double density = density_;
     if (mode_ == Mode::Count)
     {
+      // The area pass costs what a candidate pass at its density costs: at most area_pass_cells cells
+      // per patch, and at most a quarter of the final pass's cells (guessed from the footprint areas with
+      // an overlap of 2), since with few points per patch a fixed 64 cells would cost more than the rest.
+      double footprint_area = 0.0;
+      for (const PatchCode& code : model.patches)
+      {
+        double square = 0.0;
+        for (float e : code.footprint.extent)
+          square += static_cast<double> (e) * e;
+        square = code.footprint.extent.empty () ? 1.0 : square / code.footprint.extent.size ();
+        footprint_area += M_PI * square * code.radius * code.radius;
+      }
+      const double guess = static_cast<double> (count_) / (0.5 * footprint_area);
       std::vector<double> areas (m, 0.0);
       const double cells_per_axis = std::sqrt (std::max (1, options_.area_pass_cells));
 #pragma omp parallel for schedule(dynamic, 8) num_threads(threads)
@@ -405,7 +418,8 @@ namespace pcl_sparse
       {
         const std::size_t p = static_cast<std::size_t> (pi);
         const double e = evaluator.maxExtent (p);
-        const PatchGrid grid = makeGrid (e, 2.0 * e / cells_per_axis);
+        const double final_cell = 1.0 / (model.patches[p].radius * std::sqrt (guess));
+        const PatchGrid grid = makeGrid (e, std::min (e, std::max (2.0 * e / cells_per_axis, 2.0 * final_cell)));
         std::vector<Candidate> candidates;
         Points evaluated;
         const double r = model.patches[p].radius;

@@ -49,7 +49,8 @@ namespace pcl_sparse
     /// Cap on the area element sqrt(1 + |grad h|^2) used as a place's weight (10: slopes up to 84 degrees
     /// count fully), so a patch whose code oscillates steeply cannot absorb the point budget.
     double max_area_weight = 10.0;
-    /// Cells per patch in the area pass that sizes the cells when a total count is requested.
+    /// Largest number of cells per patch in the area pass that sizes the cells when a total count is
+    /// requested (a quarter of the final pass's cells when that is fewer).
     int area_pass_cells = 64;
     /// Ownership of overlapping places.
     PatchOwnershipOptions ownership;
