@@ -23,20 +23,28 @@ namespace pcl_sparse
     // World radius of a ball around each seed holding the whole patch: the footprint's largest extent
     // and the largest height seen on a coarse grid over it, with a margin for what the grid misses.
     std::vector<double> reach (m, 0.0);
+    std::vector<char> tame (m, 0);
 #pragma omp parallel for schedule(dynamic, 16)
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
       const double e = evaluator.maxExtent (p);
-      double h_max = 0.0;
-      const int n = 6;
+      double h_max = 0.0, slope_max = 0.0;
+      const int n = 8;
       for (int a = 0; a <= n; ++a)
         for (int b = 0; b <= n; ++b)
         {
           const double x = e * (2.0 * a / n - 1.0), y = e * (2.0 * b / n - 1.0);
           if (evaluator.centrality (p, x, y) <= 1.0)
-            h_max = std::max (h_max, std::abs (evaluator.height (p, x, y)));
+          {
+            const HeightSample h = evaluator.sample (p, x, y);
+            h_max = std::max (h_max, std::abs (h.value));
+            slope_max = std::max (slope_max, h.gradient.squaredNorm ());
+          }
         }
+      // A code well inside both bounds on the grid is taken as valid everywhere: the validity test of
+      // contenders (a full evaluation) is skipped for it.
+      tame[p] = h_max <= 0.5 * options.max_height && slope_max <= 0.25 * max_slope_squared_;
       // Places above max_height are never the patch's (see beats), which also bounds the reach.
       h_max = std::min (h_max * 1.5 + 0.05, options.max_height);
       reach[p] = model.patches[p].radius * std::sqrt (e * e + h_max * h_max) * 1.01;
@@ -88,7 +96,8 @@ namespace pcl_sparse
         const double inverse = 1.0 / code.radius;
         const std::uint32_t index = static_cast<std::uint32_t> (contenders_.size ());
         contenders_.push_back ({code.origin, code.frame.col (0) * inverse, code.frame.col (1) * inverse,
-                                code.frame.col (2) * inverse, evaluator.maxExtent (q), static_cast<std::size_t> (q)});
+                                code.frame.col (2) * inverse, evaluator.maxExtent (q), static_cast<std::size_t> (q),
+                                tame[q] != 0});
         const Eigen::Vector3d centre = self.frame.transpose () * (code.origin - self.origin) / self.radius;
         const double distance = centre.head<2> ().norm (), disk = reach[q] / self.radius;
         if (distance <= disk * 1.0001)
@@ -130,7 +139,7 @@ namespace pcl_sparse
     const double z = other.n.dot (d), h = evaluator_.height (other.patch, x, y);
     if (!(std::abs (h) <= options_.max_height && std::abs (z - h) <= options_.height_tolerance))
       return false;
-    return isValidPlace (evaluator_.sample (other.patch, x, y), options_, max_slope_squared_);
+    return other.tame || isValidPlace (evaluator_.sample (other.patch, x, y), options_, max_slope_squared_);
   }
 
   std::vector<int>

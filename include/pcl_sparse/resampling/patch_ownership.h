@@ -91,6 +91,7 @@ namespace pcl_sparse
       Eigen::Vector3d origin, t1, t2, n;  ///< s; T1 / r, T2 / r, N / r
       double max_extent;
       std::size_t patch;
+      bool tame;  ///< its code stays well inside the validity bounds: no need to test them
     };
 
     bool
