@@ -12,7 +12,9 @@
 
 #include <Eigen/Dense>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <random>
 
@@ -337,6 +339,32 @@ TEST (Resampling, DeterministicForAnyThreadCount)
     differs = differs || (*one)[i].x != (*other_seed)[i].x;
   }
   EXPECT_TRUE (differs);
+}
+
+TEST (Resampling, HighDensityBlocksDeterministicUniform)
+{
+  // About 4800 points per patch: cells are classified by blocks (quadtree), the fast path.
+  const auto model = makeSphereModel ();
+  const std::size_t n = 200000;
+  const auto one = resample (model, n, 1);
+  const auto two = resample (model, n, 2);
+  ASSERT_EQ (one->size (), n);
+  ASSERT_EQ (two->size (), n);
+  ASSERT_EQ (0, std::memcmp (one->data (), two->data (), n * sizeof (pcl::PointNormal)));
+  std::array<std::size_t, 8> octants {};
+  double square = 0.0;
+  for (const auto& p : *one)
+  {
+    const Eigen::Vector3d q (p.x, p.y, p.z);
+    square += (q.norm () - 1.0) * (q.norm () - 1.0);
+    ++octants[(q.x () > 0) + 2 * (q.y () > 0) + 4 * (q.z () > 0)];
+  }
+  EXPECT_LT (std::sqrt (square / n), 1e-3);
+  for (std::size_t count : octants)
+    EXPECT_NEAR (static_cast<double> (count), n / 8.0, 0.01 * n / 8.0);
+  const double cv = coefficientOfVariation (nearestDistances (one));
+  std::cout << "sphere at 200k points: nearest-neighbour CV " << cv << std::endl;
+  EXPECT_LT (cv, 0.25);
 }
 
 TEST (Resampling, SmallCountsAreExact)
