@@ -12,9 +12,13 @@
 /// Sampling is stratified by area: each patch lays a grid of cells of one expected point each over its
 /// local plane (cell side 1 / (r_P sqrt(density)) in local units), jitters one candidate per cell, weights
 /// it by the area element sqrt(1 + h_x^2 + h_y^2), and picks its points by systematic sampling along the
-/// cells in serpentine order. This gives blue-noise-like spacing (nearest-neighbour distance CV about
-/// 0.2 against about 0.5 for uniform random points) and, with setPointCount, exactly the requested count:
-/// the total is split over the patches by owned area (largest remainder).
+/// cells in serpentine order. This gives blue-noise-like spacing (nearest-neighbour distance CV 0.2 on
+/// smooth models, 0.23-0.31 on the shared meshes, against about 0.5 for uniform random points and for
+/// PCL's MLS upsampling) and, with setPointCount, exactly the requested count: the total is split over
+/// the patches by owned area (largest remainder). At high density, cells well inside or outside a
+/// patch's owned part are classified by blocks (a quadtree over cell corners) instead of one by one.
+/// Places where a code leaves its plausible range (|h| > 1 or a slope beyond 75 degrees: oscillating
+/// codes of tiny patches) are left to the overlapping patches (PatchOwnershipOptions).
 ///
 /// Deterministic: every random number is a hash of (seed, patch, cell, draw), patches run in parallel and
 /// their points are concatenated in patch order, so the cloud is the same for any thread count.
