@@ -2,11 +2,30 @@
 #include <pcl_sparse/geometry/geodesic.h>
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
 namespace pcl_sparse
 {
+  std::vector<double>
+  computeEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology)
+  {
+    if (topology.numVertices () != mesh.numVertices ())
+      throw Error ("computeEdgeLengths: the topology does not belong to the mesh (vertex counts differ)");
+    const int num_vertices = static_cast<int> (mesh.numVertices ());
+    std::vector<double> lengths (topology.vertex_neighbors.size ());
+#pragma omp parallel for schedule(static)
+    for (int v = 0; v < num_vertices; ++v)
+      for (int i = topology.vertex_neighbor_offsets[v]; i < topology.vertex_neighbor_offsets[v + 1]; ++i)
+      {
+        const double l = (mesh.vertices[topology.vertex_neighbors[i]] - mesh.vertices[v]).norm ();
+        lengths[i] = std::isfinite (l) ? l : std::numeric_limits<double>::infinity ();
+      }
+    return lengths;
+  }
+
   DijkstraGeodesic::DijkstraGeodesic (const TriangleMesh& mesh, const MeshTopology& topology)
     : mesh_ (&mesh), topology_ (&topology)
   {
@@ -19,79 +38,45 @@ namespace pcl_sparse
   }
 
   void
-  DijkstraGeodesic::reset ()
+  DijkstraGeodesic::setEdgeLengths (const std::vector<double>& lengths)
   {
-    for (int v : touched_)
+    if (lengths.empty ())
     {
-      distance_[v] = std::numeric_limits<double>::infinity ();
-      parent_[v] = -1;
-      state_[v] = State::Untouched;
+      edge_lengths_ = nullptr;
+      return;
     }
+    if (lengths.size () != topology_->vertex_neighbors.size ())
+      throw Error ("DijkstraGeodesic: " + std::to_string (lengths.size ()) + " edge lengths for " +
+                   std::to_string (topology_->vertex_neighbors.size ()) + " 1-ring entries");
+    edge_lengths_ = &lengths;
+  }
+
+  void
+  DijkstraGeodesic::reset (int source)
+  {
+    // distance_ and parent_ are meaningful only where state_ says so: resetting the states is enough.
+    for (int v : touched_)
+      state_[v] = State::Untouched;
     touched_.clear ();
     accepted_.clear ();
     heap_.clear ();
+    if (source < 0 || source >= static_cast<int> (state_.size ()))
+      throw Error ("DijkstraGeodesic: source vertex " + std::to_string (source) + " out of range");
   }
 
   double
   DijkstraGeodesic::distance (int v) const
   {
-    return state_[v] == State::Accepted || state_[v] == State::Refused ? distance_[v]
-                                                                         : std::numeric_limits<double>::infinity ();
+    return state_[v] == State::Accepted || state_[v] == State::Refused || state_[v] == State::Deferred
+             ? distance_[v]
+             : std::numeric_limits<double>::infinity ();
   }
 
   std::size_t
   DijkstraGeodesic::compute (int source, double max_distance, const GeodesicVisitor& visitor)
   {
-    reset ();
-    if (source < 0 || source >= static_cast<int> (distance_.size ()))
-      throw Error ("DijkstraGeodesic: source vertex " + std::to_string (source) + " out of range");
-    // Min-heap on (distance, vertex): equal distances come out by index, so the order is deterministic.
-    const auto later = std::greater<std::pair<double, int>> ();
-    distance_[source] = 0.0;
-    state_[source] = State::Queued;
-    touched_.push_back (source);
-    heap_.emplace_back (0.0, source);
-    const auto& vertices = mesh_->vertices;
-    while (!heap_.empty ())
-    {
-      std::pop_heap (heap_.begin (), heap_.end (), later);
-      const auto [d, v] = heap_.back ();
-      heap_.pop_back ();
-      if (state_[v] != State::Queued || d != distance_[v])
-        continue;  // stale entry: v was settled or improved since this entry was pushed
-      const GeodesicVisit decision = visitor ? visitor (v, d, parent_[v]) : GeodesicVisit::Accept;
-      if (decision == GeodesicVisit::Stop)
-      {
-        state_[v] = State::Refused;
-        break;
-      }
-      if (decision == GeodesicVisit::Refuse)
-      {
-        state_[v] = State::Refused;
-        continue;
-      }
-      state_[v] = State::Accepted;
-      accepted_.push_back (v);
-      for (int u : topology_->neighborsOf (v))
-      {
-        if (state_[u] == State::Accepted || state_[u] == State::Refused)
-          continue;
-        const double du = d + (vertices[u] - vertices[v]).norm ();
-        if (!(du <= max_distance) || du >= distance_[u])
-          continue;
-        if (state_[u] == State::Untouched)
-          touched_.push_back (u);
-        distance_[u] = du;
-        parent_[u] = v;
-        state_[u] = State::Queued;
-        heap_.emplace_back (du, u);
-        std::push_heap (heap_.begin (), heap_.end (), later);
-      }
-    }
-    // Vertices still queued were never offered: report them as unreached.
-    for (int v : touched_)
-      if (state_[v] == State::Queued)
-        parent_[v] = -1;
-    return accepted_.size ();
+    if (!visitor)
+      return walk (source, max_distance, [] (int, double, int) { return GeodesicVisit::Accept; });
+    return walk (source, max_distance, visitor);
   }
 } // namespace pcl_sparse
