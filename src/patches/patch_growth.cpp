@@ -57,15 +57,7 @@ namespace pcl_sparse
       const double n = sum.norm ();
       g.vertex_normals[v] = n > 0.0 ? Eigen::Vector3d (sum / n) : Eigen::Vector3d::Zero ();
     }
-    g.edge_lengths.resize (topology.vertex_neighbors.size ());
-#pragma omp parallel for schedule(static)
-    for (int v = 0; v < num_vertices; ++v)
-      for (int i = topology.vertex_neighbor_offsets[v]; i < topology.vertex_neighbor_offsets[v + 1]; ++i)
-      {
-        // A non-finite length (NaN coordinates) becomes +inf: such vertices come last and are refused.
-        const double l = (mesh.vertices[topology.vertex_neighbors[i]] - mesh.vertices[v]).norm ();
-        g.edge_lengths[i] = std::isfinite (l) ? l : std::numeric_limits<double>::infinity ();
-      }
+    g.edge_lengths = computeEdgeLengths (mesh, topology);
     // Sequential sum: the total must not depend on the thread count.
     for (double a : g.face_areas)
       g.total_area += a;
@@ -84,9 +76,10 @@ namespace pcl_sparse
     , eta_ (options.eta)
     , rho_area_ (options.rho * geometry.total_area)
     , stop_at_first_refusal_ (options.stop_at_first_refusal)
+    , walk_ (mesh, topology)
     , state_ (mesh.vertices.size (), Untouched)
-    , distance_ (mesh.vertices.size (), 0.0)
   {
+    walk_.setEdgeLengths (geometry.edge_lengths);
   }
 
   bool
@@ -150,43 +143,12 @@ namespace pcl_sparse
     };
 
     double area = 0.0, projected = 0.0, growth_radius = 0.0;
-    auto push = [&] (int u, double d) {
-      if (state_[u] == Untouched)
-        touched_.push_back (u);
-      distance_[u] = d;
-      state_[u] = Queued;
-      heap_.emplace_back (d, u);
-      std::push_heap (heap_.begin (), heap_.end (), HeapGreater ());
-    };
-    auto accept = [&] (int u) {
-      if (state_[u] == Untouched)
-        touched_.push_back (u);
-      state_[u] = Accepted;
-      const int first = topology_.vertex_neighbor_offsets[u], last = topology_.vertex_neighbor_offsets[u + 1];
-      for (int i = first; i < last; ++i)
-      {
-        const int w = topology_.vertex_neighbors[i];
-        const std::uint8_t st = state_[w];
-        if (st == Accepted)
-          continue;
-        const double d = distance_[u] + geometry_.edge_lengths[i];
-        if (st == Untouched || d < distance_[w])
-          push (w, d);
-        else if (st == Refused)  // a new accepted neighbour may justify it now (non-stopping growth)
-          push (w, distance_[w]);
-      }
-    };
-
-    distance_[seed] = 0.0;
-    accept (seed);
-    while (!heap_.empty ())
-    {
-      std::pop_heap (heap_.begin (), heap_.end (), HeapGreater ());
-      const auto [d, u] = heap_.back ();
-      heap_.pop_back ();
-      if (state_[u] != Queued || d > distance_[u])
-        continue;
-
+    // The walk offers u when its edge distance from the seed is final; a refused u is deferred, not
+    // dropped, in the non-stopping growth: a neighbour accepted later may give it a justifying face.
+    const GeodesicVisit refusal = stop_at_first_refusal_ ? GeodesicVisit::Stop : GeodesicVisit::Defer;
+    auto visit = [&] (int u, double, int) {
+      if (u == seed)
+        return GeodesicVisit::Accept;
       // One pass over the faces of u: the faces u would complete (patch triangles, and the area they
       // add) and the candidate justifying faces (cone, and smooth at an accepted corner other than u).
       completed_.clear ();
@@ -204,7 +166,7 @@ namespace pcl_sparse
           const int w = t[k];
           if (w == u)
             continue;
-          if (state_[w] == Accepted)
+          if (walk_.isAccepted (w))
             smooth = smooth || smoothAt (f, w);
           else
             complete = false;
@@ -251,10 +213,7 @@ namespace pcl_sparse
             if (normals[f].dot (ns) < cos_half_cone_)
               wide_normals_.pop_back ();
           }
-        if (stop_at_first_refusal_)
-          break;
-        state_[u] = Refused;
-        continue;
+        return refusal;
       }
       area = area_after;
       projected = projected_after;
@@ -262,8 +221,9 @@ namespace pcl_sparse
       patch.triangles.insert (patch.triangles.end (), completed_.begin (), completed_.end ());
       const Eigen::Vector3d r = mesh_.vertices[u] - s;
       growth_radius = std::max (growth_radius, (r - r.dot (ns) * ns).norm ());
-      accept (u);
-    }
+      return GeodesicVisit::Accept;
+    };
+    walk_.walk (seed, std::numeric_limits<double>::infinity (), visit);
     return growth_radius;
   }
 

@@ -2,8 +2,8 @@
 /// \file patch_growth.h
 /// Growing one patch from a seed vertex (METHOD.md step 5, the paper's "create_patch").
 ///
-/// Vertices are visited by increasing geodesic distance from the seed (Dijkstra over edges; the authors
-/// use fast marching). A vertex u joins if some non-degenerate triangle t incident to u and to an already
+/// Vertices are visited by increasing geodesic distance from the seed (Dijkstra over edges, the walk of
+/// DijkstraGeodesic in geodesic.h with this growth as its visitor; the authors use fast marching). A vertex u joins if some non-degenerate triangle t incident to u and to an already
 /// accepted corner w satisfies all of:
 ///   - smooth variation  angle(n_t, n_w) < delta               (n_w: vertex normal of w)
 ///   - normal cone       angle(n_t, n_s) < cone_angle           (n_s: vertex normal of the seed)
@@ -15,7 +15,11 @@
 /// t when t is not yet a patch triangle, so it holds for the final patch too.
 /// Patch triangles are the faces whose three corners joined and which pass the cone and no-flip tests and
 /// the smooth variation test for at least one corner.
+/// The growth stops at the first refused vertex (PatchOptions::stop_at_first_refusal, GeodesicVisit::Stop)
+/// or, without it, defers refused vertices: each is tested again whenever a neighbour joins later
+/// (GeodesicVisit::Defer), since a new accepted corner can give it a justifying triangle.
 
+#include <pcl_sparse/geometry/geodesic.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/patches/patch.h>
@@ -33,7 +37,7 @@ namespace pcl_sparse
   ///   face_normals    #F unit normals (zero for degenerate faces)
   ///   face_areas      #F
   ///   vertex_normals  #V unit, area weighted (zero for vertices with no proper face)
-  ///   edge_lengths    length of each 1-ring entry of the topology (CSR, as vertex_neighbors)
+  ///   edge_lengths    length of each 1-ring entry of the topology (computeEdgeLengths, geodesic.h)
   struct PatchGrowthGeometry
   {
     std::vector<Eigen::Vector3d> face_normals;
@@ -47,8 +51,8 @@ namespace pcl_sparse
   PatchGrowthGeometry
   computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology);
 
-  /// Grows patches on one mesh. Scratch arrays are sized once for the mesh and only the entries a growth
-  /// touched are reset, so one growth costs O(R log R) for R visited vertices, independent of the mesh
+  /// Grows patches on one mesh. Scratch arrays (the walk's included) are sized once for the mesh and only
+  /// the entries a growth touched are reset, so one growth costs O(R log R) for R visited vertices, independent of the mesh
   /// size. Not thread-safe: one object per thread.
   class PatchGrower
   {
@@ -93,10 +97,10 @@ namespace pcl_sparse
     double rho_area_;  // rho * A
     bool stop_at_first_refusal_;
 
-    std::vector<std::uint8_t> state_;
-    std::vector<double> distance_;
+    DijkstraGeodesic walk_;  // the vertex walk of grow ()
+    std::vector<std::uint8_t> state_;  // face growth: vertex membership
     std::vector<int> touched_;
-    std::vector<std::pair<double, int>> heap_;
+    std::vector<std::pair<double, int>> heap_;  // face growth queue
     std::vector<int> completed_;  // faces completed by the vertex being tested
     std::vector<std::pair<int, double>> candidates_;  // its justifying faces (face, n_t . n_s; -1: complete)
     std::vector<Eigen::Vector3d> patch_normals_;  // normals of the patch triangles so far
