@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace pcl_sparse;
 
@@ -166,4 +168,73 @@ TEST (DijkstraGeodesic, SphereDistancesBoundTheGreatCircle)
     EXPECT_GE (geodesic.distance (v), (1.0 - 1e-9) * 2.0 * r * std::sin (arc / (2.0 * r)));  // >= chord
     EXPECT_LE (geodesic.distance (v), 1.16 * arc + 2.0 * max_edge);
   }
+}
+
+TEST_F (PlaneFixture, DeferredVertexIsOfferedAgainWhenANeighbourJoins)
+{
+  const int target = gridIndex (21, 20);  // a neighbour of the centre, at distance one spacing
+  DijkstraGeodesic geodesic (mesh, topo);
+  // Deferred once, accepted at its second offer: at its former distance (no shorter path exists).
+  int offers = 0;
+  geodesic.compute (center, 0.3, [&] (int v, double, int) {
+    if (v != target)
+      return GeodesicVisit::Accept;
+    return ++offers == 1 ? GeodesicVisit::Defer : GeodesicVisit::Accept;
+  });
+  EXPECT_EQ (offers, 2);
+  EXPECT_TRUE (geodesic.isAccepted (target));
+  EXPECT_NEAR (geodesic.distance (target), kSpacing, 1e-15);
+
+  // Deferred every time: offered once, then once more for each neighbour accepted after that offer.
+  offers = 0;
+  std::size_t accepted_before = 0;
+  geodesic.compute (center, 0.3, [&] (int v, double, int) {
+    if (v != target)
+      return GeodesicVisit::Accept;
+    if (++offers == 1)
+      accepted_before = geodesic.acceptedVertices ().size ();
+    return GeodesicVisit::Defer;
+  });
+  const auto& order = geodesic.acceptedVertices ();
+  int later_neighbours = 0;
+  for (int u : topo.neighborsOf (target))
+    later_neighbours += std::find (order.begin () + accepted_before, order.end (), u) != order.end () ? 1 : 0;
+  EXPECT_GE (later_neighbours, 2);  // several re-offers, not one
+  EXPECT_EQ (offers, 1 + later_neighbours);
+  EXPECT_FALSE (geodesic.isAccepted (target));
+  EXPECT_NEAR (geodesic.distance (target), kSpacing, 1e-15);
+
+  // Refused instead: offered once, never accepted.
+  offers = 0;
+  geodesic.compute (center, 0.3, [&] (int v, double, int) {
+    if (v != target)
+      return GeodesicVisit::Accept;
+    ++offers;
+    return GeodesicVisit::Refuse;
+  });
+  EXPECT_EQ (offers, 1);
+  EXPECT_FALSE (geodesic.isAccepted (target));
+}
+
+TEST (DijkstraGeodesic, CachedEdgeLengthsGiveTheSameWalkBitForBit)
+{
+  const TriangleMesh mesh = makeTorus (48, 16);
+  const MeshTopology topo = buildMeshTopology (mesh);
+  const std::vector<double> lengths = computeEdgeLengths (mesh, topo);
+  ASSERT_EQ (lengths.size (), topo.vertex_neighbors.size ());
+  for (int v = 0; v < static_cast<int> (mesh.numVertices ()); ++v)
+    for (int i = topo.vertex_neighbor_offsets[v]; i < topo.vertex_neighbor_offsets[v + 1]; ++i)
+      EXPECT_EQ (lengths[i], (mesh.vertices[topo.vertex_neighbors[i]] - mesh.vertices[v]).norm ());
+  DijkstraGeodesic computed (mesh, topo), cached (mesh, topo);
+  cached.setEdgeLengths (lengths);
+  computed.compute (7, 2.5);
+  cached.compute (7, 2.5);
+  EXPECT_GT (computed.acceptedVertices ().size (), 100u);
+  EXPECT_EQ (computed.acceptedVertices (), cached.acceptedVertices ());
+  for (int v : computed.acceptedVertices ())
+  {
+    EXPECT_EQ (computed.distance (v), cached.distance (v));
+    EXPECT_EQ (computed.parent (v), cached.parent (v));
+  }
+  EXPECT_THROW (cached.setEdgeLengths (std::vector<double> (3, 1.0)), Error);
 }
