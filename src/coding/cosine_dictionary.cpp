@@ -1,4 +1,8 @@
+/// Implementation of CosineAtoms (cosine_atoms.h) for both kinds; kept under this name, which
+/// test/sanitized/CMakeLists.txt lists.
+#include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/coding/dct_cosine_dictionary.h>
 #include <pcl_sparse/common/error.h>
 
 #include <algorithm>
@@ -80,10 +84,13 @@ namespace pcl_sparse
     }
   } // namespace
 
-  CosineDictionary::CosineDictionary (int frequencies) : n_ (frequencies)
+  CosineAtoms::CosineAtoms (int frequencies, CosineBasisKind kind)
+    : n_ (frequencies), kind_ (kind), scale_ (kind == CosineBasisKind::Dct ? 0.5 : 1.0),
+      shift_ (kind == CosineBasisKind::Dct ? 0.5 : 0.0)
   {
     if (frequencies < 1 || frequencies > max_frequencies)
-      throw Error ("CosineDictionary: frequencies must be in [1, " + std::to_string (max_frequencies) + "], got " +
+      throw Error (std::string (kind == CosineBasisKind::Dct ? "DctCosineDictionary" : "CosineDictionary") +
+                   ": frequencies must be in [1, " + std::to_string (max_frequencies) + "], got " +
                    std::to_string (frequencies));
     frequency_x_.resize (n_ * n_);
     frequency_y_.resize (n_ * n_);
@@ -95,28 +102,31 @@ namespace pcl_sparse
   }
 
   double
-  CosineDictionary::wavelength (int atom) const
+  CosineAtoms::wavelength (int atom) const
   {
+    // cos(m pi s) has period 2 / m in s, i.e. 2 / (m ds/dt) in the patch coordinate t.
     const int m = std::max (frequencyX (atom), frequencyY (atom));
-    return m == 0 ? std::numeric_limits<double>::infinity () : 2.0 / m;
+    return m == 0 ? std::numeric_limits<double>::infinity () : 2.0 / (scale_ * m);
   }
 
   namespace
   {
-    /// Per-axis tables: cx (p, k) = cos(k pi x_p), cy (p, k) = cos(k pi y_p), k < count.
+    /// Per-axis tables: cx (p, k) = cos(k pi s(x_p)), cy (p, k) = cos(k pi s(y_p)), k < count, with
+    /// s(t) = scale * t + shift.
     void
-    axisTables (const std::vector<Eigen::Vector2d>& points, int count, Eigen::MatrixXd& cx, Eigen::MatrixXd& cy)
+    axisTables (const std::vector<Eigen::Vector2d>& points, int count, double scale, double shift,
+                Eigen::MatrixXd& cx, Eigen::MatrixXd& cy)
     {
       const Eigen::Index size = static_cast<Eigen::Index> (points.size ());
       cx.resize (size, count);
       cy.resize (size, count);
-      double c[CosineDictionary::max_frequencies + 4];
+      double c[CosineAtoms::max_frequencies + 4];
       for (Eigen::Index p = 0; p < size; ++p)
       {
-        cosines (points[p].x (), count, c);
+        cosines (scale * points[p].x () + shift, count, c);
         for (int k = 0; k < count; ++k)
           cx (p, k) = c[k];
-        cosines (points[p].y (), count, c);
+        cosines (scale * points[p].y () + shift, count, c);
         for (int k = 0; k < count; ++k)
           cy (p, k) = c[k];
       }
@@ -124,11 +134,11 @@ namespace pcl_sparse
   } // namespace
 
   void
-  CosineDictionary::evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const
+  CosineAtoms::evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const
   {
     // Per-axis tables first, then each atom column is one vectorised product of two table columns.
     Eigen::MatrixXd cx, cy;
-    axisTables (points, n_, cx, cy);
+    axisTables (points, n_, scale_, shift_, cx, cy);
     values.resize (static_cast<Eigen::Index> (points.size ()), n_ * n_);
     for (int i = 0; i < n_; ++i)
       for (int j = 0; j < n_; ++j)
@@ -136,21 +146,21 @@ namespace pcl_sparse
   }
 
   void
-  CosineDictionary::evaluate (const std::vector<Eigen::Vector2d>& points, const std::vector<int>& atoms,
+  CosineAtoms::evaluate (const std::vector<Eigen::Vector2d>& points, const std::vector<int>& atoms,
                               Eigen::MatrixXd& values) const
   {
     int count = 1;
     for (int a : atoms)
       count = std::max ({count, a / n_ + 1, a % n_ + 1});
     Eigen::MatrixXd cx, cy;
-    axisTables (points, count, cx, cy);
+    axisTables (points, count, scale_, shift_, cx, cy);
     values.resize (static_cast<Eigen::Index> (points.size ()), static_cast<Eigen::Index> (atoms.size ()));
     for (std::size_t k = 0; k < atoms.size (); ++k)
       values.col (static_cast<Eigen::Index> (k)) = cx.col (atoms[k] / n_).cwiseProduct (cy.col (atoms[k] % n_));
   }
 
   HeightSample
-  CosineDictionary::evaluateCode (const std::vector<int>& atoms, const std::vector<double>& coefficients, double x,
+  CosineAtoms::evaluateCode (const std::vector<int>& atoms, const std::vector<double>& coefficients, double x,
                                   double y) const
   {
     // Frequencies of the code's atoms once (table lookups), then tables only as long as needed.
@@ -168,10 +178,10 @@ namespace pcl_sparse
       count_y = std::max (count_y, fj[k] + 1);
     }
     double cx[max_frequencies + 4], sx[max_frequencies + 4], cy[max_frequencies + 4], sy[max_frequencies + 4];
-    harmonics (x, count_x, cx, sx);
-    harmonics (y, count_y, cy, sy);
+    harmonics (argument (x), count_x, cx, sx);
+    harmonics (argument (y), count_y, cy, sy);
 
-    // Derivatives: d/dx cos(i pi x) = -i pi sin(i pi x), d2/dx2 = -(i pi)^2 cos(i pi x).
+    // Derivatives: d/dx cos(i pi s) = -i pi s' sin(i pi s), d2/dx2 = -(i pi s')^2 cos(i pi s), s' = scale_.
     double v = 0.0, gx = 0.0, gy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0;
     for (std::size_t k = 0; k < k_end; ++k)
     {
@@ -189,14 +199,15 @@ namespace pcl_sparse
     }
     HeightSample sample;
     sample.value = v;
-    sample.gradient = Eigen::Vector2d (M_PI * gx, M_PI * gy);
-    const double pi2 = M_PI * M_PI;
+    const double pi = M_PI * scale_;
+    sample.gradient = Eigen::Vector2d (pi * gx, pi * gy);
+    const double pi2 = pi * pi;
     sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
     return sample;
   }
 
   HeightSample
-  CosineDictionary::evaluateLongCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+  CosineAtoms::evaluateLongCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                                       double x, double y) const
   {
     // Rare (more than 64 atoms): split into chunks and add up.
@@ -216,7 +227,7 @@ namespace pcl_sparse
   }
 
   double
-  CosineDictionary::evaluateCodeValue (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+  CosineAtoms::evaluateCodeValue (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                                        double x, double y) const
   {
     const std::size_t k_end = std::min (atoms.size (), coefficients.size ());
@@ -227,11 +238,25 @@ namespace pcl_sparse
       count_y = std::max (count_y, frequency_y_[atoms[k]] + 1);
     }
     double cx[max_frequencies + 4], cy[max_frequencies + 4];
-    cosines (x, count_x, cx);
-    cosines (y, count_y, cy);
+    cosines (argument (x), count_x, cx);
+    cosines (argument (y), count_y, cy);
     double v = 0.0;
     for (std::size_t k = 0; k < k_end; ++k)
       v += coefficients[k] * cx[frequency_x_[atoms[k]]] * cy[frequency_y_[atoms[k]]];
     return v;
+  }
+
+  CosineAtoms::ConstPtr
+  makeCosineBasis (CosineBasisKind kind, int frequencies)
+  {
+    if (kind == CosineBasisKind::Dct)
+      return std::make_shared<DctCosineDictionary> (frequencies);
+    return std::make_shared<CosineDictionary> (frequencies);
+  }
+
+  const char*
+  cosineBasisKindName (CosineBasisKind kind)
+  {
+    return kind == CosineBasisKind::Dct ? "dct" : "paper";
   }
 } // namespace pcl_sparse

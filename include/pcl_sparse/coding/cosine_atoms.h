@@ -1,0 +1,90 @@
+#pragma once
+/// \file cosine_atoms.h
+/// Separable cosine atoms phi_ij(x, y) = cos(i pi s(x)) cos(j pi s(y)) on [-1, 1]^2, i, j = 0 .. n-1, with
+/// s(t) = t (the paper's dictionary, METHOD.md step 8) or s(t) = (t + 1) / 2 (DCT-II-like half-period
+/// atoms, both parities). Shared evaluation of CosineDictionary and DctCosineDictionary; use those.
+
+#include <pcl_sparse/coding/surface_basis.h>
+
+#include <cstdint>
+
+namespace pcl_sparse
+{
+  /// Which cosine atoms a basis uses.
+  enum class CosineBasisKind
+  {
+    Paper,  ///< cos(i pi x) cos(j pi y): even in x and y only (the paper's dictionary, the default)
+    Dct     ///< cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2): even and odd parts (our option)
+  };
+
+  /// Atom index = i * n + j for frequencies (i, j): atom 0 is the constant, atom j varies along y only,
+  /// atom i * n varies along x only. Wavelength of atom (i, j) is 2 / max(i, j) for Paper and
+  /// 4 / max(i, j) for Dct (+infinity for (0, 0)).
+  ///
+  /// Evaluation never calls cos per atom: cos(k pi s) and sin(k pi s) for all k come from one sin/cos
+  /// pair per coordinate and the angle-addition (Chebyshev) recurrence, which is accurate to a few ulp
+  /// for the small k used here. Derivatives carry the chain-rule factor ds/dt (1 or 1/2).
+  class CosineAtoms : public SurfaceBasis
+  {
+  public:
+    using Ptr = std::shared_ptr<CosineAtoms>;
+    using ConstPtr = std::shared_ptr<const CosineAtoms>;
+
+    /// Largest supported \a frequencies (n); a code evaluation keeps its tables on the stack.
+    static constexpr int max_frequencies = 64;
+
+    /// The atoms' kind (Paper or Dct).
+    CosineBasisKind kind () const { return kind_; }
+    /// n, the number of frequencies per axis.
+    int frequencies () const { return n_; }
+    /// Atom index of frequencies (i, j).
+    int atomIndex (int i, int j) const { return i * n_ + j; }
+    /// Frequency along x (i) of \a atom.
+    int frequencyX (int atom) const { return atom / n_; }
+    /// Frequency along y (j) of \a atom.
+    int frequencyY (int atom) const { return atom % n_; }
+
+    int size () const override { return n_ * n_; }
+    double wavelength (int atom) const override;
+
+    /// \a values: #points by n^2, column atomIndex (i, j) = phi_ij.
+    void evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const override;
+
+    /// Only the columns of \a atoms (cost proportional to their number).
+    void evaluate (const std::vector<Eigen::Vector2d>& points, const std::vector<int>& atoms,
+                   Eigen::MatrixXd& values) const override;
+
+    HeightSample evaluateCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+                               double x, double y) const override;
+
+    /// Value only (one cos per axis and the Chebyshev recurrence).
+    double evaluateCodeValue (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+                              double x, double y) const override;
+
+  protected:
+    /// \a frequencies = n (1 .. max_frequencies); throws pcl_sparse::Error otherwise.
+    CosineAtoms (int frequencies, CosineBasisKind kind);
+
+  private:
+    HeightSample evaluateLongCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+                                   double x, double y) const;
+
+    /// s(t) = scale_ * t + shift_; exactly t for Paper, so the paper's atoms stay bit for bit the same.
+    double argument (double t) const { return scale_ * t + shift_; }
+
+    int n_;
+    CosineBasisKind kind_;
+    double scale_;  ///< ds/dt: 1 (Paper) or 1/2 (Dct)
+    double shift_;  ///< 0 (Paper) or 1/2 (Dct)
+    std::vector<std::uint8_t> frequency_x_;  ///< i of each atom (avoids integer division in the hot path)
+    std::vector<std::uint8_t> frequency_y_;  ///< j of each atom
+  };
+
+  /// A cosine basis of \a kind with \a frequencies per axis (CosineDictionary or DctCosineDictionary).
+  CosineAtoms::ConstPtr
+  makeCosineBasis (CosineBasisKind kind, int frequencies = 12);
+
+  /// "paper" or "dct".
+  const char*
+  cosineBasisKindName (CosineBasisKind kind);
+} // namespace pcl_sparse

@@ -1,0 +1,26 @@
+#pragma once
+/// \file dct_cosine_dictionary.h
+/// DCT-II-like half-period cosine atoms phi_ij(x, y) = cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2) on
+/// [-1, 1]^2, i, j = 0 .. n-1: the same n^2 atoms as the paper's CosineDictionary, but odd i (j) give
+/// functions odd in x (y), so tilts, cubic terms and off-centre features are representable. Not in the
+/// paper (an option of ours: SparseSurfaceEncoderOptions::basis, pcl_sparse_encode -basis dct).
+///
+/// It is deliberately not a CosineDictionary: code with a fast path for the paper's atoms
+/// (dynamic_cast<const CosineDictionary*>) falls back to the generic SurfaceBasis calls for it.
+
+#include <pcl_sparse/coding/cosine_atoms.h>
+
+namespace pcl_sparse
+{
+  /// Atom layout as CosineDictionary (index i * n + j); wavelength of atom (i, j) is 4 / max(i, j),
+  /// which the Nyquist cap reads through wavelength().
+  class DctCosineDictionary : public CosineAtoms
+  {
+  public:
+    using Ptr = std::shared_ptr<DctCosineDictionary>;
+    using ConstPtr = std::shared_ptr<const DctCosineDictionary>;
+
+    /// \a frequencies = n (1 .. max_frequencies); throws pcl_sparse::Error otherwise.
+    explicit DctCosineDictionary (int frequencies = 12) : CosineAtoms (frequencies, CosineBasisKind::Dct) {}
+  };
+} // namespace pcl_sparse
