@@ -39,6 +39,8 @@ namespace
     pcl::console::print_info ("  -L N              atoms per patch at most (default 12)\n");
     pcl::console::print_info ("  -eps E            relative residual to stop at, in (0, 1) (default 0.01)\n");
     pcl::console::print_info ("  -min-samples N    patches with fewer points get extra samples (default 64; authors 128)\n");
+    pcl::console::print_info ("  -basis paper|dct  cosine atoms: paper cos(i pi x) cos(j pi y) (default);\n"
+                              "                    dct cos(i pi (x+1)/2) cos(j pi (y+1)/2), odd parts too (ours)\n");
     pcl::console::print_info ("  -seed S           seed of the extra samples (default 42)\n");
     pcl::console::print_info ("  -threads N        OpenMP threads (default: all; the model does not depend on it)\n");
     pcl::console::print_info ("  -recon RECON      write the reconstructed mesh (input vertex order and faces)\n");
@@ -52,7 +54,7 @@ namespace
 
   /// Options taking a value, and switches; anything else starting with '-' is refused.
   const std::vector<std::string> value_options = {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads",
-                                                  "-recon", "-error", "-o", "-tolerance"};
+                                                  "-basis", "-recon", "-error", "-o", "-tolerance"};
   const std::vector<std::string> switches = {"--json", "-q", "--authors-nyquist", "-h", "--help", "--store-vertices"};
 
   /// The value of option \a name as a double, \a fallback when absent; throws Error when it does not parse.
@@ -171,6 +173,11 @@ main (int argc, char** argv)
     options.coding.seed = static_cast<std::uint64_t> (integerOption (argc, argv, "-seed", 42));
     if (pcl::console::find_switch (argc, argv, "--authors-nyquist"))
       options.coding.nyquist_rule = NyquistRule::AuthorsCode;
+    const std::string basis_name = stringOption (argc, argv, "-basis");
+    if (basis_name == "dct")
+      options.basis = CosineBasisKind::Dct;
+    else if (!basis_name.empty () && basis_name != "paper")
+      throw Error ("option -basis: expected paper or dct, got '" + basis_name + "'");
     const int threads = integerOption (argc, argv, "-threads", 0);
     if (threads < 0)
       throw Error ("option -threads: expected >= 0, got " + std::to_string (threads));
@@ -233,12 +240,13 @@ main (int argc, char** argv)
 
     if (json)
       std::printf ("{\"file\": %s, \"vertices\": %zu, \"faces\": %zu, \"patches\": %zu, \"rho\": %.17g, "
-                   "\"nyquist_factor\": %.17g, \"max_atoms\": %d, \"tolerance\": %.17g, \"min_samples\": %d, "
+                   "\"nyquist_factor\": %.17g, \"basis\": \"%s\", \"max_atoms\": %d, \"tolerance\": %.17g, \"min_samples\": %d, "
                    "\"nnz\": %zu, \"cr\": %.17g, \"rmse\": %.17g, \"rmse_over_diag\": %.17g, \"max_error\": %.17g, "
                    "\"bbox_diagonal\": %.17g, \"uncovered\": %zu, \"seconds\": {\"load\": %.6f, \"patches\": %.6f, "
                    "\"coding\": %.6f, \"encode\": %.6f, \"statistics\": %.6f, \"write\": %.6f}}\n",
                    jsonString (path).c_str (), mesh->vertices.size (), mesh->triangles.size (), stats.num_patches,
-                   options.patches.rho, options.coding.nyquist_factor, options.coding.max_atoms,
+                   options.patches.rho, options.coding.nyquist_factor, cosineBasisKindName (options.basis),
+                   options.coding.max_atoms,
                    options.coding.tolerance, options.coding.min_samples, stats.num_nonzeros,
                    stats.compression_ratio, stats.rmse, stats.rmse_over_diagonal, stats.max_error, model.bbox_diagonal,
                    stats.uncovered, load_seconds, t.patches, t.coding, t.total, statistics_seconds, write_seconds);

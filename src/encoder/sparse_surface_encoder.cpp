@@ -47,8 +47,10 @@ namespace pcl_sparse
              "footprint angles must be >= 3, got " + std::to_string (coding.footprint_angles));
     require (coding.support_scale >= 1.0 && std::isfinite (coding.support_scale),
              "support scale must be >= 1, got " + std::to_string (coding.support_scale));
-    require (dictionary_frequencies >= 1 && dictionary_frequencies <= CosineDictionary::max_frequencies,
+    require (dictionary_frequencies >= 1 && dictionary_frequencies <= CosineAtoms::max_frequencies,
              "dictionary frequencies must be in [1, 64], got " + std::to_string (dictionary_frequencies));
+    require (basis == CosineBasisKind::Paper || basis == CosineBasisKind::Dct,
+             "basis must be Paper or Dct, got " + std::to_string (static_cast<int> (basis)));
   }
 
   void
@@ -88,7 +90,7 @@ namespace pcl_sparse
     const TriangleMesh& mesh = *mesh_;
     SurfaceBasis::ConstPtr basis = basis_;
     if (!basis)
-      basis = std::make_shared<CosineDictionary> (options_.dictionary_frequencies);
+      basis = makeCosineBasis (options_.basis, options_.dictionary_frequencies);
 
     // Steps 2-6: patches with frames and local coordinates.
     FeatureAwarePatchSampling sampling;

@@ -13,6 +13,7 @@
 /// runs Harris 3D), then per patch the sparse coding (patch_coder.h) in parallel over patches, each patch
 /// writing only its own output slot, so the model is identical for any thread count.
 
+#include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/coding/surface_basis.h>
 #include <pcl_sparse/common/progress.h>
@@ -34,6 +35,9 @@ namespace pcl_sparse
     PatchOptions patches;             ///< seed sampling and growth: rho, delta, cone_angle, eta, sigma, ...
     SparseCodingOptions coding;       ///< f, Nyquist rule, L, eps, m_min, footprint angles, seed
     int dictionary_frequencies = 12;  ///< n: the cosine dictionary has n^2 atoms (paper: 12, 144 atoms)
+    /// Cosine atoms: Paper = cos(i pi x) cos(j pi y) (the paper's, even only); Dct = cos(i pi (x + 1) / 2)
+    /// cos(j pi (y + 1) / 2), same count, even and odd (ours, lower error floor). Ignored after setBasis.
+    CosineBasisKind basis = CosineBasisKind::Paper;
 
     /// Throws pcl_sparse::Error naming the first option out of range: the patch options, rho > 0,
     /// 0 <= f <= 1, L >= 1, eps in (0, 1), m_min >= 0, footprint angles >= 3, n in [1, 64].
@@ -64,7 +68,7 @@ namespace pcl_sparse
     void setOptions (const SparseSurfaceEncoderOptions& options) { options_ = options; }
     const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
 
-    /// A basis other than the cosine dictionary (optional; default: CosineDictionary (n)).
+    /// A basis other than the cosine dictionary (optional; default: makeCosineBasis (basis, n)).
     void setBasis (const SurfaceBasis::ConstPtr& basis) { basis_ = basis; }
 
     /// OpenMP threads (0 = OpenMP's default). The model does not depend on it.
