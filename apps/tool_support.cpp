@@ -1,0 +1,266 @@
+#include "tool_support.h"
+
+#include <pcl/console/print.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+
+namespace pcl_sparse
+{
+  namespace tools
+  {
+    bool
+    hasExtension (const std::string& path, const std::string& extension)
+    {
+      if (path.size () <= extension.size ())
+        return false;
+      std::string tail = path.substr (path.size () - extension.size ());
+      std::transform (tail.begin (), tail.end (), tail.begin (), [] (unsigned char c) { return std::tolower (c); });
+      return tail == extension;
+    }
+
+    std::string
+    jsonString (const std::string& text)
+    {
+      std::string out = "\"";
+      for (const unsigned char c : text)
+      {
+        if (c == '"' || c == '\\')
+          out += std::string ("\\") + static_cast<char> (c);
+        else if (c < 0x20)
+        {
+          char buffer[8];
+          std::snprintf (buffer, sizeof (buffer), "\\u%04x", c);
+          out += buffer;
+        }
+        else
+          out += static_cast<char> (c);
+      }
+      return out + "\"";
+    }
+
+    // ---- JsonObject --------------------------------------------------------------------------------
+
+    JsonObject&
+    JsonObject::addRaw (const std::string& key, const std::string& json_value)
+    {
+      if (!members_.empty ())
+        members_ += ", ";
+      members_ += jsonString (key) + ": " + json_value;
+      return *this;
+    }
+
+    JsonObject&
+    JsonObject::add (const std::string& key, const std::string& value)
+    {
+      return addRaw (key, jsonString (value));
+    }
+
+    JsonObject&
+    JsonObject::add (const std::string& key, const char* value)
+    {
+      return addRaw (key, jsonString (value ? value : ""));
+    }
+
+    JsonObject&
+    JsonObject::add (const std::string& key, bool value)
+    {
+      return addRaw (key, value ? "true" : "false");
+    }
+
+    JsonObject&
+    JsonObject::add (const std::string& key, double value)
+    {
+      // JSON has no NaN or infinity.
+      return addRaw (key, std::isfinite (value) ? format ("%.17g", value) : "null");
+    }
+
+    JsonObject&
+    JsonObject::addSeconds (const std::string& key, double seconds)
+    {
+      return addRaw (key, std::isfinite (seconds) ? format ("%.6f", seconds) : "null");
+    }
+
+    JsonObject&
+    JsonObject::add (const std::string& key, const JsonObject& value)
+    {
+      return addRaw (key, value.str ());
+    }
+
+    std::string
+    JsonObject::str () const
+    {
+      return "{" + members_ + "}";
+    }
+
+    void
+    JsonObject::print () const
+    {
+      std::printf ("%s\n", str ().c_str ());
+      std::fflush (stdout);
+    }
+
+    // ---- Range ---------------------------------------------------------------------------------------
+
+    bool
+    Range::contains (double x) const
+    {
+      const bool above_min = min_open ? x > min : x >= min;
+      const bool below_max = max_open ? x < max : x <= max;
+      return above_min && below_max;
+    }
+
+    std::string
+    Range::str () const
+    {
+      return std::string (min_open ? "(" : "[") + format ("%g", min) + ", " + format ("%g", max) + (max_open ? ")" : "]");
+    }
+
+    // ---- CommandLine ---------------------------------------------------------------------------------
+
+    CommandLine::CommandLine (int argc, char** argv, const std::vector<OptionSpec>& options,
+                              const std::vector<std::string>& switches)
+    {
+      for (int i = 1; i < argc; ++i)
+      {
+        const std::string arg = argv[i];
+        const auto option = std::find_if (options.begin (), options.end (),
+                                          [&] (const OptionSpec& o) { return o.name == arg; });
+        if (option != options.end ())
+        {
+          if (i + option->values >= argc)
+            throw Error ("option " + arg + (option->values == 1 ? " needs a value"
+                                                                : " needs " + std::to_string (option->values) + " values"));
+          given_.emplace_back (arg, std::vector<std::string> (argv + i + 1, argv + i + 1 + option->values));
+          i += option->values;
+          continue;
+        }
+        if (arg == "-h" || arg == "--help" || std::find (switches.begin (), switches.end (), arg) != switches.end ())
+        {
+          given_.emplace_back (arg, std::vector<std::string> ());
+          continue;
+        }
+        if (arg.size () > 1 && arg[0] == '-')
+          throw Error ("unknown option '" + arg + "' (see --help)");
+        positional_.push_back (arg);
+      }
+    }
+
+    void
+    CommandLine::expectPositional (std::size_t count, const std::string& names) const
+    {
+      if (positional_.size () != count)
+        throw Error ("expected " + names + ", got " + std::to_string (positional_.size ()) +
+                     " file arguments (see --help)");
+    }
+
+    bool
+    CommandLine::has (const std::string& name) const
+    {
+      return std::any_of (given_.begin (), given_.end (), [&] (const auto& g) { return g.first == name; });
+    }
+
+    std::vector<std::string>
+    CommandLine::values (const std::string& name) const
+    {
+      for (const auto& g : given_)
+        if (g.first == name)
+          return g.second;
+      return {};
+    }
+
+    std::string
+    CommandLine::value (const std::string& name, const std::string& fallback) const
+    {
+      const std::vector<std::string> v = values (name);
+      return v.empty () ? fallback : v.front ();
+    }
+
+    bool
+    CommandLine::number (const std::string& name, double& value, const Range& range) const
+    {
+      if (!has (name))
+        return false;
+      const std::string text = this->value (name);
+      char* end = nullptr;
+      errno = 0;
+      const double x = std::strtod (text.c_str (), &end);
+      if (text.empty () || end != text.c_str () + text.size () || errno == ERANGE || !std::isfinite (x))
+        throw Error ("option " + name + ": '" + text + "' is not a number");
+      if (!range.contains (x))
+        throw Error ("option " + name + ": " + text + " is not in " + range.str ());
+      value = x;
+      return true;
+    }
+
+    void
+    CommandLine::checkInteger (const std::string& name, double x, double lowest, double limit) const
+    {
+      if (x != std::floor (x) || x < lowest || x >= limit)
+        throw Error ("option " + name + ": '" + value (name) + "' is not an integer" +
+                     (x == std::floor (x) ? " of this size" : ""));
+    }
+
+    // ---- help, main ----------------------------------------------------------------------------------
+
+    void
+    printHelp (const char* program, const std::string& syntax, const std::vector<HelpLine>& lines)
+    {
+      pcl::console::print_error ("Syntax is: %s %s\n", program, syntax.c_str ());
+      std::size_t width = 0;
+      for (const HelpLine& line : lines)
+        width = std::max (width, line.name.size ());
+      for (const HelpLine& line : lines)
+        pcl::console::print_info ("  %-*s  %s\n", static_cast<int> (width), line.name.c_str (), line.description.c_str ());
+    }
+
+    int
+    helpExitCode (int argc, char** argv, int min_argc)
+    {
+      for (int i = 1; i < argc; ++i)
+        if (std::string (argv[i]) == "-h" || std::string (argv[i]) == "--help")
+          return 0;
+      return argc < min_argc ? 1 : -1;
+    }
+
+    std::string
+    format (const char* pattern, ...)
+    {
+      va_list args;
+      va_start (args, pattern);
+      va_list copy;
+      va_copy (copy, args);
+      const int size = std::vsnprintf (nullptr, 0, pattern, copy);
+      va_end (copy);
+      std::string text (size > 0 ? static_cast<std::size_t> (size) : 0, '\0');
+      if (size > 0)
+        std::vsnprintf (&text[0], text.size () + 1, pattern, args);
+      va_end (args);
+      return text;
+    }
+
+    int
+    runTool (const char* program, const std::function<int ()>& body)
+    {
+      try
+      {
+        return body ();
+      }
+      catch (const Error& e)
+      {
+        pcl::console::print_error ("%s: %s\n", program, e.what ());
+      }
+      catch (const std::exception& e)
+      {
+        pcl::console::print_error ("%s: unexpected failure: %s\n", program, e.what ());
+      }
+      return 1;
+    }
+  } // namespace tools
+} // namespace pcl_sparse

@@ -1,0 +1,167 @@
+#pragma once
+/// \file tool_support.h
+/// What the command-line tools share: the command line (positional arguments, switches, options with
+/// checked numeric values), the help text, a JSON object writer, extension checks and the main wrapper
+/// that turns an exception into one error line and exit code 1. Not part of the library API.
+
+#include <pcl_sparse/common/error.h>
+
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace pcl_sparse
+{
+  namespace tools
+  {
+    /// True if \a path ends in \a extension (given with its dot, lower case), in any case, after at
+    /// least one other character.
+    bool
+    hasExtension (const std::string& path, const std::string& extension);
+
+    /// \a text as a JSON string literal, quotes included; quotes, backslashes and control characters escaped.
+    std::string
+    jsonString (const std::string& text);
+
+    /// One JSON object on one line, keys in insertion order: `{"key": value, ...}`. Doubles are written
+    /// with 17 significant digits (they read back exactly), durations with addSeconds to the microsecond,
+    /// non-finite numbers as null.
+    class JsonObject
+    {
+    public:
+      JsonObject& add (const std::string& key, const std::string& value);
+      JsonObject& add (const std::string& key, const char* value);
+      JsonObject& add (const std::string& key, bool value);
+      JsonObject& add (const std::string& key, double value);
+      JsonObject& add (const std::string& key, const JsonObject& value);
+
+      /// Any integer type except bool.
+      template <typename Integer>
+      std::enable_if_t<std::is_integral<Integer>::value && !std::is_same<Integer, bool>::value, JsonObject&>
+      add (const std::string& key, Integer value)
+      {
+        return addRaw (key, std::to_string (value));
+      }
+
+      /// A duration in seconds, six decimals.
+      JsonObject& addSeconds (const std::string& key, double seconds);
+
+      /// The object as text, without a newline.
+      std::string str () const;
+
+      /// Prints the object and a newline on stdout.
+      void print () const;
+
+    private:
+      JsonObject& addRaw (const std::string& key, const std::string& json_value);
+      std::string members_;
+    };
+
+    /// An interval of accepted option values; bounds may be open and infinite.
+    struct Range
+    {
+      double min = -std::numeric_limits<double>::infinity ();
+      double max = std::numeric_limits<double>::infinity ();
+      bool min_open = false;
+      bool max_open = false;
+
+      static Range closed (double a, double b) { return {a, b, false, false}; }
+      static Range atLeast (double a) { return {a, std::numeric_limits<double>::infinity (), false, false}; }
+      static Range above (double a) { return {a, std::numeric_limits<double>::infinity (), true, false}; }
+      /// (a, b]
+      static Range aboveUpTo (double a, double b) { return {a, b, true, false}; }
+
+      bool contains (double x) const;
+      /// "[0, 1]", "(0, inf)", ...
+      std::string str () const;
+    };
+
+    /// An option taking values: its name and how many arguments follow it.
+    struct OptionSpec
+    {
+      OptionSpec (const char* option_name, int value_count = 1) : name (option_name), values (value_count) {}
+      std::string name;
+      int values;
+    };
+
+    /// The arguments of a tool, checked on construction: every argument starting with '-' must be a
+    /// known switch (-h and --help always are) or a known option followed by its values; anything else
+    /// is positional. Errors (unknown option, missing value) are thrown as Error naming the option.
+    class CommandLine
+    {
+    public:
+      CommandLine (int argc, char** argv, const std::vector<OptionSpec>& options, const std::vector<std::string>& switches);
+
+      const std::vector<std::string>& positional () const { return positional_; }
+
+      /// Throws unless there are exactly \a count positional arguments; \a names says which ("MESH and OUT").
+      void expectPositional (std::size_t count, const std::string& names) const;
+
+      /// True if switch or option \a name is on the command line.
+      bool has (const std::string& name) const;
+
+      /// The (first) value of option \a name, \a fallback when absent.
+      std::string value (const std::string& name, const std::string& fallback = std::string ()) const;
+
+      /// All values of option \a name (empty when absent).
+      std::vector<std::string> values (const std::string& name) const;
+
+      /// Reads option \a name as a finite number in \a range into \a value; false (value untouched) when
+      /// absent. Throws Error naming the option when the value is malformed or out of range.
+      bool number (const std::string& name, double& value, const Range& range = Range ()) const;
+
+      /// As number, and the value must be a whole number that \a Integer holds.
+      template <typename Integer>
+      bool
+      integer (const std::string& name, Integer& value, const Range& range = Range ()) const
+      {
+        double x = 0.0;
+        if (!number (name, x, range))
+          return false;
+        // 2^digits is exact as a double, unlike the largest value of a 64-bit type.
+        checkInteger (name, x, static_cast<double> (std::numeric_limits<Integer>::lowest ()),
+                      std::ldexp (1.0, std::numeric_limits<Integer>::digits));
+        value = static_cast<Integer> (x);
+        return true;
+      }
+
+    private:
+      /// Throws unless \a x is a whole number in [lowest, limit).
+      void checkInteger (const std::string& name, double x, double lowest, double limit) const;
+
+      std::vector<std::string> positional_;
+      std::vector<std::pair<std::string, std::vector<std::string>>> given_;  ///< options and switches in order
+    };
+
+    /// One line of a tool's help: an argument or option and what it does (an empty name continues the
+    /// description of the line above).
+    struct HelpLine
+    {
+      std::string name;
+      std::string description;
+    };
+
+    /// Prints "Syntax is: PROGRAM SYNTAX" on stderr and the aligned lines on stdout (PCL tools' style).
+    void
+    printHelp (const char* program, const std::string& syntax, const std::vector<HelpLine>& lines);
+
+    /// Exit code when the tool should only print its help: 0 for -h / --help, 1 when there are fewer than
+    /// \a min_argc arguments (program name included); -1 when it should run.
+    int
+    helpExitCode (int argc, char** argv, int min_argc);
+
+    /// printf-style formatting into a string (for help lines showing defaults).
+    std::string
+    format (const char* pattern, ...) __attribute__ ((format (printf, 1, 2)));
+
+    /// Runs the body of main: an Error or any other exception becomes one line "PROGRAM: message" on
+    /// stderr and exit code 1; otherwise the body's exit code.
+    int
+    runTool (const char* program, const std::function<int ()>& body);
+  } // namespace tools
+} // namespace pcl_sparse
