@@ -4,6 +4,9 @@
 ///   pcl_sparse_patches MESH OUT.ply [-rho R] [-delta D] [-cone C] [-eta E] [-sigma S] [-min-size N]
 ///                      [--authors] [--json] [-q]
 
+#include "tool_support.h"
+
+#include <pcl_sparse/common/color_map.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/io/mesh_io.h>
@@ -15,11 +18,8 @@
 #include <pcl/console/time.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <string>
@@ -35,132 +35,45 @@ namespace
   printHelp (const char* program)
   {
     const PatchOptions d;
-    pcl::console::print_error ("Syntax is: %s MESH OUT.ply [options]\n", program);
-    pcl::console::print_info ("  MESH            a triangle mesh: .obj .off .ply .stl\n");
-    pcl::console::print_info ("  OUT.ply         the mesh, each vertex coloured by one of its patches, seeds black\n");
-    pcl::console::print_info ("  -rho R          size bound A_p / A (default %g)\n", d.rho);
-    pcl::console::print_info ("  -delta D        smooth variation angle in degrees (default %g)\n", d.delta * 180.0 / M_PI);
-    pcl::console::print_info ("  -cone C         normal cone angle in degrees (default %g; authors' code 72)\n", d.cone_angle * 180.0 / M_PI);
-    pcl::console::print_info ("  -eta E          flatness bound A_p / A_p^proj (default %g)\n", d.eta);
-    pcl::console::print_info ("  -sigma S        seed overlap control (default %g)\n", d.sigma);
-    pcl::console::print_info ("  -min-size N     smallest patch the sampling keeps (default %d)\n", d.min_patch_size);
-    pcl::console::print_info ("  --authors       the authors' code: cone 72 degrees, no pairwise cone, no coverage pass\n");
-    pcl::console::print_info ("  --json          print one JSON object on stdout\n");
-    pcl::console::print_info ("  -q              quiet (no progress, no messages besides the report and errors)\n");
-  }
-
-  /// Reads the number after \a name if present; throws Error for a missing or malformed value.
-  template <typename T>
-  void
-  parseNumber (int argc, char** argv, const char* name, T& value)
-  {
-    const int i = pcl::console::find_argument (argc, argv, name);
-    if (i < 0)
-      return;
-    if (i + 1 >= argc)
-      throw Error (std::string ("option ") + name + " needs a value");
-    char* end = nullptr;
-    const double x = std::strtod (argv[i + 1], &end);
-    if (end == argv[i + 1] || *end != '\0' || !std::isfinite (x))
-      throw Error (std::string ("option ") + name + ": '" + argv[i + 1] + "' is not a number");
-    if (std::is_integral<T>::value && (x != std::floor (x) || std::abs (x) > std::numeric_limits<int>::max ()))
-      throw Error (std::string ("option ") + name + ": '" + argv[i + 1] + "' is not an integer");
-    value = static_cast<T> (x);
-  }
-
-  bool
-  endsWithPly (const std::string& path)
-  {
-    if (path.size () < 4)
-      return false;
-    std::string tail = path.substr (path.size () - 4);
-    std::transform (tail.begin (), tail.end (), tail.begin (), [] (unsigned char c) { return std::tolower (c); });
-    return tail == ".ply";
-  }
-
-  /// A well spread colour for patch \a i (golden-ratio hue steps), never black.
-  std::array<std::uint8_t, 3>
-  patchColor (std::size_t i)
-  {
-    const double h = std::fmod (0.61803398875 * static_cast<double> (i), 1.0) * 6.0;
-    const double s = 0.55 + 0.35 * static_cast<double> ((i * 7) % 5) / 4.0, v = 0.95;
-    const int k = static_cast<int> (h);
-    const double f = h - k, p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
-    double r = v, g = t, b = p;
-    switch (k % 6)
-    {
-      case 1: r = q; g = v; b = p; break;
-      case 2: r = p; g = v; b = t; break;
-      case 3: r = p; g = q; b = v; break;
-      case 4: r = t; g = p; b = v; break;
-      case 5: r = v; g = p; b = q; break;
-      default: break;
-    }
-    return {static_cast<std::uint8_t> (255 * r), static_cast<std::uint8_t> (255 * g), static_cast<std::uint8_t> (255 * b)};
-  }
-
-  std::string
-  jsonString (const std::string& text)
-  {
-    std::string out = "\"";
-    for (const unsigned char c : text)
-    {
-      if (c == '"' || c == '\\')
-        out += std::string ("\\") + static_cast<char> (c);
-      else if (c < 0x20)
-      {
-        char buffer[8];
-        std::snprintf (buffer, sizeof (buffer), "\\u%04x", c);
-        out += buffer;
-      }
-      else
-        out += static_cast<char> (c);
-    }
-    return out + "\"";
+    tools::printHelp (program, "MESH OUT.ply [options]", {
+      {"MESH", "a triangle mesh: .obj .off .ply .stl"},
+      {"OUT.ply", "the mesh, each vertex coloured by one of its patches, seeds black"},
+      {"-rho R", tools::format ("size bound A_p / A (default %g)", d.rho)},
+      {"-delta D", tools::format ("smooth variation angle in degrees (default %g)", d.delta * 180.0 / M_PI)},
+      {"-cone C", tools::format ("normal cone angle in degrees (default %g; authors' code 72)", d.cone_angle * 180.0 / M_PI)},
+      {"-eta E", tools::format ("flatness bound A_p / A_p^proj (default %g)", d.eta)},
+      {"-sigma S", tools::format ("seed overlap control (default %g)", d.sigma)},
+      {"-min-size N", tools::format ("smallest patch the sampling keeps (default %d)", d.min_patch_size)},
+      {"--authors", "the authors' code: cone 72 degrees, no pairwise cone, no coverage pass"},
+      {"--json", "print one JSON object on stdout"},
+      {"-q", "quiet (no progress, no messages besides the report and errors)"},
+    });
   }
 } // namespace
 
 int
 main (int argc, char** argv)
 {
-  if (argc < 2 || pcl::console::find_switch (argc, argv, "-h") || pcl::console::find_switch (argc, argv, "--help"))
+  if (const int code = tools::helpExitCode (argc, argv, 2); code >= 0)
   {
     printHelp (argv[0]);
-    return argc < 2 ? 1 : 0;
+    return code;
   }
-  const bool json = pcl::console::find_switch (argc, argv, "--json");
-  const bool quiet = pcl::console::find_switch (argc, argv, "-q");
-  if (quiet)
-    pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
-
-  try
-  {
-    // Positional arguments and unknown options.
-    const std::vector<std::string> valued = {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size"};
-    std::vector<std::string> files;
-    for (int i = 1; i < argc; ++i)
-    {
-      const std::string arg = argv[i];
-      if (std::find (valued.begin (), valued.end (), arg) != valued.end ())
-      {
-        ++i;
-        continue;
-      }
-      if (arg == "--json" || arg == "-q" || arg == "--authors")
-        continue;
-      if (arg.size () > 1 && arg[0] == '-')
-        throw Error ("unknown option '" + arg + "' (see --help)");
-      files.push_back (arg);
-    }
-    if (files.size () != 2)
-      throw Error ("expected MESH and OUT.ply, got " + std::to_string (files.size ()) + " file arguments (see --help)");
-    const std::string& input = files[0];
-    const std::string& output = files[1];
-    if (!endsWithPly (output))
+  return tools::runTool (kProgram, [&] {
+    const tools::CommandLine args (argc, argv, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size"},
+                                   {"--json", "-q", "--authors"});
+    const bool json = args.has ("--json");
+    const bool quiet = args.has ("-q");
+    if (quiet)
+      pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
+    args.expectPositional (2, "MESH and OUT.ply");
+    const std::string& input = args.positional ()[0];
+    const std::string& output = args.positional ()[1];
+    if (!tools::hasExtension (output, ".ply"))
       throw Error (output + ": the output must be a .ply file");
 
     PatchOptions options;
-    if (pcl::console::find_switch (argc, argv, "--authors"))
+    if (args.has ("--authors"))
     {
       options.cone_angle = M_PI / 2.5;
       options.pairwise_cone = false;
@@ -168,12 +81,12 @@ main (int argc, char** argv)
       options.cover_unreferenced_vertices = false;
     }
     double delta_degrees = options.delta * 180.0 / M_PI, cone_degrees = options.cone_angle * 180.0 / M_PI;
-    parseNumber (argc, argv, "-rho", options.rho);
-    parseNumber (argc, argv, "-delta", delta_degrees);
-    parseNumber (argc, argv, "-cone", cone_degrees);
-    parseNumber (argc, argv, "-eta", options.eta);
-    parseNumber (argc, argv, "-sigma", options.sigma);
-    parseNumber (argc, argv, "-min-size", options.min_patch_size);
+    args.number ("-rho", options.rho);
+    args.number ("-delta", delta_degrees);
+    args.number ("-cone", cone_degrees);
+    args.number ("-eta", options.eta);
+    args.number ("-sigma", options.sigma);
+    args.integer ("-min-size", options.min_patch_size);
     options.delta = delta_degrees * M_PI / 180.0;
     options.cone_angle = cone_degrees * M_PI / 180.0;
     try
@@ -227,7 +140,7 @@ main (int argc, char** argv)
     const std::size_t uncovered = mesh->vertices.size () - covered;
 
     // Colour: for each vertex the patch where it is most central (smallest local |(x', y')|).
-    std::vector<std::array<std::uint8_t, 3>> colors (mesh->vertices.size (), {128, 128, 128});
+    std::vector<RgbColor> colors (mesh->vertices.size (), {128, 128, 128});
     std::vector<double> best (mesh->vertices.size (), std::numeric_limits<double>::infinity ());
     for (std::size_t i = 0; i < patches.size (); ++i)
       for (std::size_t k = 0; k < patches[i].size (); ++k)
@@ -237,7 +150,7 @@ main (int argc, char** argv)
         if (r < best[v])
         {
           best[v] = r;
-          colors[v] = patchColor (i);
+          colors[v] = categoryColor (i);
         }
       }
     for (const Patch& p : patches)
@@ -245,14 +158,24 @@ main (int argc, char** argv)
     saveColoredMesh (output, *mesh, colors);
 
     if (json)
-      std::printf ("{\"file\": %s, \"vertices\": %zu, \"patches\": %zu, \"uncovered\": %zu, \"unreferenced\": %zu, "
-                   "\"coverage_patches\": %zu, \"keypoints\": %zu, \"size_min\": %zu, \"size_median\": %zu, "
-                   "\"size_max\": %zu, \"patches_per_vertex\": %.6f, \"invalid_patches\": %zu, \"frames_jet\": %zu, "
-                   "\"frames_seed_normal\": %zu, \"frames_normal_only\": %zu, \"seconds\": %.6f}\n",
-                   jsonString (input).c_str (), mesh->vertices.size (), patches.size (), uncovered,
-                   sampling.getUnreferencedVertices ().size (), sampling.getNumCoveragePatches (),
-                   sampling.getKeypoints ().size (), smin, smed, smax, per_vertex, invalid, kinds[0], kinds[1], kinds[2],
-                   seconds);
+      tools::JsonObject ()
+        .add ("file", input)
+        .add ("vertices", mesh->vertices.size ())
+        .add ("patches", patches.size ())
+        .add ("uncovered", uncovered)
+        .add ("unreferenced", sampling.getUnreferencedVertices ().size ())
+        .add ("coverage_patches", sampling.getNumCoveragePatches ())
+        .add ("keypoints", sampling.getKeypoints ().size ())
+        .add ("size_min", smin)
+        .add ("size_median", smed)
+        .add ("size_max", smax)
+        .add ("patches_per_vertex", per_vertex)
+        .add ("invalid_patches", invalid)
+        .add ("frames_jet", kinds[0])
+        .add ("frames_seed_normal", kinds[1])
+        .add ("frames_normal_only", kinds[2])
+        .addSeconds ("seconds", seconds)
+        .print ();
     else
     {
       std::printf ("file: %s\n", input.c_str ());
@@ -267,16 +190,6 @@ main (int argc, char** argv)
       std::printf ("frames jet / seed normal / normal only: %zu / %zu / %zu\n", kinds[0], kinds[1], kinds[2]);
       std::printf ("seconds: %.3f\n", seconds);
     }
-  }
-  catch (const Error& e)
-  {
-    pcl::console::print_error ("%s: %s\n", kProgram, e.what ());
-    return 1;
-  }
-  catch (const std::exception& e)
-  {
-    pcl::console::print_error ("%s: %s\n", kProgram, e.what ());
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
 }
