@@ -28,7 +28,8 @@ namespace pcl_sparse
     constexpr std::size_t kSectionHeaderBytes = 32;
     constexpr std::uint16_t kFlagQuantised = 1;
     constexpr std::uint16_t kFlagVertices = 2;
-    constexpr std::uint8_t kBasisCosine = 1;
+    constexpr std::uint8_t kBasisCosine = 1;     ///< CosineDictionary: cos(i pi x) cos(j pi y)
+    constexpr std::uint8_t kBasisDctCosine = 2;  ///< DctCosineDictionary: cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2)
     constexpr std::uint8_t kCodecStored = 0;
     constexpr std::uint8_t kCodecZstd = 1;
     constexpr std::uint64_t kMaxPatches = std::numeric_limits<std::int32_t>::max ();
@@ -171,15 +172,17 @@ namespace pcl_sparse
         throw Error ("encodeModel: " + what + " is not finite");
     }
 
-    int
-    cosineFrequencies (const SparseSurfaceModel& model)
+    /// The model's cosine basis (CosineDictionary or DctCosineDictionary); throws for any other.
+    const CosineAtoms&
+    cosineBasis (const SparseSurfaceModel& model)
     {
       if (!model.basis)
         throw Error ("encodeModel: the model has no basis");
-      const auto* cosine = dynamic_cast<const CosineDictionary*> (model.basis.get ());
+      const auto* cosine = dynamic_cast<const CosineAtoms*> (model.basis.get ());
       if (!cosine)
-        throw Error ("encodeModel: the file format stores only models over a CosineDictionary basis");
-      return cosine->frequencies ();
+        throw Error ("encodeModel: the file format stores only models over a cosine basis (CosineDictionary or "
+                     "DctCosineDictionary)");
+      return *cosine;
     }
 
     void
@@ -488,7 +491,7 @@ namespace pcl_sparse
         throw Error (what + ": header checksum mismatch (corrupt file)");
       if ((h.flags & ~(kFlagQuantised | kFlagVertices)) != 0 || reserved != 0)
         throw Error (what + ": unknown header flags");
-      if (h.basis_kind != kBasisCosine)
+      if (h.basis_kind != kBasisCosine && h.basis_kind != kBasisDctCosine)
         throw Error (what + ": unknown basis kind " + std::to_string (h.basis_kind));
       if (h.basis_parameter < 1 || h.basis_parameter > CosineDictionary::max_frequencies)
         throw Error (what + ": cosine basis with " + std::to_string (h.basis_parameter) + " frequencies is out of range");
@@ -591,7 +594,8 @@ namespace pcl_sparse
   std::vector<std::uint8_t>
   encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options)
   {
-    const int frequencies = cosineFrequencies (model);
+    const CosineAtoms& cosine = cosineBasis (model);
+    const int frequencies = cosine.frequencies ();
     validateModel (model, frequencies * frequencies);
     if (!std::isfinite (options.tolerance) || options.tolerance < 0.0)
       throw Error ("encodeModel: tolerance must be >= 0");
@@ -615,7 +619,7 @@ namespace pcl_sparse
     out.putBytes (kMagic, sizeof kMagic);
     out.putU16 (kVersion);
     out.putU16 (static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0)));
-    out.putU8 (kBasisCosine);
+    out.putU8 (cosine.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine);
     out.putU8 (0);
     out.putU16 (static_cast<std::uint16_t> (frequencies));
     out.putU32 (static_cast<std::uint32_t> (model.patches.size ()));
@@ -663,7 +667,8 @@ namespace pcl_sparse
     const int basis_size = h.basis_parameter * h.basis_parameter;
 
     SparseSurfaceModel model;
-    model.basis = std::make_shared<CosineDictionary> (h.basis_parameter);
+    model.basis = makeCosineBasis (h.basis_kind == kBasisDctCosine ? CosineBasisKind::Dct : CosineBasisKind::Paper,
+                                   h.basis_parameter);
     model.num_input_vertices = h.num_input_vertices;
     model.bbox_diagonal = h.bbox_diagonal;
 
@@ -868,7 +873,8 @@ namespace pcl_sparse
     info.version = container.header.version;
     info.quantised = container.header.flags & kFlagQuantised;
     info.has_vertices = container.header.flags & kFlagVertices;
-    info.basis = "cosine " + std::to_string (container.header.basis_parameter) + "x" +
+    info.basis = std::string (container.header.basis_kind == kBasisDctCosine ? "dct cosine " : "cosine ") +
+                 std::to_string (container.header.basis_parameter) + "x" +
                  std::to_string (container.header.basis_parameter);
     info.num_patches = container.header.num_patches;
     info.num_input_vertices = container.header.num_input_vertices;

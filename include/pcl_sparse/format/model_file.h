@@ -59,7 +59,7 @@ namespace pcl_sparse
     std::uint16_t version = 0;
     bool quantised = false;
     bool has_vertices = false;
-    std::string basis;             ///< e.g. "cosine 12x12"
+    std::string basis;             ///< e.g. "cosine 12x12" (the paper's atoms) or "dct cosine 12x12"
     std::uint32_t num_patches = 0;
     std::uint64_t num_input_vertices = 0;
     double bbox_diagonal = 0.0;
