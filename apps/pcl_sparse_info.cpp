@@ -2,6 +2,8 @@
 ///
 ///   pcl_sparse_info FILE [--json] [--allow-non-finite]
 
+#include "tool_support.h"
+
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/cloud_io.h>
@@ -10,11 +12,8 @@
 #include <pcl_sparse/mesh/mesh_topology.h>
 
 #include <pcl/console/time.h>
-#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -27,49 +26,20 @@ namespace
   void
   printHelp (const char* program)
   {
-    pcl::console::print_error ("Syntax is: %s FILE [options]\n", program);
-    pcl::console::print_info ("  FILE                a triangle mesh: .obj .off .ply .stl, or a model file .psm; a point cloud\n");
-    pcl::console::print_info ("                      (.pcd, or one of those without faces) is reported with faces: 0\n");
-    pcl::console::print_info ("  --json              print one JSON object on stdout instead of 'name: value' lines\n");
-    pcl::console::print_info ("  --allow-non-finite  count NaN/Inf vertices instead of refusing the file\n");
-    pcl::console::print_info ("  -q                  quiet (no messages besides the report and errors)\n");
-  }
-
-  bool
-  hasExtension (const std::string& path, const std::string& extension)
-  {
-    if (path.size () < extension.size ())
-      return false;
-    std::string tail = path.substr (path.size () - extension.size ());
-    std::transform (tail.begin (), tail.end (), tail.begin (), [] (unsigned char c) { return std::tolower (c); });
-    return tail == extension;
-  }
-
-  std::string
-  jsonString (const std::string& text)
-  {
-    std::string out = "\"";
-    for (const unsigned char c : text)
-    {
-      if (c == '"' || c == '\\')
-        out += std::string ("\\") + static_cast<char> (c);
-      else if (c < 0x20)
-      {
-        char buffer[8];
-        std::snprintf (buffer, sizeof (buffer), "\\u%04x", c);
-        out += buffer;
-      }
-      else
-        out += static_cast<char> (c);
-    }
-    return out + "\"";
+    tools::printHelp (program, "FILE [options]", {
+      {"FILE", "a triangle mesh: .obj .off .ply .stl, or a model file .psm; a point cloud"},
+      {"", "(.pcd, or one of those without faces) is reported with faces: 0"},
+      {"--json", "print one JSON object on stdout instead of 'name: value' lines"},
+      {"--allow-non-finite", "count NaN/Inf vertices instead of refusing the file"},
+      {"-q", "quiet (no messages besides the report and errors)"},
+    });
   }
 
   /// A mesh file, or a point cloud as a mesh without faces (every point is an unreferenced vertex).
   TriangleMesh
   loadInput (const std::string& path, const MeshLoadOptions& options)
   {
-    if (!hasExtension (path, ".pcd"))
+    if (!tools::hasExtension (path, ".pcd"))
       return loadTriangleMesh (path, options);
     pcl::PointCloud<pcl::PointXYZ> cloud;
     loadPointCloud (path, cloud);
@@ -116,18 +86,31 @@ namespace
   void
   printJson (const std::string& path, const MeshReport& r, double seconds)
   {
-    std::printf ("{\"file\": %s, \"vertices\": %zu, \"faces\": %zu, \"edges\": %zu, "
-                 "\"unreferenced_vertices\": %zu, \"non_finite_vertices\": %zu, \"degenerate_faces\": %zu, "
-                 "\"duplicate_faces\": %zu, \"boundary_edges\": %zu, \"boundary_loops\": %zu, "
-                 "\"nonmanifold_edges\": %zu, \"nonmanifold_vertices\": %zu, \"components\": %zu, "
-                 "\"euler_characteristic\": %ld, \"manifold\": %s, \"orientable\": %s, \"closed\": %s, "
-                 "\"genus\": %d, \"bbox_diagonal\": %.17g, \"mean_edge_length\": %.17g, \"seconds\": %.6f}\n",
-                 jsonString (path).c_str (), r.vertices, r.faces, r.edges, r.unreferenced_vertices,
-                 r.non_finite_vertices, r.degenerate_faces, r.duplicate_faces, r.boundary_edges, r.boundary_loops,
-                 r.nonmanifold_edges, r.nonmanifold_vertices, r.components, r.euler_characteristic,
-                 r.manifold ? "true" : "false", r.orientable ? "true" : "false", r.closed ? "true" : "false",
-                 r.genus, r.bbox_diagonal, r.mean_edge_length, seconds);
+    tools::JsonObject ()
+      .add ("file", path)
+      .add ("vertices", r.vertices)
+      .add ("faces", r.faces)
+      .add ("edges", r.edges)
+      .add ("unreferenced_vertices", r.unreferenced_vertices)
+      .add ("non_finite_vertices", r.non_finite_vertices)
+      .add ("degenerate_faces", r.degenerate_faces)
+      .add ("duplicate_faces", r.duplicate_faces)
+      .add ("boundary_edges", r.boundary_edges)
+      .add ("boundary_loops", r.boundary_loops)
+      .add ("nonmanifold_edges", r.nonmanifold_edges)
+      .add ("nonmanifold_vertices", r.nonmanifold_vertices)
+      .add ("components", r.components)
+      .add ("euler_characteristic", r.euler_characteristic)
+      .add ("manifold", r.manifold)
+      .add ("orientable", r.orientable)
+      .add ("closed", r.closed)
+      .add ("genus", r.genus)
+      .add ("bbox_diagonal", r.bbox_diagonal)
+      .add ("mean_edge_length", r.mean_edge_length)
+      .addSeconds ("seconds", seconds)
+      .print ();
   }
+
   /// Summary of a .psm model file: header, patches, atoms and the bytes of each section.
   void
   printModelInfo (const std::string& path, bool json, pcl::console::TicToc& timer)
@@ -138,18 +121,27 @@ namespace
     const double bits = info.num_input_vertices ? 8.0 * info.file_bytes / info.num_input_vertices : 0.0;
     if (json)
     {
-      std::printf ("{\"file\": %s, \"version\": %u, \"quantised\": %s, \"tolerance\": %.17g, \"basis\": %s, "
-                   "\"patches\": %u, \"atoms\": %zu, \"input_vertices\": %llu, \"bbox_diagonal\": %.17g, "
-                   "\"vertices_stored\": %s, \"bytes\": %llu, \"bits_per_input_vertex\": %.6g, \"sections\": {",
-                   jsonString (path).c_str (), info.version, info.quantised ? "true" : "false", info.tolerance,
-                   jsonString (info.basis).c_str (), info.num_patches, model.numNonZeros (),
-                   static_cast<unsigned long long> (info.num_input_vertices), info.bbox_diagonal,
-                   info.has_vertices ? "true" : "false", static_cast<unsigned long long> (info.file_bytes), bits);
-      for (std::size_t i = 0; i < info.sections.size (); ++i)
-        std::printf ("%s\"%s\": {\"bytes\": %llu, \"raw_bytes\": %llu}", i ? ", " : "", info.sections[i].tag.c_str (),
-                     static_cast<unsigned long long> (info.sections[i].stored_bytes),
-                     static_cast<unsigned long long> (info.sections[i].raw_bytes));
-      std::printf ("}, \"seconds\": %.6f}\n", seconds);
+      tools::JsonObject sections;
+      for (const ModelFileSection& section : info.sections)
+        sections.add (section.tag, tools::JsonObject ()
+                                     .add ("bytes", static_cast<unsigned long long> (section.stored_bytes))
+                                     .add ("raw_bytes", static_cast<unsigned long long> (section.raw_bytes)));
+      tools::JsonObject ()
+        .add ("file", path)
+        .add ("version", info.version)
+        .add ("quantised", info.quantised)
+        .add ("tolerance", info.tolerance)
+        .add ("basis", info.basis)
+        .add ("patches", info.num_patches)
+        .add ("atoms", model.numNonZeros ())
+        .add ("input_vertices", static_cast<unsigned long long> (info.num_input_vertices))
+        .add ("bbox_diagonal", info.bbox_diagonal)
+        .add ("vertices_stored", info.has_vertices)
+        .add ("bytes", static_cast<unsigned long long> (info.file_bytes))
+        .add ("bits_per_input_vertex", bits)
+        .add ("sections", sections)
+        .addSeconds ("seconds", seconds)
+        .print ();
       return;
     }
     std::printf ("file: %s\n", path.c_str ());
@@ -177,66 +169,48 @@ namespace
 int
 main (int argc, char** argv)
 {
-  if (argc < 2 || pcl::console::find_switch (argc, argv, "-h") || pcl::console::find_switch (argc, argv, "--help"))
+  if (const int code = tools::helpExitCode (argc, argv, 2); code >= 0)
   {
     printHelp (argv[0]);
-    return argc < 2 ? 1 : 0;
+    return code;
   }
-  const bool json = pcl::console::find_switch (argc, argv, "--json");
-  const bool quiet = pcl::console::find_switch (argc, argv, "-q");
-  MeshLoadOptions load_options;
-  load_options.allow_no_faces = true;  // a PLY/OBJ of points is a cloud: reported with faces: 0
-  load_options.allow_non_finite = pcl::console::find_switch (argc, argv, "--allow-non-finite");
+  return tools::runTool ("pcl_sparse_info", [&] {
+    const tools::CommandLine args (argc, argv, {}, {"--json", "-q", "--allow-non-finite"});
+    const bool json = args.has ("--json");
+    MeshLoadOptions load_options;
+    load_options.allow_no_faces = true;  // a PLY/OBJ of points is a cloud: reported with faces: 0
+    load_options.allow_non_finite = args.has ("--allow-non-finite");
+    args.expectPositional (1, "exactly one FILE");
+    const std::string& path = args.positional ().front ();
+    if (args.has ("-q"))
+      pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
 
-  std::vector<std::string> files;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string arg = argv[i];
-    if (arg == "--json" || arg == "-q" || arg == "--allow-non-finite")
-      continue;
-    if (arg.size () > 1 && arg[0] == '-')
-    {
-      pcl::console::print_error ("pcl_sparse_info: unknown option '%s' (see --help)\n", arg.c_str ());
-      return 1;
-    }
-    files.push_back (arg);
-  }
-  if (files.size () != 1)
-  {
-    pcl::console::print_error ("pcl_sparse_info: expected exactly one FILE, got %zu (see --help)\n", files.size ());
-    return 1;
-  }
-  const std::string& path = files.front ();
-  if (quiet)
-    pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
-
-  try
-  {
     pcl::console::TicToc timer;
     timer.tic ();
-    if (hasExtension (path, ".psm"))
+    try
     {
-      printModelInfo (path, json, timer);
-      return 0;
+      if (tools::hasExtension (path, ".psm"))
+      {
+        printModelInfo (path, json, timer);
+        return 0;
+      }
+      const TriangleMesh mesh = loadInput (path, load_options);
+      const MeshTopology topology = buildMeshTopology (mesh);
+      const MeshReport report = computeMeshReport (mesh, topology);
+      const double seconds = timer.toc () / 1000.0;
+      if (json)
+        printJson (path, report, seconds);
+      else
+        printPlain (path, report, seconds);
     }
-    const TriangleMesh mesh = loadInput (path, load_options);
-    const MeshTopology topology = buildMeshTopology (mesh);
-    const MeshReport report = computeMeshReport (mesh, topology);
-    const double seconds = timer.toc () / 1000.0;
-    if (json)
-      printJson (path, report, seconds);
-    else
-      printPlain (path, report, seconds);
-  }
-  catch (const Error& e)
-  {
-    pcl::console::print_error ("pcl_sparse_info: %s\n", e.what ());
-    return 1;
-  }
-  catch (const std::exception& e)
-  {
-    pcl::console::print_error ("pcl_sparse_info: %s: %s\n", path.c_str (), e.what ());
-    return 1;
-  }
-  return 0;
+    catch (const Error&)
+    {
+      throw;
+    }
+    catch (const std::exception& e)
+    {
+      throw Error (path + ": " + e.what ());  // name the file whatever failed
+    }
+    return 0;
+  });
 }
