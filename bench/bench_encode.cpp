@@ -1,14 +1,15 @@
 /// bench_encode: the paper-style table (N_V, M, rho, nnz, RMSE, RMSE / diag, CR, seconds) of the sparse
 /// surface encoder for meshes at several rho, as Markdown on stdout.
 ///
-///   bench_encode [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-authors-nyquist] [-threads N] [-repeat K] [-header 0|1] MESH...
-///   bench_encode -evaluate      (throughput of CosineDictionary::evaluateCode / evaluateCodeValue, one thread)
+///   bench_encode [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-authors-nyquist] [-basis paper|dct] [-threads N]
+///                [-repeat K] [-header 0|1] MESH...
+///   bench_encode -evaluate [dct] (throughput of evaluateCode / evaluateCodeValue of the cosine basis, one thread)
 ///
 /// Seconds are the encoder's wall clock (patches + coding; load and statistics excluded), best of K runs;
 /// CPU s is the process CPU time of compute() summed over threads (best of K), which other jobs on the
 /// machine inflate less than the wall clock.
 
-#include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
@@ -31,9 +32,10 @@ namespace
   /// Evaluations per second of a random 10-atom code at random points (value + gradient + Hessian, and
   /// value only).
   void
-  benchEvaluate ()
+  benchEvaluate (CosineBasisKind kind)
   {
-    const CosineDictionary dictionary (12);
+    const CosineAtoms::ConstPtr basis = makeCosineBasis (kind, 12);
+    const CosineAtoms& dictionary = *basis;
     std::mt19937 rng (1);
     std::uniform_real_distribution<double> u (-1.0, 1.0);
     std::uniform_int_distribution<int> atom (0, 143);
@@ -58,9 +60,9 @@ namespace
                             : dictionary.evaluateCodeValue (atoms, coefficients, p.x (), p.y ());
       const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
       const double cpu_seconds = static_cast<double> (std::clock () - cpu_start) / CLOCKS_PER_SEC;
-      std::printf ("%s: %.1f million evaluations per CPU second, %.1f per wall second (10-atom code, one "
+      std::printf ("%s %s: %.1f million evaluations per CPU second, %.1f per wall second (10-atom code, one "
                    "thread; checksum %.3g)\n",
-                   mode == 0 ? "evaluateCode (value, gradient, Hessian)" : "evaluateCodeValue",
+                   cosineBasisKindName (kind), mode == 0 ? "evaluateCode (value, gradient, Hessian)" : "evaluateCodeValue",
                    8.0 * points.size () / cpu_seconds / 1e6, 8.0 * points.size () / seconds / 1e6, sink);
     }
   }
@@ -69,9 +71,9 @@ namespace
 int
 main (int argc, char** argv)
 {
-  if (argc == 2 && std::string (argv[1]) == "-evaluate")
+  if ((argc == 2 || argc == 3) && std::string (argv[1]) == "-evaluate")
   {
-    benchEvaluate ();
+    benchEvaluate (argc == 3 && std::string (argv[2]) == "dct" ? CosineBasisKind::Dct : CosineBasisKind::Paper);
     return 0;
   }
   std::vector<double> rhos = {0.005, 0.001, 0.0002};
@@ -100,6 +102,8 @@ main (int argc, char** argv)
       base.coding.min_samples = std::atoi (argv[++i]);
     else if (arg == "-authors-nyquist")
       base.coding.nyquist_rule = NyquistRule::AuthorsCode;
+    else if (arg == "-basis" && i + 1 < argc)
+      base.basis = std::string (argv[++i]) == "dct" ? CosineBasisKind::Dct : CosineBasisKind::Paper;
     else if (arg == "-header" && i + 1 < argc)
       header = std::atoi (argv[++i]) != 0;
     else if (arg == "-repeat" && i + 1 < argc)
@@ -110,8 +114,8 @@ main (int argc, char** argv)
 
   if (header)
   {
-    std::printf ("| mesh | N_V | rho | f (rule) | L | m_min | M | nnz | RMSE | RMSE/diag | CR | uncovered | patches s | coding s | total s | CPU s |\n");
-    std::printf ("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::printf ("| mesh | N_V | rho | f (rule) | L | m_min | M | nnz | RMSE | RMSE/diag | CR | uncovered | patches s | coding s | total s | CPU s | basis |\n");
+    std::printf ("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
   }
   for (const std::string& path : meshes)
   {
@@ -155,11 +159,12 @@ main (int argc, char** argv)
         continue;
       }
       const ModelStatistics s = model.statistics (mesh->vertices);
-      std::printf ("| %s | %zu | %g | %g (%s) | %d | %d | %zu | %zu | %.3e | %.2e | %.3f | %zu | %.3f | %.3f | %.3f | %.3f |\n",
+      std::printf ("| %s | %zu | %g | %g (%s) | %d | %d | %zu | %zu | %.3e | %.2e | %.3f | %zu | %.3f | %.3f | %.3f | %.3f | %s |\n",
                    name.c_str (), s.num_vertices, rho, options.coding.nyquist_factor,
                    options.coding.nyquist_rule == NyquistRule::Paper ? "paper" : "authors", options.coding.max_atoms,
                    options.coding.min_samples, s.num_patches, s.num_nonzeros, s.rmse, s.rmse_over_diagonal,
-                   s.compression_ratio, s.uncovered, best.patches, best.coding, best.total, best_cpu);
+                   s.compression_ratio, s.uncovered, best.patches, best.coding, best.total, best_cpu,
+                   cosineBasisKindName (options.basis));
       std::fflush (stdout);
     }
   }

@@ -69,7 +69,7 @@ namespace pcl_sparse
   };
 
   /// Encodes \a model into the bytes of a .psm file. Throws pcl_sparse::Error for a model the format
-  /// cannot hold (basis other than CosineDictionary, non-finite values, tolerance > 0 with
+  /// cannot hold (basis other than CosineDictionary / DctCosineDictionary, non-finite values, tolerance > 0 with
   /// bbox_diagonal <= 0, options out of range).
   std::vector<std::uint8_t>
   encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options = ModelWriteOptions ());
