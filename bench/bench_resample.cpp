@@ -5,18 +5,26 @@
 // jobs). Multithreaded output is identical (tested), and is not timed here for the same reason.
 // Prints a markdown table (bench/resample.sh writes it to bench/results/resample.md).
 //
-//   bench_resample [-throughput N] MESH...
+//   bench_resample [-throughput N] [-angles K] MESH...
+//   bench_resample -diagnose [-angles K] [-worst N] [-file T A] MESH...   (stray points, normal-angle
+//                  distribution; -file: through a .psm in memory at tolerance T keeping at most A angles)
+//   bench_resample -cloud CLOUD.pcd MESH                       (quality of any cloud against its mesh)
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/mesh/mesh_normals.h>
+#include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include <pcl/common/time.h>
+#include <pcl/io/pcd_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/search/kdtree.h>
 #include <pcl/surface/mls.h>
 
 #include <algorithm>
+#include <numeric>
 #include <ctime>
 #include <cstdio>
 #include <iostream>
@@ -143,20 +151,167 @@ namespace
                  q.largest_gap, q.nn_cv);
     std::fflush (stdout);
   }
+  SparseSurfaceModel::Ptr
+  encodeMesh (const std::shared_ptr<TriangleMesh>& mesh, int angles, double* seconds = nullptr)
+  {
+    SparseSurfaceEncoder encoder;
+    encoder.setInputMesh (mesh);
+    encoder.setNumberOfThreads (1);
+    SparseSurfaceEncoderOptions encoder_options;  // paper defaults, footprint angles as asked
+    encoder_options.coding.footprint_angles = angles;
+    encoder.setOptions (encoder_options);
+    auto model = std::make_shared<SparseSurfaceModel> ();
+    pcl::StopWatch watch;
+    encoder.compute (*model);
+    if (seconds)
+      *seconds = watch.getTimeSeconds ();
+    return model;
+  }
+
+  /// Where the worst points of a resampled cloud come from, and the normal-angle distribution against
+  /// the mesh's own vertex normals (the floor a smooth normal field can reach against flat faces).
+  void
+  diagnose (const std::string& path, int angles, int worst, double file_tolerance, int file_angles)
+  {
+    auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
+    SparseSurfaceModel::Ptr model = encodeMesh (mesh, angles);
+    std::size_t file_bytes = 0;
+    if (file_tolerance >= 0.0)
+    {
+      ModelWriteOptions write;
+      write.tolerance = file_tolerance;
+      write.max_footprint_angles = file_angles;
+      const std::vector<std::uint8_t> bytes = encodeModel (*model, write);
+      file_bytes = bytes.size ();
+      model = std::make_shared<SparseSurfaceModel> (decodeModel (bytes.data (), bytes.size ()));
+    }
+    SparseSurfaceResampling resampling;
+    resampling.setInputModel (model);
+    resampling.setPointCount (4 * mesh->numVertices ());
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    resampling.compute (cloud);
+    CloudQualityOptions options;
+    options.keep_per_point = true;
+    const CloudQuality q = evaluateCloudQuality (*mesh, cloud, options);
+    const std::vector<int>& owner = resampling.getPointPatches ();
+    const std::size_t n = q.point_distances.size ();
+    std::vector<double> d = q.point_distances;
+    std::sort (d.begin (), d.end ());
+    const double diag = q.bbox_diagonal;
+    // Reference: the mesh's vertices with their area-weighted normals.
+    pcl::PointCloud<pcl::PointNormal> vertex_cloud;
+    const std::vector<Eigen::Vector3d> vn = computeVertexNormals (*mesh, buildMeshTopology (*mesh));
+    for (std::size_t v = 0; v < mesh->numVertices (); ++v)
+    {
+      pcl::PointNormal point;
+      point.getVector3fMap () = mesh->vertices[v].cast<float> ();
+      point.getNormalVector3fMap () = vn[v].cast<float> ();
+      vertex_cloud.push_back (point);
+    }
+    const CloudQuality reference = evaluateCloudQuality (*mesh, vertex_cloud);
+    if (file_tolerance >= 0.0)
+      std::printf ("file tolerance %g, at most %d angles: %zu bytes; ", file_tolerance, file_angles, file_bytes);
+    std::printf ("%s (K=%d, %zu patches, %zu points): max dist/diag %.3e, 99.9%% %.3e, 99%% %.3e, mean %.3e; normal angle "
+                 "mean %.2f median %.2f p90 %.2f (vertex normals: mean %.2f median %.2f p90 %.2f)\n",
+                 path.substr (path.find_last_of ('/') + 1).c_str (), angles, model->numPatches (), n, d.back () / diag,
+                 d[std::min (n - 1, n * 999 / 1000)] / diag, d[std::min (n - 1, n * 99 / 100)] / diag, q.mean_distance / diag,
+                 q.mean_normal_angle, q.median_normal_angle, q.p90_normal_angle, reference.mean_normal_angle,
+                 reference.median_normal_angle, reference.p90_normal_angle);
+    // Normal angle vs centrality of the point in its own patch.
+    const PatchEvaluator evaluator (*model);
+    double band_sum[4] = {0, 0, 0, 0};
+    std::size_t band_count[4] = {0, 0, 0, 0};
+    std::vector<std::size_t> order (n);
+    std::iota (order.begin (), order.end (), 0);
+    std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) { return q.point_distances[a] > q.point_distances[b]; });
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const PatchCode& code = model->patches[owner[i]];
+      const Eigen::Vector3d local = code.frame.transpose () * (cloud[i].getVector3fMap ().cast<double> () - code.origin) / code.radius;
+      const double c = evaluator.centrality (owner[i], local.x (), local.y ());
+      const int band = c < 0.5 ? 0 : c < 0.8 ? 1 : c < 0.95 ? 2 : 3;
+      band_sum[band] += q.point_normal_angles[i];
+      ++band_count[band];
+    }
+    std::printf ("  mean normal angle by centrality: <0.5 %.2f (%zu), 0.5-0.8 %.2f (%zu), 0.8-0.95 %.2f (%zu), >=0.95 %.2f (%zu)\n",
+                 band_sum[0] / std::max<std::size_t> (1, band_count[0]), band_count[0],
+                 band_sum[1] / std::max<std::size_t> (1, band_count[1]), band_count[1],
+                 band_sum[2] / std::max<std::size_t> (1, band_count[2]), band_count[2],
+                 band_sum[3] / std::max<std::size_t> (1, band_count[3]), band_count[3]);
+    for (int w = 0; w < worst && w < static_cast<int> (n); ++w)
+    {
+      const std::size_t i = order[w];
+      const int p = owner[i];
+      const PatchCode& code = model->patches[p];
+      const Eigen::Vector3d local = code.frame.transpose () * (cloud[i].getVector3fMap ().cast<double> () - code.origin) / code.radius;
+      double zmin = 1e300, zmax = -1e300;
+      for (int v : code.vertices)
+      {
+        const double z = code.frame.col (2).dot (mesh->vertices[v] - code.origin) / code.radius;
+        zmin = std::min (zmin, z);
+        zmax = std::max (zmax, z);
+      }
+      double cmax = 0.0;
+      for (double a : code.coefficients)
+        cmax = std::max (cmax, std::abs (a));
+      const HeightSample h = evaluator.sample (p, local.x (), local.y ());
+      std::printf ("  dist/diag %.3e angle %.1f patch %d (%zu vertices, %zu atoms, max |coef| %.3g, r/diag %.3e) local (%.3f, %.3f) "
+                   "h %.3f |grad| %.2f data z [%.3f, %.3f] centrality %.3f\n",
+                   q.point_distances[i] / diag, q.point_normal_angles[i], p, code.vertices.size (), code.atoms.size (), cmax,
+                   code.radius / diag, local.x (), local.y (), h.value, h.gradient.norm (), zmin, zmax,
+                   evaluator.centrality (p, local.x (), local.y ()));
+    }
+    std::fflush (stdout);
+  }
 } // namespace
 
 int
 main (int argc, char** argv)
 {
   std::size_t throughput_points = 4000000;
+  int angles = 64, worst = 10, file_angles = 0;
+  double file_tolerance = -1.0;
+  bool diagnosis = false;
+  std::string cloud_path;
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
     if (a == "-throughput" && i + 1 < argc)
       throughput_points = std::stoul (argv[++i]);
+    else if (a == "-angles" && i + 1 < argc)
+      angles = std::stoi (argv[++i]);
+    else if (a == "-worst" && i + 1 < argc)
+      worst = std::stoi (argv[++i]);
+    else if (a == "-file" && i + 2 < argc)
+    {
+      file_tolerance = std::stod (argv[++i]);
+      file_angles = std::stoi (argv[++i]);
+    }
+    else if (a == "-cloud" && i + 1 < argc)
+      cloud_path = argv[++i];
+    else if (a == "-diagnose")
+      diagnosis = true;
     else
       meshes.push_back (a);
+  }
+  if (!cloud_path.empty () && meshes.size () == 1)
+  {
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    if (pcl::io::loadPCDFile (cloud_path, cloud) < 0)
+      return 1;
+    const TriangleMesh mesh = loadTriangleMesh (meshes[0]);
+    const CloudQuality q = evaluateCloudQuality (mesh, cloud);
+    std::printf ("%s: %zu points, mesh->cloud largest gap / diag %.3e, max dist/diag %.3e, mean %.3e, normal angle mean %.2f median %.2f p90 %.2f, flipped %zu\n",
+                 cloud_path.c_str (), cloud.size (), q.largest_gap * q.spacing / q.bbox_diagonal, q.max_distance / q.bbox_diagonal, q.mean_distance / q.bbox_diagonal,
+                 q.mean_normal_angle, q.median_normal_angle, q.p90_normal_angle, q.flipped);
+    return 0;
+  }
+  if (diagnosis)
+  {
+    for (const std::string& path : meshes)
+      diagnose (path, angles, worst, file_tolerance, file_angles);
+    return 0;
   }
   std::printf ("| mesh | method | points | seconds | us/point | speed vs MLS RUD | mean dist/diag | RMS dist/diag | "
                "mean normal angle (deg) | flipped | completeness (3 spacings) | largest gap (spacings) | NN CV |\n");
@@ -175,16 +330,8 @@ main (int argc, char** argv)
       const Row plane = runMls (*mesh, false, edge, target);
       printRow (name, plane, rud.seconds);
 
-      SparseSurfaceEncoder encoder;
-      encoder.setInputMesh (mesh);
-      encoder.setNumberOfThreads (1);
-      SparseSurfaceEncoderOptions encoder_options;  // as pcl_sparse_resample: paper defaults, 64 footprint angles
-      encoder_options.coding.footprint_angles = 64;
-      encoder.setOptions (encoder_options);
-      auto model = std::make_shared<SparseSurfaceModel> ();
-      pcl::StopWatch watch;
-      encoder.compute (*model);
-      const double encode_seconds = watch.getTimeSeconds ();
+      double encode_seconds = 0.0;
+      const SparseSurfaceModel::Ptr model = encodeMesh (mesh, angles, &encode_seconds);
       const Row ours = runOurs (*mesh, model, rud.points, 1);
       printRow (name, ours, rud.seconds);
       // Throughput from the encoded model at a large count (quality not measured).

@@ -122,6 +122,17 @@ namespace pcl_sparse
     quality.rms_distance = std::sqrt (quality.rms_distance / n);
     quality.mean_distance /= n;
     quality.mean_normal_angle /= n;
+    {
+      std::vector<double> sorted = angle;
+      std::sort (sorted.begin (), sorted.end ());
+      quality.median_normal_angle = sorted[n / 2];
+      quality.p90_normal_angle = sorted[std::min (n - 1, (9 * n) / 10)];
+    }
+    if (options.keep_per_point)
+    {
+      quality.point_distances = distance;
+      quality.point_normal_angles = angle;
+    }
 
     // Spacing uniformity.
     pcl::KdTreeFLANN<pcl::PointNormal> cloud_tree;

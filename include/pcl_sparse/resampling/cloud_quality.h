@@ -10,6 +10,7 @@
 #include <pcl/point_types.h>
 
 #include <cstdint>
+#include <vector>
 
 namespace pcl_sparse
 {
@@ -22,6 +23,8 @@ namespace pcl_sparse
     /// Nearest triangles (by centroid) searched exactly per point for the distance to the surface.
     int nearest_triangles = 16;
     std::uint64_t seed = 1;
+    /// Keep the per-point distances and normal angles in CloudQuality (for diagnostics).
+    bool keep_per_point = false;
   };
 
   struct CloudQuality
@@ -30,6 +33,8 @@ namespace pcl_sparse
     double mean_distance = 0.0;
     double max_distance = 0.0;
     double mean_normal_angle = 0.0;  ///< mean angle (degrees) between a point's normal and its nearest face's normal
+    double median_normal_angle = 0.0;  ///< median of the same angles
+    double p90_normal_angle = 0.0;     ///< 90th percentile of the same angles
     /// Points whose normal is more than 120 degrees from the nearest face normal: pointing to the other side.
     /// (Not 90: at a sharp 90-degree edge a point may be nearest to the other face.)
     std::size_t flipped = 0;
@@ -39,6 +44,9 @@ namespace pcl_sparse
     double spacing = 0.0;            ///< sqrt(mesh area / #points)
     double nn_cv = 0.0;              ///< coefficient of variation of nearest-neighbour distances
     double bbox_diagonal = 0.0;      ///< of the mesh
+    /// Per valid point (in cloud order, invalid points skipped): distance to the mesh and normal angle
+    /// (degrees); filled only when CloudQualityOptions::keep_per_point is set.
+    std::vector<double> point_distances, point_normal_angles;
   };
 
   /// Measures \a cloud against \a mesh (see CloudQuality). Points with a non-finite normal count as invalid.
