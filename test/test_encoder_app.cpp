@@ -1,5 +1,7 @@
 // The pcl_sparse_encode tool: output formats, written files, option validation and exit codes.
 
+#include <pcl_sparse/coding/dct_cosine_dictionary.h>
+#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
@@ -90,7 +92,7 @@ TEST_F (EncodeTool, RefusesBadOptionsWithoutWriting)
   const std::string recon = (dir_ / "bad.ply").string ();
   std::string out;
   for (const std::string& bad : {"-rho 0", "-rho -1", "-rho abc", "-f 1.5", "-f -0.1", "-L 0", "-L 2.5", "-eps 0",
-                                 "-eps 1", "-min-samples -3", "-bogus", "-rho"})
+                                 "-eps 1", "-min-samples -3", "-bogus", "-rho", "-basis foo", "-basis"})
   {
     EXPECT_EQ (run (input_ + " -q " + bad + " -recon " + recon, out), 1) << bad;
     EXPECT_FALSE (std::filesystem::exists (recon)) << bad;
@@ -98,4 +100,20 @@ TEST_F (EncodeTool, RefusesBadOptionsWithoutWriting)
   EXPECT_EQ (run ((dir_ / "missing.off").string () + " -q", out), 1);
   EXPECT_EQ (run (input_ + " -q -error " + (dir_ / "e.obj").string (), out), 1);
   EXPECT_EQ (run ("", out), 1);
+}
+
+// -basis dct: recorded in the JSON and in the model file (basis kind 2), read back as DctCosineDictionary.
+TEST_F (EncodeTool, DctBasisReachesTheModelFile)
+{
+  const std::string model_path = (dir_ / "model.psm").string ();
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q --json -basis dct -o " + model_path, out), 0);
+  EXPECT_NE (out.find ("\"basis\": \"dct\""), std::string::npos) << out;
+  const SparseSurfaceModel model = loadModel (model_path);
+  EXPECT_NE (dynamic_cast<const DctCosineDictionary*> (model.basis.get ()), nullptr);
+  EXPECT_EQ (model.basis->size (), 144);
+  ASSERT_EQ (run (input_ + " -q --json -basis paper", out), 0);
+  EXPECT_NE (out.find ("\"basis\": \"paper\""), std::string::npos) << out;
+  ASSERT_EQ (run (input_ + " -q --json", out), 0);
+  EXPECT_NE (out.find ("\"basis\": \"paper\""), std::string::npos) << out;
 }
