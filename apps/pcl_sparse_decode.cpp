@@ -25,10 +25,9 @@ using namespace pcl_sparse;
 
 namespace
 {
-  void
-  printHelp (const char* program)
-  {
-    tools::printHelp (program, "MODEL.psm OUT.{pcd,ply} [options]", {
+  const tools::ToolDescription kTool = {
+    "pcl_sparse_decode", "MODEL.psm OUT.{pcd,ply} [options]",
+    {
       {"MODEL.psm", "a model file written by pcl_sparse_encode -o"},
       {"OUT", "the resampled cloud: x y z, normal, curvature (.pcd or .ply)"},
       {"-n N", "exactly N points (default: the model's number of input vertices)"},
@@ -39,20 +38,14 @@ namespace
       {"", "--store-vertices) and write MESH with them to RECON"},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
-    });
-  }
+    },
+    2, {"-n", "-density", "-seed", "-threads", {"-recon", 2}}, {"--json", "-q"}};
 } // namespace
 
 int
 main (int argc, char** argv)
 {
-  if (const int code = tools::helpExitCode (argc, argv, 3); code >= 0)
-  {
-    printHelp (argv[0]);
-    return code;
-  }
-  return tools::runTool ("pcl_sparse_decode", [&] {
-    const tools::CommandLine args (argc, argv, {"-n", "-density", "-seed", "-threads", {"-recon", 2}}, {"--json", "-q"});
+  return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
     args.expectPositional (2, "MODEL.psm and OUT.{pcd,ply}");

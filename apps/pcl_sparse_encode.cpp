@@ -25,10 +25,9 @@ using namespace pcl_sparse;
 
 namespace
 {
-  void
-  printHelp (const char* program)
-  {
-    tools::printHelp (program, "MESH [options]", {
+  const tools::ToolDescription kTool = {
+    "pcl_sparse_encode", "MESH [options]",
+    {
       {"MESH", "a triangle mesh: .obj .off .ply .stl"},
       {"-rho R", "patch size bound A_p / A (default 0.001; paper: 0.005, 0.001, 0.0002)"},
       {"-f F", "Nyquist factor in [0, 1] (default 0.5; 0 = plain OMP)"},
@@ -47,23 +46,16 @@ namespace
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
       {"--json", "print one JSON object on stdout instead of the table row"},
       {"-q", "quiet (no progress, only the result and errors)"},
-    });
-  }
+    },
+    1,
+    {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance"},
+    {"--json", "-q", "--authors-nyquist", "--store-vertices"}};
 } // namespace
 
 int
 main (int argc, char** argv)
 {
-  if (const int code = tools::helpExitCode (argc, argv, 2); code >= 0)
-  {
-    printHelp (argv[0]);
-    return code;
-  }
-  return tools::runTool ("pcl_sparse_encode", [&] {
-    const tools::CommandLine args (argc, argv,
-                                   {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads", "-basis", "-recon",
-                                    "-error", "-o", "-tolerance"},
-                                   {"--json", "-q", "--authors-nyquist", "--store-vertices"});
+  return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
     args.expectPositional (1, "exactly one MESH");

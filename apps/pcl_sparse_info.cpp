@@ -23,17 +23,16 @@ using namespace pcl_sparse;
 
 namespace
 {
-  void
-  printHelp (const char* program)
-  {
-    tools::printHelp (program, "FILE [options]", {
+  const tools::ToolDescription kTool = {
+    "pcl_sparse_info", "FILE [options]",
+    {
       {"FILE", "a triangle mesh: .obj .off .ply .stl, or a model file .psm; a point cloud"},
       {"", "(.pcd, or one of those without faces) is reported with faces: 0"},
       {"--json", "print one JSON object on stdout instead of 'name: value' lines"},
       {"--allow-non-finite", "count NaN/Inf vertices instead of refusing the file"},
       {"-q", "quiet (no messages besides the report and errors)"},
-    });
-  }
+    },
+    1, {}, {"--json", "-q", "--allow-non-finite"}};
 
   /// A mesh file, or a point cloud as a mesh without faces (every point is an unreferenced vertex).
   TriangleMesh
@@ -169,13 +168,7 @@ namespace
 int
 main (int argc, char** argv)
 {
-  if (const int code = tools::helpExitCode (argc, argv, 2); code >= 0)
-  {
-    printHelp (argv[0]);
-    return code;
-  }
-  return tools::runTool ("pcl_sparse_info", [&] {
-    const tools::CommandLine args (argc, argv, {}, {"--json", "-q", "--allow-non-finite"});
+  return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     MeshLoadOptions load_options;
     load_options.allow_no_faces = true;  // a PLY/OBJ of points is a cloud: reported with faces: 0

@@ -27,12 +27,9 @@ using namespace pcl_sparse;
 
 namespace
 {
-  const char* const kProgram = "pcl_sparse_keypoints";
-
-  void
-  printHelp (const char* program)
-  {
-    tools::printHelp (program, "MESH OUT.{pcd,ply} [options]", {
+  const tools::ToolDescription kTool = {
+    "pcl_sparse_keypoints", "MESH OUT.{pcd,ply} [options]",
+    {
       {"MESH", "a triangle mesh: .obj .off .ply .stl"},
       {"OUT", "keypoints as PointXYZI (intensity = response), decreasing response"},
       {"-fraction F", "keep F x #vertices 1-ring local maxima (default 0.01)"},
@@ -44,8 +41,8 @@ namespace
       {"", "(dark blue = low, yellow = high, grey = no response)"},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
-    });
-  }
+    },
+    2, {"-fraction", "-cluster", "-rings", "-adaptive", "-k", "-responses"}, {"--json", "-q"}};
 
   /// Colours by percentile of the response (the raw values span many orders of magnitude).
   std::vector<RgbColor>
@@ -85,14 +82,7 @@ namespace
 int
 main (int argc, char** argv)
 {
-  if (const int code = tools::helpExitCode (argc, argv, 3); code >= 0)
-  {
-    printHelp (argv[0]);
-    return code;
-  }
-  return tools::runTool (kProgram, [&] {
-    const tools::CommandLine args (argc, argv, {"-fraction", "-cluster", "-rings", "-adaptive", "-k", "-responses"},
-                                   {"--json", "-q"});
+  return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
     if (quiet || json)

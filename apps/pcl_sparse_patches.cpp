@@ -29,39 +29,31 @@ using namespace pcl_sparse;
 
 namespace
 {
-  const char* const kProgram = "pcl_sparse_patches";
+  const PatchOptions kDefaults;
 
-  void
-  printHelp (const char* program)
-  {
-    const PatchOptions d;
-    tools::printHelp (program, "MESH OUT.ply [options]", {
+  const tools::ToolDescription kTool = {
+    "pcl_sparse_patches", "MESH OUT.ply [options]",
+    {
       {"MESH", "a triangle mesh: .obj .off .ply .stl"},
       {"OUT.ply", "the mesh, each vertex coloured by one of its patches, seeds black"},
-      {"-rho R", tools::format ("size bound A_p / A (default %g)", d.rho)},
-      {"-delta D", tools::format ("smooth variation angle in degrees (default %g)", d.delta * 180.0 / M_PI)},
-      {"-cone C", tools::format ("normal cone angle in degrees (default %g; authors' code 72)", d.cone_angle * 180.0 / M_PI)},
-      {"-eta E", tools::format ("flatness bound A_p / A_p^proj (default %g)", d.eta)},
-      {"-sigma S", tools::format ("seed overlap control (default %g)", d.sigma)},
-      {"-min-size N", tools::format ("smallest patch the sampling keeps (default %d)", d.min_patch_size)},
+      {"-rho R", tools::format ("size bound A_p / A (default %g)", kDefaults.rho)},
+      {"-delta D", tools::format ("smooth variation angle in degrees (default %g)", kDefaults.delta * 180.0 / M_PI)},
+      {"-cone C",
+       tools::format ("normal cone angle in degrees (default %g; authors' code 72)", kDefaults.cone_angle * 180.0 / M_PI)},
+      {"-eta E", tools::format ("flatness bound A_p / A_p^proj (default %g)", kDefaults.eta)},
+      {"-sigma S", tools::format ("seed overlap control (default %g)", kDefaults.sigma)},
+      {"-min-size N", tools::format ("smallest patch the sampling keeps (default %d)", kDefaults.min_patch_size)},
       {"--authors", "the authors' code: cone 72 degrees, no pairwise cone, no coverage pass"},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet (no progress, no messages besides the report and errors)"},
-    });
-  }
+    },
+    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size"}, {"--json", "-q", "--authors"}};
 } // namespace
 
 int
 main (int argc, char** argv)
 {
-  if (const int code = tools::helpExitCode (argc, argv, 2); code >= 0)
-  {
-    printHelp (argv[0]);
-    return code;
-  }
-  return tools::runTool (kProgram, [&] {
-    const tools::CommandLine args (argc, argv, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size"},
-                                   {"--json", "-q", "--authors"});
+  return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
     if (quiet)

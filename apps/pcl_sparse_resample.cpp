@@ -26,10 +26,9 @@ using namespace pcl_sparse;
 
 namespace
 {
-  void
-  printHelp (const char* program)
-  {
-    tools::printHelp (program, "IN OUT [options]", {
+  const tools::ToolDescription kTool = {
+    "pcl_sparse_resample", "IN OUT [options]",
+    {
       {"IN", "a triangle mesh (.obj .off .ply .stl), encoded first, or a saved model (.psm)"},
       {"OUT", "the cloud: .pcd (binary unless -ascii) or .ply; fields x y z nx ny nz curvature"},
       {"", "(curvature = signed mean curvature, 1/length, positive where convex)"},
@@ -45,8 +44,8 @@ namespace
       {"-ascii", "write ascii instead of binary"},
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
-    });
-  }
+    },
+    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles"}, {"-ascii", "-q", "--json"}};
 
   struct Settings
   {
@@ -61,11 +60,9 @@ namespace
   };
 
   Settings
-  parseSettings (int argc, char** argv)
+  parseSettings (const tools::CommandLine& args)
   {
     using tools::Range;
-    const tools::CommandLine args (argc, argv, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles"},
-                                   {"-ascii", "-q", "--json"});
     Settings s;
     args.expectPositional (2, "IN and OUT");
     s.input = args.positional ()[0];
@@ -109,13 +106,8 @@ namespace
 int
 main (int argc, char** argv)
 {
-  if (const int code = tools::helpExitCode (argc, argv, 2); code >= 0)
-  {
-    printHelp (argv[0]);
-    return code;
-  }
-  return tools::runTool ("pcl_sparse_resample", [&] {
-    const Settings s = parseSettings (argc, argv);
+  return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
+    const Settings s = parseSettings (args);
     if (s.quiet || s.json)
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
     const ProgressCallback progress = makeConsoleProgress (s.quiet);

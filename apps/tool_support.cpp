@@ -119,7 +119,8 @@ namespace pcl_sparse
     std::string
     Range::str () const
     {
-      return std::string (min_open ? "(" : "[") + format ("%g", min) + ", " + format ("%g", max) + (max_open ? ")" : "]");
+      return std::string (min_open ? "(" : "[") + format ("%g", min) + ", " + format ("%g", max) +
+             (max_open ? ")" : "]");
     }
 
     // ---- CommandLine ---------------------------------------------------------------------------------
@@ -135,8 +136,9 @@ namespace pcl_sparse
         if (option != options.end ())
         {
           if (i + option->values >= argc)
-            throw Error ("option " + arg + (option->values == 1 ? " needs a value"
-                                                                : " needs " + std::to_string (option->values) + " values"));
+            throw Error ("option " + arg + (option->values == 1 ? std::string (" needs a value")
+                                                                : " needs " + std::to_string (option->values) +
+                                                                    " values"));
           given_.emplace_back (arg, std::vector<std::string> (argv + i + 1, argv + i + 1 + option->values));
           i += option->values;
           continue;
@@ -210,23 +212,15 @@ namespace pcl_sparse
     // ---- help, main ----------------------------------------------------------------------------------
 
     void
-    printHelp (const char* program, const std::string& syntax, const std::vector<HelpLine>& lines)
+    printHelp (const char* argv0, const ToolDescription& tool)
     {
-      pcl::console::print_error ("Syntax is: %s %s\n", program, syntax.c_str ());
+      pcl::console::print_error ("Syntax is: %s %s\n", argv0, tool.syntax.c_str ());
       std::size_t width = 0;
-      for (const HelpLine& line : lines)
+      for (const HelpLine& line : tool.help)
         width = std::max (width, line.name.size ());
-      for (const HelpLine& line : lines)
-        pcl::console::print_info ("  %-*s  %s\n", static_cast<int> (width), line.name.c_str (), line.description.c_str ());
-    }
-
-    int
-    helpExitCode (int argc, char** argv, int min_argc)
-    {
-      for (int i = 1; i < argc; ++i)
-        if (std::string (argv[i]) == "-h" || std::string (argv[i]) == "--help")
-          return 0;
-      return argc < min_argc ? 1 : -1;
+      for (const HelpLine& line : tool.help)
+        pcl::console::print_info ("  %-*s  %s\n", static_cast<int> (width), line.name.c_str (),
+                                  line.description.c_str ());
     }
 
     std::string
@@ -246,19 +240,30 @@ namespace pcl_sparse
     }
 
     int
-    runTool (const char* program, const std::function<int ()>& body)
+    runTool (int argc, char** argv, const ToolDescription& tool, const std::function<int (const CommandLine&)>& body)
     {
+      for (int i = 1; i < argc; ++i)
+        if (std::string (argv[i]) == "-h" || std::string (argv[i]) == "--help")
+        {
+          printHelp (argv[0], tool);
+          return 0;
+        }
+      if (argc - 1 < tool.min_arguments)
+      {
+        printHelp (argv[0], tool);
+        return 1;
+      }
       try
       {
-        return body ();
+        return body (CommandLine (argc, argv, tool.options, tool.switches));
       }
       catch (const Error& e)
       {
-        pcl::console::print_error ("%s: %s\n", program, e.what ());
+        pcl::console::print_error ("%s: %s\n", tool.program, e.what ());
       }
       catch (const std::exception& e)
       {
-        pcl::console::print_error ("%s: unexpected failure: %s\n", program, e.what ());
+        pcl::console::print_error ("%s: unexpected failure: %s\n", tool.program, e.what ());
       }
       return 1;
     }

@@ -95,7 +95,8 @@ namespace pcl_sparse
     class CommandLine
     {
     public:
-      CommandLine (int argc, char** argv, const std::vector<OptionSpec>& options, const std::vector<std::string>& switches);
+      CommandLine (int argc, char** argv, const std::vector<OptionSpec>& options,
+                   const std::vector<std::string>& switches);
 
       const std::vector<std::string>& positional () const { return positional_; }
 
@@ -146,22 +147,31 @@ namespace pcl_sparse
       std::string description;
     };
 
-    /// Prints "Syntax is: PROGRAM SYNTAX" on stderr and the aligned lines on stdout (PCL tools' style).
-    void
-    printHelp (const char* program, const std::string& syntax, const std::vector<HelpLine>& lines);
+    /// What a tool is called, its help and its command line.
+    struct ToolDescription
+    {
+      const char* program;                 ///< name at the start of error lines
+      std::string syntax;                  ///< the arguments in "Syntax is: PROGRAM SYNTAX"
+      std::vector<HelpLine> help;          ///< arguments and options, one line each
+      int min_arguments;                   ///< with fewer arguments the tool prints its help and exits with 1
+      std::vector<OptionSpec> options;     ///< options taking values
+      std::vector<std::string> switches;   ///< options without values (-h and --help are implicit)
+    };
 
-    /// Exit code when the tool should only print its help: 0 for -h / --help, 1 when there are fewer than
-    /// \a min_argc arguments (program name included); -1 when it should run.
-    int
-    helpExitCode (int argc, char** argv, int min_argc);
+    /// Prints "Syntax is: PROGRAM SYNTAX" on stderr (one error line when the tool is called wrongly) and
+    /// the aligned help lines on stdout, as PCL's tools do.
+    void
+    printHelp (const char* argv0, const ToolDescription& tool);
 
     /// printf-style formatting into a string (for help lines showing defaults).
     std::string
     format (const char* pattern, ...) __attribute__ ((format (printf, 1, 2)));
 
-    /// Runs the body of main: an Error or any other exception becomes one line "PROGRAM: message" on
-    /// stderr and exit code 1; otherwise the body's exit code.
+    /// The whole main of a tool: prints the help and returns 0 for -h / --help, returns 1 after the help
+    /// when there are too few arguments; otherwise parses the command line and runs \a body with it. An
+    /// Error or any other exception (from parsing or the body) becomes one line "PROGRAM: message" on
+    /// stderr and exit code 1; otherwise the body's exit code is returned.
     int
-    runTool (const char* program, const std::function<int ()>& body);
+    runTool (int argc, char** argv, const ToolDescription& tool, const std::function<int (const CommandLine&)>& body);
   } // namespace tools
 } // namespace pcl_sparse
