@@ -8,6 +8,7 @@
 //   bench_resample [-throughput N] [-angles K] MESH...
 //   bench_resample -diagnose [-angles K] [-worst N] [-file T A] MESH...   (stray points, normal-angle
 //                  distribution; -file: through a .psm in memory at tolerance T keeping at most A angles)
+//                  [-basis-dct] [-L N]: encoder basis and atoms for -diagnose
 //   bench_resample -cloud CLOUD.pcd MESH                       (quality of any cloud against its mesh)
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
@@ -144,13 +145,17 @@ namespace
   printRow (const std::string& name, const Row& row, double reference_seconds)
   {
     const CloudQuality& q = row.quality;
-    std::printf ("| %s | %s | %zu | %.4f | %.3f | %.1fx | %.2e | %.2e | %.2f | %.1f%% | %.4f | %.2f | %.3f |\n", name.c_str (),
-                 row.method.c_str (), row.points, row.seconds, 1e6 * row.seconds / std::max<std::size_t> (1, row.points),
+    std::printf ("| %s | %s | %zu | %.4f | %.3f | %.1fx | %.2e | %.2e | %.2e | %.2f | %.2f | %.2f | %.1f%% | %.4f | %.2f | %.3f |\n",
+                 name.c_str (), row.method.c_str (), row.points, row.seconds, 1e6 * row.seconds / std::max<std::size_t> (1, row.points),
                  reference_seconds / row.seconds, q.mean_distance / q.bbox_diagonal, q.rms_distance / q.bbox_diagonal,
-                 q.mean_normal_angle, 100.0 * q.flipped / std::max<std::size_t> (1, row.points), q.completeness,
+                 q.max_distance / q.bbox_diagonal, q.mean_normal_angle, q.median_normal_angle, q.p90_normal_angle, 100.0 * q.flipped / std::max<std::size_t> (1, row.points), q.completeness,
                  q.largest_gap, q.nn_cv);
     std::fflush (stdout);
   }
+  /// Encoder options of -diagnose besides the footprint angles (paper defaults unless set).
+  CosineBasisKind diagnose_basis = CosineBasisKind::Paper;
+  int diagnose_atoms = 12;
+
   SparseSurfaceModel::Ptr
   encodeMesh (const std::shared_ptr<TriangleMesh>& mesh, int angles, double* seconds = nullptr)
   {
@@ -159,6 +164,8 @@ namespace
     encoder.setNumberOfThreads (1);
     SparseSurfaceEncoderOptions encoder_options;  // paper defaults, footprint angles as asked
     encoder_options.coding.footprint_angles = angles;
+    encoder_options.basis = diagnose_basis;
+    encoder_options.coding.max_atoms = diagnose_atoms;
     encoder.setOptions (encoder_options);
     auto model = std::make_shared<SparseSurfaceModel> ();
     pcl::StopWatch watch;
@@ -233,6 +240,18 @@ namespace
       band_sum[band] += q.point_normal_angles[i];
       ++band_count[band];
     }
+    // The analytic gradient against central differences of the height (a scaling bug would show here).
+    double worst_gradient = 0.0;
+    for (std::size_t i = 0; i < n; i += 97)
+    {
+      const PatchCode& code = model->patches[owner[i]];
+      const Eigen::Vector3d local = code.frame.transpose () * (cloud[i].getVector3fMap ().cast<double> () - code.origin) / code.radius;
+      const double e = 1e-5;
+      const Eigen::Vector2d numeric ((evaluator.height (owner[i], local.x () + e, local.y ()) - evaluator.height (owner[i], local.x () - e, local.y ())) / (2 * e),
+                                     (evaluator.height (owner[i], local.x (), local.y () + e) - evaluator.height (owner[i], local.x (), local.y () - e)) / (2 * e));
+      worst_gradient = std::max (worst_gradient, (numeric - evaluator.sample (owner[i], local.x (), local.y ()).gradient).norm ());
+    }
+    std::printf ("  largest |analytic - numeric gradient|: %.2e\n", worst_gradient);
     std::printf ("  mean normal angle by centrality: <0.5 %.2f (%zu), 0.5-0.8 %.2f (%zu), 0.8-0.95 %.2f (%zu), >=0.95 %.2f (%zu)\n",
                  band_sum[0] / std::max<std::size_t> (1, band_count[0]), band_count[0],
                  band_sum[1] / std::max<std::size_t> (1, band_count[1]), band_count[1],
@@ -290,6 +309,10 @@ main (int argc, char** argv)
     }
     else if (a == "-cloud" && i + 1 < argc)
       cloud_path = argv[++i];
+    else if (a == "-basis-dct")
+      diagnose_basis = CosineBasisKind::Dct;
+    else if (a == "-L" && i + 1 < argc)
+      diagnose_atoms = std::stoi (argv[++i]);
     else if (a == "-diagnose")
       diagnosis = true;
     else
@@ -313,9 +336,9 @@ main (int argc, char** argv)
       diagnose (path, angles, worst, file_tolerance, file_angles);
     return 0;
   }
-  std::printf ("| mesh | method | points | seconds | us/point | speed vs MLS RUD | mean dist/diag | RMS dist/diag | "
-               "mean normal angle (deg) | flipped | completeness (3 spacings) | largest gap (spacings) | NN CV |\n");
-  std::printf ("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf ("| mesh | method | points | seconds | us/point | speed vs MLS RUD | mean dist/diag | RMS dist/diag | max dist/diag | "
+               "mean normal angle (deg) | median | p90 | flipped | completeness (3 spacings) | largest gap (spacings) | NN CV |\n");
+  std::printf ("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<std::string> notes;
   for (const std::string& path : meshes)
   {
