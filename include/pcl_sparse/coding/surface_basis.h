@@ -30,8 +30,8 @@ namespace pcl_sparse
     /// Number of atoms.
     virtual int size () const = 0;
 
-    /// Shortest wavelength of atom \a atom in local units (2 / max(i, j) for cosines), +infinity for a
-    /// constant atom. The Nyquist cap of OMP compares it with the patch's sample spacing.
+    /// Shortest wavelength of atom \a atom in local units (2 / max(i, j) for the paper's cosines,
+    /// 4 / max(i, j) for the half-period ones), +infinity for a constant atom. The Nyquist cap of OMP compares it with the patch's sample spacing.
     virtual double wavelength (int atom) const = 0;
 
     /// Values of every atom at every point: \a values is #points by size().
