@@ -70,11 +70,8 @@ main (int argc, char** argv)
     args.integer ("-seed", options.coding.seed, tools::Range::atLeast (0));
     if (args.has ("--authors-nyquist"))
       options.coding.nyquist_rule = NyquistRule::AuthorsCode;
-    const std::string basis_name = args.value ("-basis");
-    if (basis_name == "dct")
-      options.basis = CosineBasisKind::Dct;
-    else if (!basis_name.empty () && basis_name != "paper")
-      throw Error ("option -basis: expected paper or dct, got '" + basis_name + "'");
+    if (args.has ("-basis"))
+      options.basis = cosineBasisKindFromName (args.value ("-basis"));
     int threads = 0;
     args.integer ("-threads", threads, tools::Range::atLeast (0));
     const std::string recon_path = args.value ("-recon");

@@ -1,7 +1,7 @@
 /// pcl_sparse_resample: a mesh (encoded first) or a saved model (.psm) to a point cloud with analytic
 /// normals and curvature, at any density (METHOD.md step 12).
 ///
-///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-seed S]
+///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-basis paper|dct] [-seed S]
 ///                       [-threads T] [-ascii] [-q] [--json]
 
 #include "tool_support.h"
@@ -37,15 +37,16 @@ namespace
       {"-spacing S", "mean spacing S between neighbouring points instead (density 1 / S^2)"},
       {"-rho R", "encoder: patch area bound rho (default: 0.001, paper)"},
       {"-f F", "encoder: Nyquist factor f in [0, 1] (default: 0.5, paper)"},
-      {"-angles K", "encoder: footprint angles (default: 64 here, 16 in the encoder: finer footprints"},
-      {"", "overshoot open borders and sharp edges less, halving the distance error)"},
+      {"-angles K", "encoder: footprint angles (default: 64)"},
+      {"-basis paper|dct", "encoder: cosine atoms, paper (default) or half-period dct (both parities: about"},
+      {"", "half the distance and normal error; see README)"},
       {"-seed S", "seed of the sampling (default: 42)"},
       {"-threads T", "threads (default: all; the cloud does not depend on it)"},
       {"-ascii", "write ascii instead of binary"},
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
     },
-    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles"}, {"-ascii", "-q", "--json"}};
+    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles", "-basis"}, {"-ascii", "-q", "--json"}};
 
   struct Settings
   {
@@ -92,8 +93,9 @@ namespace
       throw Error ("options -n, -density and -spacing exclude each other");
     args.number ("-rho", s.encoder.patches.rho, Range::aboveUpTo (0.0, 1.0));
     args.number ("-f", s.encoder.coding.nyquist_factor, Range::closed (0.0, 1.0));
-    s.encoder.coding.footprint_angles = 64;
     args.integer ("-angles", s.encoder.coding.footprint_angles, Range::closed (3, 4096));
+    if (args.has ("-basis"))
+      s.encoder.basis = cosineBasisKindFromName (args.value ("-basis"));
     args.integer ("-seed", s.resampling.seed, Range::atLeast (0));
     args.integer ("-threads", s.threads, Range::closed (1, 1024));
     s.binary = !args.has ("-ascii");

@@ -287,3 +287,11 @@ TEST (DctCosineDictionary, RepresentsOddHeightsThePaperDictionaryCannot)
   EXPECT_LT (relativeResidual (DctCosineDictionary (12), 0, cubic), 0.05);
   EXPECT_LT (relativeResidual (DctCosineDictionary (12), 12, cubic), 0.06);
 }
+
+TEST (CosineBasisKindNames, RoundTripAndRefuseUnknown)
+{
+  for (const CosineBasisKind kind : {CosineBasisKind::Paper, CosineBasisKind::Dct})
+    EXPECT_EQ (cosineBasisKindFromName (cosineBasisKindName (kind)), kind);
+  EXPECT_THROW (cosineBasisKindFromName ("dst"), Error);
+  EXPECT_THROW (cosineBasisKindFromName (""), Error);
+}

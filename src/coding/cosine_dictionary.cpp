@@ -259,4 +259,13 @@ namespace pcl_sparse
   {
     return kind == CosineBasisKind::Dct ? "dct" : "paper";
   }
+
+  CosineBasisKind
+  cosineBasisKindFromName (const std::string& name)
+  {
+    for (const CosineBasisKind kind : {CosineBasisKind::Paper, CosineBasisKind::Dct})
+      if (name == cosineBasisKindName (kind))
+        return kind;
+    throw Error ("unknown basis '" + name + "': expected paper or dct");
+  }
 } // namespace pcl_sparse

@@ -7,6 +7,7 @@
 #include <pcl_sparse/coding/surface_basis.h>
 
 #include <cstdint>
+#include <string>
 
 namespace pcl_sparse
 {
@@ -87,4 +88,8 @@ namespace pcl_sparse
   /// "paper" or "dct".
   const char*
   cosineBasisKindName (CosineBasisKind kind);
+
+  /// The kind named \a name ("paper" or "dct"); throws pcl_sparse::Error naming \a name otherwise.
+  CosineBasisKind
+  cosineBasisKindFromName (const std::string& name);
 } // namespace pcl_sparse

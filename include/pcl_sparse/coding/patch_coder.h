@@ -21,7 +21,8 @@ namespace pcl_sparse
     int max_atoms = 12;                           ///< L, atoms per patch at most
     double tolerance = 0.01;                      ///< eps: stop at ||r|| <= eps ||y||
     int min_samples = 64;                         ///< m_min: fewer points get extra samples (authors' code: 128)
-    int footprint_angles = 16;                    ///< K, angles of the stored footprint
+    int footprint_angles = 64;                    ///< K, angles of the stored footprint (16 overshoots open borders
+                                                  ///< and sharp edges: bench/results/resample_quality.md)
     std::uint64_t seed = 42;                      ///< global seed of the extra samples (per patch: mixSeed)
     /// Basis support over patch radius: local coordinates are p' = R^T (p - s) / (support_scale r_P), so the
     /// patch fills the disk of radius 1 / support_scale inside the basis square [-1, 1]^2 and the stored
