@@ -177,12 +177,12 @@ namespace
         const HeightSample h = model_.evaluate (i, local.x (), local.y ());
         best = std::min (best, std::abs (local.z () - h.value) * patch.radius / std::sqrt (1.0 + h.gradient.squaredNorm ()));
       }
-      if (std::isfinite (best))
-        return best;
+      // A patch across a thin part can contain the projection of p and report the part's thickness, so
+      // the nearest resampled point (an upper bound: it lies on the decoded surface) always caps it.
       std::vector<int> nearest (1);
       std::vector<float> squared (1);
       cloud_.nearestKSearch (q, 1, nearest, squared);
-      return (p - points_[nearest[0]]).norm ();
+      return std::min (best, (p - points_[nearest[0]]).norm ());
     }
 
   private:
