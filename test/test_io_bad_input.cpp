@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_file_helpers.h"
+
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -17,52 +19,10 @@
 #include <unistd.h>
 
 using namespace pcl_sparse;
+using namespace pcl_sparse_test;
 
 namespace
 {
-  class TempDir
-  {
-  public:
-    TempDir ()
-    {
-      char pattern[] = "/tmp/pcl_sparse_io_bad_XXXXXX";
-      const char* made = ::mkdtemp (pattern);
-      if (!made)
-        throw std::runtime_error ("mkdtemp failed");
-      path_ = made;
-    }
-    ~TempDir () { std::system (("rm -rf '" + path_ + "'").c_str ()); }
-    std::string
-    file (const std::string& name) const
-    {
-      return path_ + "/" + name;
-    }
-
-  private:
-    std::string path_;
-  };
-
-  void
-  writeBytes (const std::string& path, const std::string& bytes)
-  {
-    std::ofstream out (path, std::ios::binary);
-    out.write (bytes.data (), static_cast<std::streamsize> (bytes.size ()));
-  }
-
-  std::string
-  readBytes (const std::string& path)
-  {
-    std::ifstream in (path, std::ios::binary);
-    return std::string (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
-  }
-
-  template <typename T>
-  void
-  put (std::string& out, T value)
-  {
-    out.append (reinterpret_cast<const char*> (&value), sizeof (T));
-  }
-
   /// Loads \a path expecting a refusal; returns the message (empty if it loaded).
   std::string
   refusal (const std::string& path, const MeshLoadOptions& options = MeshLoadOptions ())

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_file_helpers.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,58 +21,10 @@
 #include <unistd.h>
 
 using namespace pcl_sparse;
+using namespace pcl_sparse_test;
 
 namespace
 {
-  /// A fresh temporary directory per test, removed with its files at the end.
-  class TempDir
-  {
-  public:
-    TempDir ()
-    {
-      char pattern[] = "/tmp/pcl_sparse_io_XXXXXX";
-      const char* made = ::mkdtemp (pattern);
-      if (!made)
-        throw std::runtime_error ("mkdtemp failed");
-      path_ = made;
-    }
-    ~TempDir () { std::system (("rm -rf '" + path_ + "'").c_str ()); }
-    std::string
-    file (const std::string& name) const
-    {
-      return path_ + "/" + name;
-    }
-
-  private:
-    std::string path_;
-  };
-
-  void
-  writeBytes (const std::string& path, const std::string& bytes)
-  {
-    std::ofstream out (path, std::ios::binary);
-    out.write (bytes.data (), static_cast<std::streamsize> (bytes.size ()));
-  }
-
-  std::string
-  readBytes (const std::string& path)
-  {
-    std::ifstream in (path, std::ios::binary);
-    return std::string (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
-  }
-
-  /// Appends a value in little- or big-endian byte order.
-  template <typename T>
-  void
-  put (std::string& out, T value, bool big_endian = false)
-  {
-    char bytes[sizeof (T)];
-    std::memcpy (bytes, &value, sizeof (T));
-    if (big_endian)
-      std::reverse (bytes, bytes + sizeof (T));
-    out.append (bytes, sizeof (T));
-  }
-
   /// A torus plus one unreferenced vertex: the loaders must keep it.
   TriangleMesh
   testMesh ()

@@ -1,0 +1,61 @@
+#pragma once
+// Small file helpers shared by the tests that write their own input files.
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+namespace pcl_sparse_test
+{
+  /// A fresh temporary directory, removed with its files at the end.
+  class TempDir
+  {
+  public:
+    explicit TempDir (const std::string& prefix = "pcl_sparse_test")
+    {
+      std::string pattern = "/tmp/" + prefix + "_XXXXXX";
+      if (!::mkdtemp (pattern.data ()))
+        throw std::runtime_error ("mkdtemp failed");
+      path_ = pattern;
+    }
+    ~TempDir () { std::system (("rm -rf '" + path_ + "'").c_str ()); }
+    TempDir (const TempDir&) = delete;
+    TempDir& operator= (const TempDir&) = delete;
+
+    std::string file (const std::string& name) const { return path_ + "/" + name; }
+
+  private:
+    std::string path_;
+  };
+
+  inline void
+  writeBytes (const std::string& path, const std::string& bytes)
+  {
+    std::ofstream out (path, std::ios::binary);
+    out.write (bytes.data (), static_cast<std::streamsize> (bytes.size ()));
+  }
+
+  inline std::string
+  readBytes (const std::string& path)
+  {
+    std::ifstream in (path, std::ios::binary);
+    return std::string (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
+  }
+
+  /// Appends a value in little- or big-endian byte order.
+  template <typename T>
+  void
+  put (std::string& out, T value, bool big_endian = false)
+  {
+    char bytes[sizeof (T)];
+    std::memcpy (bytes, &value, sizeof (T));
+    if (big_endian)
+      std::reverse (bytes, bytes + sizeof (T));
+    out.append (bytes, sizeof (T));
+  }
+} // namespace pcl_sparse_test
