@@ -50,7 +50,16 @@ namespace pcl_sparse
         const std::size_t count = std::min (code.atoms.size (), code.coefficients.size ());
         for (std::size_t k = 0; k < count; ++k)
         {
-          const Term term {cosine->frequencyX (code.atoms[k]), cosine->frequencyY (code.atoms[k]), code.coefficients[k]};
+          Term term;
+          term.i = cosine->frequencyX (code.atoms[k]);
+          term.j = cosine->frequencyY (code.atoms[k]);
+          term.coefficient = code.coefficients[k];
+          const double a = term.coefficient, fi = term.i, fj = term.j;
+          term.ai = a * fi;
+          term.aj = a * fj;
+          term.aij = a * fi * fj;
+          term.ii = fi * fi;
+          term.jj = fj * fj;
           count_x_[p] = std::max (count_x_[p], term.i + 1);
           count_y_[p] = std::max (count_y_[p], term.j + 1);
           terms_.push_back (term);
@@ -91,7 +100,7 @@ namespace pcl_sparse
   }
 
   HeightSample
-  PatchEvaluator::sample (std::size_t p, double x, double y) const
+  PatchEvaluator::sample (std::size_t p, double x, double y, bool hessian) const
   {
     if (!cosine_)
       return model_.evaluate (p, x, y);
@@ -114,25 +123,34 @@ namespace pcl_sparse
       cy[k] = cy[k - 1] * c1y - sy[k - 1] * s1y;
       sy[k] = sy[k - 1] * c1y + cy[k - 1] * s1y;
     }
-    // d/dx cos(i pi x) = -i pi sin(i pi x), d2/dx2 = -(i pi)^2 cos(i pi x).
+    // d/dx cos(i pi x) = -i pi sin(i pi x), d2/dx2 = -(i pi)^2 cos(i pi x). Products of a, i, j are per term.
     double v = 0.0, gx = 0.0, gy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0;
-    for (std::size_t t = term_begin_[p]; t < term_begin_[p + 1]; ++t)
-    {
-      const Term& term = terms_[t];
-      const double a = term.coefficient, fi = term.i, fj = term.j;
-      const double cc = a * cx[term.i] * cy[term.j];
-      v += cc;
-      gx -= a * fi * sx[term.i] * cy[term.j];
-      gy -= a * fj * cx[term.i] * sy[term.j];
-      hxx -= fi * fi * cc;
-      hxy += a * fi * fj * sx[term.i] * sy[term.j];
-      hyy -= fj * fj * cc;
-    }
+    const Term* const begin = terms_.data () + term_begin_[p];
+    const Term* const end = terms_.data () + term_begin_[p + 1];
+    if (hessian)
+      for (const Term* term = begin; term != end; ++term)
+      {
+        const double cc = term->coefficient * cx[term->i] * cy[term->j];
+        v += cc;
+        gx -= term->ai * sx[term->i] * cy[term->j];
+        gy -= term->aj * cx[term->i] * sy[term->j];
+        hxx -= term->ii * cc;
+        hxy += term->aij * sx[term->i] * sy[term->j];
+        hyy -= term->jj * cc;
+      }
+    else
+      for (const Term* term = begin; term != end; ++term)
+      {
+        v += term->coefficient * cx[term->i] * cy[term->j];
+        gx -= term->ai * sx[term->i] * cy[term->j];
+        gy -= term->aj * cx[term->i] * sy[term->j];
+      }
     HeightSample sample;
     sample.value = v;
     sample.gradient = Eigen::Vector2d (M_PI * gx, M_PI * gy);
     const double pi2 = M_PI * M_PI;
-    sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
+    if (hessian)
+      sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
     return sample;
   }
 } // namespace pcl_sparse

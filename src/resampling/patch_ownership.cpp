@@ -37,7 +37,7 @@ namespace pcl_sparse
           const double x = e * (2.0 * a / n - 1.0), y = e * (2.0 * b / n - 1.0);
           if (evaluator.centrality (p, x, y) <= 1.0)
           {
-            const HeightSample h = evaluator.sample (p, x, y);
+            const HeightSample h = evaluator.sample (p, x, y, false);
             h_max = std::max (h_max, std::abs (h.value));
             slope_max = std::max (slope_max, h.gradient.squaredNorm ());
           }
@@ -139,7 +139,7 @@ namespace pcl_sparse
     const double z = other.n.dot (d), h = evaluator_.height (other.patch, x, y);
     if (!(std::abs (h) <= options_.max_height && std::abs (z - h) <= options_.height_tolerance))
       return false;
-    return other.tame || isValidPlace (evaluator_.sample (other.patch, x, y), options_, max_slope_squared_);
+    return other.tame || isValidPlace (evaluator_.sample (other.patch, x, y, false), options_, max_slope_squared_);
   }
 
   std::vector<int>

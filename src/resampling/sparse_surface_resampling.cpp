@@ -93,13 +93,13 @@ namespace pcl_sparse
       }
 
       /// Weight of the place (x, y) of patch \a p: its capped area element if p keeps it and its code is
-      /// valid there, 0 otherwise.
+      /// valid there, 0 otherwise. \a h gets the Hessian only when \a hessian is set (for makePoint).
       double
-      placeWeight (std::size_t p, double x, double y, HeightSample& h) const
+      placeWeight (std::size_t p, double x, double y, HeightSample& h, bool hessian = false) const
       {
         if (!keeps (p, x, y))
           return 0.0;
-        h = evaluator_.sample (p, x, y);
+        h = evaluator_.sample (p, x, y, hessian);
         if (!isValidPlace (h, ownership_.options (), ownership_.maxSlopeSquared ()))
           return 0.0;
         return std::min (max_weight_, std::sqrt (1.0 + h.gradient.squaredNorm ()));
@@ -216,7 +216,7 @@ namespace pcl_sparse
             if (state < 0.0f)
             {
               HeightSample h;
-              w = placeWeight (p, x, y, h);
+              w = placeWeight (p, x, y, h, true);
               if (w == 0.0)
                 continue;
               index = static_cast<std::int32_t> (evaluated.size ());

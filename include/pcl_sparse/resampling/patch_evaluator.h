@@ -61,7 +61,9 @@ namespace pcl_sparse
     /// Height h(x, y) of patch \a p.
     double height (std::size_t p, double x, double y) const;
     /// Height, gradient and Hessian of patch \a p at (x, y); equal to SparseSurfaceModel::evaluate.
-    HeightSample sample (std::size_t p, double x, double y) const;
+    /// Without \a hessian the Hessian is left zero (value and gradient are the same bits either way):
+    /// validity tests need only the gradient.
+    HeightSample sample (std::size_t p, double x, double y, bool hessian = true) const;
 
     /// atan2 with absolute error below 1e-9 rad: octant reduction, atan(a) = pi/6 + atan((sqrt(3) a - 1) /
     /// (a + sqrt(3))) above tan(pi/12), then the Taylor series to z^15.
@@ -93,6 +95,7 @@ namespace pcl_sparse
     {
       int i, j;  ///< frequencies along x and y
       double coefficient;
+      double ai, aj, aij, ii, jj;  ///< a i, a j, a i j, i^2, j^2 (a the coefficient), for the derivatives
     };
 
     const SparseSurfaceModel& model_;
