@@ -6,7 +6,7 @@
 #     MESH_NAME   files in ../shared/meshes (default: spot.obj blub.obj bunny-hr-closed.obj koala.obj)
 #   Environment:
 #     PCL_SPARSE_BASIS       encoder bases to run, space-separated, of paper|dct (default: paper)
-#     PCL_SPARSE_RHOS        patch size bounds (default: 0.003 0.01 0.03)
+#     PCL_SPARSE_RHOS        patch size bounds (default: 0.001 0.003 0.01 0.03)
 #     PCL_SPARSE_TOLERANCES  re-save tolerances, 0 = the lossless file (default: 0 1e-3 3e-3 6e-3 1e-2)
 #
 # Per mesh: Draco (draco_encoder -cl 7 -qp 6 7 8 10 11 12 14 on the same mesh, positions and faces only;
@@ -23,7 +23,7 @@ shift || true
 meshes=("$@")
 [ ${#meshes[@]} -eq 0 ] && meshes=(spot.obj blub.obj bunny-hr-closed.obj koala.obj)
 read -r -a bases <<< "${PCL_SPARSE_BASIS:-paper}"
-read -r -a rhos <<< "${PCL_SPARSE_RHOS:-0.003 0.01 0.03}"
+read -r -a rhos <<< "${PCL_SPARSE_RHOS:-0.001 0.003 0.01 0.03}"
 read -r -a tolerances <<< "${PCL_SPARSE_TOLERANCES:-0 1e-3 3e-3 6e-3 1e-2}"
 for basis in "${bases[@]}"; do
   case $basis in paper|dct) ;; *) echo "rate_distortion.sh: PCL_SPARSE_BASIS: unknown basis '$basis' (paper|dct)" >&2; exit 1;; esac
