@@ -177,18 +177,7 @@ namespace pcl_sparse
     if (!isMeshFileExtension (path))
       throw Error (path + ": unknown point cloud file extension '" + extension + "' (expected .pcd, .ply, .obj, .off or .stl)");
     // The vertices as they are: no faces, no points and NaN points are all fine for a cloud.
-    const TriangleMesh mesh = io_detail::readMeshFile (path);
-    cloud.clear ();
-    cloud.resize (mesh.vertices.size ());
-    bool dense = true;
-    for (std::size_t i = 0; i < mesh.vertices.size (); ++i)
-    {
-      cloud[i].getVector3fMap () = mesh.vertices[i].cast<float> ();
-      dense = dense && mesh.vertices[i].allFinite ();
-    }
-    cloud.width = static_cast<std::uint32_t> (cloud.size ());
-    cloud.height = 1;
-    cloud.is_dense = dense;
+    cloud = verticesToCloud (io_detail::readMeshFile (path));
   }
 
   namespace

@@ -60,6 +60,29 @@ namespace pcl_sparse
       out.append (text, result.ptr);
     }
 
+    /// "x y z\n" at full double precision (shortest round-trip form).
+    void
+    appendCoordinates (std::string& out, const Eigen::Vector3d& v)
+    {
+      appendNumber (out, v.x ());
+      out += ' ';
+      appendNumber (out, v.y ());
+      out += ' ';
+      appendNumber (out, v.z ());
+      out += '\n';
+    }
+
+    /// " a b c" with the indices shifted by \a base (OBJ counts from 1).
+    void
+    appendIndices (std::string& out, const Eigen::Vector3i& t, long long base)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        out += ' ';
+        appendNumber (out, static_cast<long long> (t[k]) + base);
+      }
+    }
+
     template <typename T>
     void
     appendBinary (std::string& out, const T& value)
@@ -76,21 +99,12 @@ namespace pcl_sparse
       for (const Eigen::Vector3d& v : mesh.vertices)
       {
         out += "v ";
-        appendNumber (out, v.x ());
-        out += ' ';
-        appendNumber (out, v.y ());
-        out += ' ';
-        appendNumber (out, v.z ());
-        out += '\n';
+        appendCoordinates (out, v);
       }
       for (const Eigen::Vector3i& t : mesh.triangles)
       {
         out += 'f';
-        for (int k = 0; k < 3; ++k)
-        {
-          out += ' ';
-          appendNumber (out, static_cast<long long> (t[k]) + 1);
-        }
+        appendIndices (out, t, 1);
         out += '\n';
       }
       return out;
@@ -107,22 +121,11 @@ namespace pcl_sparse
       appendNumber (out, static_cast<long long> (mesh.triangles.size ()));
       out += " 0\n";
       for (const Eigen::Vector3d& v : mesh.vertices)
-      {
-        appendNumber (out, v.x ());
-        out += ' ';
-        appendNumber (out, v.y ());
-        out += ' ';
-        appendNumber (out, v.z ());
-        out += '\n';
-      }
+        appendCoordinates (out, v);
       for (const Eigen::Vector3i& t : mesh.triangles)
       {
         out += '3';
-        for (int k = 0; k < 3; ++k)
-        {
-          out += ' ';
-          appendNumber (out, static_cast<long long> (t[k]));
-        }
+        appendIndices (out, t, 0);
         out += '\n';
       }
       return out;

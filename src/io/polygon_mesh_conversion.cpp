@@ -49,8 +49,8 @@ namespace pcl_sparse
     }
   } // namespace
 
-  pcl::PolygonMesh
-  toPolygonMesh (const TriangleMesh& mesh)
+  pcl::PointCloud<pcl::PointXYZ>
+  verticesToCloud (const TriangleMesh& mesh)
   {
     pcl::PointCloud<pcl::PointXYZ> cloud;
     cloud.resize (mesh.vertices.size ());
@@ -63,6 +63,13 @@ namespace pcl_sparse
     cloud.width = static_cast<std::uint32_t> (cloud.size ());
     cloud.height = 1;
     cloud.is_dense = dense;
+    return cloud;
+  }
+
+  pcl::PolygonMesh
+  toPolygonMesh (const TriangleMesh& mesh)
+  {
+    const pcl::PointCloud<pcl::PointXYZ> cloud = verticesToCloud (mesh);
 
     pcl::PolygonMesh polygon_mesh;
     pcl::toPCLPointCloud2 (cloud, polygon_mesh.cloud);

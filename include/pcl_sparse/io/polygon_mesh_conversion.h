@@ -6,6 +6,8 @@
 #include <pcl_sparse/io/mesh_io.h>
 
 #include <pcl/PolygonMesh.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
 
 #include <string>
 #include <vector>
@@ -29,6 +31,11 @@ namespace pcl_sparse
   /// width, height and row_step say.
   std::vector<Eigen::Vector3d>
   positionsFromCloud (const pcl::PCLPointCloud2& cloud, const std::string& what = "PolygonMesh");
+
+  /// The vertices of \a mesh as a cloud (float precision, unorganised); is_dense is false when any vertex
+  /// is not finite.
+  pcl::PointCloud<pcl::PointXYZ>
+  verticesToCloud (const TriangleMesh& mesh);
 
   /// loadTriangleMesh (path, options) followed by toPolygonMesh: the same formats and the same errors.
   void
