@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <limits>
 
@@ -92,9 +93,11 @@ namespace pcl_sparse
     if (!basis)
       basis = makeCosineBasis (options_.basis, options_.dictionary_frequencies);
 
-    // Steps 2-6: patches with frames and local coordinates.
+    // Steps 2-6: patches with frames and local coordinates. The topology is built once, for both stages.
+    const auto topology = std::make_shared<const MeshTopology> (buildMeshTopology (mesh));
     FeatureAwarePatchSampling sampling;
     sampling.setInputMesh (mesh_);
+    sampling.setTopology (topology);
     sampling.setOptions (options_.patches);
     sampling.setNumberOfThreads (num_threads_);
     sampling.setProgressCallback (progress_);
@@ -104,7 +107,7 @@ namespace pcl_sparse
 
     // Steps 7-9: code every patch into its own slot.
     const auto coding_start = std::chrono::steady_clock::now ();
-    const std::vector<double> ring_lengths = meanRingEdgeLengths (mesh, buildMeshTopology (mesh));
+    const std::vector<double> ring_lengths = meanRingEdgeLengths (mesh, *topology);
     const long num_patches = static_cast<long> (patches_.size ());
     std::vector<PatchCode> codes (patches_.size ());
     coding_info_.assign (patches_.size (), PatchCodingInfo ());
