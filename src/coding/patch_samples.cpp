@@ -26,6 +26,36 @@ namespace pcl_sparse
     return splitmix64 (splitmix64 (seed) ^ (index * 0xd1b54a32d192ed03ULL + 1));
   }
 
+  namespace
+  {
+    /// Mean length of the edges from \a v to its 1-ring; 0 for a vertex without edges.
+    double
+    meanRingEdgeLength (const TriangleMesh& mesh, const MeshTopology& topology, int v)
+    {
+      const IndexRange ring = topology.neighborsOf (v);
+      if (ring.size () == 0)
+        return 0.0;
+      double sum = 0.0;
+      for (int u : ring)
+        sum += (mesh.vertices[u] - mesh.vertices[v]).norm ();
+      return sum / ring.size ();
+    }
+
+    /// Median of the positive \a lengths, in units of \a radius (0 when there is none).
+    double
+    medianSpacing (std::vector<double>& lengths, double radius)
+    {
+      if (lengths.empty () || !(radius > 0.0))
+        return 0.0;
+      const std::size_t half = lengths.size () / 2;
+      std::nth_element (lengths.begin (), lengths.begin () + half, lengths.end ());
+      double median = lengths[half];
+      if (lengths.size () % 2 == 0)
+        median = 0.5 * (median + *std::max_element (lengths.begin (), lengths.begin () + half));
+      return median / radius;
+    }
+  } // namespace
+
   double
   patchSampleSpacing (const Patch& patch, const TriangleMesh& mesh, const MeshTopology& topology)
   {
@@ -33,22 +63,11 @@ namespace pcl_sparse
     means.reserve (patch.vertices.size ());
     for (int v : patch.vertices)
     {
-      const IndexRange ring = topology.neighborsOf (v);
-      if (ring.size () == 0)
-        continue;
-      double sum = 0.0;
-      for (int u : ring)
-        sum += (mesh.vertices[u] - mesh.vertices[v]).norm ();
-      means.push_back (sum / ring.size ());
+      const double mean = meanRingEdgeLength (mesh, topology, v);
+      if (mean > 0.0)
+        means.push_back (mean);
     }
-    if (means.empty () || !(patch.radius > 0.0))
-      return 0.0;
-    const std::size_t half = means.size () / 2;
-    std::nth_element (means.begin (), means.begin () + half, means.end ());
-    double median = means[half];
-    if (means.size () % 2 == 0)
-      median = 0.5 * (median + *std::max_element (means.begin (), means.begin () + half));
-    return median / patch.radius;
+    return medianSpacing (means, patch.radius);
   }
 
   std::vector<double>
@@ -56,15 +75,7 @@ namespace pcl_sparse
   {
     std::vector<double> lengths (mesh.vertices.size (), 0.0);
     for (std::size_t v = 0; v < lengths.size () && v < topology.numVertices (); ++v)
-    {
-      const IndexRange ring = topology.neighborsOf (static_cast<int> (v));
-      if (ring.size () == 0)
-        continue;
-      double sum = 0.0;
-      for (int u : ring)
-        sum += (mesh.vertices[u] - mesh.vertices[v]).norm ();
-      lengths[v] = sum / ring.size ();
-    }
+      lengths[v] = meanRingEdgeLength (mesh, topology, static_cast<int> (v));
     return lengths;
   }
 
@@ -76,14 +87,7 @@ namespace pcl_sparse
     for (int v : patch.vertices)
       if (v >= 0 && static_cast<std::size_t> (v) < mean_ring_edge_lengths.size () && mean_ring_edge_lengths[v] > 0.0)
         means.push_back (mean_ring_edge_lengths[v]);
-    if (means.empty () || !(patch.radius > 0.0))
-      return 0.0;
-    const std::size_t half = means.size () / 2;
-    std::nth_element (means.begin (), means.begin () + half, means.end ());
-    double median = means[half];
-    if (means.size () % 2 == 0)
-      median = 0.5 * (median + *std::max_element (means.begin (), means.begin () + half));
-    return median / patch.radius;
+    return medianSpacing (means, patch.radius);
   }
 
   std::vector<Eigen::Vector3d>
