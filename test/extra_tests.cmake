@@ -16,3 +16,12 @@ add_test(NAME consumer_project
   COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DBINARY_DIR=${PROJECT_BINARY_DIR}
           -DCXX_COMPILER=${CMAKE_CXX_COMPILER} -DCONFIG=$<CONFIG> -P ${PROJECT_SOURCE_DIR}/cmake/RunConsumerTest.cmake)
 set_tests_properties(consumer_project PROPERTIES TIMEOUT 900 RUN_SERIAL TRUE)
+
+# The tools' output files, byte for byte, against hashes recorded before the refactors of issue 11.
+if(TARGET pcl_sparse_encode)
+  add_test(NAME tool_outputs_unchanged
+    COMMAND ${CMAKE_COMMAND} -DTOOLS_DIR=$<TARGET_FILE_DIR:pcl_sparse_encode> -DSHARED=${PCL_SPARSE_SHARED_MESHES}/..
+            -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/tool_outputs -DCASES=${CMAKE_CURRENT_SOURCE_DIR}/golden/tool_outputs.cases
+            -P ${PROJECT_SOURCE_DIR}/cmake/CheckToolOutputs.cmake)
+  set_tests_properties(tool_outputs_unchanged PROPERTIES FAIL_REGULAR_EXPRESSION "differ|failed" TIMEOUT 600)
+endif()
