@@ -60,7 +60,7 @@ main (int argc, char** argv)
       throw Error ("option -recon: '" + recon_out + "' has no mesh extension (.obj .off .ply .stl)");
     std::size_t n = 0;
     double density = 0.0;
-    const bool has_n = args.integer ("-n", n, tools::Range::closed (1, SparseSurfaceResampling::max_points));
+    const bool has_n = args.integer ("-n", n, tools::Range::closed (1, SparseSurfaceResampling<pcl::PointNormal>::max_points));
     const bool has_density = args.number ("-density", density, tools::Range::above (0.0));
     if (has_n && has_density)
       throw Error ("options -n and -density exclude each other");
@@ -90,7 +90,7 @@ main (int argc, char** argv)
     }
 
     timer.tic ();
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
     SparseSurfaceResamplingOptions options;
     options.seed = seed;

@@ -93,7 +93,7 @@ main (int argc, char** argv)
     const TriangleMesh::ConstPtr mesh = std::make_shared<const TriangleMesh> (loadTriangleMesh (path));
     const double load_seconds = timer.toc () / 1000.0;
 
-    SparseSurfaceEncoder encoder;
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (mesh);
     encoder.setOptions (options);
     encoder.setNumberOfThreads (threads);

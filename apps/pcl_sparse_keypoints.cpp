@@ -117,7 +117,7 @@ main (int argc, char** argv)
 
     pcl::console::TicToc timer;
     timer.tic ();
-    HarrisKeypoint3DMesh harris;
+    HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
     harris.setInputMesh (mesh);
     harris.setOptions (options);
     pcl::PointCloud<pcl::PointXYZI> keypoints;

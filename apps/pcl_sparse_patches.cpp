@@ -93,7 +93,7 @@ main (int argc, char** argv)
     auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (input));
     pcl::console::TicToc timer;
     timer.tic ();
-    FeatureAwarePatchSampling sampling;
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
     sampling.setInputMesh (mesh);
     sampling.setOptions (options);
     sampling.setProgressCallback (makeConsoleProgress (quiet || json));

@@ -74,7 +74,7 @@ namespace
       throw Error (s.input + ": unknown input extension (a mesh .obj .off .ply .stl or a model .psm)");
 
     int given = 0;
-    if (args.integer ("-n", s.count, Range::closed (1, SparseSurfaceResampling::max_points)))
+    if (args.integer ("-n", s.count, Range::closed (1, SparseSurfaceResampling<pcl::PointNormal>::max_points)))
     {
       ++given;
       s.mode = 1;
@@ -136,7 +136,7 @@ main (int argc, char** argv)
       pcl::console::print_info ("Loaded %s: %zu vertices, %zu faces in %.3f s\n", s.input.c_str (), mesh->numVertices (),
                                 mesh->numTriangles (), load_seconds);
       s.encoder.validate ();
-      SparseSurfaceEncoder encoder;
+      SparseSurfaceEncoder<pcl::PointXYZ> encoder;
       encoder.setInputMesh (mesh);
       encoder.setOptions (s.encoder);
       encoder.setNumberOfThreads (s.threads);
@@ -148,7 +148,7 @@ main (int argc, char** argv)
                                 model->numNonZeros (), encode_seconds);
     }
 
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
     resampling.setOptions (s.resampling);
     resampling.setNumberOfThreads (s.threads);
@@ -157,7 +157,7 @@ main (int argc, char** argv)
     {
       if (input_vertices == 0)
         throw Error (s.input + ": the model does not record its vertex count; give -n, -density or -spacing");
-      resampling.setPointCount (std::min<std::size_t> (4 * input_vertices, SparseSurfaceResampling::max_points));
+      resampling.setPointCount (std::min<std::size_t> (4 * input_vertices, SparseSurfaceResampling<pcl::PointNormal>::max_points));
     }
     else if (s.mode == 1)
       resampling.setPointCount (s.count);

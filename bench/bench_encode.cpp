@@ -134,7 +134,7 @@ main (int argc, char** argv)
     {
       SparseSurfaceEncoderOptions options = base;
       options.patches.rho = rho;
-      SparseSurfaceEncoder encoder;
+      SparseSurfaceEncoder<pcl::PointXYZ> encoder;
       encoder.setInputMesh (mesh);
       encoder.setOptions (options);
       encoder.setNumberOfThreads (threads);

@@ -284,7 +284,7 @@ main (int argc, char** argv)
     {
       const auto start = std::chrono::steady_clock::now ();
       const auto model = std::make_shared<const SparseSurfaceModel> (loadModel (argv[3]));
-      SparseSurfaceResampling resampling;
+      SparseSurfaceResampling<pcl::PointNormal> resampling;
       resampling.setInputModel (model);
       resampling.setPointCount (n);
       pcl::PointCloud<pcl::PointNormal> cloud;

@@ -78,7 +78,7 @@ main (int argc, char** argv)
     computeUnitScaleHarris3D (*mesh, topology, 0, responses, keypoints);  // the sampling's default order
     const double harris_seconds = now () - t0;
 
-    FeatureAwarePatchSampling sampling;
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
     sampling.setInputMesh (mesh);
     sampling.setOptions (options);
     sampling.setResponses (responses);

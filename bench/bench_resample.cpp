@@ -122,7 +122,7 @@ namespace
   runOurs (const TriangleMesh& mesh, const SparseSurfaceModel::ConstPtr& model, std::size_t count, int threads,
            pcl::PointCloud<pcl::PointNormal>* keep = nullptr)
   {
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
     resampling.setPointCount (count);
     resampling.setNumberOfThreads (threads);
@@ -159,7 +159,7 @@ namespace
   SparseSurfaceModel::Ptr
   encodeMesh (const std::shared_ptr<TriangleMesh>& mesh, int angles, double* seconds = nullptr)
   {
-    SparseSurfaceEncoder encoder;
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (mesh);
     encoder.setNumberOfThreads (1);
     SparseSurfaceEncoderOptions encoder_options;  // paper defaults, footprint angles as asked
@@ -192,7 +192,7 @@ namespace
       file_bytes = bytes.size ();
       model = std::make_shared<SparseSurfaceModel> (decodeModel (bytes.data (), bytes.size ()));
     }
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
     resampling.setPointCount (4 * mesh->numVertices ());
     pcl::PointCloud<pcl::PointNormal> cloud;

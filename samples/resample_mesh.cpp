@@ -20,12 +20,12 @@ main (int argc, char** argv)
   {
     auto mesh = std::make_shared<pcl_sparse::TriangleMesh> (pcl_sparse::loadTriangleMesh (argv[1]));
 
-    pcl_sparse::SparseSurfaceEncoder encoder;  // paper defaults: rho = 0.001, f = 0.5, 144 cosine atoms
+    pcl_sparse::SparseSurfaceEncoder<pcl::PointXYZ> encoder;  // paper defaults: rho = 0.001, f = 0.5, 144 cosine atoms
     encoder.setInputMesh (mesh);
     auto model = std::make_shared<pcl_sparse::SparseSurfaceModel> ();
     encoder.compute (*model);
 
-    pcl_sparse::SparseSurfaceResampling resampling;
+    pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
     resampling.setPointCount (argc > 3 ? std::stoul (argv[3]) : 4 * mesh->numVertices ());
     pcl::PointCloud<pcl::PointNormal> cloud;

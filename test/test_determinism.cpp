@@ -46,7 +46,7 @@ namespace
     const int saved = omp_get_max_threads ();
     if (threads < 0)
       omp_set_num_threads (-threads);
-    SparseSurfaceEncoder encoder;
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (mesh);
     encoder.setNumberOfThreads (threads > 0 ? threads : 0);
     SparseSurfaceModel model;
@@ -63,11 +63,11 @@ namespace
     const int saved = omp_get_max_threads ();
     if (threads < 0)
       omp_set_num_threads (-threads);
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (std::make_shared<const SparseSurfaceModel> (model));
     resampling.setPointCount (20000);
     resampling.setNumberOfThreads (threads > 0 ? threads : 0);
-    SparseSurfaceResampling::PointCloud cloud;
+    SparseSurfaceResampling<pcl::PointNormal>::PointCloud cloud;
     resampling.compute (cloud);
     omp_set_num_threads (saved);
     std::vector<std::uint8_t> bytes (cloud.size () * sizeof (pcl::PointNormal));

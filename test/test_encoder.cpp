@@ -18,7 +18,7 @@ namespace
   encode (const TriangleMesh& mesh, const SparseSurfaceEncoderOptions& options = SparseSurfaceEncoderOptions (),
           int threads = 0)
   {
-    SparseSurfaceEncoder encoder;
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));
     encoder.setOptions (options);
     encoder.setNumberOfThreads (threads);
@@ -127,7 +127,7 @@ TEST (SparseSurfaceEncoder, DctBasisSameModelForAnyThreadCount)
 
 TEST (SparseSurfaceEncoder, RejectsBadOptionsAndInput)
 {
-  SparseSurfaceEncoder encoder;
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
   SparseSurfaceModel model;
   EXPECT_THROW (encoder.compute (model), Error);
   encoder.setInputMesh (std::make_shared<TriangleMesh> (makePlaneGrid (4)));
@@ -185,7 +185,7 @@ TEST (SparseSurfaceEncoder, NyquistCapReducesErrorBetweenVertices)
   // so coarse a sphere is a single vertex: nothing to oscillate).
   const double rho = 0.05;
   const TriangleMesh mesh = makeIcosphere (2, 1.0);
-  auto between_error = [&] (const SparseSurfaceModel& model, const SparseSurfaceEncoder& encoder) {
+  auto between_error = [&] (const SparseSurfaceModel& model, const SparseSurfaceEncoder<pcl::PointXYZ>& encoder) {
     // Each patch evaluated at the barycentres of its own triangles: distance of the point to the sphere.
     double sum = 0.0;
     std::size_t count = 0;
@@ -213,7 +213,7 @@ TEST (SparseSurfaceEncoder, NyquistCapReducesErrorBetweenVertices)
     SparseSurfaceEncoderOptions options;
     options.coding.nyquist_factor = f;
     options.patches.rho = rho;
-    SparseSurfaceEncoder encoder;
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));
     encoder.setOptions (options);
     SparseSurfaceModel model;
@@ -258,7 +258,7 @@ TEST (SparseSurfaceEncoder, FootprintsCoverTheirTrianglesOnFandisk)
   if (!std::filesystem::exists (path))
     GTEST_SKIP () << "shared mesh " << path << " not found";
   const TriangleMesh mesh = loadTriangleMesh (path);
-  SparseSurfaceEncoder encoder;
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
   encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));
   SparseSurfaceModel model;
   encoder.compute (model);

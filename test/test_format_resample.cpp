@@ -17,7 +17,7 @@ namespace
   pcl::PointCloud<pcl::PointNormal>
   resample (const SparseSurfaceModel& model, std::vector<int>* patches = nullptr)
   {
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (std::make_shared<const SparseSurfaceModel> (model));
     resampling.setPointCount (20000);
     pcl::PointCloud<pcl::PointNormal> cloud;

@@ -1,3 +1,4 @@
+#include <pcl_sparse/common/error.h>
 #include <pcl_sparse/mesh/mesh_normal_estimation.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -63,7 +64,7 @@ TEST (MeshNormalEstimation, FillsNormalsAndPositionsLikePcl)
   TriangleMesh mesh = makePlaneGrid (6, 1.0);
   mesh.vertices.emplace_back (5.0, 5.0, 5.0);  // unreferenced: no normal
   auto shared = std::make_shared<TriangleMesh> (mesh);
-  MeshNormalEstimation ne;
+  MeshNormalEstimation<pcl::PointXYZ> ne;
   ne.setInputMesh (shared);
   pcl::PointCloud<pcl::Normal> normals;
   ne.compute (normals);
@@ -96,8 +97,9 @@ TEST (MeshNormalEstimation, FillsNormalsAndPositionsLikePcl)
     EXPECT_GT (p.curvature, 0.0f);
   }
 
-  MeshNormalEstimation empty;
+  // No input: an Error naming the stage, and an empty output.
+  MeshNormalEstimation<pcl::PointXYZ> empty;
   normals.resize (4);
-  empty.compute (normals);
+  EXPECT_THROW (empty.compute (normals), Error);
   EXPECT_TRUE (normals.empty ());
 }

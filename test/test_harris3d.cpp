@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 #include <random>
 
 using namespace pcl_sparse;
@@ -139,7 +140,7 @@ TEST (Harris3D, CubeCornersRankTop)
 
   // The stage: keep 8 keypoints (fraction 8 / #V): exactly the corners, in decreasing response.
   auto shared = std::make_shared<TriangleMesh> (mesh);
-  HarrisKeypoint3DMesh harris;
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
   harris.setInputMesh (shared);
   harris.setSelectionFraction (8.0 / static_cast<double> (mesh.numVertices ()));
   pcl::PointCloud<pcl::PointXYZI> keypoints;
@@ -162,7 +163,7 @@ TEST (Harris3D, ClusteringKeepsKeypointsApart)
 {
   const TriangleMesh mesh = makeCube (12, 1.0);
   auto shared = std::make_shared<TriangleMesh> (mesh);
-  HarrisKeypoint3DMesh harris;
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
   harris.setInputMesh (shared);
   harris.setClustering (0.2);  // 0.2 x 2 sqrt 3 = 0.69
   pcl::PointCloud<pcl::PointXYZI> keypoints;
@@ -205,7 +206,7 @@ TEST (Harris3D, KeypointsAreLocalMaximaAndTheFractionIsRespected)
 TEST (Harris3D, SameOutputForAnyThreadCount)
 {
   const auto mesh = std::make_shared<TriangleMesh> (bumpyTorus ());
-  HarrisKeypoint3DMesh harris;
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
   harris.setInputMesh (mesh);
   pcl::PointCloud<pcl::PointXYZI> one, two, explicit_two;
   omp_set_num_threads (1);
@@ -232,7 +233,7 @@ TEST (Harris3D, SameOutputForAnyThreadCount)
 TEST (Harris3D, IndicesRestrictDetection)
 {
   const auto mesh = std::make_shared<TriangleMesh> (bumpyTorus ());
-  HarrisKeypoint3DMesh harris;
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
   harris.setInputMesh (mesh);
   pcl::PointCloud<pcl::PointXYZI> all, some;
   harris.compute (all);
@@ -262,16 +263,20 @@ TEST (Harris3D, IndicesRestrictDetection)
   for (int v = 0; v < static_cast<int> (mesh->numVertices ()); v += 3)
     EXPECT_EQ (harris.getResponses ()[v], full[v]);
   EXPECT_EQ (twice.size (), some.size ());  // the fraction counts distinct vertices
-  // Back to all vertices.
-  harris.setIndices (nullptr);
+  // Indices given as all vertices: the same as none (PCL's setIndices cannot be unset).
+  auto every = std::make_shared<std::vector<int>> (mesh->numVertices ());
+  std::iota (every->begin (), every->end (), 0);
+  harris.setIndices (every);
   harris.compute (some);
-  EXPECT_EQ (some.size (), all.size ());
+  ASSERT_EQ (some.size (), all.size ());
+  for (std::size_t i = 0; i < all.size (); ++i)
+    EXPECT_EQ (some[i].intensity, all[i].intensity);
 }
 
 TEST (Harris3D, TooFewNeighboursGiveNoResponseAndBadInputIsRefused)
 {
   const auto tetra = std::make_shared<TriangleMesh> (makeTetrahedron ());
-  HarrisKeypoint3DMesh harris;
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
   harris.setInputMesh (tetra);
   pcl::PointCloud<pcl::PointXYZI> keypoints;
   harris.compute (keypoints);
@@ -279,15 +284,16 @@ TEST (Harris3D, TooFewNeighboursGiveNoResponseAndBadInputIsRefused)
   for (double r : harris.getResponses ())
     EXPECT_TRUE (std::isnan (r));
 
-  HarrisKeypoint3DMesh no_input;
+  HarrisKeypoint3DMesh<pcl::PointXYZ> no_input;
   keypoints.resize (3);
-  no_input.compute (keypoints);
+  EXPECT_THROW (no_input.compute (keypoints), Error);
   EXPECT_TRUE (keypoints.empty ());
 
-  HarrisKeypoint3DMesh bad_index;
+  HarrisKeypoint3DMesh<pcl::PointXYZ> bad_index;
   bad_index.setInputMesh (std::make_shared<TriangleMesh> (makeCube (4)));
   bad_index.setIndices (std::make_shared<std::vector<int>> (std::vector<int>{0, 100000}));
-  bad_index.compute (keypoints);
+  keypoints.resize (3);
+  EXPECT_THROW (bad_index.compute (keypoints), Error);
   EXPECT_TRUE (keypoints.empty ());
 
   const TriangleMesh cube = makeCube (4);
@@ -315,7 +321,7 @@ TEST (Harris3D, FandiskTopKeypointsLieOnSharpEdges)
 
   for (int rings : {0, 2})
   {
-    HarrisKeypoint3DMesh harris;
+    HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
     harris.setInputMesh (mesh);
     harris.setRings (rings);
     pcl::PointCloud<pcl::PointXYZI> keypoints;

@@ -29,7 +29,7 @@ namespace
   sample (const TriangleMesh& mesh, const PatchOptions& options = PatchOptions (),
           const std::vector<double>& responses = std::vector<double> (), int threads = 0)
   {
-    FeatureAwarePatchSampling sampling;
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
     sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
     sampling.setOptions (options);
     sampling.setResponses (responses.empty () ? std::vector<double> (mesh.vertices.size (), 0.0) : responses);
@@ -168,7 +168,7 @@ TEST (PatchSampling, CoveragePassCoversCreaseOnlyMeshes)
   // A cube with one cell per face: every vertex is a corner whose normal is 54.7 degrees from all its
   // faces, so the method's growth never leaves its seed. The coverage pass grows from faces instead.
   const TriangleMesh cube = makeCube (1);
-  FeatureAwarePatchSampling sampling;
+  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
   sampling.setInputMesh (std::make_shared<TriangleMesh> (cube));
   sampling.setResponses (std::vector<double> (cube.vertices.size (), 0.0));
   std::vector<Patch> patches;
@@ -232,7 +232,7 @@ TEST (PatchSampling, UnreferencedAndIsolatedVertices)
   EXPECT_TRUE (it->local[0].isZero ());
 
   options.cover_unreferenced_vertices = false;
-  FeatureAwarePatchSampling sampling;
+  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
   sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
   sampling.setOptions (options);
   sampling.setResponses (std::vector<double> (mesh.vertices.size (), 0.0));
@@ -263,11 +263,30 @@ TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
     else
       EXPECT_EQ (p.size (), 1u);
 
-  // No faces at all: every vertex is unreferenced and gets its own one-vertex patch.
+  // No faces at all: the sampling itself gives every (unreferenced) vertex its own one-vertex patch; the
+  // stage refuses a surface without faces, naming itself, as every stage does.
   TriangleMesh cloud;
   cloud.vertices = {Eigen::Vector3d (0, 0, 0), Eigen::Vector3d (1, 0, 0)};
-  EXPECT_EQ (sample (cloud).size (), 2u);
-  EXPECT_TRUE (sample (TriangleMesh ()).empty ());
+  const MeshTopology cloud_topology = buildMeshTopology (cloud);
+  EXPECT_EQ (sampleFeatureAwarePatches (cloud, cloud_topology, PatchOptions (), {0.0, 0.0}, {}, 0, {}).patches.size (), 2u);
+  EXPECT_TRUE (sampleFeatureAwarePatches (TriangleMesh (), buildMeshTopology (TriangleMesh ()), PatchOptions (), {}, {}, 0, {})
+                 .patches.empty ());
+  for (const TriangleMesh& no_faces : {cloud, TriangleMesh ()})
+  {
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+    sampling.setInputMesh (std::make_shared<TriangleMesh> (no_faces));
+    std::vector<Patch> patches (3);
+    try
+    {
+      sampling.compute (patches);
+      ADD_FAILURE () << "a surface without faces was accepted";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find ("[FeatureAwarePatchSampling::compute]"), std::string::npos) << e.what ();
+    }
+    EXPECT_TRUE (patches.empty ());
+  }
 }
 
 TEST (PatchSampling, NonManifoldEdgeIsABorder)
@@ -330,7 +349,7 @@ TEST (PatchSampling, SameOutputForAnyThreadCountAndGivenTopology)
   std::vector<std::vector<Patch>> results;
   for (int threads : {1, 2})
   {
-    FeatureAwarePatchSampling sampling;
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
     sampling.setInputMesh (mesh);
     sampling.setNumberOfThreads (threads);
     if (threads == 2)
@@ -353,7 +372,7 @@ TEST (PatchSampling, IndependentOfTheLengthUnit)
   for (auto& p : big.vertices)
     p *= 1024.0;
   std::vector<Patch> a, b;
-  FeatureAwarePatchSampling sampling;
+  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
   sampling.setInputMesh (std::make_shared<TriangleMesh> (torus));
   sampling.compute (a);
   sampling.setInputMesh (std::make_shared<TriangleMesh> (big));
@@ -369,7 +388,7 @@ TEST (PatchSampling, IndependentOfTheLengthUnit)
 
 TEST (PatchSampling, BadInputThrows)
 {
-  FeatureAwarePatchSampling sampling;
+  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
   std::vector<Patch> patches;
   EXPECT_THROW (sampling.compute (patches), Error);
   auto mesh = std::make_shared<TriangleMesh> (makeIcosphere (1));
@@ -447,7 +466,7 @@ TEST (PatchSamplingShared, InvariantsOnEverySharedMesh)
       continue;
     }
     const TriangleMesh mesh = loadTriangleMesh (path);
-    FeatureAwarePatchSampling sampling;
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
     sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
     std::vector<Patch> patches;
     sampling.compute (patches);
@@ -462,7 +481,7 @@ TEST (PatchSamplingShared, FandiskPatchesAreSmallerAtSharpEdges)
   if (!std::filesystem::exists (path))
     GTEST_SKIP () << "shared mesh not found: " << path;
   const TriangleMesh mesh = loadTriangleMesh (path);
-  FeatureAwarePatchSampling sampling;
+  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
   sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
   sampling.setNumberOfThreads (1);
   std::vector<Patch> patches, patches_two_threads;
@@ -536,7 +555,7 @@ TEST (PatchSamplingShared, SpotPatchCountFallsAsRhoGrows)
   std::vector<std::size_t> counts;
   for (double rho : {0.0002, 0.001, 0.005})
   {
-    FeatureAwarePatchSampling sampling;
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
     sampling.setInputMesh (mesh);
     sampling.setTopology (topology);
     sampling.setResponses (responses);

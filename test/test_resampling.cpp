@@ -1,4 +1,4 @@
-// Tests of SparseSurfaceResampling on hand-made models with known surfaces: a flat sheet of disk
+// Tests of SparseSurfaceResampling<pcl::PointNormal> on hand-made models with known surfaces: a flat sheet of disk
 // patches and a sphere covered by overlapping caps, both coded over the CosineDictionary by least squares.
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/common/error.h>
@@ -162,7 +162,7 @@ namespace
   pcl::PointCloud<pcl::PointNormal>::Ptr
   resample (const SparseSurfaceModel::Ptr& model, std::size_t count, int threads = 0, std::uint64_t seed = 42)
   {
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
     resampling.setPointCount (count);
     SparseSurfaceResamplingOptions options;
@@ -234,7 +234,7 @@ TEST (Resampling, PlaneExactCountOnSurfaceUniform)
       inside += covered ? 1.0 : 0.0;
     }
   const double area = inside * 9.0 / (n * n);
-  SparseSurfaceResampling resampling;
+  SparseSurfaceResampling<pcl::PointNormal> resampling;
   resampling.setInputModel (model);
   resampling.setDensity (10000.0);
   pcl::PointCloud<pcl::PointNormal> by_density;
@@ -303,7 +303,7 @@ TEST (Resampling, SphereOnSurfaceNormalsCompleteUniform)
 TEST (Resampling, PointsLieOnTheirPatchCode)
 {
   const auto model = makeSphereModel ();
-  SparseSurfaceResampling resampling;
+  SparseSurfaceResampling<pcl::PointNormal> resampling;
   resampling.setInputModel (model);
   resampling.setPointCount (3000);
   pcl::PointCloud<pcl::PointNormal> cloud;
@@ -376,13 +376,13 @@ TEST (Resampling, SmallCountsAreExact)
 
 TEST (Resampling, RefusesBadSetup)
 {
-  SparseSurfaceResampling resampling;
+  SparseSurfaceResampling<pcl::PointNormal> resampling;
   pcl::PointCloud<pcl::PointNormal> cloud;
   EXPECT_THROW (resampling.compute (cloud), Error);  // no model
   resampling.setInputModel (makePlaneModel ());
   EXPECT_THROW (resampling.compute (cloud), Error);  // no density
   EXPECT_THROW (resampling.setPointCount (0), Error);
-  EXPECT_THROW (resampling.setPointCount (SparseSurfaceResampling::max_points + 1), Error);
+  EXPECT_THROW (resampling.setPointCount (SparseSurfaceResampling<pcl::PointNormal>::max_points + 1), Error);
   EXPECT_THROW (resampling.setDensity (-1.0), Error);
   EXPECT_THROW (resampling.setDensity (std::nan ("")), Error);
   EXPECT_THROW (resampling.setSpacing (0.0), Error);

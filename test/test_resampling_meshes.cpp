@@ -1,4 +1,4 @@
-// SparseSurfaceResampling on encoded meshes: generated surfaces with known geometry and the shared real
+// SparseSurfaceResampling<pcl::PointNormal> on encoded meshes: generated surfaces with known geometry and the shared real
 // meshes (skipped when ../shared/meshes is absent). Each cloud has 4 x the vertex count, exactly.
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
@@ -46,14 +46,14 @@ namespace
   encodeAndResample (const TriangleMesh::ConstPtr& mesh, std::size_t count)
   {
     Result result;
-    SparseSurfaceEncoder encoder;
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (mesh);
     SparseSurfaceEncoderOptions encoder_options;
     encoder_options.coding.footprint_angles = footprint_angles;
     encoder.setOptions (encoder_options);
     result.model = std::make_shared<SparseSurfaceModel> ();
     encoder.compute (*result.model);
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (result.model);
     resampling.setPointCount (count);
     resampling.compute (result.cloud);
@@ -155,7 +155,7 @@ namespace
   std::pair<double, double>
   strayAndGap (const TriangleMesh& mesh, const SparseSurfaceModel::ConstPtr& model)
   {
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
     resampling.setPointCount (4 * mesh.numVertices ());
     pcl::PointCloud<pcl::PointNormal> cloud;
@@ -171,7 +171,7 @@ namespace
   {
     for (const int angles : {16, footprint_angles})
     {
-      SparseSurfaceEncoder encoder;
+      SparseSurfaceEncoder<pcl::PointXYZ> encoder;
       encoder.setInputMesh (mesh);
       SparseSurfaceEncoderOptions encoder_options;
       encoder_options.coding.footprint_angles = angles;
@@ -256,7 +256,7 @@ TEST (ResamplingMeshes, DctNormalsReachTheVertexNormalFloor)
     if (!mesh)
       continue;
     ++found;
-    SparseSurfaceEncoder encoder;
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (mesh);
     SparseSurfaceEncoderOptions encoder_options;
     encoder_options.coding.footprint_angles = footprint_angles;
@@ -264,7 +264,7 @@ TEST (ResamplingMeshes, DctNormalsReachTheVertexNormalFloor)
     encoder.setOptions (encoder_options);
     auto model = std::make_shared<SparseSurfaceModel> ();
     encoder.compute (*model);
-    SparseSurfaceResampling resampling;
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
     resampling.setPointCount (4 * mesh->numVertices ());
     pcl::PointCloud<pcl::PointNormal> cloud;

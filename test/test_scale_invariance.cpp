@@ -39,7 +39,7 @@ namespace
   Encoded
   encode (const TriangleMesh& mesh)
   {
-    SparseSurfaceEncoder encoder;
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));
     SparseSurfaceModel model;
     encoder.compute (model);

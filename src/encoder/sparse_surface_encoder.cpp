@@ -1,7 +1,7 @@
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/coding/patch_samples.h>
 #include <pcl_sparse/common/error.h>
-#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/encoder/impl/sparse_surface_encoder.hpp>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 
@@ -54,77 +54,55 @@ namespace pcl_sparse
              "basis must be Paper or Dct, got " + std::to_string (static_cast<int> (basis)));
   }
 
-  void
-  SparseSurfaceEncoder::compute (SparseSurfaceModel& model)
+  bool
+  hasSurfaceArea (const TriangleMesh& mesh)
   {
-    if (!mesh_ || mesh_->vertices.empty () || mesh_->triangles.empty ())
-      throw Error ("[" + name_ + "::compute] no input mesh or an empty one (set a mesh with triangles)");
-    // Every face degenerate: no surface to code (rho bounds A_p / A with A = 0, normals are arbitrary).
-    // Faces with invalid indices are left to the sampling stage, which names them.
-    const long num_vertices = static_cast<long> (mesh_->vertices.size ());
-    bool has_area = false;
-    for (const Eigen::Vector3i& t : mesh_->triangles)
-      if (t.minCoeff () >= 0 && t.maxCoeff () < num_vertices)
-      {
-        const Eigen::Vector3d& a = mesh_->vertices[t[0]];
-        const Eigen::Vector3d n = (mesh_->vertices[t[1]] - a).cross (mesh_->vertices[t[2]] - a);
-        if (n.allFinite () && n.stableNorm () > 0.0)
-        {
-          has_area = true;
-          break;
-        }
-      }
-      else
-        has_area = true;
-    if (!has_area)
-      throw Error ("[" + name_ + "::compute] the mesh has no area: all " + std::to_string (mesh_->triangles.size ()) +
-                   " faces are degenerate");
-    options_.validate ();
-    computeModel (model);
+    const long num_vertices = static_cast<long> (mesh.vertices.size ());
+    for (const Eigen::Vector3i& t : mesh.triangles)
+    {
+      if (t.minCoeff () < 0 || t.maxCoeff () >= num_vertices)
+        return true;
+      const Eigen::Vector3d& a = mesh.vertices[t[0]];
+      const Eigen::Vector3d n = (mesh.vertices[t[1]] - a).cross (mesh.vertices[t[2]] - a);
+      if (n.allFinite () && n.stableNorm () > 0.0)
+        return true;
+    }
+    return false;
   }
 
-  void
-  SparseSurfaceEncoder::computeModel (SparseSurfaceModel& model)
+  SurfaceEncoding
+  encodeSurface (const TriangleMesh& mesh, const MeshTopology& topology, const SparseSurfaceEncoderOptions& options,
+                 const SurfaceBasis::ConstPtr& basis, int num_threads, const ProgressCallback& progress,
+                 SparseSurfaceModel& model)
   {
     const auto start = std::chrono::steady_clock::now ();
-    timings_ = EncoderTimings ();
-    const TriangleMesh& mesh = *mesh_;
-    SurfaceBasis::ConstPtr basis = basis_;
-    if (!basis)
-      basis = makeCosineBasis (options_.basis, options_.dictionary_frequencies);
+    SurfaceEncoding encoding;
 
-    // Steps 2-6: patches with frames and local coordinates. The topology is built once, for both stages.
-    const auto topology = std::make_shared<const MeshTopology> (buildMeshTopology (mesh));
-    FeatureAwarePatchSampling sampling;
-    sampling.setInputMesh (mesh_);
-    sampling.setTopology (topology);
-    sampling.setOptions (options_.patches);
-    sampling.setNumberOfThreads (num_threads_);
-    sampling.setProgressCallback (progress_);
-    patches_.clear ();
-    sampling.compute (patches_);
-    timings_.patches = secondsSince (start);
+    // Steps 2-6: patches with frames and local coordinates.
+    encoding.patches = sampleFeatureAwarePatches (mesh, topology, options.patches, {}, {}, num_threads, progress).patches;
+    encoding.timings.patches = secondsSince (start);
 
     // Steps 7-9: code every patch into its own slot.
     const auto coding_start = std::chrono::steady_clock::now ();
-    const std::vector<double> ring_lengths = meanRingEdgeLengths (mesh, *topology);
-    const long num_patches = static_cast<long> (patches_.size ());
-    std::vector<PatchCode> codes (patches_.size ());
-    coding_info_.assign (patches_.size (), PatchCodingInfo ());
+    const std::vector<Patch>& patches = encoding.patches;
+    const std::vector<double> ring_lengths = meanRingEdgeLengths (mesh, topology);
+    const long num_patches = static_cast<long> (patches.size ());
+    std::vector<PatchCode> codes (patches.size ());
+    encoding.coding_info.assign (patches.size (), PatchCodingInfo ());
     std::atomic<long> done (0);
-    const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
+    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads) if(num_patches > 64)
     for (long p = 0; p < num_patches; ++p)
     {
-      codes[p] = codePatch (patches_[p], static_cast<std::size_t> (p), mesh, ring_lengths, *basis, options_.coding,
-                            &coding_info_[p]);
+      codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), mesh, ring_lengths, *basis, options.coding,
+                            &encoding.coding_info[p]);
       const long finished = ++done;
-      if (progress_ && omp_get_thread_num () == 0 && finished % 64 == 0)
-        progress_ ("coding", static_cast<double> (finished) / num_patches);
+      if (progress && omp_get_thread_num () == 0 && finished % 64 == 0)
+        progress ("coding", static_cast<double> (finished) / num_patches);
     }
-    if (progress_)
-      progress_ ("coding", 1.0);
-    timings_.coding = secondsSince (coding_start);
+    if (progress)
+      progress ("coding", 1.0);
+    encoding.timings.coding = secondsSince (coding_start);
 
     model.basis = basis;
     model.patches = std::move (codes);
@@ -137,6 +115,11 @@ namespace pcl_sparse
         hi = hi.cwiseMax (v);
       }
     model.bbox_diagonal = (hi - lo).allFinite () ? (hi - lo).norm () : 0.0;
-    timings_.total = secondsSince (start);
+    encoding.timings.total = secondsSince (start);
+    return encoding;
   }
+
+#define PCL_SPARSE_INSTANTIATE_ENCODER(T) template class SparseSurfaceEncoder<T>;
+  PCL_SPARSE_FOR_EACH_INPUT_POINT_TYPE (PCL_SPARSE_INSTANTIATE_ENCODER)
+#undef PCL_SPARSE_INSTANTIATE_ENCODER
 } // namespace pcl_sparse

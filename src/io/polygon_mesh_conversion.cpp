@@ -1,6 +1,7 @@
 #include <pcl_sparse/io/polygon_mesh_conversion.h>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/mesh/polygon_faces.h>
 
 #include <pcl/conversions.h>
 #include <pcl/point_cloud.h>
@@ -123,23 +124,8 @@ namespace pcl_sparse
   {
     TriangleMesh mesh;
     mesh.vertices = positionsFromCloud (polygon_mesh.cloud);
-    const std::size_t num_points = mesh.vertices.size ();
 
-    mesh.triangles.reserve (polygon_mesh.polygons.size ());
-    for (std::size_t f = 0; f < polygon_mesh.polygons.size (); ++f)
-    {
-      const auto& indices = polygon_mesh.polygons[f].vertices;
-      if (indices.size () < 3)
-        throw Error ("PolygonMesh: polygon " + std::to_string (f) + " has " + std::to_string (indices.size ()) +
-                     " vertices (at least 3 needed)");
-      for (const auto index : indices)
-        if (index < 0 || static_cast<std::size_t> (index) >= num_points)
-          throw Error ("PolygonMesh: polygon " + std::to_string (f) + " has vertex index " + std::to_string (index) +
-                       " out of range (" + std::to_string (num_points) + " points)");
-      for (std::size_t i = 1; i + 1 < indices.size (); ++i)
-        mesh.triangles.emplace_back (static_cast<int> (indices[0]), static_cast<int> (indices[i]),
-                                     static_cast<int> (indices[i + 1]));
-    }
+    mesh.triangles = trianglesFromPolygons (polygon_mesh.polygons, mesh.vertices.size (), "PolygonMesh");
     return mesh;
   }
 

@@ -1,4 +1,4 @@
-#include <pcl_sparse/patches/feature_aware_patch_sampling.h>
+#include <pcl_sparse/patches/impl/feature_aware_patch_sampling.hpp>
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
@@ -69,6 +69,249 @@ namespace pcl_sparse
       }
       return count > 0 ? sum / count : 0.0;
     }
+
+    /// Throws Error ("[FeatureAwarePatchSampling::compute] " + message) unless \a condition.
+    void
+    require (bool condition, const std::string& message)
+    {
+      if (!condition)
+        throw Error ("[FeatureAwarePatchSampling::compute] " + message);
+    }
+
+    void
+    validateInputs (const TriangleMesh& mesh, const MeshTopology& topology, const PatchOptions& options,
+                    const std::vector<double>& responses, const std::vector<int>& keypoints)
+    {
+      options.validate ();
+      const std::size_t num_vertices = mesh.vertices.size ();
+      for (const auto& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k)
+          require (t[k] >= 0 && static_cast<std::size_t> (t[k]) < num_vertices,
+                   "face index " + std::to_string (t[k]) + " out of range (" + std::to_string (num_vertices) + " vertices)");
+      require (responses.empty () || responses.size () == num_vertices,
+               std::to_string (responses.size ()) + " responses for " + std::to_string (num_vertices) + " vertices");
+      require (topology.numVertices () == num_vertices, "the topology (setTopology) is not the input mesh's");
+      for (int k : keypoints)
+        require (k >= 0 && static_cast<std::size_t> (k) < num_vertices, "keypoint " + std::to_string (k) + " out of range");
+    }
+
+    /// The mesh the patches grow on: the input, or a copy with non-manifold edges and vertices cut (growth
+    /// cannot cross them), with the map back to input vertices.
+    struct GrowthMesh
+    {
+      NonManifoldSplit split;
+      MeshTopology split_topology;
+      bool is_split = false;
+      const TriangleMesh* mesh = nullptr;
+      const MeshTopology* topology = nullptr;
+
+      GrowthMesh (const TriangleMesh& input, const MeshTopology& input_topology)
+      {
+        is_split = splitNonManifoldVertices (input, input_topology, split);
+        if (is_split)
+          split_topology = buildMeshTopology (split.mesh);
+        mesh = is_split ? &split.mesh : &input;
+        topology = is_split ? &split_topology : &input_topology;
+      }
+      int originalOf (int v) const { return is_split ? split.original[v] : v; }
+    };
+
+    /// Candidates on the input's vertices (\a input_order), each followed by its split copies.
+    std::vector<int>
+    orderWithCopies (const GrowthMesh& growth, const std::vector<int>& input_order, int num_input)
+    {
+      const int num_vertices = static_cast<int> (growth.mesh->vertices.size ());
+      std::vector<int> order;
+      order.reserve (num_vertices);
+      std::vector<int> copy_offsets (num_input + 1, 0), copies (num_vertices - num_input);
+      for (int v = num_input; v < num_vertices; ++v)
+        ++copy_offsets[growth.originalOf (v) + 1];
+      std::partial_sum (copy_offsets.begin (), copy_offsets.end (), copy_offsets.begin ());
+      std::vector<int> cursor (copy_offsets.begin (), copy_offsets.end () - 1);
+      for (int v = num_input; v < num_vertices; ++v)
+        copies[cursor[growth.originalOf (v)]++] = v;
+      for (int v : input_order)
+      {
+        order.push_back (v);
+        for (int i = copy_offsets[v]; i < copy_offsets[v + 1]; ++i)
+          order.push_back (copies[i]);
+      }
+      return order;
+    }
+
+    /// The patches kept so far and the vertices they cover.
+    struct Coverage
+    {
+      std::vector<Patch>& patches;
+      std::vector<std::uint8_t> covered;
+      int num_covered = 0;
+
+      Coverage (std::vector<Patch>& kept, std::size_t num_vertices) : patches (kept), covered (num_vertices, 0) {}
+
+      void
+      keep (const Patch& p)
+      {
+        for (int u : p.vertices)
+          if (!covered[u])
+          {
+            covered[u] = 1;
+            ++num_covered;
+          }
+        patches.push_back (p);
+      }
+
+      long
+      newlyCovered (const Patch& p) const
+      {
+        return std::count_if (p.vertices.begin (), p.vertices.end (), [&] (int u) { return covered[u] == 0; });
+      }
+    };
+
+    /// Sampling loop (METHOD.md step 4), sequential by nature: each candidate not marked invalid grows a
+    /// patch, kept if large enough and covering a new vertex; its vertices near the seed become invalid.
+    /// Returns the number of seeds grown. (Growing the next candidates speculatively in parallel gives the
+    /// same output, but on a loaded machine the per-batch barriers cost more than they save: measured 3-6x
+    /// slower with 2 threads while other jobs ran, so it was dropped.)
+    std::size_t
+    runSamplingLoop (const TriangleMesh& mesh, const std::vector<int>& order, const std::vector<std::uint8_t>& referenced,
+                     int target, const PatchOptions& options, PatchGrower& grower, Coverage& coverage,
+                     const ProgressCallback& progress)
+    {
+      std::vector<std::uint8_t> invalid (mesh.vertices.size (), 0);
+      std::size_t num_grown = 0;
+      Patch patch;
+      const int progress_step = std::max (1, target / 100);
+      int next_progress = 0;
+      for (int v : order)
+      {
+        if (coverage.num_covered >= target)
+          break;
+        if (invalid[v] || !referenced[v])
+          continue;
+        ++num_grown;
+        const double radius = grower.grow (v, patch);
+        if (static_cast<int> (patch.size ()) < options.min_patch_size)
+          continue;
+        if (coverage.newlyCovered (patch) == 0)
+          continue;
+        coverage.keep (patch);
+        const double reach = options.sigma * radius;
+        for (int u : patch.vertices)
+          if ((mesh.vertices[u] - mesh.vertices[v]).norm () < reach)
+            invalid[u] = 1;
+        invalid[v] = 1;
+        if (progress && coverage.num_covered >= next_progress)
+        {
+          progress ("patches", static_cast<double> (coverage.num_covered) / std::max (1, target));
+          next_progress = coverage.num_covered + progress_step;
+        }
+      }
+      return num_grown;
+    }
+
+    /// Coverage pass (ours): a vertex the loop left uncovered seeds its own patch, whatever its size. Such
+    /// vertices are mostly on creases or in strips of faces between creases, where no vertex normal is
+    /// within delta of the faces, so the method's growth from them stops at once. Growth from each of
+    /// their faces, with smooth variation between adjacent faces (growFromFace), covers whole strips: the
+    /// variant covering most uncovered vertices is kept (ties: the larger patch, then the method's growth,
+    /// then the lowest face).
+    void
+    runCoveragePass (const MeshTopology& topology, const PatchGrowthGeometry& geometry, const std::vector<int>& order,
+                     const std::vector<std::uint8_t>& referenced, int target, PatchGrower& grower, Coverage& coverage)
+    {
+      Patch patch, trial;
+      for (int v : order)
+      {
+        if (coverage.num_covered >= target)
+          break;
+        if (coverage.covered[v] || !referenced[v])
+          continue;
+        grower.grow (v, patch);
+        long best = coverage.newlyCovered (patch);
+        for (int f : topology.facesOf (v))
+        {
+          if (!(geometry.face_areas[f] > 0.0))
+            continue;
+          grower.growFromFace (v, f, trial);
+          const long n = coverage.newlyCovered (trial);
+          if (n > best || (n == best && trial.size () > patch.size ()))
+          {
+            best = n;
+            std::swap (patch, trial);
+          }
+        }
+        coverage.keep (patch);
+      }
+    }
+
+    /// Frames (METHOD.md step 6), in parallel: one output per patch.
+    std::vector<PatchFrameKind>
+    fitFrames (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry, int threads,
+               std::vector<Patch>& patches)
+    {
+      double global_edge = 0.0;
+      if (!topology.edges.empty ())
+      {
+        for (const auto& e : topology.edges)
+          global_edge += (mesh.vertices[e[1]] - mesh.vertices[e[0]]).norm ();
+        global_edge /= static_cast<double> (topology.edges.size ());
+      }
+      if (!(global_edge > 0.0) || !std::isfinite (global_edge))
+        global_edge = 1.0;
+      std::vector<PatchFrameKind> frame_kinds (patches.size ());
+      const int num_patches = static_cast<int> (patches.size ());
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+      for (int i = 0; i < num_patches; ++i)
+      {
+        Patch& p = patches[i];
+        const double guard = meanEdgeLength (mesh, topology, p.seed);
+        const Eigen::Vector3d& seed_normal =
+          p.seed_face >= 0 ? geometry.face_normals[p.seed_face] : geometry.vertex_normals[p.seed];
+        frame_kinds[i] = computePatchFrame (mesh, seed_normal, guard > 0.0 ? guard : global_edge, p);
+      }
+      return frame_kinds;
+    }
+
+    /// Back to the input's vertex indices; a patch holding two copies of one vertex keeps the first.
+    void
+    mapToInputVertices (const GrowthMesh& growth, int num_input, std::vector<Patch>& patches)
+    {
+      std::vector<std::uint8_t> seen (num_input, 0);
+      for (Patch& p : patches)
+      {
+        p.seed = growth.originalOf (p.seed);
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < p.vertices.size (); ++i)
+        {
+          const int o = growth.originalOf (p.vertices[i]);
+          if (seen[o])
+            continue;
+          seen[o] = 1;
+          p.vertices[n] = o;
+          p.local[n] = p.local[i];
+          ++n;
+        }
+        p.vertices.resize (n);
+        p.local.resize (n);
+        for (int v : p.vertices)
+          seen[v] = 0;
+      }
+    }
+
+    /// Input vertices in no patch, ascending.
+    std::vector<int>
+    verticesInNoPatch (const std::vector<Patch>& patches, int num_input)
+    {
+      std::vector<std::uint8_t> in_patch (num_input, 0);
+      for (const Patch& p : patches)
+        for (int v : p.vertices)
+          in_patch[v] = 1;
+      std::vector<int> uncovered;
+      for (int v = 0; v < num_input; ++v)
+        if (!in_patch[v])
+          uncovered.push_back (v);
+      return uncovered;
+    }
   } // namespace
 
   void
@@ -94,243 +337,67 @@ namespace pcl_sparse
     keypoints = selectHarris3DKeypoints (harris_mesh, topology, responses, harris, mesh.vertices.size ());
   }
 
-  void
-  FeatureAwarePatchSampling::compute (std::vector<Patch>& patches)
+  PatchSamplingResult
+  sampleFeatureAwarePatches (const TriangleMesh& input, const MeshTopology& input_topology, const PatchOptions& options,
+                             const std::vector<double>& responses, const std::vector<int>& keypoints, int num_threads,
+                             const ProgressCallback& progress)
   {
-    patches.clear ();
-    uncovered_.clear ();
-    unreferenced_.clear ();
-    frame_kinds_.clear ();
-    num_coverage_patches_ = 0;
-    num_grown_ = 0;
-    if (!mesh_)
-      throw Error ("[" + name_ + "::compute] no input mesh (setInputMesh)");
-    options_.validate ();
-    const std::size_t num_vertices = mesh_->vertices.size ();
-    for (const auto& t : mesh_->triangles)
-      for (int k = 0; k < 3; ++k)
-        if (t[k] < 0 || static_cast<std::size_t> (t[k]) >= num_vertices)
-          throw Error ("[" + name_ + "::compute] face index " + std::to_string (t[k]) + " out of range (" +
-                       std::to_string (num_vertices) + " vertices)");
-    if (!responses_.empty () && responses_.size () != num_vertices)
-      throw Error ("[" + name_ + "::compute] " + std::to_string (responses_.size ()) + " responses for " +
-                   std::to_string (num_vertices) + " vertices");
-    if (topology_ && topology_->numVertices () != num_vertices)
-      throw Error ("[" + name_ + "::compute] the topology (setTopology) is not the input mesh's");
-    for (int k : keypoints_)
-      if (k < 0 || static_cast<std::size_t> (k) >= num_vertices)
-        throw Error ("[" + name_ + "::compute] keypoint " + std::to_string (k) + " out of range");
-    computePatches (patches);
-  }
-
-  void
-  FeatureAwarePatchSampling::computePatches (std::vector<Patch>& patches)
-  {
-    const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
-    const TriangleMesh& input = *mesh_;
+    validateInputs (input, input_topology, options, responses, keypoints);
+    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
     const int num_input = static_cast<int> (input.vertices.size ());
-    MeshTopology own_topology;
-    if (!topology_)
-      own_topology = buildMeshTopology (input);
-    const MeshTopology& input_topology = topology_ ? *topology_ : own_topology;
+    PatchSamplingResult result;
 
     // Default feature order: Harris 3D with its default options (METHOD.md step 3).
-    used_responses_ = responses_;
-    used_keypoints_ = keypoints_;
-    if (responses_.empty () && keypoints_.empty ())
-    {
-      computeUnitScaleHarris3D (input, input_topology, num_threads_, used_responses_, used_keypoints_);
-    }
+    result.responses = responses;
+    result.keypoints = keypoints;
+    if (responses.empty () && keypoints.empty ())
+      computeUnitScaleHarris3D (input, input_topology, num_threads, result.responses, result.keypoints);
 
-    // Cut non-manifold edges and vertices: growth then cannot cross them.
-    NonManifoldSplit split;
-    const bool is_split = splitNonManifoldVertices (input, input_topology, split);
-    MeshTopology split_topology;
-    if (is_split)
-      split_topology = buildMeshTopology (split.mesh);
-    const MeshTopology& topology = is_split ? split_topology : input_topology;
-    const TriangleMesh& mesh = is_split ? split.mesh : input;
+    const GrowthMesh growth (input, input_topology);
+    const TriangleMesh& mesh = *growth.mesh;
+    const MeshTopology& topology = *growth.topology;
     const int num_vertices = static_cast<int> (mesh.vertices.size ());
-    auto originalOf = [&] (int v) { return is_split ? split.original[v] : v; };
-
     const PatchGrowthGeometry geometry = computePatchGrowthGeometry (mesh, topology);
-
-    // Candidates on the input's vertices, each followed by its split copies.
-    const std::vector<int> input_order = candidateOrder (num_input, used_responses_, used_keypoints_);
-    std::vector<int> order;
-    order.reserve (num_vertices);
-    {
-      std::vector<int> copy_offsets (num_input + 1, 0), copies (num_vertices - num_input);
-      for (int v = num_input; v < num_vertices; ++v)
-        ++copy_offsets[originalOf (v) + 1];
-      std::partial_sum (copy_offsets.begin (), copy_offsets.end (), copy_offsets.begin ());
-      std::vector<int> cursor (copy_offsets.begin (), copy_offsets.end () - 1);
-      for (int v = num_input; v < num_vertices; ++v)
-        copies[cursor[originalOf (v)]++] = v;
-      for (int v : input_order)
-      {
-        order.push_back (v);
-        for (int i = copy_offsets[v]; i < copy_offsets[v + 1]; ++i)
-          order.push_back (copies[i]);
-      }
-    }
+    const std::vector<int> order =
+      orderWithCopies (growth, candidateOrder (num_input, result.responses, result.keypoints), num_input);
 
     std::vector<std::uint8_t> referenced (num_vertices, 0);
     for (int v = 0; v < num_vertices; ++v)
       referenced[v] = topology.facesOf (v).size () > 0;
     const int target = static_cast<int> (std::count (referenced.begin (), referenced.end (), 1));
 
-    // Sampling loop (METHOD.md step 4), sequential by nature. (Growing the next candidates speculatively
-    // in parallel gives the same output, but on a loaded machine the per-batch barriers cost more than
-    // they save: measured 3-6x slower with 2 threads while other jobs ran, so it was dropped.)
-    PatchGrower grower (mesh, topology, geometry, options_);
-    std::vector<std::uint8_t> covered (num_vertices, 0), invalid (num_vertices, 0);
-    int num_covered = 0;
+    PatchGrower grower (mesh, topology, geometry, options);
+    Coverage coverage (result.patches, num_vertices);
+    result.num_grown = runSamplingLoop (mesh, order, referenced, target, options, grower, coverage, progress);
+    const std::size_t num_sampled = result.patches.size ();
+    if (options.cover_all_vertices)
+      runCoveragePass (topology, geometry, order, referenced, target, grower, coverage);
+    if (progress)
+      progress ("patches", 1.0);
     Patch patch;
-    auto keep = [&] (const Patch& p) {
-      for (int u : p.vertices)
-        if (!covered[u])
-        {
-          covered[u] = 1;
-          ++num_covered;
-        }
-      patches.push_back (p);
-    };
-    const int progress_step = std::max (1, target / 100);
-    int next_progress = 0;
-    for (int v : order)
-    {
-      if (num_covered >= target)
-        break;
-      if (invalid[v] || !referenced[v])
-        continue;
-      ++num_grown_;
-      const double radius = grower.grow (v, patch);
-      if (static_cast<int> (patch.size ()) < options_.min_patch_size)
-        continue;
-      if (std::all_of (patch.vertices.begin (), patch.vertices.end (), [&] (int u) { return covered[u] != 0; }))
-        continue;
-      keep (patch);
-      const double reach = options_.sigma * radius;
-      for (int u : patch.vertices)
-        if ((mesh.vertices[u] - mesh.vertices[v]).norm () < reach)
-          invalid[u] = 1;
-      invalid[v] = 1;
-      if (progress_ && num_covered >= next_progress)
-      {
-        progress_ ("patches", static_cast<double> (num_covered) / std::max (1, target));
-        next_progress = num_covered + progress_step;
-      }
-    }
-    const std::size_t num_sampled = patches.size ();
-
-    // Coverage pass (ours): a vertex the loop left uncovered seeds its own patch, whatever its size. Such
-    // vertices are mostly on creases or in strips of faces between creases, where no vertex normal is
-    // within delta of the faces, so the method's growth from them stops at once. Growth from each of
-    // their faces, with smooth variation between adjacent faces (growFromFace), covers whole strips: the
-    // variant covering most uncovered vertices is kept (ties: the larger patch, then the method's growth,
-    // then the lowest face).
-    if (options_.cover_all_vertices)
-    {
-      Patch trial;
-      auto newlyCovered = [&] (const Patch& p) {
-        return std::count_if (p.vertices.begin (), p.vertices.end (), [&] (int u) { return covered[u] == 0; });
-      };
-      for (int v : order)
-      {
-        if (num_covered >= target)
-          break;
-        if (covered[v] || !referenced[v])
-          continue;
-        grower.grow (v, patch);
-        long best = newlyCovered (patch);
-        for (int f : topology.facesOf (v))
-        {
-          if (!(geometry.face_areas[f] > 0.0))
-            continue;
-          grower.growFromFace (v, f, trial);
-          const long n = newlyCovered (trial);
-          if (n > best || (n == best && trial.size () > patch.size ()))
-          {
-            best = n;
-            std::swap (patch, trial);
-          }
-        }
-        keep (patch);
-      }
-    }
-    if (progress_)
-      progress_ ("patches", 1.0);
     for (int v = 0; v < num_vertices; ++v)
-      if (!referenced[v] && originalOf (v) == v)
+      if (!referenced[v] && growth.originalOf (v) == v)
       {
-        unreferenced_.push_back (v);
-        if (options_.cover_unreferenced_vertices)
+        result.unreferenced.push_back (v);
+        if (options.cover_unreferenced_vertices)
         {
           grower.grow (v, patch);
-          keep (patch);
+          coverage.keep (patch);
         }
       }
-    num_coverage_patches_ = patches.size () - num_sampled;
+    result.num_coverage_patches = result.patches.size () - num_sampled;
 
-    // Frames (METHOD.md step 6), in parallel: one output per patch.
-    double global_edge = 0.0;
-    if (!topology.edges.empty ())
-    {
-      for (const auto& e : topology.edges)
-        global_edge += (mesh.vertices[e[1]] - mesh.vertices[e[0]]).norm ();
-      global_edge /= static_cast<double> (topology.edges.size ());
-    }
-    if (!(global_edge > 0.0) || !std::isfinite (global_edge))
-      global_edge = 1.0;
-    frame_kinds_.resize (patches.size ());
-    const int num_patches = static_cast<int> (patches.size ());
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-    for (int i = 0; i < num_patches; ++i)
-    {
-      Patch& p = patches[i];
-      const double guard = meanEdgeLength (mesh, topology, p.seed);
-      const Eigen::Vector3d& seed_normal =
-        p.seed_face >= 0 ? geometry.face_normals[p.seed_face] : geometry.vertex_normals[p.seed];
-      frame_kinds_[i] = computePatchFrame (mesh, seed_normal, guard > 0.0 ? guard : global_edge, p);
-    }
-
-    // Back to the input's vertex indices; a patch holding two copies of one vertex keeps the first.
-    if (is_split)
-    {
-      std::vector<std::uint8_t> seen (num_input, 0);
-      for (Patch& p : patches)
-      {
-        p.seed = originalOf (p.seed);
-        std::size_t n = 0;
-        for (std::size_t i = 0; i < p.vertices.size (); ++i)
-        {
-          const int o = originalOf (p.vertices[i]);
-          if (seen[o])
-            continue;
-          seen[o] = 1;
-          p.vertices[n] = o;
-          p.local[n] = p.local[i];
-          ++n;
-        }
-        p.vertices.resize (n);
-        p.local.resize (n);
-        for (int v : p.vertices)
-          seen[v] = 0;
-      }
-    }
-    if (!options_.cover_unreferenced_vertices)
-      uncovered_ = unreferenced_;
-    if (!options_.cover_all_vertices)
-    {
-      std::vector<std::uint8_t> in_patch (num_input, 0);
-      for (const Patch& p : patches)
-        for (int v : p.vertices)
-          in_patch[v] = 1;
-      uncovered_.clear ();
-      for (int v = 0; v < num_input; ++v)
-        if (!in_patch[v])
-          uncovered_.push_back (v);
-    }
+    result.frame_kinds = fitFrames (mesh, topology, geometry, threads, result.patches);
+    if (growth.is_split)
+      mapToInputVertices (growth, num_input, result.patches);
+    if (!options.cover_unreferenced_vertices)
+      result.uncovered = result.unreferenced;
+    if (!options.cover_all_vertices)
+      result.uncovered = verticesInNoPatch (result.patches, num_input);
+    return result;
   }
+
+#define PCL_SPARSE_INSTANTIATE_PATCH_SAMPLING(T) template class FeatureAwarePatchSampling<T>;
+  PCL_SPARSE_FOR_EACH_INPUT_POINT_TYPE (PCL_SPARSE_INSTANTIATE_PATCH_SAMPLING)
+#undef PCL_SPARSE_INSTANTIATE_PATCH_SAMPLING
 } // namespace pcl_sparse

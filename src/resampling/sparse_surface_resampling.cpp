@@ -1,4 +1,4 @@
-#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+#include <pcl_sparse/resampling/impl/sparse_surface_resampling.hpp>
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
@@ -50,7 +50,7 @@ namespace pcl_sparse
       std::int32_t evaluated;  ///< index of its already evaluated point, or -1
     };
 
-    using Points = SparseSurfaceResampling::PointCloud::VectorType;
+    using Points = SparseSurfaceResamplingBase::PointCloud::VectorType;
 
     /// The stratification grid of one patch: n x n cells of side `cell` centred on the seed.
     struct PatchGrid
@@ -322,8 +322,24 @@ namespace pcl_sparse
     }
   } // namespace
 
+  /// The tables and per-patch results the passes share.
+  struct SparseSurfaceResamplingBase::Passes
+  {
+    Passes (const PatchEvaluator& evaluator, const PatchOwnership& ownership, const SparseSurfaceResamplingOptions& options,
+            std::size_t m)
+      : sampler (evaluator, ownership, options.jitter, options.max_area_weight), candidates (m), evaluated (m),
+        weights (m, 0.0), grids (m)
+    {}
+
+    const PatchSampler sampler;
+    std::vector<std::vector<Candidate>> candidates;
+    std::vector<Points> evaluated;
+    std::vector<double> weights;
+    std::vector<PatchGrid> grids;
+  };
+
   void
-  SparseSurfaceResampling::setInputModel (const SparseSurfaceModel::ConstPtr& model)
+  SparseSurfaceResamplingBase::setInputModel (const SparseSurfaceModel::ConstPtr& model)
   {
     // The tables of the previous model are dropped even for the same pointer: it may have changed.
     ownership_.reset ();
@@ -332,130 +348,123 @@ namespace pcl_sparse
   }
 
   void
-  SparseSurfaceResampling::setPointCount (std::size_t count)
+  SparseSurfaceResamplingBase::setPointCount (std::size_t count)
   {
     if (count == 0 || count > max_points)
-      throw Error (class_name_ + ": point count must be in [1, " + std::to_string (max_points) + "], got " +
+      throw Error (name_ + ": point count must be in [1, " + std::to_string (max_points) + "], got " +
                    std::to_string (count));
     mode_ = Mode::Count;
     count_ = count;
   }
 
   void
-  SparseSurfaceResampling::setDensity (double density)
+  SparseSurfaceResamplingBase::setDensity (double density)
   {
     if (!(density > 0.0) || !std::isfinite (density))
-      throw Error (class_name_ + ": density must be a positive number of points per unit area");
+      throw Error (name_ + ": density must be a positive number of points per unit area");
     mode_ = Mode::Density;
     density_ = density;
   }
 
   void
-  SparseSurfaceResampling::setSpacing (double spacing)
+  SparseSurfaceResamplingBase::setSpacing (double spacing)
   {
     if (!(spacing > 0.0) || !std::isfinite (spacing))
-      throw Error (class_name_ + ": spacing must be a positive length");
+      throw Error (name_ + ": spacing must be a positive length");
     setDensity (1.0 / (spacing * spacing));
   }
 
   void
-  SparseSurfaceResampling::compute (PointCloud& output)
+  SparseSurfaceResamplingBase::resample (PointCloud& output)
   {
     if (!model_)
-      throw Error (class_name_ + "::compute: no input model (setInputModel)");
+      throw Error (name_ + "::compute: no input model (setInputModel)");
     if (!model_->basis)
-      throw Error (class_name_ + "::compute: the model has no basis");
+      throw Error (name_ + "::compute: the model has no basis");
     if (model_->patches.empty ())
-      throw Error (class_name_ + "::compute: the model has no patches");
+      throw Error (name_ + "::compute: the model has no patches");
     if (mode_ == Mode::None)
-      throw Error (class_name_ + "::compute: no density given (setPointCount, setDensity or setSpacing)");
+      throw Error (name_ + "::compute: no density given (setPointCount, setDensity or setSpacing)");
     if (!(options_.jitter >= 0.0 && options_.jitter <= 1.0))
-      throw Error (class_name_ + "::compute: jitter must be in [0, 1]");
+      throw Error (name_ + "::compute: jitter must be in [0, 1]");
     if (!(options_.max_area_weight >= 1.0))
-      throw Error (class_name_ + "::compute: max_area_weight must be at least 1");
+      throw Error (name_ + "::compute: max_area_weight must be at least 1");
     for (const PatchCode& code : model_->patches)
       if (!(code.radius > 0.0) || !std::isfinite (code.radius))
-        throw Error (class_name_ + "::compute: a patch has a non-positive radius");
+        throw Error (name_ + "::compute: a patch has a non-positive radius");
     computeResampling (output);
   }
 
-  void
-  SparseSurfaceResampling::computeResampling (PointCloud& output)
+  double
+  SparseSurfaceResamplingBase::densityForCount () const
   {
+    // The area pass costs what a candidate pass at its density costs: at most area_pass_cells cells
+    // per patch, and at most a quarter of the final pass's cells (guessed from the footprint areas with
+    // an overlap of 2), since with few points per patch a fixed 64 cells would cost more than the rest.
     const SparseSurfaceModel& model = *model_;
     const std::size_t m = model.numPatches ();
-    const int threads = threads_ > 0 ? threads_ : omp_get_max_threads ();
-    if (!evaluator_)
-      evaluator_ = std::make_shared<PatchEvaluator> (model);
-    if (!ownership_)
-      ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership);
-    const PatchEvaluator& evaluator = *evaluator_;
-    const PatchOwnership& ownership = *ownership_;
-    const PatchSampler sampler (evaluator, ownership, options_.jitter, options_.max_area_weight);
-    const std::uint64_t seed = options_.seed;
-
-    // Density: given, or from a coarse area pass when a total count is asked for.
-    double density = density_;
-    if (mode_ == Mode::Count)
+    const PatchSampler sampler (*evaluator_, *ownership_, options_.jitter, options_.max_area_weight);
+    double footprint_area = 0.0;
+    for (const PatchCode& code : model.patches)
     {
-      // The area pass costs what a candidate pass at its density costs: at most area_pass_cells cells
-      // per patch, and at most a quarter of the final pass's cells (guessed from the footprint areas with
-      // an overlap of 2), since with few points per patch a fixed 64 cells would cost more than the rest.
-      double footprint_area = 0.0;
-      for (const PatchCode& code : model.patches)
-      {
-        double square = 0.0;
-        for (float e : code.footprint.extent)
-          square += static_cast<double> (e) * e;
-        square = code.footprint.extent.empty () ? 1.0 : square / code.footprint.extent.size ();
-        footprint_area += M_PI * square * code.radius * code.radius;
-      }
-      const double guess = static_cast<double> (count_) / (0.5 * footprint_area);
-      std::vector<double> areas (m, 0.0);
-      const double cells_per_axis = std::sqrt (std::max (1, options_.area_pass_cells));
-#pragma omp parallel for schedule(dynamic, 8) num_threads(threads)
-      for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
-      {
-        const std::size_t p = static_cast<std::size_t> (pi);
-        const double e = evaluator.maxExtent (p);
-        const double final_cell = 1.0 / (model.patches[p].radius * std::sqrt (guess));
-        const PatchGrid grid = makeGrid (e, std::min (e, std::max (2.0 * e / cells_per_axis, 2.0 * final_cell)));
-        std::vector<Candidate> candidates;
-        Points evaluated;
-        const double r = model.patches[p].radius;
-        areas[p] = sampler.drawCandidates (p, grid, patchKey (seed, p, 0), candidates, evaluated) * grid.cell * grid.cell * r * r;
-      }
-      const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
-      if (!(area > 0.0))
-        throw Error (class_name_ + "::compute: the model has no surface area to sample");
-      density = static_cast<double> (count_) / area;
+      double square = 0.0;
+      for (float e : code.footprint.extent)
+        square += static_cast<double> (e) * e;
+      square = code.footprint.extent.empty () ? 1.0 : square / code.footprint.extent.size ();
+      footprint_area += M_PI * square * code.radius * code.radius;
     }
-
-    // Guard against absurd densities before drawing: every grid square bounds its patch's candidates.
-    double bound = 0.0;
-    for (std::size_t p = 0; p < m; ++p)
+    const double guess = static_cast<double> (count_) / (0.5 * footprint_area);
+    std::vector<double> areas (m, 0.0);
+    const double cells_per_axis = std::sqrt (std::max (1, options_.area_pass_cells));
+#pragma omp parallel for schedule(dynamic, 8) num_threads(threadsToUse ())
+    for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
-      const double side = 2.0 * evaluator.maxExtent (p) * model.patches[p].radius;
+      const std::size_t p = static_cast<std::size_t> (pi);
+      const double e = evaluator_->maxExtent (p);
+      const double final_cell = 1.0 / (model.patches[p].radius * std::sqrt (guess));
+      const PatchGrid grid = makeGrid (e, std::min (e, std::max (2.0 * e / cells_per_axis, 2.0 * final_cell)));
+      std::vector<Candidate> candidates;
+      Points evaluated;
+      const double r = model.patches[p].radius;
+      areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, p, 0), candidates, evaluated) * grid.cell *
+                 grid.cell * r * r;
+    }
+    const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
+    if (!(area > 0.0))
+      throw Error (name_ + "::compute: the model has no surface area to sample");
+    return static_cast<double> (count_) / area;
+  }
+
+  void
+  SparseSurfaceResamplingBase::checkDensityBound (double density) const
+  {
+    // Every grid square bounds its patch's candidates.
+    double bound = 0.0;
+    for (std::size_t p = 0; p < model_->numPatches (); ++p)
+    {
+      const double side = 2.0 * evaluator_->maxExtent (p) * model_->patches[p].radius;
       bound += side * side * density;
     }
     if (bound > 4.0 * static_cast<double> (max_points))
     {
       std::ostringstream message;
-      message << class_name_ << "::compute: density " << density << " would give about " << bound / 4.0
+      message << name_ << "::compute: density " << density << " would give about " << bound / 4.0
               << " points, more than the limit " << max_points;
       throw Error (message.str ());
     }
+  }
 
-    // Candidate pass: every patch's kept places and owned area at the final density. With a total count,
-    // cells hold one point each only if the area pass was right: if the measured area differs by more
-    // than 2%, the pass is redone once at the corrected density (systematic sampling at a step off by
-    // x% skips or doubles every (100/x)-th cell, which shows in the spacing).
-    std::vector<std::vector<Candidate>> candidates (m);
-    std::vector<Points> evaluated (m);
-    std::vector<double> weights (m, 0.0);
-    std::vector<PatchGrid> grids (m);
+  void
+  SparseSurfaceResamplingBase::drawAllCandidates (double& density, Passes& passes) const
+  {
+    // Every patch's kept places and owned area at the final density. With a total count, cells hold one
+    // point each only if the area pass was right: if the measured area differs by more than 2%, the pass
+    // is redone once at the corrected density (systematic sampling at a step off by x% skips or doubles
+    // every (100/x)-th cell, which shows in the spacing). A count so small that no cell keeps a candidate
+    // also retries, at 4 x the density.
+    const std::size_t m = model_->numPatches ();
+    const int threads = threadsToUse ();
     std::atomic<std::size_t> done (0);
-    // (A count so small that no cell keeps a candidate also retries, at 4 x the density.)
     for (int attempt = 0, corrections = 0; attempt < 16; ++attempt)
     {
       done = 0;
@@ -463,16 +472,17 @@ namespace pcl_sparse
       for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
       {
         const std::size_t p = static_cast<std::size_t> (pi);
-        const double r = model.patches[p].radius;
-        grids[p] = makeGrid (evaluator.maxExtent (p), 1.0 / (r * std::sqrt (density)));
-        weights[p] = sampler.drawCandidates (p, grids[p], patchKey (seed, p, 1), candidates[p], evaluated[p]);
+        const double r = model_->patches[p].radius;
+        passes.grids[p] = makeGrid (evaluator_->maxExtent (p), 1.0 / (r * std::sqrt (density)));
+        passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, p, 1),
+                                                          passes.candidates[p], passes.evaluated[p]);
         const std::size_t finished = ++done;
         if (progress_ && omp_get_thread_num () == 0)
           progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
       }
       if (mode_ != Mode::Count)
         break;
-      const double expected = std::accumulate (weights.begin (), weights.end (), 0.0);
+      const double expected = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
       if (!(expected > 0.0))
       {
         density *= 4.0;
@@ -483,45 +493,46 @@ namespace pcl_sparse
         break;
       density *= ratio;
     }
-    if (!(std::accumulate (weights.begin (), weights.end (), 0.0) > 0.0))
-      throw Error (class_name_ + "::compute: the model has no surface area to sample");
-    // A cell holds one expected point on flat ground, so weights are areas in units of 1 / density.
-    estimated_area_ = std::accumulate (weights.begin (), weights.end (), 0.0) / density;
-    density_used_ = density;
+  }
 
-    std::vector<std::size_t> counts (m, 0);
+  std::vector<std::size_t>
+  SparseSurfaceResamplingBase::pointsPerPatch (const std::vector<double>& weights) const
+  {
     if (mode_ == Mode::Count)
-      counts = largestRemainder (weights, count_);
-    else
+      return largestRemainder (weights, count_);
+    std::vector<std::size_t> counts (weights.size (), 0);
+    double total = 0.0;
+    for (std::size_t p = 0; p < weights.size (); ++p)
     {
-      double total = 0.0;
-      for (std::size_t p = 0; p < m; ++p)
-      {
-        const double whole = std::floor (weights[p]);
-        counts[p] = static_cast<std::size_t> (whole) + (uniform (patchKey (seed, p, 2), 0) < weights[p] - whole ? 1 : 0);
-        total += static_cast<double> (counts[p]);
-      }
-      if (total > static_cast<double> (max_points))
-        throw Error (class_name_ + "::compute: density gives more than " + std::to_string (max_points) + " points");
+      const double whole = std::floor (weights[p]);
+      counts[p] = static_cast<std::size_t> (whole) + (uniform (patchKey (options_.seed, p, 2), 0) < weights[p] - whole ? 1 : 0);
+      total += static_cast<double> (counts[p]);
     }
+    if (total > static_cast<double> (max_points))
+      throw Error (name_ + "::compute: density gives more than " + std::to_string (max_points) + " points");
+    return counts;
+  }
 
-    // Selection pass: every patch writes its own slice of the output, in patch order.
+  void
+  SparseSurfaceResamplingBase::selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output)
+  {
+    const std::size_t m = counts.size ();
     std::vector<std::size_t> offsets (m + 1, 0);
     for (std::size_t p = 0; p < m; ++p)
       offsets[p + 1] = offsets[p] + counts[p];
     output.clear ();
     output.resize (offsets[m]);
     point_patches_.assign (offsets[m], 0);
-    done = 0;
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+    std::atomic<std::size_t> done (0);
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threadsToUse ())
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
-      sampler.selectPoints (p, grids[p], patchKey (seed, p, 3), candidates[p], evaluated[p], counts[p],
-                            output.data () + offsets[p]);
+      passes.sampler.selectPoints (p, passes.grids[p], patchKey (options_.seed, p, 3), passes.candidates[p],
+                                   passes.evaluated[p], counts[p], output.data () + offsets[p]);
       std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
-      std::vector<Candidate> ().swap (candidates[p]);
-      Points ().swap (evaluated[p]);
+      std::vector<Candidate> ().swap (passes.candidates[p]);
+      Points ().swap (passes.evaluated[p]);
       const std::size_t finished = ++done;
       if (progress_ && omp_get_thread_num () == 0)
         progress_ ("resample", 0.5 + 0.5 * static_cast<double> (finished) / static_cast<double> (m));
@@ -529,7 +540,33 @@ namespace pcl_sparse
     output.width = static_cast<std::uint32_t> (output.size ());
     output.height = 1;
     output.is_dense = true;
+  }
+
+  void
+  SparseSurfaceResamplingBase::computeResampling (PointCloud& output)
+  {
+    if (!evaluator_)
+      evaluator_ = std::make_shared<PatchEvaluator> (*model_);
+    if (!ownership_)
+      ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership);
+
+    // Density: given, or from a coarse area pass when a total count is asked for.
+    double density = mode_ == Mode::Count ? densityForCount () : density_;
+    checkDensityBound (density);
+    Passes passes (*evaluator_, *ownership_, options_, model_->numPatches ());
+    drawAllCandidates (density, passes);
+    const double weight = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
+    if (!(weight > 0.0))
+      throw Error (name_ + "::compute: the model has no surface area to sample");
+    // A cell holds one expected point on flat ground, so weights are areas in units of 1 / density.
+    estimated_area_ = weight / density;
+    density_used_ = density;
+    selectAllPoints (pointsPerPatch (passes.weights), passes, output);
     if (progress_)
       progress_ ("resample", 1.0);
   }
+
+#define PCL_SPARSE_INSTANTIATE_RESAMPLING(T) template class SparseSurfaceResampling<T>;
+  PCL_SPARSE_FOR_EACH_OUTPUT_POINT_TYPE (PCL_SPARSE_INSTANTIATE_RESAMPLING)
+#undef PCL_SPARSE_INSTANTIATE_RESAMPLING
 } // namespace pcl_sparse

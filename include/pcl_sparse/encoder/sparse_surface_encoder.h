@@ -2,12 +2,13 @@
 /// \file sparse_surface_encoder.h
 /// The whole encoding pipeline as one PCL-style stage (METHOD.md steps 2-11):
 ///
-///   pcl_sparse::SparseSurfaceEncoder encoder;
-///   encoder.setInputMesh (mesh);        // TriangleMesh::ConstPtr
-///   encoder.setOptions (options);       // SparseSurfaceEncoderOptions, paper defaults
+///   pcl_sparse::SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+///   encoder.setInputCloud (cloud);                 // the mesh's vertices, and
+///   encoder.setInputPolygons (polygons);           // its faces (or setInputMesh (TriangleMesh::ConstPtr))
+///   encoder.setOptions (options);                  // SparseSurfaceEncoderOptions, paper defaults
 ///   pcl_sparse::SparseSurfaceModel model;
 ///   encoder.compute (model);
-///   const pcl_sparse::ModelStatistics stats = model.statistics (mesh->vertices);
+///   const pcl_sparse::ModelStatistics stats = model.statistics (pcl_sparse::cloudPositions (*cloud));
 ///
 /// Stages: feature-aware seed sampling and patch growth with frames (FeatureAwarePatchSampling, which
 /// runs Harris 3D), then per patch the sparse coding (patch_coder.h) in parallel over patches, each patch
@@ -17,6 +18,7 @@
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/coding/surface_basis.h>
 #include <pcl_sparse/common/progress.h>
+#include <pcl_sparse/mesh/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/patches/patch.h>
@@ -52,53 +54,78 @@ namespace pcl_sparse
     double total = 0.0;
   };
 
-  class SparseSurfaceEncoder
+  /// \brief Everything one encoding produces besides the model.
+  struct SurfaceEncoding
+  {
+    std::vector<Patch> patches;               ///< one per model patch, with frames and local coordinates
+    std::vector<PatchCodingInfo> coding_info; ///< one per model patch
+    EncoderTimings timings;
+  };
+
+  /// \brief Whether some face of \a mesh has a finite, non-zero area (faces with invalid indices count as
+  /// having one: they are left to the patch stage, which names them).
+  /// \param[in] mesh the mesh
+  bool
+  hasSurfaceArea (const TriangleMesh& mesh);
+
+  /// \brief The whole encoding of a mesh (the stage's mathematics): patches, then every patch coded.
+  /// \param[in] mesh the mesh, with at least one face of non-zero area
+  /// \param[in] topology buildMeshTopology (mesh)
+  /// \param[in] options validated options
+  /// \param[in] basis the basis to code over
+  /// \param[in] num_threads OpenMP threads (0 = default); the model does not depend on it
+  /// \param[in] progress progress callback (may be empty)
+  /// \param[out] model the model (replaced)
+  /// \return the patches, coding diagnostics and timings
+  SurfaceEncoding
+  encodeSurface (const TriangleMesh& mesh, const MeshTopology& topology, const SparseSurfaceEncoderOptions& options,
+                 const SurfaceBasis::ConstPtr& basis, int num_threads, const ProgressCallback& progress,
+                 SparseSurfaceModel& model);
+
+  /// \brief The encoder as a PCL-style stage (input: see SurfaceStage).
+  /// \tparam PointInT point type of the input cloud
+  template <typename PointInT>
+  class SparseSurfaceEncoder : public SurfaceStage<PointInT>
   {
   public:
-    using Ptr = std::shared_ptr<SparseSurfaceEncoder>;
-    using ConstPtr = std::shared_ptr<const SparseSurfaceEncoder>;
+    using Ptr = std::shared_ptr<SparseSurfaceEncoder<PointInT>>;
+    using ConstPtr = std::shared_ptr<const SparseSurfaceEncoder<PointInT>>;
 
-    SparseSurfaceEncoder () = default;
-    virtual ~SparseSurfaceEncoder () = default;
+    SparseSurfaceEncoder () : SurfaceStage<PointInT> ("SparseSurfaceEncoder", IndexUse::CropSurface) {}
 
-    /// The mesh to encode (required).
-    void setInputMesh (const TriangleMesh::ConstPtr& mesh) { mesh_ = mesh; }
-    const TriangleMesh::ConstPtr& getInputMesh () const { return mesh_; }
-
+    /// \brief Every parameter of the pipeline (paper defaults).
     void setOptions (const SparseSurfaceEncoderOptions& options) { options_ = options; }
     const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
 
-    /// A basis other than the cosine dictionary (optional; default: makeCosineBasis (basis, n)).
+    /// \brief A basis other than the cosine dictionary (optional; default: makeCosineBasis (basis, n)).
     void setBasis (const SurfaceBasis::ConstPtr& basis) { basis_ = basis; }
 
-    /// OpenMP threads (0 = OpenMP's default). The model does not depend on it.
-    void setNumberOfThreads (int threads) { num_threads_ = threads; }
-    void setProgressCallback (const ProgressCallback& progress) { progress_ = progress; }
-
-    /// Encodes the mesh into \a model (replacing its content). Throws pcl_sparse::Error for a missing
-    /// or empty mesh and options out of range.
+    /// \brief Encodes the surface into \a model (replacing its content). Throws pcl_sparse::Error for a
+    /// missing or empty surface, one without area, and options out of range.
+    /// \param[out] model the sparse surface model
     void compute (SparseSurfaceModel& model);
 
-    const EncoderTimings& getTimings () const { return timings_; }
-    /// The patches of the last compute() (with frames and local coordinates), one per model patch.
-    const std::vector<Patch>& getPatches () const { return patches_; }
-    /// Per-patch diagnostics of the last compute(), one per model patch.
-    const std::vector<PatchCodingInfo>& getCodingInfo () const { return coding_info_; }
-
-    const std::string& getClassName () const { return name_; }
+    /// \brief Wall-clock seconds of the stages of the last compute.
+    const EncoderTimings& getTimings () const { return encoding_.timings; }
+    /// \brief The patches of the last compute (with frames and local coordinates), one per model patch.
+    const std::vector<Patch>& getPatches () const { return encoding_.patches; }
+    /// \brief Per-patch diagnostics of the last compute, one per model patch.
+    const std::vector<PatchCodingInfo>& getCodingInfo () const { return encoding_.coding_info; }
 
   protected:
+    /// \brief The stage proper, on the surface initCompute prepared.
     virtual void computeModel (SparseSurfaceModel& model);
 
-    TriangleMesh::ConstPtr mesh_;
     SparseSurfaceEncoderOptions options_;
     SurfaceBasis::ConstPtr basis_;
-    int num_threads_ = 0;
-    ProgressCallback progress_;
-
-    EncoderTimings timings_;
-    std::vector<Patch> patches_;
-    std::vector<PatchCodingInfo> coding_info_;
-    std::string name_ = "SparseSurfaceEncoder";
+    SurfaceEncoding encoding_;
   };
 } // namespace pcl_sparse
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_sparse/encoder/impl/sparse_surface_encoder.hpp>
+#else
+#define PCL_SPARSE_EXTERN_ENCODER(T) extern template class pcl_sparse::SparseSurfaceEncoder<T>;
+PCL_SPARSE_FOR_EACH_INPUT_POINT_TYPE (PCL_SPARSE_EXTERN_ENCODER)
+#undef PCL_SPARSE_EXTERN_ENCODER
+#endif

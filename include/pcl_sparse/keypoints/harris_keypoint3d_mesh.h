@@ -3,8 +3,9 @@
 /// Harris 3D keypoints of a triangle mesh as a PCL-style stage (METHOD.md step 3). The mathematics is in
 /// harris3d.h; this class holds the input and the results.
 ///
-///   pcl_sparse::HarrisKeypoint3DMesh harris;
-///   harris.setInputMesh (mesh);                      // TriangleMesh::ConstPtr
+///   pcl_sparse::HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
+///   harris.setInputCloud (cloud);                    // the vertices, and
+///   harris.setInputPolygons (polygons);              // the faces (or setInputMesh (TriangleMesh::ConstPtr))
 ///   pcl::PointCloud<pcl::PointXYZI> keypoints;
 ///   harris.compute (keypoints);                      // vertex positions, intensity = response
 ///   const auto& order = harris.getKeypointsIndices ()->indices;
@@ -12,6 +13,7 @@
 
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/mesh/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <pcl/PointIndices.h>
@@ -24,72 +26,63 @@
 
 namespace pcl_sparse
 {
-  /// Harris 3D keypoint detector for meshes (Sipiran & Bustos 2011). Output: keypoints at the input
+  /// \brief Harris 3D keypoint detector for meshes (Sipiran & Bustos 2011). Output: keypoints at the input
   /// vertex positions, intensity = response, in decreasing response (ties by vertex index), identical for
   /// any thread count. Unlike pcl::HarrisKeypoint3D it works on the mesh's rings and fits a quadric.
-  class HarrisKeypoint3DMesh
+  /// setIndices restricts detection to those points (IndexUse::SelectPoints): the others get no response,
+  /// neighbourhoods still span the whole surface, and the selection fraction refers to the indexed points.
+  /// \tparam PointInT point type of the input cloud
+  template <typename PointInT>
+  class HarrisKeypoint3DMesh : public SurfaceStage<PointInT>
   {
   public:
-    using Ptr = std::shared_ptr<HarrisKeypoint3DMesh>;
-    using ConstPtr = std::shared_ptr<const HarrisKeypoint3DMesh>;
+    using Ptr = std::shared_ptr<HarrisKeypoint3DMesh<PointInT>>;
+    using ConstPtr = std::shared_ptr<const HarrisKeypoint3DMesh<PointInT>>;
     using PointOut = pcl::PointXYZI;
     using PointCloudOut = pcl::PointCloud<PointOut>;
-    /// Same type as pcl::IndicesConstPtr (pcl/pcl_base.h) with PCL's default 32-bit index_t.
-    using IndicesConstPtr = std::shared_ptr<const std::vector<int>>;
 
-    HarrisKeypoint3DMesh () = default;
-    virtual ~HarrisKeypoint3DMesh () = default;
+    HarrisKeypoint3DMesh () : SurfaceStage<PointInT> ("HarrisKeypoint3DMesh", IndexUse::SelectPoints) {}
 
-    /// The mesh to detect keypoints on (required).
-    void setInputMesh (const TriangleMesh::ConstPtr& mesh) { mesh_ = mesh; topology_.reset (); }
-    const TriangleMesh::ConstPtr& getInputMesh () const { return mesh_; }
-
-    /// Topology of the input mesh, if already built (otherwise compute builds it). Set after setInputMesh.
-    void setTopology (const std::shared_ptr<const MeshTopology>& topology) { topology_ = topology; }
-
-    /// Restricts detection to these vertices (responses of the others are NaN; the selection fraction
-    /// refers to their number). Empty pointer = all vertices.
-    void setIndices (const IndicesConstPtr& indices) { indices_ = indices; }
-    const IndicesConstPtr& getIndices () const { return indices_; }
-
+    /// \brief All options of the detector (defaults: adaptive rings, k = 0.04, top 1 %).
     void setOptions (const Harris3DOptions& options) { options_ = options; }
     const Harris3DOptions& getOptions () const { return options_; }
 
-    /// Harris constant (default 0.04).
+    /// \brief Harris constant (default 0.04).
     void setK (double k) { options_.k = k; }
-    /// Fixed ring count (> 0) instead of the adaptive neighbourhood.
+    /// \brief Fixed ring count (> 0) instead of the adaptive neighbourhood.
     void setRings (int rings) { options_.rings = rings; }
-    /// Adaptive neighbourhood radius as a fraction of the bounding-box diagonal (and rings = 0).
+    /// \brief Adaptive neighbourhood radius as a fraction of the bounding-box diagonal (and rings = 0).
     void setAdaptiveFraction (double fraction) { options_.rings = 0; options_.adaptive_fraction = fraction; }
-    /// Keep this fraction of #V (Fraction selection).
+    /// \brief Keep this fraction of #V (Fraction selection).
     void setSelectionFraction (double fraction) { options_.selection = Harris3DSelection::Fraction; options_.selection_fraction = fraction; }
-    /// Clustering selection with this minimum keypoint distance (fraction of the bounding-box diagonal).
+    /// \brief Clustering selection with this minimum keypoint distance (fraction of the bounding-box diagonal).
     void setClustering (double fraction) { options_.selection = Harris3DSelection::Clustering; options_.cluster_fraction = fraction; }
-    /// OpenMP threads (0 = default). Results do not depend on it.
-    void setNumberOfThreads (int threads) { options_.num_threads = threads; }
 
-    /// Detects the keypoints. On bad input prints a PCL_ERROR-style message, leaves \a output empty and
-    /// returns (as PCL stages do); options out of range throw pcl_sparse::Error.
+    /// \brief Detects the keypoints. Throws pcl_sparse::Error for a missing or empty surface, an index out of
+    /// range or options out of range.
+    /// \param[out] output keypoints (replaced), strongest first
     void compute (PointCloudOut& output);
 
-    /// Vertex indices of the keypoints of the last compute, in output order.
+    /// \brief Vertex indices of the keypoints of the last compute, in output order.
     pcl::PointIndicesConstPtr getKeypointsIndices () const { return keypoints_indices_; }
 
-    /// Response of every vertex of the last compute (#V entries; NaN: no response).
+    /// \brief Response of every vertex of the last compute (#V entries; NaN: no response).
     const std::vector<double>& getResponses () const { return responses_; }
 
-    const std::string& getClassName () const { return name_; }
-
   protected:
-    /// The detector proper; compute checks the input first.
+    /// \brief The detector proper, on the surface initCompute prepared.
     virtual void detectKeypoints (PointCloudOut& output);
 
-    TriangleMesh::ConstPtr mesh_;
-    std::shared_ptr<const MeshTopology> topology_;
-    IndicesConstPtr indices_;
     Harris3DOptions options_;
     std::vector<double> responses_;
     pcl::PointIndicesPtr keypoints_indices_ = std::make_shared<pcl::PointIndices> ();
-    std::string name_ = "HarrisKeypoint3DMesh";
   };
 } // namespace pcl_sparse
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_sparse/keypoints/impl/harris_keypoint3d_mesh.hpp>
+#else
+#define PCL_SPARSE_EXTERN_HARRIS(T) extern template class pcl_sparse::HarrisKeypoint3DMesh<T>;
+PCL_SPARSE_FOR_EACH_INPUT_POINT_TYPE (PCL_SPARSE_EXTERN_HARRIS)
+#undef PCL_SPARSE_EXTERN_HARRIS
+#endif

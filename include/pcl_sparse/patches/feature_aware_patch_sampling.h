@@ -2,8 +2,9 @@
 /// \file feature_aware_patch_sampling.h
 /// Feature-aware seed sampling and patch construction (METHOD.md steps 4, 5 and 6) as a PCL-style stage.
 ///
-///   pcl_sparse::FeatureAwarePatchSampling sampling;
-///   sampling.setInputMesh (mesh);              // TriangleMesh::ConstPtr
+///   pcl_sparse::FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+///   sampling.setInputCloud (cloud);            // the vertices, and
+///   sampling.setInputPolygons (polygons);      // the faces (or setInputMesh (TriangleMesh::ConstPtr))
 ///   sampling.setOptions (options);             // PatchOptions, paper defaults
 ///   sampling.setResponses (harris_responses);  // optional: per-vertex Harris 3D response (NaN: none)
 ///   sampling.setKeypoints (harris_keypoints);  // optional: keypoint vertex indices
@@ -31,6 +32,7 @@
 
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/mesh/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_frame.h>
@@ -42,87 +44,107 @@
 
 namespace pcl_sparse
 {
-  /// The default candidate order's input: Harris 3D responses and keypoints (default Harris3DOptions,
+  /// \brief The default candidate order's input: Harris 3D responses and keypoints (default Harris3DOptions,
   /// \a num_threads OpenMP threads, 0 = default) computed on \a mesh scaled to a unit bounding-box
   /// diagonal. Harris 3D is not scale invariant (harris3d.h), so this makes the seeds, and everything
   /// downstream, independent of the mesh's length unit.
-  ///   responses  #V (NaN: none)
-  ///   keypoints  vertex indices, decreasing response
+  /// \param[in] mesh the mesh
+  /// \param[in] topology its topology
+  /// \param[in] num_threads OpenMP threads (0 = default)
+  /// \param[out] responses #V responses (NaN: none)
+  /// \param[out] keypoints vertex indices, decreasing response
   void
   computeUnitScaleHarris3D (const TriangleMesh& mesh, const MeshTopology& topology, int num_threads,
                             std::vector<double>& responses, std::vector<int>& keypoints);
 
-  class FeatureAwarePatchSampling
+  /// \brief Everything feature-aware patch sampling produces.
+  struct PatchSamplingResult
+  {
+    std::vector<Patch> patches;              ///< with frames, radii and local coordinates
+    std::vector<double> responses;           ///< responses the candidates were ordered by (given or Harris 3D)
+    std::vector<int> keypoints;              ///< keypoints tried first (given or Harris 3D)
+    std::vector<int> uncovered;              ///< vertices in no patch, ascending
+    std::vector<int> unreferenced;           ///< vertices no face uses, ascending
+    std::size_t num_coverage_patches = 0;    ///< patches (a suffix) added by the coverage pass
+    std::size_t num_grown = 0;               ///< seeds grown by the sampling loop, kept or not
+    std::vector<PatchFrameKind> frame_kinds; ///< how each patch's frame was chosen
+  };
+
+  /// \brief Feature-aware seed sampling, patch growth and frames of a whole mesh (the stage's mathematics).
+  /// \param[in] mesh the mesh (face indices in range)
+  /// \param[in] topology buildMeshTopology (mesh)
+  /// \param[in] options seed sampling and growth options
+  /// \param[in] responses #V feature responses ordering the candidates (NaN: none), or empty
+  /// \param[in] keypoints vertex indices tried first; with \a responses empty too, Harris 3D gives both
+  /// \param[in] num_threads OpenMP threads (0 = default); the result does not depend on it
+  /// \param[in] progress progress callback (may be empty)
+  /// \return the patches and what the sampling saw
+  /// Throws pcl_sparse::Error for options out of range, face indices out of range, or responses /
+  /// keypoints that do not fit the mesh.
+  PatchSamplingResult
+  sampleFeatureAwarePatches (const TriangleMesh& mesh, const MeshTopology& topology, const PatchOptions& options,
+                             const std::vector<double>& responses, const std::vector<int>& keypoints, int num_threads,
+                             const ProgressCallback& progress);
+
+  /// \brief Feature-aware patch sampling as a PCL-style stage (input: see SurfaceStage).
+  /// \tparam PointInT point type of the input cloud
+  template <typename PointInT>
+  class FeatureAwarePatchSampling : public SurfaceStage<PointInT>
   {
   public:
-    using Ptr = std::shared_ptr<FeatureAwarePatchSampling>;
-    using ConstPtr = std::shared_ptr<const FeatureAwarePatchSampling>;
+    using Ptr = std::shared_ptr<FeatureAwarePatchSampling<PointInT>>;
+    using ConstPtr = std::shared_ptr<const FeatureAwarePatchSampling<PointInT>>;
 
-    FeatureAwarePatchSampling () = default;
-    virtual ~FeatureAwarePatchSampling () = default;
+    FeatureAwarePatchSampling () : SurfaceStage<PointInT> ("FeatureAwarePatchSampling", IndexUse::CropSurface) {}
 
-    /// The mesh to partition (required). Face indices must be valid.
-    void setInputMesh (const TriangleMesh::ConstPtr& mesh) { mesh_ = mesh; topology_.reset (); }
-    const TriangleMesh::ConstPtr& getInputMesh () const { return mesh_; }
-
-    /// Topology of the input mesh, if already built (otherwise compute builds it). Set after setInputMesh.
-    void setTopology (const std::shared_ptr<const MeshTopology>& topology) { topology_ = topology; }
-
+    /// \brief Seed sampling and growth options (paper defaults).
     void setOptions (const PatchOptions& options) { options_ = options; }
     const PatchOptions& getOptions () const { return options_; }
 
-    /// Per-vertex feature response ordering the candidates (#V entries, NaN = none). Empty (default), with
-    /// no keypoints either: computeUnitScaleHarris3D (Harris 3D, default options, unit-diagonal scale).
+    /// \brief Per-vertex feature response ordering the candidates (#V entries, NaN = none). Empty (default),
+    /// with no keypoints either: computeUnitScaleHarris3D (Harris 3D, default options, unit-diagonal scale).
     void setResponses (const std::vector<double>& responses) { responses_ = responses; }
-    /// Keypoints tried first (vertex indices). Empty with empty responses (default): Harris 3D keypoints.
-    /// Empty with responses given: no keypoints, candidates purely by response.
+    /// \brief Keypoints tried first (vertex indices). Empty with empty responses (default): Harris 3D
+    /// keypoints. Empty with responses given: no keypoints, candidates purely by response.
     void setKeypoints (const std::vector<int>& keypoints) { keypoints_ = keypoints; }
 
-    /// OpenMP threads for the parallel parts (0 = OpenMP's default). Results do not depend on it.
-    void setNumberOfThreads (int threads) { num_threads_ = threads; }
-    void setProgressCallback (const ProgressCallback& progress) { progress_ = progress; }
-
-    /// Partitions the mesh into overlapping patches, each with its frame, radius and local coordinates.
-    /// Throws pcl_sparse::Error for a missing mesh, invalid face indices, options out of range or
-    /// responses / keypoints that do not fit the mesh.
+    /// \brief Partitions the surface into overlapping patches, each with its frame, radius and local
+    /// coordinates. Throws pcl_sparse::Error for a missing input, invalid face indices, options out of
+    /// range or responses / keypoints that do not fit the surface.
+    /// \param[out] patches the patches (replaced)
     void compute (std::vector<Patch>& patches);
 
-    /// Responses and keypoints the last compute ordered its candidates with (given or Harris 3D).
-    const std::vector<double>& getResponses () const { return used_responses_; }
-    const std::vector<int>& getKeypoints () const { return used_keypoints_; }
+    /// \brief Responses and keypoints the last compute ordered its candidates with (given or Harris 3D).
+    const std::vector<double>& getResponses () const { return result_.responses; }
+    const std::vector<int>& getKeypoints () const { return result_.keypoints; }
 
-    /// Vertices in no patch after the last compute (unreferenced vertices when
+    /// \brief Vertices in no patch after the last compute (unreferenced vertices when
     /// cover_unreferenced_vertices is false; otherwise empty), ascending.
-    const std::vector<int>& getUncoveredVertices () const { return uncovered_; }
-    /// Vertices no face uses (ascending), whatever the option.
-    const std::vector<int>& getUnreferencedVertices () const { return unreferenced_; }
-    /// Patches (a suffix of the output) added by the coverage pass, not by the sampling loop.
-    std::size_t getNumCoveragePatches () const { return num_coverage_patches_; }
-    /// Seeds grown by the sampling loop, kept or not (cost indicator).
-    std::size_t getNumGrownSeeds () const { return num_grown_; }
-    /// How each output patch's frame was chosen.
-    const std::vector<PatchFrameKind>& getFrameKinds () const { return frame_kinds_; }
-
-    const std::string& getClassName () const { return name_; }
+    const std::vector<int>& getUncoveredVertices () const { return result_.uncovered; }
+    /// \brief Vertices no face uses (ascending), whatever the option.
+    const std::vector<int>& getUnreferencedVertices () const { return result_.unreferenced; }
+    /// \brief Patches (a suffix of the output) added by the coverage pass, not by the sampling loop.
+    std::size_t getNumCoveragePatches () const { return result_.num_coverage_patches; }
+    /// \brief Seeds grown by the sampling loop, kept or not (cost indicator).
+    std::size_t getNumGrownSeeds () const { return result_.num_grown; }
+    /// \brief How each output patch's frame was chosen.
+    const std::vector<PatchFrameKind>& getFrameKinds () const { return result_.frame_kinds; }
 
   protected:
+    /// \brief The stage proper, on the surface initCompute prepared.
     virtual void computePatches (std::vector<Patch>& patches);
 
-    TriangleMesh::ConstPtr mesh_;
-    std::shared_ptr<const MeshTopology> topology_;
     PatchOptions options_;
     std::vector<double> responses_;
     std::vector<int> keypoints_;
-    int num_threads_ = 0;
-    ProgressCallback progress_;
-
-    std::vector<double> used_responses_;
-    std::vector<int> used_keypoints_;
-    std::vector<int> uncovered_;
-    std::vector<int> unreferenced_;
-    std::size_t num_coverage_patches_ = 0;
-    std::size_t num_grown_ = 0;
-    std::vector<PatchFrameKind> frame_kinds_;
-    std::string name_ = "FeatureAwarePatchSampling";
+    PatchSamplingResult result_;
   };
 } // namespace pcl_sparse
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_sparse/patches/impl/feature_aware_patch_sampling.hpp>
+#else
+#define PCL_SPARSE_EXTERN_PATCH_SAMPLING(T) extern template class pcl_sparse::FeatureAwarePatchSampling<T>;
+PCL_SPARSE_FOR_EACH_INPUT_POINT_TYPE (PCL_SPARSE_EXTERN_PATCH_SAMPLING)
+#undef PCL_SPARSE_EXTERN_PATCH_SAMPLING
+#endif

@@ -1,7 +1,16 @@
 #pragma once
 /// \file sparse_surface_resampling.h
-/// Resampling a SparseSurfaceModel into a pcl::PointCloud<pcl::PointNormal> at any density
-/// (METHOD.md step 12): the main use of the representation.
+/// Resampling a SparseSurfaceModel into a pcl::PointCloud<PointOutT> at any density (METHOD.md step 12):
+/// the main use of the representation.
+///
+///   pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> resampling;  // or PointXYZ, PointXYZRGBNormal, ...
+///   resampling.setInputModel (model);
+///   resampling.setPointCount (100000);                               // or setDensity / setSpacing
+///   pcl::PointCloud<pcl::PointNormal> cloud;
+///   resampling.compute (cloud);
+///
+/// The output point type takes what it has fields for: x y z always, normal_x.. and curvature where it
+/// has them (PointNormal is filled directly; other types are copied from it field by field).
 ///
 /// Each patch draws points only inside its own footprint and keeps those it owns (patch_ownership.h),
 /// so overlaps do not double the density. Heights come from the codes, normals from the analytic
@@ -26,7 +35,9 @@
 /// The authors' code draws (r, angle) uniformly in the whole unit disk, which clusters points at the
 /// centre and places points where the patch has no data; we sample uniformly by area inside the footprint.
 
+#include <pcl_sparse/common/point_types.h>
 #include <pcl_sparse/common/progress.h>
+#include <pcl_sparse/common/stage_base.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/resampling/patch_evaluator.h>
 #include <pcl_sparse/resampling/patch_ownership.h>
@@ -61,69 +72,102 @@ namespace pcl_sparse
     PatchOwnershipOptions ownership;
   };
 
-  /// The resampling stage (PCL style): setInputModel, one of setPointCount / setDensity / setSpacing,
-  /// then compute (cloud).
-  class SparseSurfaceResampling
+  /// \brief What the resampling stage is, whatever the output point type: its input, density, options
+  /// and the resampling itself into pcl::PointNormal. Use SparseSurfaceResampling<PointOutT>.
+  class SparseSurfaceResamplingBase : public StageBase
   {
   public:
-    using Ptr = std::shared_ptr<SparseSurfaceResampling>;
-    using ConstPtr = std::shared_ptr<const SparseSurfaceResampling>;
     using PointCloud = pcl::PointCloud<pcl::PointNormal>;
 
     /// Largest point count compute accepts (a guard against typos such as -n 1e12).
     static constexpr std::size_t max_points = 1000000000;
 
-    /// The model to resample. Tables built from it are kept across computes: call again after changing it.
+    /// \brief The model to resample. Tables built from it are kept across computes: call again after
+    /// changing it.
+    /// \param[in] model the sparse surface model
     void setInputModel (const SparseSurfaceModel::ConstPtr& model);
     const SparseSurfaceModel::ConstPtr& getInputModel () const { return model_; }
 
-    /// Exactly \a count points in total (1 .. max_points).
+    /// \brief Exactly \a count points in total (1 .. max_points).
     void setPointCount (std::size_t count);
-    /// \a density points per unit of surface area (world units), in expectation.
+    /// \brief \a density points per unit of surface area (world units), in expectation.
     void setDensity (double density);
-    /// Mean spacing \a spacing between neighbouring points: density 1 / spacing^2.
+    /// \brief Mean spacing \a spacing between neighbouring points: density 1 / spacing^2.
     void setSpacing (double spacing);
 
+    /// \brief Options (seed, jitter, ownership).
     void setOptions (const SparseSurfaceResamplingOptions& options) { options_ = options; ownership_.reset (); }
     const SparseSurfaceResamplingOptions& getOptions () const { return options_; }
 
-    /// Threads for compute; 0 (default) lets OpenMP decide. The output does not depend on it.
-    void setNumberOfThreads (int threads) { threads_ = threads; }
-    void setProgressCallback (const ProgressCallback& callback) { progress_ = callback; }
-
-    /// Resamples the model into \a output (replaced; organised as one row, is_dense = true).
-    /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, or the density
-    /// would give more than max_points points.
-    void compute (PointCloud& output);
-
-    /// Patch that produced each point of the last compute.
+    /// \brief Patch that produced each point of the last compute.
     const std::vector<int>& getPointPatches () const { return point_patches_; }
-    /// Surface area of the model (sum of owned areas) estimated by the last compute.
+    /// \brief Surface area of the model (sum of owned areas) estimated by the last compute.
     double getEstimatedArea () const { return estimated_area_; }
-    /// Density used by the last compute (points per unit area).
+    /// \brief Density used by the last compute (points per unit area).
     double getDensityUsed () const { return density_used_; }
 
-    const std::string& getClassName () const { return class_name_; }
-
   protected:
+    SparseSurfaceResamplingBase () : StageBase ("SparseSurfaceResampling") {}
+
+    /// \brief Checks the input and options, then resamples into \a output (replaced; one row,
+    /// is_dense = true). Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, or
+    /// the density would give more than max_points points.
+    void resample (PointCloud& output);
+
+    /// \brief The stage proper, after the checks.
     virtual void computeResampling (PointCloud& output);
 
   private:
     enum class Mode { None, Count, Density };
+    struct Passes;
+
+    /// Density for a total count, from a coarse pass measuring each patch's owned area.
+    double densityForCount () const;
+    /// Throws if \a density could give more than max_points points.
+    void checkDensityBound (double density) const;
+    /// Candidate pass at \a density (redone once if a count is asked and the area is off by > 2 %).
+    void drawAllCandidates (double& density, Passes& passes) const;
+    /// Points per patch: largest remainder of the weights for a count, else rounded at random.
+    std::vector<std::size_t> pointsPerPatch (const std::vector<double>& weights) const;
+    /// Selection pass: every patch writes its own slice of the output, in patch order.
+    void selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output);
 
     SparseSurfaceModel::ConstPtr model_;
     SparseSurfaceResamplingOptions options_;
     Mode mode_ = Mode::None;
     std::size_t count_ = 0;
     double density_ = 0.0;
-    int threads_ = 0;
-    ProgressCallback progress_;
     // Built on the first compute, kept while the model and options are the same.
     std::shared_ptr<PatchEvaluator> evaluator_;
     std::shared_ptr<PatchOwnership> ownership_;
     std::vector<int> point_patches_;
     double estimated_area_ = 0.0;
     double density_used_ = 0.0;
-    std::string class_name_ = "SparseSurfaceResampling";
+  };
+
+  /// \brief The resampling stage (PCL style): setInputModel, one of setPointCount / setDensity /
+  /// setSpacing, then compute (cloud).
+  /// \tparam PointOutT output point type (x y z needed; normals and curvature filled where it has them)
+  template <typename PointOutT>
+  class SparseSurfaceResampling : public SparseSurfaceResamplingBase
+  {
+  public:
+    using Ptr = std::shared_ptr<SparseSurfaceResampling<PointOutT>>;
+    using ConstPtr = std::shared_ptr<const SparseSurfaceResampling<PointOutT>>;
+    using PointCloudOut = pcl::PointCloud<PointOutT>;
+
+    /// \brief Resamples the model into \a output (replaced; organised as one row, is_dense = true).
+    /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, or the density
+    /// would give more than max_points points.
+    /// \param[out] output the resampled cloud
+    void compute (PointCloudOut& output);
   };
 } // namespace pcl_sparse
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_sparse/resampling/impl/sparse_surface_resampling.hpp>
+#else
+#define PCL_SPARSE_EXTERN_RESAMPLING(T) extern template class pcl_sparse::SparseSurfaceResampling<T>;
+PCL_SPARSE_FOR_EACH_OUTPUT_POINT_TYPE (PCL_SPARSE_EXTERN_RESAMPLING)
+#undef PCL_SPARSE_EXTERN_RESAMPLING
+#endif

@@ -1,0 +1,35 @@
+#pragma once
+/// \file sparse_surface_encoder.hpp
+/// \brief Definitions of SparseSurfaceEncoder (encoder/sparse_surface_encoder.h).
+
+#include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/mesh/impl/surface_stage.hpp>
+
+namespace pcl_sparse
+{
+  template <typename PointInT>
+  void
+  SparseSurfaceEncoder<PointInT>::compute (SparseSurfaceModel& model)
+  {
+    encoding_ = SurfaceEncoding ();
+    this->initCompute ();
+    // Every face degenerate: no surface to code (rho bounds A_p / A with A = 0, normals are arbitrary).
+    if (!hasSurfaceArea (*this->surface_))
+      this->fail ("the mesh has no area: all " + std::to_string (this->surface_->triangles.size ()) +
+                  " faces are degenerate");
+    options_.validate ();
+    computeModel (model);
+    this->deinitCompute ();
+  }
+
+  template <typename PointInT>
+  void
+  SparseSurfaceEncoder<PointInT>::computeModel (SparseSurfaceModel& model)
+  {
+    const SurfaceBasis::ConstPtr basis =
+      basis_ ? basis_ : makeCosineBasis (options_.basis, options_.dictionary_frequencies);
+    encoding_ = encodeSurface (*this->surface_, *this->surface_topology_, options_, basis, this->num_threads_,
+                               this->progress_, model);
+  }
+} // namespace pcl_sparse
