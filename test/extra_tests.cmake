@@ -16,3 +16,15 @@ add_test(NAME consumer_project
   COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DBINARY_DIR=${PROJECT_BINARY_DIR}
           -DCXX_COMPILER=${CMAKE_CXX_COMPILER} -DCONFIG=$<CONFIG> -P ${PROJECT_SOURCE_DIR}/cmake/RunConsumerTest.cmake)
 set_tests_properties(consumer_project PROPERTIES TIMEOUT 900 RUN_SERIAL TRUE)
+
+# Layering (issue 11): no include cycle between the library's folders, no function in src/ over 120
+# lines (scripts/check_layers.py; scripts/long_functions_allowed.txt lists the exceptions being split).
+if(EXISTS /usr/bin/python3)
+  add_test(NAME layers_no_include_cycle
+    COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/check_layers.py includes ${PROJECT_SOURCE_DIR})
+  add_test(NAME functions_at_most_120_lines
+    COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/check_layers.py functions ${PROJECT_SOURCE_DIR}
+            --max 120 --allow ${PROJECT_SOURCE_DIR}/scripts/long_functions_allowed.txt)
+else()
+  message(STATUS "pcl_sparse: /usr/bin/python3 not found, skipping the layering checks")
+endif()
