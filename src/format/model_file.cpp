@@ -890,12 +890,7 @@ namespace pcl_sparse
   saveModel (const std::string& path, const SparseSurfaceModel& model, const ModelWriteOptions& options)
   {
     const std::vector<std::uint8_t> bytes = encodeModel (model, options);
-    writeFileAtomically (path, [&] (const std::string& temporary) {
-      std::ofstream out (temporary, std::ios::binary);
-      out.write (reinterpret_cast<const char*> (bytes.data ()), static_cast<std::streamsize> (bytes.size ()));
-      out.close ();
-      return static_cast<bool> (out);
-    });
+    writeBytesAtomically (path, bytes.data (), bytes.size ());
   }
 
   namespace
