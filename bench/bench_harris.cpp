@@ -9,6 +9,7 @@
 #include <pcl_sparse/geometry/sharp_edges.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/keypoints/harris3d.h>
+#include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 

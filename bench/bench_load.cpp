@@ -168,13 +168,7 @@ main (int argc, char** argv)
                              "relative to pcl_sparse::loadTriangleMesh; loadPolygonMesh includes the conversion to "
                              "pcl::PolygonMesh (one std::vector per polygon), which is most of its time.\n\n" +
                              table;
-    pcl_sparse::writeFileAtomically (output, [&text] (const std::string& temporary) {
-      std::FILE* file = std::fopen (temporary.c_str (), "w");
-      if (!file)
-        return false;
-      const bool written = std::fwrite (text.data (), 1, text.size (), file) == text.size ();
-      return std::fclose (file) == 0 && written;
-    });
+    pcl_sparse::writeBytesAtomically (output, text.data (), text.size ());
   }
   return 0;
 }

@@ -25,3 +25,15 @@ if(TARGET pcl_sparse_encode)
             -P ${PROJECT_SOURCE_DIR}/cmake/CheckToolOutputs.cmake)
   set_tests_properties(tool_outputs_unchanged PROPERTIES FAIL_REGULAR_EXPRESSION "differ|failed" TIMEOUT 600)
 endif()
+
+# Layering (issue 11): no include cycle between the library's folders, no function in src/ over 120
+# lines (scripts/check_layers.py; scripts/long_functions_allowed.txt lists exceptions).
+if(EXISTS /usr/bin/python3)
+  add_test(NAME layers_no_include_cycle
+    COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/check_layers.py includes ${PROJECT_SOURCE_DIR})
+  add_test(NAME functions_at_most_120_lines
+    COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/check_layers.py functions ${PROJECT_SOURCE_DIR}
+            --max 120 --allow ${PROJECT_SOURCE_DIR}/scripts/long_functions_allowed.txt)
+else()
+  message(STATUS "pcl_sparse: /usr/bin/python3 not found, skipping the layering checks")
+endif()

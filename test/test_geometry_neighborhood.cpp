@@ -1,4 +1,5 @@
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
+#include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 
@@ -6,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 using namespace pcl_sparse;
 
@@ -135,4 +137,9 @@ TEST (MeshNeighborhood, BoundingBoxDiagonal)
   EXPECT_NEAR (boundingBoxDiagonal (makeCube (4, 1.0)), 2.0 * std::sqrt (3.0), 1e-12);
   EXPECT_NEAR (boundingBoxDiagonal (makePlaneGrid (3, 0.5)), std::sqrt (2.0), 1e-12);
   EXPECT_EQ (boundingBoxDiagonal (TriangleMesh ()), 0.0);
+  // Non-finite points are ignored; none finite gives 0.
+  const double nan = std::numeric_limits<double>::quiet_NaN (), inf = std::numeric_limits<double>::infinity ();
+  EXPECT_EQ (boundingBoxDiagonal ({Eigen::Vector3d (nan, 0, 0), Eigen::Vector3d (0, inf, 0)}), 0.0);
+  EXPECT_EQ (boundingBoxDiagonal ({Eigen::Vector3d (1, 2, 3), Eigen::Vector3d (nan, 0, 0), Eigen::Vector3d (4, 6, 3)}),
+             5.0);
 }

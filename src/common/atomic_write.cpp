@@ -36,4 +36,16 @@ namespace pcl_sparse
       throw Error (path + ": could not write the file (" + reason + ")");
     }
   }
+
+  void
+  writeBytesAtomically (const std::string& path, const void* data, std::size_t size)
+  {
+    writeFileAtomically (path, [data, size] (const std::string& temporary) {
+      std::FILE* file = std::fopen (temporary.c_str (), "wb");
+      if (!file)
+        return false;
+      const bool written = size == 0 || std::fwrite (data, 1, size, file) == size;
+      return std::fclose (file) == 0 && written;
+    });
+  }
 } // namespace pcl_sparse

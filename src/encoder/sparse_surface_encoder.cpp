@@ -2,6 +2,7 @@
 #include <pcl_sparse/coding/patch_samples.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/impl/sparse_surface_encoder.hpp>
+#include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 
@@ -107,14 +108,7 @@ namespace pcl_sparse
     model.basis = basis;
     model.patches = std::move (codes);
     model.num_input_vertices = mesh.vertices.size ();
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ()), hi = -lo;
-    for (const Eigen::Vector3d& v : mesh.vertices)
-      if (v.allFinite ())
-      {
-        lo = lo.cwiseMin (v);
-        hi = hi.cwiseMax (v);
-      }
-    model.bbox_diagonal = (hi - lo).allFinite () ? (hi - lo).norm () : 0.0;
+    model.bbox_diagonal = boundingBoxDiagonal (mesh);
     encoding.timings.total = secondsSince (start);
     return encoding;
   }

@@ -263,18 +263,12 @@ namespace pcl_sparse
 
     // ---- quantised sections -----------------------------------------------------------------------
 
-    std::vector<Section>
-    encodeQuantised (const SparseSurfaceModel& model, const ModelWriteOptions& options, int frequencies)
+    /// Seeds: integer steps of q.seed_step from the smallest corner, one vector per coordinate (sets
+    /// q.seed_min and q.seed_bytes).
+    std::vector<std::vector<std::uint64_t>>
+    quantiseSeeds (const SparseSurfaceModel& model, QuantisationParameters& q)
     {
       const std::size_t m = model.patches.size ();
-      const double tolerance = options.tolerance * model.bbox_diagonal;
-      QuantisationParameters q;
-      q.seed_step = 2.0 * kSeedShare * tolerance / std::sqrt (3.0);
-      q.frame_budget = kFrameShare * tolerance;
-      q.coefficient_budget = kCoefficientShare * tolerance;
-      q.extent_bits = options.extent_bits;
-
-      // Seeds: integer steps from the smallest corner.
       for (int i = 0; i < 3; ++i)
       {
         q.seed_min[i] = m ? std::numeric_limits<double>::infinity () : 0.0;
@@ -293,17 +287,16 @@ namespace pcl_sparse
           seed_max = std::max (seed_max, seeds[i][p]);
         }
       q.seed_bytes = bytesFor (seed_max);
+      return seeds;
+    }
 
-      // Extents: a common scale, (2^bits - 1) levels.
-      q.extent_max = 0.0;
-      for (const PatchCode& patch : model.patches)
-        q.extent_max = std::max (q.extent_max, maxExtent (patch.footprint));
-      if (!(q.extent_max > 0.0))
-        q.extent_max = 1.0;
-
-      // Radii: log scale, step from the largest radius * reach over the patches (original values).
+    /// Radii: log scale, the step from the largest radius * reach over the patches (original values);
+    /// sets q.log_radius_min and q.log_radius_step.
+    void
+    chooseRadiusScale (const SparseSurfaceModel& model, double tolerance, QuantisationParameters& q)
+    {
       double largest_arm = 0.0;
-      q.log_radius_min = m ? std::numeric_limits<double>::infinity () : 0.0;
+      q.log_radius_min = model.patches.empty () ? 0.0 : std::numeric_limits<double>::infinity ();
       for (const PatchCode& patch : model.patches)
       {
         const double e = maxExtent (patch.footprint);
@@ -313,74 +306,90 @@ namespace pcl_sparse
       }
       const double relative = kRadiusShare * tolerance / std::max (largest_arm, 1e-300);
       q.log_radius_step = 2.0 * std::log1p (std::min (relative, 1.0));
+    }
 
-      // Decode as we go, so that the steps derived from decoded values match the decoder's.
+    /// Step count of \a radius on the log scale of \a q.
+    std::uint64_t
+    quantiseRadius (double radius, const QuantisationParameters& q)
+    {
+      const double radius_steps = std::round ((std::log (radius) - q.log_radius_min) / q.log_radius_step);
+      if (!(radius_steps < 4294967295.0))
+        throw Error ("encodeModel: tolerance too small for the radius range");
+      return static_cast<std::uint64_t> (radius_steps);
+    }
+
+    /// Footprint: fewer angles, every stride-th extent (docs/FORMAT.md: no measurable change on spot),
+    /// as deltas of extent levels on q.extent_bits bits.
+    void
+    putQuantisedFootprint (ByteWriter& foot, const PatchFootprint& footprint, const QuantisationParameters& q,
+                           int max_footprint_angles)
+    {
       const unsigned extent_mask = (1u << q.extent_bits) - 1u;
-      std::vector<std::uint64_t> radii (m);
-      std::uint64_t radius_max = 0;
-      ByteWriter frame, foot, atom, coef;
-      for (std::size_t p = 0; p < m; ++p)
+      std::size_t stride = 1;
+      const std::size_t k_in = footprint.extent.size ();
+      while (max_footprint_angles > 0 && k_in / stride > static_cast<std::size_t> (max_footprint_angles) &&
+             k_in % (2 * stride) == 0)
+        stride *= 2;
+      foot.putVarint (k_in / stride);
+      unsigned previous = 0;
+      for (std::size_t k = 0; k < k_in; k += stride)
       {
-        const PatchCode& patch = model.patches[p];
-        PatchCode decoded;
-        const double radius_steps = std::round ((std::log (patch.radius) - q.log_radius_min) / q.log_radius_step);
-        if (!(radius_steps < 4294967295.0))
-          throw Error ("encodeModel: tolerance too small for the radius range");
-        radii[p] = static_cast<std::uint64_t> (radius_steps);
-        radius_max = std::max (radius_max, radii[p]);
-        decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
-
-        // Fewer angles: keep every stride-th extent (docs/FORMAT.md: no measurable change on spot).
-        std::size_t stride = 1;
-        const std::size_t k_in = patch.footprint.extent.size ();
-        while (options.max_footprint_angles > 0 && k_in / stride > static_cast<std::size_t> (options.max_footprint_angles) &&
-               k_in % (2 * stride) == 0)
-          stride *= 2;
-        foot.putVarint (k_in / stride);
-        unsigned previous = 0;
-        for (std::size_t k = 0; k < k_in; k += stride)
-        {
-          const float e = patch.footprint.extent[k];
-          const unsigned level =
-            std::min (extent_mask, static_cast<unsigned> (std::lround (static_cast<double> (e) / q.extentStep ())));
-          foot.putU8 (static_cast<std::uint8_t> ((level - previous) & extent_mask));
-          previous = level;
-          decoded.footprint.extent.push_back (static_cast<float> (level * q.extentStep ()));
-        }
-
-        // Atoms sorted by shell rank: the deltas are small and the code is the same sum.
-        std::vector<std::size_t> order (patch.atoms.size ());
-        std::iota (order.begin (), order.end (), 0);
-        std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
-          return shellRank (patch.atoms[a], frequencies) < shellRank (patch.atoms[b], frequencies);
-        });
-        atom.putVarint (order.size ());
-        int previous_rank = -1;
-        for (std::size_t k : order)
-        {
-          const int rank = shellRank (patch.atoms[k], frequencies);
-          atom.putVarint (static_cast<std::uint64_t> (rank - previous_rank - 1));
-          previous_rank = rank;
-          decoded.atoms.push_back (patch.atoms[k]);
-        }
-        const double step = coefficientStep (q.coefficient_budget, decoded.radius, order.size ());
-        for (std::size_t k : order)
-        {
-          const double steps = std::round (patch.coefficients[k] / step);
-          if (!(std::abs (steps) < 9.0e15))
-            throw Error ("encodeModel: coefficient too large for the tolerance");
-          coef.putSignedVarint (static_cast<std::int64_t> (steps));
-          decoded.coefficients.push_back (steps * step);
-        }
-
-        const double frame_step = frameStep (q.frame_budget, decoded.radius, decodedReach (decoded, q));
-        const QuantisedFrame code = quantiseFrame (patch.frame, frame_step);
-        frame.putU8 (static_cast<std::uint8_t> (code.largest | (code.reflected ? 4 : 0)));
-        for (std::int64_t v : code.q)
-          frame.putSignedVarint (v);
+        const float e = footprint.extent[k];
+        const unsigned level =
+          std::min (extent_mask, static_cast<unsigned> (std::lround (static_cast<double> (e) / q.extentStep ())));
+        foot.putU8 (static_cast<std::uint8_t> ((level - previous) & extent_mask));
+        previous = level;
       }
-      q.radius_bytes = bytesFor (radius_max);
+    }
 
+    /// Atoms sorted by shell rank (the deltas are small and the code is the same sum), then their
+    /// coefficients in that order, in steps of the patch's coefficient step. \a decoded (its radius
+    /// already set) receives the atoms and coefficients as the decoder will read them.
+    void
+    putQuantisedCode (ByteWriter& atom, ByteWriter& coef, const PatchCode& patch, const QuantisationParameters& q,
+                      int frequencies, PatchCode& decoded)
+    {
+      std::vector<std::size_t> order (patch.atoms.size ());
+      std::iota (order.begin (), order.end (), 0);
+      std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
+        return shellRank (patch.atoms[a], frequencies) < shellRank (patch.atoms[b], frequencies);
+      });
+      atom.putVarint (order.size ());
+      int previous_rank = -1;
+      for (std::size_t k : order)
+      {
+        const int rank = shellRank (patch.atoms[k], frequencies);
+        atom.putVarint (static_cast<std::uint64_t> (rank - previous_rank - 1));
+        previous_rank = rank;
+        decoded.atoms.push_back (patch.atoms[k]);
+      }
+      const double step = coefficientStep (q.coefficient_budget, decoded.radius, order.size ());
+      for (std::size_t k : order)
+      {
+        const double steps = std::round (patch.coefficients[k] / step);
+        if (!(std::abs (steps) < 9.0e15))
+          throw Error ("encodeModel: coefficient too large for the tolerance");
+        coef.putSignedVarint (static_cast<std::int64_t> (steps));
+        decoded.coefficients.push_back (steps * step);
+      }
+    }
+
+    /// The frame as a quantised quaternion, its step from the decoded patch (as the decoder derives it).
+    void
+    putQuantisedFrame (ByteWriter& frame, const Eigen::Matrix3d& rotation, const PatchCode& decoded,
+                       const QuantisationParameters& q)
+    {
+      const double frame_step = frameStep (q.frame_budget, decoded.radius, decodedReach (decoded, q));
+      const QuantisedFrame code = quantiseFrame (rotation, frame_step);
+      frame.putU8 (static_cast<std::uint8_t> (code.largest | (code.reflected ? 4 : 0)));
+      for (std::int64_t v : code.q)
+        frame.putSignedVarint (v);
+    }
+
+    /// Section QUAN.
+    std::vector<std::uint8_t>
+    quantisationBytes (const QuantisationParameters& q)
+    {
       ByteWriter params;
       for (double v : q.seed_min)
         params.putF64 (v);
@@ -393,14 +402,53 @@ namespace pcl_sparse
       params.putU8 (static_cast<std::uint8_t> (q.extent_bits));
       params.putF64 (q.frame_budget);
       params.putF64 (q.coefficient_budget);
+      return std::move (params.bytes ());
+    }
+
+    std::vector<Section>
+    encodeQuantised (const SparseSurfaceModel& model, const ModelWriteOptions& options, int frequencies)
+    {
+      const std::size_t m = model.patches.size ();
+      const double tolerance = options.tolerance * model.bbox_diagonal;
+      QuantisationParameters q;
+      q.seed_step = 2.0 * kSeedShare * tolerance / std::sqrt (3.0);
+      q.frame_budget = kFrameShare * tolerance;
+      q.coefficient_budget = kCoefficientShare * tolerance;
+      q.extent_bits = options.extent_bits;
+      const std::vector<std::vector<std::uint64_t>> seeds = quantiseSeeds (model, q);
+
+      // Extents: a common scale, (2^bits - 1) levels.
+      q.extent_max = 0.0;
+      for (const PatchCode& patch : model.patches)
+        q.extent_max = std::max (q.extent_max, maxExtent (patch.footprint));
+      if (!(q.extent_max > 0.0))
+        q.extent_max = 1.0;
+      chooseRadiusScale (model, tolerance, q);
+
+      // Decode as we go, so that the steps derived from decoded values match the decoder's.
+      std::vector<std::uint64_t> radii (m);
+      std::uint64_t radius_max = 0;
+      ByteWriter frame, foot, atom, coef;
+      for (std::size_t p = 0; p < m; ++p)
+      {
+        const PatchCode& patch = model.patches[p];
+        PatchCode decoded;
+        radii[p] = quantiseRadius (patch.radius, q);
+        radius_max = std::max (radius_max, radii[p]);
+        decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
+        putQuantisedFootprint (foot, patch.footprint, q, options.max_footprint_angles);
+        putQuantisedCode (atom, coef, patch, q, frequencies, decoded);
+        putQuantisedFrame (frame, patch.frame, decoded, q);
+      }
+      q.radius_bytes = bytesFor (radius_max);
 
       ByteWriter seed, radius;
       for (int i = 0; i < 3; ++i)
         putPlanes (seed, seeds[i], q.seed_bytes);
       putPlanes (radius, radii, q.radius_bytes);
-      return {{"QUAN", kCodecStored, std::move (params.bytes ())}, {"SEED", kCodecZstd, std::move (seed.bytes ())},
-              {"FRAM", kCodecZstd, std::move (frame.bytes ())},    {"RADI", kCodecZstd, std::move (radius.bytes ())},
-              {"FOOT", kCodecZstd, std::move (foot.bytes ())},     {"ATOM", kCodecZstd, std::move (atom.bytes ())},
+      return {{"QUAN", kCodecStored, quantisationBytes (q)},     {"SEED", kCodecZstd, std::move (seed.bytes ())},
+              {"FRAM", kCodecZstd, std::move (frame.bytes ())}, {"RADI", kCodecZstd, std::move (radius.bytes ())},
+              {"FOOT", kCodecZstd, std::move (foot.bytes ())},  {"ATOM", kCodecZstd, std::move (atom.bytes ())},
               {"COEF", kCodecZstd, std::move (coef.bytes ())}};
     }
 
@@ -589,6 +637,195 @@ namespace pcl_sparse
         in.fail ("quantisation widths out of range");
       return q;
     }
+
+    // ---- decoding, one patch field at a time ------------------------------------------------------
+
+    /// Fixed-size sections must hold exactly \a m entries, and every patch takes at least one byte in
+    /// each variable-size section: checked before allocating patches.
+    void
+    checkSectionSizes (const ByteReader& seed, const ByteReader& frame, const ByteReader& radius, const ByteReader& foot,
+                       const ByteReader& atom, std::size_t m, bool quantised, const QuantisationParameters& q)
+    {
+      const std::size_t seed_entry = quantised ? 3 * static_cast<std::size_t> (q.seed_bytes) : 24;
+      const std::size_t radius_entry = quantised ? static_cast<std::size_t> (q.radius_bytes) : 8;
+      if (seed.remaining () != m * seed_entry)
+        seed.fail ("holds " + std::to_string (seed.remaining ()) + " bytes, " + std::to_string (m) + " patches need " +
+                   std::to_string (m * seed_entry));
+      if (radius.remaining () != m * radius_entry)
+        radius.fail ("holds " + std::to_string (radius.remaining ()) + " bytes, " + std::to_string (m) + " patches need " +
+                     std::to_string (m * radius_entry));
+      if (frame.remaining () < m * (quantised ? 4 : 72) || foot.remaining () < m || atom.remaining () < m)
+        frame.fail ("too short for " + std::to_string (m) + " patches");
+    }
+
+    /// Seed and radius of patch \a p: from the byte planes \a seeds and \a radii of a quantised file,
+    /// else read from \a seed and \a radius.
+    void
+    readPlacement (ByteReader& seed, ByteReader& radius, bool quantised, const QuantisationParameters& q,
+                   const std::vector<std::vector<std::uint64_t>>& seeds, const std::vector<std::uint64_t>& radii,
+                   std::size_t p, PatchCode& patch)
+    {
+      if (quantised)
+      {
+        for (int i = 0; i < 3; ++i)
+          patch.origin[i] = q.seed_min[i] + static_cast<double> (seeds[i][p]) * q.seed_step;
+        patch.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
+        if (!patch.origin.allFinite ())
+          seed.fail ("patch " + std::to_string (p) + " seed is not finite");
+      }
+      else
+      {
+        for (int i = 0; i < 3; ++i)
+          patch.origin[i] = readFinite (seed, "seed");
+        patch.radius = readFinite (radius, "radius");
+      }
+      if (!(patch.radius > 0.0) || !std::isfinite (patch.radius))
+        radius.fail ("patch " + std::to_string (p) + " radius is not a positive finite number");
+    }
+
+    void
+    readFootprint (ByteReader& foot, bool quantised, const QuantisationParameters& q, std::size_t p,
+                   PatchFootprint& footprint)
+    {
+      const unsigned extent_mask = (1u << q.extent_bits) - 1u;
+      const std::size_t k = foot.getCount ("footprint angles", std::min<std::uint64_t> (kMaxFootprintAngles, foot.remaining ()));
+      footprint.extent.resize (k);
+      unsigned level = 0;
+      for (std::size_t i = 0; i < k; ++i)
+      {
+        if (quantised)
+        {
+          const unsigned delta = foot.getU8 ("extent");
+          if (delta > extent_mask)
+            foot.fail ("extent delta out of range");
+          level = (level + delta) & extent_mask;
+          footprint.extent[i] = static_cast<float> (level * q.extentStep ());
+          if (!std::isfinite (footprint.extent[i]))
+            foot.fail ("patch " + std::to_string (p) + " extent is not finite");
+        }
+        else
+        {
+          const float e = foot.getF32 ("extent");
+          if (!std::isfinite (e) || e < 0.0f)
+            foot.fail ("patch " + std::to_string (p) + " extent is negative or not finite");
+          footprint.extent[i] = e;
+        }
+      }
+    }
+
+    /// Atom indices of patch \a p over a basis of \a frequencies^2 atoms (shell-rank deltas in a quantised
+    /// file); refuses indices outside the basis and repeats.
+    void
+    readAtoms (ByteReader& atom, bool quantised, int frequencies, std::size_t p, std::vector<int>& atoms)
+    {
+      const int basis_size = frequencies * frequencies;
+      const std::size_t n = atom.getCount ("atom count", std::min<std::uint64_t> (basis_size, atom.remaining ()));
+      atoms.resize (n);
+      std::int64_t previous = -1;
+      std::vector<bool> used (basis_size, false);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const std::uint64_t v = atom.getCount ("atom index", static_cast<std::uint64_t> (basis_size));
+        std::int64_t index = quantised ? previous + 1 + static_cast<std::int64_t> (v) : static_cast<std::int64_t> (v);
+        if (index >= basis_size)
+          atom.fail ("patch " + std::to_string (p) + " atom " + std::to_string (index) + " outside the basis of " +
+                     std::to_string (basis_size));
+        previous = index;
+        if (quantised)
+          index = atomOfShellRank (static_cast<int> (index), frequencies);
+        if (index >= basis_size)
+          atom.fail ("patch " + std::to_string (p) + " atom index " + std::to_string (index) + " outside the basis of " +
+                     std::to_string (basis_size));
+        if (used[index])
+          atom.fail ("patch " + std::to_string (p) + " repeats atom " + std::to_string (index));
+        used[index] = true;
+        atoms[i] = static_cast<int> (index);
+      }
+    }
+
+    /// One coefficient per atom of \a patch (its radius already read).
+    void
+    readCoefficients (ByteReader& coef, bool quantised, const QuantisationParameters& q, PatchCode& patch)
+    {
+      const std::size_t n = patch.atoms.size ();
+      patch.coefficients.resize (n);
+      const double step = quantised ? coefficientStep (q.coefficient_budget, patch.radius, n) : 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        if (quantised)
+        {
+          const std::int64_t v = coef.getSignedVarint ("coefficient");
+          patch.coefficients[i] = static_cast<double> (v) * step;
+          if (!std::isfinite (patch.coefficients[i]))
+            coef.fail ("coefficient is not finite");
+        }
+        else
+          patch.coefficients[i] = readFinite (coef, "coefficient");
+      }
+    }
+
+    /// Frame of patch \a p (its radius and code already read: a quantised frame's step depends on them).
+    void
+    readFrame (ByteReader& frame, bool quantised, const QuantisationParameters& q, std::size_t p, PatchCode& patch)
+    {
+      if (quantised)
+      {
+        QuantisedFrame code;
+        const std::uint8_t header = frame.getU8 ("frame header");
+        if (header > 7)
+          frame.fail ("frame header out of range");
+        code.largest = header & 3;
+        code.reflected = header & 4;
+        for (std::int64_t& v : code.q)
+          v = frame.getSignedVarint ("frame component");
+        const double frame_step = frameStep (q.frame_budget, patch.radius, decodedReach (patch, q));
+        if (!std::isfinite (frame_step) || !dequantiseFrame (code, frame_step, patch.frame))
+          frame.fail ("patch " + std::to_string (p) + " frame is not a unit quaternion");
+      }
+      else
+      {
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r)
+            patch.frame (r, c) = readFinite (frame, "frame");
+        const double off = (patch.frame.transpose () * patch.frame - Eigen::Matrix3d::Identity ()).cwiseAbs ().maxCoeff ();
+        if (!(off <= 1e-6))
+          frame.fail ("patch " + std::to_string (p) + " frame is not orthonormal");
+      }
+    }
+
+    /// Section VERT: every patch's input vertices and their local (x', y').
+    void
+    readVertices (ByteReader& vert, bool quantised, std::uint64_t num_input_vertices, std::vector<PatchCode>& patches)
+    {
+      const std::size_t xy_bytes = quantised ? 8 : 16;
+      for (std::size_t p = 0; p < patches.size (); ++p)
+      {
+        PatchCode& patch = patches[p];
+        // Each vertex needs >= 1 index byte and xy_bytes coordinate bytes: bound before resizing.
+        const std::size_t count =
+          vert.getCount ("vertex count", std::min<std::uint64_t> (num_input_vertices, vert.remaining () / (1 + xy_bytes)));
+        patch.vertices.resize (count);
+        patch.vertex_xy.resize (count);
+        std::int64_t previous = 0;
+        for (std::size_t i = 0; i < count; ++i)
+        {
+          const std::int64_t delta = vert.getSignedVarint ("vertex index");
+          if (delta < -previous || delta >= static_cast<std::int64_t> (num_input_vertices) - previous)
+            vert.fail ("patch " + std::to_string (p) + " vertex index outside num_input_vertices");
+          previous += delta;
+          patch.vertices[i] = static_cast<int> (previous);
+        }
+        for (std::size_t i = 0; i < count; ++i)
+          for (int c = 0; c < 2; ++c)
+          {
+            const double v = quantised ? static_cast<double> (vert.getF32 ("vertex_xy")) : vert.getF64 ("vertex_xy");
+            if (!std::isfinite (v))
+              vert.fail ("vertex_xy is not finite");
+            patch.vertex_xy[i][c] = v;
+          }
+      }
+      vert.expectEnd ();
+    }
   } // namespace
 
   std::vector<std::uint8_t>
@@ -664,7 +901,6 @@ namespace pcl_sparse
     const Header& h = container.header;
     const bool quantised = h.flags & kFlagQuantised;
     const std::size_t m = h.num_patches;
-    const int basis_size = h.basis_parameter * h.basis_parameter;
 
     SparseSurfaceModel model;
     model.basis = makeCosineBasis (h.basis_kind == kBasisDctCosine ? CosineBasisKind::Dct : CosineBasisKind::Paper,
@@ -692,19 +928,7 @@ namespace pcl_sparse
     ByteReader foot = open (foot_bytes);
     ByteReader atom = open (atom_bytes);
     ByteReader coef = open (coef_bytes);
-
-    // Fixed-size sections must hold exactly num_patches entries: checked before allocating patches.
-    const std::size_t seed_entry = quantised ? 3 * static_cast<std::size_t> (q.seed_bytes) : 24;
-    const std::size_t radius_entry = quantised ? static_cast<std::size_t> (q.radius_bytes) : 8;
-    if (seed.remaining () != m * seed_entry)
-      seed.fail ("holds " + std::to_string (seed.remaining ()) + " bytes, " + std::to_string (m) + " patches need " +
-                 std::to_string (m * seed_entry));
-    if (radius.remaining () != m * radius_entry)
-      radius.fail ("holds " + std::to_string (radius.remaining ()) + " bytes, " + std::to_string (m) + " patches need " +
-                   std::to_string (m * radius_entry));
-    // Every patch takes at least one byte in each variable-size section.
-    if (frame.remaining () < m * (quantised ? 4 : 72) || foot.remaining () < m || atom.remaining () < m)
-      frame.fail ("too short for " + std::to_string (m) + " patches");
+    checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, q);
     model.patches.resize (m);
 
     std::vector<std::vector<std::uint64_t>> seeds;
@@ -715,112 +939,14 @@ namespace pcl_sparse
         seeds.push_back (getPlanes (seed, m, q.seed_bytes, "seed"));
       radii = getPlanes (radius, m, q.radius_bytes, "radius");
     }
-    const unsigned extent_mask = (1u << q.extent_bits) - 1u;
-
     for (std::size_t p = 0; p < m; ++p)
     {
       PatchCode& patch = model.patches[p];
-      if (quantised)
-      {
-        for (int i = 0; i < 3; ++i)
-          patch.origin[i] = q.seed_min[i] + static_cast<double> (seeds[i][p]) * q.seed_step;
-        patch.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
-        if (!patch.origin.allFinite ())
-          seed.fail ("patch " + std::to_string (p) + " seed is not finite");
-      }
-      else
-      {
-        for (int i = 0; i < 3; ++i)
-          patch.origin[i] = readFinite (seed, "seed");
-        patch.radius = readFinite (radius, "radius");
-      }
-      if (!(patch.radius > 0.0) || !std::isfinite (patch.radius))
-        radius.fail ("patch " + std::to_string (p) + " radius is not a positive finite number");
-
-      const std::size_t k = foot.getCount ("footprint angles", std::min<std::uint64_t> (kMaxFootprintAngles, foot.remaining ()));
-      patch.footprint.extent.resize (k);
-      unsigned level = 0;
-      for (std::size_t i = 0; i < k; ++i)
-      {
-        if (quantised)
-        {
-          const unsigned delta = foot.getU8 ("extent");
-          if (delta > extent_mask)
-            foot.fail ("extent delta out of range");
-          level = (level + delta) & extent_mask;
-          patch.footprint.extent[i] = static_cast<float> (level * q.extentStep ());
-          if (!std::isfinite (patch.footprint.extent[i]))
-            foot.fail ("patch " + std::to_string (p) + " extent is not finite");
-        }
-        else
-        {
-          const float e = foot.getF32 ("extent");
-          if (!std::isfinite (e) || e < 0.0f)
-            foot.fail ("patch " + std::to_string (p) + " extent is negative or not finite");
-          patch.footprint.extent[i] = e;
-        }
-      }
-
-      const std::size_t n = atom.getCount ("atom count", std::min<std::uint64_t> (basis_size, atom.remaining ()));
-      patch.atoms.resize (n);
-      std::int64_t previous = -1;
-      std::vector<bool> used (basis_size, false);
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const std::uint64_t v = atom.getCount ("atom index", static_cast<std::uint64_t> (basis_size));
-        std::int64_t index = quantised ? previous + 1 + static_cast<std::int64_t> (v) : static_cast<std::int64_t> (v);
-        if (index >= basis_size)
-          atom.fail ("patch " + std::to_string (p) + " atom " + std::to_string (index) + " outside the basis of " +
-                     std::to_string (basis_size));
-        previous = index;
-        if (quantised)
-          index = atomOfShellRank (static_cast<int> (index), h.basis_parameter);
-        if (index >= basis_size)
-          atom.fail ("patch " + std::to_string (p) + " atom index " + std::to_string (index) + " outside the basis of " +
-                     std::to_string (basis_size));
-        if (used[index])
-          atom.fail ("patch " + std::to_string (p) + " repeats atom " + std::to_string (index));
-        used[index] = true;
-        patch.atoms[i] = static_cast<int> (index);
-      }
-      patch.coefficients.resize (n);
-      const double step = quantised ? coefficientStep (q.coefficient_budget, patch.radius, n) : 0.0;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        if (quantised)
-        {
-          const std::int64_t v = coef.getSignedVarint ("coefficient");
-          patch.coefficients[i] = static_cast<double> (v) * step;
-          if (!std::isfinite (patch.coefficients[i]))
-            coef.fail ("coefficient is not finite");
-        }
-        else
-          patch.coefficients[i] = readFinite (coef, "coefficient");
-      }
-
-      if (quantised)
-      {
-        QuantisedFrame code;
-        const std::uint8_t header = frame.getU8 ("frame header");
-        if (header > 7)
-          frame.fail ("frame header out of range");
-        code.largest = header & 3;
-        code.reflected = header & 4;
-        for (std::int64_t& v : code.q)
-          v = frame.getSignedVarint ("frame component");
-        const double frame_step = frameStep (q.frame_budget, patch.radius, decodedReach (patch, q));
-        if (!std::isfinite (frame_step) || !dequantiseFrame (code, frame_step, patch.frame))
-          frame.fail ("patch " + std::to_string (p) + " frame is not a unit quaternion");
-      }
-      else
-      {
-        for (int c = 0; c < 3; ++c)
-          for (int r = 0; r < 3; ++r)
-            patch.frame (r, c) = readFinite (frame, "frame");
-        const double off = (patch.frame.transpose () * patch.frame - Eigen::Matrix3d::Identity ()).cwiseAbs ().maxCoeff ();
-        if (!(off <= 1e-6))
-          frame.fail ("patch " + std::to_string (p) + " frame is not orthonormal");
-      }
+      readPlacement (seed, radius, quantised, q, seeds, radii, p, patch);
+      readFootprint (foot, quantised, q, p, patch.footprint);
+      readAtoms (atom, quantised, h.basis_parameter, p, patch.atoms);
+      readCoefficients (coef, quantised, q, patch);
+      readFrame (frame, quantised, q, p, patch);
     }
     seed.expectEnd ();
     frame.expectEnd ();
@@ -833,34 +959,7 @@ namespace pcl_sparse
     {
       std::vector<std::uint8_t> vertex_bytes;
       ByteReader vert = open (vertex_bytes);
-      const std::size_t xy_bytes = quantised ? 8 : 16;
-      for (std::size_t p = 0; p < m; ++p)
-      {
-        PatchCode& patch = model.patches[p];
-        // Each vertex needs >= 1 index byte and xy_bytes coordinate bytes: bound before resizing.
-        const std::size_t count =
-          vert.getCount ("vertex count", std::min<std::uint64_t> (h.num_input_vertices, vert.remaining () / (1 + xy_bytes)));
-        patch.vertices.resize (count);
-        patch.vertex_xy.resize (count);
-        std::int64_t previous = 0;
-        for (std::size_t i = 0; i < count; ++i)
-        {
-          const std::int64_t delta = vert.getSignedVarint ("vertex index");
-          if (delta < -previous || delta >= static_cast<std::int64_t> (h.num_input_vertices) - previous)
-            vert.fail ("patch " + std::to_string (p) + " vertex index outside num_input_vertices");
-          previous += delta;
-          patch.vertices[i] = static_cast<int> (previous);
-        }
-        for (std::size_t i = 0; i < count; ++i)
-          for (int c = 0; c < 2; ++c)
-          {
-            const double v = quantised ? static_cast<double> (vert.getF32 ("vertex_xy")) : vert.getF64 ("vertex_xy");
-            if (!std::isfinite (v))
-              vert.fail ("vertex_xy is not finite");
-            patch.vertex_xy[i][c] = v;
-          }
-      }
-      vert.expectEnd ();
+      readVertices (vert, quantised, h.num_input_vertices, model.patches);
     }
     return model;
   }
@@ -890,12 +989,7 @@ namespace pcl_sparse
   saveModel (const std::string& path, const SparseSurfaceModel& model, const ModelWriteOptions& options)
   {
     const std::vector<std::uint8_t> bytes = encodeModel (model, options);
-    writeFileAtomically (path, [&] (const std::string& temporary) {
-      std::ofstream out (temporary, std::ios::binary);
-      out.write (reinterpret_cast<const char*> (bytes.data ()), static_cast<std::streamsize> (bytes.size ()));
-      out.close ();
-      return static_cast<bool> (out);
-    });
+    writeBytesAtomically (path, bytes.data (), bytes.size ());
   }
 
   namespace

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace pcl_sparse
 {
@@ -80,21 +79,5 @@ namespace pcl_sparse
     std::vector<int> out;
     collectKRing (topology, v, rings, marks, out);
     return out;
-  }
-
-  double
-  boundingBoxDiagonal (const TriangleMesh& mesh)
-  {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
-    Eigen::Vector3d hi = -lo;
-    bool any = false;
-    for (const auto& p : mesh.vertices)
-      if (p.allFinite ())
-      {
-        lo = lo.cwiseMin (p);
-        hi = hi.cwiseMax (p);
-        any = true;
-      }
-    return any ? (hi - lo).norm () : 0.0;
   }
 } // namespace pcl_sparse

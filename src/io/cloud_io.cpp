@@ -234,12 +234,6 @@ namespace pcl_sparse
     if (extension != ".ply")
       throw Error (path + ": unknown point cloud file extension '" + extension + "' (expected .pcd or .ply)");
     const std::string buffer = plyText (cloud, binary);
-    writeFileAtomically (path, [&buffer] (const std::string& temporary) {
-      std::FILE* file = std::fopen (temporary.c_str (), "wb");
-      if (!file)
-        return false;
-      const bool written = std::fwrite (buffer.data (), 1, buffer.size (), file) == buffer.size ();
-      return std::fclose (file) == 0 && written;
-    });
+    writeBytesAtomically (path, buffer.data (), buffer.size ());
   }
 } // namespace pcl_sparse

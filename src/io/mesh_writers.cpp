@@ -1,6 +1,6 @@
 /// Mesh writers: OBJ and OFF with exact (shortest round-trip) decimal coordinates, binary little-endian PLY
 /// with double coordinates, binary STL (float, the format's only precision), and PLY with vertex colours.
-/// Each file is built in memory and written once through writeFileAtomically.
+/// Each file is built in memory and written once through writeBytesAtomically.
 
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/io/mesh_io.h>
@@ -9,7 +9,7 @@
 
 #include <Eigen/Geometry>
 
-#include <cstdio>
+#include <charconv>
 
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "the binary PLY/STL readers and writers assume a little-endian host"
@@ -19,18 +19,6 @@ namespace pcl_sparse
 {
   namespace
   {
-    void
-    writeBuffer (const std::string& path, const std::string& buffer)
-    {
-      writeFileAtomically (path, [&buffer] (const std::string& temporary) {
-        std::FILE* file = std::fopen (temporary.c_str (), "wb");
-        if (!file)
-          return false;
-        const bool written = std::fwrite (buffer.data (), 1, buffer.size (), file) == buffer.size ();
-        return std::fclose (file) == 0 && written;
-      });
-    }
-
     void
     checkIndices (const std::string& path, const TriangleMesh& mesh)
     {
@@ -196,14 +184,11 @@ namespace pcl_sparse
     if (!isMeshFileExtension (path))
       throw Error (path + ": unknown mesh file extension '" + extension + "' (expected .obj, .off, .ply or .stl)");
     checkIndices (path, mesh);
-    if (extension == ".obj")
-      writeBuffer (path, objText (mesh));
-    else if (extension == ".off")
-      writeBuffer (path, offText (mesh));
-    else if (extension == ".ply")
-      writeBuffer (path, plyBinary (mesh));
-    else
-      writeBuffer (path, stlBinary (mesh));
+    const std::string buffer = extension == ".obj"   ? objText (mesh)
+                               : extension == ".off" ? offText (mesh)
+                               : extension == ".ply" ? plyBinary (mesh)
+                                                     : stlBinary (mesh);
+    writeBytesAtomically (path, buffer.data (), buffer.size ());
   }
 
   void
@@ -226,6 +211,6 @@ namespace pcl_sparse
       out.append (reinterpret_cast<const char*> (colors[i].data ()), 3);
     }
     appendPlyFaces (out, mesh);
-    writeBuffer (path, out);
+    writeBytesAtomically (path, out.data (), out.size ());
   }
 } // namespace pcl_sparse

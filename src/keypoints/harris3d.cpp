@@ -1,6 +1,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
 #include <pcl_sparse/keypoints/harris3d.h>
+#include <pcl_sparse/mesh/bounding_box.h>
 
 #include <Eigen/Eigenvalues>
 

@@ -1,11 +1,12 @@
 #include <pcl_sparse/mesh/mesh_report.h>
 
+#include <pcl_sparse/mesh/bounding_box.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <numeric>
 
 namespace pcl_sparse
@@ -189,134 +190,165 @@ namespace pcl_sparse
     return first;
   }
 
+  namespace
+  {
+    /// Vertices: unreferenced and non-finite ones, bounding box. Returns the number of referenced vertices.
+    std::size_t
+    countVertices (const TriangleMesh& mesh, const MeshTopology& topo, MeshReport& report)
+    {
+      std::size_t referenced = 0;
+      for (std::size_t v = 0; v < mesh.vertices.size (); ++v)
+      {
+        if (topo.facesOf (static_cast<int> (v)).size () == 0)
+          ++report.unreferenced_vertices;
+        else
+          ++referenced;
+        if (!mesh.vertices[v].allFinite ())
+          ++report.non_finite_vertices;
+      }
+      report.bbox_diagonal = boundingBoxDiagonal (mesh);
+      return referenced;
+    }
+
+    /// Faces: degenerate and duplicate. Returns the number of faces with a repeated vertex index.
+    std::size_t
+    countFaceDefects (const TriangleMesh& mesh, MeshReport& report)
+    {
+      const int num_faces = static_cast<int> (mesh.triangles.size ());
+      std::size_t repeated_index = 0, degenerate_faces = 0;
+      for (int f = 0; f < num_faces; ++f)
+      {
+        repeated_index += hasRepeatedIndex (mesh.triangles[f]);
+        degenerate_faces += isDegenerateFace (mesh, f);
+      }
+      report.degenerate_faces = degenerate_faces;
+      const std::vector<int> first_copy = findDuplicateFaces (mesh);
+      for (int f = 0; f < num_faces; ++f)
+        if (first_copy[f] != f)
+          ++report.duplicate_faces;
+      return repeated_index;
+    }
+
+    /// Edges: boundary, non-manifold, mean length over the finite ones.
+    void
+    measureEdges (const TriangleMesh& mesh, const MeshTopology& topo, MeshReport& report)
+    {
+      double length_sum = 0.0;
+      std::size_t length_count = 0;
+      for (std::size_t e = 0; e < topo.numEdges (); ++e)
+      {
+        const int count = topo.edge_face_count[e];
+        report.boundary_edges += count == 1;
+        report.nonmanifold_edges += count > 2;
+        const double length = (mesh.vertices[topo.edges[e][0]] - mesh.vertices[topo.edges[e][1]]).norm ();
+        if (std::isfinite (length))
+        {
+          length_sum += length;
+          ++length_count;
+        }
+      }
+      if (length_count > 0)
+        report.mean_edge_length = length_sum / static_cast<double> (length_count);
+    }
+
+    /// Face components (through shared vertices, indexed by their root vertex) with their Euler
+    /// characteristic chi_c = V_c - E_c + F_c and boundary loop count b_c.
+    struct Components
+    {
+      std::vector<char> is_root;
+      std::vector<long> chi;
+      std::vector<long> loops;
+    };
+
+    /// Components over faces and boundary loops (through boundary edges); counts both into \a report.
+    Components
+    findComponents (const TriangleMesh& mesh, const MeshTopology& topo, MeshReport& report)
+    {
+      const int num_vertices = static_cast<int> (mesh.vertices.size ());
+      DisjointSets components (num_vertices);
+      for (const auto& t : mesh.triangles)
+      {
+        components.join (t[0], t[1]);
+        components.join (t[1], t[2]);
+      }
+      DisjointSets loops (num_vertices);
+      for (std::size_t e = 0; e < topo.numEdges (); ++e)
+        if (topo.isBoundaryEdge (static_cast<int> (e)))
+          loops.join (topo.edges[e][0], topo.edges[e][1]);
+
+      Components c{std::vector<char> (num_vertices, 0), std::vector<long> (num_vertices, 0),
+                   std::vector<long> (num_vertices, 0)};
+      std::vector<char> loop_seen (num_vertices, 0);
+      for (int v = 0; v < num_vertices; ++v)
+        if (topo.facesOf (v).size () > 0)
+        {
+          const int root = components.find (v);
+          ++c.chi[root];
+          if (!c.is_root[root])
+          {
+            c.is_root[root] = 1;
+            ++report.components;
+          }
+        }
+      for (std::size_t e = 0; e < topo.numEdges (); ++e)
+      {
+        const int a = topo.edges[e][0];
+        --c.chi[components.find (a)];
+        if (topo.isBoundaryEdge (static_cast<int> (e)))
+        {
+          const int loop = loops.find (a);
+          if (!loop_seen[loop])
+          {
+            loop_seen[loop] = 1;
+            ++report.boundary_loops;
+            ++c.loops[components.find (a)];
+          }
+        }
+      }
+      for (const auto& t : mesh.triangles)
+        ++c.chi[components.find (t[0])];
+      return c;
+    }
+
+    /// Sum over components of (2 - chi_c - b_c) / 2.
+    int
+    genusOf (const Components& c)
+    {
+      long twice_genus = 0;
+      for (std::size_t root = 0; root < c.is_root.size (); ++root)
+        if (c.is_root[root])
+          twice_genus += 2 - c.chi[root] - c.loops[root];
+      return static_cast<int> (twice_genus / 2);
+    }
+  } // namespace
+
   MeshReport
   computeMeshReport (const TriangleMesh& mesh, const MeshTopology& topo)
   {
-    const int num_vertices = static_cast<int> (mesh.vertices.size ());
-    const int num_faces = static_cast<int> (mesh.triangles.size ());
     MeshReport report;
     report.vertices = mesh.vertices.size ();
     report.faces = mesh.triangles.size ();
     report.edges = topo.numEdges ();
-
-    // Vertices: references, finiteness, bounding box.
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
-    Eigen::Vector3d hi = -lo;
-    std::size_t referenced = 0;
-    for (int v = 0; v < num_vertices; ++v)
-    {
-      if (topo.facesOf (v).size () == 0)
-        ++report.unreferenced_vertices;
-      else
-        ++referenced;
-      const Eigen::Vector3d& p = mesh.vertices[v];
-      if (!p.allFinite ())
-      {
-        ++report.non_finite_vertices;
-        continue;
-      }
-      lo = lo.cwiseMin (p);
-      hi = hi.cwiseMax (p);
-    }
-    if (report.non_finite_vertices < report.vertices)
-      report.bbox_diagonal = (hi - lo).norm ();
-
-    // Faces: degenerate and duplicate.
-    std::size_t repeated_index = 0, degenerate_faces = 0;
-    for (int f = 0; f < num_faces; ++f)
-    {
-      repeated_index += hasRepeatedIndex (mesh.triangles[f]);
-      degenerate_faces += isDegenerateFace (mesh, f);
-    }
-    report.degenerate_faces = degenerate_faces;
-    const std::vector<int> first_copy = findDuplicateFaces (mesh);
-    for (int f = 0; f < num_faces; ++f)
-      if (first_copy[f] != f)
-        ++report.duplicate_faces;
-
-    // Edges: boundary, non-manifold, mean length.
-    double length_sum = 0.0;
-    std::size_t length_count = 0;
-    for (std::size_t e = 0; e < topo.numEdges (); ++e)
-    {
-      const int count = topo.edge_face_count[e];
-      report.boundary_edges += count == 1;
-      report.nonmanifold_edges += count > 2;
-      const double length = (mesh.vertices[topo.edges[e][0]] - mesh.vertices[topo.edges[e][1]]).norm ();
-      if (std::isfinite (length))
-      {
-        length_sum += length;
-        ++length_count;
-      }
-    }
-    if (length_count > 0)
-      report.mean_edge_length = length_sum / static_cast<double> (length_count);
+    const std::size_t referenced = countVertices (mesh, topo, report);
+    const std::size_t repeated_index = countFaceDefects (mesh, report);
+    measureEdges (mesh, topo, report);
 
     // Vertices whose faces do not form a single fan. Serial on purpose: the whole report takes about
     // 0.1 s on 200k vertices, and OpenMP only slowed it down on a busy machine.
     std::vector<int> local_parent;
-    for (int v = 0; v < num_vertices; ++v)
+    for (int v = 0; v < static_cast<int> (mesh.vertices.size ()); ++v)
       if (countFans (mesh, topo, v, local_parent) > 1)
         ++report.nonmanifold_vertices;
 
-    // Components over faces (through shared vertices) and boundary loops (through boundary edges).
-    DisjointSets components (num_vertices);
-    for (const auto& t : mesh.triangles)
-    {
-      components.join (t[0], t[1]);
-      components.join (t[1], t[2]);
-    }
-    DisjointSets loops (num_vertices);
-    for (std::size_t e = 0; e < topo.numEdges (); ++e)
-      if (topo.isBoundaryEdge (static_cast<int> (e)))
-        loops.join (topo.edges[e][0], topo.edges[e][1]);
-
-    // Per component (indexed by its root): V, E, F and boundary loops, for chi_c = V_c - E_c + F_c.
-    std::vector<long> comp_chi (num_vertices, 0), comp_loops (num_vertices, 0);
-    std::vector<char> is_root (num_vertices, 0), loop_seen (num_vertices, 0);
-    for (int v = 0; v < num_vertices; ++v)
-      if (topo.facesOf (v).size () > 0)
-      {
-        const int c = components.find (v);
-        ++comp_chi[c];
-        if (!is_root[c])
-        {
-          is_root[c] = 1;
-          ++report.components;
-        }
-      }
-    for (std::size_t e = 0; e < topo.numEdges (); ++e)
-    {
-      const int a = topo.edges[e][0];
-      --comp_chi[components.find (a)];
-      if (topo.isBoundaryEdge (static_cast<int> (e)))
-      {
-        const int loop = loops.find (a);
-        if (!loop_seen[loop])
-        {
-          loop_seen[loop] = 1;
-          ++report.boundary_loops;
-          ++comp_loops[components.find (a)];
-        }
-      }
-    }
-    for (const auto& t : mesh.triangles)
-      ++comp_chi[components.find (t[0])];
+    const Components components = findComponents (mesh, topo, report);
     report.euler_characteristic =
         static_cast<long> (referenced) - static_cast<long> (report.edges) + static_cast<long> (report.faces);
-
     report.manifold = report.faces > 0 && report.nonmanifold_edges == 0 && report.nonmanifold_vertices == 0 &&
                       repeated_index == 0;
     report.orientable = report.manifold && isOrientable (mesh, topo);
     report.closed = report.manifold && report.boundary_edges == 0;
     if (report.orientable)
-    {
-      long twice_genus = 0;
-      for (int c = 0; c < num_vertices; ++c)
-        if (is_root[c])
-          twice_genus += 2 - comp_chi[c] - comp_loops[c];
-      report.genus = static_cast<int> (twice_genus / 2);
-    }
+      report.genus = genusOf (components);
     return report;
   }
 } // namespace pcl_sparse

@@ -1,5 +1,7 @@
 #include <pcl_sparse/model/sparse_surface_model.h>
 
+#include <pcl_sparse/mesh/bounding_box.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -108,14 +110,7 @@ namespace pcl_sparse
       ++covered;
     }
     stats.rmse = covered > 0 ? std::sqrt (sum / covered) : 0.0;
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ()), hi = -lo;
-    for (const Eigen::Vector3d& p : input_vertices)
-      if (p.allFinite ())
-      {
-        lo = lo.cwiseMin (p);
-        hi = hi.cwiseMax (p);
-      }
-    const double diagonal = bbox_diagonal > 0.0 ? bbox_diagonal : (input_vertices.empty () ? 0.0 : (hi - lo).norm ());
+    const double diagonal = bbox_diagonal > 0.0 ? bbox_diagonal : boundingBoxDiagonal (input_vertices);
     stats.rmse_over_diagonal = diagonal > 0.0 ? stats.rmse / diagonal : 0.0;
     return stats;
   }

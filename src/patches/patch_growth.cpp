@@ -98,6 +98,102 @@ namespace pcl_sparse
   }
 
   double
+  PatchGrower::coneCosine (int f, const Eigen::Vector3d& ns) const
+  {
+    if (!(geometry_.face_areas[f] > 0.0))
+      return -1.0;
+    const double c = geometry_.face_normals[f].dot (ns);
+    return c > cos_cone_ && c > kMinProjectionCosine ? c : -1.0;
+  }
+
+  bool
+  PatchGrower::smoothAt (int f, int w) const
+  {
+    return geometry_.face_normals[f].dot (geometry_.vertex_normals[w]) > cos_delta_;
+  }
+
+  bool
+  PatchGrower::pairwiseConeHolds (int f, double c) const
+  {
+    // Only pairs whose angles to n_s add up to more than the cone can fail, so a triangle within half
+    // the cone of n_s is compared with the wide patch triangles only (usually none).
+    const auto& others = c >= cos_half_cone_ ? wide_normals_ : patch_normals_;
+    for (const auto& m : others)
+      if (!(geometry_.face_normals[f].dot (m) > cos_cone_))
+        return false;
+    return true;
+  }
+
+  void
+  PatchGrower::addPatchNormal (int f, double c)
+  {
+    patch_normals_.push_back (geometry_.face_normals[f]);
+    if (c < cos_half_cone_)
+      wide_normals_.push_back (geometry_.face_normals[f]);
+  }
+
+  void
+  PatchGrower::collectFaces (int u, const Eigen::Vector3d& ns, double& new_area, double& new_projected)
+  {
+    // The faces u would complete are patch triangles (and add area); the candidate justifying faces
+    // pass the cone and are smooth at an accepted corner other than u.
+    completed_.clear ();
+    candidates_.clear ();
+    const auto& areas = geometry_.face_areas;
+    for (int f : topology_.facesOf (u))
+    {
+      const double c = coneCosine (f, ns);
+      if (c < 0.0)
+        continue;
+      const Eigen::Vector3i& t = mesh_.triangles[f];
+      bool complete = true, smooth = false;
+      for (int k = 0; k < 3; ++k)
+      {
+        const int w = t[k];
+        if (w == u)
+          continue;
+        if (walk_.isAccepted (w))
+          smooth = smooth || smoothAt (f, w);
+        else
+          complete = false;
+      }
+      if (complete)
+      {
+        if (!(smooth || smoothAt (f, u)))
+          continue;
+        if (pairwise_cone_ && !pairwiseConeHolds (f, c))
+          continue;
+        if (pairwise_cone_)
+          addPatchNormal (f, c);  // provisional: compared with the next completed faces; undone on refusal
+        completed_.push_back (f);
+        new_area += areas[f];
+        new_projected += areas[f] * c;
+        if (smooth)
+          candidates_.emplace_back (f, -1.0);  // justifies u, already counted in the area
+      }
+      else if (smooth)
+        candidates_.emplace_back (f, c);
+    }
+  }
+
+  bool
+  PatchGrower::isJustified (double area, double projected_area) const
+  {
+    // A justifying face's area counts in A_p even while it is not complete.
+    if (!areaConditionHolds (area, projected_area))
+      return false;
+    const auto& areas = geometry_.face_areas;
+    for (const auto& [f, c] : candidates_)
+    {
+      const bool ok = c < 0.0 || (areaConditionHolds (area + areas[f], projected_area + areas[f] * c) &&
+                                  (!pairwise_cone_ || pairwiseConeHolds (f, c)));
+      if (ok)
+        return true;
+    }
+    return false;
+  }
+
+  double
   PatchGrower::grow (int seed, Patch& patch)
   {
     reset ();
@@ -112,35 +208,8 @@ namespace pcl_sparse
     if (ns.isZero () || !patch.origin.allFinite ())
       return 0.0;
     const Eigen::Vector3d s = patch.origin;
-    const auto& normals = geometry_.face_normals;
-    const auto& areas = geometry_.face_areas;
-    const auto& vnormals = geometry_.vertex_normals;
-
-    // Cone and no-flip test of a face against the seed normal; returns n_t . n_s or -1 when it fails.
-    auto coneCosine = [&] (int f) {
-      if (!(areas[f] > 0.0))
-        return -1.0;
-      const double c = normals[f].dot (ns);
-      return c > cos_cone_ && c > kMinProjectionCosine ? c : -1.0;
-    };
-    auto smoothAt = [&] (int f, int w) { return normals[f].dot (vnormals[w]) > cos_delta_; };
-    // Pairwise cone: angle(n_t, n_m) < cone for every patch triangle m. Only pairs whose angles to n_s
-    // add up to more than the cone can fail, so a triangle within half the cone of n_s is compared with
-    // the wide patch triangles only (usually none).
     patch_normals_.clear ();
     wide_normals_.clear ();
-    auto pairwiseConeHolds = [&] (int f, double c) {
-      const auto& others = c >= cos_half_cone_ ? wide_normals_ : patch_normals_;
-      for (const auto& m : others)
-        if (!(normals[f].dot (m) > cos_cone_))
-          return false;
-      return true;
-    };
-    auto addPatchNormal = [&] (int f, double c) {
-      patch_normals_.push_back (normals[f]);
-      if (c < cos_half_cone_)
-        wide_normals_.push_back (normals[f]);
-    };
 
     double area = 0.0, projected = 0.0, growth_radius = 0.0;
     // The walk offers u when its edge distance from the seed is final; a refused u is deferred, not
@@ -149,68 +218,16 @@ namespace pcl_sparse
     auto visit = [&] (int u, double, int) {
       if (u == seed)
         return GeodesicVisit::Accept;
-      // One pass over the faces of u: the faces u would complete (patch triangles, and the area they
-      // add) and the candidate justifying faces (cone, and smooth at an accepted corner other than u).
-      completed_.clear ();
-      candidates_.clear ();
       double new_area = 0.0, new_projected = 0.0;
-      for (int f : topology_.facesOf (u))
-      {
-        const double c = coneCosine (f);
-        if (c < 0.0)
-          continue;
-        const Eigen::Vector3i& t = mesh_.triangles[f];
-        bool complete = true, smooth = false;
-        for (int k = 0; k < 3; ++k)
-        {
-          const int w = t[k];
-          if (w == u)
-            continue;
-          if (walk_.isAccepted (w))
-            smooth = smooth || smoothAt (f, w);
-          else
-            complete = false;
-        }
-        if (complete)
-        {
-          if (!(smooth || smoothAt (f, u)))
-            continue;
-          if (pairwise_cone_ && !pairwiseConeHolds (f, c))
-            continue;
-          if (pairwise_cone_)
-            addPatchNormal (f, c);  // provisional: compared with the next completed faces; undone on refusal
-          completed_.push_back (f);
-          new_area += areas[f];
-          new_projected += areas[f] * c;
-          if (smooth)
-            candidates_.emplace_back (f, -1.0);  // justifies u, already counted in the area
-        }
-        else if (smooth)
-          candidates_.emplace_back (f, c);
-      }
+      collectFaces (u, ns, new_area, new_projected);
       const double area_after = area + new_area, projected_after = projected + new_projected;
-
-      // Is there a justifying face t? Its area counts in A_p even while t is not complete.
-      bool ok = false;
-      if (areaConditionHolds (area_after, projected_after))
-        for (const auto& [f, c] : candidates_)
-        {
-          if (c < 0.0)
-            ok = true;
-          else
-            ok = areaConditionHolds (area_after + areas[f], projected_after + areas[f] * c) &&
-                 (!pairwise_cone_ || pairwiseConeHolds (f, c));
-          if (ok)
-            break;
-        }
-
-      if (!ok)
+      if (!isJustified (area_after, projected_after))
       {
         if (pairwise_cone_)  // undo the provisional normals of this vertex's completed faces
           for (int f : completed_)
           {
             patch_normals_.pop_back ();
-            if (normals[f].dot (ns) < cos_half_cone_)
+            if (geometry_.face_normals[f].dot (ns) < cos_half_cone_)
               wide_normals_.pop_back ();
           }
         return refusal;
@@ -265,9 +282,7 @@ namespace pcl_sparse
       patch.triangles.push_back (f);
       area += areas[f];
       projected += areas[f] * c;
-      patch_normals_.push_back (normals[f]);
-      if (c < cos_half_cone_)
-        wide_normals_.push_back (normals[f]);
+      addPatchNormal (f, c);
       for (int k = 0; k < 3; ++k)
       {
         const int u = mesh_.triangles[f][k];
@@ -318,10 +333,7 @@ namespace pcl_sparse
           const int h = topology_.face_neighbors[g][k];
           ok = h >= 0 && face_state_[h] == Accepted && normals[g].dot (normals[h]) > cos_delta_;
         }
-        if (ok && pairwise_cone_)
-          for (const auto& m : (c >= cos_half_cone_ ? wide_normals_ : patch_normals_))
-            if (!(normals[g].dot (m) > cos_cone_))
-              ok = false;
+        ok = ok && (!pairwise_cone_ || pairwiseConeHolds (g, c));
       }
       if (!ok)
       {

@@ -1,5 +1,6 @@
 #include <pcl_sparse/resampling/cloud_quality.h>
 
+#include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 
 #include <pcl/kdtree/kdtree_flann.h>
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -42,6 +44,165 @@ namespace pcl_sparse
     return (p - (a + ab * (vb * denominator) + ac * (vc * denominator))).norm ();
   }
 
+  namespace
+  {
+    /// The points of \a cloud with a finite position and normal.
+    pcl::PointCloud<pcl::PointNormal>::Ptr
+    finitePoints (const pcl::PointCloud<pcl::PointNormal>& cloud)
+    {
+      pcl::PointCloud<pcl::PointNormal>::Ptr valid (new pcl::PointCloud<pcl::PointNormal>);
+      for (const auto& point : cloud)
+        if (std::isfinite (point.x) && std::isfinite (point.y) && std::isfinite (point.z) && std::isfinite (point.normal_x) &&
+            std::isfinite (point.normal_y) && std::isfinite (point.normal_z))
+          valid->push_back (point);
+      return valid;
+    }
+
+    /// Per point, the distance to the nearest of the \a k triangles with the nearest centroids, and the
+    /// angle (degrees) between its normal and that triangle's.
+    void
+    measureSurfaceError (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& points, int k,
+                         std::vector<double>& distance, std::vector<double>& angle)
+    {
+      const std::vector<Eigen::Vector3d> face_normals = computeFaceNormals (mesh);
+      pcl::PointCloud<pcl::PointXYZ>::Ptr centroids (new pcl::PointCloud<pcl::PointXYZ>);
+      centroids->resize (mesh.numTriangles ());
+      for (std::size_t f = 0; f < mesh.numTriangles (); ++f)
+      {
+        const Eigen::Vector3i& t = mesh.triangles[f];
+        (*centroids)[f].getVector3fMap () = ((mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0).cast<float> ();
+      }
+      pcl::KdTreeFLANN<pcl::PointXYZ> triangle_tree;
+      triangle_tree.setInputCloud (centroids);
+
+      const std::size_t n = points.size ();
+      distance.resize (n);
+      angle.resize (n);
+#pragma omp parallel for schedule(dynamic, 256)
+      for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
+      {
+        std::vector<int> index (k);
+        std::vector<float> d2 (k);
+        const pcl::PointNormal& point = points[i];
+        pcl::PointXYZ query;
+        query.getVector3fMap () = point.getVector3fMap ();
+        triangle_tree.nearestKSearch (query, k, index, d2);
+        const Eigen::Vector3d p = point.getVector3fMap ().cast<double> ();
+        double best = std::numeric_limits<double>::infinity ();
+        int best_face = index[0];
+        for (int f : index)
+        {
+          const Eigen::Vector3i& t = mesh.triangles[f];
+          const double d = pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+          if (d < best)
+          {
+            best = d;
+            best_face = f;
+          }
+        }
+        distance[i] = best;
+        const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
+        angle[i] = std::acos (std::clamp (normal.dot (face_normals[best_face]), -1.0, 1.0)) * 180.0 / M_PI;
+      }
+    }
+
+    /// Distance and normal-angle statistics of the per-point errors (n > 0).
+    void
+    summariseSurfaceError (const std::vector<double>& distance, const std::vector<double>& angle, CloudQuality& quality)
+    {
+      const std::size_t n = distance.size ();
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        quality.rms_distance += distance[i] * distance[i];
+        quality.mean_distance += distance[i];
+        quality.max_distance = std::max (quality.max_distance, distance[i]);
+        quality.mean_normal_angle += angle[i];
+        quality.flipped += angle[i] > 120.0 ? 1 : 0;
+      }
+      quality.rms_distance = std::sqrt (quality.rms_distance / n);
+      quality.mean_distance /= n;
+      quality.mean_normal_angle /= n;
+      std::vector<double> sorted = angle;
+      std::sort (sorted.begin (), sorted.end ());
+      quality.median_normal_angle = sorted[n / 2];
+      quality.p90_normal_angle = sorted[std::min (n - 1, (9 * n) / 10)];
+    }
+
+    /// Coefficient of variation of the nearest-neighbour distances of the points in \a tree.
+    double
+    nearestNeighbourVariation (const pcl::KdTreeFLANN<pcl::PointNormal>& tree, const pcl::PointCloud<pcl::PointNormal>& points)
+    {
+      const std::size_t n = points.size ();
+      std::vector<double> nearest (n);
+#pragma omp parallel for schedule(dynamic, 256)
+      for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
+      {
+        std::vector<int> index (2);
+        std::vector<float> d2 (2);
+        tree.nearestKSearch (points[i], 2, index, d2);
+        nearest[i] = std::sqrt (static_cast<double> (d2.back ()));
+      }
+      double mean = 0.0, square = 0.0;
+      for (double d : nearest)
+        mean += d;
+      mean /= n;
+      for (double d : nearest)
+        square += (d - mean) * (d - mean);
+      return mean > 0.0 ? std::sqrt (square / n) / mean : 0.0;
+    }
+
+    /// \a count points uniform by area on the mesh (faces of areas \a areas, summing to \a area).
+    std::vector<pcl::PointNormal>
+    sampleProbes (const TriangleMesh& mesh, const std::vector<double>& areas, double area, std::size_t count,
+                  std::uint64_t seed)
+    {
+      std::vector<double> cumulative (areas.size ());
+      std::partial_sum (areas.begin (), areas.end (), cumulative.begin ());
+      std::mt19937_64 random (seed);
+      std::uniform_real_distribution<double> uniform (0.0, 1.0);
+      std::vector<pcl::PointNormal> probes (count);
+      for (auto& probe : probes)
+      {
+        const std::size_t f = std::min<std::size_t> (
+          std::lower_bound (cumulative.begin (), cumulative.end (), uniform (random) * area) - cumulative.begin (), areas.size () - 1);
+        double u = uniform (random), v = uniform (random);
+        if (u + v > 1.0)
+        {
+          u = 1.0 - u;
+          v = 1.0 - v;
+        }
+        const Eigen::Vector3i& t = mesh.triangles[f];
+        const Eigen::Vector3d q = mesh.vertices[t[0]] + u * (mesh.vertices[t[1]] - mesh.vertices[t[0]]) +
+                                  v * (mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+        probe.getVector3fMap () = q.cast<float> ();
+      }
+      return probes;
+    }
+
+    /// Holes: completeness and largest gap of the probes against the points in \a tree (quality.spacing set).
+    void
+    measureHoles (const pcl::KdTreeFLANN<pcl::PointNormal>& tree, const std::vector<pcl::PointNormal>& probes,
+                  double hole_spacings, CloudQuality& quality)
+    {
+      std::vector<double> gap (probes.size ());
+#pragma omp parallel for schedule(dynamic, 256)
+      for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (probes.size ()); ++i)
+      {
+        std::vector<int> index (1);
+        std::vector<float> d2 (1);
+        tree.nearestKSearch (probes[i], 1, index, d2);
+        gap[i] = std::sqrt (static_cast<double> (d2[0])) / quality.spacing;
+      }
+      std::size_t covered = 0;
+      for (double g : gap)
+      {
+        covered += g <= hole_spacings ? 1 : 0;
+        quality.largest_gap = std::max (quality.largest_gap, g);
+      }
+      quality.completeness = probes.empty () ? 1.0 : static_cast<double> (covered) / probes.size ();
+    }
+  } // namespace
+
   CloudQuality
   evaluateCloudQuality (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& cloud,
                         const CloudQualityOptions& options)
@@ -49,149 +210,34 @@ namespace pcl_sparse
     CloudQuality quality;
     if (mesh.vertices.empty () || mesh.triangles.empty ())
       return quality;
-    Eigen::Vector3d low = mesh.vertices[0], high = mesh.vertices[0];
-    for (const Eigen::Vector3d& v : mesh.vertices)
-    {
-      low = low.cwiseMin (v);
-      high = high.cwiseMax (v);
-    }
-    quality.bbox_diagonal = (high - low).norm ();
-    const std::vector<Eigen::Vector3d> face_normals = computeFaceNormals (mesh);
-    const std::vector<double> areas = computeFaceAreas (mesh);
-    double area = 0.0;
-    for (double a : areas)
-      area += a;
-
-    pcl::PointCloud<pcl::PointXYZ>::Ptr centroids (new pcl::PointCloud<pcl::PointXYZ>);
-    centroids->resize (mesh.numTriangles ());
-    for (std::size_t f = 0; f < mesh.numTriangles (); ++f)
-    {
-      const Eigen::Vector3i& t = mesh.triangles[f];
-      (*centroids)[f].getVector3fMap () = ((mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0).cast<float> ();
-    }
-    pcl::KdTreeFLANN<pcl::PointXYZ> triangle_tree;
-    triangle_tree.setInputCloud (centroids);
-
-    pcl::PointCloud<pcl::PointNormal>::Ptr valid (new pcl::PointCloud<pcl::PointNormal>);
-    for (const auto& point : cloud)
-      if (std::isfinite (point.x) && std::isfinite (point.y) && std::isfinite (point.z) && std::isfinite (point.normal_x) &&
-          std::isfinite (point.normal_y) && std::isfinite (point.normal_z))
-        valid->push_back (point);
+    quality.bbox_diagonal = boundingBoxDiagonal (mesh);
+    const pcl::PointCloud<pcl::PointNormal>::Ptr valid = finitePoints (cloud);
     quality.invalid = cloud.size () - valid->size ();
     if (valid->empty ())
       return quality;
-    const std::size_t n = valid->size ();
 
     // Distance and normal against the nearest triangle.
-    std::vector<double> distance (n), angle (n);
+    std::vector<double> distance, angle;
     const int k = std::min<int> (options.nearest_triangles, static_cast<int> (mesh.numTriangles ()));
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
-    {
-      std::vector<int> index (k);
-      std::vector<float> d2 (k);
-      const pcl::PointNormal& point = (*valid)[i];
-      pcl::PointXYZ query;
-      query.getVector3fMap () = point.getVector3fMap ();
-      triangle_tree.nearestKSearch (query, k, index, d2);
-      const Eigen::Vector3d p = point.getVector3fMap ().cast<double> ();
-      double best = std::numeric_limits<double>::infinity ();
-      int best_face = index[0];
-      for (int f : index)
-      {
-        const Eigen::Vector3i& t = mesh.triangles[f];
-        const double d = pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
-        if (d < best)
-        {
-          best = d;
-          best_face = f;
-        }
-      }
-      distance[i] = best;
-      const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
-      angle[i] = std::acos (std::clamp (normal.dot (face_normals[best_face]), -1.0, 1.0)) * 180.0 / M_PI;
-    }
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      quality.rms_distance += distance[i] * distance[i];
-      quality.mean_distance += distance[i];
-      quality.max_distance = std::max (quality.max_distance, distance[i]);
-      quality.mean_normal_angle += angle[i];
-      quality.flipped += angle[i] > 120.0 ? 1 : 0;
-    }
-    quality.rms_distance = std::sqrt (quality.rms_distance / n);
-    quality.mean_distance /= n;
-    quality.mean_normal_angle /= n;
-    {
-      std::vector<double> sorted = angle;
-      std::sort (sorted.begin (), sorted.end ());
-      quality.median_normal_angle = sorted[n / 2];
-      quality.p90_normal_angle = sorted[std::min (n - 1, (9 * n) / 10)];
-    }
+    measureSurfaceError (mesh, *valid, k, distance, angle);
+    summariseSurfaceError (distance, angle, quality);
     if (options.keep_per_point)
     {
       quality.point_distances = distance;
       quality.point_normal_angles = angle;
     }
 
-    // Spacing uniformity.
+    // Spacing uniformity, then holes: probes uniform by area on the mesh.
     pcl::KdTreeFLANN<pcl::PointNormal> cloud_tree;
     cloud_tree.setInputCloud (valid);
-    std::vector<double> nearest (n);
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
-    {
-      std::vector<int> index (2);
-      std::vector<float> d2 (2);
-      cloud_tree.nearestKSearch ((*valid)[i], 2, index, d2);
-      nearest[i] = std::sqrt (static_cast<double> (d2.back ()));
-    }
-    double mean = 0.0, square = 0.0;
-    for (double d : nearest)
-      mean += d;
-    mean /= n;
-    for (double d : nearest)
-      square += (d - mean) * (d - mean);
-    quality.nn_cv = mean > 0.0 ? std::sqrt (square / n) / mean : 0.0;
-
-    // Holes: probes uniform by area on the mesh.
-    quality.spacing = std::sqrt (area / static_cast<double> (n));
-    std::vector<double> cumulative (areas.size ());
-    std::partial_sum (areas.begin (), areas.end (), cumulative.begin ());
-    std::mt19937_64 random (options.seed);
-    std::uniform_real_distribution<double> uniform (0.0, 1.0);
-    std::vector<pcl::PointNormal> probes (options.probes);
-    for (auto& probe : probes)
-    {
-      const std::size_t f = std::min<std::size_t> (
-        std::lower_bound (cumulative.begin (), cumulative.end (), uniform (random) * area) - cumulative.begin (), areas.size () - 1);
-      double u = uniform (random), v = uniform (random);
-      if (u + v > 1.0)
-      {
-        u = 1.0 - u;
-        v = 1.0 - v;
-      }
-      const Eigen::Vector3i& t = mesh.triangles[f];
-      const Eigen::Vector3d q = mesh.vertices[t[0]] + u * (mesh.vertices[t[1]] - mesh.vertices[t[0]]) +
-                                v * (mesh.vertices[t[2]] - mesh.vertices[t[0]]);
-      probe.getVector3fMap () = q.cast<float> ();
-    }
-    std::vector<double> gap (probes.size ());
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (probes.size ()); ++i)
-    {
-      std::vector<int> index (1);
-      std::vector<float> d2 (1);
-      cloud_tree.nearestKSearch (probes[i], 1, index, d2);
-      gap[i] = std::sqrt (static_cast<double> (d2[0])) / quality.spacing;
-    }
-    std::size_t covered = 0;
-    for (double g : gap)
-    {
-      covered += g <= options.hole_spacings ? 1 : 0;
-      quality.largest_gap = std::max (quality.largest_gap, g);
-    }
-    quality.completeness = probes.empty () ? 1.0 : static_cast<double> (covered) / probes.size ();
+    quality.nn_cv = nearestNeighbourVariation (cloud_tree, *valid);
+    const std::vector<double> areas = computeFaceAreas (mesh);
+    double area = 0.0;
+    for (double a : areas)
+      area += a;
+    quality.spacing = std::sqrt (area / static_cast<double> (valid->size ()));
+    const std::vector<pcl::PointNormal> probes = sampleProbes (mesh, areas, area, options.probes, options.seed);
+    measureHoles (cloud_tree, probes, options.hole_spacings, quality);
     return quality;
   }
 } // namespace pcl_sparse

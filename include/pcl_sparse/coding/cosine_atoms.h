@@ -4,7 +4,7 @@
 /// s(t) = t (the paper's dictionary, METHOD.md step 8) or s(t) = (t + 1) / 2 (DCT-II-like half-period
 /// atoms, both parities). Shared evaluation of CosineDictionary and DctCosineDictionary; use those.
 
-#include <pcl_sparse/coding/surface_basis.h>
+#include <pcl_sparse/model/surface_basis.h>
 
 #include <cstdint>
 #include <string>

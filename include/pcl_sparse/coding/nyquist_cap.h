@@ -3,7 +3,7 @@
 /// Which atoms a patch may use given its sample spacing (METHOD.md step 9): atoms oscillating faster
 /// than the mesh samples them only fit noise and make the surface ripple between the vertices.
 
-#include <pcl_sparse/coding/surface_basis.h>
+#include <pcl_sparse/model/surface_basis.h>
 
 #include <vector>
 

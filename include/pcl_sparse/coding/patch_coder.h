@@ -3,10 +3,10 @@
 /// Codes one patch as a sparse height field (METHOD.md steps 7-9): samples, Nyquist cap, OMP, footprint.
 
 #include <pcl_sparse/coding/nyquist_cap.h>
-#include <pcl_sparse/coding/surface_basis.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/model/surface_basis.h>
 #include <pcl_sparse/patches/patch.h>
 
 #include <cstdint>

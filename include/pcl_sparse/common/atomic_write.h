@@ -2,6 +2,7 @@
 /// \file atomic_write.h
 /// Writing output files so that a failed or interrupted write never leaves a partial file behind.
 
+#include <cstddef>
 #include <functional>
 #include <string>
 
@@ -12,4 +13,9 @@ namespace pcl_sparse
   /// pcl_sparse::Error is thrown naming \a path; \a path itself is never touched in that case.
   void
   writeFileAtomically (const std::string& path, const std::function<bool (const std::string& temporary_path)>& write);
+
+  /// Writes the \a size bytes at \a data to \a path in one binary write, through writeFileAtomically (so
+  /// the same guarantees and errors).
+  void
+  writeBytesAtomically (const std::string& path, const void* data, std::size_t size);
 } // namespace pcl_sparse

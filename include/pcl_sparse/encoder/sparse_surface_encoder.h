@@ -16,7 +16,7 @@
 
 #include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/coding/patch_coder.h>
-#include <pcl_sparse/coding/surface_basis.h>
+#include <pcl_sparse/model/surface_basis.h>
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/mesh/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>

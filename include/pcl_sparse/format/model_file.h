@@ -83,7 +83,7 @@ namespace pcl_sparse
   ModelFileInfo
   inspectModel (const std::uint8_t* data, std::size_t size, const std::string& name = "model");
 
-  /// encodeModel, written atomically to \a path (writeFileAtomically).
+  /// encodeModel, written atomically to \a path (writeBytesAtomically).
   void
   saveModel (const std::string& path, const SparseSurfaceModel& model,
              const ModelWriteOptions& options = ModelWriteOptions ());

@@ -6,6 +6,8 @@
 /// O(size of the neighbourhood), never O(#V): no per-call clears, no per-call allocation once the output
 /// vector has grown. One scratch per thread.
 
+// Adaptive radii are fractions of the bounding-box diagonal: boundingBoxDiagonal comes with them.
+#include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
@@ -93,9 +95,4 @@ namespace pcl_sparse
   /// Convenience overload allocating its own scratch (O(#V) per call): for tests and one-off queries.
   std::vector<int>
   kRing (const MeshTopology& topology, int v, int rings);
-
-  /// Length of the diagonal of the axis-aligned bounding box of the mesh's vertices (0 for no vertices).
-  /// Non-finite coordinates are ignored.
-  double
-  boundingBoxDiagonal (const TriangleMesh& mesh);
 } // namespace pcl_sparse

@@ -48,7 +48,7 @@ namespace pcl_sparse
   ///   .obj, .off  ascii, coordinates with the shortest representation that reads back exactly (double);
   ///   .ply        binary little endian, double coordinates (exact), int32 indices in uchar lists;
   ///   .stl        binary, float coordinates (the format's precision), facet normals computed.
-  /// Written atomically (writeFileAtomically); throws pcl_sparse::Error on an unknown extension, an
+  /// Written atomically (writeBytesAtomically); throws pcl_sparse::Error on an unknown extension, an
   /// invalid face index or a failed write.
   void
   saveTriangleMesh (const std::string& path, const TriangleMesh& mesh);

@@ -4,7 +4,7 @@
 /// (METHOD.md steps 9-12). It is what the encoder produces, what resampling reads, and what the file
 /// format stores.
 
-#include <pcl_sparse/coding/surface_basis.h>
+#include <pcl_sparse/model/surface_basis.h>
 
 #include <Eigen/Core>
 

@@ -85,6 +85,20 @@ namespace pcl_sparse
 
     bool areaConditionHolds (double area, double projected_area) const;
     void reset ();
+    /// Cone and no-flip test of face \a f against the seed normal \a ns: n_f . n_s, or -1 when it fails.
+    double coneCosine (int f, const Eigen::Vector3d& ns) const;
+    /// Smooth variation: angle(n_f, n_w) < delta at vertex \a w.
+    bool smoothAt (int f, int w) const;
+    /// Pairwise cone: angle(n_f, n_m) < cone for every patch triangle m so far (\a c = n_f . n_s).
+    bool pairwiseConeHolds (int f, double c) const;
+    /// Records the normal of patch triangle \a f (\a c = n_f . n_s) for pairwiseConeHolds.
+    void addPatchNormal (int f, double c);
+    /// One pass over the faces of \a u for grow (): the faces u would complete into completed_ (adding
+    /// their area and projected area), its candidate justifying faces into candidates_.
+    void collectFaces (int u, const Eigen::Vector3d& ns, double& new_area, double& new_projected);
+    /// Whether the patch may take area \a area (projected \a projected_area) with some justifying face
+    /// of candidates_ for the vertex being tested.
+    bool isJustified (double area, double projected_area) const;
 
     const TriangleMesh& mesh_;
     const MeshTopology& topology_;

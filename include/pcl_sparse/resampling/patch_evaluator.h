@@ -4,8 +4,8 @@
 /// millions of times: frequencies of cosine atoms decoded once per patch (no integer division per atom,
 /// no virtual call), footprint centrality with a polynomial atan2 (error below 1e-9 rad). Any other SurfaceBasis goes through SparseSurfaceModel::evaluate.
 
-#include <pcl_sparse/coding/surface_basis.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/model/surface_basis.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,25 @@
+#pragma once
+/// \file bounding_box.h
+/// The length scale of a shape: the diagonal of its axis-aligned bounding box. Every "fraction of the
+/// bounding-box diagonal" in the library (Harris radii, RMSE/diag, the file format's tolerance) uses it.
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// Length of the diagonal of the axis-aligned bounding box of \a points (#points by 3). Non-finite
+  /// points are ignored; 0 when no point is finite.
+  double
+  boundingBoxDiagonal (const std::vector<Eigen::Vector3d>& points);
+
+  /// Bounding-box diagonal of the mesh's vertices (all of them, referenced by a face or not).
+  inline double
+  boundingBoxDiagonal (const TriangleMesh& mesh)
+  {
+    return boundingBoxDiagonal (mesh.vertices);
+  }
+} // namespace pcl_sparse
