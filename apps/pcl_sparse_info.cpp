@@ -1,4 +1,5 @@
-/// pcl_sparse_info: what is in a mesh file and what is wrong with it (counts, defects, topology, scale).
+/// pcl_sparse_info: what is in a mesh file and what is wrong with it (counts, defects, topology, scale); for a
+/// point cloud (.pcd, .xyz, a PLY without faces) also what cleaning would drop, by cause.
 ///
 ///   pcl_sparse_info FILE [--json] [--allow-non-finite]
 
@@ -6,8 +7,8 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
-#include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/mesh/mesh_report.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 
@@ -27,34 +28,86 @@ namespace
     "pcl_sparse_info", "FILE [options]",
     {
       {"FILE", "a triangle mesh: .obj .off .ply .stl, or a model file .psm; a point cloud"},
-      {"", "(.pcd, or one of those without faces) is reported with faces: 0"},
+      {"", "(.pcd, .xyz, or one of those without faces) is reported with faces: 0;"},
+      {"", ".pcd, .xyz and a PLY without faces also with the counts of cleaning (NaN/Inf"},
+      {"", "points, points at the sensor, exact duplicates), fields and grid"},
       {"--json", "print one JSON object on stdout instead of 'name: value' lines"},
-      {"--allow-non-finite", "count NaN/Inf vertices instead of refusing the file"},
+      {"--allow-non-finite", "count NaN/Inf mesh vertices instead of refusing the file (scans: always counted)"},
       {"-q", "quiet (no messages besides the report and errors)"},
     },
     1, {}, {"--json", "-q", "--allow-non-finite"}};
 
-  /// A mesh file, or a point cloud as a mesh without faces (every point is an unreferenced vertex).
-  TriangleMesh
-  loadInput (const std::string& path, const MeshLoadOptions& options)
+  /// What a scan holds and what cleaning drops (for .pcd, .xyz and PLY files without faces).
+  struct CloudInfo
   {
-    if (!tools::hasExtension (path, ".pcd"))
-      return loadTriangleMesh (path, options);
-    pcl::PointCloud<pcl::PointXYZ> cloud;
-    loadPointCloud (path, cloud);
-    TriangleMesh mesh;
-    mesh.vertices.reserve (cloud.size ());
-    for (const auto& p : cloud)
+    ScanCloud raw;              ///< every point of the file
+    ScanCleaningReport report;  ///< cleanScan on a copy
+    double kept_bbox_diagonal = 0.0;
+  };
+
+  /// A point cloud file as a mesh without faces (every point, NaN too, is an unreferenced vertex), with
+  /// the cleaning counts in \a cloud.
+  TriangleMesh
+  loadCloud (const std::string& path, CloudInfo& cloud)
+  {
+    ScanLoadOptions raw;
+    raw.clean = false;
+    loadScanCloud (path, cloud.raw, raw);
+    ScanCloud cleaned = cloud.raw;
+    cloud.report = cleanScan (cleaned);
+    if (!cleaned.positions.empty ())
     {
-      if (!options.allow_non_finite && !std::isfinite (p.x + p.y + p.z))
-        throw Error (path + ": point " + std::to_string (mesh.vertices.size ()) + " has a non-finite coordinate");
-      mesh.vertices.emplace_back (p.x, p.y, p.z);
+      Eigen::Vector3d lo = cleaned.positions.front (), hi = lo;
+      for (const Eigen::Vector3d& p : cleaned.positions)
+      {
+        lo = lo.cwiseMin (p);
+        hi = hi.cwiseMax (p);
+      }
+      cloud.kept_bbox_diagonal = (hi - lo).norm ();
     }
+    TriangleMesh mesh;
+    mesh.vertices = worldPositions (cloud.raw);
     return mesh;
   }
 
+  /// The input as a mesh. Point clouds (.pcd, .xyz, a PLY without faces) also fill \a cloud and set
+  /// \a is_cloud; NaN/Inf points are counted there whatever --allow-non-finite says (organized scans are
+  /// full of them).
+  TriangleMesh
+  loadInput (const std::string& path, const MeshLoadOptions& options, CloudInfo& cloud, bool& is_cloud)
+  {
+    is_cloud = tools::hasExtension (path, ".pcd") || tools::hasExtension (path, ".xyz");
+    if (is_cloud)
+      return loadCloud (path, cloud);
+    if (!tools::hasExtension (path, ".ply"))
+      return loadTriangleMesh (path, options);
+    MeshLoadOptions lenient = options;
+    lenient.allow_no_faces = true;
+    lenient.allow_non_finite = true;
+    TriangleMesh mesh = loadTriangleMesh (path, lenient);
+    if (mesh.triangles.empty ())
+    {
+      is_cloud = true;
+      return loadCloud (path, cloud);
+    }
+    if (!options.allow_non_finite)
+      for (const Eigen::Vector3d& v : mesh.vertices)
+        if (!v.allFinite ())
+          return loadTriangleMesh (path, options);  // refuses the file with the mesh reader's message
+    return mesh;
+  }
+
+  std::string
+  joinedFields (const std::vector<std::string>& fields)
+  {
+    std::string text;
+    for (const std::string& field : fields)
+      text += (text.empty () ? "" : " ") + field;
+    return text;
+  }
+
   void
-  printPlain (const std::string& path, const MeshReport& r, double seconds)
+  printPlain (const std::string& path, const MeshReport& r, const CloudInfo* cloud, double seconds)
   {
     std::printf ("file: %s\n", path.c_str ());
     std::printf ("vertices: %zu\n", r.vertices);
@@ -79,14 +132,30 @@ namespace
       std::printf ("genus: unknown (%s)\n", r.manifold ? "not orientable" : "not manifold");
     std::printf ("bbox_diagonal: %.6g\n", r.bbox_diagonal);
     std::printf ("mean_edge_length: %.6g\n", r.mean_edge_length);
+    if (cloud)
+    {
+      const ScanCleaningReport& c = cloud->report;
+      std::printf ("input_points: %zu\n", c.input_points);
+      std::printf ("finite_points: %zu\n", c.finitePoints ());
+      std::printf ("dropped_non_finite: %zu\n", c.non_finite);
+      std::printf ("dropped_at_sensor_origin: %zu\n", c.at_sensor_origin);
+      std::printf ("dropped_duplicates: %zu\n", c.duplicates_merged);
+      std::printf ("kept_points: %zu\n", c.kept);
+      if (cloud->raw.isOrganized ())
+        std::printf ("organized: %ux%u\n", cloud->raw.width, cloud->raw.height);
+      else
+        std::printf ("organized: no\n");
+      std::printf ("fields: %s\n", joinedFields (cloud->raw.fields).c_str ());
+      std::printf ("kept_bbox_diagonal: %.6g\n", cloud->kept_bbox_diagonal);
+    }
     std::printf ("seconds: %.3f\n", seconds);
   }
 
   void
-  printJson (const std::string& path, const MeshReport& r, double seconds)
+  printJson (const std::string& path, const MeshReport& r, const CloudInfo* cloud, double seconds)
   {
-    tools::JsonObject ()
-      .add ("file", path)
+    tools::JsonObject json;
+    json.add ("file", path)
       .add ("vertices", r.vertices)
       .add ("faces", r.faces)
       .add ("edges", r.edges)
@@ -105,9 +174,23 @@ namespace
       .add ("closed", r.closed)
       .add ("genus", r.genus)
       .add ("bbox_diagonal", r.bbox_diagonal)
-      .add ("mean_edge_length", r.mean_edge_length)
-      .addSeconds ("seconds", seconds)
-      .print ();
+      .add ("mean_edge_length", r.mean_edge_length);
+    if (cloud)
+    {
+      const ScanCleaningReport& c = cloud->report;
+      json.add ("input_points", c.input_points)
+        .add ("finite_points", c.finitePoints ())
+        .add ("dropped_non_finite", c.non_finite)
+        .add ("dropped_at_sensor_origin", c.at_sensor_origin)
+        .add ("dropped_duplicates", c.duplicates_merged)
+        .add ("kept_points", c.kept)
+        .add ("organized", cloud->raw.isOrganized ())
+        .add ("width", cloud->raw.width)
+        .add ("height", cloud->raw.height)
+        .add ("fields", joinedFields (cloud->raw.fields))
+        .add ("kept_bbox_diagonal", cloud->kept_bbox_diagonal);
+    }
+    json.addSeconds ("seconds", seconds).print ();
   }
 
   /// Summary of a .psm model file: header, patches, atoms and the bytes of each section.
@@ -187,14 +270,16 @@ main (int argc, char** argv)
         printModelInfo (path, json, timer);
         return 0;
       }
-      const TriangleMesh mesh = loadInput (path, load_options);
+      CloudInfo cloud;
+      bool is_cloud = false;
+      const TriangleMesh mesh = loadInput (path, load_options, cloud, is_cloud);
       const MeshTopology topology = buildMeshTopology (mesh);
       const MeshReport report = computeMeshReport (mesh, topology);
       const double seconds = timer.toc () / 1000.0;
       if (json)
-        printJson (path, report, seconds);
+        printJson (path, report, is_cloud ? &cloud : nullptr, seconds);
       else
-        printPlain (path, report, seconds);
+        printPlain (path, report, is_cloud ? &cloud : nullptr, seconds);
     }
     catch (const Error&)
     {

@@ -8,7 +8,8 @@ add_test(NAME package_xml_format3
 if(TARGET pcl_sparse_info)
   add_test(NAME pcl_sparse_info_tool
     COMMAND ${CMAKE_COMMAND} -DTOOL=$<TARGET_FILE:pcl_sparse_info> -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/info_tool
-            -DSHARED_MESHES=${PCL_SPARSE_SHARED_MESHES} -P ${PROJECT_SOURCE_DIR}/cmake/CheckInfoTool.cmake)
+            -DSHARED_MESHES=${PCL_SPARSE_SHARED_MESHES} -DSHARED_CLOUDS=${PCL_SPARSE_SHARED_CLOUDS}
+            -P ${PROJECT_SOURCE_DIR}/cmake/CheckInfoTool.cmake)
 endif()
 
 # Installs the whole build (so it needs every target built first, as scripts/test.sh does).

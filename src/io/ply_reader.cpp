@@ -2,11 +2,15 @@
 /// numeric type (other vertex properties skipped); the face element's list "vertex_indices" (or
 /// "vertex_index") of any integer count and index type gives polygons, fan-triangulated; other elements and
 /// properties are skipped. Every count is checked against the bytes left before anything is reserved.
+/// readPlyPoints reads the same files for point clouds: chosen scalar vertex properties (normals, colours,
+/// intensity) and the Stanford scanner's range_grid element (one list of 0 or 1 vertex index per grid cell).
 
+#include "cloud_readers.h"
 #include "mesh_readers.h"
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <vector>
 
 namespace pcl_sparse
@@ -151,6 +155,7 @@ namespace pcl_sparse
         std::vector<PlyElement> elements;
         PlyFormat format = PlyFormat::Ascii;
         std::size_t body_offset = 0;
+        std::vector<std::vector<std::string>> obj_info;  ///< the words after "obj_info" on each such line
       };
 
       PlyLayout
@@ -171,8 +176,13 @@ namespace pcl_sparse
           ++line;
           const std::vector<std::string> words = splitWords (p, nl);
           p = nl + 1;
-          if (line == 1 || words.empty () || words[0] == "comment" || words[0] == "obj_info")
+          if (line == 1 || words.empty () || words[0] == "comment")
             continue;
+          if (words[0] == "obj_info")
+          {
+            layout.obj_info.emplace_back (words.begin () + 1, words.end ());
+            continue;
+          }
           if (words[0] == "end_header")
             break;
           if (words[0] == "format")
@@ -233,6 +243,15 @@ namespace pcl_sparse
         return layout;
       }
 
+      /// What a point cloud reader wants from the body besides positions and faces: some scalar vertex
+      /// properties (by name) and the range grid.
+      struct PlyPointSink
+      {
+        const std::vector<std::string>* wanted = nullptr;
+        std::map<std::string, std::vector<double>>* values = nullptr;
+        std::vector<int>* range_grid = nullptr;
+      };
+
       /// Reads the body: binary (templated on byte swapping) or ascii.
       class PlyBodyReader
       {
@@ -243,7 +262,7 @@ namespace pcl_sparse
         }
 
         void
-        read (TriangleMesh& mesh)
+        read (TriangleMesh& mesh, const PlyPointSink& sink = PlyPointSink ())
         {
           const char* p = data_.data () + layout_.body_offset;
           const char* end = data_.data () + data_.size ();
@@ -254,6 +273,7 @@ namespace pcl_sparse
           {
             const bool is_vertex = element.name == "vertex";
             const bool is_face = element.name == "face";
+            const bool is_grid = sink.range_grid && element.name == "range_grid";
             int x = -1, y = -1, z = -1, indices = -1;
             std::size_t min_record = 0;
             for (std::size_t i = 0; i < element.properties.size (); ++i)
@@ -269,13 +289,16 @@ namespace pcl_sparse
                 else if (property.name == "z")
                   z = static_cast<int> (i);
               }
-              if (is_face && property.is_list && (property.name == "vertex_indices" || property.name == "vertex_index"))
+              if ((is_face || is_grid) && property.is_list &&
+                  (property.name == "vertex_indices" || property.name == "vertex_index"))
               {
                 if (!isInteger (property.type))
-                  throw Error (path_ + ": PLY face indices of a floating-point type");
+                  throw Error (path_ + ": PLY " + element.name + " indices of a floating-point type");
                 indices = static_cast<int> (i);
               }
             }
+            if (is_grid && indices < 0)
+              throw Error (path_ + ": the PLY range_grid element has no vertex_indices list");
             if (is_vertex && (x < 0 || y < 0 || z < 0))
               throw Error (path_ + ": the PLY vertex element has no x, y, z properties");
             if (is_face && indices < 0)
@@ -300,8 +323,29 @@ namespace pcl_sparse
             if (is_vertex && element.count > std::numeric_limits<int>::max ())
               throw Error (path_ + ": too many vertices (" + std::to_string (element.count) + ")");
 
+            // Scalar vertex properties the caller asked for, one column each (x y z go to the vertices).
+            std::vector<std::vector<double>*> columns (element.properties.size (), nullptr);
             if (is_vertex)
+            {
               mesh.vertices.resize (static_cast<std::size_t> (element.count));
+              for (std::size_t i = 0; sink.wanted && i < element.properties.size (); ++i)
+              {
+                const PlyProperty& property = element.properties[i];
+                if (!property.is_list && static_cast<int> (i) != x && static_cast<int> (i) != y &&
+                    static_cast<int> (i) != z &&
+                    std::find (sink.wanted->begin (), sink.wanted->end (), property.name) != sink.wanted->end ())
+                {
+                  columns[i] = &(*sink.values)[property.name];
+                  columns[i]->assign (static_cast<std::size_t> (element.count), 0.0);
+                }
+              }
+            }
+            if (is_grid)
+            {
+              if (!sink.range_grid->empty ())
+                throw Error (path_ + ": two PLY range_grid elements");
+              sink.range_grid->reserve (static_cast<std::size_t> (element.count));  // count checked above
+            }
             if (is_face)
             {
               // At most as many triangles as full triangle records fit in the bytes left (a lying header with
@@ -318,7 +362,7 @@ namespace pcl_sparse
             // over a count of 1e12 would hang).
             if (element.properties.empty ())
               continue;
-            const Target target{is_vertex, is_face, x, y, z, indices};
+            const Target target{is_vertex, is_face, is_grid, x, y, z, indices, &columns, sink.range_grid};
             switch (layout_.format)
             {
               case PlyFormat::Ascii:
@@ -347,9 +391,23 @@ namespace pcl_sparse
       private:
         struct Target
         {
-          bool is_vertex, is_face;
+          bool is_vertex, is_face, is_grid;
           int x, y, z, indices;
+          const std::vector<std::vector<double>*>* columns;  ///< per property: where its values go, or null
+          std::vector<int>* range_grid;
         };
+
+        /// One range grid cell: no vertex (-1) or one.
+        void
+        addGridCell (const std::vector<long long>& cell, long long record, std::vector<int>& grid) const
+        {
+          if (cell.size () > 1)
+            throw Error (path_ + ": PLY range_grid cell " + std::to_string (record) + " has " +
+                         std::to_string (cell.size ()) + " vertices (at most 1)");
+          if (!cell.empty () && (cell[0] < 0 || cell[0] > std::numeric_limits<int>::max ()))
+            throw Error (path_ + ": range_grid vertex index " + std::to_string (cell[0]) + " is out of range");
+          grid.push_back (cell.empty () ? -1 : static_cast<int> (cell[0]));
+        }
 
         void
         addPolygon (const std::vector<long long>& polygon, long long record, TriangleMesh& mesh) const
@@ -406,6 +464,17 @@ namespace pcl_sparse
                 for (int k = 0; k < 3; ++k)
                   v[k] = readBinary<swap> (record + offset[k], type[k]);
               }
+            // Other wanted vertex properties, column by column.
+            std::size_t column_offset = 0;
+            for (std::size_t i = 0; target.is_vertex && i < element.properties.size (); ++i)
+            {
+              const PlyType column_type = element.properties[i].type;
+              if (std::vector<double>* column = (*target.columns)[i])
+                for (long long r = 0; r < element.count; ++r)
+                  (*column)[static_cast<std::size_t> (r)] =
+                      readBinary<swap> (p + static_cast<std::size_t> (r) * stride + column_offset, column_type);
+              column_offset += sizeOf (column_type);
+            }
             return p + static_cast<std::size_t> (element.count) * stride;
           }
 
@@ -449,6 +518,8 @@ namespace pcl_sparse
                 if (target.is_vertex && (pi == target.x || pi == target.y || pi == target.z))
                   mesh.vertices[static_cast<std::size_t> (r)][pi == target.x ? 0 : (pi == target.y ? 1 : 2)] =
                       readBinary<swap> (p, property.type);
+                else if (target.is_vertex && (*target.columns)[i])
+                  (*(*target.columns)[i])[static_cast<std::size_t> (r)] = readBinary<swap> (p, property.type);
                 p += size;
                 continue;
               }
@@ -461,12 +532,15 @@ namespace pcl_sparse
               if (count_value < 0 || count_value * static_cast<double> (size) > static_cast<double> (end - p))
                 truncated (element, r);
               const std::size_t count = static_cast<std::size_t> (count_value);
-              if (target.is_face && pi == target.indices)
+              if ((target.is_face || target.is_grid) && pi == target.indices)
               {
                 polygon.resize (count);
                 for (std::size_t k = 0; k < count; ++k)
                   polygon[k] = static_cast<long long> (readBinary<swap> (p + k * size, property.type));
-                addPolygon (polygon, r, mesh);
+                if (target.is_face)
+                  addPolygon (polygon, r, mesh);
+                else
+                  addGridCell (polygon, r, *target.range_grid);
               }
               p += count * size;
             }
@@ -499,6 +573,8 @@ namespace pcl_sparse
                 const double v = value (r, property.type);
                 if (target.is_vertex && (pi == target.x || pi == target.y || pi == target.z))
                   mesh.vertices[static_cast<std::size_t> (r)][pi == target.x ? 0 : (pi == target.y ? 1 : 2)] = v;
+                else if (target.is_vertex && (*target.columns)[i])
+                  (*(*target.columns)[i])[static_cast<std::size_t> (r)] = v;
                 continue;
               }
               const double count_value = value (r, property.count_type);
@@ -510,6 +586,8 @@ namespace pcl_sparse
                 polygon[k] = static_cast<long long> (value (r, property.type));
               if (target.is_face && pi == target.indices)
                 addPolygon (polygon, r, mesh);
+              else if (target.is_grid && pi == target.indices)
+                addGridCell (polygon, r, *target.range_grid);
             }
           }
         }
@@ -525,6 +603,68 @@ namespace pcl_sparse
     {
       const PlyLayout layout = parseHeader (data, path);
       PlyBodyReader (data, path, layout).read (mesh);
+    }
+
+    void
+    readPlyPoints (const std::string& data, const std::string& path, const std::vector<std::string>& wanted,
+                   PlyPoints& points)
+    {
+      const PlyLayout layout = parseHeader (data, path);
+      points = PlyPoints ();
+      for (const PlyElement& element : layout.elements)
+      {
+        if (element.name == "vertex")
+          for (const PlyProperty& property : element.properties)
+            points.vertex_properties.push_back (property.name);
+        if (element.name == "face")
+          points.num_faces += element.count;
+      }
+      TriangleMesh mesh;
+      PlyPointSink sink;
+      sink.wanted = &wanted;
+      sink.values = &points.values;
+      sink.range_grid = &points.range_grid;
+      PlyBodyReader (data, path, layout).read (mesh, sink);
+      points.positions = std::move (mesh.vertices);
+
+      const bool has_grid = std::any_of (layout.elements.begin (), layout.elements.end (),
+                                         [] (const PlyElement& element) { return element.name == "range_grid"; });
+      if (!has_grid)
+        return;
+      // The grid's shape is in the header (obj_info num_cols / num_rows); it must match the cell count and
+      // put every vertex in exactly one cell, or the grid cannot be rebuilt from it.
+      long long columns = -1, rows = -1;
+      for (const std::vector<std::string>& info : layout.obj_info)
+        if (info.size () == 2 && (info[0] == "num_cols" || info[0] == "num_rows"))
+        {
+          long long value = -1;
+          const auto result = std::from_chars (info[1].data (), info[1].data () + info[1].size (), value);
+          if (result.ec != std::errc () || result.ptr != info[1].data () + info[1].size () || value <= 0 ||
+              value > std::numeric_limits<std::uint32_t>::max ())
+            throw Error (path + ": bad PLY obj_info " + info[0] + " '" + info[1].substr (0, 20) + "'");
+          (info[0] == "num_cols" ? columns : rows) = value;
+        }
+      if (columns < 0 || rows < 0)
+        throw Error (path + ": PLY range_grid without obj_info num_cols and num_rows");
+      if (static_cast<long long> (points.range_grid.size ()) != columns * rows)
+        throw Error (path + ": PLY range_grid has " + std::to_string (points.range_grid.size ()) + " cells, not num_cols x num_rows = " +
+                     std::to_string (columns) + " x " + std::to_string (rows));
+      std::vector<char> seen (points.positions.size (), 0);
+      for (const int vertex : points.range_grid)
+      {
+        if (vertex < 0)
+          continue;
+        if (static_cast<std::size_t> (vertex) >= points.positions.size ())
+          throw Error (path + ": range_grid vertex index " + std::to_string (vertex) + " is out of range (the file has " +
+                       std::to_string (points.positions.size ()) + " vertices)");
+        if (seen[static_cast<std::size_t> (vertex)]++)
+          throw Error (path + ": vertex " + std::to_string (vertex) + " is in two range_grid cells");
+      }
+      const auto missing = std::find (seen.begin (), seen.end (), 0);
+      if (missing != seen.end ())
+        throw Error (path + ": vertex " + std::to_string (missing - seen.begin ()) + " is in no range_grid cell");
+      points.grid_width = static_cast<std::uint32_t> (columns);
+      points.grid_height = static_cast<std::uint32_t> (rows);
     }
   } // namespace io_detail
 } // namespace pcl_sparse

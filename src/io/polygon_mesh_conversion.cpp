@@ -3,53 +3,15 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/mesh/polygon_faces.h>
 
+#include "point_fields.h"
+
 #include <pcl/conversions.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
-#include <cstring>
-#include <limits>
 
 namespace pcl_sparse
 {
-  namespace
-  {
-    /// Reads one value of a PCLPointField datatype as double.
-    double
-    readFieldValue (const std::uint8_t* p, std::uint8_t datatype)
-    {
-      switch (datatype)
-      {
-        case pcl::PCLPointField::INT8: { std::int8_t v; std::memcpy (&v, p, 1); return v; }
-        case pcl::PCLPointField::UINT8: { std::uint8_t v; std::memcpy (&v, p, 1); return v; }
-        case pcl::PCLPointField::INT16: { std::int16_t v; std::memcpy (&v, p, 2); return v; }
-        case pcl::PCLPointField::UINT16: { std::uint16_t v; std::memcpy (&v, p, 2); return v; }
-        case pcl::PCLPointField::INT32: { std::int32_t v; std::memcpy (&v, p, 4); return v; }
-        case pcl::PCLPointField::UINT32: { std::uint32_t v; std::memcpy (&v, p, 4); return v; }
-        case pcl::PCLPointField::FLOAT32: { float v; std::memcpy (&v, p, 4); return v; }
-        case pcl::PCLPointField::FLOAT64: { double v; std::memcpy (&v, p, 8); return v; }
-        default: return std::numeric_limits<double>::quiet_NaN ();
-      }
-    }
-
-    std::size_t
-    fieldSize (std::uint8_t datatype)
-    {
-      switch (datatype)
-      {
-        case pcl::PCLPointField::INT8:
-        case pcl::PCLPointField::UINT8: return 1;
-        case pcl::PCLPointField::INT16:
-        case pcl::PCLPointField::UINT16: return 2;
-        case pcl::PCLPointField::INT32:
-        case pcl::PCLPointField::UINT32:
-        case pcl::PCLPointField::FLOAT32: return 4;
-        case pcl::PCLPointField::FLOAT64: return 8;
-        default: return 0;
-      }
-    }
-  } // namespace
-
   pcl::PointCloud<pcl::PointXYZ>
   verticesToCloud (const TriangleMesh& mesh)
   {
@@ -96,7 +58,7 @@ namespace pcl_sparse
     {
       if (!fields[k])
         throw Error (what + ": the cloud has no '" + static_cast<char> ('x' + k) + "' field");
-      const std::size_t size = fieldSize (fields[k]->datatype);
+      const std::size_t size = io_detail::fieldSize (fields[k]->datatype);
       if (size == 0 || fields[k]->offset + size > cloud.point_step)
         throw Error (what + ": bad '" + static_cast<char> ('x' + k) + "' field");
     }
@@ -114,7 +76,7 @@ namespace pcl_sparse
                                     static_cast<std::size_t> (col) * cloud.point_step;
         Eigen::Vector3d& v = positions[static_cast<std::size_t> (row) * cloud.width + col];
         for (int k = 0; k < 3; ++k)
-          v[k] = readFieldValue (point + fields[k]->offset, fields[k]->datatype);
+          v[k] = io_detail::readFieldValue (point + fields[k]->offset, fields[k]->datatype);
       }
     return positions;
   }

@@ -1,0 +1,102 @@
+#pragma once
+/// \file scan_cloud.h
+/// A scanned point cloud in double precision, in a local frame centred on the data, with what the file
+/// said about it (grid shape, sensor pose, attributes) and what cleaning removed.
+///
+/// Why a local frame: map coordinates (UTM eastings ~5e5 m, northings ~5e6 m) leave float32 a 0.5 m
+/// resolution and eat half of double's digits in every difference; centred, every later computation works
+/// on small numbers, and origin + p gives the file's coordinates back exactly (see localFrameOrigin).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// What cleaning did to a scan, one count per cause; input_points = non_finite + at_sensor_origin +
+  /// duplicates_merged + kept.
+  struct ScanCleaningReport
+  {
+    std::size_t input_points = 0;       ///< points (grid cells for an organized scan) before cleaning
+    std::size_t non_finite = 0;         ///< dropped: a NaN/Inf coordinate (also empty grid cells)
+    std::size_t at_sensor_origin = 0;   ///< dropped: exactly at the sensor position ("no return" of lidar drivers)
+    std::size_t duplicates_merged = 0;  ///< dropped: exactly the position of an earlier kept point
+    std::size_t kept = 0;               ///< points left
+
+    /// Points with finite coordinates (input_points - non_finite).
+    std::size_t
+    finitePoints () const
+    {
+      return input_points - non_finite;
+    }
+  };
+
+  /// A scan: positions in a local frame (world = origin + p) and, where the file has them, per-point normals,
+  /// colours and intensities (each either empty or one entry per point).
+  struct ScanCloud
+  {
+    using Ptr = std::shared_ptr<ScanCloud>;
+    using ConstPtr = std::shared_ptr<const ScanCloud>;
+
+    std::vector<Eigen::Vector3d> positions;  ///< #P local positions; world position = origin + positions[i]
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero ();  ///< the local frame's offset, in the file's frame
+    std::vector<Eigen::Vector3d> normals;    ///< empty or #P normals as stored (not normalised)
+    std::vector<std::uint32_t> colors;       ///< empty or #P colours packed as PCL's rgba: 0xAARRGGBB
+    std::vector<float> intensities;          ///< empty or #P intensities
+    /// #P: index of each point in the file, row * width + column for an organized scan (so the grid can be
+    /// rebuilt), the position in the file otherwise.
+    std::vector<std::size_t> indices;
+    /// The file's layout: height > 1 for an organized scan (a range image), else width = #points, height = 1.
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    /// Sensor pose in the file's frame (PCD VIEWPOINT); has_sensor_pose is false when the file states none
+    /// (PLY, XYZ), and the sensor is then taken to be at (0, 0, 0).
+    Eigen::Vector3d sensor_origin = Eigen::Vector3d::Zero ();
+    Eigen::Quaterniond sensor_orientation = Eigen::Quaterniond::Identity ();
+    bool has_sensor_pose = false;
+    std::vector<std::string> fields;  ///< the point fields of the file (PCD FIELDS, PLY vertex properties), in order
+    ScanCleaningReport report;        ///< what cleaning removed (input_points = kept = #P before cleaning)
+
+    std::size_t
+    size () const
+    {
+      return positions.size ();
+    }
+
+    bool
+    isOrganized () const
+    {
+      return height > 1;
+    }
+
+    /// The position of point \a i in the file's frame: origin + positions[i], in double.
+    Eigen::Vector3d
+    worldPosition (std::size_t i) const
+    {
+      return origin + positions[i];
+    }
+  };
+
+  /// Every position of \a scan in the file's frame (origin + p), in double.
+  std::vector<Eigen::Vector3d>
+  worldPositions (const ScanCloud& scan);
+
+  /// The origin of the local frame for \a world_positions, per coordinate: 0 where the centre c of the
+  /// bounding box of the finite positions is within 2 x its largest side s of 0 (nothing to gain there), else
+  /// c rounded to a multiple of the power of two in (s/256, s/128]; the point itself when all coincide, 0 when
+  /// there is none. Why so: then p - origin and origin + (p - origin) are exact in double for every finite
+  /// position p of the box (far from 0, |p - origin| < |p| and both are multiples of the finer of ulp (p)
+  /// and the step), so the local frame loses nothing, for float and double data alike.
+  Eigen::Vector3d
+  localFrameOrigin (const std::vector<Eigen::Vector3d>& world_positions);
+
+  /// Moves \a scan to the local frame of localFrameOrigin (worldPositions (scan)): same world positions,
+  /// new origin. Non-finite positions stay non-finite.
+  void
+  centreScan (ScanCloud& scan);
+} // namespace pcl_sparse

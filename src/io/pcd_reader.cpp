@@ -1,0 +1,130 @@
+/// PCD input: our strict header check, then PCL's reader into a raw PCLPointCloud2 (any field types).
+
+#include "cloud_readers.h"
+#include "mesh_readers.h"
+
+#include <pcl/io/pcd_io.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace pcl_sparse
+{
+  namespace io_detail
+  {
+    void
+    validatePcdHeader (const std::string& path)
+    {
+      std::FILE* file = std::fopen (path.c_str (), "rb");
+      if (!file)
+        throw Error (path + ": cannot open the file");
+      std::string head (65536, '\0');
+      head.resize (std::fread (&head[0], 1, head.size (), file));
+      std::fseek (file, 0, SEEK_END);
+      const long file_size = std::ftell (file);
+      std::fclose (file);
+
+      std::map<std::string, std::vector<std::string>> header;
+      std::size_t position = 0;
+      std::string data_kind;
+      while (data_kind.empty ())
+      {
+        const std::size_t nl = head.find ('\n', position);
+        if (nl == std::string::npos)
+          throw Error (path + ": not a PCD file (no complete header with a DATA line)");
+        std::istringstream line (head.substr (position, nl - position));
+        position = nl + 1;
+        std::string keyword;
+        if (!(line >> keyword) || keyword[0] == '#')
+          continue;
+        std::vector<std::string> values;
+        for (std::string value; line >> value;)
+          values.push_back (value);
+        static const std::set<std::string> known = {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT",
+                                                    "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+        if (!known.count (keyword))
+          throw Error (path + ": not a PCD file (unknown header line)");
+        if (keyword == "DATA")
+          data_kind = values.empty () ? "?" : values[0];
+        header[keyword == "COLUMNS" ? "FIELDS" : keyword] = values;
+      }
+      const std::vector<std::string>& fields = header["FIELDS"];
+      const std::vector<std::string>& sizes = header["SIZE"];
+      const std::vector<std::string>& types = header["TYPE"];
+      std::vector<std::string> counts = header["COUNT"];
+      if (counts.empty ())
+        counts.assign (fields.size (), "1");
+      if (fields.empty () || sizes.size () != fields.size () || types.size () != fields.size () ||
+          counts.size () != fields.size ())
+        throw Error (path + ": bad PCD header (FIELDS, SIZE, TYPE, COUNT disagree)");
+      const auto number = [&] (const std::string& text, long long max) {
+        long long value = -1;
+        const auto result = std::from_chars (text.data (), text.data () + text.size (), value);
+        if (result.ec != std::errc () || result.ptr != text.data () + text.size () || value < 0 || value > max)
+          throw Error (path + ": bad PCD header value '" + text.substr (0, 20) + "'");
+        return value;
+      };
+      long long point_size = 0;
+      for (std::size_t i = 0; i < fields.size (); ++i)
+      {
+        const long long size = number (sizes[i], 8);
+        if ((size != 1 && size != 2 && size != 4 && size != 8) ||
+            (types[i] != "I" && types[i] != "U" && types[i] != "F"))
+          throw Error (path + ": bad PCD field type for '" + fields[i] + "'");
+        point_size += size * number (counts[i], 1 << 20);
+      }
+      for (const char* name : {"x", "y", "z"})
+        if (std::find (fields.begin (), fields.end (), name) == fields.end ())
+          throw Error (path + ": the PCD file has no x, y, z fields");
+      if (header["WIDTH"].size () != 1 || header["HEIGHT"].size () != 1)
+        throw Error (path + ": bad PCD header (WIDTH/HEIGHT)");
+      const long long points = number (header["WIDTH"][0], 1ll << 32) * number (header["HEIGHT"][0], 1ll << 32);
+      if (header.count ("POINTS") && (header["POINTS"].size () != 1 || number (header["POINTS"][0], 1ll << 62) != points))
+        throw Error (path + ": bad PCD header (POINTS is not WIDTH * HEIGHT)");
+      const long long remaining = file_size - static_cast<long long> (position);
+      if (data_kind == "binary")
+      {
+        if (points > remaining / std::max (1ll, point_size) + 1 || points * point_size > remaining)
+          throw Error (path + ": truncated PCD data (" + std::to_string (points) + " points of " +
+                       std::to_string (point_size) + " bytes announced, " + std::to_string (remaining) + " bytes left)");
+      }
+      else if (data_kind == "ascii")
+      {
+        if (points > remaining)  // every point needs at least one character
+          throw Error (path + ": truncated PCD data (" + std::to_string (points) + " points announced)");
+      }
+      else if (data_kind == "binary_compressed")
+      {
+        if (remaining < 8)
+          throw Error (path + ": truncated PCD data");
+      }
+      else
+        throw Error (path + ": unknown PCD DATA kind '" + data_kind.substr (0, 20) + "'");
+    }
+
+    void
+    readPcdBlob (const std::string& path, PcdBlob& blob)
+    {
+      checkReadableFile (path);
+      validatePcdHeader (path);
+      QuietPclConsole quiet;
+      pcl::PCDReader reader;
+      int version = 0;
+      int result = -1;
+      try
+      {
+        result = reader.read (path, blob.cloud, blob.sensor_origin, blob.sensor_orientation, version);
+      }
+      catch (const pcl::PCLException&)
+      {
+      }
+      if (result < 0)
+        throw Error (path + ": not a readable PCD file (bad header or truncated data)");
+    }
+  } // namespace io_detail
+} // namespace pcl_sparse
