@@ -271,38 +271,10 @@ namespace pcl_sparse
           cursor.line = 1 + static_cast<std::size_t> (std::count (data_.data (), p, '\n'));
           for (const PlyElement& element : layout_.elements)
           {
-            const bool is_vertex = element.name == "vertex";
-            const bool is_face = element.name == "face";
-            const bool is_grid = sink.range_grid && element.name == "range_grid";
-            int x = -1, y = -1, z = -1, indices = -1;
-            std::size_t min_record = 0;
-            for (std::size_t i = 0; i < element.properties.size (); ++i)
-            {
-              const PlyProperty& property = element.properties[i];
-              min_record += property.is_list ? sizeOf (property.count_type) : sizeOf (property.type);
-              if (is_vertex && !property.is_list)
-              {
-                if (property.name == "x")
-                  x = static_cast<int> (i);
-                else if (property.name == "y")
-                  y = static_cast<int> (i);
-                else if (property.name == "z")
-                  z = static_cast<int> (i);
-              }
-              if ((is_face || is_grid) && property.is_list &&
-                  (property.name == "vertex_indices" || property.name == "vertex_index"))
-              {
-                if (!isInteger (property.type))
-                  throw Error (path_ + ": PLY " + element.name + " indices of a floating-point type");
-                indices = static_cast<int> (i);
-              }
-            }
-            if (is_grid && indices < 0)
-              throw Error (path_ + ": the PLY range_grid element has no vertex_indices list");
-            if (is_vertex && (x < 0 || y < 0 || z < 0))
-              throw Error (path_ + ": the PLY vertex element has no x, y, z properties");
-            if (is_face && indices < 0)
-              throw Error (path_ + ": the PLY face element has no vertex_indices list");
+            const ElementRoles roles = rolesOf (element, sink.range_grid != nullptr);
+            const bool is_vertex = roles.is_vertex, is_face = roles.is_face, is_grid = roles.is_grid;
+            const int x = roles.x, y = roles.y, z = roles.z, indices = roles.indices;
+            const std::size_t min_record = roles.min_record;
             if (is_vertex && !mesh.vertices.empty ())
               throw Error (path_ + ": two PLY vertex elements");
 
@@ -389,6 +361,52 @@ namespace pcl_sparse
         }
 
       private:
+        /// What an element is to the reader and where its x, y, z and index list are.
+        struct ElementRoles
+        {
+          bool is_vertex = false, is_face = false, is_grid = false;
+          int x = -1, y = -1, z = -1, indices = -1;
+          std::size_t min_record = 0;  ///< bytes of the smallest binary record
+        };
+
+        /// The roles of \a element's properties; throws if a vertex, face or range_grid element lacks its own.
+        ElementRoles
+        rolesOf (const PlyElement& element, bool wants_grid) const
+        {
+          ElementRoles roles;
+          roles.is_vertex = element.name == "vertex";
+          roles.is_face = element.name == "face";
+          roles.is_grid = wants_grid && element.name == "range_grid";
+          for (std::size_t i = 0; i < element.properties.size (); ++i)
+          {
+            const PlyProperty& property = element.properties[i];
+            roles.min_record += property.is_list ? sizeOf (property.count_type) : sizeOf (property.type);
+            if (roles.is_vertex && !property.is_list)
+            {
+              if (property.name == "x")
+                roles.x = static_cast<int> (i);
+              else if (property.name == "y")
+                roles.y = static_cast<int> (i);
+              else if (property.name == "z")
+                roles.z = static_cast<int> (i);
+            }
+            if ((roles.is_face || roles.is_grid) && property.is_list &&
+                (property.name == "vertex_indices" || property.name == "vertex_index"))
+            {
+              if (!isInteger (property.type))
+                throw Error (path_ + ": PLY " + element.name + " indices of a floating-point type");
+              roles.indices = static_cast<int> (i);
+            }
+          }
+          if (roles.is_grid && roles.indices < 0)
+            throw Error (path_ + ": the PLY range_grid element has no vertex_indices list");
+          if (roles.is_vertex && (roles.x < 0 || roles.y < 0 || roles.z < 0))
+            throw Error (path_ + ": the PLY vertex element has no x, y, z properties");
+          if (roles.is_face && roles.indices < 0)
+            throw Error (path_ + ": the PLY face element has no vertex_indices list");
+          return roles;
+        }
+
         struct Target
         {
           bool is_vertex, is_face, is_grid;
