@@ -1,0 +1,296 @@
+// The stages as PCL classes (issue 11): every instantiated point type, PCL's input (cloud + polygons) against
+// the library's mesh, setIndices, the error policy, and the output point types of resampling.
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/keypoints/harris_keypoint3d_mesh.h>
+#include <pcl_sparse/mesh/mesh_normal_estimation.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/mesh/sub_mesh.h>
+#include <pcl_sparse/patches/feature_aware_patch_sampling.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <string>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  template <typename PointT>
+  typename pcl::PointCloud<PointT>::Ptr
+  cloudOf (const TriangleMesh& mesh);
+
+  /// A mesh with features (cube corners and edges, a bump), its coordinates exactly representable in float so
+  /// that PCL's float clouds carry the same surface as the double mesh. (Rounded through a float cloud:
+  /// GCC 12 at -O2 drops a double -> float -> double round trip done in registers.)
+  TriangleMesh
+  floatExactMesh ()
+  {
+    TriangleMesh mesh = makeCube (6);
+    for (Eigen::Vector3d& v : mesh.vertices)
+      v.z () += 0.1 * std::exp (-4.0 * v.squaredNorm ());
+    mesh.vertices = cloudPositions (*cloudOf<pcl::PointXYZ> (mesh));
+    return mesh;
+  }
+
+  template <typename PointT>
+  typename pcl::PointCloud<PointT>::Ptr
+  cloudOf (const TriangleMesh& mesh)
+  {
+    auto cloud = std::make_shared<pcl::PointCloud<PointT>> ();
+    cloud->resize (mesh.vertices.size ());
+    for (std::size_t i = 0; i < mesh.vertices.size (); ++i)
+    {
+      (*cloud)[i].x = static_cast<float> (mesh.vertices[i].x ());
+      (*cloud)[i].y = static_cast<float> (mesh.vertices[i].y ());
+      (*cloud)[i].z = static_cast<float> (mesh.vertices[i].z ());
+    }
+    return cloud;
+  }
+
+  std::shared_ptr<std::vector<pcl::Vertices>>
+  polygonsOf (const TriangleMesh& mesh)
+  {
+    auto polygons = std::make_shared<std::vector<pcl::Vertices>> (mesh.triangles.size ());
+    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+      (*polygons)[f].vertices = {mesh.triangles[f][0], mesh.triangles[f][1], mesh.triangles[f][2]};
+    return polygons;
+  }
+
+  std::vector<std::uint8_t>
+  modelBytes (const SparseSurfaceModel& model)
+  {
+    return encodeModel (model);
+  }
+
+  /// Runs \a compute and returns the message of the pcl_sparse::Error it throws ("" if none).
+  template <typename Compute>
+  std::string
+  errorOf (Compute compute)
+  {
+    try
+    {
+      compute ();
+    }
+    catch (const Error& e)
+    {
+      return e.what ();
+    }
+    return "";
+  }
+} // namespace
+
+template <typename PointT>
+class StagesOnEveryPointType : public ::testing::Test
+{
+};
+using InputPointTypes = ::testing::Types<pcl::PointXYZ, pcl::PointXYZI, pcl::PointXYZRGB, pcl::PointXYZRGBA,
+                                         pcl::PointNormal, pcl::PointXYZRGBNormal>;
+TYPED_TEST_SUITE (StagesOnEveryPointType, InputPointTypes);
+
+TYPED_TEST (StagesOnEveryPointType, CloudAndPolygonsGiveTheMeshModel)
+{
+  const auto mesh = std::make_shared<TriangleMesh> (floatExactMesh ());
+  SparseSurfaceEncoder<pcl::PointXYZ> reference;
+  reference.setInputMesh (mesh);
+  SparseSurfaceModel expected;
+  reference.compute (expected);
+
+  typename SparseSurfaceEncoder<TypeParam>::Ptr encoder = std::make_shared<SparseSurfaceEncoder<TypeParam>> ();
+  encoder->setInputCloud (cloudOf<TypeParam> (*mesh));
+  encoder->setInputPolygons (polygonsOf (*mesh));
+  SparseSurfaceModel model;
+  encoder->compute (model);
+  EXPECT_EQ (encoder->getClassName (), "SparseSurfaceEncoder");
+  ASSERT_GT (model.numPatches (), 10u);
+  EXPECT_EQ (modelBytes (model), modelBytes (expected));  // the same model, byte for byte
+
+  // The other stages take the same input.
+  HarrisKeypoint3DMesh<TypeParam> harris;
+  harris.setInputCloud (cloudOf<TypeParam> (*mesh));
+  harris.setInputPolygons (polygonsOf (*mesh));
+  pcl::PointCloud<pcl::PointXYZI> keypoints;
+  harris.compute (keypoints);
+  EXPECT_EQ (keypoints.size (), static_cast<std::size_t> (std::lround (0.01 * mesh->numVertices ())));
+
+  MeshNormalEstimation<TypeParam> normals;
+  normals.setInputCloud (cloudOf<TypeParam> (*mesh));
+  normals.setInputPolygons (polygonsOf (*mesh));
+  pcl::PointCloud<pcl::PointNormal> with_normals;
+  normals.compute (with_normals);
+  ASSERT_EQ (with_normals.size (), mesh->numVertices ());
+  EXPECT_GT (with_normals[0].getNormalVector3fMap ().dot (with_normals[0].getVector3fMap ().normalized ()), 0.5f);
+
+  FeatureAwarePatchSampling<TypeParam> sampling;
+  sampling.setInputCloud (cloudOf<TypeParam> (*mesh));
+  sampling.setInputPolygons (polygonsOf (*mesh));
+  std::vector<Patch> patches;
+  sampling.compute (patches);
+  EXPECT_EQ (patches.size (), model.numPatches ());
+}
+
+TEST (PclStages, QuadsAreFannedIntoTriangles)
+{
+  // A unit square as one quad: two triangles, so the normals of its corners are +z.
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (const auto& p : {Eigen::Vector3f (0, 0, 0), Eigen::Vector3f (1, 0, 0), Eigen::Vector3f (1, 1, 0), Eigen::Vector3f (0, 1, 0)})
+    cloud->push_back (pcl::PointXYZ (p.x (), p.y (), p.z ()));
+  auto quad = std::make_shared<std::vector<pcl::Vertices>> (1);
+  (*quad)[0].vertices = {0, 1, 2, 3};
+  MeshNormalEstimation<pcl::PointXYZ> ne;
+  ne.setInputCloud (cloud);
+  ne.setInputPolygons (quad);
+  pcl::PointCloud<pcl::Normal> normals;
+  ne.compute (normals);
+  ASSERT_EQ (normals.size (), 4u);
+  for (const pcl::Normal& n : normals)
+    EXPECT_FLOAT_EQ (n.normal_z, 1.0f);
+}
+
+TEST (PclStages, IndicesCropTheEncoderAndSelectForNormalsAndKeypoints)
+{
+  const TriangleMesh mesh = floatExactMesh ();
+  // The upper half of the cube (z >= 0) and the bump.
+  auto upper = std::make_shared<pcl::Indices> ();
+  for (int v = 0; v < static_cast<int> (mesh.numVertices ()); ++v)
+    if (mesh.vertices[v].z () >= 0.0)
+      upper->push_back (v);
+  ASSERT_GT (upper->size (), 20u);
+  ASSERT_LT (upper->size (), mesh.numVertices ());
+
+  // Encoder and sampling (CropSurface): the indexed part of the surface, as if it were the whole input.
+  SparseSurfaceEncoder<pcl::PointXYZ> cropped;
+  cropped.setInputCloud (cloudOf<pcl::PointXYZ> (mesh));
+  cropped.setInputPolygons (polygonsOf (mesh));
+  cropped.setIndices (upper);
+  SparseSurfaceModel model;
+  cropped.compute (model);
+  SparseSurfaceEncoder<pcl::PointXYZ> part;
+  part.setInputMesh (std::make_shared<TriangleMesh> (extractSubMesh (mesh, *upper, "test")));
+  SparseSurfaceModel expected;
+  part.compute (expected);
+  EXPECT_EQ (model.num_input_vertices, upper->size ());
+  EXPECT_EQ (modelBytes (model), modelBytes (expected));
+  // Without indices again (a new stage: PCL's setIndices cannot be unset), the whole cube.
+  SparseSurfaceEncoder<pcl::PointXYZ> whole;
+  whole.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  SparseSurfaceModel all;
+  whole.compute (all);
+  EXPECT_EQ (all.num_input_vertices, mesh.numVertices ());
+  EXPECT_GT (all.numPatches (), model.numPatches ());
+
+  // Normals (SelectPoints): one output per index, equal to the whole surface's normal of that point.
+  MeshNormalEstimation<pcl::PointXYZ> ne;
+  ne.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  pcl::PointCloud<pcl::PointNormal> every, selected;
+  ne.compute (every);
+  ne.setIndices (upper);
+  ne.compute (selected);
+  ASSERT_EQ (selected.size (), upper->size ());
+  for (std::size_t i = 0; i < upper->size (); ++i)
+  {
+    EXPECT_EQ (selected[i].getVector3fMap (), every[(*upper)[i]].getVector3fMap ());
+    EXPECT_EQ (selected[i].getNormalVector3fMap (), every[(*upper)[i]].getNormalVector3fMap ());
+  }
+
+  // Keypoints (SelectPoints): only indexed vertices, responses equal to the whole surface's.
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
+  harris.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  pcl::PointCloud<pcl::PointXYZI> keypoints;
+  harris.compute (keypoints);
+  const std::vector<double> full = harris.getResponses ();
+  harris.setIndices (upper);
+  harris.compute (keypoints);
+  for (int v : harris.getKeypointsIndices ()->indices)
+    EXPECT_GE (mesh.vertices[v].z (), 0.0);
+  for (int v : *upper)
+    EXPECT_TRUE (harris.getResponses ()[v] == full[v] || (std::isnan (full[v]) && std::isnan (harris.getResponses ()[v])));
+}
+
+TEST (PclStages, OneErrorPolicyNamingTheClass)
+{
+  const TriangleMesh mesh = floatExactMesh ();
+  SparseSurfaceModel model;
+
+  SparseSurfaceEncoder<pcl::PointXYZ> no_input;
+  EXPECT_NE (errorOf ([&] { no_input.compute (model); }).find ("[SparseSurfaceEncoder::compute] no input"), std::string::npos);
+
+  SparseSurfaceEncoder<pcl::PointXYZ> no_polygons;
+  no_polygons.setInputCloud (cloudOf<pcl::PointXYZ> (mesh));
+  EXPECT_NE (errorOf ([&] { no_polygons.compute (model); }).find ("setInputPolygons"), std::string::npos);
+
+  auto bad = polygonsOf (mesh);
+  bad->back ().vertices[2] = static_cast<pcl::index_t> (mesh.numVertices ());
+  SparseSurfaceEncoder<pcl::PointXYZ> out_of_range;
+  out_of_range.setInputCloud (cloudOf<pcl::PointXYZ> (mesh));
+  out_of_range.setInputPolygons (bad);
+  EXPECT_NE (errorOf ([&] { out_of_range.compute (model); }).find ("out of range"), std::string::npos);
+
+  auto nan_cloud = cloudOf<pcl::PointXYZ> (mesh);
+  (*nan_cloud)[mesh.triangles[0][1]].y = NAN;
+  HarrisKeypoint3DMesh<pcl::PointXYZ> nan_corner;
+  nan_corner.setInputCloud (nan_cloud);
+  nan_corner.setInputPolygons (polygonsOf (mesh));
+  pcl::PointCloud<pcl::PointXYZI> keypoints;
+  EXPECT_NE (errorOf ([&] { nan_corner.compute (keypoints); }).find ("[HarrisKeypoint3DMesh::compute] polygon corner"),
+             std::string::npos);
+
+  auto twice = std::make_shared<pcl::Indices> (pcl::Indices{0, 1, 1});
+  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+  sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  sampling.setIndices (twice);
+  std::vector<Patch> patches;
+  EXPECT_NE (errorOf ([&] { sampling.compute (patches); }).find ("listed twice"), std::string::npos);
+
+  MeshNormalEstimation<pcl::PointXYZ> ne;
+  ne.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  ne.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{-1}));
+  pcl::PointCloud<pcl::Normal> normals;
+  EXPECT_NE (errorOf ([&] { ne.compute (normals); }).find ("[MeshNormalEstimation::compute] setIndices: index -1 out of range"),
+             std::string::npos);
+
+  SparseSurfaceResampling<pcl::PointXYZ> resampling;
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  EXPECT_NE (errorOf ([&] { resampling.compute (cloud); }).find ("SparseSurfaceResampling::compute: no input model"),
+             std::string::npos);
+}
+
+TEST (PclStages, ResamplingFillsEveryOutputPointType)
+{
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputMesh (std::make_shared<TriangleMesh> (makeIcosphere (3)));
+  auto model = std::make_shared<SparseSurfaceModel> ();
+  encoder.compute (*model);
+
+  auto resample = [&] (auto& cloud) {
+    SparseSurfaceResampling<typename std::decay_t<decltype (cloud)>::PointType> resampling;
+    resampling.setInputModel (model);
+    resampling.setPointCount (3000);
+    resampling.compute (cloud);
+  };
+  pcl::PointCloud<pcl::PointNormal> reference;
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  pcl::PointCloud<pcl::PointXYZRGBNormal> rgb_normal;
+  pcl::PointCloud<pcl::PointXYZINormal> intensity_normal;
+  resample (reference);
+  resample (xyz);
+  resample (rgb_normal);
+  resample (intensity_normal);
+  ASSERT_EQ (reference.size (), 3000u);
+  ASSERT_EQ (xyz.size (), 3000u);
+  ASSERT_EQ (rgb_normal.size (), 3000u);
+  ASSERT_EQ (intensity_normal.size (), 3000u);
+  for (std::size_t i = 0; i < reference.size (); ++i)
+  {
+    EXPECT_EQ (xyz[i].getVector3fMap (), reference[i].getVector3fMap ());
+    EXPECT_EQ (rgb_normal[i].getVector3fMap (), reference[i].getVector3fMap ());
+    EXPECT_EQ (rgb_normal[i].getNormalVector3fMap (), reference[i].getNormalVector3fMap ());
+    EXPECT_EQ (rgb_normal[i].curvature, reference[i].curvature);
+    EXPECT_EQ (intensity_normal[i].getNormalVector3fMap (), reference[i].getNormalVector3fMap ());
+    EXPECT_NEAR (reference[i].getVector3fMap ().norm (), 1.0f, 0.02f);
+  }
+}
