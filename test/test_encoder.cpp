@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <random>
 
 using namespace pcl_sparse;
 
@@ -283,4 +284,35 @@ TEST (SparseSurfaceEncoder, FootprintsCoverTheirTrianglesOnFandisk)
   }
   EXPECT_GT (checked, 10000u);
   EXPECT_EQ (outside, 0u);
+}
+
+TEST (SparseSurfaceEncoder, NoiseLevelSmoothsInsteadOfCoding)
+{
+  // A plane z = 0 sampled with Gaussian noise of sigma = 0.004 (a scan's noise), 0.2 % of the diagonal.
+  const double sigma = 0.004;
+  TriangleMesh noisy = makeHeightFieldGrid (60, 60, 1.0, 1.0, [] (double, double) { return 0.0; });
+  std::mt19937 random (42);
+  std::normal_distribution<double> noise (0.0, sigma);
+  for (Eigen::Vector3d& v : noisy.vertices)
+    v.z () += noise (random);
+  auto distanceToTruth = [&] (const SparseSurfaceModel& model) {
+    double sum = 0.0;
+    for (const Eigen::Vector3d& v : model.reconstructVertices (noisy.numVertices ()))
+      sum += v.z () * v.z ();
+    return std::sqrt (sum / static_cast<double> (noisy.numVertices ()));
+  };
+  // Patches of 1 % of the area (rho 0.01): ~36 samples each, enough to average the noise out.
+  SparseSurfaceEncoderOptions options;
+  options.patches.rho = 0.01;
+  const SparseSurfaceModel coded = encode (noisy, options);
+  options.coding.noise_level = sigma;
+  const SparseSurfaceModel smoothed = encode (noisy, options);
+  std::cout << "  M " << coded.numPatches () << ", nnz " << coded.numNonZeros () << " -> " << smoothed.numNonZeros () << ", RMS to the true plane "
+            << distanceToTruth (coded) << " -> " << distanceToTruth (smoothed) << std::endl;
+  // Without the noise level every patch spends its L atoms on the noise and follows it.
+  EXPECT_GT (distanceToTruth (coded), 0.5 * sigma);
+  EXPECT_LT (distanceToTruth (smoothed), 0.6 * distanceToTruth (coded));  // measured 0.51x
+  EXPECT_LT (smoothed.numNonZeros (), coded.numNonZeros () / 5);  // measured 11x fewer
+  options.coding.noise_level = -1.0;
+  EXPECT_THROW (encode (noisy, options), Error);
 }

@@ -3,8 +3,26 @@
 #include <pcl_sparse/coding/patch_footprint.h>
 #include <pcl_sparse/coding/patch_samples.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// OMP's relative tolerance: eps, or looser where the noise level is reached first (a residual RMS of
+    /// noise_level / r_P in local units), at most 1 (the empty code: the patch's plane).
+    double
+    stoppingTolerance (const Eigen::VectorXd& signal, double radius, const SparseCodingOptions& options)
+    {
+      const double norm = signal.norm ();
+      if (!(options.noise_level > 0.0) || !(norm > 0.0) || !(radius > 0.0))
+        return options.tolerance;
+      const double noise_norm = options.noise_level / radius * std::sqrt (static_cast<double> (signal.size ()));
+      return std::min (1.0, std::max (options.tolerance, noise_norm / norm));
+    }
+  } // namespace
+
   PatchCode
   codePatch (const Patch& input_patch, std::size_t patch_index, const TriangleMesh& mesh,
              const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info)
@@ -57,7 +75,8 @@ namespace pcl_sparse
     Eigen::MatrixXd dictionary;
     basis.evaluate (positions, allowed_atoms, dictionary);
     const Eigen::VectorXd signal = Eigen::Map<const Eigen::VectorXd> (heights.data (), heights.size ());
-    OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, {}, options.tolerance, options.max_atoms);
+    OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, {}, stoppingTolerance (signal, patch.radius, options),
+                                               options.max_atoms);
     code.atoms.reserve (omp.atoms.size ());
     for (int a : omp.atoms)
       code.atoms.push_back (allowed_atoms[a]);

@@ -49,6 +49,8 @@ namespace pcl_sparse
              "footprint angles must be >= 3, got " + std::to_string (coding.footprint_angles));
     require (coding.support_scale >= 1.0 && std::isfinite (coding.support_scale),
              "support scale must be >= 1, got " + std::to_string (coding.support_scale));
+    require (coding.noise_level >= 0.0 && std::isfinite (coding.noise_level),
+             "noise level must be >= 0, got " + std::to_string (coding.noise_level));
     require (dictionary_frequencies >= 1 && dictionary_frequencies <= CosineAtoms::max_frequencies,
              "dictionary frequencies must be in [1, 64], got " + std::to_string (dictionary_frequencies));
     require (basis == CosineBasisKind::Paper || basis == CosineBasisKind::Dct,

@@ -29,6 +29,10 @@ namespace pcl_sparse
     /// radius is support_scale r_P. Paper and authors' code: 1 (the patch touches the square's sides, where
     /// every cosine atom has zero slope, which costs accuracy on curved patches); > 1 is our option.
     double support_scale = 1.0;
+    /// Noise level of the input, in world units (standard deviation; 0 = none, the meshes' case). OMP also
+    /// stops once the residual's RMS over the patch's samples is at most this (in the patch's local units),
+    /// so that the code smooths sensor noise instead of coding it (ours, for scans).
+    double noise_level = 0.0;
   };
 
   /// Diagnostics of one coded patch (not stored in the model).
