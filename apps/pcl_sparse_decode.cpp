@@ -4,6 +4,7 @@
 ///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-seed S] [-threads T]
 ///                     [-recon MESH RECON.{ply,obj,off,stl}] [--json] [-q]
 
+#include "tool_resampling.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/error.h>
@@ -91,7 +92,6 @@ main (int argc, char** argv)
 
     timer.tic ();
     SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setInputModel (model);
     SparseSurfaceResamplingOptions options;
     options.seed = seed;
     resampling.setOptions (options);
@@ -101,12 +101,12 @@ main (int argc, char** argv)
       resampling.setPointCount (has_n ? n : std::max<std::size_t> (model->num_input_vertices, 1));
     resampling.setNumberOfThreads (threads);
     resampling.setProgressCallback (makeConsoleProgress (quiet || json));
-    pcl::PointCloud<pcl::PointNormal> cloud;
-    resampling.compute (cloud);
+    const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
+    const pcl::PointCloud<pcl::PointNormal>& cloud = local.cloud;
     const double resample_seconds = timer.toc () / 1000.0;
 
     timer.tic ();
-    savePointNormalCloud (out_path, cloud);
+    tools::saveLocalCloud (out_path, local, true);
     if (!recon_mesh.empty ())
     {
       const std::vector<Eigen::Vector3d> vertices = model->reconstructVertices (recon.vertices.size ());

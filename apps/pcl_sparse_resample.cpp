@@ -4,6 +4,7 @@
 ///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-basis paper|dct] [-seed S]
 ///                       [-threads T] [-ascii] [-q] [--json]
 
+#include "tool_resampling.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/error.h>
@@ -149,7 +150,6 @@ main (int argc, char** argv)
     }
 
     SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setInputModel (model);
     resampling.setOptions (s.resampling);
     resampling.setNumberOfThreads (s.threads);
     resampling.setProgressCallback (progress);
@@ -165,15 +165,15 @@ main (int argc, char** argv)
       resampling.setDensity (s.density);
     else
       resampling.setSpacing (s.spacing);
-    pcl::PointCloud<pcl::PointNormal> cloud;
     timer.tic ();
-    resampling.compute (cloud);
+    const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
+    const pcl::PointCloud<pcl::PointNormal>& cloud = local.cloud;
     const double resample_seconds = timer.toc () / 1000.0;
     pcl::console::print_info ("Resampled %zu points (area %.6g, density %.6g) in %.3f s\n", cloud.size (),
                               resampling.getEstimatedArea (), resampling.getDensityUsed (), resample_seconds);
 
     timer.tic ();
-    savePointNormalCloud (s.output, cloud, s.binary);
+    tools::saveLocalCloud (s.output, local, s.binary);
     const double save_seconds = timer.toc () / 1000.0;
     const double seconds = total.toc () / 1000.0;
     if (!s.quiet && !s.json)

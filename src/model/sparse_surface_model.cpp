@@ -114,4 +114,10 @@ namespace pcl_sparse
     stats.rmse_over_diagonal = diagonal > 0.0 ? stats.rmse / diagonal : 0.0;
     return stats;
   }
+  void
+  SparseSurfaceModel::translate (const Eigen::Vector3d& offset)
+  {
+    for (PatchCode& patch : patches)
+      patch.origin += offset;
+  }
 } // namespace pcl_sparse

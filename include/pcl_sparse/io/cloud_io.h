@@ -3,6 +3,8 @@
 /// Point cloud input/output with the same error discipline as mesh_io.h: one pcl_sparse::Error whose message
 /// names the file and the problem, and atomic writes.
 
+#include <Eigen/Core>
+
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -24,4 +26,16 @@ namespace pcl_sparse
   /// x y z nx ny nz curvature. Atomic; throws pcl_sparse::Error on an unknown extension or a failed write.
   void
   savePointNormalCloud (const std::string& path, const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary = true);
+
+  /// \brief Same, for a cloud in a local frame: the file gets x y z = \a offset + each point's position, in
+  /// double precision (PCD fields x y z of TYPE F SIZE 8, PLY properties double x y z), so that map
+  /// coordinates (1e5 - 1e7) keep the cloud's local resolution. A zero \a offset writes the float file
+  /// of the overload above, byte for byte.
+  /// \param[in] path .pcd or .ply
+  /// \param[in] cloud points in the local frame
+  /// \param[in] binary binary (default) or ascii
+  /// \param[in] offset the local frame's origin in the file's frame
+  void
+  savePointNormalCloud (const std::string& path, const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary,
+                        const Eigen::Vector3d& offset);
 } // namespace pcl_sparse

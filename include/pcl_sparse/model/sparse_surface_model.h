@@ -76,6 +76,11 @@ namespace pcl_sparse
     /// Height, gradient and Hessian of patch \a p at local (x, y).
     HeightSample evaluate (std::size_t p, double x, double y) const;
 
+    /// \brief Moves the whole model by \a offset (every patch's seed; frames, radii and codes are
+    /// unchanged): the same surface in a frame whose origin is at -offset.
+    /// \param[in] offset world translation
+    void translate (const Eigen::Vector3d& offset);
+
     /// CR = (13 M + nnz) / (3 N_V) (METHOD.md step 11: 9 frame + 3 seed + 1 radius values per patch; counts
     /// values, not bytes). 0 when num_input_vertices is 0.
     double compressionRatio () const;

@@ -1,0 +1,33 @@
+#pragma once
+/// \file tool_resampling.h
+/// What pcl_sparse_resample and pcl_sparse_decode share: resampling a model in a local frame when it lies
+/// far from the origin (map coordinates), and writing the cloud back in the model's frame.
+
+#include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+
+#include <string>
+
+namespace pcl_sparse
+{
+  namespace tools
+  {
+    /// A resampled cloud in a local frame and that frame's origin in the model's frame.
+    struct LocalCloud
+    {
+      pcl::PointCloud<pcl::PointNormal> cloud;
+      Eigen::Vector3d origin = Eigen::Vector3d::Zero ();  ///< 0 unless the model lies far from the origin
+    };
+
+    /// Resamples \a model with \a resampling (its density, options, threads and progress already set). A
+    /// model far from the origin for its size (localFrameOrigin of its seeds is not 0: map coordinates) is
+    /// resampled moved to that origin, so that float coordinates keep the cloud's resolution.
+    LocalCloud
+    resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model);
+
+    /// Writes \a local to \a path (.pcd / .ply) in the model's frame: float x y z when its origin is 0 (as
+    /// before), else double x y z = origin + point.
+    void
+    saveLocalCloud (const std::string& path, const LocalCloud& local, bool binary);
+  } // namespace tools
+} // namespace pcl_sparse
