@@ -1,7 +1,7 @@
 #pragma once
 /// \file cosine_atoms.h
 /// Separable cosine atoms phi_ij(x, y) = cos(i pi s(x)) cos(j pi s(y)) on [-1, 1]^2, i, j = 0 .. n-1, with
-/// s(t) = t (the paper's dictionary, METHOD.md step 8) or s(t) = (t + 1) / 2 (DCT-II-like half-period
+/// s(t) = t (the paper's dictionary, docs/METHOD.md step 8) or s(t) = (t + 1) / 2 (DCT-II-like half-period
 /// atoms, both parities). Shared evaluation of CosineDictionary and DctCosineDictionary; use those.
 
 #include <pcl_sparse/model/surface_basis.h>

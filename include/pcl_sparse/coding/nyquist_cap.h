@@ -1,6 +1,6 @@
 #pragma once
 /// \file nyquist_cap.h
-/// Which atoms a patch may use given its sample spacing (METHOD.md step 9): atoms oscillating faster
+/// Which atoms a patch may use given its sample spacing (docs/METHOD.md step 9): atoms oscillating faster
 /// than the mesh samples them only fit noise and make the surface ripple between the vertices.
 
 #include <pcl_sparse/model/surface_basis.h>

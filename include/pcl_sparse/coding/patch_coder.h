@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_coder.h
-/// Codes one patch as a sparse height field (METHOD.md steps 7-9): samples, Nyquist cap, OMP, footprint.
+/// Codes one patch as a sparse height field (docs/METHOD.md steps 7-9): samples, Nyquist cap, OMP, footprint.
 
 #include <pcl_sparse/coding/nyquist_cap.h>
 #include <pcl_sparse/mesh/mesh_topology.h>

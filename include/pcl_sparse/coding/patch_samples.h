@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_samples.h
-/// The samples a patch is coded from (METHOD.md step 7) and their spacing (step 9's mu).
+/// The samples a patch is coded from (docs/METHOD.md step 7) and their spacing (step 9's mu).
 
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>

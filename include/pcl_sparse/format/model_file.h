@@ -38,7 +38,7 @@ namespace pcl_sparse
     /// no measurable change of the Chamfer distance.
     int max_footprint_angles = 8;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
-    /// input vertices, METHOD.md step 10). Off by default: decoding and resampling do not need them.
+    /// input vertices, docs/METHOD.md step 10). Off by default: decoding and resampling do not need them.
     bool include_vertices = false;
     /// zstd level (1..22); 19 compresses well and still writes a 1 MB model in well under a second.
     /// 0 stores every section uncompressed (for inspection and the fuzzer's seed corpus).

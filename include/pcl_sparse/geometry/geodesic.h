@@ -1,7 +1,7 @@
 #pragma once
 /// \file geodesic.h
 /// Geodesic distances from a seed vertex as shortest paths along mesh edges (Dijkstra), bounded by a
-/// radius and by a callback that may refuse vertices: the walk behind patch growth (METHOD.md step 5).
+/// radius and by a callback that may refuse vertices: the walk behind patch growth (docs/METHOD.md step 5).
 ///
 /// Dijkstra over edges overestimates the true geodesic distance, depending on direction: up to 8.2 % on a
 /// grid with both diagonals ("union jack"), up to 15.5 % (2 / sqrt 3) on an equilateral triangulation; the

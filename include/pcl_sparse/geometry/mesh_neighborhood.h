@@ -1,6 +1,6 @@
 #pragma once
 /// \file mesh_neighborhood.h
-/// Ring neighbourhoods of a mesh vertex: k rings and adaptive rings (METHOD.md step 3).
+/// Ring neighbourhoods of a mesh vertex: k rings and adaptive rings (docs/METHOD.md step 3).
 ///
 /// The walks reuse a VertexMarks scratch (a visit stamp per vertex), so collecting a neighbourhood costs
 /// O(size of the neighbourhood), never O(#V): no per-call clears, no per-call allocation once the output

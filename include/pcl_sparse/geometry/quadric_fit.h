@@ -1,7 +1,7 @@
 #pragma once
 /// \file quadric_fit.h
 /// Least-squares height quadrics and the degree-2 jet (Monge form) they define.
-/// Shared by Harris 3D (METHOD.md step 3) and the patch frames (step 6).
+/// Shared by Harris 3D (docs/METHOD.md step 3) and the patch frames (step 6).
 
 #include <Eigen/Core>
 
@@ -10,7 +10,7 @@
 namespace pcl_sparse
 {
   /// z = c0 + c1 x + c2 y + c3 x^2 / 2 + c4 x y + c5 y^2 / 2 in some local frame.
-  /// (METHOD.md's Harris notation: p6 = c0, p4 = c1, p5 = c2, p1 = c3, p2 = c4, p3 = c5.)
+  /// (Harris notation of docs/METHOD.md step 3: p6 = c0, p4 = c1, p5 = c2, p1 = c3, p2 = c4, p3 = c5.)
   struct HeightQuadric
   {
     Eigen::Matrix<double, 6, 1> c = Eigen::Matrix<double, 6, 1>::Zero ();

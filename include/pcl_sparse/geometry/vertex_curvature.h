@@ -1,7 +1,7 @@
 #pragma once
 /// \file vertex_curvature.h
 /// Principal curvatures and directions at every vertex: a degree-2 jet (fitMongeJet) over the vertex's
-/// k-ring, in the frame of its vertex normal (METHOD.md step 6 applies the same fit to whole patches).
+/// k-ring, in the frame of its vertex normal (docs/METHOD.md step 6 applies the same fit to whole patches).
 
 #include <pcl_sparse/geometry/quadric_fit.h>
 #include <pcl_sparse/mesh/mesh_topology.h>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file harris3d.h
-/// Harris 3D on triangle meshes (Sipiran & Bustos, The Visual Computer 2011; METHOD.md step 3): the
+/// Harris 3D on triangle meshes (Sipiran & Bustos, The Visual Computer 2011; docs/METHOD.md step 3): the
 /// per-vertex response and the keypoint selection, as plain functions. The PCL-style stage wrapping them
 /// is HarrisKeypoint3DMesh (harris_keypoint3d_mesh.h).
 ///
@@ -31,7 +31,7 @@ namespace pcl_sparse
     Clustering  ///< greedy by decreasing response, dropping maxima closer than the cluster radius to a kept one
   };
 
-  /// Options of Harris 3D. Defaults follow the paper (METHOD.md step 3).
+  /// Options of Harris 3D. Defaults follow the paper (docs/METHOD.md step 3).
   struct Harris3DOptions
   {
     /// Harris constant k in R = det E - k (tr E)^2.
@@ -60,7 +60,7 @@ namespace pcl_sparse
   void
   validateHarris3DOptions (const Harris3DOptions& options);
 
-  /// R = det E - k (tr E)^2 for a height quadric fitted in the PCA frame (METHOD.md's p1..p5 are
+  /// R = det E - k (tr E)^2 for a height quadric fitted in the PCA frame (docs/METHOD.md's p1..p5 are
   /// quadric.c[3], c[4], c[5], c[1], c[2]).
   double
   harris3DResponseOfQuadric (const HeightQuadric& quadric, double k);
@@ -79,7 +79,7 @@ namespace pcl_sparse
                             const std::vector<int>& indices);
 
   /// All vertex indices ordered by decreasing response, ties by increasing index, NaN responses last (by
-  /// index). The candidate order of the feature-aware seed sampling (METHOD.md step 4).
+  /// index). The candidate order of the feature-aware seed sampling (docs/METHOD.md step 4).
   std::vector<int>
   orderVerticesByResponse (const std::vector<double>& responses);
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file mesh_normals.h
-/// Face normals, face areas and vertex normals of a triangle mesh (METHOD.md step 2).
+/// Face normals, face areas and vertex normals of a triangle mesh (docs/METHOD.md step 2).
 
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>

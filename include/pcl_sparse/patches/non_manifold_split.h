@@ -1,7 +1,7 @@
 #pragma once
 /// \file non_manifold_split.h
 /// Cutting a mesh along its non-manifold edges and vertices, so that patches never cross them
-/// (METHOD.md step 1: "non-manifold edges (treat as patch borders)").
+/// (docs/METHOD.md step 1).
 
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>

@@ -1,7 +1,7 @@
 #pragma once
 /// \file patch.h
 /// One surface patch: a disk-like set of mesh vertices around a seed, seen as a height field over the
-/// seed's tangent plane (METHOD.md steps 5 and 6).
+/// seed's tangent plane (docs/METHOD.md steps 5 and 6).
 
 #include <Eigen/Core>
 

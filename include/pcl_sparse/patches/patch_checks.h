@@ -2,7 +2,7 @@
 /// \file patch_checks.h
 /// Checking the invariants a partition into patches must satisfy (issue 4; used by the tests and by
 /// pcl_sparse_patches): each patch is a height field over its tangent plane and meets the growth
-/// conditions of METHOD.md step 5, and every vertex is covered.
+/// conditions of docs/METHOD.md step 5, and every vertex is covered.
 
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>

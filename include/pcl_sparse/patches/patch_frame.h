@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_frame.h
-/// The local frame of a grown patch (METHOD.md step 6): R = (T1, T2, N) from a degree-2 jet fitted in the
+/// The local frame of a grown patch (docs/METHOD.md step 6): R = (T1, T2, N) from a degree-2 jet fitted in the
 /// seed's tangent frame, the radius r_P and the local scaled coordinates p' = R^T (p - s) / r_P.
 
 #include <pcl_sparse/mesh/triangle_mesh.h>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_growth.h
-/// Growing one patch from a seed vertex (METHOD.md step 5, the paper's "create_patch").
+/// Growing one patch from a seed vertex (docs/METHOD.md step 5, the paper's "create_patch").
 ///
 /// Vertices are visited by increasing geodesic distance from the seed (Dijkstra over edges, the walk of
 /// DijkstraGeodesic in geodesic.h with this growth as its visitor; the authors use fast marching). A vertex u joins if some non-degenerate triangle t incident to u and to an already

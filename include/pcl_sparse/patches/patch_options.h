@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_options.h
-/// Parameters of patch growth and feature-aware seed sampling (METHOD.md steps 4 and 5).
+/// Parameters of patch growth and feature-aware seed sampling (docs/METHOD.md steps 4 and 5).
 /// Defaults are the paper's; each field says where the authors' code (gproshan, src/mdict) differs.
 
 #include <cmath>

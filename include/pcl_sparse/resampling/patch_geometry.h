@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_geometry.h
-/// World-space point, normal and curvature of a coded patch at local (x, y) (METHOD.md step 12).
+/// World-space point, normal and curvature of a coded patch at local (x, y) (docs/METHOD.md step 12).
 /// A patch P maps its local (x, y) to s + r_P R (x, y, h(x, y)); everything here follows from that map.
 
 #include <pcl_sparse/model/sparse_surface_model.h>

@@ -1,7 +1,7 @@
 #pragma once
 /// \file patch_ownership.h
 /// Which patch owns a place on the surface, so that overlapping patches do not double the density of a
-/// resampled cloud (METHOD.md step 12).
+/// resampled cloud (docs/METHOD.md step 12).
 ///
 /// The rule uses the model alone: a place q sampled from patch P is owned by the patch whose footprint
 /// holds q most centrally, centrality c = |(x, y)| / extent(angle) in that patch's local coordinates
