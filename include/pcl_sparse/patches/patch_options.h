@@ -8,6 +8,7 @@
 
 namespace pcl_sparse
 {
+  /// Conditions of patch growth and seed sampling, with the paper's defaults.
   struct PatchOptions
   {
     /// Smooth variation: a triangle t may join only if angle(n_t, n_w) < delta for an accepted corner w
@@ -46,8 +47,8 @@ namespace pcl_sparse
     /// FeatureAwarePatchSampling::getUncoveredVertices.
     bool cover_unreferenced_vertices = true;
 
-    /// Throws pcl_sparse::Error naming the first out-of-range field (angles in (0, pi], eta >= 1,
-    /// rho >= 0, sigma >= 0, min_patch_size >= 1).
+    /// Checks the ranges: angles in (0, pi], eta >= 1, rho >= 0, sigma >= 0, min_patch_size >= 1.
+    /// \throws pcl_sparse::Error naming the first out-of-range field
     void validate () const;
   };
 } // namespace pcl_sparse
