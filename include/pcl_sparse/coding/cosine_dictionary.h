@@ -17,8 +17,9 @@ namespace pcl_sparse
     using Ptr = std::shared_ptr<CosineDictionary>;
     using ConstPtr = std::shared_ptr<const CosineDictionary>;
 
-    /// \a frequencies = n, the number of frequencies per axis (1 .. max_frequencies); throws
-    /// pcl_sparse::Error otherwise.
+    /// The paper's atoms with n frequencies per axis.
+    /// \param[in] frequencies  n, in 1 .. max_frequencies (12: the paper's 144 atoms)
+    /// \throws pcl_sparse::Error if \a frequencies is out of range
     explicit CosineDictionary (int frequencies = 12) : CosineAtoms (frequencies, CosineBasisKind::Paper) {}
   };
 } // namespace pcl_sparse
