@@ -18,9 +18,9 @@ namespace pcl_sparse
     /// code uses pi / 2.5 (72 degrees). Whatever the value, a triangle whose projection on the seed's
     /// tangent plane would flip is refused too, so the patch stays a height field.
     double cone_angle = M_PI / 2.0;
-    /// Also require angle(n_t, n_m) < cone_angle between any two patch triangles (ours): with the cone
-    /// around n_s alone two triangles may differ by up to twice the cone angle (e.g. 180 degrees for the
-    /// paper's pi / 2). Neither the paper nor the authors' code checks it. Default true.
+    /// Also require angle(n_t, n_m) < cone_angle between any two patch triangles (ours). With the cone
+    /// around n_s alone two triangles may differ by up to twice the cone angle: 180 degrees for the
+    /// paper's pi / 2. Neither the paper nor the authors' code checks it. Default true.
     bool pairwise_cone = true;
     /// Flatness bound eta on A_p / A_p^proj (patch area over its area projected on the seed's tangent
     /// plane; always >= 1: the paper prints the ratio upside down). Paper and code: 1.01.
