@@ -1,0 +1,146 @@
+#include <pcl_sparse/cloud/knn_neighborhoods.h>
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    /// Spacing of a point from its sorted neighbour distances (-1 padded): mean of the first 6.
+    double
+    spacingFromDistances (const double* distances, int k)
+    {
+      double sum = 0.0;
+      int count = 0;
+      for (int m = 0; m < k && count < 6; ++m)
+        if (distances[m] >= 0.0)
+        {
+          sum += distances[m];
+          ++count;
+        }
+      return count > 0 ? sum / count : 0.0;
+    }
+
+    /// True if \a j lists \a i among its neighbours.
+    bool
+    lists (const KnnGraph& graph, int j, int i)
+    {
+      const int* row = graph.neighbors.data () + static_cast<std::size_t> (j) * graph.k;
+      return std::find (row, row + graph.k, i) != row + graph.k;
+    }
+  } // namespace
+
+  KnnGraph
+  findKNearestNeighbors (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& searched,
+                         int k, int num_threads)
+  {
+    KnnGraph graph;
+    graph.k = k;
+    const std::size_t n = positions.size ();
+    graph.neighbors.assign (n * k, -1);
+    graph.distances.assign (n * k, -1.0);
+
+    auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+    std::vector<int> original;  // cloud index -> point index
+    for (std::size_t i = 0; i < n; ++i)
+      if (searched[i])
+      {
+        const Eigen::Vector3f p = positions[i].cast<float> ();
+        cloud->push_back (pcl::PointXYZ (p.x (), p.y (), p.z ()));
+        original.push_back (static_cast<int> (i));
+      }
+    if (original.size () < 2)
+      return graph;
+    pcl::search::KdTree<pcl::PointXYZ> tree (true);
+    tree.setInputCloud (cloud);
+    const int wanted = std::min<int> (k + 1, static_cast<int> (original.size ()));
+
+    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+#pragma omp parallel num_threads(threads)
+    {
+      pcl::Indices found;
+      std::vector<float> squared;
+      std::vector<std::pair<double, int>> sorted;
+#pragma omp for schedule(dynamic, 512)
+      for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t> (original.size ()); ++c)
+      {
+        const int i = original[c];
+        tree.nearestKSearch ((*cloud)[c], wanted, found, squared);
+        sorted.clear ();
+        for (const auto f : found)
+        {
+          const int j = original[f];
+          if (j != i)
+            sorted.emplace_back ((positions[j] - positions[i]).norm (), j);
+        }
+        std::sort (sorted.begin (), sorted.end ());
+        const std::size_t m = std::min<std::size_t> (sorted.size (), static_cast<std::size_t> (k));
+        for (std::size_t q = 0; q < m; ++q)
+        {
+          graph.neighbors[static_cast<std::size_t> (i) * k + q] = sorted[q].second;
+          graph.distances[static_cast<std::size_t> (i) * k + q] = sorted[q].first;
+        }
+      }
+    }
+    return graph;
+  }
+
+  PointNeighborhoods
+  acceptKnnEdges (const std::vector<Eigen::Vector3d>& positions, const KnnGraph& graph, double gap_factor,
+                  const ShadowRule& shadow, KnnEdgeCounts& counts)
+  {
+    const std::size_t n = positions.size ();
+    const int k = graph.k;
+    PointNeighborhoods hoods;
+    std::vector<double> raw (n);
+    for (std::size_t i = 0; i < n; ++i)
+      raw[i] = spacingFromDistances (graph.distances.data () + i * k, k);
+    // Smoothed: the median over the point and its k nearest, so that a tight cluster of two or three points
+    // in a random sampling does not cut its own edges.
+    hoods.spacing.resize (n);
+    std::vector<double> values;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      values.assign (1, raw[i]);
+      for (int m = 0; m < k; ++m)
+        if (graph.neighbors[i * k + m] >= 0)
+          values.push_back (raw[graph.neighbors[i * k + m]]);
+      std::nth_element (values.begin (), values.begin () + values.size () / 2, values.end ());
+      hoods.spacing[i] = values[values.size () / 2];
+    }
+
+    counts = KnnEdgeCounts ();
+    hoods.offsets.assign (n + 1, 0);
+    hoods.neighbors.reserve (n * k);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      for (int m = 0; m < k; ++m)
+      {
+        const int j = graph.neighbors[i * k + m];
+        if (j < 0)
+          break;
+        const double limit = gap_factor * std::min (hoods.spacing[i], hoods.spacing[j]);
+        const bool gap_ok = graph.distances[i * k + m] <= limit;
+        const bool shadow_ok = !shadow.shadowed (i, positions[i], positions[j]);
+        // Count each unordered pair once: from the smaller index, or from i when j does not list i.
+        if (static_cast<int> (i) < j || !lists (graph, j, static_cast<int> (i)))
+        {
+          ++counts.candidates;
+          counts.refused += (gap_ok && shadow_ok) ? 0 : 1;
+          counts.shadowed += (gap_ok && !shadow_ok) ? 1 : 0;
+        }
+        if (gap_ok && shadow_ok)
+          hoods.neighbors.push_back (j);
+      }
+      hoods.offsets[i + 1] = static_cast<int> (hoods.neighbors.size ());
+    }
+    return hoods;
+  }
+} // namespace pcl_sparse
