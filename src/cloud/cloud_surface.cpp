@@ -148,7 +148,7 @@ namespace pcl_sparse
       }
       const KnnGraph graph = findKNearestNeighbors (scan.positions, finite, options.k, threads);
       KnnEdgeCounts counts;
-      work.hoods = acceptKnnEdges (scan.positions, graph, options.gap_factor, work.shadow, counts);
+      work.hoods = acceptKnnEdges (scan.positions, graph, options.gap_factor, work.shadow, counts, threads);
       surface.candidate_edges = counts.candidates;
       surface.refused_edges = counts.refused;
       surface.shadowed_edges = counts.shadowed;

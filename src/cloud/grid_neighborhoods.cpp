@@ -31,46 +31,59 @@ namespace pcl_sparse
       return lengths;
     }
 
-    /// Median of the existing edges in the window x +- rx, y +- ry (edges exist for x < x_end, y < y_end).
+    /// Median of the existing values among \a count (at most 5), or -1 if none exists.
     float
-    windowMedian (const std::vector<float>& lengths, int width, int x_end, int y_end, int x, int y, int rx, int ry)
+    medianOfExisting (const float* values, int count)
     {
-      float values[25];
-      int count = 0;
-      const int u0 = std::max (0, x - rx), u1 = std::min (x_end - 1, x + rx);
-      for (int v = std::max (0, y - ry); v <= std::min (y_end - 1, y + ry); ++v)
-      {
-        const float* row = lengths.data () + static_cast<std::size_t> (v) * width;
-        for (int u = u0; u <= u1; ++u)
-          if (row[u] >= 0.0f)
-            values[count++] = row[u];
-      }
-      if (count == 0)
-        return 0.0f;
-      std::nth_element (values, values + count / 2, values + count);
-      return values[count / 2];
+      float v[5];
+      int m = 0;
+      for (int q = 0; q < count; ++q)
+        if (values[q] >= 0.0f)
+          v[m++] = values[q];
+      if (m == 0)
+        return -1.0f;
+      std::sort (v, v + m);
+      return v[m / 2];
     }
 
-    /// States and spacings of the edges of one direction.
+    /// States and spacings of the edges of one direction. The spacing of an edge is the median of three
+    /// medians: of the 5 edges along its line centred on it, and of the same on the two parallel lines
+    /// beside it (a separable stand-in for the median of the 5 x 3 window, 5 times cheaper, as robust to
+    /// a line of long edges).
     void
     classifyDirection (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, int dx, int dy,
                        double gap_factor, const ShadowRule& shadow, int threads, std::vector<GridEdgeState>& state,
                        std::vector<float>& spacing)
     {
       const std::vector<float> lengths = edgeLengths (grid, positions, dx, dy, threads);
-      state.assign (grid.cells.size (), GridEdgeState::Missing);
-      spacing.assign (grid.cells.size (), 0.0f);
-      const int x_end = grid.width - dx, y_end = grid.height - dy;
-      // Along the edge direction the window is 5 edges long, across it 3 wide.
-      const int rx = dx == 1 ? 2 : 1, ry = dx == 1 ? 1 : 2;
+      const int W = grid.width, x_end = grid.width - dx, y_end = grid.height - dy;
+      const std::ptrdiff_t step = dx == 1 ? 1 : W;  // along the edges' line
+      std::vector<float> along (grid.cells.size (), -1.0f);
 #pragma omp parallel for num_threads(threads) schedule(static)
       for (int y = 0; y < y_end; ++y)
         for (int x = 0; x < x_end; ++x)
         {
-          const std::size_t e = static_cast<std::size_t> (y) * grid.width + x;
+          const std::ptrdiff_t e = static_cast<std::ptrdiff_t> (y) * W + x;
+          const int position = dx == 1 ? x : y, end = dx == 1 ? x_end : y_end;
+          const int first = std::max (0, position - 2), last = std::min (end - 1, position + 2);
+          float window[5];
+          for (int q = first; q <= last; ++q)
+            window[q - first] = lengths[e + (q - position) * step];
+          along[e] = medianOfExisting (window, last - first + 1);
+        }
+      state.assign (grid.cells.size (), GridEdgeState::Missing);
+      spacing.assign (grid.cells.size (), 0.0f);
+      const std::ptrdiff_t across = dx == 1 ? W : 1;
+#pragma omp parallel for num_threads(threads) schedule(static)
+      for (int y = 0; y < y_end; ++y)
+        for (int x = 0; x < x_end; ++x)
+        {
+          const std::ptrdiff_t e = static_cast<std::ptrdiff_t> (y) * W + x;
           if (lengths[e] < 0.0f)
             continue;
-          spacing[e] = windowMedian (lengths, grid.width, x_end, y_end, x, y, rx, ry);
+          const bool has_before = dx == 1 ? y > 0 : x > 0, has_after = dx == 1 ? y + 1 < y_end : x + 1 < x_end;
+          const float window[3] = {has_before ? along[e - across] : -1.0f, along[e], has_after ? along[e + across] : -1.0f};
+          spacing[e] = medianOfExisting (window, 3);
           const int a = grid.at (x, y), b = grid.at (x + dx, y + dy);
           if (lengths[e] > gap_factor * spacing[e])
             state[e] = GridEdgeState::Gap;

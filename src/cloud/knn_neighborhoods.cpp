@@ -94,33 +94,38 @@ namespace pcl_sparse
 
   PointNeighborhoods
   acceptKnnEdges (const std::vector<Eigen::Vector3d>& positions, const KnnGraph& graph, double gap_factor,
-                  const ShadowRule& shadow, KnnEdgeCounts& counts)
+                  const ShadowRule& shadow, KnnEdgeCounts& counts, int num_threads)
   {
-    const std::size_t n = positions.size ();
+    const std::ptrdiff_t n = static_cast<std::ptrdiff_t> (positions.size ());
     const int k = graph.k;
+    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
     PointNeighborhoods hoods;
     std::vector<double> raw (n);
-    for (std::size_t i = 0; i < n; ++i)
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t i = 0; i < n; ++i)
       raw[i] = spacingFromDistances (graph.distances.data () + i * k, k);
     // Smoothed: the median over the point and its k nearest, so that a tight cluster of two or three points
     // in a random sampling does not cut its own edges.
     hoods.spacing.resize (n);
-    std::vector<double> values;
-    for (std::size_t i = 0; i < n; ++i)
+#pragma omp parallel num_threads(threads)
     {
-      values.assign (1, raw[i]);
-      for (int m = 0; m < k; ++m)
-        if (graph.neighbors[i * k + m] >= 0)
-          values.push_back (raw[graph.neighbors[i * k + m]]);
-      std::nth_element (values.begin (), values.begin () + values.size () / 2, values.end ());
-      hoods.spacing[i] = values[values.size () / 2];
+      std::vector<double> values;
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t i = 0; i < n; ++i)
+      {
+        values.assign (1, raw[i]);
+        for (int m = 0; m < k; ++m)
+          if (graph.neighbors[i * k + m] >= 0)
+            values.push_back (raw[graph.neighbors[i * k + m]]);
+        std::nth_element (values.begin (), values.begin () + values.size () / 2, values.end ());
+        hoods.spacing[i] = values[values.size () / 2];
+      }
     }
-
-    counts = KnnEdgeCounts ();
-    hoods.offsets.assign (n + 1, 0);
-    hoods.neighbors.reserve (n * k);
-    for (std::size_t i = 0; i < n; ++i)
-    {
+    // Accepted neighbours per point in place (k slots), then compacted in point order.
+    std::vector<int> kept (graph.neighbors.size (), -1), count (n, 0);
+    std::size_t candidates = 0, refused = 0, shadowed = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) reduction(+ : candidates, refused, shadowed)
+    for (std::ptrdiff_t i = 0; i < n; ++i)
       for (int m = 0; m < k; ++m)
       {
         const int j = graph.neighbors[i * k + m];
@@ -130,17 +135,24 @@ namespace pcl_sparse
         const bool gap_ok = graph.distances[i * k + m] <= limit;
         const bool shadow_ok = !shadow.shadowed (i, positions[i], positions[j]);
         // Count each unordered pair once: from the smaller index, or from i when j does not list i.
-        if (static_cast<int> (i) < j || !lists (graph, j, static_cast<int> (i)))
+        if (i < j || !lists (graph, j, static_cast<int> (i)))
         {
-          ++counts.candidates;
-          counts.refused += (gap_ok && shadow_ok) ? 0 : 1;
-          counts.shadowed += (gap_ok && !shadow_ok) ? 1 : 0;
+          ++candidates;
+          refused += (gap_ok && shadow_ok) ? 0 : 1;
+          shadowed += (gap_ok && !shadow_ok) ? 1 : 0;
         }
         if (gap_ok && shadow_ok)
-          hoods.neighbors.push_back (j);
+          kept[i * k + count[i]++] = j;
       }
-      hoods.offsets[i + 1] = static_cast<int> (hoods.neighbors.size ());
-    }
+    counts.candidates = candidates;
+    counts.refused = refused;
+    counts.shadowed = shadowed;
+    hoods.offsets.assign (n + 1, 0);
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+      hoods.offsets[i + 1] = hoods.offsets[i] + count[i];
+    hoods.neighbors.resize (hoods.offsets[n]);
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+      std::copy_n (kept.begin () + i * k, count[i], hoods.neighbors.begin () + hoods.offsets[i]);
     return hoods;
   }
 } // namespace pcl_sparse

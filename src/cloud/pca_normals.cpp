@@ -12,25 +12,22 @@ namespace pcl_sparse
     pcaNormal (const std::vector<Eigen::Vector3d>& positions, const PointNeighborhoods& hoods,
                const std::vector<std::uint8_t>& usable, int i)
     {
-      Eigen::Vector3d mean = positions[i];
+      // One pass over offsets from the point itself (small numbers: no cancellation worth a second pass).
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
+      Eigen::Matrix3d products = Eigen::Matrix3d::Zero ();
       int count = 1;
       for (const int j : hoods.of (i))
         if (usable[j])
         {
-          mean += positions[j];
+          const Eigen::Vector3d d = positions[j] - positions[i];
+          sum += d;
+          products.noalias () += d * d.transpose ();
           ++count;
         }
       if (count < 3)
         return Eigen::Vector3d::Zero ();
-      mean /= count;
-      Eigen::Matrix3d covariance = (positions[i] - mean) * (positions[i] - mean).transpose ();
-      for (const int j : hoods.of (i))
-        if (usable[j])
-        {
-          const Eigen::Vector3d d = positions[j] - mean;
-          covariance.noalias () += d * d.transpose ();
-        }
-      covariance /= count;
+      const Eigen::Vector3d mean = sum / count;
+      const Eigen::Matrix3d covariance = products / count - mean * mean.transpose ();
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
       solver.computeDirect (covariance);
       Eigen::Vector3d normal = solver.eigenvectors ().col (0);

@@ -3,7 +3,7 @@
 /// Neighbourhoods on a range image (scan_grid.h): the gap rule per grid edge against the edges of the same
 /// direction around it, and the window neighbourhood of each pixel for the normals.
 ///
-/// Why the median of nearby edges of the same direction: it is the local spacing in that direction, so the
+/// Why medians of nearby edges of the same direction: they give the local spacing in that direction, so the
 /// rule holds on anisotropic grids (lidar rings far apart, surfaces seen at a slant), while a depth jump
 /// makes one line of long edges, a minority in every window around it (a one-pixel pole has two).
 
@@ -31,8 +31,9 @@ namespace pcl_sparse
   /// Per grid edge, indexed by its first pixel y * width + x: horizontal edges join (x, y) and (x + 1, y),
   /// vertical ones (x, y) and (x, y + 1).
   ///   *_state    width * height states (Missing where the edge does not exist)
-  ///   *_spacing  width * height medians of the existing same-direction edges in a 5 x 3 window along the
-  ///              edge direction (3 x 5 for vertical edges), 0 where there is none
+  ///   *_spacing  width * height local spacings: the median of three medians of the existing same-direction
+  ///              edges, 5 along the edge's line centred on it and 5 along each parallel line beside it (a
+  ///              5 x 3 window, 3 x 5 for vertical edges), 0 where there is none
   struct GridEdges
   {
     std::vector<GridEdgeState> horizontal_state, vertical_state;

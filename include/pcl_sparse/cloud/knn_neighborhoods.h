@@ -51,5 +51,5 @@ namespace pcl_sparse
   /// neighbour j of i is kept when |p_i - p_j| <= gap_factor x min (s_i, s_j) and the shadow rule passes.
   PointNeighborhoods
   acceptKnnEdges (const std::vector<Eigen::Vector3d>& positions, const KnnGraph& graph, double gap_factor,
-                  const ShadowRule& shadow, KnnEdgeCounts& counts);
+                  const ShadowRule& shadow, KnnEdgeCounts& counts, int num_threads);
 } // namespace pcl_sparse

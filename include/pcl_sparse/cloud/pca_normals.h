@@ -1,8 +1,8 @@
 #pragma once
 /// \file pca_normals.h
 /// Point normals by principal component analysis of each neighbourhood: the direction of least variance
-/// of the point and its neighbours (the same estimator as pcl::NormalEstimation, in double precision with
-/// the mean removed first, so map coordinates and float rounding do not bias it).
+/// of the point and its neighbours (the same estimator as pcl::NormalEstimation, in double precision on
+/// offsets from the point, so map coordinates and float rounding do not bias it).
 
 #include <pcl_sparse/cloud/point_neighborhoods.h>
 
