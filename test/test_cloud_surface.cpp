@@ -5,6 +5,7 @@
 
 #include <pcl_sparse/cloud/cloud_surface.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
@@ -394,6 +395,39 @@ TEST (CloudSurface, ClosedSphereOutwardBySpanningTree)
   EXPECT_LT (boundary, topology.numEdges () / 33);  // gaps of the random sampling wider than the gap rule
 }
 
+TEST (CloudSurface, FlatScanWithoutViewpointFacesUp)
+{
+  std::mt19937 rng (43);
+  const double sigma = 0.1 / std::sqrt (20000.0);
+  ScanCloud scan = makeScan (noisyPlane (20000, 1.0, sigma, rng));
+  const CloudSurface s = buildCloudSurface (scan);
+  expectConsistent (scan, s);
+  EXPECT_EQ (s.orientation, NormalOrientation::SpanningTree);
+  std::size_t down = 0;
+  for (const auto& n : s.normals)
+    down += n.z () <= 0.0 ? 1 : 0;
+  EXPECT_EQ (down, 0u);
+}
+
+TEST (CloudSurface, SurfaceFeedsTheEncoder)
+{
+  // The point of the surface: the mesh stages run on it unchanged. A noisy sphere scan is encoded and its
+  // model reproduces the points to about the noise level.
+  std::mt19937 rng (47);
+  const double sigma = 0.002;
+  const ScanCloud scan = makeScan (sphere (8000, 1.0, sigma, rng));
+  const CloudSurface s = buildCloudSurface (scan);
+  auto mesh = std::make_shared<TriangleMesh> (s.mesh);
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputMesh (mesh);
+  SparseSurfaceModel model;
+  encoder.compute (model);
+  const ModelStatistics stats = model.statistics (mesh->vertices);
+  EXPECT_EQ (stats.uncovered, 0u);
+  EXPECT_GT (stats.num_patches, 10u);
+  EXPECT_LT (stats.rmse, 3.0 * sigma);
+}
+
 TEST (CloudSurface, CylinderNormalsRadialAndOutward)
 {
   std::mt19937 rng (11);
@@ -743,6 +777,13 @@ TEST (CloudSurfaceSharedScans, RealScansGiveSensibleSurfaces)
     EXPECT_LT (s.outliers, scan.size () / 100);
     for (const auto& v : s.mesh.vertices)
       ASSERT_TRUE (v.allFinite ());
+    if (c.orientation == NormalOrientation::SpanningTree)  // airborne lidar: ground and roofs face up
+    {
+      std::size_t down = 0;
+      for (const auto& n : s.normals)
+        down += n.z () < -0.17 ? 1 : 0;  // clearly down (walls and trees have normals near horizontal)
+      EXPECT_LT (down, scan.size () / 50);
+    }
     if (c.orientation == NormalOrientation::Viewpoint)
       EXPECT_LT (facingAway (scan, s, s.viewpoint), scan.size () / 1000);
   }

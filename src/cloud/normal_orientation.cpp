@@ -1,5 +1,6 @@
 #include <pcl_sparse/cloud/normal_orientation.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -20,6 +21,58 @@ namespace pcl_sparse
     hasNormal (const std::vector<Eigen::Vector3d>& normals, int i)
     {
       return normals[i].squaredNorm () > 0.5;
+    }
+
+    /// Flips the normals of \a points toward direction (i); where a normal is within 10 degrees of
+    /// perpendicular to it, the sign is the estimation error's, so a usable such point takes the sign of its
+    /// decided neighbours (sum of their normals) instead, spreading in passes (each pass reads only the
+    /// previous one's decisions: the result does not depend on the order); unreached ones keep direction's.
+    /// \a decided: #P zeros, left zero.
+    template <typename Direction>
+    void
+    orientAlong (const std::vector<int>& points, Direction direction, const PointNeighborhoods& hoods,
+                 const std::vector<std::uint8_t>& usable, std::vector<std::uint8_t>& decided,
+                 std::vector<Eigen::Vector3d>& normals)
+    {
+      std::vector<int> grazing, now, later;
+      for (const int i : points)
+      {
+        const Eigen::Vector3d d = direction (i);
+        const double along = normals[i].dot (d);
+        if (along < 0.0)
+          normals[i] = -normals[i];
+        if (std::abs (along) >= kGrazingCosine * d.norm ())
+          decided[i] = 1;
+        else if (usable[i] && hasNormal (normals, i))
+          grazing.push_back (i);
+      }
+      while (!grazing.empty ())
+      {
+        now.clear ();
+        later.clear ();
+        for (const int i : grazing)
+        {
+          Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
+          for (const int j : hoods.of (i))
+            if (decided[j] && usable[j])
+              sum += normals[j];
+          if (sum.squaredNorm () > 0.0)
+          {
+            if (normals[i].dot (sum) < 0.0)
+              normals[i] = -normals[i];
+            now.push_back (i);
+          }
+          else
+            later.push_back (i);
+        }
+        if (now.empty ())
+          break;
+        for (const int i : now)
+          decided[i] = 1;
+        grazing.swap (later);
+      }
+      for (const int i : points)
+        decided[i] = 0;
     }
 
     /// Union-find with path halving, for Kruskal.
@@ -78,27 +131,40 @@ namespace pcl_sparse
     /// Orients the tree \a members (breadth-first order from members[0]) from its root, as documented.
     void
     orientTree (const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& members,
-                const std::vector<int>& parent, std::vector<std::uint8_t>& on_path, std::vector<Eigen::Vector3d>& normals)
+                const std::vector<int>& parent, const PointNeighborhoods& hoods, const std::vector<std::uint8_t>& usable,
+                std::vector<std::uint8_t>& scratch, std::vector<Eigen::Vector3d>& normals)
     {
       Eigen::Vector3d centroid = Eigen::Vector3d::Zero ();
       for (const int i : members)
         centroid += positions[i];
       centroid /= static_cast<double> (members.size ());
-      double radius2 = 0.0, best = -1.0, best_z = -1.0;
-      int root = members[0], root_z = members[0];
+      Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero ();
+      double best = -1.0;
+      int root = members[0];
       for (const int i : members)
       {
-        radius2 += (positions[i] - centroid).squaredNorm ();
-        const double outward = std::abs (normals[i].dot (positions[i] - centroid));
+        const Eigen::Vector3d d = positions[i] - centroid;
+        covariance.noalias () += d * d.transpose ();
+        const double outward = std::abs (normals[i].dot (d));
         if (outward > best)
           best = outward, root = i;
-        if (std::abs (normals[i].z ()) > best_z)
-          best_z = std::abs (normals[i].z ()), root_z = i;
       }
-      const double rms = std::sqrt (radius2 / static_cast<double> (members.size ()));
-      const bool flat = !(best > 0.05 * rms);
-      const int start = flat ? root_z : root;
-      const double sign = flat ? normals[start].z () : normals[start].dot (positions[start] - centroid);
+      // Flat (a wall, a terrain): the thinnest direction of the tree has under a tenth of the widest one's
+      // extent. Then "outward" means nothing, and propagation across creases and vegetation goes astray:
+      // the tree is seen as from a viewpoint far along its thinnest axis (up, for a terrain).
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spread (covariance);
+      if (!(spread.eigenvalues ()[0] > 0.01 * spread.eigenvalues ()[2]))
+      {
+        Eigen::Vector3d axis = spread.eigenvectors ().col (0);
+        int largest;
+        axis.cwiseAbs ().maxCoeff (&largest);
+        if (std::abs (axis.z ()) > 1e-3 ? axis.z () < 0.0 : axis[largest] < 0.0)
+          axis = -axis;
+        orientAlong (members, [&] (int) { return axis; }, hoods, usable, scratch, normals);
+        return;
+      }
+      const int start = root;
+      const double sign = normals[start].dot (positions[start] - centroid);
       // Orient the start, then walk the tree from it (parents are given from members[0]: re-root by path).
       if (sign < 0.0)
         normals[start] = -normals[start];
@@ -108,12 +174,12 @@ namespace pcl_sparse
           normals[parent[child]] = -normals[parent[child]];
       // Then every other node from its parent, in breadth-first order (parents come first).
       for (int v = start; v >= 0; v = parent[v])
-        on_path[v] = 1;
+        scratch[v] = 1;  // on the path
       for (const int v : members)
-        if (!on_path[v] && normals[v].dot (normals[parent[v]]) < 0.0)
+        if (!scratch[v] && normals[v].dot (normals[parent[v]]) < 0.0)
           normals[v] = -normals[v];
       for (int v = start; v >= 0; v = parent[v])
-        on_path[v] = 0;
+        scratch[v] = 0;
     }
   } // namespace
 
@@ -122,48 +188,11 @@ namespace pcl_sparse
                           const PointNeighborhoods& neighborhoods, const std::vector<std::uint8_t>& usable,
                           std::vector<Eigen::Vector3d>& normals)
   {
-    const std::size_t n = positions.size ();
-    std::vector<std::uint8_t> decided (n, 0);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const Eigen::Vector3d sight = viewpoints.of (i) - positions[i];
-      const double along = normals[i].dot (sight);
-      if (along < 0.0)
-        normals[i] = -normals[i];
-      decided[i] = std::abs (along) >= kGrazingCosine * sight.norm () ? 1 : 0;
-    }
-    // Grazing normals take the sign of their decided neighbours, spreading in passes (each pass reads only
-    // the previous one's decisions, so the result does not depend on the order).
-    std::vector<int> grazing;
-    for (std::size_t i = 0; i < n; ++i)
-      if (!decided[i] && usable[i] && hasNormal (normals, static_cast<int> (i)))
-        grazing.push_back (static_cast<int> (i));
-    std::vector<int> now;
-    while (!grazing.empty ())
-    {
-      now.clear ();
-      std::vector<int> later;
-      for (const int i : grazing)
-      {
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
-        for (const int j : neighborhoods.of (i))
-          if (decided[j] && usable[j])
-            sum += normals[j];
-        if (sum.squaredNorm () > 0.0)
-        {
-          if (normals[i].dot (sum) < 0.0)
-            normals[i] = -normals[i];
-          now.push_back (i);
-        }
-        else
-          later.push_back (i);
-      }
-      if (now.empty ())
-        break;  // the rest is out of reach: it keeps the viewpoint's sign
-      for (const int i : now)
-        decided[i] = 1;
-      grazing.swap (later);
-    }
+    std::vector<int> all (positions.size ());
+    std::iota (all.begin (), all.end (), 0);
+    std::vector<std::uint8_t> scratch (positions.size (), 0);
+    orientAlong (all, [&] (int i) { return Eigen::Vector3d (viewpoints.of (i) - positions[i]); }, neighborhoods, usable,
+                 scratch, normals);
   }
 
   void
@@ -174,7 +203,7 @@ namespace pcl_sparse
     spanningForest (neighborhoods, usable, normals, offsets, adjacent);
     const std::size_t n = positions.size ();
     std::vector<int> parent (n, -1);
-    std::vector<std::uint8_t> seen (n, 0), on_path (n, 0);
+    std::vector<std::uint8_t> seen (n, 0), scratch (n, 0);
     std::vector<int> members;
     for (std::size_t s = 0; s < n; ++s)
     {
@@ -190,7 +219,14 @@ namespace pcl_sparse
             parent[adjacent[e]] = members[q];
             members.push_back (adjacent[e]);
           }
-      orientTree (positions, members, parent, on_path, normals);
+      if (members.size () < 3)  // no shape to speak of
+      {
+        for (const int v : members)
+          if (normals[v].z () < 0.0)
+            normals[v] = -normals[v];
+        continue;
+      }
+      orientTree (positions, members, parent, neighborhoods, usable, scratch, normals);
     }
   }
 

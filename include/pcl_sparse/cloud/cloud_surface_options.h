@@ -24,7 +24,7 @@ namespace pcl_sparse
     /// Consistent orientation propagated over a minimum spanning tree of the neighbourhood graph with
     /// weights 1 - |n_i . n_j| (Hoppe et al. 1992), in each connected component from the point where the
     /// outward direction is clearest (largest |n . (p - centroid)|), oriented away from the component's
-    /// centroid: outward on closed surfaces; +z for a flat component.
+    /// centroid: outward on closed surfaces; +z for a flat component (a terrain; see orientBySpanningTree).
     SpanningTree,
     /// Organized scans: every triangle of the image grid faces the same side of the image (a range
     /// image sees the front of every surface), the side chosen so that most normals point away from

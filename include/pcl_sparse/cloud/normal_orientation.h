@@ -29,11 +29,13 @@ namespace pcl_sparse
 
   /// Consistent orientation over the minimum spanning forest of the neighbourhood graph (\a neighborhoods
   /// symmetric, see symmetricNeighborhoods; edges between usable points with normals, weight
-  /// 1 - |n_i . n_j|). In each
-  /// tree the root is the point with the largest |n . (p - c)| (c: the tree's centroid), oriented so that
-  /// n . (p - c) > 0 (outward on a closed surface); when that largest value is below 5 % of the tree's RMS
-  /// radius the tree is flat and its root is the point with the largest |n_z|, oriented to n_z > 0.
-  /// Each other normal is flipped to agree with its parent's.
+  /// 1 - |n_i . n_j|). In each tree the root is the point with the largest |n . (p - c)| (c: the tree's
+  /// centroid), oriented so that n . (p - c) > 0 (outward on a closed surface), and each other normal is
+  /// flipped to agree with its parent's. A flat tree (the standard deviation of its points along their
+  /// thinnest direction is under a tenth of that along the widest: a terrain, a wall) has no outward, and
+  /// propagation goes astray across roof edges and vegetation: it is oriented as if seen from far along
+  /// its thinnest axis, taken pointing up (+z; for a vertical wall, toward its largest positive
+  /// coordinate), as orientTowardViewpoints does. Trees of 1 or 2 points get n_z >= 0.
   void
   orientBySpanningTree (const std::vector<Eigen::Vector3d>& positions, const PointNeighborhoods& neighborhoods,
                         const std::vector<std::uint8_t>& usable, std::vector<Eigen::Vector3d>& normals);
