@@ -287,6 +287,11 @@ namespace pcl_sparse
                                           work.shadow, options.num_threads);
         if (surface.orientation == NormalOrientation::ImageGrid)
           orientByImageGrid (scan.positions, triangles, work.hoods, work.usable, surface.normals);
+        // Again, now that the normals and the side the image's triangles face are known, choosing the
+        // diagonals that do not fold.
+        const double facing = imageFacing (scan.positions, surface.normals, triangles);
+        triangles = triangulateImageGrid (work.grid, scan.positions, work.edges, work.usable, options.gap_factor,
+                                          work.shadow, options.num_threads, &surface.normals, facing);
         surface.folded_triangles = windImageTrianglesLikeNormals (scan.positions, surface.normals, triangles);
         return;
       }

@@ -56,38 +56,69 @@ namespace pcl_sparse
       return (length <= limit && !shadow.shadowed (p, positions[p], positions[q])) ? length : -1.0;
     }
 
+    /// > 0 when the triangle (image winding) faces the side \a facing of its corners' normals; 1 without normals.
+    double
+    facingOf (const Eigen::Vector3i& t, const std::vector<Eigen::Vector3d>& positions,
+              const std::vector<Eigen::Vector3d>* normals, double facing)
+    {
+      if (!normals)
+        return 1.0;
+      const Eigen::Vector3d& a = positions[t[0]];
+      const Eigen::Vector3d area = (positions[t[1]] - a).cross (positions[t[2]] - a);
+      return facing * area.dot ((*normals)[t[0]] + (*normals)[t[1]] + (*normals)[t[2]]);
+    }
+
+    /// The cell's triangles across a-d (\a ad) or b-c, where their grid edges are accepted.
+    int
+    splitCell (const Cell& k, bool ad, Eigen::Vector3i out[2])
+    {
+      int count = 0;
+      if (ad)
+      {
+        if (k.c >= 0 && k.ac && k.cd)
+          out[count++] = Eigen::Vector3i (k.a, k.c, k.d);
+        if (k.b >= 0 && k.ab && k.bd)
+          out[count++] = Eigen::Vector3i (k.a, k.d, k.b);
+      }
+      else
+      {
+        if (k.a >= 0 && k.ac && k.ab)
+          out[count++] = Eigen::Vector3i (k.a, k.c, k.b);
+        if (k.d >= 0 && k.cd && k.bd)
+          out[count++] = Eigen::Vector3i (k.b, k.c, k.d);
+      }
+      return count;
+    }
+
     void
     triangulateCell (const Cell& k, const std::vector<Eigen::Vector3d>& positions, double gap_factor,
-                     const ShadowRule& shadow, std::vector<Eigen::Vector3i>& out)
+                     const ShadowRule& shadow, const std::vector<Eigen::Vector3d>* normals, double facing,
+                     std::vector<Eigen::Vector3i>& out)
     {
       const double limit = gap_factor * std::hypot (k.sx, k.sy);
       const double ad = diagonal (positions, k.a, k.d, limit, shadow);
       const double bc = diagonal (positions, k.b, k.c, limit, shadow);
       const bool all = k.a >= 0 && k.b >= 0 && k.c >= 0 && k.d >= 0;
-      // Across a-d when it is the only diagonal, or the shorter one, or a 3-corner cell without b or c.
-      const bool use_ad = ad >= 0.0 && (bc < 0.0 || ad <= bc) && (all || k.b < 0 || k.c < 0);
-      const bool use_bc = !use_ad && bc >= 0.0 && (all || k.a < 0 || k.d < 0);
-      if (use_ad)
-      {
-        if (k.c >= 0 && k.ac && k.cd)
-          out.emplace_back (k.a, k.c, k.d);
-        if (k.b >= 0 && k.ab && k.bd)
-          out.emplace_back (k.a, k.d, k.b);
-      }
-      else if (use_bc)
-      {
-        if (k.a >= 0 && k.ac && k.ab)
-          out.emplace_back (k.a, k.c, k.b);
-        if (k.d >= 0 && k.cd && k.bd)
-          out.emplace_back (k.b, k.c, k.d);
-      }
+      const bool can_ad = ad >= 0.0 && (all || k.b < 0 || k.c < 0), can_bc = bc >= 0.0 && (all || k.a < 0 || k.d < 0);
+      Eigen::Vector3i with_ad[2], with_bc[2];
+      const int n_ad = can_ad ? splitCell (k, true, with_ad) : 0, n_bc = can_bc ? splitCell (k, false, with_bc) : 0;
+      // The split with more triangles facing like their corners' normals, then the shorter diagonal.
+      int good_ad = 0, good_bc = 0;
+      for (int t = 0; t < n_ad; ++t)
+        good_ad += facingOf (with_ad[t], positions, normals, facing) > 0.0 ? 1 : 0;
+      for (int t = 0; t < n_bc; ++t)
+        good_bc += facingOf (with_bc[t], positions, normals, facing) > 0.0 ? 1 : 0;
+      const bool use_ad = can_ad && (!can_bc || good_ad > good_bc || (good_ad == good_bc && ad <= bc));
+      const int count = use_ad ? n_ad : can_bc ? n_bc : 0;
+      for (int t = 0; t < count; ++t)
+        out.push_back (use_ad ? with_ad[t] : with_bc[t]);
     }
   } // namespace
 
   std::vector<Eigen::Vector3i>
   triangulateImageGrid (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
                         const std::vector<std::uint8_t>& usable, double gap_factor, const ShadowRule& shadow,
-                        int num_threads)
+                        int num_threads, const std::vector<Eigen::Vector3d>* normals, double facing)
   {
     const int rows = grid.height - 1;
     if (rows <= 0 || grid.width < 2)
@@ -97,7 +128,7 @@ namespace pcl_sparse
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 8)
     for (int y = 0; y < rows; ++y)
       for (int x = 0; x + 1 < grid.width; ++x)
-        triangulateCell (cellAt (grid, edges, usable, x, y), positions, gap_factor, shadow, per_row[y]);
+        triangulateCell (cellAt (grid, edges, usable, x, y), positions, gap_factor, shadow, normals, facing, per_row[y]);
     std::vector<Eigen::Vector3i> triangles;
     for (const auto& row : per_row)
       triangles.insert (triangles.end (), row.begin (), row.end ());

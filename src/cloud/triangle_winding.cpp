@@ -36,14 +36,21 @@ namespace pcl_sparse
     return reversed;
   }
 
-  std::size_t
-  windImageTrianglesLikeNormals (const std::vector<Eigen::Vector3d>& positions,
-                                 const std::vector<Eigen::Vector3d>& normals, std::vector<Eigen::Vector3i>& triangles)
+  double
+  imageFacing (const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& normals,
+               const std::vector<Eigen::Vector3i>& triangles)
   {
     std::size_t against = 0;
     for (const auto& t : triangles)
       against += agreement (positions, normals, t) < 0.0 ? 1 : 0;
-    if (2 * against > triangles.size ())
+    return 2 * against > triangles.size () ? -1.0 : 1.0;
+  }
+
+  std::size_t
+  windImageTrianglesLikeNormals (const std::vector<Eigen::Vector3d>& positions,
+                                 const std::vector<Eigen::Vector3d>& normals, std::vector<Eigen::Vector3i>& triangles)
+  {
+    if (imageFacing (positions, normals, triangles) < 0.0)
       for (auto& t : triangles)
         std::swap (t[1], t[2]);
     const std::size_t before = triangles.size ();

@@ -16,13 +16,16 @@
 namespace pcl_sparse
 {
   /// The cell (x, y) has corners a (x, y), b (x + 1, y), c (x, y + 1), d (x + 1, y + 1). With all four
-  /// usable, the shorter of the diagonals a-d and b-c that passes the rules (length <= gap_factor x
-  /// |(s_x, s_y)|, s_x and s_y the mean spacings of the cell's horizontal and vertical edges; shadow rule)
-  /// splits it, and each of its two triangles is kept when its two grid edges are accepted; with three,
-  /// their triangle under the same conditions. Triangles come in cell order, all wound alike in the image
-  /// (a, c, d), (a, d, b) or (a, c, b), (b, c, d): clockwise in pixel coordinates with y down.
+  /// usable, one of the diagonals a-d and b-c that pass the rules (length <= gap_factor x |(s_x, s_y)|,
+  /// s_x and s_y the mean spacings of the cell's horizontal and vertical edges; shadow rule) splits it,
+  /// and each of its two triangles is kept when its two grid edges are accepted; with three, their
+  /// triangle under the same conditions. The diagonal: the shorter one, unless \a normals are given and
+  /// the other split has more triangles facing like their corners' normals (facing x (area . sum of the
+  /// normals) > 0): on quantized depth (Kinect terraces) the shorter diagonal often folds over a step.
+  /// Triangles come in cell order, all wound alike in the image (a, c, d), (a, d, b) or (a, c, b),
+  /// (b, c, d): clockwise in pixel coordinates with y down.
   std::vector<Eigen::Vector3i>
   triangulateImageGrid (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
                         const std::vector<std::uint8_t>& usable, double gap_factor, const ShadowRule& shadow,
-                        int num_threads);
+                        int num_threads, const std::vector<Eigen::Vector3d>* normals = nullptr, double facing = 1.0);
 } // namespace pcl_sparse

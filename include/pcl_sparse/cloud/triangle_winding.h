@@ -15,6 +15,12 @@ namespace pcl_sparse
   windTrianglesLikeNormals (const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& normals,
                             std::vector<Eigen::Vector3i>& triangles);
 
+  /// The side image-grid triangles face relative to the point normals: +1 if most agree with their corners'
+  /// normals as wound, -1 if most disagree.
+  double
+  imageFacing (const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& normals,
+               const std::vector<Eigen::Vector3i>& triangles);
+
   /// Triangles of an image grid (triangulateImageGrid) all face the same side of the sensor, so they are
   /// wound as one: all reversed if most point against their corners' normals, then those that still do
   /// are removed (a noise spike or a surface seen edge-on; reversing one alone would break the
