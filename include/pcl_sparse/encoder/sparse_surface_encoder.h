@@ -18,7 +18,7 @@
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/model/surface_basis.h>
 #include <pcl_sparse/common/progress.h>
-#include <pcl_sparse/mesh/surface_stage.h>
+#include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/patches/patch.h>
@@ -40,6 +40,10 @@ namespace pcl_sparse
     /// Cosine atoms: Paper = cos(i pi x) cos(j pi y) (the paper's, even only); Dct = cos(i pi (x + 1) / 2)
     /// cos(j pi (y + 1) / 2), same count, even and odd (ours, lower error floor). Ignored after setBasis.
     CosineBasisKind basis = CosineBasisKind::Paper;
+    /// For a scan (a cloud without polygons, or setInputScan) with coding.noise_level 0: code down to the
+    /// scan's estimated noise (CloudSurface::noise) and not below, so that sensor noise is smoothed, not
+    /// coded (docs/METHOD.md, scans). Meshes are never affected.
+    bool scan_noise_floor = true;
 
     /// Throws pcl_sparse::Error naming the first option out of range: the patch options, rho > 0,
     /// 0 <= f <= 1, L >= 1, eps in (0, 1), m_min >= 0, footprint angles >= 3, n in [1, 64].

@@ -13,7 +13,7 @@
 
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
-#include <pcl_sparse/mesh/surface_stage.h>
+#include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <pcl/PointIndices.h>

@@ -32,7 +32,7 @@
 
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
-#include <pcl_sparse/mesh/surface_stage.h>
+#include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_frame.h>

@@ -4,7 +4,7 @@
 
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
-#include <pcl_sparse/mesh/impl/surface_stage.hpp>
+#include <pcl_sparse/surface/impl/surface_stage.hpp>
 
 namespace pcl_sparse
 {
@@ -29,7 +29,17 @@ namespace pcl_sparse
   {
     const SurfaceBasis::ConstPtr basis =
       basis_ ? basis_ : makeCosineBasis (options_.basis, options_.dictionary_frequencies);
-    encoding_ = encodeSurface (*this->surface_, *this->surface_topology_, options_, basis, this->num_threads_,
+    SparseSurfaceEncoderOptions options = options_;
+    if (this->surfaceIsScan () && options.scan_noise_floor && options.coding.noise_level == 0.0)
+      options.coding.noise_level = this->cloud_surface_->noise;
+    encoding_ = encodeSurface (*this->surface_, *this->surface_topology_, options, basis, this->num_threads_,
                                this->progress_, model);
+    // A scan is encoded in its local frame: the model and patches go back to the input's frame.
+    if (!this->surface_origin_.isZero (0.0))
+    {
+      model.translate (this->surface_origin_);
+      for (Patch& patch : encoding_.patches)
+        patch.origin += this->surface_origin_;
+    }
   }
 } // namespace pcl_sparse
