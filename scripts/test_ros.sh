@@ -107,10 +107,10 @@ build_step "catkin build" "$tmp/catkin_build.log" bash -c "cd '$tools_ws' && cat
 [ -x "$tools_ws/devel/lib/pcl_sparse/pcl_sparse_resample_node" ] || fail "catkin build: no devel/lib/pcl_sparse/pcl_sparse_resample_node"
 
 colcon_ws=$(workspace colcon)
-colcon_build() {  # colcon_build WORKSPACE: build and install space of the package, one package at a time
+colcon_build() (  # colcon_build WORKSPACE: build and install space of the package, one package at a time
   cd "$1" && MAKEFLAGS=-j$jobs colcon --log-base log build --base-paths src --parallel-workers 1 \
     --event-handlers console_direct- --cmake-args "${cmake_args[@]}"
-}
+)
 build_step "colcon build (ROS_VERSION=1: catkin type)" "$tmp/colcon.log" colcon_build "$colcon_ws" || true
 prefix="$colcon_ws/install/pcl_sparse"
 for f in lib/pcl_sparse/pcl_sparse_resample_node lib/pcl_sparse/pcl_sparse_decode_node lib/libpcl_sparse_nodelets.so \
