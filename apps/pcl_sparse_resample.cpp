@@ -1,5 +1,5 @@
 /// pcl_sparse_resample: a mesh (encoded first) or a saved model (.psm) to a point cloud with analytic
-/// normals and curvature, at any density (METHOD.md step 12).
+/// normals and curvature, at any density (docs/METHOD.md step 12).
 ///
 ///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-basis paper|dct] [-seed S]
 ///                       [-threads T] [-ascii] [-q] [--json]

@@ -1,6 +1,6 @@
 #pragma once
 /// \file sparse_surface_encoder.h
-/// The whole encoding pipeline as one PCL-style stage (METHOD.md steps 2-11):
+/// The whole encoding pipeline as one PCL-style stage (docs/METHOD.md steps 2-11):
 ///
 ///   pcl_sparse::SparseSurfaceEncoder<pcl::PointXYZ> encoder;
 ///   encoder.setInputCloud (cloud);                 // the mesh's vertices, and

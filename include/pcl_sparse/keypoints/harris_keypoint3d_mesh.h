@@ -1,6 +1,6 @@
 #pragma once
 /// \file harris_keypoint3d_mesh.h
-/// Harris 3D keypoints of a triangle mesh as a PCL-style stage (METHOD.md step 3). The mathematics is in
+/// Harris 3D keypoints of a triangle mesh as a PCL-style stage (docs/METHOD.md step 3). The mathematics is in
 /// harris3d.h; this class holds the input and the results.
 ///
 ///   pcl_sparse::HarrisKeypoint3DMesh<pcl::PointXYZ> harris;

@@ -1,6 +1,6 @@
 #pragma once
 /// \file mesh_normal_estimation.h
-/// Vertex normals of a triangle mesh as a PCL-style stage (METHOD.md step 2): the mesh's own normals,
+/// Vertex normals of a triangle mesh as a PCL-style stage (docs/METHOD.md step 2): the mesh's own normals,
 /// oriented by its faces, where pcl::NormalEstimation would fit planes to neighbours and guess the sign.
 ///
 ///   pcl_sparse::MeshNormalEstimation<pcl::PointXYZ> ne;

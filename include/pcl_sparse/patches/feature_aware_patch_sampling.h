@@ -1,6 +1,6 @@
 #pragma once
 /// \file feature_aware_patch_sampling.h
-/// Feature-aware seed sampling and patch construction (METHOD.md steps 4, 5 and 6) as a PCL-style stage.
+/// Feature-aware seed sampling and patch construction (docs/METHOD.md steps 4, 5 and 6) as a PCL-style stage.
 ///
 ///   pcl_sparse::FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
 ///   sampling.setInputCloud (cloud);            // the vertices, and
