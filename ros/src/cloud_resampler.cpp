@@ -39,6 +39,9 @@ namespace pcl_sparse_ros
       encoder.setOptions (settings.options);
       encoder.setNumberOfThreads (settings.threads);
       encoder.setInputCloud (cloud);
+      if (settings.has_viewpoint)
+        encoder.setViewPoint (static_cast<float> (settings.viewpoint.x ()), static_cast<float> (settings.viewpoint.y ()),
+                              static_cast<float> (settings.viewpoint.z ()));
       auto model = std::make_shared<pcl_sparse::SparseSurfaceModel> ();
       encoder.compute (*model);
       return model;

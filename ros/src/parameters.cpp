@@ -126,13 +126,11 @@ namespace pcl_sparse_ros
   bool
   applyViewpoint (const Eigen::Vector3d& viewpoint, pcl_sparse::SparseSurfaceEncoderOptions& options)
   {
-    // >>> The single place where ~viewpoint reaches the encoder. SparseSurfaceEncoderOptions has no
-    // viewpoint yet; when point-cloud input lands with one (normal orientation toward the sensor), set
-    // it here, e.g. `options.cloud.has_viewpoint = true; options.cloud.viewpoint = viewpoint;`, and
-    // return true. Until then the node warns once that the parameter is read but not used.
+    // ~viewpoint reaches the encoder as a stage setting (SparseSurfaceEncoder::setViewPoint, in
+    // encodeAs), not as an option: nothing to set here, and it is always applied.
     (void) viewpoint;
     (void) options;
-    return false;
+    return true;
   }
 
   EncoderSettings
