@@ -316,10 +316,11 @@ namespace pcl_sparse
 
   void
   computeUnitScaleHarris3D (const TriangleMesh& mesh, const MeshTopology& topology, int num_threads,
-                            std::vector<double>& responses, std::vector<int>& keypoints)
+                            std::vector<double>& responses, std::vector<int>& keypoints, int rings)
   {
     Harris3DOptions harris;
     harris.num_threads = num_threads;
+    harris.rings = std::max (0, rings);
     // Harris 3D responses depend on the length unit (harris3d.h): computed on the mesh scaled to a unit
     // bbox diagonal, the seeds, and so the whole model, do not depend on the input's units.
     const double diagonal = boundingBoxDiagonal (mesh);
@@ -351,7 +352,7 @@ namespace pcl_sparse
     result.responses = responses;
     result.keypoints = keypoints;
     if (responses.empty () && keypoints.empty ())
-      computeUnitScaleHarris3D (input, input_topology, num_threads, result.responses, result.keypoints);
+      computeUnitScaleHarris3D (input, input_topology, num_threads, result.responses, result.keypoints, options.harris_rings);
 
     const GrowthMesh growth (input, input_topology);
     const TriangleMesh& mesh = *growth.mesh;

@@ -38,6 +38,7 @@
 #include <pcl_sparse/patches/patch_frame.h>
 #include <pcl_sparse/patches/patch_options.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,9 +54,18 @@ namespace pcl_sparse
   /// \param[in] num_threads OpenMP threads (0 = default)
   /// \param[out] responses #V responses (NaN: none)
   /// \param[out] keypoints vertex indices, decreasing response
+  /// \param[in] rings fixed ring count (> 0), or 0 for the adaptive neighbourhood (default)
   void
   computeUnitScaleHarris3D (const TriangleMesh& mesh, const MeshTopology& topology, int num_threads,
-                            std::vector<double>& responses, std::vector<int>& keypoints);
+                            std::vector<double>& responses, std::vector<int>& keypoints, int rings = 0);
+
+  /// \brief PatchOptions::harris_rings resolved for a surface: 0 means adaptive (0) on a mesh and 2 rings on
+  /// a scan; < 0 adaptive (0); k > 0 stays k.
+  inline int
+  harrisRingsFor (int harris_rings, bool scan)
+  {
+    return harris_rings == 0 ? (scan ? 2 : 0) : std::max (0, harris_rings);
+  }
 
   /// \brief Everything feature-aware patch sampling produces.
   struct PatchSamplingResult

@@ -46,6 +46,11 @@ namespace pcl_sparse
     /// literally every vertex has an estimate; false: they are left out and reported by
     /// FeatureAwarePatchSampling::getUncoveredVertices.
     bool cover_unreferenced_vertices = true;
+    /// Harris 3D neighbourhoods of the default candidate order: 0 (default) = the paper's adaptive rings
+    /// (radius 1 % of the bbox diagonal) on a mesh and 2 rings (the paper's fixed option) on a scan, where
+    /// 1 % of the diagonal holds hundreds of points and took most of the encoding time; k > 0 = k rings;
+    /// < 0 = adaptive on scans too.
+    int harris_rings = 0;
 
     /// Checks the ranges: angles in (0, pi], eta >= 1, rho >= 0, sigma >= 0, min_patch_size >= 1.
     /// \throws pcl_sparse::Error naming the first out-of-range field

@@ -4,6 +4,7 @@
 
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/surface/impl/surface_stage.hpp>
 
 namespace pcl_sparse
@@ -32,6 +33,7 @@ namespace pcl_sparse
     SparseSurfaceEncoderOptions options = options_;
     if (this->surfaceIsScan () && options.scan_noise_floor && options.coding.noise_level == 0.0)
       options.coding.noise_level = this->cloud_surface_->noise;
+    options.patches.harris_rings = harrisRingsFor (options.patches.harris_rings, this->surfaceIsScan ());
     encoding_ = encodeSurface (*this->surface_, *this->surface_topology_, options, basis, this->num_threads_,
                                this->progress_, model);
     // A scan is encoded in its local frame: the model and patches go back to the input's frame.

@@ -22,7 +22,9 @@ namespace pcl_sparse
   void
   FeatureAwarePatchSampling<PointInT>::computePatches (std::vector<Patch>& patches)
   {
-    result_ = sampleFeatureAwarePatches (*this->surface_, *this->surface_topology_, options_, responses_, keypoints_,
+    PatchOptions options = options_;
+    options.harris_rings = harrisRingsFor (options.harris_rings, this->surfaceIsScan ());
+    result_ = sampleFeatureAwarePatches (*this->surface_, *this->surface_topology_, options, responses_, keypoints_,
                                          this->num_threads_, this->progress_);
     patches = std::move (result_.patches);
     result_.patches.clear ();
