@@ -651,7 +651,9 @@ namespace
     const std::size_t n = s.points->size ();
     std::fprintf (stderr, "== rd %s: %zu kept points\n", s.name.c_str (), n);
     Encoded e = encodeScan (s);  // model in the file's frame, as a user would save it
-    const TriangleMesh& reference = s.truth ? *s.truth : e.surface->mesh;
+    // The encoder's getCloudSurface () holds no mesh (the encoder keeps the surface it worked on): build it.
+    const TriangleMesh scan_mesh = s.truth ? TriangleMesh () : buildCloudSurface (*s.scan, surfaceOptions (s)).mesh;
+    const TriangleMesh& reference = s.truth ? *s.truth : scan_mesh;
     const char* against = s.truth ? "truth" : "scan surface";
     const double spacing = e.surface->spacing;
     std::vector<Eigen::Vector3f> input;
