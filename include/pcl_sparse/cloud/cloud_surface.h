@@ -53,8 +53,8 @@ namespace pcl_sparse
     std::size_t unreferenced = 0;      ///< vertices in no triangle (all kinds)
     std::size_t refused_edges = 0;     ///< candidate edges refused by the gap and shadow rules (see below)
     std::size_t shadowed_edges = 0;    ///< of which refused by the shadow rule alone
-    /// Image grid / lidar rings: grid edges whose two pixels hold points; kNN: pairs (i, j) with j among
-    /// the k nearest of i or i among those of j.
+    /// Image grid / lidar rings: grid edges whose two pixels hold points; kNN: ordered pairs (i, j) with j
+    /// among the k nearest of i (a mutual pair counts twice).
     std::size_t candidate_edges = 0;
     std::size_t unplaced = 0;          ///< lidar rings: points that found no free cell of the grid
     /// Image grid / lidar rings: triangles left out because their geometric normal points against their
