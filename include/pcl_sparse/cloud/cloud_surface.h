@@ -24,7 +24,7 @@ namespace pcl_sparse
   {
     Surface = 0,    ///< has a neighbourhood and a normal
     Outlier = 1,    ///< farther than the outlier rule from the tangent plane of every neighbour
-    Isolated = 2,   ///< fewer than 2 neighbours within the gap rule: no plane, no triangle
+    Isolated = 2,   ///< fewer than 2 usable neighbours within the gap rule: no plane, no triangle
     NonFinite = 3   ///< a NaN/Inf coordinate (the scan was not cleaned)
   };
 
@@ -81,14 +81,16 @@ namespace pcl_sparse
   ///   3. noise: the median leave-one-out residual of local quadric fits (curvature does not count as
   ///      noise), scaled to a standard deviation; outliers by the rule of the options, then the normals
   ///      of their neighbours again without them;
-  ///   4. triangles: two per 2 x 2 grid cell across the shorter diagonal where no edge is refused;
+  ///   4. triangles: on a grid, two per 2 x 2 cell where no edge is refused, across the diagonal whose
+  ///      triangles face like the normals (then the shorter), all wound alike, folded ones left out;
   ///      without a grid, local Delaunay fans in each point's tangent plane, each triangle taken when it
   ///      overlaps no triangle proposed by more corners, then holes of up to 12 edges closed under the gap
   ///      rule; wound like the normals.
-  /// The result is the same for any number of threads.
-  /// Throws pcl_sparse::Error for an empty scan, a scan without a finite point, attribute or index vectors
-  /// of the wrong size, pixel indices outside width x height, a requested orientation that has nothing
-  /// to work with (Viewpoint without any viewpoint, Given without normals), or options out of range.
+  /// The result is the same for any number of threads, and no randomness is involved (no seed).
+  /// Throws pcl_sparse::Error with a one-line message for an empty scan, a scan without a finite point,
+  /// normals, indices or point_viewpoints of the wrong size, pixel indices outside width x height or
+  /// shared by two points, use_given_normals on a scan without normals, or options out of range
+  /// (validateCloudSurfaceOptions).
   CloudSurface
   buildCloudSurface (const ScanCloud& scan, const CloudSurfaceOptions& options = CloudSurfaceOptions ());
 } // namespace pcl_sparse
