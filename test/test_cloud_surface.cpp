@@ -538,6 +538,49 @@ TEST (CloudSurface, DepthImageNoTriangleAcrossTheJumpOrTheHoles)
   }
 }
 
+TEST (CloudSurface, DepthStepsAreBridged)
+{
+  // A Kinect-like camera sees the slanted plane z = 2 + 0.8 x with depth stored in steps of 0.15, 4.5
+  // pixel spacings: a staircase whose risers the plain gap rule refuses.
+  const int width = 64, height = 48;
+  const double f = 60.0, step = 0.15;
+  ScanCloud scan;
+  scan.width = width;
+  scan.height = height;
+  scan.has_sensor_pose = true;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+    {
+      const double u = (x - 0.5 * width) / f, v = (y - 0.5 * height) / f;
+      const double z = step * std::round (2.0 / (1.0 - 0.8 * u) / step);  // on the ray (u z, v z, z)
+      scan.positions.emplace_back (u * z, v * z, z);
+      scan.indices.push_back (static_cast<std::size_t> (y) * width + x);
+    }
+  const Eigen::Vector3d truth = Eigen::Vector3d (0.8, 0.0, -1.0).normalized ();  // toward the sensor
+  const CloudSurface bridged = buildCloudSurface (scan);
+  expectConsistent (scan, bridged);
+  EXPECT_GT (bridged.depth_levels, 5u);
+  EXPECT_GT (referencedCount (bridged), 0.95 * scan.size ());
+  // Normals: a 5 x 5 window sees one or two treads of 5-pixel terraces, so they lean toward the treads'
+  // normal (+-z, 39 degrees from the truth); an 11 x 11 window sees the slope.
+  std::vector<double> angles;
+  for (const auto& n : bridged.normals)
+    angles.push_back (angleDegrees (n, truth));
+  EXPECT_LT (quantile (angles, 0.5), 30.0);
+  CloudSurfaceOptions wide;
+  wide.window_radius = 5;
+  const CloudSurface smooth = buildCloudSurface (scan, wide);
+  angles.clear ();
+  for (const auto& n : smooth.normals)
+    angles.push_back (angleDegrees (n, truth));
+  EXPECT_LT (quantile (angles, 0.5), 8.0);
+  CloudSurfaceOptions plain;
+  plain.bridge_depth_steps = false;
+  const CloudSurface cut = buildCloudSurface (scan, plain);
+  EXPECT_EQ (cut.depth_levels, 0u);
+  EXPECT_GT (cut.refused_edges, 5 * bridged.refused_edges + 100);
+}
+
 TEST (CloudSurface, ParallelPlanesAndAGapAreNotBridged)
 {
   std::mt19937 rng (19);

@@ -1,6 +1,7 @@
 #include <pcl_sparse/cloud/cloud_surface.h>
 
 #include <pcl_sparse/cloud/cloud_outliers.h>
+#include <pcl_sparse/cloud/depth_quantization.h>
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
 #include <pcl_sparse/cloud/grid_triangulation.h>
 #include <pcl_sparse/cloud/knn_neighborhoods.h>
@@ -33,6 +34,7 @@ namespace pcl_sparse
       ShadowRule shadow;
       ScanGrid grid;                     // image grid / lidar rings
       GridEdges edges;
+      DepthQuantization steps;           // depth stored in steps (image grids seen from a viewpoint)
       PointNeighborhoods hoods;
       PointNeighborhoods symmetric;      // hoods made symmetric, for the spanning tree and the kNN triangles
     };
@@ -140,10 +142,13 @@ namespace pcl_sparse
       }
       if (surface.neighborhood != CloudNeighborhood::Knn)
       {
-        work.edges = classifyGridEdges (work.grid, scan.positions, options.gap_factor, work.shadow, threads);
+        if (options.bridge_depth_steps && work.viewpoints.points.size () == 1)
+          work.steps = findDepthQuantization (scan.positions, finite, work.viewpoints.points[0]);
+        surface.depth_levels = work.steps.levels.size ();
+        work.edges = classifyGridEdges (work.grid, scan.positions, options.gap_factor, work.shadow, threads, &work.steps);
         countGridEdges (work.edges, surface.candidate_edges, surface.refused_edges, surface.shadowed_edges);
         work.hoods = gridNeighborhoods (work.grid, scan.positions, work.edges, options.window_radius, options.gap_factor,
-                                        threads);
+                                        threads, &work.steps);
         return;
       }
       const KnnGraph graph = findKNearestNeighbors (scan.positions, finite, options.k, threads);
@@ -284,14 +289,14 @@ namespace pcl_sparse
       else
       {
         triangles = triangulateImageGrid (work.grid, scan.positions, work.edges, work.usable, options.gap_factor,
-                                          work.shadow, options.num_threads);
+                                          work.shadow, options.num_threads, nullptr, 1.0, &work.steps);
         if (surface.orientation == NormalOrientation::ImageGrid)
           orientByImageGrid (scan.positions, triangles, work.hoods, work.usable, surface.normals);
         // Again, now that the normals and the side the image's triangles face are known, choosing the
         // diagonals that do not fold.
         const double facing = imageFacing (scan.positions, surface.normals, triangles);
         triangles = triangulateImageGrid (work.grid, scan.positions, work.edges, work.usable, options.gap_factor,
-                                          work.shadow, options.num_threads, &surface.normals, facing);
+                                          work.shadow, options.num_threads, &surface.normals, facing, &work.steps);
         surface.folded_triangles = windImageTrianglesLikeNormals (scan.positions, surface.normals, triangles);
         return;
       }

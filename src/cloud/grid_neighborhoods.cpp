@@ -17,7 +17,8 @@ namespace pcl_sparse
 
     /// Lengths of the horizontal (dx = 1) or vertical (dy = 1) edges, -1 where missing.
     std::vector<float>
-    edgeLengths (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, int dx, int dy, int threads)
+    edgeLengths (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, int dx, int dy, int threads,
+                 const DepthQuantization* steps)
     {
       std::vector<float> lengths (grid.cells.size (), -1.0f);
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -26,7 +27,8 @@ namespace pcl_sparse
         {
           const int a = grid.at (x, y), b = grid.at (x + dx, y + dy);
           if (a >= 0 && b >= 0)
-            lengths[static_cast<std::size_t> (y) * grid.width + x] = static_cast<float> ((positions[a] - positions[b]).norm ());
+            lengths[static_cast<std::size_t> (y) * grid.width + x] =
+              static_cast<float> (steps ? steps->effectiveLength (positions, a, b) : (positions[a] - positions[b]).norm ());
         }
       return lengths;
     }
@@ -52,10 +54,10 @@ namespace pcl_sparse
     /// a line of long edges).
     void
     classifyDirection (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, int dx, int dy,
-                       double gap_factor, const ShadowRule& shadow, int threads, std::vector<GridEdgeState>& state,
-                       std::vector<float>& spacing)
+                       double gap_factor, const ShadowRule& shadow, int threads, const DepthQuantization* steps,
+                       std::vector<GridEdgeState>& state, std::vector<float>& spacing)
     {
-      const std::vector<float> lengths = edgeLengths (grid, positions, dx, dy, threads);
+      const std::vector<float> lengths = edgeLengths (grid, positions, dx, dy, threads, steps);
       const int W = grid.width, x_end = grid.width - dx, y_end = grid.height - dy;
       const std::ptrdiff_t step = dx == 1 ? 1 : W;  // along the edges' line
       std::vector<float> along (grid.cells.size (), -1.0f);
@@ -113,12 +115,16 @@ namespace pcl_sparse
 
   GridEdges
   classifyGridEdges (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, double gap_factor,
-                     const ShadowRule& shadow, int num_threads)
+                     const ShadowRule& shadow, int num_threads, const DepthQuantization* steps)
   {
     GridEdges edges;
     const int threads = threadsFor (num_threads);
-    classifyDirection (grid, positions, 1, 0, gap_factor, shadow, threads, edges.horizontal_state, edges.horizontal_spacing);
-    classifyDirection (grid, positions, 0, 1, gap_factor, shadow, threads, edges.vertical_state, edges.vertical_spacing);
+    if (steps && !steps->active ())
+      steps = nullptr;
+    classifyDirection (grid, positions, 1, 0, gap_factor, shadow, threads, steps, edges.horizontal_state,
+                       edges.horizontal_spacing);
+    classifyDirection (grid, positions, 0, 1, gap_factor, shadow, threads, steps, edges.vertical_state,
+                       edges.vertical_spacing);
     return edges;
   }
 
@@ -137,8 +143,10 @@ namespace pcl_sparse
 
   PointNeighborhoods
   gridNeighborhoods (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
-                     int window_radius, double gap_factor, int num_threads)
+                     int window_radius, double gap_factor, int num_threads, const DepthQuantization* steps)
   {
+    if (steps && !steps->active ())
+      steps = nullptr;
     const std::size_t n = positions.size ();
     const int r = window_radius, stride = (2 * r + 1) * (2 * r + 1) - 1;
     PointNeighborhoods hoods;
@@ -169,7 +177,10 @@ namespace pcl_sparse
               continue;
             const int j = grid.at (u, v);
             const double reach2 = gap2 * (dx * dx * sx * sx + dy * dy * sy * sy);
-            if (j >= 0 && (positions[j] - positions[i]).squaredNorm () <= reach2)
+            if (j < 0)
+              continue;
+            const double d = steps ? steps->effectiveLength (positions, i, j) : (positions[j] - positions[i]).norm ();
+            if (d * d <= reach2)
               out[counts[i]++] = j;
           }
       }

@@ -48,11 +48,12 @@ namespace pcl_sparse
 
     /// Length of the diagonal (p, q) if it passes the rules, else -1.
     double
-    diagonal (const std::vector<Eigen::Vector3d>& positions, int p, int q, double limit, const ShadowRule& shadow)
+    diagonal (const std::vector<Eigen::Vector3d>& positions, int p, int q, double limit, const ShadowRule& shadow,
+              const DepthQuantization* steps)
     {
       if (p < 0 || q < 0)
         return -1.0;
-      const double length = (positions[p] - positions[q]).norm ();
+      const double length = steps ? steps->effectiveLength (positions, p, q) : (positions[p] - positions[q]).norm ();
       return (length <= limit && !shadow.shadowed (p, positions[p], positions[q])) ? length : -1.0;
     }
 
@@ -93,11 +94,11 @@ namespace pcl_sparse
     void
     triangulateCell (const Cell& k, const std::vector<Eigen::Vector3d>& positions, double gap_factor,
                      const ShadowRule& shadow, const std::vector<Eigen::Vector3d>* normals, double facing,
-                     std::vector<Eigen::Vector3i>& out)
+                     const DepthQuantization* steps, std::vector<Eigen::Vector3i>& out)
     {
       const double limit = gap_factor * std::hypot (k.sx, k.sy);
-      const double ad = diagonal (positions, k.a, k.d, limit, shadow);
-      const double bc = diagonal (positions, k.b, k.c, limit, shadow);
+      const double ad = diagonal (positions, k.a, k.d, limit, shadow, steps);
+      const double bc = diagonal (positions, k.b, k.c, limit, shadow, steps);
       const bool all = k.a >= 0 && k.b >= 0 && k.c >= 0 && k.d >= 0;
       const bool can_ad = ad >= 0.0 && (all || k.b < 0 || k.c < 0), can_bc = bc >= 0.0 && (all || k.a < 0 || k.d < 0);
       Eigen::Vector3i with_ad[2], with_bc[2];
@@ -118,8 +119,11 @@ namespace pcl_sparse
   std::vector<Eigen::Vector3i>
   triangulateImageGrid (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
                         const std::vector<std::uint8_t>& usable, double gap_factor, const ShadowRule& shadow,
-                        int num_threads, const std::vector<Eigen::Vector3d>* normals, double facing)
+                        int num_threads, const std::vector<Eigen::Vector3d>* normals, double facing,
+                        const DepthQuantization* steps)
   {
+    if (steps && !steps->active ())
+      steps = nullptr;
     const int rows = grid.height - 1;
     if (rows <= 0 || grid.width < 2)
       return {};
@@ -128,7 +132,8 @@ namespace pcl_sparse
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 8)
     for (int y = 0; y < rows; ++y)
       for (int x = 0; x + 1 < grid.width; ++x)
-        triangulateCell (cellAt (grid, edges, usable, x, y), positions, gap_factor, shadow, normals, facing, per_row[y]);
+        triangulateCell (cellAt (grid, edges, usable, x, y), positions, gap_factor, shadow, normals, facing, steps,
+                         per_row[y]);
     std::vector<Eigen::Vector3i> triangles;
     for (const auto& row : per_row)
       triangles.insert (triangles.end (), row.begin (), row.end ());

@@ -28,13 +28,6 @@ namespace pcl_sparse
       return count > 0 ? sum / count : 0.0;
     }
 
-    /// True if \a j lists \a i among its neighbours.
-    bool
-    lists (const KnnGraph& graph, int j, int i)
-    {
-      const int* row = graph.neighbors.data () + static_cast<std::size_t> (j) * graph.k;
-      return std::find (row, row + graph.k, i) != row + graph.k;
-    }
   } // namespace
 
   KnnGraph
@@ -134,13 +127,9 @@ namespace pcl_sparse
         const double limit = gap_factor * std::min (hoods.spacing[i], hoods.spacing[j]);
         const bool gap_ok = graph.distances[i * k + m] <= limit;
         const bool shadow_ok = !shadow.shadowed (i, positions[i], positions[j]);
-        // Count each unordered pair once: from the smaller index, or from i when j does not list i.
-        if (i < j || !lists (graph, j, static_cast<int> (i)))
-        {
-          ++candidates;
-          refused += (gap_ok && shadow_ok) ? 0 : 1;
-          shadowed += (gap_ok && !shadow_ok) ? 1 : 0;
-        }
+        ++candidates;
+        refused += (gap_ok && shadow_ok) ? 0 : 1;
+        shadowed += (gap_ok && !shadow_ok) ? 1 : 0;
         if (gap_ok && shadow_ok)
           kept[i * k + count[i]++] = j;
       }

@@ -3,6 +3,7 @@
 #include <pcl_sparse/geometry/quadric_fit.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include <omp.h>
 
@@ -29,6 +30,18 @@ namespace pcl_sparse
           extent = std::max ({extent, std::abs (local.back ().x ()), std::abs (local.back ().y ())});
         }
       if (local.size () < 7 || !(extent > 0.0))
+        return -1.0;
+      // The neighbours must spread in both tangent directions: along a lidar ring or a scan line a quadric
+      // interpolates them and the residual says nothing about the noise.
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero ();
+      for (const auto& q : local)
+        mean += q.head<2> ();
+      mean /= static_cast<double> (local.size ());
+      Eigen::Matrix2d spread = Eigen::Matrix2d::Zero ();
+      for (const auto& q : local)
+        spread.noalias () += (q.head<2> () - mean) * (q.head<2> () - mean).transpose ();
+      const Eigen::Vector2d eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> (spread, Eigen::EigenvaluesOnly).eigenvalues ();
+      if (!(eigenvalues[0] >= 0.05 * eigenvalues[1]))
         return -1.0;
       const double s = 1.0 / extent;
       Eigen::Matrix<double, 6, 6> AtA = Eigen::Matrix<double, 6, 6>::Zero ();

@@ -24,7 +24,7 @@ namespace pcl_sparse
   {
     Surface = 0,    ///< has a neighbourhood and a normal
     Outlier = 1,    ///< farther than the outlier rule from the tangent plane of every neighbour
-    Isolated = 2,   ///< fewer than 2 neighbours within the gap rule: no plane, no triangle
+    Isolated = 2,   ///< fewer than 2 usable neighbours within the gap rule: no plane, no triangle
     NonFinite = 3   ///< a NaN/Inf coordinate (the scan was not cleaned)
   };
 
@@ -53,13 +53,16 @@ namespace pcl_sparse
     std::size_t unreferenced = 0;      ///< vertices in no triangle (all kinds)
     std::size_t refused_edges = 0;     ///< candidate edges refused by the gap and shadow rules (see below)
     std::size_t shadowed_edges = 0;    ///< of which refused by the shadow rule alone
-    /// Image grid / lidar rings: grid edges whose two pixels hold points; kNN: pairs (i, j) with j among
-    /// the k nearest of i or i among those of j.
+    /// Image grid / lidar rings: grid edges whose two pixels hold points; kNN: ordered pairs (i, j) with j
+    /// among the k nearest of i (a mutual pair counts twice).
     std::size_t candidate_edges = 0;
     std::size_t unplaced = 0;          ///< lidar rings: points that found no free cell of the grid
     /// Image grid / lidar rings: triangles left out because their geometric normal points against their
     /// corners' normals (a noise spike or a surface seen edge-on; see windImageTrianglesLikeNormals).
     std::size_t folded_triangles = 0;
+    /// Image grid / lidar rings: the number of distinct depths when the depth is stored in steps and
+    /// options.bridge_depth_steps measured lengths over them; 0 otherwise.
+    std::size_t depth_levels = 0;
     /// kNN: boundary loops of up to 12 edges closed after the local triangulation (small_hole_filling.h).
     std::size_t filled_holes = 0;
     CloudNeighborhood neighborhood = CloudNeighborhood::Knn;  ///< which neighbourhood was used
@@ -78,14 +81,16 @@ namespace pcl_sparse
   ///   3. noise: the median leave-one-out residual of local quadric fits (curvature does not count as
   ///      noise), scaled to a standard deviation; outliers by the rule of the options, then the normals
   ///      of their neighbours again without them;
-  ///   4. triangles: two per 2 x 2 grid cell across the shorter diagonal where no edge is refused;
+  ///   4. triangles: on a grid, two per 2 x 2 cell where no edge is refused, across the diagonal whose
+  ///      triangles face like the normals (then the shorter), all wound alike, folded ones left out;
   ///      without a grid, local Delaunay fans in each point's tangent plane, each triangle taken when it
   ///      overlaps no triangle proposed by more corners, then holes of up to 12 edges closed under the gap
   ///      rule; wound like the normals.
-  /// The result is the same for any number of threads.
-  /// Throws pcl_sparse::Error for an empty scan, a scan without a finite point, attribute or index vectors
-  /// of the wrong size, pixel indices outside width x height, a requested orientation that has nothing
-  /// to work with (Viewpoint without any viewpoint, Given without normals), or options out of range.
+  /// The result is the same for any number of threads, and no randomness is involved (no seed).
+  /// Throws pcl_sparse::Error with a one-line message for an empty scan, a scan without a finite point,
+  /// normals, indices or point_viewpoints of the wrong size, pixel indices outside width x height or
+  /// shared by two points, use_given_normals on a scan without normals, or options out of range
+  /// (validateCloudSurfaceOptions).
   CloudSurface
   buildCloudSurface (const ScanCloud& scan, const CloudSurfaceOptions& options = CloudSurfaceOptions ());
 } // namespace pcl_sparse

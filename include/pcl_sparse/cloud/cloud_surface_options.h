@@ -69,6 +69,11 @@ namespace pcl_sparse
     /// graph, because rings are far apart compared with the points along them and a kNN graph never joins
     /// two rings. Found around the file's origin, that origin is the viewpoint for Auto orientation.
     bool use_lidar_rings = true;
+    /// Image grids and lidar rings seen from a viewpoint: when the depth is stored in steps (Kinect-class
+    /// disparity: fewer distinct depths than 1 % of the points; depth_quantization.h), lengths are measured
+    /// over one step of depth, so that a slanted surface's staircase is not cut into terraces by the gap
+    /// rule.
+    bool bridge_depth_steps = true;
     /// Outlier rule: a point is an outlier when its distance to the tangent plane of every neighbour
     /// exceeds max (outlier_factor x noise, outlier_spacing x that neighbour's local spacing). > 0.
     double outlier_factor = 6.0;

@@ -7,6 +7,7 @@
 /// rule holds on anisotropic grids (lidar rings far apart, surfaces seen at a slant), while a depth jump
 /// makes one line of long edges, a minority in every window around it (a one-pixel pole has two).
 
+#include <pcl_sparse/cloud/depth_quantization.h>
 #include <pcl_sparse/cloud/edge_rules.h>
 #include <pcl_sparse/cloud/point_neighborhoods.h>
 #include <pcl_sparse/cloud/scan_grid.h>
@@ -41,10 +42,11 @@ namespace pcl_sparse
   };
 
   /// Classifies every grid edge by the gap rule and then the shadow rule (ShadowRule::shadowed with the
-  /// viewpoint of the edge's first point).
+  /// viewpoint of the edge's first point). With \a steps, lengths (edges and spacings) are measured over
+  /// the depth steps (DepthQuantization::effectiveLength).
   GridEdges
   classifyGridEdges (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, double gap_factor,
-                     const ShadowRule& shadow, int num_threads);
+                     const ShadowRule& shadow, int num_threads, const DepthQuantization* steps = nullptr);
 
   /// Counts over existing edges: candidates, refused (gap or shadow), shadowed.
   void
@@ -54,8 +56,8 @@ namespace pcl_sparse
   /// gap_factor x |(dx s_x, dy s_y)| of it (s_x, s_y: the pixel's spacings along the two grid directions,
   /// from the medians of its edges). Spacing of a point: sqrt (s_x s_y). (No shadow rule here: these
   /// neighbourhoods serve the normals, and a shadowed neighbour within the gap rule is on the same
-  /// surface seen at a grazing angle; the triangles apply it.)
+  /// surface seen at a grazing angle; the triangles apply it.) Distances over the depth \a steps if given.
   PointNeighborhoods
   gridNeighborhoods (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
-                     int window_radius, double gap_factor, int num_threads);
+                     int window_radius, double gap_factor, int num_threads, const DepthQuantization* steps = nullptr);
 } // namespace pcl_sparse

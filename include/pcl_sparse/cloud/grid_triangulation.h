@@ -4,6 +4,7 @@
 /// usable points and no edge is refused (the grid edges by classifyGridEdges, the diagonal by the same
 /// rules against the cell's spacings).
 
+#include <pcl_sparse/cloud/depth_quantization.h>
 #include <pcl_sparse/cloud/edge_rules.h>
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
 #include <pcl_sparse/cloud/scan_grid.h>
@@ -22,10 +23,12 @@ namespace pcl_sparse
   /// triangle under the same conditions. The diagonal: the shorter one, unless \a normals are given and
   /// the other split has more triangles facing like their corners' normals (facing x (area . sum of the
   /// normals) > 0): on quantized depth (Kinect terraces) the shorter diagonal often folds over a step.
-  /// Triangles come in cell order, all wound alike in the image (a, c, d), (a, d, b) or (a, c, b),
-  /// (b, c, d): clockwise in pixel coordinates with y down.
+  /// Diagonals are measured over the depth \a steps if given. Triangles come in cell order, all wound
+  /// alike in the image (a, c, d), (a, d, b) or (a, c, b), (b, c, d): clockwise in pixel coordinates with
+  /// y down.
   std::vector<Eigen::Vector3i>
   triangulateImageGrid (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
                         const std::vector<std::uint8_t>& usable, double gap_factor, const ShadowRule& shadow,
-                        int num_threads, const std::vector<Eigen::Vector3d>* normals = nullptr, double facing = 1.0);
+                        int num_threads, const std::vector<Eigen::Vector3d>* normals = nullptr, double facing = 1.0,
+                        const DepthQuantization* steps = nullptr);
 } // namespace pcl_sparse

@@ -35,8 +35,8 @@ namespace pcl_sparse
   findKNearestNeighbors (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& searched,
                          int k, int num_threads);
 
-  /// Edge counts of acceptKnnEdges, over unordered pairs {i, j} with j a k-nearest neighbour of i or i one
-  /// of j.
+  /// Edge counts of acceptKnnEdges, over ordered pairs (i, j) with j among the k nearest of i (a mutual
+  /// pair counts twice).
   struct KnnEdgeCounts
   {
     std::size_t candidates = 0;

@@ -21,7 +21,9 @@ namespace pcl_sparse
   /// deviate), where r_i is the height of point i above the least-squares height quadric of its
   /// neighbours in the tangent frame of its normal, and h_i that prediction's leverage. Points are taken
   /// with a deterministic stride so that at most \a max_samples are used; a point counts when it is
-  /// usable, has a normal, and has at least 7 usable neighbours. 0 when no point counts.
+  /// usable, has a normal, and has at least 7 usable neighbours spread in both tangent directions (the
+  /// smaller principal variance at least 5 % of the larger: not a single scan line). 0 when no point
+  /// counts.
   double
   estimateScanNoise (const std::vector<Eigen::Vector3d>& positions, const PointNeighborhoods& neighborhoods,
                      const std::vector<Eigen::Vector3d>& normals, const std::vector<std::uint8_t>& usable,

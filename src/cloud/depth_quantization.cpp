@@ -1,0 +1,56 @@
+#include <pcl_sparse/cloud/depth_quantization.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_sparse
+{
+  double
+  DepthQuantization::effectiveLength (const std::vector<Eigen::Vector3d>& positions, int a, int b) const
+  {
+    const Eigen::Vector3d d = positions[b] - positions[a];
+    if (axis < 0)
+      return d.norm ();
+    const int low = std::min (level[a], level[b]);
+    const double step = (low >= 0 && low + 1 < static_cast<int> (levels.size ())) ? levels[low + 1] - levels[low] : 0.0;
+    const double along = std::abs (d[axis]), reduced = std::max (0.0, along - step);
+    return std::sqrt (std::max (0.0, d.squaredNorm () - along * along) + reduced * reduced);
+  }
+
+  DepthQuantization
+  findDepthQuantization (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& used,
+                         const Eigen::Vector3d& viewpoint)
+  {
+    DepthQuantization q;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero ();
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < positions.size (); ++i)
+      if (used[i] && positions[i] != viewpoint)
+      {
+        mean += (positions[i] - viewpoint).normalized ();
+        ++count;
+      }
+    if (count < 100)
+      return q;
+    mean /= static_cast<double> (count);
+    int axis;
+    if (!(mean.cwiseAbs ().maxCoeff (&axis) >= 0.7))
+      return q;
+    std::vector<double> values;
+    values.reserve (count);
+    for (std::size_t i = 0; i < positions.size (); ++i)
+      if (used[i])
+        values.push_back (positions[i][axis]);
+    std::sort (values.begin (), values.end ());
+    values.erase (std::unique (values.begin (), values.end ()), values.end ());
+    if (values.size () < 2 || values.size () >= count / 100)
+      return q;
+    q.axis = axis;
+    q.levels = values;
+    q.level.assign (positions.size (), -1);
+    for (std::size_t i = 0; i < positions.size (); ++i)
+      if (used[i])
+        q.level[i] = static_cast<int> (std::lower_bound (values.begin (), values.end (), positions[i][axis]) - values.begin ());
+    return q;
+  }
+} // namespace pcl_sparse
