@@ -6,6 +6,7 @@
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
+#include <pcl_sparse/format/sparse_code_stream.h>
 #include <pcl_sparse/format/zstd_codec.h>
 
 #include <algorithm>
@@ -110,28 +111,6 @@ namespace pcl_sparse
         for (std::size_t i = 0; i < count; ++i)
           values[i] |= static_cast<std::uint64_t> (p[b * count + i]) << (8 * b);
       return values;
-    }
-
-    /// Rank of cosine atom (i, j) in "shell order": by max(i, j) first (the Nyquist cap allows exactly
-    /// the shells up to a frequency, and OMP picks low shells most), so a patch's sorted ranks form a
-    /// near-prefix with small deltas. Shell m = max(i, j) holds ranks m^2 .. m^2 + 2m.
-    int
-    shellRank (int atom, int n)
-    {
-      const int i = atom / n, j = atom % n, m = std::max (i, j);
-      return m * m + (i == m ? j : m + 1 + i);
-    }
-
-    int
-    atomOfShellRank (int rank, int n)
-    {
-      int m = static_cast<int> (std::sqrt (static_cast<double> (rank)));
-      while (m * m > rank)
-        --m;
-      while ((m + 1) * (m + 1) <= rank)
-        ++m;
-      const int o = rank - m * m;
-      return o <= m ? m * n + o : (o - m - 1) * n + m;
     }
 
     double
@@ -250,11 +229,7 @@ namespace pcl_sparse
         foot.putVarint (patch.footprint.extent.size ());
         for (float e : patch.footprint.extent)
           foot.putF32 (e);
-        atom.putVarint (patch.atoms.size ());
-        for (int a : patch.atoms)
-          atom.putVarint (static_cast<std::uint64_t> (a));
-        for (double c : patch.coefficients)
-          coef.putF64 (c);
+        putCodeCoefficients (coef, patch.coefficients, putCodeAtoms (atom, patch.atoms, false, 0), 0.0);
       }
       return {{"SEED", kCodecZstd, std::move (seed.bytes ())}, {"FRAM", kCodecZstd, std::move (frame.bytes ())},
               {"RADI", kCodecZstd, std::move (radius.bytes ())}, {"FOOT", kCodecZstd, std::move (foot.bytes ())},
@@ -349,29 +324,11 @@ namespace pcl_sparse
     putQuantisedCode (ByteWriter& atom, ByteWriter& coef, const PatchCode& patch, const QuantisationParameters& q,
                       int frequencies, PatchCode& decoded)
     {
-      std::vector<std::size_t> order (patch.atoms.size ());
-      std::iota (order.begin (), order.end (), 0);
-      std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
-        return shellRank (patch.atoms[a], frequencies) < shellRank (patch.atoms[b], frequencies);
-      });
-      atom.putVarint (order.size ());
-      int previous_rank = -1;
+      const std::vector<std::size_t> order = putCodeAtoms (atom, patch.atoms, true, frequencies);
       for (std::size_t k : order)
-      {
-        const int rank = shellRank (patch.atoms[k], frequencies);
-        atom.putVarint (static_cast<std::uint64_t> (rank - previous_rank - 1));
-        previous_rank = rank;
         decoded.atoms.push_back (patch.atoms[k]);
-      }
       const double step = coefficientStep (q.coefficient_budget, decoded.radius, order.size ());
-      for (std::size_t k : order)
-      {
-        const double steps = std::round (patch.coefficients[k] / step);
-        if (!(std::abs (steps) < 9.0e15))
-          throw Error ("encodeModel: coefficient too large for the tolerance");
-        coef.putSignedVarint (static_cast<std::int64_t> (steps));
-        decoded.coefficients.push_back (steps * step);
-      }
+      decoded.coefficients = putCodeCoefficients (coef, patch.coefficients, order, step);
     }
 
     /// The frame as a quantised quaternion, its step from the decoded patch (as the decoder derives it).
@@ -713,55 +670,13 @@ namespace pcl_sparse
       }
     }
 
-    /// Atom indices of patch \a p over a basis of \a frequencies^2 atoms (shell-rank deltas in a quantised
-    /// file); refuses indices outside the basis and repeats.
-    void
-    readAtoms (ByteReader& atom, bool quantised, int frequencies, std::size_t p, std::vector<int>& atoms)
-    {
-      const int basis_size = frequencies * frequencies;
-      const std::size_t n = atom.getCount ("atom count", std::min<std::uint64_t> (basis_size, atom.remaining ()));
-      atoms.resize (n);
-      std::int64_t previous = -1;
-      std::vector<bool> used (basis_size, false);
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const std::uint64_t v = atom.getCount ("atom index", static_cast<std::uint64_t> (basis_size));
-        std::int64_t index = quantised ? previous + 1 + static_cast<std::int64_t> (v) : static_cast<std::int64_t> (v);
-        if (index >= basis_size)
-          atom.fail ("patch " + std::to_string (p) + " atom " + std::to_string (index) + " outside the basis of " +
-                     std::to_string (basis_size));
-        previous = index;
-        if (quantised)
-          index = atomOfShellRank (static_cast<int> (index), frequencies);
-        if (index >= basis_size)
-          atom.fail ("patch " + std::to_string (p) + " atom index " + std::to_string (index) + " outside the basis of " +
-                     std::to_string (basis_size));
-        if (used[index])
-          atom.fail ("patch " + std::to_string (p) + " repeats atom " + std::to_string (index));
-        used[index] = true;
-        atoms[i] = static_cast<int> (index);
-      }
-    }
-
     /// One coefficient per atom of \a patch (its radius already read).
     void
     readCoefficients (ByteReader& coef, bool quantised, const QuantisationParameters& q, PatchCode& patch)
     {
       const std::size_t n = patch.atoms.size ();
-      patch.coefficients.resize (n);
-      const double step = quantised ? coefficientStep (q.coefficient_budget, patch.radius, n) : 0.0;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        if (quantised)
-        {
-          const std::int64_t v = coef.getSignedVarint ("coefficient");
-          patch.coefficients[i] = static_cast<double> (v) * step;
-          if (!std::isfinite (patch.coefficients[i]))
-            coef.fail ("coefficient is not finite");
-        }
-        else
-          patch.coefficients[i] = readFinite (coef, "coefficient");
-      }
+      getCodeCoefficients (coef, n, quantised ? coefficientStep (q.coefficient_budget, patch.radius, n) : 0.0,
+                           patch.coefficients);
     }
 
     /// Frame of patch \a p (its radius and code already read: a quantised frame's step depends on them).
@@ -944,7 +859,7 @@ namespace pcl_sparse
       PatchCode& patch = model.patches[p];
       readPlacement (seed, radius, quantised, q, seeds, radii, p, patch);
       readFootprint (foot, quantised, q, p, patch.footprint);
-      readAtoms (atom, quantised, h.basis_parameter, p, patch.atoms);
+      getCodeAtoms (atom, quantised, h.basis_parameter, "patch " + std::to_string (p), patch.atoms);
       readCoefficients (coef, quantised, q, patch);
       readFrame (frame, quantised, q, p, patch);
     }
