@@ -3,6 +3,7 @@
 /// Codes one patch as a sparse height field (METHOD.md steps 7-9): samples, Nyquist cap, OMP, footprint.
 
 #include <pcl_sparse/coding/nyquist_cap.h>
+#include <pcl_sparse/coding/patch_attribute_coder.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
@@ -49,8 +50,10 @@ namespace pcl_sparse
   /// z' at the patch's vertices plus, if there are fewer than options.min_samples of them, that many
   /// minus the vertex count of extra points on its triangles (seeded by mixSeed (options.seed,
   /// \a patch_index)). The returned code carries origin, frame, radius, atoms, coefficients, footprint,
-  /// vertices and their local x', y'.
+  /// vertices and their local x', y'; with \a attributes (optional) also one code per attribute channel
+  /// (codePatchAttributes, at the same samples; the height's code is the same with or without them).
   PatchCode
   codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh,
-             const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr);
+             const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr,
+             const AttributeCodingInput* attributes = nullptr);
 } // namespace pcl_sparse

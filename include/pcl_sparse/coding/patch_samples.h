@@ -25,11 +25,32 @@ namespace pcl_sparse
   std::vector<double>
   meanRingEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology);
 
+  /// A point on one of a patch's triangles: its corners as positions in patch.vertices / patch.local, and
+  /// barycentric weights (summing to 1).
+  struct PatchSurfacePoint
+  {
+    Eigen::Vector3i corners;
+    Eigen::Vector3d weights;
+
+    /// The weighted combination of \a values at the corners (e.g. patch.local).
+    Eigen::Vector3d
+    interpolate (const std::vector<Eigen::Vector3d>& values) const
+    {
+      return weights[0] * values[corners[0]] + weights[1] * values[corners[1]] + weights[2] * values[corners[2]];
+    }
+  };
+
+  /// \a count points drawn uniformly by area on the patch's own triangles (patch.triangles, face ids of
+  /// \a mesh): a random triangle by area and a uniform barycentric point in it. Deterministic for a given
+  /// \a seed. Empty when the patch has no triangle of positive area.
+  std::vector<PatchSurfacePoint>
+  drawPatchSurfacePoints (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed);
+
   /// \a count points drawn uniformly by area on the patch's own triangles (patch.triangles, face ids of
   /// \a mesh), in local coordinates
   /// (x', y', z'): a random triangle by area, a uniform barycentric point in it, and the barycentric
   /// combination of the corners' local coordinates (the mesh's own surface there, since the local map is
-  /// affine). Deterministic for a given \a seed. Empty when the patch has no triangle of positive area.
+  /// affine): drawPatchSurfacePoints interpolating patch.local.
   std::vector<Eigen::Vector3d>
   drawPatchSurfaceSamples (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed);
 
