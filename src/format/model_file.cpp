@@ -3,6 +3,7 @@
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/attribute_sections.h>
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
@@ -29,6 +30,7 @@ namespace pcl_sparse
     constexpr std::size_t kSectionHeaderBytes = 32;
     constexpr std::uint16_t kFlagQuantised = 1;
     constexpr std::uint16_t kFlagVertices = 2;
+    constexpr std::uint16_t kFlagAttributes = 4;
     constexpr std::uint8_t kBasisCosine = 1;     ///< CosineDictionary: cos(i pi x) cos(j pi y)
     constexpr std::uint8_t kBasisDctCosine = 2;  ///< DctCosineDictionary: cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2)
     constexpr std::uint8_t kCodecStored = 0;
@@ -49,8 +51,25 @@ namespace pcl_sparse
     constexpr double kFrameShare = 0.16;
     constexpr double kCoefficientShare = 0.58;
 
-    const char* const kLosslessTags[] = {"SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF", "VERT"};
-    const char* const kQuantisedTags[] = {"QUAN", "SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF", "VERT"};
+    const char* const kLosslessTags[] = {"SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF"};
+    const char* const kQuantisedTags[] = {"QUAN", "SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF"};
+    const char* const kAttributeTags[] = {"ACHN", "AATM", "ACOF"};
+
+    /// The sections a file with \a flags has, in order.
+    std::vector<std::string>
+    expectedTags (std::uint16_t flags)
+    {
+      std::vector<std::string> tags;
+      if (flags & kFlagQuantised)
+        tags.assign (std::begin (kQuantisedTags), std::end (kQuantisedTags));
+      else
+        tags.assign (std::begin (kLosslessTags), std::end (kLosslessTags));
+      if (flags & kFlagVertices)
+        tags.push_back ("VERT");
+      if (flags & kFlagAttributes)
+        tags.insert (tags.end (), std::begin (kAttributeTags), std::end (kAttributeTags));
+      return tags;
+    }
 
     /// Quantisation parameters of a quantised file (section QUAN, stored uncompressed).
     struct QuantisationParameters
@@ -209,6 +228,8 @@ namespace pcl_sparse
             throw Error ("encodeModel: " + name + " footprint extent is negative or not finite");
         if (patch.vertices.size () != patch.vertex_xy.size ())
           throw Error ("encodeModel: " + name + " vertices and vertex_xy differ in size");
+        if (!model.hasAttributes () && !patch.attributes.empty ())
+          throw Error ("encodeModel: " + name + " has attribute codes but the model has no attribute channels");
       }
     }
 
@@ -494,7 +515,7 @@ namespace pcl_sparse
       const std::uint32_t header_crc = in.getU32 ("header checksum");
       if (kVerifyChecksums && crc32 (data, kHeaderBytes - 4) != header_crc)
         throw Error (what + ": header checksum mismatch (corrupt file)");
-      if ((h.flags & ~(kFlagQuantised | kFlagVertices)) != 0 || reserved != 0)
+      if ((h.flags & ~(kFlagQuantised | kFlagVertices | kFlagAttributes)) != 0 || reserved != 0)
         throw Error (what + ": unknown header flags");
       if (h.basis_kind != kBasisCosine && h.basis_kind != kBasisDctCosine)
         throw Error (what + ": unknown basis kind " + std::to_string (h.basis_kind));
@@ -510,11 +531,10 @@ namespace pcl_sparse
       if (!std::isfinite (h.tolerance) || h.tolerance < 0.0 || (h.tolerance > 0.0) != quantised ||
           (quantised && !(h.bbox_diagonal > 0.0)))
         throw Error (what + ": tolerance does not match the quantised flag");
-      const std::size_t expected_sections = (quantised ? 7 : 6) + ((h.flags & kFlagVertices) ? 1 : 0);
-      if (h.num_sections != expected_sections)
-        throw Error (what + ": " + std::to_string (h.num_sections) + " sections, expected " + std::to_string (expected_sections));
+      const std::vector<std::string> tags = expectedTags (h.flags);
+      if (h.num_sections != tags.size ())
+        throw Error (what + ": " + std::to_string (h.num_sections) + " sections, expected " + std::to_string (tags.size ()));
 
-      const char* const* tags = quantised ? kQuantisedTags : kLosslessTags;
       for (std::uint32_t s = 0; s < h.num_sections; ++s)
       {
         const std::size_t start = in.position ();
@@ -766,11 +786,22 @@ namespace pcl_sparse
     std::vector<Section> sections = quantised ? encodeQuantised (model, options, frequencies) : encodeLossless (model);
     if (options.include_vertices)
       sections.push_back (encodeVertices (model, quantised));
+    const bool attributes = model.hasAttributes ();
+    if (attributes && quantised && !(options.attribute_tolerance > 0.0 && std::isfinite (options.attribute_tolerance)))
+      throw Error ("encodeModel: attribute_tolerance must be > 0");
+    if (attributes)
+    {
+      AttributeSectionBytes bytes = encodeAttributeSections (model, quantised ? options.attribute_tolerance : 0.0);
+      sections.push_back ({"ACHN", kCodecStored, std::move (bytes.channels)});
+      sections.push_back ({"AATM", kCodecZstd, std::move (bytes.atoms)});
+      sections.push_back ({"ACOF", kCodecZstd, std::move (bytes.coefficients)});
+    }
 
     ByteWriter out;
     out.putBytes (kMagic, sizeof kMagic);
     out.putU16 (kVersion);
-    out.putU16 (static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0)));
+    out.putU16 (static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0) |
+                                            (attributes ? kFlagAttributes : 0)));
     out.putU8 (cosine.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine);
     out.putU8 (0);
     out.putU16 (static_cast<std::uint16_t> (frequencies));
@@ -876,6 +907,14 @@ namespace pcl_sparse
       ByteReader vert = open (vertex_bytes);
       readVertices (vert, quantised, h.num_input_vertices, model.patches);
     }
+    if (h.flags & kFlagAttributes)
+    {
+      std::vector<std::uint8_t> channel_bytes, attribute_atom_bytes, attribute_coef_bytes;
+      ByteReader channels = open (channel_bytes);
+      ByteReader attribute_atoms = open (attribute_atom_bytes);
+      ByteReader attribute_coefs = open (attribute_coef_bytes);
+      decodeAttributeSections (channels, attribute_atoms, attribute_coefs, quantised, model);
+    }
     return model;
   }
 
@@ -887,6 +926,14 @@ namespace pcl_sparse
     info.version = container.header.version;
     info.quantised = container.header.flags & kFlagQuantised;
     info.has_vertices = container.header.flags & kFlagVertices;
+    if (container.header.flags & kFlagAttributes)
+    {
+      const StoredSection& section = container.sections[container.sections.size () - 3];
+      const std::vector<std::uint8_t> bytes = sectionBytes (section, name);
+      ByteReader channels (bytes.data (), bytes.size (), name + ": section " + section.tag);
+      for (const AttributeChannelInfo& channel : decodeAttributeChannels (channels, info.quantised))
+        info.attributes.push_back (attributeChannelName (channel.channel));
+    }
     info.basis = std::string (container.header.basis_kind == kBasisDctCosine ? "dct cosine " : "cosine ") +
                  std::to_string (container.header.basis_parameter) + "x" +
                  std::to_string (container.header.basis_parameter);
