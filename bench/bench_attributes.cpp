@@ -8,7 +8,7 @@
 /// (SparseSurfaceEncoder<PointXYZRGBA>, setIndices on the used points), and measured:
 ///  - colour error at the input vertices (blended codes at their x', y' against the input, grey levels);
 ///  - colour error of a resampled PointXYZRGB cloud (as many points as vertices) against the colour of the
-///    nearest input vertex;
+///    nearest input vertex, and for scale the difference between each vertex and its nearest other vertex;
 ///  - file bytes with and without the attribute sections, lossless and at tolerance 1e-4.
 /// Prints one JSON line.
 
@@ -165,6 +165,18 @@ main (int argc, char** argv)
     resampled += (std::abs (q.r - p.r) + std::abs (q.g - p.g) + std::abs (q.b - p.b)) / (3.0 * out.size ());
   }
 
+  // For scale: the colour difference between each vertex and its nearest other vertex.
+  double neighbour = 0.0;
+  pcl::Indices two (2);
+  std::vector<float> two_distances (2);
+  for (int i : *used)
+  {
+    tree.nearestKSearch ((*cloud)[i], 2, two, two_distances);
+    const auto& p = (*cloud)[i];
+    const auto& q = (*cloud)[two[0] == i ? two[1] : two[0]];
+    neighbour += (std::abs (q.r - p.r) + std::abs (q.g - p.g) + std::abs (q.b - p.b)) / (3.0 * used->size ());
+  }
+
   SparseSurfaceModel geometry = *model;
   geometry.attribute_channels.clear ();
   geometry.attribute_basis.reset ();
@@ -176,11 +188,11 @@ main (int argc, char** argv)
   const double lossless_bytes = encodeModel (*model).size (), lossless_geometry = encodeModel (geometry).size ();
   const double quantised_bytes = encodeModel (*model, quantised).size (), quantised_geometry = encodeModel (geometry, quantised).size ();
   std::printf ("{\"vertices\": %zu, \"triangles\": %zu, \"patches\": %zu, \"attribute_nnz_per_patch_channel\": %.2f, "
-               "\"vertex_rmse\": %.3f, \"vertex_mae\": %.3f, \"resampled_mae_vs_nearest\": %.3f, \"encode_seconds\": %.2f, "
+               "\"vertex_rmse\": %.3f, \"vertex_mae\": %.3f, \"resampled_mae_vs_nearest\": %.3f, \"neighbour_mae\": %.3f, \"encode_seconds\": %.2f, "
                "\"lossless_bytes\": %.0f, \"lossless_attribute_bytes_per_patch\": %.1f, \"quantised_bytes\": %.0f, "
                "\"quantised_attribute_bytes_per_patch\": %.1f}\n",
                used->size (), triangles.size (), model->numPatches (), nnz / (static_cast<double> (model->attribute_channels.size ()) * m), std::sqrt (sum2 / n), sum1 / n,
-               resampled, seconds, lossless_bytes, (lossless_bytes - lossless_geometry) / m, quantised_bytes,
+               resampled, neighbour, seconds, lossless_bytes, (lossless_bytes - lossless_geometry) / m, quantised_bytes,
                (quantised_bytes - quantised_geometry) / m);
   return 0;
 }
