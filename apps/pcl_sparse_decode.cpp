@@ -1,5 +1,5 @@
 /// pcl_sparse_decode: reads a .psm model file and resamples it into a point cloud with normals and
-/// curvature (METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
+/// curvature (docs/METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
 ///
 ///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-seed S] [-threads T]
 ///                     [-recon MESH RECON.{ply,obj,off,stl}] [--json] [-q]

@@ -1,4 +1,4 @@
-/// pcl_sparse_keypoints: Harris 3D keypoints of a triangle mesh (Sipiran & Bustos; METHOD.md step 3).
+/// pcl_sparse_keypoints: Harris 3D keypoints of a triangle mesh (Sipiran & Bustos; docs/METHOD.md step 3).
 ///
 ///   pcl_sparse_keypoints MESH OUT.{pcd,ply} [-fraction F | -cluster C] [-rings K | -adaptive A] [-k K]
 ///                        [-responses RESP.ply] [--json] [-q]

@@ -1,4 +1,4 @@
-/// pcl_sparse_patches: partitions a mesh into the paper's overlapping height-field patches (METHOD.md
+/// pcl_sparse_patches: partitions a mesh into the paper's overlapping height-field patches (docs/METHOD.md
 /// steps 3-6) and writes the mesh coloured by patch, seeds marked, so the partition can be inspected.
 ///
 ///   pcl_sparse_patches MESH OUT.ply [-rho R] [-delta D] [-cone C] [-eta E] [-sigma S] [-min-size N]

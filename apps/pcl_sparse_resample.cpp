@@ -1,9 +1,10 @@
 /// pcl_sparse_resample: a mesh (encoded first) or a saved model (.psm) to a point cloud with analytic
-/// normals and curvature, at any density (METHOD.md step 12).
+/// normals and curvature, at any density (docs/METHOD.md step 12).
 ///
 ///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-basis paper|dct] [-seed S]
 ///                       [-threads T] [-ascii] [-q] [--json]
 
+#include "tool_input.h"
 #include "tool_resampling.h"
 #include "tool_support.h"
 
@@ -30,10 +31,11 @@ namespace
   const tools::ToolDescription kTool = {
     "pcl_sparse_resample", "IN OUT [options]",
     {
-      {"IN", "a triangle mesh (.obj .off .ply .stl), encoded first, or a saved model (.psm)"},
+      {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points), encoded first,"},
+      {"", "or a saved model (.psm)"},
       {"OUT", "the cloud: .pcd (binary unless -ascii) or .ply; fields x y z nx ny nz curvature"},
       {"", "(curvature = signed mean curvature, 1/length, positive where convex)"},
-      {"-n N", "exactly N points (default: 4 x the input vertex count)"},
+      {"-n N", "exactly N points (default: 4 x the mesh's vertices, 1 x the scan's kept points)"},
       {"-density D", "D points per unit of surface area instead"},
       {"-spacing S", "mean spacing S between neighbouring points instead (density 1 / S^2)"},
       {"-rho R", "encoder: patch area bound rho (default: 0.001, paper)"},
@@ -41,13 +43,15 @@ namespace
       {"-angles K", "encoder: footprint angles (default: 64)"},
       {"-basis paper|dct", "encoder: cosine atoms, paper (default) or half-period dct (both parities: about"},
       {"", "half the distance and normal error; see README)"},
+      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
+      {"", "when plausible, else consistently oriented, outward on closed surfaces)"},
       {"-seed S", "seed of the sampling (default: 42)"},
       {"-threads T", "threads (default: all; the cloud does not depend on it)"},
       {"-ascii", "write ascii instead of binary"},
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
     },
-    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles", "-basis"}, {"-ascii", "-q", "--json"}};
+    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles", "-basis", "-viewpoint"}, {"-ascii", "-q", "--json"}};
 
   struct Settings
   {
@@ -59,6 +63,8 @@ namespace
     SparseSurfaceResamplingOptions resampling;
     int threads = 0;
     bool binary = true, quiet = false, json = false;
+    bool has_viewpoint = false;
+    Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero ();
   };
 
   Settings
@@ -71,8 +77,8 @@ namespace
     s.output = args.positional ()[1];
     if (!tools::hasExtension (s.output, ".pcd") && !tools::hasExtension (s.output, ".ply"))
       throw Error (s.output + ": the output must be .pcd or .ply");
-    if (!tools::hasExtension (s.input, ".psm") && !isMeshFileExtension (s.input))
-      throw Error (s.input + ": unknown input extension (a mesh .obj .off .ply .stl or a model .psm)");
+    if (!tools::hasExtension (s.input, ".psm") && !tools::isSurfaceInputExtension (s.input))
+      throw Error (s.input + ": unknown input extension (a mesh .obj .off .ply .stl, a cloud .pcd .xyz .ply or a model .psm)");
 
     int given = 0;
     if (args.integer ("-n", s.count, Range::closed (1, SparseSurfaceResampling<pcl::PointNormal>::max_points)))
@@ -99,6 +105,7 @@ namespace
       s.encoder.basis = cosineBasisKindFromName (args.value ("-basis"));
     args.integer ("-seed", s.resampling.seed, Range::atLeast (0));
     args.integer ("-threads", s.threads, Range::closed (1, 1024));
+    s.has_viewpoint = tools::parseViewpoint (args, s.viewpoint);
     s.binary = !args.has ("-ascii");
     s.quiet = args.has ("-q");
     s.json = args.has ("--json");
@@ -119,7 +126,9 @@ main (int argc, char** argv)
 
     // Input: a saved model, or a mesh encoded here.
     auto model = std::make_shared<SparseSurfaceModel> ();
-    std::size_t input_vertices = 0;
+    std::size_t input_vertices = 0, default_factor = 4;
+    tools::SurfaceInput input;
+    std::shared_ptr<const CloudSurface> surface;
     double load_seconds = 0.0, encode_seconds = 0.0;
     pcl::console::TicToc timer;
     timer.tic ();
@@ -131,20 +140,26 @@ main (int argc, char** argv)
     }
     else
     {
-      auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (s.input));
+      input = tools::loadSurfaceInput (s.input);
       load_seconds = timer.toc () / 1000.0;
-      input_vertices = mesh->numVertices ();
-      pcl::console::print_info ("Loaded %s: %zu vertices, %zu faces in %.3f s\n", s.input.c_str (), mesh->numVertices (),
-                                mesh->numTriangles (), load_seconds);
+      // A scan's default count is its kept points (a clean cloud of the same size); a mesh's 4 x its vertices.
+      input_vertices = input.points ();
+      default_factor = input.mesh ? 4 : 1;
+      pcl::console::print_info ("Loaded %s: %zu %s in %.3f s\n", s.input.c_str (), input.points (),
+                                input.mesh ? "vertices" : "points", load_seconds);
       s.encoder.validate ();
       SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-      encoder.setInputMesh (mesh);
+      tools::setSurfaceInput (encoder, input);
+      if (s.has_viewpoint)
+        encoder.setViewPoint (s.viewpoint.x (), s.viewpoint.y (), s.viewpoint.z ());
       encoder.setOptions (s.encoder);
       encoder.setNumberOfThreads (s.threads);
       encoder.setProgressCallback (progress);
       timer.tic ();
       encoder.compute (*model);
       encode_seconds = timer.toc () / 1000.0;
+      surface = encoder.getCloudSurface ();
+      tools::printScanSummary (input, surface.get ());
       pcl::console::print_info ("Encoded into %zu patches, %zu coefficients in %.3f s\n", model->numPatches (),
                                 model->numNonZeros (), encode_seconds);
     }
@@ -157,7 +172,8 @@ main (int argc, char** argv)
     {
       if (input_vertices == 0)
         throw Error (s.input + ": the model does not record its vertex count; give -n, -density or -spacing");
-      resampling.setPointCount (std::min<std::size_t> (4 * input_vertices, SparseSurfaceResampling<pcl::PointNormal>::max_points));
+      resampling.setPointCount (
+        std::min<std::size_t> (default_factor * input_vertices, SparseSurfaceResampling<pcl::PointNormal>::max_points));
     }
     else if (s.mode == 1)
       resampling.setPointCount (s.count);
@@ -183,8 +199,9 @@ main (int argc, char** argv)
       pcl::console::print_info (" points in %.3f s (save %.3f s)\n", seconds, save_seconds);
     }
     if (s.json)
-      tools::JsonObject ()
-        .add ("input", s.input)
+    {
+      tools::JsonObject json;
+      json.add ("input", s.input)
         .add ("output", s.output)
         .add ("points", cloud.size ())
         .add ("patches", model->numPatches ())
@@ -195,8 +212,11 @@ main (int argc, char** argv)
         .addSeconds ("encode_seconds", encode_seconds)
         .addSeconds ("resample_seconds", resample_seconds)
         .addSeconds ("save_seconds", save_seconds)
-        .addSeconds ("seconds", seconds)
-        .print ();
+        .addSeconds ("seconds", seconds);
+      if (input.mesh || input.scan)
+        tools::addInputJson (json, input, surface.get ());
+      json.print ();
+    }
     return 0;
   });
 }

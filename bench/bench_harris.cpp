@@ -1,4 +1,4 @@
-/// bench_harris: Harris 3D on meshes (ours, METHOD.md step 3) timed per stage, and side by side with
+/// bench_harris: Harris 3D on meshes (ours, docs/METHOD.md step 3) timed per stage, and side by side with
 /// pcl::HarrisKeypoint3D (covariance of normals in a radius) on the same vertices: time, and how many of
 /// each detector's top keypoints lie near sharp edges on fandisk. Prints a markdown report on stdout.
 ///

@@ -1,4 +1,4 @@
-/// bench_patches: time of the patch partition (METHOD.md steps 4-6) on real meshes, with the Harris 3D
+/// bench_patches: time of the patch partition (docs/METHOD.md steps 4-6) on real meshes, with the Harris 3D
 /// candidate order computed beforehand (its time is reported apart), as a markdown table row per mesh.
 ///
 ///   bench_patches MESH... [-rho R] [-repeat N] [-authors] [-header 0]

@@ -22,7 +22,7 @@ targets="$meshes/bunny-hr-closed.obj $meshes/fandisk.off $meshes/spot.obj"
   echo "f = 0.5 (paper rule), L = 12, eps = 0.01, m_min = 64, 144 cosine atoms. Seconds: encoder wall clock"
   echo "(Harris 3D + seeds + growth + frames = patches, then coding), best of 3; loading and statistics"
   echo "excluded. CPU s: process CPU time of the encoder summed over threads (best of 3; includes OpenMP"
-  echo "spin-waiting). CR = (13 M + nnz) / (3 N_V). RMSE over the input vertices (blended, METHOD.md step 10)."
+  echo "spin-waiting). CR = (13 M + nnz) / (3 N_V). RMSE over the input vertices (blended, docs/METHOD.md step 10)."
   echo
   echo "## All shared meshes, paper defaults"
   echo

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Partition time (seed sampling, patch growth, frames; METHOD.md steps 4-6) on the shared meshes.
+# Partition time (seed sampling, patch growth, frames; docs/METHOD.md steps 4-6) on the shared meshes.
 #   bench/patches.sh [BUILD_DIR]   (default: build) -> bench/results/patches.md
 set -e
 here=$(cd "$(dirname "$0")" && pwd)

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Installs the Debian (bookworm) packages pcl_sparse needs to build, test and run its demo.
+# Installs the Debian (bookworm) packages pcl_sparse needs to build, test and run its demo (doxygen: the
+# API reference and its warning check, test doxygen_clean).
 # Idempotent: packages already present are skipped. Uses sudo only when not root.
 set -euo pipefail
 
 packages=(build-essential cmake pkg-config libpcl-dev libeigen3-dev libflann-dev libboost-dev
-          libgtest-dev libzstd-dev "$@")
+          libgtest-dev libzstd-dev doxygen "$@")
 
 missing=()
 for p in "${packages[@]}"; do

@@ -12,6 +12,14 @@ if(TARGET pcl_sparse_info)
             -P ${PROJECT_SOURCE_DIR}/cmake/CheckInfoTool.cmake)
 endif()
 
+# The API reference builds without a single doxygen warning (docs/Doxyfile.in, CMakeLists.txt).
+if(DOXYGEN_FOUND)
+  add_test(NAME doxygen_clean
+    COMMAND ${CMAKE_COMMAND} -DDOXYGEN=${DOXYGEN_EXECUTABLE} -DDOXYFILE=${PROJECT_BINARY_DIR}/Doxyfile
+            -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/doxygen_clean -P ${PROJECT_SOURCE_DIR}/cmake/CheckDoxygen.cmake)
+  set_tests_properties(doxygen_clean PROPERTIES TIMEOUT 300)
+endif()
+
 # Installs the whole build (so it needs every target built first, as scripts/test.sh does).
 add_test(NAME consumer_project
   COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DBINARY_DIR=${PROJECT_BINARY_DIR}

@@ -1,5 +1,5 @@
 #include <pcl_sparse/common/error.h>
-#include <pcl_sparse/mesh/mesh_normal_estimation.h>
+#include <pcl_sparse/normals/mesh_normal_estimation.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>

@@ -1,4 +1,4 @@
-// Feature-aware seed sampling and patch construction (METHOD.md steps 4-6, issue 4): invariants on
+// Feature-aware seed sampling and patch construction (docs/METHOD.md steps 4-6, issue 4): invariants on
 // generated meshes with known answers, and on the shared real meshes.
 
 #include <pcl_sparse/common/error.h>

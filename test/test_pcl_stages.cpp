@@ -4,7 +4,7 @@
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/keypoints/harris_keypoint3d_mesh.h>
-#include <pcl_sparse/mesh/mesh_normal_estimation.h>
+#include <pcl_sparse/normals/mesh_normal_estimation.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/sub_mesh.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
@@ -229,9 +229,14 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   SparseSurfaceEncoder<pcl::PointXYZ> no_input;
   EXPECT_NE (errorOf ([&] { no_input.compute (model); }).find ("[SparseSurfaceEncoder::compute] no input"), std::string::npos);
 
-  SparseSurfaceEncoder<pcl::PointXYZ> no_polygons;
-  no_polygons.setInputCloud (cloudOf<pcl::PointXYZ> (mesh));
-  EXPECT_NE (errorOf ([&] { no_polygons.compute (model); }).find ("setInputPolygons"), std::string::npos);
+  // A cloud without polygons is a scan; one whose every point is unusable is refused, naming the reason.
+  auto unusable = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  unusable->push_back (pcl::PointXYZ (NAN, 0.0f, 0.0f));
+  unusable->push_back (pcl::PointXYZ (0.0f, 0.0f, 0.0f));  // at the sensor origin: a lidar's "no return"
+  SparseSurfaceEncoder<pcl::PointXYZ> no_points;
+  no_points.setInputCloud (unusable);
+  EXPECT_NE (errorOf ([&] { no_points.compute (model); }).find ("[SparseSurfaceEncoder::compute] the cloud has no usable point"),
+             std::string::npos);
 
   auto bad = polygonsOf (mesh);
   bad->back ().vertices[2] = static_cast<pcl::index_t> (mesh.numVertices ());

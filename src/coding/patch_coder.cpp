@@ -51,7 +51,7 @@ namespace pcl_sparse
       code.vertex_xy.emplace_back (p.x (), p.y ());
     code.footprint = computePatchFootprint (patch, mesh, options.footprint_angles);
 
-    // Samples: the vertices, then extra points on the patch's own triangles (METHOD.md step 7).
+    // Samples: the vertices, then extra points on the patch's own triangles (docs/METHOD.md step 7).
     std::vector<Eigen::Vector2d> positions (code.vertex_xy);
     std::vector<double> heights;
     heights.reserve (patch.local.size ());

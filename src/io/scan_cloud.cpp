@@ -1,4 +1,5 @@
 #include <pcl_sparse/io/scan_cloud.h>
+#include <pcl_sparse/mesh/bounding_box.h>
 
 #include <cmath>
 #include <limits>
@@ -17,18 +18,11 @@ namespace pcl_sparse
   Eigen::Vector3d
   localFrameOrigin (const std::vector<Eigen::Vector3d>& world_positions)
   {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
-    Eigen::Vector3d hi = -lo;
-    bool any = false;
-    for (const Eigen::Vector3d& p : world_positions)
-      if (p.allFinite ())
-      {
-        lo = lo.cwiseMin (p);
-        hi = hi.cwiseMax (p);
-        any = true;
-      }
-    if (!any)
+    const Eigen::AlignedBox3d box = finiteBoundingBox (world_positions);
+    if (box.isEmpty ())
       return Eigen::Vector3d::Zero ();
+    const Eigen::Vector3d& lo = box.min ();
+    const Eigen::Vector3d& hi = box.max ();
     const double extent = (hi - lo).maxCoeff ();
     if (!std::isfinite (extent))
       return Eigen::Vector3d::Zero ();  // a box wider than DBL_MAX: no frame makes it smaller

@@ -4,19 +4,20 @@
 
 namespace pcl_sparse
 {
+  Eigen::AlignedBox3d
+  finiteBoundingBox (const std::vector<Eigen::Vector3d>& points)
+  {
+    Eigen::AlignedBox3d box;  // empty
+    for (const Eigen::Vector3d& p : points)
+      if (p.allFinite ())
+        box.extend (p);
+    return box;
+  }
+
   double
   boundingBoxDiagonal (const std::vector<Eigen::Vector3d>& points)
   {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
-    Eigen::Vector3d hi = -lo;
-    bool any = false;
-    for (const Eigen::Vector3d& p : points)
-      if (p.allFinite ())
-      {
-        lo = lo.cwiseMin (p);
-        hi = hi.cwiseMax (p);
-        any = true;
-      }
-    return any ? (hi - lo).norm () : 0.0;
+    const Eigen::AlignedBox3d box = finiteBoundingBox (points);
+    return box.isEmpty () ? 0.0 : (box.max () - box.min ()).norm ();
   }
 } // namespace pcl_sparse

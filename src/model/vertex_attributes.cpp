@@ -49,17 +49,6 @@ namespace pcl_sparse
     }
   }
 
-  VertexAttributes
-  VertexAttributes::selectRows (const std::vector<int>& indices) const
-  {
-    VertexAttributes selected;
-    selected.channels = channels;
-    selected.values.resize (static_cast<Eigen::Index> (indices.size ()), values.cols ());
-    for (std::size_t i = 0; i < indices.size (); ++i)
-      selected.values.row (static_cast<Eigen::Index> (i)) = values.row (indices[i]);
-    return selected;
-  }
-
   std::vector<AttributeChannelInfo>
   VertexAttributes::channelInfo () const
   {

@@ -167,7 +167,7 @@ namespace pcl_sparse
       }
     };
 
-    /// Sampling loop (METHOD.md step 4), sequential by nature: each candidate not marked invalid grows a
+    /// Sampling loop (docs/METHOD.md step 4), sequential by nature: each candidate not marked invalid grows a
     /// patch, kept if large enough and covering a new vertex; its vertices near the seed become invalid.
     /// Returns the number of seeds grown. (Growing the next candidates speculatively in parallel gives the
     /// same output, but on a loaded machine the per-batch barriers cost more than they save: measured 3-6x
@@ -244,7 +244,7 @@ namespace pcl_sparse
       }
     }
 
-    /// Frames (METHOD.md step 6), in parallel: one output per patch.
+    /// Frames (docs/METHOD.md step 6), in parallel: one output per patch.
     std::vector<PatchFrameKind>
     fitFrames (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry, int threads,
                std::vector<Patch>& patches)
@@ -347,7 +347,7 @@ namespace pcl_sparse
     const int num_input = static_cast<int> (input.vertices.size ());
     PatchSamplingResult result;
 
-    // Default feature order: Harris 3D with its default options (METHOD.md step 3).
+    // Default feature order: Harris 3D with its default options (docs/METHOD.md step 3).
     result.responses = responses;
     result.keypoints = keypoints;
     if (responses.empty () && keypoints.empty ())

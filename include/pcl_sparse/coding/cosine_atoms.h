@@ -1,7 +1,7 @@
 #pragma once
 /// \file cosine_atoms.h
 /// Separable cosine atoms phi_ij(x, y) = cos(i pi s(x)) cos(j pi s(y)) on [-1, 1]^2, i, j = 0 .. n-1, with
-/// s(t) = t (the paper's dictionary, METHOD.md step 8) or s(t) = (t + 1) / 2 (DCT-II-like half-period
+/// s(t) = t (the paper's dictionary, docs/METHOD.md step 8) or s(t) = (t + 1) / 2 (DCT-II-like half-period
 /// atoms, both parities). Shared evaluation of CosineDictionary and DctCosineDictionary; use those.
 
 #include <pcl_sparse/model/surface_basis.h>
@@ -38,32 +38,51 @@ namespace pcl_sparse
     CosineBasisKind kind () const { return kind_; }
     /// n, the number of frequencies per axis.
     int frequencies () const { return n_; }
-    /// Atom index of frequencies (i, j).
+    /// Atom index i n + j of the frequencies (\a i, \a j).
     int atomIndex (int i, int j) const { return i * n_ + j; }
     /// Frequency along x (i) of \a atom.
     int frequencyX (int atom) const { return atom / n_; }
     /// Frequency along y (j) of \a atom.
     int frequencyY (int atom) const { return atom % n_; }
 
+    /// n^2 atoms.
     int size () const override { return n_ * n_; }
+    /// 2 / max(i, j) (Paper) or 4 / max(i, j) (Dct) for atom (i, j); +infinity for the constant atom.
     double wavelength (int atom) const override;
 
-    /// \a values: #points by n^2, column atomIndex (i, j) = phi_ij.
+    /// Values of every atom at every point.
+    /// \param[in]  points  #points local positions (x, y)
+    /// \param[out] values  #points by n^2; column atomIndex (i, j) holds phi_ij
     void evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const override;
 
-    /// Only the columns of \a atoms (cost proportional to their number).
+    /// Values of some atoms only (cost proportional to their number).
+    /// \param[in]  points  #points local positions (x, y)
+    /// \param[in]  atoms   atom indices
+    /// \param[out] values  #points by atoms.size (); column k holds atom atoms[k]
     void evaluate (const std::vector<Eigen::Vector2d>& points, const std::vector<int>& atoms,
                    Eigen::MatrixXd& values) const override;
 
+    /// Value, gradient and Hessian of a code, with analytic derivatives.
+    /// \param[in] atoms         atom indices
+    /// \param[in] coefficients  one per atom
+    /// \param[in] x, y          local position
+    /// \return sum_k coefficients[k] phi_{atoms[k]} (x, y) and its derivatives
     HeightSample evaluateCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                                double x, double y) const override;
 
-    /// Value only (one cos per axis and the Chebyshev recurrence).
+    /// Value only of a code (one cos per axis and the Chebyshev recurrence).
+    /// \param[in] atoms         atom indices
+    /// \param[in] coefficients  one per atom
+    /// \param[in] x, y          local position
+    /// \return sum_k coefficients[k] phi_{atoms[k]} (x, y)
     double evaluateCodeValue (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                               double x, double y) const override;
 
   protected:
-    /// \a frequencies = n (1 .. max_frequencies); throws pcl_sparse::Error otherwise.
+    /// Tables for n frequencies per axis of the given kind.
+    /// \param[in] frequencies  n, in 1 .. max_frequencies
+    /// \param[in] kind         Paper or Dct atoms
+    /// \throws pcl_sparse::Error if \a frequencies is out of range
     CosineAtoms (int frequencies, CosineBasisKind kind);
 
   private:
@@ -81,15 +100,24 @@ namespace pcl_sparse
     std::vector<std::uint8_t> frequency_y_;  ///< j of each atom
   };
 
-  /// A cosine basis of \a kind with \a frequencies per axis (CosineDictionary or DctCosineDictionary).
+  /// A cosine basis of the given kind.
+  /// \param[in] kind         Paper (CosineDictionary) or Dct (DctCosineDictionary)
+  /// \param[in] frequencies  n, frequencies per axis (n^2 atoms)
+  /// \return the basis
+  /// \throws pcl_sparse::Error if \a frequencies is out of range
   CosineAtoms::ConstPtr
   makeCosineBasis (CosineBasisKind kind, int frequencies = 12);
 
-  /// "paper" or "dct".
+  /// Name of a basis kind, as the tools' -basis option takes it.
+  /// \param[in] kind  the kind
+  /// \return "paper" or "dct"
   const char*
   cosineBasisKindName (CosineBasisKind kind);
 
-  /// The kind named \a name ("paper" or "dct"); throws pcl_sparse::Error naming \a name otherwise.
+  /// The basis kind of a name, as the tools' -basis option takes it.
+  /// \param[in] name  "paper" or "dct"
+  /// \return the kind
+  /// \throws pcl_sparse::Error naming \a name if it is neither
   CosineBasisKind
   cosineBasisKindFromName (const std::string& name);
 } // namespace pcl_sparse

@@ -1,6 +1,6 @@
 #pragma once
 /// \file cosine_dictionary.h
-/// The continuous cosine dictionary of METHOD.md step 8: atoms phi_ij(x, y) = cos(i pi x) cos(j pi y)
+/// The continuous cosine dictionary of docs/METHOD.md step 8: atoms phi_ij(x, y) = cos(i pi x) cos(j pi y)
 /// on [-1, 1]^2, i, j = 0 .. n-1 (n = 12 gives the paper's 144 atoms). This is the default basis
 /// everywhere. Every atom is even in x and in y, so the odd part of a patch's height (cubic terms,
 /// off-centre features) cannot be represented; DctCosineDictionary (dct_cosine_dictionary.h) is the
@@ -17,8 +17,9 @@ namespace pcl_sparse
     using Ptr = std::shared_ptr<CosineDictionary>;
     using ConstPtr = std::shared_ptr<const CosineDictionary>;
 
-    /// \a frequencies = n, the number of frequencies per axis (1 .. max_frequencies); throws
-    /// pcl_sparse::Error otherwise.
+    /// The paper's atoms with n frequencies per axis.
+    /// \param[in] frequencies  n, in 1 .. max_frequencies (12: the paper's 144 atoms)
+    /// \throws pcl_sparse::Error if \a frequencies is out of range
     explicit CosineDictionary (int frequencies = 12) : CosineAtoms (frequencies, CosineBasisKind::Paper) {}
   };
 } // namespace pcl_sparse

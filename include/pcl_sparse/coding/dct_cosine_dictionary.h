@@ -20,7 +20,9 @@ namespace pcl_sparse
     using Ptr = std::shared_ptr<DctCosineDictionary>;
     using ConstPtr = std::shared_ptr<const DctCosineDictionary>;
 
-    /// \a frequencies = n (1 .. max_frequencies); throws pcl_sparse::Error otherwise.
+    /// Half-period atoms with n frequencies per axis.
+    /// \param[in] frequencies  n, in 1 .. max_frequencies
+    /// \throws pcl_sparse::Error if \a frequencies is out of range
     explicit DctCosineDictionary (int frequencies = 12) : CosineAtoms (frequencies, CosineBasisKind::Dct) {}
   };
 } // namespace pcl_sparse

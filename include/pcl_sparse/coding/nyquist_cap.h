@@ -1,6 +1,6 @@
 #pragma once
 /// \file nyquist_cap.h
-/// Which atoms a patch may use given its sample spacing (METHOD.md step 9): atoms oscillating faster
+/// Which atoms a patch may use given its sample spacing (docs/METHOD.md step 9): atoms oscillating faster
 /// than the mesh samples them only fit noise and make the surface ripple between the vertices.
 
 #include <pcl_sparse/model/surface_basis.h>
@@ -16,8 +16,12 @@ namespace pcl_sparse
     AuthorsCode  ///< allowed iff lambda >= f mu (larc/gproshan src/mdict: a factor 2 looser)
   };
 
-  /// Whether an atom of wavelength \a wavelength passes the cap for sample spacing \a spacing (mu) and
-  /// factor \a factor (f). f = 0 allows every atom (plain OMP).
+  /// Whether an atom passes the Nyquist cap.
+  /// \param[in] wavelength  lambda, the atom's shortest wavelength in local units (SurfaceBasis::wavelength)
+  /// \param[in] spacing     mu, the patch's sample spacing in local units (patchSampleSpacing)
+  /// \param[in] factor      f in [0, 1]; 0 allows every atom (plain OMP)
+  /// \param[in] rule        the paper's or the authors' form of the cap
+  /// \return true if the atom may be selected
   inline bool
   passesNyquistCap (double wavelength, double spacing, double factor, NyquistRule rule)
   {
@@ -26,7 +30,12 @@ namespace pcl_sparse
     return rule == NyquistRule::Paper ? wavelength / 2.0 > factor * spacing : wavelength >= factor * spacing;
   }
 
-  /// One flag per atom of \a basis: passesNyquistCap for its wavelength.
+  /// The Nyquist cap for every atom of a basis.
+  /// \param[in] basis    the dictionary
+  /// \param[in] spacing  mu, the patch's sample spacing in local units
+  /// \param[in] factor   f in [0, 1]
+  /// \param[in] rule     the paper's or the authors' form of the cap
+  /// \return basis.size () flags, non-zero where passesNyquistCap holds
   inline std::vector<char>
   nyquistAllowedAtoms (const SurfaceBasis& basis, double spacing, double factor, NyquistRule rule)
   {

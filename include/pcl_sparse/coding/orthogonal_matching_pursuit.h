@@ -1,7 +1,7 @@
 #pragma once
 /// \file orthogonal_matching_pursuit.h
 /// Orthogonal Matching Pursuit over an explicit dictionary matrix, restricted to allowed atoms
-/// (METHOD.md step 9; the Nyquist cap of nyquist_cap.h supplies the mask).
+/// (docs/METHOD.md step 9; the Nyquist cap of nyquist_cap.h supplies the mask).
 
 #include <Eigen/Core>
 
@@ -18,11 +18,13 @@ namespace pcl_sparse
   };
 
   /// Greedy sparse approximation y ~ D alpha.
-  ///   signal      #P values y
-  ///   dictionary  #P by K matrix D (columns need not be normalised)
-  ///   allowed     K flags (non-zero = may be selected); empty means every atom is allowed
-  ///   tolerance   stop once ||r|| <= tolerance * ||y|| (METHOD.md eps = 0.01)
-  ///   max_atoms   stop after this many atoms (METHOD.md L = 12)
+  /// \param[in] signal      #P values y
+  /// \param[in] dictionary  #P by K matrix D (columns need not be normalised)
+  /// \param[in] allowed     K flags (non-zero: may be selected); empty: every atom is allowed
+  /// \param[in] tolerance   stop once ||r|| <= tolerance ||y|| (eps of docs/METHOD.md step 9: 0.01)
+  /// \param[in] max_atoms   stop after this many atoms (L: 12)
+  /// \return the selected atoms, their coefficients and the residual norm
+  ///
   /// Each step selects the allowed atom maximising |<r, d_k>| / ||d_k|| (normalised columns), then
   /// re-solves least squares on the whole support through an incrementally updated Cholesky factor of
   /// D_S^T D_S (O(#P |S|) per step, no pseudo-inverse). It also stops when no allowed atom correlates

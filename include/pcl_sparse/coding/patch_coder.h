@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_coder.h
-/// Codes one patch as a sparse height field (METHOD.md steps 7-9): samples, Nyquist cap, OMP, footprint.
+/// Codes one patch as a sparse height field (docs/METHOD.md steps 7-9): samples, Nyquist cap, OMP, footprint.
 
 #include <pcl_sparse/coding/nyquist_cap.h>
 #include <pcl_sparse/coding/patch_attribute_coder.h>
@@ -45,13 +45,21 @@ namespace pcl_sparse
     double relative_residual = 0.0;  ///< ||r|| / ||y|| (0 for a zero signal)
   };
 
-  /// Codes \a patch (frame, radius, local coordinates set) over \a basis; \a mean_ring_edge_lengths
-  /// (#V, meanRingEdgeLengths) gives the sample spacing mu of the Nyquist cap. The signal is the local height
-  /// z' at the patch's vertices plus, if there are fewer than options.min_samples of them, that many
-  /// minus the vertex count of extra points on its triangles (seeded by mixSeed (options.seed,
-  /// \a patch_index)). The returned code carries origin, frame, radius, atoms, coefficients, footprint,
-  /// vertices and their local x', y'; with \a attributes (optional) also one code per attribute channel
-  /// (codePatchAttributes, at the same samples; the height's code is the same with or without them).
+  /// Codes one patch as a sparse height field (docs/METHOD.md steps 7 to 9). The signal is the local
+  /// height z' at the patch's vertices plus, if there are fewer than options.min_samples of them, that
+  /// many minus the vertex count of extra points on its triangles (seeded by mixSeed (options.seed,
+  /// \a patch_index)).
+  /// \param[in]  patch                   frame, radius and local coordinates set (computePatchFrame)
+  /// \param[in]  patch_index             the patch's index in the model (seeds its extra samples)
+  /// \param[in]  mesh                    the mesh
+  /// \param[in]  mean_ring_edge_lengths  #V (meanRingEdgeLengths): gives the sample spacing mu of the cap
+  /// \param[in]  basis                   the dictionary
+  /// \param[in]  options                 cap, OMP, samples, footprint and support options
+  /// \param[out] info                    diagnostics of the coding (optional)
+  /// \param[in]  attributes              colour / intensity to code at the same samples (optional;
+  ///                                     codePatchAttributes); the height's code is the same without them
+  /// \return origin, frame, radius, atoms, coefficients, footprint, vertices and their local x', y', and
+  ///         with \a attributes one code per attribute channel
   PatchCode
   codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh,
              const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr,

@@ -8,8 +8,12 @@
 
 namespace pcl_sparse
 {
-  /// Star-shaped footprint with \a angles extents covering the patch's own triangles projected on its
-  /// tangent plane (local x', y'), and its vertices.
+  /// Star-shaped footprint covering the patch's own triangles projected on its tangent plane (local
+  /// x', y'), and its vertices.
+  /// \param[in] patch   frame, radius and local coordinates set
+  /// \param[in] mesh    the mesh
+  /// \param[in] angles  K, the number of extents (equally spaced angles)
+  /// \return the footprint
   ///
   /// Choice: the exact maximum radius of the projected triangles inside each angular sector
   /// [2 pi k / K, 2 pi (k + 1) / K) is found from their edges (|p| is convex along a segment, so the

@@ -8,9 +8,12 @@
 
 namespace pcl_sparse
 {
-  /// Calls \a write with a temporary path next to \a path, then renames it onto \a path (atomic on
-  /// POSIX file systems). If \a write throws or returns false, the temporary file is removed and
-  /// pcl_sparse::Error is thrown naming \a path; \a path itself is never touched in that case.
+  /// Writes a file through a temporary one: calls \a write with a temporary path next to \a path, then
+  /// renames it onto \a path (atomic on POSIX file systems).
+  /// \param[in] path   the file to write
+  /// \param[in] write  writes the content to the path it is given; returns false on failure
+  /// \throws pcl_sparse::Error naming \a path if \a write throws or returns false (the temporary file is
+  ///         removed and \a path is not touched)
   void
   writeFileAtomically (const std::string& path, const std::function<bool (const std::string& temporary_path)>& write);
 

@@ -11,7 +11,9 @@ namespace pcl_sparse
   using ProgressCallback = std::function<void (const std::string& stage, double fraction)>;
 
   /// A ProgressCallback printing "stage: NN%" on stderr, at most once per percent, on one line per stage
-  /// (carriage returns on a terminal); prints nothing when \a quiet.
+  /// (carriage returns on a terminal).
+  /// \param[in] quiet  print nothing
+  /// \return the callback
   ProgressCallback
   makeConsoleProgress (bool quiet);
 } // namespace pcl_sparse

@@ -1,7 +1,8 @@
 #pragma once
 /// \file cloud_vertex_attributes.h
-/// \brief The colour and intensity fields of a PCL cloud as VertexAttributes, for the encoder.
+/// \brief The colour and intensity fields of a PCL cloud or a ScanCloud as VertexAttributes, for the encoder.
 
+#include <pcl_sparse/io/scan_cloud.h>
 #include <pcl_sparse/model/vertex_attributes.h>
 
 #include <pcl/point_cloud.h>
@@ -45,4 +46,10 @@ namespace pcl_sparse
     }
     return attributes;
   }
+
+  /// \brief The same for a ScanCloud: r, g, b from its colours (and a when the file's fields include
+  /// rgba), intensity from its intensities; one row per scan point. Empty when it has neither.
+  /// \param[in] scan the scan
+  VertexAttributes
+  scanVertexAttributes (const ScanCloud& scan);
 } // namespace pcl_sparse

@@ -1,6 +1,6 @@
 #pragma once
 /// \file sparse_surface_encoder.h
-/// The whole encoding pipeline as one PCL-style stage (METHOD.md steps 2-11):
+/// The whole encoding pipeline as one PCL-style stage (docs/METHOD.md steps 2-11):
 ///
 ///   pcl_sparse::SparseSurfaceEncoder<pcl::PointXYZ> encoder;
 ///   encoder.setInputCloud (cloud);                 // the mesh's vertices, and
@@ -18,7 +18,7 @@
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/model/surface_basis.h>
 #include <pcl_sparse/common/progress.h>
-#include <pcl_sparse/mesh/surface_stage.h>
+#include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/model/vertex_attributes.h>
@@ -41,6 +41,10 @@ namespace pcl_sparse
     /// Cosine atoms: Paper = cos(i pi x) cos(j pi y) (the paper's, even only); Dct = cos(i pi (x + 1) / 2)
     /// cos(j pi (y + 1) / 2), same count, even and odd (ours, lower error floor). Ignored after setBasis.
     CosineBasisKind basis = CosineBasisKind::Paper;
+    /// For a scan (a cloud without polygons, or setInputScan) with coding.noise_level 0: code down to the
+    /// scan's estimated noise (CloudSurface::noise) and not below, so that sensor noise is smoothed, not
+    /// coded (docs/METHOD.md, scans). Meshes are never affected.
+    bool scan_noise_floor = true;
     /// Colour / intensity coding (only when the input has them): L per channel, RMS tolerance.
     AttributeCodingOptions attributes;
 
@@ -90,7 +94,15 @@ namespace pcl_sparse
   /// (patch_attribute_coder.h) and the model gets their channels (SparseSurfaceModel::attribute_channels).
   /// The geometry is exactly that of the encoding without attributes. Throws pcl_sparse::Error for
   /// attributes that do not fit the mesh (VertexAttributes::validate).
+  /// \param[in] mesh the mesh, with at least one face of non-zero area
   /// \param[in] attributes one row per vertex of \a mesh; empty: as encodeSurface without them
+  /// \param[in] topology buildMeshTopology (mesh)
+  /// \param[in] options validated options (options.attributes: the attribute coding)
+  /// \param[in] basis the basis to code the height over
+  /// \param[in] num_threads OpenMP threads (0 = default); the model does not depend on it
+  /// \param[in] progress progress callback (may be empty)
+  /// \param[out] model the model (replaced)
+  /// \return the patches, coding diagnostics and timings
   SurfaceEncoding
   encodeSurface (const TriangleMesh& mesh, const VertexAttributes& attributes, const MeshTopology& topology,
                  const SparseSurfaceEncoderOptions& options, const SurfaceBasis::ConstPtr& basis, int num_threads,
@@ -114,11 +126,13 @@ namespace pcl_sparse
     /// \brief A basis other than the cosine dictionary (optional; default: makeCosineBasis (basis, n)).
     void setBasis (const SurfaceBasis::ConstPtr& basis) { basis_ = basis; }
 
-    /// \brief Colour / intensity per input point (or mesh vertex), coded with the geometry. Without it,
-    /// a cloud input (setInputCloud + setInputPolygons) whose point type has rgb / rgba or intensity gives
-    /// them automatically (channels r g b [a] and / or intensity); a TriangleMesh input has none. With
-    /// setIndices cropping, the rows of the indices are used. An empty pointer goes back to automatic.
-    /// \param[in] attributes one row per input point (cloud) or vertex (mesh)
+    /// \brief Colour / intensity per input point (or mesh vertex, or scan point), coded with the geometry.
+    /// Without it, a cloud input (with or without polygons) whose point type has rgb / rgba or intensity
+    /// gives them automatically (channels r g b [a] and / or intensity), and so does a scan
+    /// (setInputScan) with colours or intensities; a TriangleMesh input has none. With setIndices cropping,
+    /// and for the points a scan's cleaning keeps, the rows of the surface's points are used. An empty
+    /// pointer goes back to automatic.
+    /// \param[in] attributes one row per input point (cloud), vertex (mesh) or point (setInputScan)
     void setVertexAttributes (const VertexAttributes::ConstPtr& attributes) { attributes_ = attributes; }
     const VertexAttributes::ConstPtr& getVertexAttributes () const { return attributes_; }
 
@@ -138,8 +152,8 @@ namespace pcl_sparse
     /// \brief The stage proper, on the surface initCompute prepared.
     virtual void computeModel (SparseSurfaceModel& model);
 
-    /// \brief The attributes of the surface's vertices: setVertexAttributes, else the input cloud's colour /
-    /// intensity (cloud input only), cropped like the surface; empty when there are none.
+    /// \brief The attributes of the surface's vertices: setVertexAttributes, else the input cloud's or scan's
+    /// colour / intensity (none for a mesh), for the points the surface kept; empty when there are none.
     VertexAttributes surfaceAttributes () const;
 
     SparseSurfaceEncoderOptions options_;

@@ -8,7 +8,10 @@
 
 namespace pcl_sparse
 {
-  /// CRC-32 of \a size bytes at \a data; crc32 ("123456789") == 0xCBF43926.
+  /// CRC-32 of a byte range; crc32 ("123456789") == 0xCBF43926.
+  /// \param[in] data  first byte
+  /// \param[in] size  number of bytes
+  /// \return the checksum
   std::uint32_t
   crc32 (const std::uint8_t* data, std::size_t size);
 } // namespace pcl_sparse

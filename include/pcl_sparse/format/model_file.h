@@ -39,7 +39,7 @@ namespace pcl_sparse
     /// no measurable change of the Chamfer distance.
     int max_footprint_angles = 8;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
-    /// input vertices, METHOD.md step 10). Off by default: decoding and resampling do not need them.
+    /// input vertices, docs/METHOD.md step 10). Off by default: decoding and resampling do not need them.
     bool include_vertices = false;
     /// Quantised mode, models with colour / intensity: the largest change of an attribute value, as a
     /// fraction of its channel's range (AttributeChannelInfo; 255 for colour, so 1/2 grey level by default).
@@ -61,44 +61,67 @@ namespace pcl_sparse
   /// What a model file holds, without decoding its patches (for pcl_sparse_info).
   struct ModelFileInfo
   {
-    std::uint16_t version = 0;
-    bool quantised = false;
-    bool has_vertices = false;
-    std::vector<std::string> attributes;  ///< attribute channel names ("r", "g", "b", "a", "intensity"); empty: none
-    std::string basis;             ///< e.g. "cosine 12x12" (the paper's atoms) or "dct cosine 12x12"
-    std::uint32_t num_patches = 0;
-    std::uint64_t num_input_vertices = 0;
-    double bbox_diagonal = 0.0;
-    double tolerance = 0.0;        ///< as written (fraction of bbox_diagonal)
-    std::uint64_t file_bytes = 0;
-    std::vector<ModelFileSection> sections;
+    std::uint16_t version = 0;              ///< format version
+    bool quantised = false;                 ///< written with a tolerance > 0
+    bool has_vertices = false;              ///< holds the patches' input vertices and their (x', y')
+    std::vector<std::string> attributes;    ///< attribute channels ("r", "g", "b", "a", "intensity"); empty: none
+    std::string basis;                      ///< "cosine nxn" (the paper's atoms) or "dct cosine nxn"
+    std::uint32_t num_patches = 0;          ///< M
+    std::uint64_t num_input_vertices = 0;   ///< N_V of the encoded mesh
+    double bbox_diagonal = 0.0;             ///< of the encoded mesh
+    double tolerance = 0.0;                 ///< as written (fraction of bbox_diagonal)
+    std::uint64_t file_bytes = 0;           ///< total size
+    std::vector<ModelFileSection> sections; ///< in file order
   };
 
-  /// Encodes \a model into the bytes of a .psm file. Throws pcl_sparse::Error for a model the format
-  /// cannot hold (basis other than CosineDictionary / DctCosineDictionary, non-finite values, tolerance > 0 with
-  /// bbox_diagonal <= 0, options out of range).
+  /// Encodes a model into the bytes of a .psm file.
+  /// \param[in] model    the model
+  /// \param[in] options  tolerance, footprint bits and angles, vertices, zstd level
+  /// \return the file's bytes
+  /// \throws pcl_sparse::Error for a model the format cannot hold (basis other than CosineDictionary /
+  ///         DctCosineDictionary, non-finite values, tolerance > 0 with bbox_diagonal <= 0) or options out
+  ///         of range
   std::vector<std::uint8_t>
   encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options = ModelWriteOptions ());
 
-  /// Decodes the bytes of a .psm file. \a name is used in error messages. Throws pcl_sparse::Error
-  /// with a one-line message for anything malformed.
+  /// Decodes the bytes of a .psm file.
+  /// \param[in] data  first byte
+  /// \param[in] size  number of bytes
+  /// \param[in] name  names the data in error messages
+  /// \return the model
+  /// \throws pcl_sparse::Error with a one-line message for anything malformed
   SparseSurfaceModel
   decodeModel (const std::uint8_t* data, std::size_t size, const std::string& name = "model");
 
   /// Header and section sizes of the bytes of a .psm file (checksums verified, patches not decoded).
+  /// \param[in] data  first byte
+  /// \param[in] size  number of bytes
+  /// \param[in] name  names the data in error messages
+  /// \return what the file holds
+  /// \throws pcl_sparse::Error for anything malformed
   ModelFileInfo
   inspectModel (const std::uint8_t* data, std::size_t size, const std::string& name = "model");
 
-  /// encodeModel, written atomically to \a path (writeBytesAtomically).
+  /// encodeModel, written atomically (writeBytesAtomically).
+  /// \param[in] path     the file
+  /// \param[in] model    the model
+  /// \param[in] options  as for encodeModel
+  /// \throws pcl_sparse::Error as encodeModel, or for a failed write
   void
   saveModel (const std::string& path, const SparseSurfaceModel& model,
              const ModelWriteOptions& options = ModelWriteOptions ());
 
-  /// Reads \a path and decodes it; errors name the file.
+  /// Reads a .psm file and decodes it.
+  /// \param[in] path  the file
+  /// \return the model
+  /// \throws pcl_sparse::Error naming the file if it cannot be read or is malformed
   SparseSurfaceModel
   loadModel (const std::string& path);
 
-  /// Reads \a path and inspects it; errors name the file.
+  /// Reads a .psm file and inspects it (inspectModel).
+  /// \param[in] path  the file
+  /// \return what the file holds
+  /// \throws pcl_sparse::Error naming the file if it cannot be read or is malformed
   ModelFileInfo
   inspectModelFile (const std::string& path);
 } // namespace pcl_sparse

@@ -10,15 +10,23 @@
 
 namespace pcl_sparse
 {
-  /// One zstd frame holding \a size bytes, with the content size recorded in the frame header.
-  /// \a level 1..22 (19 is a good size/time trade-off for files written once and read often).
+  /// Compresses bytes into one zstd frame, with the content size recorded in the frame header.
+  /// \param[in] data   first byte
+  /// \param[in] size   number of bytes
+  /// \param[in] level  1 .. 22 (19 is a good size/time trade-off for files written once and read often)
+  /// \return the frame
   std::vector<std::uint8_t>
   compressBytes (const std::uint8_t* data, std::size_t size, int level);
 
-  /// Decompresses one zstd frame that must hold exactly \a expected_size bytes. Throws
-  /// pcl_sparse::Error "<what>: ..." if the frame is malformed, holds more than one frame or trailing
-  /// bytes, or declares another size. The output buffer (expected_size bytes) is allocated only after
-  /// the frame header agreed; callers bound expected_size beforehand.
+  /// Decompresses one zstd frame that must hold exactly a given number of bytes. The output buffer is
+  /// allocated only after the frame header agreed with that number; callers bound it beforehand.
+  /// \param[in] data           first byte of the frame
+  /// \param[in] size           bytes of the frame
+  /// \param[in] expected_size  bytes it must decompress to
+  /// \param[in] what           names the data in error messages
+  /// \return the \a expected_size decompressed bytes
+  /// \throws pcl_sparse::Error "<what>: ..." if the frame is malformed, holds more than one frame or
+  ///         trailing bytes, or declares another size
   std::vector<std::uint8_t>
   decompressBytes (const std::uint8_t* data, std::size_t size, std::size_t expected_size, const std::string& what);
 } // namespace pcl_sparse

@@ -1,7 +1,7 @@
 #pragma once
 /// \file geodesic.h
 /// Geodesic distances from a seed vertex as shortest paths along mesh edges (Dijkstra), bounded by a
-/// radius and by a callback that may refuse vertices: the walk behind patch growth (METHOD.md step 5).
+/// radius and by a callback that may refuse vertices: the walk behind patch growth (docs/METHOD.md step 5).
 ///
 /// Dijkstra over edges overestimates the true geodesic distance, depending on direction: up to 8.2 % on a
 /// grid with both diagonals ("union jack"), up to 15.5 % (2 / sqrt 3) on an equilateral triangulation; the
@@ -38,10 +38,13 @@ namespace pcl_sparse
              ///< own, smaller, distance.
   };
 
-  /// Length of every 1-ring entry of \a topology (CSR, parallel to MeshTopology::vertex_neighbors):
-  /// |p_u - p_v| for u the i-th neighbour of v, +infinity where it is not finite (NaN coordinates): such
-  /// edges are walked only by an unbounded walk (max_distance +infinity), which offers what lies behind
-  /// them last. The computed lengths follow the same rule. Parallel over vertices, deterministic.
+  /// Length of every 1-ring entry of a topology: |p_u - p_v| for u the i-th neighbour of v, +infinity
+  /// where it is not finite (NaN coordinates). Such edges are walked only by an unbounded walk
+  /// (max_distance +infinity), which offers what lies behind them last; the lengths DijkstraGeodesic
+  /// computes itself follow the same rule. Parallel over vertices, deterministic.
+  /// \param[in] mesh      the mesh
+  /// \param[in] topology  its topology
+  /// \return one length per entry of topology.vertex_neighbors (CSR, same layout)
   std::vector<double>
   computeEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology);
 
@@ -59,22 +62,32 @@ namespace pcl_sparse
     using Ptr = std::shared_ptr<DijkstraGeodesic>;
     using ConstPtr = std::shared_ptr<const DijkstraGeodesic>;
 
-    /// \a mesh and \a topology must outlive this object.
+    /// Sizes the walker for a mesh.
+    /// \param[in] mesh      the mesh; must outlive this object
+    /// \param[in] topology  its topology; must outlive this object
     DijkstraGeodesic (const TriangleMesh& mesh, const MeshTopology& topology);
 
-    /// Walks with these edge lengths (computeEdgeLengths: cached once per mesh, shared by all walkers)
-    /// instead of computing |p_u - p_v| on every relaxation; same distances bit for bit. \a lengths must
-    /// outlive this object; an empty vector restores the computed lengths.
+    /// Walks with precomputed edge lengths instead of computing |p_u - p_v| on every relaxation; same
+    /// distances bit for bit.
+    /// \param[in] lengths  computeEdgeLengths of the mesh (cached once per mesh, shared by all walkers);
+    ///                     must outlive this object; an empty vector restores the computed lengths
     void setEdgeLengths (const std::vector<double>& lengths);
 
-    /// Walks from \a source, offering every vertex within \a max_distance (inclusive) to \a visitor (all
-    /// are accepted when it is empty). The source itself is offered first, at distance 0.
-    ///   returns  the number of accepted vertices
+    /// Walks from a source vertex, offering every vertex within a distance to a visitor, in increasing
+    /// distance. The source itself is offered first, at distance 0.
+    /// \param[in] source        start vertex
+    /// \param[in] max_distance  largest distance offered (inclusive); +infinity for the whole component
+    /// \param[in] visitor       decides about each offered vertex; empty: every vertex is accepted
+    /// \return the number of accepted vertices
     std::size_t
     compute (int source, double max_distance, const GeodesicVisitor& visitor = GeodesicVisitor ());
 
     /// compute () with any callable `GeodesicVisit (int vertex, double distance, int parent)`, inlined
     /// instead of called through std::function: for hot loops (patch growth runs one walk per seed).
+    /// \param[in] source        start vertex
+    /// \param[in] max_distance  largest distance offered (inclusive)
+    /// \param[in] visitor       the callable
+    /// \return the number of accepted vertices
     template <typename Visitor>
     std::size_t
     walk (int source, double max_distance, Visitor&& visitor);
@@ -82,12 +95,17 @@ namespace pcl_sparse
     /// Accepted vertices of the last walk in the order they were accepted (increasing distance).
     const std::vector<int>& acceptedVertices () const { return accepted_; }
 
-    /// Distance of \a v in the last walk if it was accepted, refused or deferred there, +infinity otherwise.
+    /// Distance of vertex \a v in the last walk.
+    /// \param[in] v  a vertex index
+    /// \return its distance if it was accepted, refused or deferred there, +infinity otherwise
     double distance (int v) const;
 
-    /// Vertex \a v was reached from in the last walk (-1 for the source or if \a v was not accepted).
+    /// The vertex \a v was reached from in the last walk.
+    /// \param[in] v  a vertex index
+    /// \return its parent; -1 for the source or if \a v was not accepted
     int parent (int v) const { return state_[v] == State::Accepted ? parent_[v] : -1; }
 
+    /// Whether vertex \a v was accepted in the last walk.
     bool isAccepted (int v) const { return state_[v] == State::Accepted; }
 
   private:

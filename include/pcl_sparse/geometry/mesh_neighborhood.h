@@ -1,6 +1,6 @@
 #pragma once
 /// \file mesh_neighborhood.h
-/// Ring neighbourhoods of a mesh vertex: k rings and adaptive rings (METHOD.md step 3).
+/// Ring neighbourhoods of a mesh vertex: k rings and adaptive rings (docs/METHOD.md step 3).
 ///
 /// The walks reuse a VertexMarks scratch (a visit stamp per vertex), so collecting a neighbourhood costs
 /// O(size of the neighbourhood), never O(#V): no per-call clears, no per-call allocation once the output
@@ -22,6 +22,7 @@ namespace pcl_sparse
   {
   public:
     VertexMarks () = default;
+    /// Marks for \a num_vertices vertices, all clear.
     explicit VertexMarks (std::size_t num_vertices) { resize (num_vertices); }
 
     /// Sizes the scratch for a mesh with \a num_vertices vertices and clears all marks.
@@ -32,6 +33,7 @@ namespace pcl_sparse
       current_ = 1u;
     }
 
+    /// Number of vertices the marks are sized for.
     std::size_t size () const { return stamps_.size (); }
 
     /// Unmarks every vertex in O(1) (O(#V) once every 2^32 calls, when the stamp wraps).
@@ -45,9 +47,12 @@ namespace pcl_sparse
       }
     }
 
+    /// Whether vertex \a v is marked.
     bool isMarked (int v) const { return stamps_[v] == current_; }
 
-    /// Marks \a v; returns true if it was not marked before.
+    /// Marks a vertex.
+    /// \param[in] v  vertex index
+    /// \return true if it was not marked before
     bool
     mark (int v)
     {
@@ -62,12 +67,16 @@ namespace pcl_sparse
     std::uint32_t current_ = 1u;
   };
 
-  /// Collects the k-ring of \a v: v itself, then its 1-ring, then the vertices at edge distance 2, ... up
-  /// to \a rings, each ring in breadth-first order (deterministic: the topology's lists are sorted).
-  ///   marks     scratch sized for the mesh; cleared on entry, left marking exactly \a out
-  ///   out       overwritten with the neighbourhood, out[0] == v
-  ///   returns   the number of rings actually collected (smaller than \a rings when the component of v
-  ///             is exhausted earlier)
+  /// Collects the k-ring of a vertex: the vertex itself, then its 1-ring, then the vertices at edge
+  /// distance 2, and so on, each ring in breadth-first order (deterministic: the topology's lists are
+  /// sorted).
+  /// \param[in]     topology  the mesh's topology
+  /// \param[in]     v         the centre vertex
+  /// \param[in]     rings     k, the number of rings
+  /// \param[in,out] marks     scratch sized for the mesh; cleared on entry, left marking exactly \a out
+  /// \param[out]    out       the neighbourhood, out[0] == v
+  /// \return the number of rings actually collected (fewer than \a rings when the component of v is
+  ///         exhausted earlier)
   int
   collectKRing (const MeshTopology& topology, int v, int rings, VertexMarks& marks, std::vector<int>& out);
 
@@ -84,15 +93,25 @@ namespace pcl_sparse
     int max_rings = 16;
   };
 
-  /// Collects rings around \a v (as collectKRing) until the neighbourhood radius exceeds
+  /// Collects rings around a vertex (as collectKRing) until the neighbourhood radius exceeds
   /// options.radius and at least options.min_neighbors neighbours are collected, or options.max_rings
   /// is reached, or the component of v is exhausted. At least one ring is always collected.
-  ///   returns  the number of rings collected
+  /// \param[in]     mesh      the mesh (for distances)
+  /// \param[in]     topology  its topology
+  /// \param[in]     v         the centre vertex
+  /// \param[in]     options   radius, minimum neighbour count, ring limit
+  /// \param[in,out] marks     scratch sized for the mesh; cleared on entry, left marking exactly \a out
+  /// \param[out]    out       the neighbourhood, out[0] == v
+  /// \return the number of rings collected
   int
   collectAdaptiveRing (const TriangleMesh& mesh, const MeshTopology& topology, int v, const AdaptiveRingOptions& options,
                        VertexMarks& marks, std::vector<int>& out);
 
-  /// Convenience overload allocating its own scratch (O(#V) per call): for tests and one-off queries.
+  /// collectKRing allocating its own scratch (O(#V) per call): for tests and one-off queries.
+  /// \param[in] topology  the mesh's topology
+  /// \param[in] v         the centre vertex
+  /// \param[in] rings     k, the number of rings
+  /// \return the k-ring, v first
   std::vector<int>
   kRing (const MeshTopology& topology, int v, int rings);
 } // namespace pcl_sparse

@@ -1,7 +1,7 @@
 #pragma once
 /// \file quadric_fit.h
 /// Least-squares height quadrics and the degree-2 jet (Monge form) they define.
-/// Shared by Harris 3D (METHOD.md step 3) and the patch frames (step 6).
+/// Shared by Harris 3D (docs/METHOD.md step 3) and the patch frames (step 6).
 
 #include <Eigen/Core>
 
@@ -10,19 +10,21 @@
 namespace pcl_sparse
 {
   /// z = c0 + c1 x + c2 y + c3 x^2 / 2 + c4 x y + c5 y^2 / 2 in some local frame.
-  /// (METHOD.md's Harris notation: p6 = c0, p4 = c1, p5 = c2, p1 = c3, p2 = c4, p3 = c5.)
+  /// (Harris notation of docs/METHOD.md step 3: p6 = c0, p4 = c1, p5 = c2, p1 = c3, p2 = c4, p3 = c5.)
   struct HeightQuadric
   {
-    Eigen::Matrix<double, 6, 1> c = Eigen::Matrix<double, 6, 1>::Zero ();
+    Eigen::Matrix<double, 6, 1> c = Eigen::Matrix<double, 6, 1>::Zero ();  ///< c0 .. c5
 
+    /// Height z at (\a x, \a y).
     double value (double x, double y) const { return c[0] + c[1] * x + c[2] * y + 0.5 * c[3] * x * x + c[4] * x * y + 0.5 * c[5] * y * y; }
   };
 
   /// Fits a HeightQuadric to points given in the local frame (z = height) by least squares.
   /// Columns are scaled by the points' extent first, so the fit is well conditioned at any scale.
-  ///   points  #P local positions, #P >= 6
-  ///   returns false (and leaves \a quadric untouched) when there are fewer than 6 points or the xy
-  ///   positions do not determine a quadric (collinear, coincident)
+  /// \param[in]  points   #P local positions, #P >= 6
+  /// \param[out] quadric  the fitted coefficients
+  /// \return false (and \a quadric untouched) when there are fewer than 6 points or the xy positions do
+  ///         not determine a quadric (collinear, coincident)
   bool
   fitHeightQuadric (const std::vector<Eigen::Vector3d>& points, HeightQuadric& quadric);
 
@@ -46,24 +48,37 @@ namespace pcl_sparse
     }
   };
 
-  /// The jet of a height quadric at (0, 0, c0), expressed in the quadric's own frame.
+  /// The jet of a height quadric at (0, 0, c0).
+  /// \param[in] quadric  the height quadric
+  /// \return curvatures, directions and normal, expressed in the quadric's own frame
   MongeJet
   mongeJetOfQuadric (const HeightQuadric& quadric);
 
-  /// Any orthonormal frame whose third column is \a normal (unit).
+  /// Any orthonormal frame around a normal.
+  /// \param[in] normal  unit vector
+  /// \return a right-handed orthonormal frame whose third column is \a normal
   Eigen::Matrix3d
   frameAroundNormal (const Eigen::Vector3d& normal);
 
-  /// Fits a degree-2 jet to world points around \a origin: frame from \a normal_hint, quadric fit,
-  /// curvatures and directions mapped back to world coordinates. The returned normal is oriented like
-  /// \a normal_hint. Returns false when the fit is underdetermined (see fitHeightQuadric).
+  /// Fits a degree-2 jet to world points: frame from a normal hint, quadric fit, curvatures and
+  /// directions mapped back to world coordinates.
+  /// \param[in]  points       world positions, at least 6
+  /// \param[in]  origin       the point the jet is taken at (heights are measured from it)
+  /// \param[in]  normal_hint  unit normal giving the fitting frame; the jet's normal is oriented like it
+  /// \param[out] jet          the jet, in world coordinates
+  /// \return false when the fit is underdetermined (see fitHeightQuadric)
   bool
   fitMongeJet (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
                const Eigen::Vector3d& normal_hint, MongeJet& jet);
 
-  /// As fitMongeJet, in a given orthonormal \a frame (columns: two tangents and the normal the heights
-  /// are measured along, e.g. a seed's frame): the quadric is fitted to frame^T (p - origin) and the jet
-  /// is mapped back to world coordinates; its normal is oriented like frame.col (2).
+  /// As fitMongeJet, in a given orthonormal frame: the quadric is fitted to frame^T (p - origin) and the
+  /// jet is mapped back to world coordinates.
+  /// \param[in]  points  world positions, at least 6
+  /// \param[in]  origin  the point the jet is taken at
+  /// \param[in]  frame   columns: two tangents and the normal the heights are measured along (for
+  ///                     instance a seed's frame); the jet's normal is oriented like frame.col (2)
+  /// \param[out] jet     the jet, in world coordinates
+  /// \return false when the fit is underdetermined (see fitHeightQuadric)
   bool
   fitMongeJetInFrame (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
                       const Eigen::Matrix3d& frame, MongeJet& jet);

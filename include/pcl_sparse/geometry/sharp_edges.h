@@ -10,14 +10,21 @@
 
 namespace pcl_sparse
 {
-  /// Manifold edges (exactly two faces) whose faces' normals differ by more than \a min_degrees (the
-  /// angle between the normals, i.e. 180 degrees minus the interior dihedral angle).
-  ///   returns  ascending edge ids into topology.edges
+  /// Manifold edges (exactly two faces) whose faces' normals differ by more than a given angle.
+  /// \param[in] mesh         the mesh
+  /// \param[in] topology     its topology
+  /// \param[in] min_degrees  angle between the two face normals (180 degrees minus the interior dihedral
+  ///                         angle) above which an edge is sharp
+  /// \return ascending edge ids into topology.edges
   std::vector<int>
   findSharpEdges (const TriangleMesh& mesh, const MeshTopology& topology, double min_degrees);
 
-  /// Flags the vertices within \a rings rings (0: the endpoints only) of an endpoint of a sharp edge.
-  ///   returns  #V flags
+  /// Flags the vertices near a sharp edge (findSharpEdges).
+  /// \param[in] mesh         the mesh
+  /// \param[in] topology     its topology
+  /// \param[in] min_degrees  sharpness threshold, as in findSharpEdges
+  /// \param[in] rings        how many rings around the edges' endpoints count as near (0: the endpoints)
+  /// \return #V flags
   std::vector<bool>
   verticesNearSharpEdges (const TriangleMesh& mesh, const MeshTopology& topology, double min_degrees, int rings);
 } // namespace pcl_sparse

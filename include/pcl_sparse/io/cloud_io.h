@@ -12,18 +12,25 @@
 
 namespace pcl_sparse
 {
-  /// Loads the points of \a path into \a cloud (width = #points, height = 1 for mesh formats).
-  ///   .pcd                    PCL's PCD reader (any fields; x, y, z required);
-  ///   .ply (with or without faces), .obj, .off, .stl   the vertices, read by loadTriangleMesh.
+  /// Loads the points of a file:
+  /// - .pcd through PCL's PCD reader (any fields; x, y, z required);
+  /// - .ply (with or without faces), .obj, .off, .stl: the vertices, read by loadTriangleMesh.
+  ///
   /// NaN/Inf points are kept (PCL's convention) and make is_dense false; a file with no points gives an
-  /// empty cloud. Throws pcl_sparse::Error for a
-  /// missing, empty, malformed or truncated file, a directory or an unknown extension.
+  /// empty cloud.
+  /// \param[in]  path   the file
+  /// \param[out] cloud  the points (width = #points, height = 1 for mesh formats)
+  /// \throws pcl_sparse::Error for a missing, empty, malformed or truncated file, a directory or an
+  ///         unknown extension
   void
   loadPointCloud (const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud);
 
-  /// Writes points with normals and curvature: .pcd through PCL's writer (binary by default, ascii when
-  /// \a binary is false) or .ply (binary little endian or ascii) with float properties
-  /// x y z nx ny nz curvature. Atomic; throws pcl_sparse::Error on an unknown extension or a failed write.
+  /// Writes points with normals and curvature, atomically: .pcd through PCL's writer, or .ply with float
+  /// properties x y z nx ny nz curvature.
+  /// \param[in] path    the file; its extension chooses the format
+  /// \param[in] cloud   the points
+  /// \param[in] binary  binary (PCD binary, PLY binary little endian; default) or ascii
+  /// \throws pcl_sparse::Error on an unknown extension or a failed write
   void
   savePointNormalCloud (const std::string& path, const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary = true);
 

@@ -33,33 +33,46 @@ namespace pcl_sparse
     bool allow_no_faces = false;
   };
 
-  /// Loads a triangle mesh from \a path, dispatching on the extension (.obj .off .ply .stl, any case).
+  /// Loads a triangle mesh, dispatching on the extension (.obj .off .ply .stl, any case).
   /// Polygons are fan-triangulated (v0, vi, vi+1). Every vertex of the file is kept, in file order,
   /// unreferenced ones too; binary STL, which has no shared vertices, is welded on exactly equal positions
-  /// (in first-appearance order). Throws pcl_sparse::Error with a one-line message naming the file and the
-  /// problem for: a missing file, a directory, an unknown extension, an empty file, binary garbage, a
-  /// truncated file, a header whose counts the file cannot hold, a face index out of range, a face with
-  /// fewer than 3 vertices, a NaN/Inf coordinate (unless options.allow_non_finite), no vertices, no faces
-  /// (unless options.allow_no_faces).
+  /// (in first-appearance order).
+  /// \param[in] path     the file
+  /// \param[in] options  whether NaN/Inf coordinates and files without faces are accepted
+  /// \return the mesh
+  /// \throws pcl_sparse::Error with a one-line message naming the file and the problem for: a missing
+  ///         file, a directory, an unknown extension, an empty file, binary garbage, a truncated file, a
+  ///         header whose counts the file cannot hold, a face index out of range, a face with fewer than
+  ///         3 vertices, a NaN/Inf coordinate (unless options.allow_non_finite), no vertices, no faces
+  ///         (unless options.allow_no_faces)
   TriangleMesh
   loadTriangleMesh (const std::string& path, const MeshLoadOptions& options = MeshLoadOptions ());
 
-  /// Writes \a mesh to \a path in the format given by the extension:
-  ///   .obj, .off  ascii, coordinates with the shortest representation that reads back exactly (double);
-  ///   .ply        binary little endian, double coordinates (exact), int32 indices in uchar lists;
-  ///   .stl        binary, float coordinates (the format's precision), facet normals computed.
-  /// Written atomically (writeBytesAtomically); throws pcl_sparse::Error on an unknown extension, an
-  /// invalid face index or a failed write.
+  /// Writes a mesh atomically (writeBytesAtomically) in the format given by the extension:
+  /// - .obj, .off: ascii, coordinates with the shortest representation that reads back exactly (double);
+  /// - .ply: binary little endian, double coordinates (exact), int32 indices in uchar lists;
+  /// - .stl: binary, float coordinates (the format's precision), facet normals computed.
+  ///
+  /// \param[in] path  the file
+  /// \param[in] mesh  the mesh
+  /// \throws pcl_sparse::Error on an unknown extension, an invalid face index or a failed write
   void
   saveTriangleMesh (const std::string& path, const TriangleMesh& mesh);
 
-  /// Writes \a mesh with one RGB colour per vertex as binary little endian PLY (properties x y z as float,
+  /// Writes a mesh with one RGB colour per vertex as binary little endian PLY (properties x y z as float,
   /// red green blue as uchar), for viewing keypoint responses, patches and error maps in MeshLab or
-  /// CloudCompare. \a path must end in .ply and \a colors must have one entry per vertex.
+  /// CloudCompare. Written atomically.
+  /// \param[in] path    the file; must end in .ply
+  /// \param[in] mesh    the mesh
+  /// \param[in] colors  one colour per vertex (color_map.h)
+  /// \throws pcl_sparse::Error on a wrong extension or colour count, an invalid face index or a failed
+  ///         write
   void
   saveColoredMesh (const std::string& path, const TriangleMesh& mesh, const std::vector<std::array<std::uint8_t, 3>>& colors);
 
-  /// True if \a path has one of the extensions loadTriangleMesh reads (.obj .off .ply .stl, any case).
+  /// Whether a path has one of the extensions loadTriangleMesh reads (.obj .off .ply .stl, any case).
+  /// \param[in] path  a file name
+  /// \return true for a mesh file extension
   bool
   isMeshFileExtension (const std::string& path);
 } // namespace pcl_sparse

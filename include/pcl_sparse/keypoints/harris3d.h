@@ -1,6 +1,6 @@
 #pragma once
 /// \file harris3d.h
-/// Harris 3D on triangle meshes (Sipiran & Bustos, The Visual Computer 2011; METHOD.md step 3): the
+/// Harris 3D on triangle meshes (Sipiran & Bustos, The Visual Computer 2011; docs/METHOD.md step 3): the
 /// per-vertex response and the keypoint selection, as plain functions. The PCL-style stage wrapping them
 /// is HarrisKeypoint3DMesh (harris_keypoint3d_mesh.h).
 ///
@@ -31,7 +31,7 @@ namespace pcl_sparse
     Clustering  ///< greedy by decreasing response, dropping maxima closer than the cluster radius to a kept one
   };
 
-  /// Options of Harris 3D. Defaults follow the paper (METHOD.md step 3).
+  /// Options of Harris 3D. Defaults follow the paper (docs/METHOD.md step 3).
   struct Harris3DOptions
   {
     /// Harris constant k in R = det E - k (tr E)^2.
@@ -56,41 +56,64 @@ namespace pcl_sparse
     int num_threads = 0;
   };
 
-  /// Throws pcl_sparse::Error naming the first out-of-range field of \a options.
+  /// Checks Harris 3D options.
+  /// \param[in] options  the options
+  /// \throws pcl_sparse::Error naming the first out-of-range field
   void
   validateHarris3DOptions (const Harris3DOptions& options);
 
-  /// R = det E - k (tr E)^2 for a height quadric fitted in the PCA frame (METHOD.md's p1..p5 are
-  /// quadric.c[3], c[4], c[5], c[1], c[2]).
+  /// Harris response R = det E - k (tr E)^2 of a height quadric fitted in the PCA frame.
+  /// \param[in] quadric  the fit; p1 .. p5 of docs/METHOD.md step 3 are c[3], c[4], c[5], c[1], c[2]
+  /// \param[in] k        the Harris constant (0.04)
+  /// \return R
   double
   harris3DResponseOfQuadric (const HeightQuadric& quadric, double k);
 
-  /// Harris 3D response of every vertex: NaN where there is none (fewer than options.min_neighbors
-  /// neighbours, a degenerate fit, non-finite coordinates). OpenMP over vertices; the result is the
-  /// same for any thread count.
-  ///   returns  #V responses
+  /// Harris 3D response of every vertex. OpenMP over vertices; the result is the same for any thread
+  /// count.
+  /// \param[in] mesh      the mesh
+  /// \param[in] topology  its topology
+  /// \param[in] options   neighbourhood, Harris constant, threads
+  /// \return #V responses; NaN where there is none (fewer than options.min_neighbors neighbours, a
+  ///         degenerate fit, non-finite coordinates)
   std::vector<double>
   computeHarris3DResponses (const TriangleMesh& mesh, const MeshTopology& topology,
                             const Harris3DOptions& options = Harris3DOptions ());
 
-  /// As above, restricted to the vertices in \a indices: the other entries are NaN.
+  /// Harris 3D responses of some vertices only.
+  /// \param[in] mesh      the mesh
+  /// \param[in] topology  its topology
+  /// \param[in] options   neighbourhood, Harris constant, threads
+  /// \param[in] indices   the vertices to compute
+  /// \return #V responses, NaN for the vertices not in \a indices
   std::vector<double>
   computeHarris3DResponses (const TriangleMesh& mesh, const MeshTopology& topology, const Harris3DOptions& options,
                             const std::vector<int>& indices);
 
-  /// All vertex indices ordered by decreasing response, ties by increasing index, NaN responses last (by
-  /// index). The candidate order of the feature-aware seed sampling (METHOD.md step 4).
+  /// All vertex indices ordered by decreasing response: the candidate order of the feature-aware seed
+  /// sampling (docs/METHOD.md step 4).
+  /// \param[in] responses  #V responses (NaN: none)
+  /// \return #V vertex indices; ties by increasing index, NaN responses last (by index)
   std::vector<int>
   orderVerticesByResponse (const std::vector<double>& responses);
 
-  /// True if \a v has a finite response that beats every finite response of its 1-ring in the order of
-  /// orderVerticesByResponse (larger response, or equal response and smaller index).
+  /// Whether a vertex is a local maximum of the response over its 1-ring.
+  /// \param[in] topology   the mesh's topology
+  /// \param[in] responses  #V responses (NaN: none)
+  /// \param[in] v          the vertex
+  /// \return true if \a v has a finite response that beats every finite response of its 1-ring in the
+  ///         order of orderVerticesByResponse (larger response, or equal response and smaller index)
   bool
   isHarris3DLocalMaximum (const MeshTopology& topology, const std::vector<double>& responses, int v);
 
-  /// Keypoints from responses: 1-ring local maxima, then options.selection. \a num_candidates is the #V
-  /// the fraction refers to (the number of vertices the responses were computed for).
-  ///   returns  keypoint vertex indices in decreasing response (ties by index)
+  /// Keypoints from responses: 1-ring local maxima, then options.selection.
+  /// \param[in] mesh            the mesh (for the clustering distance)
+  /// \param[in] topology        its topology
+  /// \param[in] responses       #V responses (NaN: none)
+  /// \param[in] options         selection rule, fraction or cluster radius
+  /// \param[in] num_candidates  the #V the selection fraction refers to (the number of vertices the
+  ///                            responses were computed for)
+  /// \return keypoint vertex indices in decreasing response (ties by index)
   std::vector<int>
   selectHarris3DKeypoints (const TriangleMesh& mesh, const MeshTopology& topology, const std::vector<double>& responses,
                            const Harris3DOptions& options, std::size_t num_candidates);

@@ -1,6 +1,6 @@
 #pragma once
 /// \file harris_keypoint3d_mesh.h
-/// Harris 3D keypoints of a triangle mesh as a PCL-style stage (METHOD.md step 3). The mathematics is in
+/// Harris 3D keypoints of a triangle mesh as a PCL-style stage (docs/METHOD.md step 3). The mathematics is in
 /// harris3d.h; this class holds the input and the results.
 ///
 ///   pcl_sparse::HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
@@ -13,7 +13,7 @@
 
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
-#include <pcl_sparse/mesh/surface_stage.h>
+#include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <pcl/PointIndices.h>

@@ -6,11 +6,17 @@
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <vector>
 
 namespace pcl_sparse
 {
+  /// \brief The axis-aligned bounding box of the finite points of \a points; empty (isEmpty ()) when none
+  /// is finite.
+  Eigen::AlignedBox3d
+  finiteBoundingBox (const std::vector<Eigen::Vector3d>& points);
+
   /// Length of the diagonal of the axis-aligned bounding box of \a points (#points by 3). Non-finite
   /// points are ignored; 0 when no point is finite.
   double

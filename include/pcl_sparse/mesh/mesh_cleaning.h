@@ -25,19 +25,19 @@ namespace pcl_sparse
   };
 
   /// A cleaned mesh with maps to and from the input.
-  ///   vertex_to_input  #V_clean input index of each cleaned vertex
-  ///   input_to_vertex  #V_input cleaned index of each input vertex, or -1 when it was dropped
-  ///   face_to_input    #F_clean input index of each cleaned face
   struct CleanedMesh
   {
-    TriangleMesh mesh;
-    std::vector<int> vertex_to_input;
-    std::vector<int> input_to_vertex;
-    std::vector<int> face_to_input;
+    TriangleMesh mesh;                 ///< the cleaned mesh
+    std::vector<int> vertex_to_input;  ///< #V_clean: input index of each cleaned vertex
+    std::vector<int> input_to_vertex;  ///< #V_input: cleaned index of each input vertex, -1 if dropped
+    std::vector<int> face_to_input;    ///< #F_clean: input index of each cleaned face
   };
 
-  /// Cleans \a mesh as \a options say. Kept vertices and faces stay in input order. Face indices of
-  /// \a mesh must be valid (0 <= i < #V). O(#V + #F log(max valence)).
+  /// Removes the defects \a options select. Kept vertices and faces stay in input order.
+  /// O(#V + #F log(max valence)).
+  /// \param[in] mesh     the input; face indices must be valid (0 <= i < #V)
+  /// \param[in] options  what to remove (default: everything)
+  /// \return the cleaned mesh and its index maps to the input
   CleanedMesh
   cleanMesh (const TriangleMesh& mesh, const CleaningOptions& options = CleaningOptions ());
 } // namespace pcl_sparse

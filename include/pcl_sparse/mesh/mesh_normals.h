@@ -1,6 +1,6 @@
 #pragma once
 /// \file mesh_normals.h
-/// Face normals, face areas and vertex normals of a triangle mesh (METHOD.md step 2).
+/// Face normals, face areas and vertex normals of a triangle mesh (docs/METHOD.md step 2).
 
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
@@ -17,18 +17,22 @@ namespace pcl_sparse
   };
 
   /// Unit normal of every face, oriented by the corner order (counter-clockwise = outward).
-  /// Degenerate faces (zero area) get the zero vector.
-  ///   returns  #F unit normals
+  /// \param[in] mesh  the mesh
+  /// \return #F unit normals; the zero vector for degenerate faces (zero area)
   std::vector<Eigen::Vector3d>
   computeFaceNormals (const TriangleMesh& mesh);
 
-  /// Area of every face.  returns #F areas
+  /// Area of every face.
+  /// \param[in] mesh  the mesh
+  /// \return #F areas
   std::vector<double>
   computeFaceAreas (const TriangleMesh& mesh);
 
-  /// Unit normal of every vertex as the weighted mean of its faces' normals.
-  /// Vertices with no (non-degenerate) face get the zero vector.
-  ///   returns  #V unit normals
+  /// Unit normal of every vertex as the weighted mean of its faces' normals (docs/METHOD.md step 2).
+  /// \param[in] mesh       the mesh
+  /// \param[in] topology   its topology (buildMeshTopology)
+  /// \param[in] weighting  face weights: area (default) or corner angle
+  /// \return #V unit normals; the zero vector for vertices with no non-degenerate face
   std::vector<Eigen::Vector3d>
   computeVertexNormals (const TriangleMesh& mesh, const MeshTopology& topology,
                         NormalWeighting weighting = NormalWeighting::Area);

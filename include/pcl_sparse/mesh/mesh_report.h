@@ -39,19 +39,27 @@ namespace pcl_sparse
     double mean_edge_length = 0.0;          ///< mean length over edges with finite end points
   };
 
-  /// Computes the report of \a mesh with its topology \a topology (buildMeshTopology (mesh)).
-  /// O(#V + #F) apart from sorting the few faces around each vertex.
+  /// Counts, defects, topology and scale of a mesh. O(#V + #F) apart from sorting the few faces around
+  /// each vertex.
+  /// \param[in] mesh      the mesh
+  /// \param[in] topology  its topology (buildMeshTopology (mesh))
+  /// \return the report
   MeshReport
   computeMeshReport (const TriangleMesh& mesh, const MeshTopology& topology);
 
-  /// True if triangle \a f repeats a vertex index or has zero area. Zero area means
+  /// Whether a triangle repeats a vertex index or has zero area. Zero area means
   /// |(b - a) x (c - a)| <= 1e-12 * (longest edge)^2 (collinear corners up to rounding); a face with a
   /// non-finite corner is not called degenerate here (it is counted by non_finite_vertices).
+  /// \param[in] mesh  the mesh
+  /// \param[in] f     face index into mesh.triangles
+  /// \return true for a degenerate face
   bool
   isDegenerateFace (const TriangleMesh& mesh, int f);
 
   /// For every face, the index of the first face with the same vertex set (itself when it is the first);
   /// orientation is ignored. O(#V + #F log(max valence)).
+  /// \param[in] mesh  the mesh
+  /// \return #F face indices
   std::vector<int>
   findDuplicateFaces (const TriangleMesh& mesh);
 } // namespace pcl_sparse

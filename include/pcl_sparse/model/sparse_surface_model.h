@@ -1,7 +1,7 @@
 #pragma once
 /// \file sparse_surface_model.h
 /// The sparse-code surface model: overlapping height-field patches coded over a SurfaceBasis
-/// (METHOD.md steps 9-12). It is what the encoder produces, what resampling reads, and what the file
+/// (docs/METHOD.md steps 9-12). It is what the encoder produces, what resampling reads, and what the file
 /// format stores.
 
 #include <pcl_sparse/model/surface_basis.h>
@@ -46,7 +46,7 @@ namespace pcl_sparse
     PatchFootprint footprint;
 
     /// Input vertices this patch covers and their local (x', y'): needed only to reconstruct the input
-    /// vertices (METHOD.md step 10); empty in a model loaded without its mesh.
+    /// vertices (docs/METHOD.md step 10); empty in a model loaded without its mesh.
     std::vector<int> vertices;
     std::vector<Eigen::Vector2d> vertex_xy;
 
@@ -57,7 +57,7 @@ namespace pcl_sparse
     Eigen::Vector3d toWorld (const Eigen::Vector3d& local) const { return origin + radius * (frame * local); }
   };
 
-  /// Figures of a model against its input mesh (METHOD.md step 11).
+  /// Figures of a model against its input mesh (docs/METHOD.md step 11).
   struct ModelStatistics
   {
     std::size_t num_vertices = 0;      ///< N_V, input vertices
@@ -106,11 +106,11 @@ namespace pcl_sparse
     /// \param[in] offset world translation
     void translate (const Eigen::Vector3d& offset);
 
-    /// CR = (13 M + nnz) / (3 N_V) (METHOD.md step 11: 9 frame + 3 seed + 1 radius values per patch; counts
+    /// CR = (13 M + nnz) / (3 N_V) (docs/METHOD.md step 11: 9 frame + 3 seed + 1 radius values per patch; counts
     /// values, not bytes). 0 when num_input_vertices is 0.
     double compressionRatio () const;
 
-    /// Blended input vertices (METHOD.md step 10): vertex v is the mean over the patches listing it of
+    /// Blended input vertices (docs/METHOD.md step 10): vertex v is the mean over the patches listing it of
     /// s + r R (x', y', h(x', y')), with its stored x', y'. Vertices in no patch (and indices >=
     /// \a num_vertices are ignored) come back as NaN. Needs the patches' vertices / vertex_xy.
     std::vector<Eigen::Vector3d> reconstructVertices (std::size_t num_vertices) const;

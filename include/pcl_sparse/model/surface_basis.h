@@ -1,6 +1,6 @@
 #pragma once
 /// \file surface_basis.h
-/// A basis of height functions h(x, y) on the patch square [-1, 1]^2 (METHOD.md step 8).
+/// A basis of height functions h(x, y) on the patch square [-1, 1]^2 (docs/METHOD.md step 8).
 /// OMP, the model and resampling talk to atoms only through this interface, so other bases
 /// (polynomials, learned atoms) can be added without touching them.
 

@@ -64,9 +64,19 @@ namespace pcl_sparse
     /// \param[in] what the caller, for the message
     void validate (std::size_t num_vertices, const std::string& what) const;
 
-    /// \brief The rows of \a indices, in that order (the surface setIndices crops).
-    /// \param[in] indices vertex indices, each < values.rows ()
-    VertexAttributes selectRows (const std::vector<int>& indices) const;
+    /// \brief The rows of \a indices, in that order (the points a surface keeps).
+    /// \param[in] indices row indices (int or std::size_t), each < values.rows ()
+    template <typename Index>
+    VertexAttributes
+    selectRows (const std::vector<Index>& indices) const
+    {
+      VertexAttributes selected;
+      selected.channels = channels;
+      selected.values.resize (static_cast<Eigen::Index> (indices.size ()), values.cols ());
+      for (std::size_t i = 0; i < indices.size (); ++i)
+        selected.values.row (static_cast<Eigen::Index> (i)) = values.row (static_cast<Eigen::Index> (indices[i]));
+      return selected;
+    }
 
     /// \brief Each channel with the range a model clamps it to (colour 0 .. 255, intensity its min .. max).
     std::vector<AttributeChannelInfo> channelInfo () const;

@@ -1,6 +1,6 @@
 #pragma once
 /// \file feature_aware_patch_sampling.h
-/// Feature-aware seed sampling and patch construction (METHOD.md steps 4, 5 and 6) as a PCL-style stage.
+/// Feature-aware seed sampling and patch construction (docs/METHOD.md steps 4, 5 and 6) as a PCL-style stage.
 ///
 ///   pcl_sparse::FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
 ///   sampling.setInputCloud (cloud);            // the vertices, and
@@ -32,7 +32,7 @@
 
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
-#include <pcl_sparse/mesh/surface_stage.h>
+#include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_frame.h>

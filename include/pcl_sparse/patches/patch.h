@@ -1,7 +1,7 @@
 #pragma once
 /// \file patch.h
 /// One surface patch: a disk-like set of mesh vertices around a seed, seen as a height field over the
-/// seed's tangent plane (METHOD.md steps 5 and 6).
+/// seed's tangent plane (docs/METHOD.md steps 5 and 6).
 
 #include <Eigen/Core>
 
@@ -9,6 +9,7 @@
 
 namespace pcl_sparse
 {
+  /// A patch of the partition: its vertices and triangles, seed, frame, radius and local coordinates.
   struct Patch
   {
     int seed = -1;                                      ///< seed vertex index
@@ -24,8 +25,11 @@ namespace pcl_sparse
     /// p' = R^T (p - s) / r_P for every entry of `vertices` (same order): x', y' in the unit disk, z' the height.
     std::vector<Eigen::Vector3d> local;
 
+    /// Number of vertices.
     std::size_t size () const { return vertices.size (); }
+    /// Local coordinates R^T (p - s) / r_P of the world point \a p.
     Eigen::Vector3d toLocal (const Eigen::Vector3d& p) const { return frame.transpose () * (p - origin) / radius; }
+    /// World point s + r_P R q of the local point \a q.
     Eigen::Vector3d toWorld (const Eigen::Vector3d& q) const { return origin + radius * (frame * q); }
   };
 } // namespace pcl_sparse

@@ -2,7 +2,7 @@
 /// \file patch_checks.h
 /// Checking the invariants a partition into patches must satisfy (issue 4; used by the tests and by
 /// pcl_sparse_patches): each patch is a height field over its tangent plane and meets the growth
-/// conditions of METHOD.md step 5, and every vertex is covered.
+/// conditions of docs/METHOD.md step 5, and every vertex is covered.
 
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
@@ -21,22 +21,33 @@ namespace pcl_sparse
   class PatchInvariantChecker
   {
   public:
+    /// Prepares the checks (normals, topology, the same non-manifold split as the growth).
+    /// \param[in] mesh     the mesh the patches were built on; must outlive the checker
+    /// \param[in] options  the options they were built with
     PatchInvariantChecker (const TriangleMesh& mesh, const PatchOptions& options);
 
-    /// Empty when \a patch satisfies all of: seed first, distinct valid vertices; frame orthonormal and
-    /// right-handed with N . n_s > 0; radius > 0; local = R^T (p - s) / r_P with |(x', y')| <= 1; every
-    /// triangle has its three corners in the patch, positive area, positive signed area projected on
-    /// the frame's tangent plane and on the seed's, angle(n_t, n_s) < cone_angle, and
-    /// angle(n_t, n_w) < delta for some corner w;
-    /// any two triangles differ by less than cone_angle (when options.pairwise_cone); A_p / A <= rho or A_p / A_p^proj <= eta.
+    /// Checks one patch against the invariants of a partition:
+    /// - seed first, distinct valid vertices;
+    /// - frame orthonormal and right-handed with N . n_s > 0; radius > 0;
+    ///   local = R^T (p - s) / r_P with |(x', y')| <= 1;
+    /// - every triangle has its three corners in the patch, positive area, positive signed area projected
+    ///   on the frame's tangent plane and on the seed's, angle(n_t, n_s) < cone_angle, and
+    ///   angle(n_t, n_w) < delta for some corner w;
+    /// - any two triangles differ by less than cone_angle (when options.pairwise_cone);
+    /// - A_p / A <= rho or A_p / A_p^proj <= eta.
+    ///
     /// Face-grown coverage patches (seed_face >= 0) use n_{seed_face} for n_s, and smooth variation means
     /// every triangle is reached from the seed face through adjacent patch triangles less than delta apart.
-    /// Otherwise a one-line description of the first violation.
+    /// \param[in] patch  a patch with frame, radius and local coordinates
+    /// \return empty if it satisfies them all, otherwise a one-line description of the first violation
     std::string check (const Patch& patch) const;
 
-    /// Referenced vertices (in some face) that no patch contains, ascending.
+    /// Referenced vertices (in some face) that no patch contains.
+    /// \param[in] patches  the partition
+    /// \return vertex indices, ascending
     std::vector<int> uncoveredVertices (const std::vector<Patch>& patches) const;
 
+    /// Normals and areas the checks use (those of the growth).
     const PatchGrowthGeometry& geometry () const { return geometry_; }
 
   private:

@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_frame.h
-/// The local frame of a grown patch (METHOD.md step 6): R = (T1, T2, N) from a degree-2 jet fitted in the
+/// The local frame of a grown patch (docs/METHOD.md step 6): R = (T1, T2, N) from a degree-2 jet fitted in the
 /// seed's tangent frame, the radius r_P and the local scaled coordinates p' = R^T (p - s) / r_P.
 
 #include <pcl_sparse/mesh/triangle_mesh.h>
@@ -20,17 +20,24 @@ namespace pcl_sparse
                   ///< degenerate layout (jet underdetermined)
   };
 
-  /// Fills frame, radius and local of \a patch (vertices, triangles, origin already set).
-  ///   seed_normal    unit vertex normal of the seed (the growth's tangent plane); zero for a vertex
-  ///                  without a surface, then +z is used
-  ///   radius_guard   r_P used when every vertex lies on the normal line through the seed (one-vertex
-  ///                  patches): must be > 0, e.g. the seed's mean edge length
-  /// N is oriented like \a seed_normal. Every patch triangle projects on the frame's tangent plane with
-  /// positive signed area when it does so on the seed's tangent plane (which growth guarantees).
+  /// Computes the local frame of a grown patch (docs/METHOD.md step 6). N is oriented like the seed
+  /// normal. Every patch triangle projects on the frame's tangent plane with positive signed area when it
+  /// does so on the seed's tangent plane (which growth guarantees).
+  /// \param[in]     mesh          the mesh
+  /// \param[in]     seed_normal   unit vertex normal of the seed (the growth's tangent plane); zero for a
+  ///                              vertex without a surface, then +z is used
+  /// \param[in]     radius_guard  r_P used when every vertex lies on the normal line through the seed
+  ///                              (one-vertex patches): must be > 0, for instance the seed's mean edge length
+  /// \param[in,out] patch         vertices, triangles and origin set; receives frame, radius and local
+  /// \return how the frame was chosen
   PatchFrameKind
   computePatchFrame (const TriangleMesh& mesh, const Eigen::Vector3d& seed_normal, double radius_guard, Patch& patch);
 
-  /// Signed area of triangle \a f projected on the tangent plane of \a normal (positive: same orientation).
+  /// Signed area of a triangle projected on a plane.
+  /// \param[in] mesh    the mesh
+  /// \param[in] f       face index
+  /// \param[in] normal  unit normal of the plane
+  /// \return the projected area; positive when the face is oriented like \a normal
   double
   projectedSignedArea (const TriangleMesh& mesh, int f, const Eigen::Vector3d& normal);
 } // namespace pcl_sparse

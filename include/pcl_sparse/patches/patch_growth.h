@@ -1,10 +1,11 @@
 #pragma once
 /// \file patch_growth.h
-/// Growing one patch from a seed vertex (METHOD.md step 5, the paper's "create_patch").
+/// Growing one patch from a seed vertex (docs/METHOD.md step 5, the paper's "create_patch").
 ///
 /// Vertices are visited by increasing geodesic distance from the seed (Dijkstra over edges, the walk of
-/// DijkstraGeodesic in geodesic.h with this growth as its visitor; the authors use fast marching). A vertex u joins if some non-degenerate triangle t incident to u and to an already
-/// accepted corner w satisfies all of:
+/// DijkstraGeodesic in geodesic.h with this growth as its visitor; the authors use fast marching). A
+/// vertex u joins if some non-degenerate triangle t incident to u and to an already accepted corner w
+/// satisfies all of:
 ///   - smooth variation  angle(n_t, n_w) < delta               (n_w: vertex normal of w)
 ///   - normal cone       angle(n_t, n_s) < cone_angle           (n_s: vertex normal of the seed)
 ///                       and angle(n_t, n_m) < cone_angle for every patch triangle m (pairwise_cone)
@@ -34,20 +35,23 @@
 namespace pcl_sparse
 {
   /// Per-mesh quantities every growth reads, computed once per mesh.
-  ///   face_normals    #F unit normals (zero for degenerate faces)
-  ///   face_areas      #F
-  ///   vertex_normals  #V unit, area weighted (zero for vertices with no proper face)
-  ///   edge_lengths    length of each 1-ring entry of the topology (computeEdgeLengths, geodesic.h)
   struct PatchGrowthGeometry
   {
-    std::vector<Eigen::Vector3d> face_normals;
-    std::vector<double> face_areas;
+    std::vector<Eigen::Vector3d> face_normals;    ///< #F unit normals (zero for degenerate faces)
+    std::vector<double> face_areas;               ///< #F face areas
+    /// #V unit vertex normals, area weighted (zero for vertices with no proper face).
     std::vector<Eigen::Vector3d> vertex_normals;
-    std::vector<double> edge_lengths;  ///< parallel to MeshTopology::vertex_neighbors
-    double total_area = 0.0;
+    /// Length of each 1-ring entry of the topology (computeEdgeLengths, geodesic.h), parallel to
+    /// MeshTopology::vertex_neighbors.
+    std::vector<double> edge_lengths;
+    double total_area = 0.0;                      ///< A, the mesh's total area
   };
 
-  /// Face normals, areas, area-weighted vertex normals and total area of \a mesh (parallel, deterministic).
+  /// Face normals, areas, area-weighted vertex normals, edge lengths and total area of a mesh (parallel,
+  /// deterministic).
+  /// \param[in] mesh      the mesh
+  /// \param[in] topology  its topology
+  /// \return the quantities every growth on this mesh reads
   PatchGrowthGeometry
   computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology);
 
@@ -57,15 +61,21 @@ namespace pcl_sparse
   class PatchGrower
   {
   public:
-    /// All arguments must outlive the grower. \a options must be valid (PatchOptions::validate).
+    /// Sizes the scratch for a mesh. All arguments must outlive the grower.
+    /// \param[in] mesh      the mesh
+    /// \param[in] topology  its topology
+    /// \param[in] geometry  computePatchGrowthGeometry (mesh, topology)
+    /// \param[in] options   growth conditions; must be valid (PatchOptions::validate)
     PatchGrower (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
                  const PatchOptions& options);
 
-    /// Grows the patch of \a seed into \a patch: sets seed, origin, vertices (seed first, growth order) and
-    /// triangles; leaves frame, radius and local to computePatchFrame. A seed without a normal (isolated,
-    /// or only degenerate faces) gives the one-vertex patch.
-    ///   returns  the growth radius: largest distance from the seed to a patch vertex in the tangent plane
-    ///            of the seed's vertex normal (0 for a one-vertex patch)
+    /// Grows the patch of a seed vertex (docs/METHOD.md step 5). A seed without a normal (isolated, or only
+    /// degenerate faces) gives the one-vertex patch.
+    /// \param[in]  seed   the seed vertex
+    /// \param[out] patch  receives seed, origin, vertices (seed first, growth order) and triangles; frame,
+    ///                    radius and local are left to computePatchFrame
+    /// \return the growth radius: largest distance from the seed to a patch vertex in the tangent plane
+    ///         of the seed's vertex normal (0 for a one-vertex patch)
     double
     grow (int seed, Patch& patch);
 
@@ -75,8 +85,11 @@ namespace pcl_sparse
     /// edges: a face g joins if it is adjacent to a joined face h with angle(n_g, n_h) < delta, and the
     /// cone (against n_{seed_face}), no-flip and area conditions hold as in grow (). Stops at the first
     /// refused face when stop_at_first_refusal. Patch vertices are the corners of the joined faces (seed
-    /// first), patch triangles the joined faces; sets patch.seed_face.
-    ///   returns  the growth radius in the tangent plane of n_{seed_face}
+    /// first), patch triangles the joined faces.
+    /// \param[in]  seed       the uncovered vertex the patch is for
+    /// \param[in]  seed_face  a face incident to \a seed
+    /// \param[out] patch      receives seed, seed_face, origin, vertices and triangles, as grow ()
+    /// \return the growth radius in the tangent plane of n_{seed_face}
     double
     growFromFace (int seed, int seed_face, Patch& patch);
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_options.h
-/// Parameters of patch growth and feature-aware seed sampling (METHOD.md steps 4 and 5).
+/// Parameters of patch growth and feature-aware seed sampling (docs/METHOD.md steps 4 and 5).
 /// Defaults are the paper's; each field says where the authors' code (gproshan, src/mdict) differs.
 
 #include <cmath>
@@ -8,6 +8,7 @@
 
 namespace pcl_sparse
 {
+  /// Conditions of patch growth and seed sampling, with the paper's defaults.
   struct PatchOptions
   {
     /// Smooth variation: a triangle t may join only if angle(n_t, n_w) < delta for an accepted corner w
@@ -17,9 +18,9 @@ namespace pcl_sparse
     /// code uses pi / 2.5 (72 degrees). Whatever the value, a triangle whose projection on the seed's
     /// tangent plane would flip is refused too, so the patch stays a height field.
     double cone_angle = M_PI / 2.0;
-    /// Also require angle(n_t, n_m) < cone_angle between any two patch triangles (ours): with the cone
-    /// around n_s alone two triangles may differ by up to twice the cone angle (e.g. 180 degrees for the
-    /// paper's pi / 2). Neither the paper nor the authors' code checks it. Default true.
+    /// Also require angle(n_t, n_m) < cone_angle between any two patch triangles (ours). With the cone
+    /// around n_s alone two triangles may differ by up to twice the cone angle: 180 degrees for the
+    /// paper's pi / 2. Neither the paper nor the authors' code checks it. Default true.
     bool pairwise_cone = true;
     /// Flatness bound eta on A_p / A_p^proj (patch area over its area projected on the seed's tangent
     /// plane; always >= 1: the paper prints the ratio upside down). Paper and code: 1.01.
@@ -46,8 +47,8 @@ namespace pcl_sparse
     /// FeatureAwarePatchSampling::getUncoveredVertices.
     bool cover_unreferenced_vertices = true;
 
-    /// Throws pcl_sparse::Error naming the first out-of-range field (angles in (0, pi], eta >= 1,
-    /// rho >= 0, sigma >= 0, min_patch_size >= 1).
+    /// Checks the ranges: angles in (0, pi], eta >= 1, rho >= 0, sigma >= 0, min_patch_size >= 1.
+    /// \throws pcl_sparse::Error naming the first out-of-range field
     void validate () const;
   };
 } // namespace pcl_sparse

@@ -14,6 +14,7 @@
 
 namespace pcl_sparse
 {
+  /// Options of evaluateCloudQuality.
   struct CloudQualityOptions
   {
     /// Points drawn uniformly by area on the mesh to look for holes.
@@ -22,16 +23,18 @@ namespace pcl_sparse
     double hole_spacings = 3.0;
     /// Nearest triangles (by centroid) searched exactly per point for the distance to the surface.
     int nearest_triangles = 16;
+    /// Seed of the probes.
     std::uint64_t seed = 1;
     /// Keep the per-point distances and normal angles in CloudQuality (for diagnostics).
     bool keep_per_point = false;
   };
 
+  /// How well a cloud samples a mesh (evaluateCloudQuality).
   struct CloudQuality
   {
     double rms_distance = 0.0;   ///< RMS distance of the points to the mesh (world units)
-    double mean_distance = 0.0;
-    double max_distance = 0.0;
+    double mean_distance = 0.0;  ///< mean distance of the points to the mesh
+    double max_distance = 0.0;   ///< largest distance of a point to the mesh
     double mean_normal_angle = 0.0;  ///< mean angle (degrees) between a point's normal and its nearest face's normal
     double median_normal_angle = 0.0;  ///< median of the same angles
     double p90_normal_angle = 0.0;     ///< 90th percentile of the same angles
@@ -49,12 +52,19 @@ namespace pcl_sparse
     std::vector<double> point_distances, point_normal_angles;
   };
 
-  /// Measures \a cloud against \a mesh (see CloudQuality). Points with a non-finite normal count as invalid.
+  /// Measures a point cloud with normals against the mesh it samples.
+  /// \param[in] mesh     the reference surface
+  /// \param[in] cloud    the points; those with a non-finite position or normal count as invalid
+  /// \param[in] options  probes, hole threshold, search size, seed
+  /// \return distances, normal errors, flipped and invalid points, completeness, spacing uniformity
   CloudQuality
   evaluateCloudQuality (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& cloud,
                         const CloudQualityOptions& options = CloudQualityOptions ());
 
-  /// Distance from \a p to the triangle (a, b, c), exact (Ericson's closest point on a triangle).
+  /// Exact distance from a point to a triangle (Ericson's closest point on a triangle).
+  /// \param[in] p        the point
+  /// \param[in] a, b, c  the triangle's corners
+  /// \return the distance
   double
   pointTriangleDistance (const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 } // namespace pcl_sparse

@@ -2,7 +2,8 @@
 /// \file patch_evaluator.h
 /// Fast evaluation of a model's patches for resampling, which evaluates codes and footprints tens of
 /// millions of times: frequencies of cosine atoms decoded once per patch (no integer division per atom,
-/// no virtual call), footprint centrality with a polynomial atan2 (error below 1e-9 rad). Any other SurfaceBasis goes through SparseSurfaceModel::evaluate.
+/// no virtual call), footprint centrality with a polynomial atan2 (error below 1e-9 rad). Any other
+/// SurfaceBasis goes through SparseSurfaceModel::evaluate.
 
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/model/surface_basis.h>
@@ -14,16 +15,22 @@
 
 namespace pcl_sparse
 {
+  /// Heights, derivatives and footprint tests of a model's patches, with per-patch tables.
   class PatchEvaluator
   {
   public:
-    /// Keeps a reference to \a model, which must outlive the evaluator and not change.
+    /// Builds the tables of a model.
+    /// \param[in] model  the model; kept by reference, it must outlive the evaluator and not change
     explicit PatchEvaluator (const SparseSurfaceModel& model);
 
+    /// The model evaluated.
     const SparseSurfaceModel& model () const { return model_; }
 
-    /// |(x, y)| / extent(angle) of patch \a p: <= 1 inside its footprint (an empty footprint is the unit disk).
-    /// \a turn receives the angle of (x, y) as a fraction of a full turn, in [0, 1).
+    /// Centrality of a local point in a patch's footprint.
+    /// \param[in]  p     patch index
+    /// \param[in]  x, y  local position in patch \a p
+    /// \param[out] turn  the angle of (x, y) as a fraction of a full turn, in [0, 1)
+    /// \return |(x, y)| / extent(angle): <= 1 inside the footprint (an empty footprint is the unit disk)
     double
     centrality (std::size_t p, double x, double y, double& turn) const
     {
@@ -48,6 +55,7 @@ namespace pcl_sparse
       return e > 0.0 ? r / e : std::numeric_limits<double>::infinity ();
     }
 
+    /// centrality (p, x, y, turn) without the angle.
     double
     centrality (std::size_t p, double x, double y) const
     {
@@ -60,9 +68,12 @@ namespace pcl_sparse
 
     /// Height h(x, y) of patch \a p.
     double height (std::size_t p, double x, double y) const;
-    /// Height, gradient and Hessian of patch \a p at (x, y); equal to SparseSurfaceModel::evaluate.
-    /// Without \a hessian the Hessian is left zero (value and gradient are the same bits either way):
-    /// validity tests need only the gradient.
+    /// Height, gradient and Hessian of a patch; equal to SparseSurfaceModel::evaluate.
+    /// \param[in] p        patch index
+    /// \param[in] x, y     local position
+    /// \param[in] hessian  false leaves the Hessian zero (value and gradient are the same bits either
+    ///                     way): validity tests need only the gradient
+    /// \return the height sample
     HeightSample sample (std::size_t p, double x, double y, bool hessian = true) const;
 
     /// atan2 with absolute error below 1e-9 rad: octant reduction, atan(a) = pi/6 + atan((sqrt(3) a - 1) /

@@ -1,6 +1,6 @@
 #pragma once
 /// \file patch_geometry.h
-/// World-space point, normal and curvature of a coded patch at local (x, y) (METHOD.md step 12).
+/// World-space point, normal and curvature of a coded patch at local (x, y) (docs/METHOD.md step 12).
 /// A patch P maps its local (x, y) to s + r_P R (x, y, h(x, y)); everything here follows from that map.
 
 #include <pcl_sparse/model/sparse_surface_model.h>
@@ -10,7 +10,11 @@
 
 namespace pcl_sparse
 {
-  /// World position of patch \a code at local (x, y) with height sample \a h.
+  /// World position of a patch's surface point.
+  /// \param[in] code  the patch
+  /// \param[in] x, y  local position
+  /// \param[in] h     height sample of the code at (x, y)
+  /// \return s + r_P R (x, y, h)
   inline Eigen::Vector3d
   patchPoint (const PatchCode& code, double x, double y, const HeightSample& h)
   {
@@ -18,14 +22,20 @@ namespace pcl_sparse
   }
 
   /// World unit normal n = R normalise(-h_x, -h_y, 1): the gradient is scale free, so local and world
-  /// slopes agree. Oriented like the frame's N, which the encoder orients like the input's faces.
+  /// slopes agree.
+  /// \param[in] code  the patch
+  /// \param[in] h     height sample with the gradient
+  /// \return the normal, oriented like the frame's N (which the encoder orients like the input's faces)
   inline Eigen::Vector3d
   patchNormal (const PatchCode& code, const HeightSample& h)
   {
     return code.frame * Eigen::Vector3d (-h.gradient.x (), -h.gradient.y (), 1.0).normalized ();
   }
 
-  /// Area element: world area per unit local area, r_P^2 sqrt(1 + h_x^2 + h_y^2).
+  /// Area element: world area per unit local area.
+  /// \param[in] code  the patch
+  /// \param[in] h     height sample with the gradient
+  /// \return r_P^2 sqrt(1 + h_x^2 + h_y^2)
   inline double
   patchAreaElement (const PatchCode& code, const HeightSample& h)
   {
@@ -36,6 +46,9 @@ namespace pcl_sparse
   /// its normal is positive: a sphere of radius a with outward normals gives +1/a, its inside -1/a, a plane 0.
   /// For the graph z = r h(x / r, y / r): H = -((1 + h_y^2) h_xx - 2 h_x h_y h_xy + (1 + h_x^2) h_yy) /
   /// (2 r (1 + h_x^2 + h_y^2)^(3/2)).
+  /// \param[in] code  the patch
+  /// \param[in] h     height sample with gradient and Hessian
+  /// \return H in 1 / world length
   inline double
   patchMeanCurvature (const PatchCode& code, const HeightSample& h)
   {

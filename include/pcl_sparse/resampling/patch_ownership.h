@@ -1,15 +1,16 @@
 #pragma once
 /// \file patch_ownership.h
 /// Which patch owns a place on the surface, so that overlapping patches do not double the density of a
-/// resampled cloud (METHOD.md step 12).
+/// resampled cloud (docs/METHOD.md step 12).
 ///
 /// The rule uses the model alone: a place q sampled from patch P is owned by the patch whose footprint
 /// holds q most centrally, centrality c = |(x, y)| / extent(angle) in that patch's local coordinates
 /// (c <= 1 inside the footprint), ties to the lower patch index. A patch Q is only a contender for q if
 /// q also lies on Q's surface: |z' - h_Q(x', y')| <= height_tolerance (local units of Q) and Q's frame
 /// normal N_Q faces the same side as P's (N_Q . N_P >= min_normal_cosine), so the two sides of a thin
-/// sheet do not steal each other's places, and only where Q's code is valid (isValidPlace). Patches sample their own surface, so two patches see a seam place at slightly
-/// different positions (their coding errors); the seams are consistent up to that error.
+/// sheet do not steal each other's places, and only where Q's code is valid (isValidPlace). Patches
+/// sample their own surface, so two patches see a seam place at slightly different positions (their
+/// coding errors); the seams are consistent up to that error.
 
 #include <pcl_sparse/resampling/patch_evaluator.h>
 
@@ -39,7 +40,11 @@ namespace pcl_sparse
     double max_slope_angle = 75.0;
   };
 
-  /// Whether height sample \a h is a place of its patch's surface under \a options (height and slope bounds).
+  /// Whether a height sample is a place of its patch's surface (height and slope bounds).
+  /// \param[in] h                  height sample with the gradient
+  /// \param[in] options            the height bound max_height
+  /// \param[in] max_slope_squared  tan(max_slope_angle)^2 (PatchOwnership::maxSlopeSquared)
+  /// \return true if |h| <= max_height and |grad h|^2 <= max_slope_squared
   inline bool
   isValidPlace (const HeightSample& h, const PatchOwnershipOptions& options, double max_slope_squared)
   {
@@ -51,13 +56,21 @@ namespace pcl_sparse
   class PatchOwnership
   {
   public:
+    /// Finds, for each patch and angular sector, the patches that may own its places.
+    /// \param[in] evaluator  the model's evaluator; kept by reference, it must outlive this object
+    /// \param[in] options    surface and validity tolerances
     PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options = PatchOwnershipOptions ());
 
     /// Angular sectors of a patch's local plane; each keeps only the contenders that can reach it.
     static constexpr int sectors = 16;
 
-    /// Whether patch \a p owns the place \a q (a point of p's surface), where \a centrality is the
-    /// centrality of q in p (must be <= 1) and \a turn its angle in p as a fraction of a turn.
+    /// Whether a patch owns a place of its surface.
+    /// \param[in] p           patch index
+    /// \param[in] q           the place: a world point of p's surface
+    /// \param[in] centrality  centrality of q in p (PatchEvaluator::centrality), <= 1
+    /// \param[in] turn        angle of q in p as a fraction of a turn
+    /// \return true unless a contender (see the file comment) holds q more centrally, or as centrally
+    ///         with a lower index
     bool
     owns (std::size_t p, const Eigen::Vector3d& q, double centrality, double turn) const
     {
@@ -77,11 +90,14 @@ namespace pcl_sparse
       return true;
     }
 
+    /// The options given to the constructor.
     const PatchOwnershipOptions& options () const { return options_; }
     /// tan(max_slope_angle)^2.
     double maxSlopeSquared () const { return max_slope_squared_; }
 
-    /// Patches that may overlap patch \a p (never p itself), nearest seed first.
+    /// Patches that may overlap a patch.
+    /// \param[in] p  patch index
+    /// \return patch indices (never \a p), nearest seed first
     std::vector<int> neighbours (std::size_t p) const;
 
   private:

@@ -1,6 +1,6 @@
 #pragma once
 /// \file sparse_surface_resampling.h
-/// Resampling a SparseSurfaceModel into a pcl::PointCloud<PointOutT> at any density (METHOD.md step 12):
+/// Resampling a SparseSurfaceModel into a pcl::PointCloud<PointOutT> at any density (docs/METHOD.md step 12):
 /// the main use of the representation.
 ///
 ///   pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> resampling;  // or PointXYZ, PointXYZRGBNormal, ...

@@ -3,7 +3,7 @@
 /// \brief Definitions of HarrisKeypoint3DMesh (keypoints/harris_keypoint3d_mesh.h).
 
 #include <pcl_sparse/keypoints/harris_keypoint3d_mesh.h>
-#include <pcl_sparse/mesh/impl/surface_stage.hpp>
+#include <pcl_sparse/surface/impl/surface_stage.hpp>
 
 #include <algorithm>
 
@@ -34,7 +34,7 @@ namespace pcl_sparse
     std::size_t num_candidates = mesh.numVertices ();
     if (this->selected_)
     {
-      const std::vector<int> selected (this->selected_->begin (), this->selected_->end ());
+      const std::vector<int> selected = this->selectedSurfaceVertices ();
       responses_ = computeHarris3DResponses (mesh, topology, options, selected);
       std::vector<int> distinct (selected);
       std::sort (distinct.begin (), distinct.end ());
@@ -44,11 +44,13 @@ namespace pcl_sparse
       responses_ = computeHarris3DResponses (mesh, topology, options);
 
     const std::vector<int> keypoints = selectHarris3DKeypoints (mesh, topology, responses_, options, num_candidates);
-    keypoints_indices_->indices.assign (keypoints.begin (), keypoints.end ());
+    keypoints_indices_->indices.clear ();
+    for (int v : keypoints)  // indices of the input's points (a scan's surface keeps only its clean points)
+      keypoints_indices_->indices.push_back (this->surfaceIsScan () ? static_cast<int> (this->surface_input_indices_[v]) : v);
     output.resize (keypoints.size ());
     for (std::size_t i = 0; i < keypoints.size (); ++i)
     {
-      const Eigen::Vector3d& p = mesh.vertices[keypoints[i]];
+      const Eigen::Vector3d p = this->surface_origin_ + mesh.vertices[keypoints[i]];
       PointOut& q = output[i];
       q.x = static_cast<float> (p.x ());
       q.y = static_cast<float> (p.y ());

@@ -2,7 +2,7 @@
 /// \file feature_aware_patch_sampling.hpp
 /// \brief Definitions of FeatureAwarePatchSampling (patches/feature_aware_patch_sampling.h).
 
-#include <pcl_sparse/mesh/impl/surface_stage.hpp>
+#include <pcl_sparse/surface/impl/surface_stage.hpp>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 
 namespace pcl_sparse
@@ -26,5 +26,8 @@ namespace pcl_sparse
                                          this->num_threads_, this->progress_);
     patches = std::move (result_.patches);
     result_.patches.clear ();
+    if (!this->surface_origin_.isZero (0.0))  // a scan's local frame back to the input's
+      for (Patch& patch : patches)
+        patch.origin += this->surface_origin_;
   }
 } // namespace pcl_sparse

@@ -1,4 +1,4 @@
-#include <pcl_sparse/mesh/impl/mesh_normal_estimation.hpp>
+#include <pcl_sparse/normals/impl/mesh_normal_estimation.hpp>
 
 #include <Eigen/Eigenvalues>
 

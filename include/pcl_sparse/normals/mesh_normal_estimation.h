@@ -1,6 +1,6 @@
 #pragma once
 /// \file mesh_normal_estimation.h
-/// Vertex normals of a triangle mesh as a PCL-style stage (METHOD.md step 2): the mesh's own normals,
+/// Vertex normals of a triangle mesh as a PCL-style stage (docs/METHOD.md step 2): the mesh's own normals,
 /// oriented by its faces, where pcl::NormalEstimation would fit planes to neighbours and guess the sign.
 ///
 ///   pcl_sparse::MeshNormalEstimation<pcl::PointXYZ> ne;
@@ -11,7 +11,7 @@
 
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
-#include <pcl_sparse/mesh/surface_stage.h>
+#include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <pcl/point_cloud.h>
@@ -66,7 +66,7 @@ namespace pcl_sparse
 } // namespace pcl_sparse
 
 #ifdef PCL_NO_PRECOMPILE
-#include <pcl_sparse/mesh/impl/mesh_normal_estimation.hpp>
+#include <pcl_sparse/normals/impl/mesh_normal_estimation.hpp>
 #else
 #define PCL_SPARSE_EXTERN_NORMALS(T) extern template class pcl_sparse::MeshNormalEstimation<T>;
 PCL_SPARSE_FOR_EACH_INPUT_POINT_TYPE (PCL_SPARSE_EXTERN_NORMALS)

@@ -1,9 +1,9 @@
 #pragma once
 /// \file mesh_normal_estimation.hpp
-/// \brief Definitions of MeshNormalEstimation (mesh/mesh_normal_estimation.h).
+/// \brief Definitions of MeshNormalEstimation (normals/mesh_normal_estimation.h).
 
-#include <pcl_sparse/mesh/impl/surface_stage.hpp>
-#include <pcl_sparse/mesh/mesh_normal_estimation.h>
+#include <pcl_sparse/surface/impl/surface_stage.hpp>
+#include <pcl_sparse/normals/mesh_normal_estimation.h>
 
 #include <pcl/point_types.h>
 
@@ -19,25 +19,27 @@ namespace pcl_sparse
   {
     const TriangleMesh& mesh = *this->surface_;
     const MeshTopology& topology = *this->surface_topology_;
-    const std::vector<Eigen::Vector3d> normals = computeVertexNormals (mesh, topology, weighting_);
-    const std::int64_t size = this->selected_ ? static_cast<std::int64_t> (this->selected_->size ())
-                                              : static_cast<std::int64_t> (normals.size ());
-    output.resize (static_cast<std::size_t> (size));
+    // A scan's normals are its neighbourhood surface's (PCA, oriented); a mesh's come from its faces.
+    const bool scan = this->surfaceIsScan ();
+    const std::vector<Eigen::Vector3d> normals =
+      scan ? this->cloud_surface_->normals : computeVertexNormals (mesh, topology, weighting_);
+    const std::vector<int> rows = this->outputVertices ();
+    const std::int64_t size = static_cast<std::int64_t> (rows.size ());
+    output.resize (rows.size ());
     const float nan = std::numeric_limits<float>::quiet_NaN ();
     bool dense = true;
 #pragma omp parallel for schedule(dynamic, 1024) reduction(&& : dense) num_threads(this->threadsToUse ())
     for (std::int64_t i = 0; i < size; ++i)
     {
-      const int v = this->selected_ ? (*this->selected_)[i] : static_cast<int> (i);
+      const int v = rows[i];
       PointT& p = output[i];
       if constexpr (pcl::traits::has_xyz_v<PointT>)
-        p.getVector3fMap () = mesh.vertices[v].template cast<float> ();
-      const Eigen::Vector3d& n = normals[v];
-      if (n.squaredNorm () > 0.0 && mesh.vertices[v].allFinite ())
+        p.getVector3fMap () = this->outputPosition (static_cast<std::size_t> (i), v).template cast<float> ();
+      if (v >= 0 && normals[v].squaredNorm () > 0.0 && mesh.vertices[v].allFinite ())
       {
-        p.normal_x = static_cast<float> (n.x ());
-        p.normal_y = static_cast<float> (n.y ());
-        p.normal_z = static_cast<float> (n.z ());
+        p.normal_x = static_cast<float> (normals[v].x ());
+        p.normal_y = static_cast<float> (normals[v].y ());
+        p.normal_z = static_cast<float> (normals[v].z ());
         p.curvature = ringSurfaceVariation (mesh, topology, v);
       }
       else

@@ -1,0 +1,127 @@
+#include "tool_input.h"
+
+#include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/scan_io.h>
+
+#include <pcl/console/print.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+namespace pcl_sparse
+{
+  namespace tools
+  {
+    std::size_t
+    SurfaceInput::points () const
+    {
+      return mesh ? mesh->vertices.size () : scan->size ();
+    }
+
+    std::vector<Eigen::Vector3d>
+    SurfaceInput::worldPositions () const
+    {
+      return mesh ? mesh->vertices : pcl_sparse::worldPositions (*scan);
+    }
+
+    bool
+    isSurfaceInputExtension (const std::string& path)
+    {
+      return isMeshFileExtension (path) || isScanFileExtension (path);
+    }
+
+    SurfaceInput
+    loadSurfaceInput (const std::string& path)
+    {
+      SurfaceInput input;
+      if (isMeshFileExtension (path) && !hasExtension (path, ".pcd") && !hasExtension (path, ".xyz"))
+      {
+        // A file of points only (a .ply scan) is a scan, NaN points and all; a mesh is read strictly.
+        MeshLoadOptions lenient;
+        lenient.allow_no_faces = true;
+        lenient.allow_non_finite = true;
+        auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path, lenient));
+        if (!mesh->triangles.empty ())
+        {
+          for (const Eigen::Vector3d& v : mesh->vertices)
+            if (!v.allFinite ())
+              return SurfaceInput{std::make_shared<TriangleMesh> (loadTriangleMesh (path)), nullptr};  // its error
+          input.mesh = mesh;
+          return input;
+        }
+      }
+      if (!isScanFileExtension (path))
+        throw Error (path + ": unknown input extension (a mesh .obj .off .ply .stl, or a cloud .pcd .ply .xyz)");
+      auto scan = std::make_shared<ScanCloud> ();
+      loadScanCloud (path, *scan);
+      input.scan = scan;
+      return input;
+    }
+
+    bool
+    parseViewpoint (const CommandLine& args, Eigen::Vector3d& viewpoint)
+    {
+      if (!args.has ("-viewpoint"))
+        return false;
+      std::istringstream text (args.value ("-viewpoint"));
+      std::string part;
+      int k = 0;
+      while (std::getline (text, part, ','))
+      {
+        std::size_t used = 0;
+        double value = NAN;
+        try
+        {
+          value = std::stod (part, &used);
+        }
+        catch (const std::exception&)
+        {
+          used = 0;
+        }
+        if (k >= 3 || used != part.size () || !std::isfinite (value))
+          throw Error ("option -viewpoint: expected X,Y,Z (three numbers), got '" + args.value ("-viewpoint") + "'");
+        viewpoint[k++] = value;
+      }
+      if (k != 3)
+        throw Error ("option -viewpoint: expected X,Y,Z (three numbers), got '" + args.value ("-viewpoint") + "'");
+      return true;
+    }
+
+    void
+    addInputJson (JsonObject& json, const SurfaceInput& input, const CloudSurface* surface)
+    {
+      json.add ("input_kind", input.kind ());
+      if (!input.scan)
+        return;
+      const ScanCleaningReport& report = input.scan->report;
+      json.add ("input_points", report.input_points)
+        .add ("finite_points", report.finitePoints ())
+        .add ("dropped_non_finite", report.non_finite)
+        .add ("dropped_at_sensor_origin", report.at_sensor_origin)
+        .add ("dropped_duplicates", report.duplicates_merged)
+        .add ("kept_points", report.kept);
+      if (surface)
+        json.add ("outliers", surface->outliers)
+          .add ("isolated_points", surface->isolated)
+          .add ("unreferenced_points", surface->unreferenced)
+          .add ("noise", surface->noise)
+          .add ("spacing", surface->spacing);
+    }
+
+    void
+    printScanSummary (const SurfaceInput& input, const CloudSurface* surface)
+    {
+      if (!input.scan)
+        return;
+      const ScanCleaningReport& report = input.scan->report;
+      pcl::console::print_info ("Scan: %zu points, %zu kept (dropped: %zu non-finite, %zu at the sensor origin, %zu duplicates)",
+                                report.input_points, report.kept, report.non_finite, report.at_sensor_origin,
+                                report.duplicates_merged);
+      if (surface)
+        pcl::console::print_info ("; surface: spacing %.4g, noise %.3g, %zu outliers, %zu isolated", surface->spacing,
+                                  surface->noise, surface->outliers, surface->isolated);
+      pcl::console::print_info ("\n");
+    }
+  } // namespace tools
+} // namespace pcl_sparse

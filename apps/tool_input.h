@@ -1,0 +1,69 @@
+#pragma once
+/// \file tool_input.h
+/// The surface a tool reads: a triangle mesh (.obj .off .ply with faces .stl) or a scan (.pcd .xyz, a .ply
+/// without faces), loaded strictly, and handed to any SurfaceStage; the scan figures for --json.
+
+#include "tool_support.h"
+
+#include <pcl_sparse/cloud/cloud_surface.h>
+#include <pcl_sparse/io/scan_cloud.h>
+#include <pcl_sparse/mesh/triangle_mesh.h>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace pcl_sparse
+{
+  namespace tools
+  {
+    /// A loaded input: exactly one of mesh and scan is set.
+    struct SurfaceInput
+    {
+      TriangleMesh::ConstPtr mesh;
+      ScanCloud::ConstPtr scan;
+
+      /// Vertices of the mesh, or kept points of the scan.
+      std::size_t points () const;
+      /// Their positions in the file's frame.
+      std::vector<Eigen::Vector3d> worldPositions () const;
+      /// "mesh" or "scan".
+      const char* kind () const { return mesh ? "mesh" : "scan"; }
+    };
+
+    /// True if \a path has an extension loadSurfaceInput reads.
+    bool
+    isSurfaceInputExtension (const std::string& path);
+
+    /// Loads \a path: .pcd and .xyz as scans (loadScanCloud: cleaned, local frame), the mesh formats as
+    /// meshes (loadTriangleMesh), a mesh file without faces (a .ply of points) as a scan.
+    SurfaceInput
+    loadSurfaceInput (const std::string& path);
+
+    /// Gives \a input to \a stage (setInputMesh or setInputScan).
+    template <typename Stage>
+    void
+    setSurfaceInput (Stage& stage, const SurfaceInput& input)
+    {
+      if (input.mesh)
+        stage.setInputMesh (input.mesh);
+      else
+        stage.setInputScan (input.scan);
+    }
+
+    /// Option -viewpoint X,Y,Z of the scan tools: true and \a viewpoint set when given. Throws Error
+    /// naming the option for anything but three finite numbers.
+    bool
+    parseViewpoint (const CommandLine& args, Eigen::Vector3d& viewpoint);
+
+    /// Adds the scan's figures to \a json (input kind; for a scan: input_points, finite_points, the dropped
+    /// counts by cause, kept points, and from \a surface the outliers, isolated points and noise).
+    void
+    addInputJson (JsonObject& json, const SurfaceInput& input, const CloudSurface* surface);
+
+    /// One line on the console describing a scan and its surface (nothing for a mesh).
+    void
+    printScanSummary (const SurfaceInput& input, const CloudSurface* surface);
+  } // namespace tools
+} // namespace pcl_sparse

@@ -1,0 +1,39 @@
+#pragma once
+/// \file point_neighborhoods.h
+/// The accepted neighbours of every point of a scan (after the gap and shadow rules), stored compressed,
+/// with each point's local spacing. Built from the kNN graph (knn_neighborhoods.h) or an image grid
+/// (grid_neighborhoods.h); the normals, the noise, the outliers and the orientation read only this.
+
+#include <pcl_sparse/mesh/mesh_topology.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// Neighbour lists in CSR form: the neighbours of point i are neighbors[offsets[i] .. offsets[i + 1]),
+  /// never i itself. The relation need not be symmetric (kNN is not).
+  ///   offsets   #P + 1
+  ///   spacing   #P local spacing of each point (about the square root of the area per point); 0 where
+  ///             the point has no neighbour
+  struct PointNeighborhoods
+  {
+    std::vector<int> offsets{0};
+    std::vector<int> neighbors;
+    std::vector<double> spacing;
+
+    std::size_t size () const { return offsets.size () - 1; }
+
+    IndexRange
+    of (std::size_t i) const
+    {
+      return {neighbors.data () + offsets[i], neighbors.data () + offsets[i + 1]};
+    }
+  };
+
+  /// The neighbour lists made symmetric: j lists i whenever i lists j, each list ascending (a kNN graph is
+  /// not symmetric, and the local triangulation and the spanning tree need both ends to see an edge).
+  /// Spacing is copied.
+  PointNeighborhoods
+  symmetricNeighborhoods (const PointNeighborhoods& neighborhoods, int num_threads);
+} // namespace pcl_sparse

@@ -1,0 +1,30 @@
+#pragma once
+/// \file scan_grid.h
+/// A range image: the points of a scan on a width x height grid of pixels, at most one point per pixel.
+/// An organized scan is one already (scan.indices give each point's pixel); a spinning lidar frame
+/// becomes one (lidar_rings.h).
+
+#include <pcl_sparse/io/scan_cloud.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// cells[y * width + x] is the index of the point at pixel (x, y), or -1.
+  struct ScanGrid
+  {
+    int width = 0;
+    int height = 0;
+    std::vector<int> cells;
+
+    int at (int x, int y) const { return cells[static_cast<std::size_t> (y) * width + x]; }
+  };
+
+  /// The image grid of an organized scan: point i at pixel scan.indices[i] (row * width + column; i when
+  /// indices is empty), for points with placed[i] != 0.
+  /// Throws pcl_sparse::Error if indices has the wrong size, a pixel is outside width x height, or two
+  /// points claim the same pixel.
+  ScanGrid
+  organizedScanGrid (const ScanCloud& scan, const std::vector<std::uint8_t>& placed);
+} // namespace pcl_sparse

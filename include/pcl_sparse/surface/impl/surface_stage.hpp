@@ -1,0 +1,166 @@
+#pragma once
+/// \file surface_stage.hpp
+/// \brief Definitions of SurfaceStage (surface/surface_stage.h); included by the library for the common point
+/// types, and by programs that define PCL_NO_PRECOMPILE for others.
+
+#include <pcl_sparse/io/scan_conversion.h>
+#include <pcl_sparse/mesh/polygon_faces.h>
+#include <pcl_sparse/mesh/sub_mesh.h>
+#include <pcl_sparse/surface/surface_stage.h>
+
+#include <pcl/common/io.h>
+
+namespace pcl_sparse
+{
+  template <typename PointInT>
+  void
+  SurfaceStage<PointInT>::initCompute ()
+  {
+    deinitCompute ();
+    surface_origin_.setZero ();
+    cloud_surface_.reset ();
+    cleaning_report_ = ScanCleaningReport ();
+    surface_input_indices_.clear ();
+    const std::string where = "[" + getClassName () + "::compute] ";
+    const bool has_indices = this->use_indices_ && this->indices_;
+    const bool use_indices = has_indices && index_use_ == IndexUse::CropSurface;
+    if (mesh_)
+    {
+      for (const Eigen::Vector3i& t : mesh_->triangles)
+        for (int k = 0; k < 3; ++k)
+          if (t[k] < 0 || static_cast<std::size_t> (t[k]) >= mesh_->vertices.size ())
+            fail ("face index " + std::to_string (t[k]) + " out of range (" + std::to_string (mesh_->vertices.size ()) +
+                  " vertices)");
+      surface_ = use_indices ? std::make_shared<const TriangleMesh> (extractSubMesh (*mesh_, *this->indices_, where + "setIndices"))
+                             : mesh_;
+      if (!use_indices && topology_)
+      {
+        if (topology_->numVertices () != mesh_->numVertices ())
+          fail ("the topology (setTopology) does not belong to the input mesh");
+        surface_topology_ = topology_;
+      }
+    }
+    else if (scan_ || (this->input_ && !polygons_))
+    {
+      initScanSurface ();
+      if (surface_->triangles.empty ())
+        fail ("the scan gives no surface: none of its " + std::to_string (surface_->vertices.size ()) +
+              " points has neighbours close enough to make a triangle");
+    }
+    else
+    {
+      if (!this->input_)
+        fail ("no input: setInputCloud (with setInputPolygons for a mesh), setInputMesh or setInputScan");
+      TriangleMesh whole;
+      whole.vertices = cloudPositions (*this->input_);
+      whole.triangles = trianglesFromPolygons (*polygons_, whole.vertices.size (), where + "setInputPolygons");
+      for (const Eigen::Vector3i& t : whole.triangles)
+        for (int k = 0; k < 3; ++k)
+          if (!whole.vertices[t[k]].allFinite ())
+            fail ("polygon corner " + std::to_string (t[k]) + " is not a finite point");
+      surface_ = std::make_shared<const TriangleMesh> (
+        use_indices ? extractSubMesh (whole, *this->indices_, where + "setIndices") : std::move (whole));
+    }
+    if (has_indices && !use_indices)
+    {
+      const std::size_t num_points = surfaceIsScan () ? this->input_->size () : surface_->vertices.size ();
+      for (const auto v : *this->indices_)
+        if (v < 0 || static_cast<std::size_t> (v) >= num_points)
+          fail ("setIndices: index " + std::to_string (v) + " out of range (" + std::to_string (num_points) + " points)");
+      selected_ = this->indices_;
+    }
+    if (surface_->vertices.empty () || surface_->triangles.empty ())
+      fail ("no input mesh or an empty one (set a mesh with triangles)");
+    if (!surface_topology_)
+      surface_topology_ = std::make_shared<const MeshTopology> (buildMeshTopology (*surface_));
+  }
+
+  template <typename PointInT>
+  void
+  SurfaceStage<PointInT>::initScanSurface ()
+  {
+    ScanCloud::ConstPtr scan = scan_;
+    if (!scan)
+    {
+      // A cloud without polygons: cleaned into a scan; CropSurface indices select the points it is built from.
+      const bool crop = this->use_indices_ && this->indices_ && index_use_ == IndexUse::CropSurface;
+      auto built = std::make_shared<ScanCloud> ();
+      if (crop)
+      {
+        PointCloudIn subset;
+        for (const auto v : *this->indices_)
+          if (v < 0 || static_cast<std::size_t> (v) >= this->input_->size ())
+            fail ("setIndices: index " + std::to_string (v) + " out of range (" + std::to_string (this->input_->size ()) +
+                  " points)");
+        pcl::copyPointCloud (*this->input_, *this->indices_, subset);
+        toScanCloud (subset, *built, cleaning_options_);
+        for (std::size_t& index : built->indices)
+          index = static_cast<std::size_t> ((*this->indices_)[index]);
+      }
+      else
+        toScanCloud (*this->input_, *built, cleaning_options_);
+      if (built->size () == 0)
+        fail ("the cloud has no usable point: all " + std::to_string (built->report.input_points) +
+              " are non-finite, duplicates or at the sensor origin");
+      scan = built;
+    }
+    CloudSurfaceOptions options = cloud_options_;
+    options.num_threads = num_threads_;
+    CloudSurface surface = buildCloudSurface (*scan, options);
+    surface_ = std::make_shared<const TriangleMesh> (std::move (surface.mesh));
+    surface.mesh = TriangleMesh ();
+    cloud_surface_ = std::make_shared<const CloudSurface> (std::move (surface));
+    surface_origin_ = scan->origin;
+    cleaning_report_ = scan->report;
+    surface_input_indices_ = scan->indices;
+  }
+  template <typename PointInT>
+  std::vector<int>
+  SurfaceStage<PointInT>::selectedSurfaceVertices () const
+  {
+    std::vector<int> vertices;
+    if (!selected_)
+      return vertices;
+    for (int v : outputVertices ())
+      if (v >= 0)
+        vertices.push_back (v);
+    return vertices;
+  }
+
+  template <typename PointInT>
+  std::vector<int>
+  SurfaceStage<PointInT>::outputVertices () const
+  {
+    if (!surfaceIsScan () || !this->input_)
+    {
+      if (selected_)
+        return std::vector<int> (selected_->begin (), selected_->end ());
+      std::vector<int> all (surface_->vertices.size ());
+      for (std::size_t v = 0; v < all.size (); ++v)
+        all[v] = static_cast<int> (v);
+      return all;
+    }
+    std::vector<int> vertex_of_point (this->input_->size (), -1);
+    for (std::size_t v = 0; v < surface_input_indices_.size (); ++v)
+      vertex_of_point[surface_input_indices_[v]] = static_cast<int> (v);
+    if (!selected_)
+      return vertex_of_point;
+    std::vector<int> rows;
+    rows.reserve (selected_->size ());
+    for (const auto point : *selected_)
+      rows.push_back (vertex_of_point[point]);
+    return rows;
+  }
+
+  template <typename PointInT>
+  Eigen::Vector3d
+  SurfaceStage<PointInT>::outputPosition (std::size_t row, int vertex) const
+  {
+    if (surfaceIsScan () && this->input_)
+    {
+      const PointInT& p = (*this->input_)[selected_ ? static_cast<std::size_t> ((*selected_)[row]) : row];
+      return Eigen::Vector3d (p.x, p.y, p.z);
+    }
+    return surface_origin_ + surface_->vertices[vertex];
+  }
+} // namespace pcl_sparse

@@ -1,0 +1,48 @@
+#include <pcl_sparse/cloud/point_neighborhoods.h>
+
+#include <omp.h>
+
+#include <algorithm>
+
+namespace pcl_sparse
+{
+  PointNeighborhoods
+  symmetricNeighborhoods (const PointNeighborhoods& neighborhoods, int num_threads)
+  {
+    const std::size_t n = neighborhoods.size ();
+    // Reverse lists (who lists j), ascending because they are filled in order of i.
+    std::vector<int> reverse_offsets (n + 1, 0);
+    for (const int j : neighborhoods.neighbors)
+      ++reverse_offsets[j + 1];
+    for (std::size_t j = 0; j < n; ++j)
+      reverse_offsets[j + 1] += reverse_offsets[j];
+    std::vector<int> reverse (neighborhoods.neighbors.size ());
+    std::vector<int> fill (reverse_offsets.begin (), reverse_offsets.end () - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      for (const int j : neighborhoods.of (i))
+        reverse[fill[j]++] = static_cast<int> (i);
+
+    // Each point's own list merged with its reverse list: sizes first, then the lists.
+    std::vector<std::vector<int>> merged (n);
+    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
+    {
+      std::vector<int>& list = merged[i];
+      const IndexRange own = neighborhoods.of (i);
+      list.assign (own.begin (), own.end ());
+      list.insert (list.end (), reverse.begin () + reverse_offsets[i], reverse.begin () + reverse_offsets[i + 1]);
+      std::sort (list.begin (), list.end ());
+      list.erase (std::unique (list.begin (), list.end ()), list.end ());
+    }
+    PointNeighborhoods out;
+    out.spacing = neighborhoods.spacing;
+    out.offsets.assign (n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      out.offsets[i + 1] = out.offsets[i] + static_cast<int> (merged[i].size ());
+    out.neighbors.resize (out.offsets[n]);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy (merged[i].begin (), merged[i].end (), out.neighbors.begin () + out.offsets[i]);
+    return out;
+  }
+} // namespace pcl_sparse
