@@ -1,11 +1,12 @@
 /// bench_attributes: colour coding on a real RGB-D scan (issue 12 point 7).
 ///
-///   bench_attributes CLOUD.pcd [-step S] [-L L] [-tolerance T]
+///   bench_attributes CLOUD.pcd [-step S] [-L L] [-tolerance T] [-scan]
 ///
 /// An organized PointXYZRGBA cloud (e.g. ../shared/clouds/table_scene_mug_stereo_textured.pcd) is
 /// triangulated on its pixel grid (every S-th pixel, default 2; two triangles per grid cell whose corners
-/// are finite and whose edges are shorter than 4 x the median grid edge), encoded with its colours
-/// (SparseSurfaceEncoder<PointXYZRGBA>, setIndices on the used points), and measured:
+/// are finite and whose edges are shorter than 4 x the median grid edge), or with -scan given as a scan
+/// (every S-th pixel by setIndices, no polygons: the library's cloud surface), encoded with its colours
+/// (SparseSurfaceEncoder<PointXYZRGBA>), and measured:
 ///  - colour error at the input vertices (blended codes at their x', y' against the input, grey levels);
 ///  - colour error of a resampled PointXYZRGB cloud (as many points as vertices) against the colour of the
 ///    nearest input vertex, and for scale the difference between each vertex and its nearest other vertex;
@@ -104,8 +105,17 @@ main (int argc, char** argv)
     return 1;
   }
   const int step = static_cast<int> (argument (argc, argv, "-step", 2));
+  const bool scan = std::find_if (argv + 2, argv + argc, [] (const char* a) { return std::string (a) == "-scan"; }) != argv + argc;
   auto used = std::make_shared<pcl::Indices> ();
-  const std::vector<pcl::Vertices> triangles = gridTriangles (*cloud, step, *used);
+  std::vector<pcl::Vertices> triangles;
+  if (scan)
+  {
+    for (int r = 0; r < static_cast<int> (cloud->height); r += step)
+      for (int c = 0; c < static_cast<int> (cloud->width); c += step)
+        used->push_back (r * static_cast<int> (cloud->width) + c);
+  }
+  else
+    triangles = gridTriangles (*cloud, step, *used);
   // The encoder crops to the used points; their polygons are numbered in the whole cloud.
   auto polygons = std::make_shared<std::vector<pcl::Vertices>> (triangles);
   for (pcl::Vertices& t : *polygons)
@@ -118,12 +128,22 @@ main (int argc, char** argv)
   options.attributes.tolerance = argument (argc, argv, "-tolerance", 1.0 / 255.0);
   encoder.setOptions (options);
   encoder.setInputCloud (cloud);
-  encoder.setInputPolygons (polygons);
+  if (!scan)
+    encoder.setInputPolygons (polygons);
   encoder.setIndices (used);
   auto model = std::make_shared<SparseSurfaceModel> ();
   const auto start = std::chrono::steady_clock::now ();
   encoder.compute (*model);
   const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+  // The input point of each surface vertex.
+  pcl::Indices vertex_points = *used;
+  if (scan)
+  {
+    vertex_points.clear ();
+    for (std::size_t i : encoder.getSurfaceInputIndices ())
+      vertex_points.push_back (static_cast<int> (i));
+    *used = vertex_points;
+  }
 
   // Error at the vertices.
   const Eigen::MatrixXf at_vertices = model->reconstructVertexAttributes (used->size ());
@@ -132,7 +152,7 @@ main (int argc, char** argv)
   for (std::size_t k = 0; k < used->size (); ++k)
     for (int c = 0; c < 3; ++c)
     {
-      const auto& p = (*cloud)[(*used)[k]];
+      const auto& p = (*cloud)[vertex_points[k]];
       const double input = c == 0 ? p.r : c == 1 ? p.g : p.b;
       const double e = at_vertices (static_cast<Eigen::Index> (k), c) - input;
       if (!std::isfinite (e))
@@ -187,11 +207,11 @@ main (int argc, char** argv)
   const double m = static_cast<double> (model->numPatches ());
   const double lossless_bytes = encodeModel (*model).size (), lossless_geometry = encodeModel (geometry).size ();
   const double quantised_bytes = encodeModel (*model, quantised).size (), quantised_geometry = encodeModel (geometry, quantised).size ();
-  std::printf ("{\"vertices\": %zu, \"triangles\": %zu, \"patches\": %zu, \"attribute_nnz_per_patch_channel\": %.2f, "
+  std::printf ("{\"mode\": \"%s\", \"vertices\": %zu, \"triangles\": %zu, \"patches\": %zu, \"attribute_nnz_per_patch_channel\": %.2f, "
                "\"vertex_rmse\": %.3f, \"vertex_mae\": %.3f, \"resampled_mae_vs_nearest\": %.3f, \"neighbour_mae\": %.3f, \"encode_seconds\": %.2f, "
                "\"lossless_bytes\": %.0f, \"lossless_attribute_bytes_per_patch\": %.1f, \"quantised_bytes\": %.0f, "
                "\"quantised_attribute_bytes_per_patch\": %.1f}\n",
-               used->size (), triangles.size (), model->numPatches (), nnz / (static_cast<double> (model->attribute_channels.size ()) * m), std::sqrt (sum2 / n), sum1 / n,
+               scan ? "scan" : "grid", used->size (), triangles.size (), model->numPatches (), nnz / (static_cast<double> (model->attribute_channels.size ()) * m), std::sqrt (sum2 / n), sum1 / n,
                resampled, neighbour, seconds, lossless_bytes, (lossless_bytes - lossless_geometry) / m, quantised_bytes,
                (quantised_bytes - quantised_geometry) / m);
   return 0;

@@ -3,6 +3,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/io/scan_conversion.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
@@ -296,4 +297,57 @@ TEST (Attributes, ModelFileKeepsTheColours)
   std::printf ("sphere, %zu patches: attribute bytes per patch %.1f lossless, %.1f quantised (file %zu / %zu bytes)\n",
                model->numPatches (), (bytes.size () - encodeModel (*plain).size ()) / m,
                (small.size () - encodeModel (*plain, options).size ()) / m, bytes.size (), small.size ());
+}
+
+// A scan (a cloud without polygons) carries its colours too: surface vertex v is input point
+// getSurfaceInputIndices ()[v], so the colours of the points cleaning drops never leak in.
+TEST (Attributes, ScanWithColourGivesTheColoursAutomatically)
+{
+  const int width = 80, height = 60;
+  const double f = 60.0;
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZRGB>> (width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+    {
+      pcl::PointXYZRGB& p = cloud->at (x, y);
+      p.r = p.g = p.b = 255;
+      if ((x * 7 + y * 3) % 23 == 0)  // NaN pixels, white
+      {
+        p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN ();
+        continue;
+      }
+      const double z = 2.0 + 0.1 * std::sin (0.1 * x);
+      p.x = static_cast<float> ((x - 0.5 * width) / f * z);
+      p.y = static_cast<float> ((y - 0.5 * height) / f * z);
+      p.z = static_cast<float> (z);
+      p.r = static_cast<std::uint8_t> (std::lround (128.0 + 80.0 * p.x));
+      p.g = static_cast<std::uint8_t> (std::lround (128.0 + 80.0 * p.y));
+      p.b = 50;
+    }
+  cloud->is_dense = false;
+  SparseSurfaceEncoder<pcl::PointXYZRGB> encoder;
+  encoder.setInputCloud (cloud);
+  auto model = std::make_shared<SparseSurfaceModel> ();
+  encoder.compute (*model);
+  ASSERT_EQ (model->attribute_channels.size (), 3u);
+  ASSERT_LT (encoder.getSurfaceInputIndices ().size (), cloud->size ());  // NaN pixels dropped
+
+  const auto rgb = resample<pcl::PointXYZRGB> (model, 5000);
+  double mean = 0.0;
+  for (const auto& point : rgb)
+  {
+    mean += (std::abs (point.r - (128.0 + 80.0 * point.x)) + std::abs (point.g - (128.0 + 80.0 * point.y))) /
+            (2.0 * rgb.size ());
+    ASSERT_EQ (point.b, 50);
+  }
+  EXPECT_LT (mean, 1.5);
+
+  // The same scan through setInputScan gives the same model.
+  auto scan = std::make_shared<ScanCloud> ();
+  toScanCloud (*cloud, *scan);
+  SparseSurfaceEncoder<pcl::PointXYZ> scan_encoder;
+  scan_encoder.setInputScan (scan);
+  SparseSurfaceModel from_scan;
+  scan_encoder.compute (from_scan);
+  EXPECT_EQ (encodeModel (from_scan), encodeModel (*model));
 }
