@@ -4,6 +4,7 @@
 ///   pcl_sparse_encode MESH [-rho R] [-f F] [-L N] [-eps E] [-min-samples N] [-recon RECON.ply]
 ///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [--store-vertices]] [--json] [-q]
 
+#include "tool_input.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/color_map.h>
@@ -26,9 +27,11 @@ using namespace pcl_sparse;
 namespace
 {
   const tools::ToolDescription kTool = {
-    "pcl_sparse_encode", "MESH [options]",
+    "pcl_sparse_encode", "IN [options]",
     {
-      {"MESH", "a triangle mesh: .obj .off .ply .stl"},
+      {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
+      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
+      {"", "when plausible, else consistently oriented, outward on closed surfaces)"},
       {"-rho R", "patch size bound A_p / A (default 0.001; paper: 0.005, 0.001, 0.0002)"},
       {"-f F", "Nyquist factor in [0, 1] (default 0.5; 0 = plain OMP)"},
       {"--authors-nyquist", "the authors' cap lambda >= f mu instead of the paper's lambda / 2 > f mu"},
@@ -48,7 +51,8 @@ namespace
       {"-q", "quiet (no progress, only the result and errors)"},
     },
     1,
-    {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance"},
+    {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
+     "-viewpoint"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices"}};
 } // namespace
 
@@ -58,7 +62,7 @@ main (int argc, char** argv)
   return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
-    args.expectPositional (1, "exactly one MESH");
+    args.expectPositional (1, "exactly one input");
     const std::string& path = args.positional ().front ();
 
     SparseSurfaceEncoderOptions options;
@@ -83,6 +87,8 @@ main (int argc, char** argv)
     if (model_path.empty () && (write_options.tolerance > 0.0 || write_options.include_vertices))
       throw Error ("options -tolerance and --store-vertices need -o MODEL.psm");
     options.validate ();
+    Eigen::Vector3d viewpoint;
+    const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
     if (!recon_path.empty () && !isMeshFileExtension (recon_path))
       throw Error ("option -recon: '" + recon_path + "' has no mesh extension (.obj .off .ply .stl)");
     if (!error_path.empty () && !tools::hasExtension (error_path, ".ply"))
@@ -90,11 +96,14 @@ main (int argc, char** argv)
 
     pcl::console::TicToc timer;
     timer.tic ();
-    const TriangleMesh::ConstPtr mesh = std::make_shared<const TriangleMesh> (loadTriangleMesh (path));
+    const tools::SurfaceInput input = tools::loadSurfaceInput (path);
     const double load_seconds = timer.toc () / 1000.0;
+    const std::vector<Eigen::Vector3d> input_positions = input.worldPositions ();
 
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-    encoder.setInputMesh (mesh);
+    tools::setSurfaceInput (encoder, input);
+    if (has_viewpoint)
+      encoder.setViewPoint (viewpoint.x (), viewpoint.y (), viewpoint.z ());
     encoder.setOptions (options);
     encoder.setNumberOfThreads (threads);
     encoder.setProgressCallback (makeConsoleProgress (quiet || json));
@@ -103,7 +112,7 @@ main (int argc, char** argv)
 
     timer.tic ();
     std::vector<double> errors;
-    const ModelStatistics stats = model.statistics (mesh->vertices, &errors);
+    const ModelStatistics stats = model.statistics (input_positions, &errors);
     const double statistics_seconds = timer.toc () / 1000.0;
 
     timer.tic ();
@@ -111,8 +120,12 @@ main (int argc, char** argv)
       saveModel (model_path, model, write_options);
     if (!recon_path.empty () || !error_path.empty ())
     {
-      TriangleMesh reconstructed = *mesh;
-      const std::vector<Eigen::Vector3d> vertices = model.reconstructVertices (mesh->vertices.size ());
+      // A scan's reconstruction is its points (its neighbourhood surface is the encoder's, not the file's).
+      TriangleMesh reconstructed;
+      reconstructed.vertices = input_positions;
+      if (input.mesh)
+        reconstructed.triangles = input.mesh->triangles;
+      const std::vector<Eigen::Vector3d> vertices = model.reconstructVertices (input_positions.size ());
       for (std::size_t v = 0; v < vertices.size (); ++v)
         if (vertices[v].allFinite ())  // vertices in no patch keep their input position
           reconstructed.vertices[v] = vertices[v];
@@ -130,10 +143,11 @@ main (int argc, char** argv)
     const EncoderTimings& t = encoder.getTimings ();
 
     if (json)
-      tools::JsonObject ()
-        .add ("file", path)
-        .add ("vertices", mesh->vertices.size ())
-        .add ("faces", mesh->triangles.size ())
+    {
+      tools::JsonObject object;
+      object.add ("file", path)
+        .add ("vertices", input_positions.size ())
+        .add ("faces", input.mesh ? input.mesh->triangles.size () : 0)
         .add ("patches", stats.num_patches)
         .add ("rho", options.patches.rho)
         .add ("nyquist_factor", options.coding.nyquist_factor)
@@ -154,8 +168,11 @@ main (int argc, char** argv)
                            .addSeconds ("coding", t.coding)
                            .addSeconds ("encode", t.total)
                            .addSeconds ("statistics", statistics_seconds)
-                           .addSeconds ("write", write_seconds))
-        .print ();
+                           .addSeconds ("write", write_seconds));
+      if (input.scan)
+        tools::addInputJson (object, input, encoder.getCloudSurface ().get ());
+      object.print ();
+    }
     else
     {
       std::printf ("%10s %7s %8s %8s %11s %10s %6s\n", "N_V", "M", "rho", "nnz", "RMSE", "RMSE/diag", "CR");
@@ -164,6 +181,8 @@ main (int argc, char** argv)
                    stats.compression_ratio);
       if (stats.uncovered > 0)
         std::printf ("uncovered vertices (not in the RMSE): %zu\n", stats.uncovered);
+      if (input.scan)
+        tools::printScanSummary (input, encoder.getCloudSurface ().get ());
       std::printf ("seconds: load %.3f, patches %.3f, coding %.3f, statistics %.3f, write %.3f (encode %.3f)\n",
                    load_seconds, t.patches, t.coding, statistics_seconds, write_seconds, t.total);
     }

@@ -1,8 +1,9 @@
 /// pcl_sparse_keypoints: Harris 3D keypoints of a triangle mesh (Sipiran & Bustos; docs/METHOD.md step 3).
 ///
-///   pcl_sparse_keypoints MESH OUT.{pcd,ply} [-fraction F | -cluster C] [-rings K | -adaptive A] [-k K]
+///   pcl_sparse_keypoints IN OUT.{pcd,ply} [-fraction F | -cluster C] [-rings K | -adaptive A] [-k K]
 ///                        [-responses RESP.ply] [--json] [-q]
 
+#include "tool_input.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/atomic_write.h>
@@ -28,9 +29,10 @@ using namespace pcl_sparse;
 namespace
 {
   const tools::ToolDescription kTool = {
-    "pcl_sparse_keypoints", "MESH OUT.{pcd,ply} [options]",
+    "pcl_sparse_keypoints", "IN OUT.{pcd,ply} [options]",
     {
-      {"MESH", "a triangle mesh: .obj .off .ply .stl"},
+      {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
+      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face"},
       {"OUT", "keypoints as PointXYZI (intensity = response), decreasing response"},
       {"-fraction F", "keep F x #vertices 1-ring local maxima (default 0.01)"},
       {"-cluster C", "instead: keep local maxima at least C x bbox diagonal apart"},
@@ -42,7 +44,7 @@ namespace
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-fraction", "-cluster", "-rings", "-adaptive", "-k", "-responses"}, {"--json", "-q"}};
+    2, {"-fraction", "-cluster", "-rings", "-adaptive", "-k", "-responses", "-viewpoint"}, {"--json", "-q"}};
 
   /// Colours by percentile of the response (the raw values span many orders of magnitude).
   std::vector<RgbColor>
@@ -87,7 +89,7 @@ main (int argc, char** argv)
     const bool quiet = args.has ("-q");
     if (quiet || json)
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
-    args.expectPositional (2, "MESH and OUT");
+    args.expectPositional (2, "IN and OUT");
     const std::string input = args.positional ()[0], output = args.positional ()[1];
     if (!tools::hasExtension (output, ".pcd") && !tools::hasExtension (output, ".ply"))
       throw Error (output + ": output must end in .pcd or .ply");
@@ -111,18 +113,27 @@ main (int argc, char** argv)
 
     pcl::console::TicToc total;
     total.tic ();
-    const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (input));
+    const tools::SurfaceInput surface_input = tools::loadSurfaceInput (input);
     if (!quiet && !json)
-      pcl::console::print_info ("%s: %zu vertices, %zu faces\n", input.c_str (), mesh->numVertices (), mesh->numTriangles ());
+      pcl::console::print_info ("%s: %zu %s\n", input.c_str (), surface_input.points (),
+                                surface_input.mesh ? "vertices" : "points");
+    Eigen::Vector3d viewpoint;
+    const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
 
     pcl::console::TicToc timer;
     timer.tic ();
     HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
-    harris.setInputMesh (mesh);
+    tools::setSurfaceInput (harris, surface_input);
+    if (has_viewpoint)
+      harris.setViewPoint (viewpoint.x (), viewpoint.y (), viewpoint.z ());
     harris.setOptions (options);
     pcl::PointCloud<pcl::PointXYZI> keypoints;
     harris.compute (keypoints);
     const double harris_seconds = timer.toc () / 1000.0;
+    // The surface Harris ran on: the mesh, or a scan's neighbourhood surface (moved to the file's frame).
+    auto mesh = std::make_shared<TriangleMesh> (*harris.getSurface ());
+    for (Eigen::Vector3d& v : mesh->vertices)
+      v += harris.getSurfaceOrigin ();
     if (harris.getResponses ().size () != mesh->numVertices ())
       throw Error (input + ": Harris 3D failed on this mesh");
 

@@ -4,6 +4,7 @@
 ///   pcl_sparse_patches MESH OUT.ply [-rho R] [-delta D] [-cone C] [-eta E] [-sigma S] [-min-size N]
 ///                      [--authors] [--json] [-q]
 
+#include "tool_input.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/color_map.h>
@@ -32,10 +33,12 @@ namespace
   const PatchOptions kDefaults;
 
   const tools::ToolDescription kTool = {
-    "pcl_sparse_patches", "MESH OUT.ply [options]",
+    "pcl_sparse_patches", "IN OUT.ply [options]",
     {
-      {"MESH", "a triangle mesh: .obj .off .ply .stl"},
-      {"OUT.ply", "the mesh, each vertex coloured by one of its patches, seeds black"},
+      {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
+      {"OUT.ply", "the mesh (a scan's neighbourhood surface), each vertex coloured by one of its patches,"},
+      {"", "seeds black"},
+      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face"},
       {"-rho R", tools::format ("size bound A_p / A (default %g)", kDefaults.rho)},
       {"-delta D", tools::format ("smooth variation angle in degrees (default %g)", kDefaults.delta * 180.0 / M_PI)},
       {"-cone C",
@@ -47,7 +50,7 @@ namespace
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet (no progress, no messages besides the report and errors)"},
     },
-    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size"}, {"--json", "-q", "--authors"}};
+    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint"}, {"--json", "-q", "--authors"}};
 } // namespace
 
 int
@@ -58,7 +61,7 @@ main (int argc, char** argv)
     const bool quiet = args.has ("-q");
     if (quiet)
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
-    args.expectPositional (2, "MESH and OUT.ply");
+    args.expectPositional (2, "IN and OUT.ply");
     const std::string& input = args.positional ()[0];
     const std::string& output = args.positional ()[1];
     if (!tools::hasExtension (output, ".ply"))
@@ -81,6 +84,8 @@ main (int argc, char** argv)
     args.integer ("-min-size", options.min_patch_size);
     options.delta = delta_degrees * M_PI / 180.0;
     options.cone_angle = cone_degrees * M_PI / 180.0;
+    Eigen::Vector3d viewpoint;
+    const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
     try
     {
       options.validate ();
@@ -90,16 +95,22 @@ main (int argc, char** argv)
       throw Error (std::string (e.what ()) + " (angles are given in degrees)");
     }
 
-    auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (input));
+    const tools::SurfaceInput surface_input = tools::loadSurfaceInput (input);
     pcl::console::TicToc timer;
     timer.tic ();
     FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
-    sampling.setInputMesh (mesh);
+    tools::setSurfaceInput (sampling, surface_input);
+    if (has_viewpoint)
+      sampling.setViewPoint (viewpoint.x (), viewpoint.y (), viewpoint.z ());
     sampling.setOptions (options);
     sampling.setProgressCallback (makeConsoleProgress (quiet || json));
     std::vector<Patch> patches;
     sampling.compute (patches);
     const double seconds = timer.toc () / 1000.0;
+    // The surface the patches grew on: the mesh, or a scan's neighbourhood surface (moved to the file's frame).
+    auto mesh = std::make_shared<TriangleMesh> (*sampling.getSurface ());
+    for (Eigen::Vector3d& v : mesh->vertices)
+      v += sampling.getSurfaceOrigin ();
 
     // Statistics.
     std::vector<std::size_t> sizes;

@@ -36,9 +36,41 @@ require("<description>[ \t\r\n]*[^< \t\r\n][^<]*</description>" "missing or empt
 require("<maintainer email=\"[^\"@ ]+@[^\"@ ]+\">[^<]+</maintainer>" "missing <maintainer email=\"...\">name</maintainer>")
 require("<license>[^<]+</license>" "missing <license>")
 
-# A plain CMake package: colcon and catkin tools pick the build type from here.
+# A plain CMake package: colcon and catkin tools pick the build type from here. In a ROS 1 environment
+# (ROS_VERSION=1) it may be a catkin package instead (the node and nodelets in ros/); then the cmake build
+# type must be conditional too, since catkin_pkg refuses two build types that both apply.
 require("<buildtool_depend>cmake</buildtool_depend>" "missing <buildtool_depend>cmake</buildtool_depend>")
-require("<export>[ \t\r\n]*(<[^>]*>[^<]*</[^>]*>[ \t\r\n]*)*<build_type>cmake</build_type>" "missing <export><build_type>cmake</build_type>")
+require("<export>[ \t\r\n]*(<[^>]*>[^<]*</[^>]*>[ \t\r\n]*)*<build_type( condition=\"[$]ROS_VERSION != 1\")?>cmake</build_type>"
+        "missing <export><build_type>cmake</build_type>")
+string(REGEX MATCHALL "<build_type[^>]*>[^<]*</build_type>" build_types "${xml}")
+if(xml MATCHES "<build_type[^>]*>catkin</build_type>")
+  set(ros1_build_types "<build_type condition=\"[$]ROS_VERSION == 1\">catkin</build_type>"
+                       "<build_type condition=\"[$]ROS_VERSION != 1\">cmake</build_type>")
+  foreach(expected ${ros1_build_types})
+    if(NOT xml MATCHES "${expected}")
+      list(APPEND problems "a catkin build type needs <build_type condition=\"$ROS_VERSION == 1\">catkin</build_type> and <build_type condition=\"$ROS_VERSION != 1\">cmake</build_type>")
+      break()
+    endif()
+  endforeach()
+  require("<buildtool_depend condition=\"[$]ROS_VERSION == 1\">catkin</buildtool_depend>"
+          "a catkin build type needs <buildtool_depend condition=\"$ROS_VERSION == 1\">catkin</buildtool_depend>")
+  set(max_build_types 2)
+else()
+  set(max_build_types 1)
+endif()
+list(LENGTH build_types build_type_count)
+if(build_type_count GREATER max_build_types)
+  list(APPEND problems "${build_type_count} <build_type> elements")
+endif()
+# Exported plugin descriptions (${prefix} is the package folder) must exist.
+string(REGEX MATCHALL "plugin=\"[$][{]prefix[}]/[^\"]+\"" plugins "${xml}")
+get_filename_component(package_dir "${PACKAGE_XML}" DIRECTORY)
+foreach(plugin ${plugins})
+  string(REGEX REPLACE "plugin=\"[$][{]prefix[}]/([^\"]+)\"" "\\1" plugin_file "${plugin}")
+  if(NOT EXISTS "${package_dir}/${plugin_file}")
+    list(APPEND problems "exported plugin file ${plugin_file} does not exist")
+  endif()
+endforeach()
 
 # The rosdep keys of the dependencies.
 foreach(key libpcl-all-dev eigen boost)

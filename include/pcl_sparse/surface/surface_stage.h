@@ -118,6 +118,12 @@ namespace pcl_sparse
     /// duplicates, points at the sensor origin).
     void setCleaningOptions (const ScanCleaningOptions& options) { cleaning_options_ = options; }
 
+    /// \brief The surface the last compute worked on: the input mesh, its indexed part, or a scan's
+    /// neighbourhood surface (in the scan's local frame: world position = getSurfaceOrigin () + vertex).
+    const TriangleMesh::ConstPtr& getSurface () const { return surface_; }
+    /// \brief The offset of getSurface ()'s frame in the input's frame (0 but for scans far from the origin).
+    const Eigen::Vector3d& getSurfaceOrigin () const { return surface_origin_; }
+
     /// \brief After a compute on a scan: its neighbourhood surface's figures (normals, noise, spacing,
     /// counts; the mesh itself is the surface the stage worked on). Empty pointer after a mesh input.
     const std::shared_ptr<const CloudSurface>& getCloudSurface () const { return cloud_surface_; }
@@ -146,11 +152,10 @@ namespace pcl_sparse
     /// index out of range, a polygon using a non-finite point, or a surface without triangles.
     void initCompute ();
 
-    /// \brief Releases the working surface after compute.
+    /// \brief Releases what compute needed only while it ran (the surface stays for getSurface).
     void
     deinitCompute ()
     {
-      surface_.reset ();
       surface_topology_.reset ();
       selected_.reset ();
     }

@@ -17,6 +17,7 @@ namespace pcl_sparse
   SurfaceStage<PointInT>::initCompute ()
   {
     deinitCompute ();
+    surface_.reset ();
     surface_origin_.setZero ();
     cloud_surface_.reset ();
     cleaning_report_ = ScanCleaningReport ();

@@ -1,0 +1,73 @@
+#pragma once
+/// \file cloud_resampler.h
+/// What pcl_sparse_resample_node and pcl_sparse/ResampleNodelet do: each sensor_msgs/PointCloud2 on
+/// ~input is encoded into a sparse surface model (SparseSurfaceEncoder<T> with setInputCloud alone, T
+/// chosen from the message's fields), the model is resampled and published on ~output with the input's
+/// header, and its .psm bytes on ~model (std_msgs/UInt8MultiArray).
+///
+/// Until the encoder takes point clouds without polygons, compute throws pcl_sparse::Error ("... has no
+/// polygons ..."): the message is dropped with a throttled ROS_ERROR naming the reason, nothing is
+/// published. The node needs no change when cloud input lands.
+
+#include <pcl_sparse_ros/cloud_layout.h>
+#include <pcl_sparse_ros/parameters.h>
+
+#include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/UInt8MultiArray.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pcl_sparse_ros
+{
+  /// What one input cloud became.
+  struct ResampleResult
+  {
+    CloudLayout layout;
+    sensor_msgs::PointCloud2 cloud;    ///< resampled, with the input's header (empty unless asked)
+    std::vector<std::uint8_t> model;   ///< .psm bytes (empty unless asked)
+    std::size_t input_points = 0;      ///< finite input points
+    std::size_t patches = 0;
+    double encode_seconds = 0.0;
+    double resample_seconds = 0.0;
+    double model_seconds = 0.0;        ///< encodeModel (the .psm bytes)
+  };
+
+  /// \brief The node's work on one message, without ROS transport: encode \a input, then resample into
+  /// result.cloud if \a want_cloud and write result.model if \a want_model. Throws pcl_sparse::Error when
+  /// the cloud has no x y z, the encoder refuses it, or the budget is out of range.
+  /// \param[in] budget resampled point count; Kind::Default = the number of finite input points
+  ResampleResult
+  resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings, const PointBudget& budget,
+                 bool want_cloud, bool want_model);
+
+  /// The .psm bytes as a std_msgs/UInt8MultiArray (one dimension labelled "psm").
+  std_msgs::UInt8MultiArray
+  toModelMessage (std::vector<std::uint8_t>&& bytes);
+
+  /// \brief The ROS side: parameters, ~input, ~output, ~model. Shared by the node and the nodelet.
+  class CloudResampler
+  {
+  public:
+    /// Reads the parameters (throws pcl_sparse::Error for bad ones), advertises and subscribes.
+    /// \param[in] private_nh the private node handle: parameters and the ~ topics (the node's "~", the
+    /// nodelet's getPrivateNodeHandle ())
+    explicit CloudResampler (const ros::NodeHandle& private_nh);
+
+  private:
+    void onCloud (const sensor_msgs::PointCloud2ConstPtr& input);
+    /// ROS_ERROR at most every 10 s per instance (each message that fails would otherwise log).
+    void errorThrottled (const std::string& message);
+
+    std::string name_;  ///< the private namespace, e.g. /resample: in every log line
+    EncoderSettings settings_;
+    PointBudget budget_;
+    ros::Publisher cloud_pub_;
+    ros::Publisher model_pub_;
+    ros::Subscriber sub_;
+    ros::WallTime last_error_;
+    std::size_t suppressed_errors_ = 0;
+  };
+} // namespace pcl_sparse_ros

@@ -1,0 +1,40 @@
+#pragma once
+/// \file model_decoder.h
+/// What pcl_sparse_decode_node and pcl_sparse/DecodeNodelet do: the .psm bytes on ~model
+/// (std_msgs/UInt8MultiArray, as the resample node publishes them) are decoded and resampled into a
+/// PointCloud2 (x y z normal_x normal_y normal_z curvature) on ~output. The bytes carry no header: the
+/// cloud gets frame_id ~frame_id and the time it was decoded as its stamp.
+
+#include <pcl_sparse_ros/parameters.h>
+
+#include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/UInt8MultiArray.h>
+
+#include <string>
+
+namespace pcl_sparse_ros
+{
+  /// \brief Decodes the .psm bytes of \a model and resamples them (budget Kind::Default = the model's
+  /// number of input points). The header is left empty. Throws pcl_sparse::Error for malformed bytes.
+  sensor_msgs::PointCloud2
+  decodeModelMessage (const std_msgs::UInt8MultiArray& model, const PointBudget& budget, int threads);
+
+  /// \brief The ROS side: parameters (~points / ~density / ~spacing, ~frame_id, ~threads), ~model, ~output.
+  class ModelDecoder
+  {
+  public:
+    /// Reads the parameters (throws pcl_sparse::Error for bad ones), advertises and subscribes.
+    explicit ModelDecoder (const ros::NodeHandle& private_nh);
+
+  private:
+    void onModel (const std_msgs::UInt8MultiArrayConstPtr& model);
+
+    std::string name_;
+    std::string frame_id_;
+    PointBudget budget_;
+    int threads_ = 0;
+    ros::Publisher cloud_pub_;
+    ros::Subscriber sub_;
+  };
+} // namespace pcl_sparse_ros

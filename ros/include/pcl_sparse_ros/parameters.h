@@ -1,0 +1,66 @@
+#pragma once
+/// \file parameters.h
+/// The ROS parameters of the nodes and nodelets, read once at start-up from the private namespace.
+/// Anything out of range throws pcl_sparse::Error naming the parameter (the node exits, the nodelet
+/// logs it and stays idle).
+
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+
+#include <ros/node_handle.h>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+
+namespace pcl_sparse_ros
+{
+  /// How many points a resampling gives: `~points` (exact count), `~density` (points per square unit of
+  /// the frame, usually m^2) or `~spacing` (mean distance between neighbours); at most one of them.
+  struct PointBudget
+  {
+    enum class Kind { Default, Points, Density, Spacing };
+    Kind kind = Kind::Default;  ///< Default: the count the caller passes to apply()
+    double value = 0.0;
+
+    /// Sets the budget on \a resampling; \a default_count is used for Kind::Default.
+    void apply (pcl_sparse::SparseSurfaceResamplingBase& resampling, std::size_t default_count) const;
+    /// "points 5000", "density 4e+04 /m^2", "spacing 0.005", or "default".
+    std::string describe () const;
+  };
+
+  /// Reads ~points, ~density and ~spacing from \a private_nh.
+  PointBudget
+  readPointBudget (const ros::NodeHandle& private_nh);
+
+  /// What the resample node passes to the encoder and the model writer.
+  struct EncoderSettings
+  {
+    std::string preset = "paper";                    ///< ~preset
+    pcl_sparse::SparseSurfaceEncoderOptions options; ///< the preset's options, then ~rho
+    bool has_viewpoint = false;                      ///< ~viewpoint given
+    Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero ();
+    bool viewpoint_applied = false;                  ///< the encoder took it (applyViewpoint)
+    double model_tolerance = 1e-4;                   ///< ~model_tolerance: .psm tolerance (fraction of bbox diagonal; 0 = lossless)
+    int threads = 0;                                 ///< ~threads: OpenMP threads (0 = all); outputs do not depend on it
+  };
+
+  /// Reads ~preset, ~rho, ~viewpoint, ~model_tolerance and ~threads from \a private_nh.
+  EncoderSettings
+  readEncoderSettings (const ros::NodeHandle& private_nh);
+
+  /// \brief The encoder options of a named preset: "paper" (the paper's parameters, the library's
+  /// defaults) or "default" (the library's defaults; today the same as "paper"). Throws for other names.
+  pcl_sparse::SparseSurfaceEncoderOptions
+  presetOptions (const std::string& preset);
+
+  /// \brief THE one place where ~viewpoint reaches the encoder. Returns whether the encoder took it:
+  /// false for now, as the encoder has no viewpoint option before point-cloud input lands.
+  bool
+  applyViewpoint (const Eigen::Vector3d& viewpoint, pcl_sparse::SparseSurfaceEncoderOptions& options);
+
+  /// Reads ~threads (0 = all).
+  int
+  readThreads (const ros::NodeHandle& private_nh);
+} // namespace pcl_sparse_ros

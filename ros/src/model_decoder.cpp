@@ -1,0 +1,64 @@
+#include <pcl_sparse_ros/model_decoder.h>
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+
+#include <pcl_conversions/pcl_conversions.h>
+
+#include <algorithm>
+#include <memory>
+
+namespace pcl_sparse_ros
+{
+  sensor_msgs::PointCloud2
+  decodeModelMessage (const std_msgs::UInt8MultiArray& model, const PointBudget& budget, int threads)
+  {
+    const auto decoded = std::make_shared<const pcl_sparse::SparseSurfaceModel> (
+      pcl_sparse::decodeModel (model.data.data () + model.layout.data_offset,
+                               model.data.size () - std::min<std::size_t> (model.layout.data_offset, model.data.size ()),
+                               "~model message"));
+    pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (decoded);
+    budget.apply (resampling, decoded->num_input_vertices);
+    resampling.setNumberOfThreads (threads);
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    resampling.compute (cloud);
+    sensor_msgs::PointCloud2 message;
+    pcl::toROSMsg (cloud, message);
+    return message;
+  }
+
+  ModelDecoder::ModelDecoder (const ros::NodeHandle& private_nh) : name_ (private_nh.getNamespace ())
+  {
+    ros::NodeHandle nh = private_nh;
+    budget_ = readPointBudget (nh);
+    threads_ = readThreads (nh);
+    nh.param<std::string> ("frame_id", frame_id_, "map");
+    cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2> ("output", 1);
+    sub_ = nh.subscribe ("model", 1, &ModelDecoder::onModel, this);
+    ROS_INFO ("[%s] decoding %s -> %s (%s, frame '%s')", name_.c_str (), sub_.getTopic ().c_str (),
+              cloud_pub_.getTopic ().c_str (), budget_.describe ().c_str (), frame_id_.c_str ());
+  }
+
+  void
+  ModelDecoder::onModel (const std_msgs::UInt8MultiArrayConstPtr& model)
+  {
+    if (cloud_pub_.getNumSubscribers () == 0)
+      return;
+    sensor_msgs::PointCloud2 cloud;
+    try
+    {
+      cloud = decodeModelMessage (*model, budget_, threads_);
+    }
+    catch (const pcl_sparse::Error& e)
+    {
+      // Every bad message is reported: models come rarely, and each one is somebody's mistake.
+      ROS_ERROR ("[%s] cannot decode %zu bytes: %s; nothing published", name_.c_str (), model->data.size (), e.what ());
+      return;
+    }
+    cloud.header.frame_id = frame_id_;
+    cloud.header.stamp = ros::Time::now ();
+    cloud_pub_.publish (cloud);
+  }
+} // namespace pcl_sparse_ros

@@ -1,0 +1,179 @@
+#include <pcl_sparse_ros/parameters.h>
+
+#include <pcl_sparse/common/error.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace pcl_sparse_ros
+{
+  namespace
+  {
+    /// The parameter's value if set; throws if it is set but not a number.
+    bool
+    readNumber (const ros::NodeHandle& nh, const std::string& name, double& value)
+    {
+      if (!nh.hasParam (name))
+        return false;
+      if (!nh.getParam (name, value))
+        throw pcl_sparse::Error ("parameter ~" + name + " must be a number");
+      return true;
+    }
+
+    /// A list of three numbers, or a string of three numbers ("1.5 0 2" or "[1.5, 0, 2]": what
+    /// `_viewpoint:=...` on a command line gives, since roscpp keeps such values as strings).
+    std::vector<double>
+    readTriple (const ros::NodeHandle& nh, const std::string& name)
+    {
+      std::vector<double> xyz;
+      std::string text;
+      if (nh.getParam (name, text))
+      {
+        for (char& c : text)
+          if (c == '[' || c == ']' || c == ',')
+            c = ' ';
+        std::istringstream in (text);
+        double v = 0.0;
+        while (in >> v)
+          xyz.push_back (v);
+        if (!in.eof ())
+          xyz.clear ();
+      }
+      else if (!nh.getParam (name, xyz))
+        xyz.clear ();
+      if (xyz.size () != 3 || !Eigen::Vector3d (xyz[0], xyz[1], xyz[2]).allFinite ())
+        throw pcl_sparse::Error ("parameter ~" + name + " must be three numbers [x, y, z]");
+      return xyz;
+    }
+
+    void
+    requirePositive (const std::string& name, double value)
+    {
+      if (!(std::isfinite (value) && value > 0.0))
+        throw pcl_sparse::Error ("parameter ~" + name + " must be a finite number > 0");
+    }
+  } // namespace
+
+  void
+  PointBudget::apply (pcl_sparse::SparseSurfaceResamplingBase& resampling, std::size_t default_count) const
+  {
+    switch (kind)
+    {
+      case Kind::Default: resampling.setPointCount (std::max<std::size_t> (default_count, 1)); break;
+      case Kind::Points: resampling.setPointCount (static_cast<std::size_t> (value)); break;
+      case Kind::Density: resampling.setDensity (value); break;
+      case Kind::Spacing: resampling.setSpacing (value); break;
+    }
+  }
+
+  std::string
+  PointBudget::describe () const
+  {
+    std::ostringstream text;
+    switch (kind)
+    {
+      case Kind::Default: return "default";
+      case Kind::Points: text << "points " << static_cast<std::size_t> (value); break;
+      case Kind::Density: text << "density " << value; break;
+      case Kind::Spacing: text << "spacing " << value; break;
+    }
+    return text.str ();
+  }
+
+  PointBudget
+  readPointBudget (const ros::NodeHandle& private_nh)
+  {
+    PointBudget budget;
+    int given = 0;
+    double value = 0.0;
+    if (readNumber (private_nh, "points", value))
+    {
+      if (!(value >= 1.0 && value <= static_cast<double> (pcl_sparse::SparseSurfaceResamplingBase::max_points) &&
+            value == std::floor (value)))
+        throw pcl_sparse::Error ("parameter ~points must be a whole number from 1 to 1e9");
+      budget = {PointBudget::Kind::Points, value};
+      ++given;
+    }
+    if (readNumber (private_nh, "density", value))
+    {
+      requirePositive ("density", value);
+      budget = {PointBudget::Kind::Density, value};
+      ++given;
+    }
+    if (readNumber (private_nh, "spacing", value))
+    {
+      requirePositive ("spacing", value);
+      budget = {PointBudget::Kind::Spacing, value};
+      ++given;
+    }
+    if (given > 1)
+      throw pcl_sparse::Error ("parameters ~points, ~density and ~spacing: give at most one");
+    return budget;
+  }
+
+  pcl_sparse::SparseSurfaceEncoderOptions
+  presetOptions (const std::string& preset)
+  {
+    // Both names give the library's defaults, which are the paper's parameters today. Should the
+    // defaults move away from the paper (say for scans), "paper" keeps the paper's and "default" follows.
+    if (preset == "paper" || preset == "default")
+      return pcl_sparse::SparseSurfaceEncoderOptions ();
+    throw pcl_sparse::Error ("parameter ~preset must be \"paper\" or \"default\", not \"" + preset + "\"");
+  }
+
+  bool
+  applyViewpoint (const Eigen::Vector3d& viewpoint, pcl_sparse::SparseSurfaceEncoderOptions& options)
+  {
+    // ~viewpoint reaches the encoder as a stage setting (SparseSurfaceEncoder::setViewPoint, in
+    // encodeAs), not as an option: nothing to set here, and it is always applied.
+    (void) viewpoint;
+    (void) options;
+    return true;
+  }
+
+  EncoderSettings
+  readEncoderSettings (const ros::NodeHandle& private_nh)
+  {
+    EncoderSettings settings;
+    private_nh.param<std::string> ("preset", settings.preset, "paper");
+    settings.options = presetOptions (settings.preset);
+    double rho = 0.0;
+    if (readNumber (private_nh, "rho", rho))
+    {
+      requirePositive ("rho", rho);
+      settings.options.patches.rho = rho;
+    }
+    if (private_nh.hasParam ("viewpoint"))
+    {
+      const std::vector<double> xyz = readTriple (private_nh, "viewpoint");
+      settings.has_viewpoint = true;
+      settings.viewpoint = Eigen::Vector3d (xyz[0], xyz[1], xyz[2]);
+      settings.viewpoint_applied = applyViewpoint (settings.viewpoint, settings.options);
+    }
+    if (readNumber (private_nh, "model_tolerance", settings.model_tolerance) &&
+        !(settings.model_tolerance >= 0.0 && settings.model_tolerance < 1.0))
+      throw pcl_sparse::Error ("parameter ~model_tolerance must be in [0, 1) (0 = lossless)");
+    settings.threads = readThreads (private_nh);
+    try
+    {
+      settings.options.validate ();
+    }
+    catch (const pcl_sparse::Error& e)
+    {
+      throw pcl_sparse::Error (std::string ("encoder options (~preset, ~rho): ") + e.what ());
+    }
+    return settings;
+  }
+
+  int
+  readThreads (const ros::NodeHandle& private_nh)
+  {
+    int threads = 0;
+    private_nh.param ("threads", threads, 0);
+    if (threads < 0)
+      throw pcl_sparse::Error ("parameter ~threads must be >= 0 (0 = all cores)");
+    return threads;
+  }
+} // namespace pcl_sparse_ros

@@ -1,0 +1,392 @@
+#!/usr/bin/python3
+"""End-to-end checks of pcl_sparse's ROS nodes and nodelets, through a running roscore.
+
+scripts/test_ros.sh starts roscore, the nodes and a nodelet manager, then runs this client, which
+publishes inputs and checks what comes back:
+
+  decode   the .psm bytes of a shared mesh (encoded by the library's pcl_sparse_encode) on the decode
+           node's and the decode nodelet's ~model; the clouds must equal the library's own decoding
+           (pcl_sparse_decode), point for point, with the ~frame_id given; a malformed model must be
+           reported on /rosout and must not stop the node.
+  scans    real scans (and a cloud sampled from a mesh) published as PointCloud2 by
+           pcl_sparse_cloud_publisher; the resample node's and nodelet's ~output must have the count
+           asked, the fields (x y z normal curvature, + rgb / intensity as the input), finite values,
+           unit normals, the input's frame_id and stamp, points inside the input's bounding box; the
+           model (~model) must be .psm bytes and decode (decode node) into the same region.
+           Until the encoder takes clouds without polygons, the nodes report "... has no polygons ..."
+           on /rosout and publish nothing: those checks print SKIP with the node's reason (expected to
+           fail until cloud input lands) and become real checks as soon as it does.
+  demo     (--demo) the launch file's nodes are up and its resample node answers (or reports the same
+           reason).
+
+Prints PASS / FAIL / SKIP lines and a last line "RESULT passed=P failed=F skipped=S"; exits 1 if any
+check failed.
+"""
+
+import argparse
+import math
+import os
+import struct
+import subprocess
+import sys
+import threading
+import time
+
+import rosgraph
+import rospy
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import PointCloud2
+from std_msgs.msg import MultiArrayDimension, UInt8MultiArray
+
+PSM_MAGIC = b"\x89PSM\r\n\x1a\n"
+NO_CLOUD_INPUT = "has no polygons"  # the encoder's reason until point-cloud input lands
+POINT_NORMAL_FIELDS = ["x", "y", "z", "normal_x", "normal_y", "normal_z", "curvature"]
+STRUCT_CHAR = {1: "b", 2: "B", 3: "h", 4: "H", 5: "i", 6: "I", 7: "f", 8: "d"}
+
+
+class Results:
+    def __init__(self):
+        self.passed = self.failed = self.skipped = 0
+
+    def check(self, name, problems, detail=""):
+        if problems:
+            self.failed += 1
+            print("FAIL %s: %s" % (name, "; ".join(problems)), flush=True)
+        else:
+            self.passed += 1
+            print("PASS %s%s" % (name, ": " + detail if detail else ""), flush=True)
+
+    def skip(self, name, reason):
+        self.skipped += 1
+        print("SKIP %s: %s" % (name, reason), flush=True)
+
+
+class Topic:
+    """Every message received on a topic since the last clear()."""
+
+    def __init__(self, name, msg_type):
+        self.name = name
+        self.messages = []
+        self.cond = threading.Condition()
+        self.sub = rospy.Subscriber(name, msg_type, self._callback, queue_size=20)
+
+    def _callback(self, msg):
+        with self.cond:
+            self.messages.append(msg)
+            self.cond.notify_all()
+
+    def clear(self):
+        with self.cond:
+            self.messages = []
+
+    def first(self, predicate=lambda m: True):
+        with self.cond:
+            return next((m for m in self.messages if predicate(m)), None)
+
+    def connected(self, timeout):
+        deadline = time.time() + timeout
+        while self.sub.get_num_connections() == 0 and time.time() < deadline and not rospy.is_shutdown():
+            time.sleep(0.05)
+        return self.sub.get_num_connections() > 0
+
+
+def wait_until(condition, timeout):
+    deadline = time.time() + timeout
+    while time.time() < deadline and not rospy.is_shutdown():
+        value = condition()
+        if value:
+            return value
+        time.sleep(0.05)
+    return condition()
+
+
+def field_values(cloud, names):
+    """Rows of the named fields of a PointCloud2 (all points, organized or not)."""
+    fields = {f.name: f for f in cloud.fields}
+    chosen = sorted((fields[n] for n in names), key=lambda f: f.offset)
+    fmt, pos = (">" if cloud.is_bigendian else "<"), 0
+    for f in chosen:
+        fmt += "x" * (f.offset - pos) + STRUCT_CHAR[f.datatype]
+        pos = f.offset + struct.calcsize(STRUCT_CHAR[f.datatype])
+    fmt += "x" * (cloud.point_step - pos)
+    order = [chosen.index(fields[n]) for n in names]
+    rows = []
+    for r in range(cloud.height):
+        row = bytes(cloud.data[r * cloud.row_step: r * cloud.row_step + cloud.width * cloud.point_step])
+        rows.extend(tuple(v[i] for i in order) for v in struct.iter_unpack(fmt, row))
+    return rows
+
+
+def bounding_box(points):
+    finite = [p for p in points if all(math.isfinite(c) for c in p)]
+    if not finite:
+        return None
+    lo = [min(p[k] for p in finite) for k in range(3)]
+    hi = [max(p[k] for p in finite) for k in range(3)]
+    return lo, hi, math.dist(lo, hi), len(finite)
+
+
+def cloud_problems(cloud, count, extra_field, frame_id, stamp=None, box=None):
+    """What is wrong with a resampled cloud."""
+    problems = []
+    names = [f.name for f in cloud.fields]
+    expected = POINT_NORMAL_FIELDS + ([extra_field] if extra_field else [])
+    if sorted(names) != sorted(expected):
+        problems.append("fields %s, expected %s" % (" ".join(names), " ".join(expected)))
+        return problems
+    if cloud.width * cloud.height != count:
+        problems.append("%d points, expected %d" % (cloud.width * cloud.height, count))
+    if cloud.header.frame_id != frame_id:
+        problems.append("frame_id '%s', expected '%s'" % (cloud.header.frame_id, frame_id))
+    if stamp is not None and cloud.header.stamp != stamp:
+        problems.append("stamp %s, expected the input's %s" % (cloud.header.stamp, stamp))
+    if stamp is None and cloud.header.stamp.is_zero():
+        problems.append("stamp is zero")
+    rows = field_values(cloud, POINT_NORMAL_FIELDS)
+    bad = sum(1 for r in rows if not all(math.isfinite(v) for v in r))
+    if bad:
+        problems.append("%d points with NaN/Inf values" % bad)
+    off_unit = sum(1 for r in rows if abs(math.sqrt(r[3] ** 2 + r[4] ** 2 + r[5] ** 2) - 1.0) > 1e-3)
+    if off_unit:
+        problems.append("%d normals not of unit length" % off_unit)
+    if box and rows:
+        lo, hi, diag = box[0], box[1], box[2]
+        margin = 0.05 * diag
+        outside = sum(1 for r in rows if any(r[k] < lo[k] - margin or r[k] > hi[k] + margin for k in range(3)))
+        if outside:
+            problems.append("%d points outside the input's bounding box (+5 %% of its diagonal)" % outside)
+    return problems
+
+
+def read_binary_pcd(path):
+    """x y z normal curvature of a binary PCD written by pcl_sparse_decode (7 floats per point)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    header, body = data.split(b"DATA binary\n", 1)
+    if b"FIELDS x y z normal_x normal_y normal_z curvature" not in header:
+        raise RuntimeError("%s: unexpected fields" % path)
+    return list(struct.iter_unpack("<7f", body))
+
+
+class Checker:
+    def __init__(self, args):
+        self.args = args
+        self.results = Results()
+        self.rosout = Topic("/rosout_agg", Log)
+        self.children = []
+
+    # ---- helpers -----------------------------------------------------------------------------------
+    def node_error(self, node, contains=""):
+        """The first /rosout error logged by instance `node` (its messages start with "[node]")."""
+        prefix = "[%s]" % node
+        return self.rosout.first(lambda m: m.level >= Log.ERROR and m.msg.startswith(prefix) and contains in m.msg)
+
+    def start_publisher(self, path, frame_id, topic):
+        name = "check_publisher_%d" % len(self.children)
+        command = [os.path.join(self.args.bin, "pcl_sparse_cloud_publisher"), "__name:=" + name, "_file:=" + path,
+                   "_frame_id:=" + frame_id, "_rate:=0", "~output:=" + topic]
+        child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        self.children.append(child)
+        return child
+
+    def stop(self, child):
+        if child.poll() is None:
+            child.terminate()
+            try:
+                child.wait(10)
+            except subprocess.TimeoutExpired:
+                child.kill()
+                child.wait()
+
+    def stop_all(self):
+        for child in self.children:
+            self.stop(child)
+
+    # ---- decode: the library's model bytes through the decode node and nodelet -----------------------
+    def check_decode(self):
+        with open(self.args.mesh_model, "rb") as f:
+            model = f.read()
+        reference = read_binary_pcd(self.args.mesh_reference)
+        for node in self.args.decoders:
+            output = Topic(node + "/output", PointCloud2)
+            publisher = rospy.Publisher(node + "/model", UInt8MultiArray, queue_size=1)
+            name = "decode %s (%s, %d bytes)" % (node, os.path.basename(self.args.mesh_model), len(model))
+            if not output.connected(10) or not wait_until(lambda: publisher.get_num_connections() > 0, 10):
+                self.results.check(name, ["no connection to %s" % node])
+                continue
+            message = UInt8MultiArray(data=model)
+            message.layout.dim = [MultiArrayDimension(label="psm", size=len(model), stride=len(model))]
+            publisher.publish(message)
+            cloud = wait_until(lambda: output.first(), 30)
+            if cloud is None:
+                self.results.check(name, ["no cloud on %s/output within 30 s" % node])
+                continue
+            problems = cloud_problems(cloud, len(reference), None, self.args.decode_frame)
+            if not problems:
+                rows = field_values(cloud, POINT_NORMAL_FIELDS)
+                worst = max(abs(a - b) for r, q in zip(rows, reference) for a, b in zip(r, q))
+                if worst > 1e-6:
+                    problems.append("differs from pcl_sparse_decode's cloud by up to %g" % worst)
+            self.results.check(name, problems, "%d points, frame '%s', identical to pcl_sparse_decode"
+                               % (len(reference), cloud.header.frame_id))
+
+            # A malformed model is reported and the node keeps working.
+            name = "decode %s: malformed bytes reported, node still decodes" % node
+            output.clear()
+            bad = UInt8MultiArray(data=model[: len(model) // 2])
+            publisher.publish(bad)
+            error = wait_until(lambda: self.node_error(node, "cannot decode"), 10)
+            publisher.publish(message)
+            again = wait_until(lambda: output.first(), 30)
+            problems = []
+            if error is None:
+                problems.append("no ROS_ERROR 'cannot decode' from %s" % node)
+            if again is None:
+                problems.append("no cloud after the malformed model")
+            self.results.check(name, problems, error.msg[len(node) + 3:][:100] + "..." if error else "")
+
+    # ---- scans: real clouds through the resample node and nodelet --------------------------------------
+    def check_scans(self):
+        resamplers = {node: Topic(node + "/output", PointCloud2) for node in self.args.resamplers}
+        model = Topic(self.args.resamplers[0] + "/model", UInt8MultiArray)
+        roundtrip = Topic(self.args.roundtrip + "/output", PointCloud2)
+        scan = Topic(self.args.topic, PointCloud2)
+        for topic in list(resamplers.values()) + [model, roundtrip]:
+            if not topic.connected(10):
+                self.results.check("connect " + topic.name, ["no connection"])
+                return
+        no_cloud_input = {}  # node -> its message, once it said it cannot encode clouds
+        for index, path in enumerate(self.args.scans):
+            label = os.path.basename(path)
+            frame_id = "scan%d" % index
+            for topic in list(resamplers.values()) + [model, roundtrip, scan]:
+                topic.clear()
+            publisher = self.start_publisher(path, frame_id, self.args.topic)
+            try:
+                self.check_scan(label, frame_id, resamplers, model, roundtrip, scan, no_cloud_input)
+            finally:
+                self.stop(publisher)
+
+    def check_scan(self, label, frame_id, resamplers, model, roundtrip, scan, no_cloud_input):
+        input_cloud = wait_until(lambda: scan.first(), 30)
+        if input_cloud is None:
+            self.results.check("publish " + label, ["the publisher sent nothing within 30 s"])
+            return
+        names = {f.name for f in input_cloud.fields}
+        extra = "rgb" if names & {"rgb", "rgba"} else "intensity" if "intensity" in names else None
+        box = bounding_box(field_values(input_cloud, ["x", "y", "z"]))
+        size = "%dx%d, %s" % (input_cloud.width, input_cloud.height, " ".join(f.name for f in input_cloud.fields))
+
+        def answered(node):
+            if node in no_cloud_input:
+                return True
+            return resamplers[node].first() is not None or self.node_error(node, "frame '%s'" % frame_id)
+
+        wait_until(lambda: all(answered(n) for n in resamplers), self.args.timeout)
+        for node, output in resamplers.items():
+            name = "resample %s on %s (%s)" % (node, label, size)
+            error = self.node_error(node, "frame '%s'" % frame_id)
+            if node in no_cloud_input:
+                # Its errors are throttled (one per 10 s): this scan is not checked, for the reason above.
+                self.results.skip(name, "not checked: expected to fail until the encoder takes clouds without "
+                                  "polygons (the node said so for %s, above)" % no_cloud_input[node])
+                continue
+            if error is not None and NO_CLOUD_INPUT in error.msg:
+                no_cloud_input[node] = label
+                self.results.skip(name, "expected to fail until the encoder takes clouds without polygons; "
+                                  "the node reports: " + error.msg[len(node) + 3:])
+                continue
+            cloud = output.first()
+            if cloud is None:
+                self.results.check(name, [error.msg if error else "no cloud within %g s" % self.args.timeout])
+                continue
+            problems = cloud_problems(cloud, self.args.points, extra, frame_id, input_cloud.header.stamp, box)
+            self.results.check(name, problems, "%d points, %s, frame and stamp kept"
+                               % (cloud.width * cloud.height, " ".join(f.name for f in cloud.fields)))
+            if node == self.args.resamplers[0]:
+                self.check_model(label, input_cloud, box, model, roundtrip)
+
+    def check_model(self, label, input_cloud, box, model, roundtrip):
+        name = "model of %s -> %s" % (label, self.args.roundtrip)
+        message = wait_until(lambda: model.first(), 30)
+        decoded = wait_until(lambda: roundtrip.first(), 60)
+        problems = []
+        if message is None:
+            problems.append("no model on ~model")
+        elif not bytes(message.data[:8]) == PSM_MAGIC:
+            problems.append("the model bytes do not start with the .psm magic")
+        if decoded is None:
+            problems.append("no cloud from %s" % self.args.roundtrip)
+        else:
+            problems += cloud_problems(decoded, self.args.roundtrip_points, None, self.args.decode_frame, None, box)
+        ratio = len(message.data) / max(len(input_cloud.data), 1) if message else 0
+        self.results.check(name, problems, "%d model bytes (%.1f %% of the input's %d), decoded to %d points"
+                           % (len(message.data) if message else 0, 100 * ratio, len(input_cloud.data),
+                              self.args.roundtrip_points))
+
+    # ---- demo: the launch file ------------------------------------------------------------------------
+    def check_demo(self):
+        expected = ["/cloud_publisher", "/resample", "/decode"]
+
+        def running():
+            nodes = {n for entries in rosgraph.Master(rospy.get_name()).getSystemState()
+                     for _, names in entries for n in names}
+            return all(n in nodes for n in expected)
+
+        up = wait_until(running, 30)
+        self.results.check("launch resample_demo.launch: nodes up", [] if up else ["not all of %s registered" % expected],
+                           " ".join(expected))
+        output = Topic("/resample/output", PointCloud2)
+        output.connected(10)
+        wait_until(lambda: output.first() is not None or self.node_error("/resample"), self.args.timeout)
+        error = self.node_error("/resample")
+        if error is not None and NO_CLOUD_INPUT in error.msg:
+            self.results.skip("launch resample_demo.launch: /resample/output",
+                              "expected to fail until the encoder takes clouds without polygons; the node reports: "
+                              + error.msg[len("/resample") + 3:])
+            return
+        cloud = output.first()
+        self.results.check("launch resample_demo.launch: /resample/output",
+                           [error.msg if error else "no cloud"] if cloud is None else [],
+                           "%d points" % (cloud.width * cloud.height) if cloud else "")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--bin", required=True, help="folder of pcl_sparse_cloud_publisher")
+    parser.add_argument("--mesh-model", help=".psm bytes of a mesh (pcl_sparse_encode)")
+    parser.add_argument("--mesh-reference", help="pcl_sparse_decode of --mesh-model (binary .pcd)")
+    parser.add_argument("--decoders", nargs="*", default=[], help="decode node / nodelet namespaces")
+    parser.add_argument("--decode-frame", default="mesh", help="their ~frame_id")
+    parser.add_argument("--resamplers", nargs="*", default=[], help="resample node / nodelet namespaces")
+    parser.add_argument("--roundtrip", help="decode node fed by the first resampler's ~model")
+    parser.add_argument("--roundtrip-points", type=int, default=0, help="its ~points")
+    parser.add_argument("--topic", default="/scan", help="the resamplers' ~input")
+    parser.add_argument("--points", type=int, default=0, help="the resamplers' ~points")
+    parser.add_argument("--scans", nargs="*", default=[], help=".pcd / .ply files to publish")
+    parser.add_argument("--timeout", type=float, default=180.0, help="seconds to wait for a resampled cloud")
+    parser.add_argument("--demo", action="store_true", help="check the launch file's nodes instead")
+    args = parser.parse_args(rospy.myargv()[1:])
+
+    rospy.init_node("pcl_sparse_ros_check", anonymous=True, disable_signals=True)
+    checker = Checker(args)
+    if not checker.rosout.connected(10):
+        print("FAIL no connection to /rosout_agg", flush=True)
+        return 1
+    try:
+        if args.demo:
+            checker.check_demo()
+        if args.decoders:
+            checker.check_decode()
+        if args.resamplers:
+            checker.check_scans()
+    finally:
+        checker.stop_all()
+    r = checker.results
+    print("RESULT passed=%d failed=%d skipped=%d" % (r.passed, r.failed, r.skipped), flush=True)
+    rospy.signal_shutdown("done")
+    return 1 if r.failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
