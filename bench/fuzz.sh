@@ -12,7 +12,8 @@ build=${2:-$root/build-fuzz}
 mkdir -p "$build/corpus" "$build/findings"
 cxx=${CXX_FUZZ:-clang++}
 common=(-std=c++17 -g -I"$root/include" -I/usr/include/eigen3)
-sources=("$root"/src/format/*.cpp "$root/src/coding/cosine_dictionary.cpp" "$root/src/model/sparse_surface_model.cpp"
+sources=("$root"/src/format/*.cpp "$root/src/coding/cosine_dictionary.cpp" "$root/src/model/sparse_surface_model.cpp" "$root/src/model/vertex_attributes.cpp"
+         "$root/src/mesh/bounding_box.cpp"
          "$root/src/common/atomic_write.cpp")
 
 echo "building $build/fuzz_model_file" >&2

@@ -85,12 +85,61 @@ namespace
   }
 
   std::vector<std::uint8_t>
-  smallFile (bool quantised)
+  smallFile (bool quantised, bool attributes = false)
   {
     ModelWriteOptions options;
     options.tolerance = quantised ? 1e-3 : 0.0;
     options.include_vertices = false;
-    return encodeModel (test::makeSyntheticModel (2, 5, false, 4), options);
+    auto model = test::makeSyntheticModel (2, 5, false, 4);
+    if (attributes)
+      test::addSyntheticAttributes (model, 5);
+    return encodeModel (model, options);
+  }
+
+  void
+  expectSameAttributes (const SparseSurfaceModel& a, const SparseSurfaceModel& b)
+  {
+    ASSERT_EQ (a.attribute_channels.size (), b.attribute_channels.size ());
+    for (std::size_t c = 0; c < a.attribute_channels.size (); ++c)
+    {
+      EXPECT_EQ (a.attribute_channels[c].channel, b.attribute_channels[c].channel);
+      EXPECT_TRUE (sameBits (a.attribute_channels[c].lower, b.attribute_channels[c].lower));
+      EXPECT_TRUE (sameBits (a.attribute_channels[c].upper, b.attribute_channels[c].upper));
+    }
+    ASSERT_NE (dynamic_cast<const DctCosineDictionary*> (b.attribute_basis.get ()), nullptr);
+    ASSERT_EQ (a.patches.size (), b.patches.size ());
+    for (std::size_t p = 0; p < a.patches.size (); ++p)
+    {
+      ASSERT_EQ (a.patches[p].attributes.size (), b.patches[p].attributes.size ());
+      for (std::size_t c = 0; c < a.patches[p].attributes.size (); ++c)
+      {
+        const SparseCode& x = a.patches[p].attributes[c];
+        const SparseCode& y = b.patches[p].attributes[c];
+        EXPECT_EQ (x.atoms, y.atoms);
+        ASSERT_EQ (x.coefficients.size (), y.coefficients.size ());
+        for (std::size_t k = 0; k < x.coefficients.size (); ++k)
+          EXPECT_TRUE (sameBits (x.coefficients[k], y.coefficients[k]));
+      }
+    }
+  }
+
+  /// Largest change of an attribute value (clamped, as resampling evaluates it) over a polar grid of each
+  /// patch's footprint, as a fraction of the channel's range.
+  double
+  largestAttributeChange (const SparseSurfaceModel& a, const SparseSurfaceModel& b)
+  {
+    double worst = 0.0;
+    for (std::size_t p = 0; p < a.patches.size (); ++p)
+      for (std::size_t c = 0; c < a.attribute_channels.size (); ++c)
+        for (int k = 0; k < 16; ++k)
+          for (int j = 0; j <= 4; ++j)
+          {
+            const double angle = 2.0 * M_PI * k / 16.0, r = j / 4.0;
+            const double x = r * std::cos (angle), y = r * std::sin (angle);
+            const double range = a.attribute_channels[c].upper - a.attribute_channels[c].lower;
+            worst = std::max (worst, std::abs (a.evaluateAttribute (p, c, x, y) - b.evaluateAttribute (p, c, x, y)) / range);
+          }
+    return worst;
   }
 
   void
@@ -345,8 +394,9 @@ TEST (ModelFile, EncoderRefusesWhatItCannotStore)
 TEST (ModelFile, EveryTruncationIsAnError)
 {
   for (bool quantised : {false, true})
+    for (bool attributes : {false, true})
   {
-    const auto bytes = smallFile (quantised);
+    const auto bytes = smallFile (quantised, attributes);
     for (std::size_t length = 0; length < bytes.size (); ++length)
     {
       std::vector<std::uint8_t> cut (bytes.begin (), bytes.begin () + length);
@@ -361,8 +411,9 @@ TEST (ModelFile, EveryTruncationIsAnError)
 TEST (ModelFile, EverySingleBitFlipIsAnError)
 {
   for (bool quantised : {false, true})
+    for (bool attributes : {false, true})
   {
-    const auto bytes = smallFile (quantised);
+    const auto bytes = smallFile (quantised, attributes);
     for (std::size_t bit = 0; bit < 8 * bytes.size (); ++bit)
     {
       std::vector<std::uint8_t> flipped = bytes;
@@ -451,4 +502,109 @@ TEST (ModelFile, SaveAndLoadFiles)
   EXPECT_THROW (saveModel (directory + "/bad.psm", bad), Error);
   EXPECT_FALSE (std::filesystem::exists (directory + "/bad.psm"));
   std::filesystem::remove_all (directory);
+}
+
+// Colour and intensity (issue 12 point 7): sections ACHN AATM ACOF after the others, flag bit 2.
+TEST (ModelFile, AttributesLosslessRoundTripIsBitIdentical)
+{
+  for (bool with_vertices : {false, true})
+  {
+    auto model = test::makeSyntheticModel (120, 11, true);
+    const auto plain = encodeModel (model);
+    test::addSyntheticAttributes (model, 12);
+    ModelWriteOptions options;
+    options.include_vertices = with_vertices;
+    const auto bytes = encodeModel (model, options);
+    EXPECT_EQ (bytes[10], with_vertices ? 6 : 4);  // flags: attributes (4), vertices (2)
+    const auto decoded = decodeModel (bytes.data (), bytes.size ());
+    expectBitIdentical (model, decoded, with_vertices);
+    expectSameAttributes (model, decoded);
+    EXPECT_EQ (largestAttributeChange (model, decoded), 0.0);
+    EXPECT_EQ (encodeModel (decoded, options), bytes);
+    const ModelFileInfo info = inspectModel (bytes.data (), bytes.size ());
+    EXPECT_EQ (info.attributes, (std::vector<std::string>{"r", "g", "b", "intensity"}));
+    EXPECT_EQ (info.sections.size (), with_vertices ? 10u : 9u);
+    EXPECT_EQ (info.sections.back ().tag, "ACOF");
+    // The geometry's sections are the file without attributes, byte for byte (after the header).
+    if (!with_vertices)
+      EXPECT_TRUE (std::equal (plain.begin () + 52, plain.end (), bytes.begin () + 52));
+  }
+}
+
+TEST (ModelFile, AttributesQuantisedWithinTolerance)
+{
+  auto model = test::makeSyntheticModel (200, 13);
+  test::addSyntheticAttributes (model, 14);
+  std::size_t previous = 0;
+  for (double attribute_tolerance : {0.1 / 255.0, 0.5 / 255.0, 2.0 / 255.0})
+  {
+    ModelWriteOptions options;
+    options.tolerance = 1e-4;
+    options.attribute_tolerance = attribute_tolerance;
+    const auto bytes = encodeModel (model, options);
+    const auto decoded = decodeModel (bytes.data (), bytes.size ());
+    const double changed = largestAttributeChange (model, decoded);
+    EXPECT_LE (changed, attribute_tolerance * (1.0 + 1e-9));
+    EXPECT_GE (changed, 0.05 * attribute_tolerance) << "the steps should use the budget";
+    EXPECT_LE (largestSurfaceDisplacement (model, decoded), options.tolerance * model.bbox_diagonal);
+    if (previous)
+      EXPECT_LT (bytes.size (), previous);
+    previous = bytes.size ();
+  }
+  ModelWriteOptions bad;
+  bad.tolerance = 1e-4;
+  bad.attribute_tolerance = 0.0;
+  EXPECT_THROW (encodeModel (model, bad), Error);
+}
+
+TEST (ModelFile, AttributeSectionsRefuseLiesAndBadModels)
+{
+  const auto good = smallFile (false, true);
+  // ACHN is the 7th section: 52-byte header + 6 sections before it.
+  std::size_t start = 52;
+  for (int s = 0; s < 6; ++s)
+  {
+    std::uint64_t stored = 0;
+    for (int i = 0; i < 8; ++i)
+      stored |= static_cast<std::uint64_t> (good[start + 8 + i]) << (8 * i);
+    start += 32 + stored;
+  }
+  ASSERT_EQ (std::string (good.begin () + start, good.begin () + start + 4), "ACHN");
+  auto forge = [&] (std::size_t at, std::uint8_t value) {
+    auto bytes = good;
+    bytes[start + 32 + at] = value;  // in the payload (stored: its CRC is recomputed)
+    putU32At (bytes, start + 24, crc32 (bytes.data () + start + 32, bytes[start + 8]));
+    resealSectionHeader (bytes, start);
+    return bytes;
+  };
+  expectErrorContaining (forge (3, 200), "channels");         // channel count 200
+  expectErrorContaining (forge (4, 9), "attribute channel 9");  // unknown channel id
+  expectErrorContaining (forge (0, 7), "unknown attribute basis kind 7");
+  expectErrorContaining (forge (1, 0), "frequencies is out of range");
+
+  auto bytes = good;  // the attribute flag without the sections
+  bytes[10] = 0;
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "9 sections, expected 6");
+
+  auto model = test::makeSyntheticModel (3, 4);
+  test::addSyntheticAttributes (model, 4);
+  model.patches[1].attributes.pop_back ();
+  EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4);
+  test::addSyntheticAttributes (model, 4);
+  model.patches[2].attributes[0].atoms = {3, 3};
+  model.patches[2].attributes[0].coefficients = {1.0, 2.0};
+  EXPECT_THROW (encodeModel (model), Error);
+  model.patches[2].attributes[0].atoms = {144};
+  model.patches[2].attributes[0].coefficients = {1.0};
+  EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4);
+  test::addSyntheticAttributes (model, 4);
+  model.attribute_basis.reset ();
+  EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4);
+  test::addSyntheticAttributes (model, 4);
+  model.attribute_channels.clear ();  // codes without channels would be dropped silently
+  EXPECT_THROW (encodeModel (model), Error);
 }

@@ -62,5 +62,40 @@ namespace pcl_sparse
       }
       return model;
     }
+
+    /// Adds colour and intensity to \a model: channels r, g, b (0 .. 255) and intensity (-50 .. 1000), one
+    /// random sparse code per channel and patch over the half-period cosines (some codes empty).
+    inline void
+    addSyntheticAttributes (SparseSurfaceModel& model, unsigned seed)
+    {
+      std::mt19937 rng (seed);
+      std::normal_distribution<double> normal (0.0, 1.0);
+      auto basis = makeCosineBasis (CosineBasisKind::Dct, 12);
+      model.attribute_basis = basis;
+      model.attribute_channels = {{AttributeChannel::Red, 0.0, 255.0}, {AttributeChannel::Green, 0.0, 255.0},
+                                  {AttributeChannel::Blue, 0.0, 255.0}, {AttributeChannel::Intensity, -50.0, 1000.0}};
+      for (std::size_t p = 0; p < model.patches.size (); ++p)
+      {
+        PatchCode& patch = model.patches[p];
+        patch.attributes.assign (model.attribute_channels.size (), SparseCode ());
+        for (std::size_t c = 0; c < patch.attributes.size (); ++c)
+        {
+          std::vector<int> atoms (basis->size ());
+          std::iota (atoms.begin (), atoms.end (), 0);
+          std::shuffle (atoms.begin (), atoms.end (), rng);
+          atoms.resize ((p + 3 * c) % 9);  // 0 .. 8 atoms
+          if (!atoms.empty ())
+            atoms[0] = 0;  // the constant first: the channel's mean
+          std::sort (atoms.begin () + (atoms.empty () ? 0 : 1), atoms.end ());
+          atoms.erase (std::unique (atoms.begin (), atoms.end ()), atoms.end ());
+          const double scale = c == 3 ? 300.0 : 40.0;
+          for (std::size_t k = 0; k < atoms.size (); ++k)
+          {
+            patch.attributes[c].atoms.push_back (atoms[k]);
+            patch.attributes[c].coefficients.push_back (k == 0 ? 3.0 * scale : scale * normal (rng) / (1.0 + k));
+          }
+        }
+      }
+    }
   } // namespace test
 } // namespace pcl_sparse

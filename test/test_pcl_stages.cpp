@@ -107,7 +107,17 @@ TYPED_TEST (StagesOnEveryPointType, CloudAndPolygonsGiveTheMeshModel)
   encoder->compute (model);
   EXPECT_EQ (encoder->getClassName (), "SparseSurfaceEncoder");
   ASSERT_GT (model.numPatches (), 10u);
-  EXPECT_EQ (modelBytes (model), modelBytes (expected));  // the same model, byte for byte
+  // Colour and intensity fields come along as attribute channels (r g b [a], intensity); the geometry is the
+  // mesh's model, byte for byte.
+  const std::size_t channels = (pcl::traits::has_color_v<TypeParam> ? 3 : 0) +
+                               (pcl::traits::has_field<TypeParam, pcl::fields::rgba>::value ? 1 : 0) +
+                               (pcl::traits::has_intensity_v<TypeParam> ? 1 : 0);
+  EXPECT_EQ (model.attribute_channels.size (), channels);
+  model.attribute_channels.clear ();
+  model.attribute_basis.reset ();
+  for (PatchCode& patch : model.patches)
+    patch.attributes.clear ();
+  EXPECT_EQ (modelBytes (model), modelBytes (expected));
 
   // The other stages take the same input.
   HarrisKeypoint3DMesh<TypeParam> harris;
@@ -281,17 +291,21 @@ TEST (PclStages, ResamplingFillsEveryOutputPointType)
   pcl::PointCloud<pcl::PointXYZ> xyz;
   pcl::PointCloud<pcl::PointXYZRGBNormal> rgb_normal;
   pcl::PointCloud<pcl::PointXYZINormal> intensity_normal;
+  pcl::PointCloud<pcl::PointXYZRGB> rgb;
   resample (reference);
   resample (xyz);
   resample (rgb_normal);
   resample (intensity_normal);
+  resample (rgb);
   ASSERT_EQ (reference.size (), 3000u);
   ASSERT_EQ (xyz.size (), 3000u);
+  ASSERT_EQ (rgb.size (), 3000u);
   ASSERT_EQ (rgb_normal.size (), 3000u);
   ASSERT_EQ (intensity_normal.size (), 3000u);
   for (std::size_t i = 0; i < reference.size (); ++i)
   {
     EXPECT_EQ (xyz[i].getVector3fMap (), reference[i].getVector3fMap ());
+    EXPECT_EQ (rgb[i].getVector3fMap (), reference[i].getVector3fMap ());
     EXPECT_EQ (rgb_normal[i].getVector3fMap (), reference[i].getVector3fMap ());
     EXPECT_EQ (rgb_normal[i].getNormalVector3fMap (), reference[i].getNormalVector3fMap ());
     EXPECT_EQ (rgb_normal[i].curvature, reference[i].curvature);

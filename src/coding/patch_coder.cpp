@@ -1,4 +1,5 @@
 #include <pcl_sparse/coding/orthogonal_matching_pursuit.h>
+#include <pcl_sparse/coding/patch_attribute_coder.h>
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/coding/patch_footprint.h>
 #include <pcl_sparse/coding/patch_samples.h>
@@ -25,7 +26,8 @@ namespace pcl_sparse
 
   PatchCode
   codePatch (const Patch& input_patch, std::size_t patch_index, const TriangleMesh& mesh,
-             const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info)
+             const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info,
+             const AttributeCodingInput* attributes)
   {
     // A support scale s > 1 is the same patch with radius s r_P (local coordinates divided by s).
     Patch scaled;
@@ -56,12 +58,14 @@ namespace pcl_sparse
     for (const Eigen::Vector3d& p : patch.local)
       heights.push_back (p.z ());
     const int missing = options.min_samples - static_cast<int> (patch.local.size ());
-    if (missing > 0)
-      for (const Eigen::Vector3d& p : drawPatchSurfaceSamples (patch, mesh, missing, mixSeed (options.seed, patch_index)))
-      {
-        positions.emplace_back (p.x (), p.y ());
-        heights.push_back (p.z ());
-      }
+    const std::vector<PatchSurfacePoint> extra_samples =
+        drawPatchSurfacePoints (patch, mesh, missing, mixSeed (options.seed, patch_index));
+    for (const PatchSurfacePoint& sample : extra_samples)
+    {
+      const Eigen::Vector3d p = sample.interpolate (patch.local);
+      positions.emplace_back (p.x (), p.y ());
+      heights.push_back (p.z ());
+    }
 
     const double spacing = patchSampleSpacing (patch, mean_ring_edge_lengths);
     const std::vector<char> allowed =
@@ -81,6 +85,8 @@ namespace pcl_sparse
     for (int a : omp.atoms)
       code.atoms.push_back (allowed_atoms[a]);
     code.coefficients = std::move (omp.coefficients);
+    if (attributes && attributes->values && attributes->basis && !attributes->channels.empty ())
+      code.attributes = codePatchAttributes (patch, positions, extra_samples, spacing, *attributes);
 
     if (info)
     {

@@ -90,10 +90,10 @@ namespace pcl_sparse
     return medianSpacing (means, patch.radius);
   }
 
-  std::vector<Eigen::Vector3d>
-  drawPatchSurfaceSamples (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed)
+  std::vector<PatchSurfacePoint>
+  drawPatchSurfacePoints (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed)
   {
-    std::vector<Eigen::Vector3d> samples;
+    std::vector<PatchSurfacePoint> samples;
     if (count <= 0 || patch.triangles.empty () || patch.local.size () != patch.vertices.size ())
       return samples;
 
@@ -145,10 +145,17 @@ namespace pcl_sparse
       // Uniform point in a triangle: (1 - sqrt(u), sqrt(u) (1 - v), sqrt(u) v).
       const double su = std::sqrt (uniform ());
       const double v = uniform ();
-      const Eigen::Vector3i& c = corners[t];
-      samples.push_back ((1.0 - su) * patch.local[c[0]] + su * (1.0 - v) * patch.local[c[1]] +
-                         su * v * patch.local[c[2]]);
+      samples.push_back ({corners[t], Eigen::Vector3d (1.0 - su, su * (1.0 - v), su * v)});
     }
+    return samples;
+  }
+
+  std::vector<Eigen::Vector3d>
+  drawPatchSurfaceSamples (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed)
+  {
+    std::vector<Eigen::Vector3d> samples;
+    for (const PatchSurfacePoint& point : drawPatchSurfacePoints (patch, mesh, count, seed))
+      samples.push_back (point.interpolate (patch.local));
     return samples;
   }
 } // namespace pcl_sparse

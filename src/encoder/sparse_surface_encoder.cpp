@@ -26,6 +26,17 @@ namespace pcl_sparse
       return std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
     }
 
+    /// The cosines of options.attributes.basis, as many as the height's basis has (the height's basis
+    /// itself when it is that one).
+    SurfaceBasis::ConstPtr
+    attributeBasis (const SurfaceBasis::ConstPtr& basis, const SparseSurfaceEncoderOptions& options)
+    {
+      const auto* cosine = dynamic_cast<const CosineAtoms*> (basis.get ());
+      if (cosine && cosine->kind () == options.attributes.basis)
+        return basis;
+      return makeCosineBasis (options.attributes.basis, cosine ? cosine->frequencies () : options.dictionary_frequencies);
+    }
+
     void
     require (bool condition, const std::string& message)
     {
@@ -55,6 +66,12 @@ namespace pcl_sparse
              "dictionary frequencies must be in [1, 64], got " + std::to_string (dictionary_frequencies));
     require (basis == CosineBasisKind::Paper || basis == CosineBasisKind::Dct,
              "basis must be Paper or Dct, got " + std::to_string (static_cast<int> (basis)));
+    require (attributes.basis == CosineBasisKind::Paper || attributes.basis == CosineBasisKind::Dct,
+             "attribute basis must be Paper or Dct, got " + std::to_string (static_cast<int> (attributes.basis)));
+    require (attributes.max_atoms >= 1,
+             "attribute L (atoms per channel) must be >= 1, got " + std::to_string (attributes.max_atoms));
+    require (attributes.tolerance >= 0.0 && std::isfinite (attributes.tolerance),
+             "attribute tolerance must be >= 0, got " + std::to_string (attributes.tolerance));
   }
 
   bool
@@ -78,6 +95,25 @@ namespace pcl_sparse
                  const SurfaceBasis::ConstPtr& basis, int num_threads, const ProgressCallback& progress,
                  SparseSurfaceModel& model)
   {
+    return encodeSurface (mesh, VertexAttributes (), topology, options, basis, num_threads, progress, model);
+  }
+
+  SurfaceEncoding
+  encodeSurface (const TriangleMesh& mesh, const VertexAttributes& attributes, const MeshTopology& topology,
+                 const SparseSurfaceEncoderOptions& options, const SurfaceBasis::ConstPtr& basis, int num_threads,
+                 const ProgressCallback& progress, SparseSurfaceModel& model)
+  {
+    AttributeCodingInput attribute_input;
+    if (!attributes.empty ())
+    {
+      attributes.validate (mesh.vertices.size (), "SparseSurfaceEncoder");
+      attribute_input.values = &attributes;
+      attribute_input.channels = attributes.channelInfo ();
+      attribute_input.basis = attributeBasis (basis, options);
+      attribute_input.nyquist_factor = options.coding.nyquist_factor;
+      attribute_input.nyquist_rule = options.coding.nyquist_rule;
+      attribute_input.options = options.attributes;
+    }
     const auto start = std::chrono::steady_clock::now ();
     SurfaceEncoding encoding;
 
@@ -98,7 +134,7 @@ namespace pcl_sparse
     for (long p = 0; p < num_patches; ++p)
     {
       codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), mesh, ring_lengths, *basis, options.coding,
-                            &encoding.coding_info[p]);
+                            &encoding.coding_info[p], attribute_input.values ? &attribute_input : nullptr);
       const long finished = ++done;
       if (progress && omp_get_thread_num () == 0 && finished % 64 == 0)
         progress ("coding", static_cast<double> (finished) / num_patches);
@@ -109,6 +145,8 @@ namespace pcl_sparse
 
     model.basis = basis;
     model.patches = std::move (codes);
+    model.attribute_channels = attribute_input.channels;
+    model.attribute_basis = attribute_input.basis;
     model.num_input_vertices = mesh.vertices.size ();
     model.bbox_diagonal = boundingBoxDiagonal (mesh);
     encoding.timings.total = secondsSince (start);

@@ -3,9 +3,11 @@
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/attribute_sections.h>
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
+#include <pcl_sparse/format/sparse_code_stream.h>
 #include <pcl_sparse/format/zstd_codec.h>
 
 #include <algorithm>
@@ -28,6 +30,7 @@ namespace pcl_sparse
     constexpr std::size_t kSectionHeaderBytes = 32;
     constexpr std::uint16_t kFlagQuantised = 1;
     constexpr std::uint16_t kFlagVertices = 2;
+    constexpr std::uint16_t kFlagAttributes = 4;
     constexpr std::uint8_t kBasisCosine = 1;     ///< CosineDictionary: cos(i pi x) cos(j pi y)
     constexpr std::uint8_t kBasisDctCosine = 2;  ///< DctCosineDictionary: cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2)
     constexpr std::uint8_t kCodecStored = 0;
@@ -48,8 +51,25 @@ namespace pcl_sparse
     constexpr double kFrameShare = 0.16;
     constexpr double kCoefficientShare = 0.58;
 
-    const char* const kLosslessTags[] = {"SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF", "VERT"};
-    const char* const kQuantisedTags[] = {"QUAN", "SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF", "VERT"};
+    const char* const kLosslessTags[] = {"SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF"};
+    const char* const kQuantisedTags[] = {"QUAN", "SEED", "FRAM", "RADI", "FOOT", "ATOM", "COEF"};
+    const char* const kAttributeTags[] = {"ACHN", "AATM", "ACOF"};
+
+    /// The sections a file with \a flags has, in order.
+    std::vector<std::string>
+    expectedTags (std::uint16_t flags)
+    {
+      std::vector<std::string> tags;
+      if (flags & kFlagQuantised)
+        tags.assign (std::begin (kQuantisedTags), std::end (kQuantisedTags));
+      else
+        tags.assign (std::begin (kLosslessTags), std::end (kLosslessTags));
+      if (flags & kFlagVertices)
+        tags.push_back ("VERT");
+      if (flags & kFlagAttributes)
+        tags.insert (tags.end (), std::begin (kAttributeTags), std::end (kAttributeTags));
+      return tags;
+    }
 
     /// Quantisation parameters of a quantised file (section QUAN, stored uncompressed).
     struct QuantisationParameters
@@ -110,28 +130,6 @@ namespace pcl_sparse
         for (std::size_t i = 0; i < count; ++i)
           values[i] |= static_cast<std::uint64_t> (p[b * count + i]) << (8 * b);
       return values;
-    }
-
-    /// Rank of cosine atom (i, j) in "shell order": by max(i, j) first (the Nyquist cap allows exactly
-    /// the shells up to a frequency, and OMP picks low shells most), so a patch's sorted ranks form a
-    /// near-prefix with small deltas. Shell m = max(i, j) holds ranks m^2 .. m^2 + 2m.
-    int
-    shellRank (int atom, int n)
-    {
-      const int i = atom / n, j = atom % n, m = std::max (i, j);
-      return m * m + (i == m ? j : m + 1 + i);
-    }
-
-    int
-    atomOfShellRank (int rank, int n)
-    {
-      int m = static_cast<int> (std::sqrt (static_cast<double> (rank)));
-      while (m * m > rank)
-        --m;
-      while ((m + 1) * (m + 1) <= rank)
-        ++m;
-      const int o = rank - m * m;
-      return o <= m ? m * n + o : (o - m - 1) * n + m;
     }
 
     double
@@ -230,6 +228,8 @@ namespace pcl_sparse
             throw Error ("encodeModel: " + name + " footprint extent is negative or not finite");
         if (patch.vertices.size () != patch.vertex_xy.size ())
           throw Error ("encodeModel: " + name + " vertices and vertex_xy differ in size");
+        if (!model.hasAttributes () && !patch.attributes.empty ())
+          throw Error ("encodeModel: " + name + " has attribute codes but the model has no attribute channels");
       }
     }
 
@@ -250,11 +250,7 @@ namespace pcl_sparse
         foot.putVarint (patch.footprint.extent.size ());
         for (float e : patch.footprint.extent)
           foot.putF32 (e);
-        atom.putVarint (patch.atoms.size ());
-        for (int a : patch.atoms)
-          atom.putVarint (static_cast<std::uint64_t> (a));
-        for (double c : patch.coefficients)
-          coef.putF64 (c);
+        putCodeCoefficients (coef, patch.coefficients, putCodeAtoms (atom, patch.atoms, false, 0), 0.0);
       }
       return {{"SEED", kCodecZstd, std::move (seed.bytes ())}, {"FRAM", kCodecZstd, std::move (frame.bytes ())},
               {"RADI", kCodecZstd, std::move (radius.bytes ())}, {"FOOT", kCodecZstd, std::move (foot.bytes ())},
@@ -349,29 +345,11 @@ namespace pcl_sparse
     putQuantisedCode (ByteWriter& atom, ByteWriter& coef, const PatchCode& patch, const QuantisationParameters& q,
                       int frequencies, PatchCode& decoded)
     {
-      std::vector<std::size_t> order (patch.atoms.size ());
-      std::iota (order.begin (), order.end (), 0);
-      std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
-        return shellRank (patch.atoms[a], frequencies) < shellRank (patch.atoms[b], frequencies);
-      });
-      atom.putVarint (order.size ());
-      int previous_rank = -1;
+      const std::vector<std::size_t> order = putCodeAtoms (atom, patch.atoms, true, frequencies);
       for (std::size_t k : order)
-      {
-        const int rank = shellRank (patch.atoms[k], frequencies);
-        atom.putVarint (static_cast<std::uint64_t> (rank - previous_rank - 1));
-        previous_rank = rank;
         decoded.atoms.push_back (patch.atoms[k]);
-      }
       const double step = coefficientStep (q.coefficient_budget, decoded.radius, order.size ());
-      for (std::size_t k : order)
-      {
-        const double steps = std::round (patch.coefficients[k] / step);
-        if (!(std::abs (steps) < 9.0e15))
-          throw Error ("encodeModel: coefficient too large for the tolerance");
-        coef.putSignedVarint (static_cast<std::int64_t> (steps));
-        decoded.coefficients.push_back (steps * step);
-      }
+      decoded.coefficients = putCodeCoefficients (coef, patch.coefficients, order, step);
     }
 
     /// The frame as a quantised quaternion, its step from the decoded patch (as the decoder derives it).
@@ -537,7 +515,7 @@ namespace pcl_sparse
       const std::uint32_t header_crc = in.getU32 ("header checksum");
       if (kVerifyChecksums && crc32 (data, kHeaderBytes - 4) != header_crc)
         throw Error (what + ": header checksum mismatch (corrupt file)");
-      if ((h.flags & ~(kFlagQuantised | kFlagVertices)) != 0 || reserved != 0)
+      if ((h.flags & ~(kFlagQuantised | kFlagVertices | kFlagAttributes)) != 0 || reserved != 0)
         throw Error (what + ": unknown header flags");
       if (h.basis_kind != kBasisCosine && h.basis_kind != kBasisDctCosine)
         throw Error (what + ": unknown basis kind " + std::to_string (h.basis_kind));
@@ -553,11 +531,10 @@ namespace pcl_sparse
       if (!std::isfinite (h.tolerance) || h.tolerance < 0.0 || (h.tolerance > 0.0) != quantised ||
           (quantised && !(h.bbox_diagonal > 0.0)))
         throw Error (what + ": tolerance does not match the quantised flag");
-      const std::size_t expected_sections = (quantised ? 7 : 6) + ((h.flags & kFlagVertices) ? 1 : 0);
-      if (h.num_sections != expected_sections)
-        throw Error (what + ": " + std::to_string (h.num_sections) + " sections, expected " + std::to_string (expected_sections));
+      const std::vector<std::string> tags = expectedTags (h.flags);
+      if (h.num_sections != tags.size ())
+        throw Error (what + ": " + std::to_string (h.num_sections) + " sections, expected " + std::to_string (tags.size ()));
 
-      const char* const* tags = quantised ? kQuantisedTags : kLosslessTags;
       for (std::uint32_t s = 0; s < h.num_sections; ++s)
       {
         const std::size_t start = in.position ();
@@ -713,55 +690,13 @@ namespace pcl_sparse
       }
     }
 
-    /// Atom indices of patch \a p over a basis of \a frequencies^2 atoms (shell-rank deltas in a quantised
-    /// file); refuses indices outside the basis and repeats.
-    void
-    readAtoms (ByteReader& atom, bool quantised, int frequencies, std::size_t p, std::vector<int>& atoms)
-    {
-      const int basis_size = frequencies * frequencies;
-      const std::size_t n = atom.getCount ("atom count", std::min<std::uint64_t> (basis_size, atom.remaining ()));
-      atoms.resize (n);
-      std::int64_t previous = -1;
-      std::vector<bool> used (basis_size, false);
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const std::uint64_t v = atom.getCount ("atom index", static_cast<std::uint64_t> (basis_size));
-        std::int64_t index = quantised ? previous + 1 + static_cast<std::int64_t> (v) : static_cast<std::int64_t> (v);
-        if (index >= basis_size)
-          atom.fail ("patch " + std::to_string (p) + " atom " + std::to_string (index) + " outside the basis of " +
-                     std::to_string (basis_size));
-        previous = index;
-        if (quantised)
-          index = atomOfShellRank (static_cast<int> (index), frequencies);
-        if (index >= basis_size)
-          atom.fail ("patch " + std::to_string (p) + " atom index " + std::to_string (index) + " outside the basis of " +
-                     std::to_string (basis_size));
-        if (used[index])
-          atom.fail ("patch " + std::to_string (p) + " repeats atom " + std::to_string (index));
-        used[index] = true;
-        atoms[i] = static_cast<int> (index);
-      }
-    }
-
     /// One coefficient per atom of \a patch (its radius already read).
     void
     readCoefficients (ByteReader& coef, bool quantised, const QuantisationParameters& q, PatchCode& patch)
     {
       const std::size_t n = patch.atoms.size ();
-      patch.coefficients.resize (n);
-      const double step = quantised ? coefficientStep (q.coefficient_budget, patch.radius, n) : 0.0;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        if (quantised)
-        {
-          const std::int64_t v = coef.getSignedVarint ("coefficient");
-          patch.coefficients[i] = static_cast<double> (v) * step;
-          if (!std::isfinite (patch.coefficients[i]))
-            coef.fail ("coefficient is not finite");
-        }
-        else
-          patch.coefficients[i] = readFinite (coef, "coefficient");
-      }
+      getCodeCoefficients (coef, n, quantised ? coefficientStep (q.coefficient_budget, patch.radius, n) : 0.0,
+                           patch.coefficients);
     }
 
     /// Frame of patch \a p (its radius and code already read: a quantised frame's step depends on them).
@@ -851,11 +786,22 @@ namespace pcl_sparse
     std::vector<Section> sections = quantised ? encodeQuantised (model, options, frequencies) : encodeLossless (model);
     if (options.include_vertices)
       sections.push_back (encodeVertices (model, quantised));
+    const bool attributes = model.hasAttributes ();
+    if (attributes && quantised && !(options.attribute_tolerance > 0.0 && std::isfinite (options.attribute_tolerance)))
+      throw Error ("encodeModel: attribute_tolerance must be > 0");
+    if (attributes)
+    {
+      AttributeSectionBytes bytes = encodeAttributeSections (model, quantised ? options.attribute_tolerance : 0.0);
+      sections.push_back ({"ACHN", kCodecStored, std::move (bytes.channels)});
+      sections.push_back ({"AATM", kCodecZstd, std::move (bytes.atoms)});
+      sections.push_back ({"ACOF", kCodecZstd, std::move (bytes.coefficients)});
+    }
 
     ByteWriter out;
     out.putBytes (kMagic, sizeof kMagic);
     out.putU16 (kVersion);
-    out.putU16 (static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0)));
+    out.putU16 (static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0) |
+                                            (attributes ? kFlagAttributes : 0)));
     out.putU8 (cosine.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine);
     out.putU8 (0);
     out.putU16 (static_cast<std::uint16_t> (frequencies));
@@ -944,7 +890,7 @@ namespace pcl_sparse
       PatchCode& patch = model.patches[p];
       readPlacement (seed, radius, quantised, q, seeds, radii, p, patch);
       readFootprint (foot, quantised, q, p, patch.footprint);
-      readAtoms (atom, quantised, h.basis_parameter, p, patch.atoms);
+      getCodeAtoms (atom, quantised, h.basis_parameter, "patch " + std::to_string (p), patch.atoms);
       readCoefficients (coef, quantised, q, patch);
       readFrame (frame, quantised, q, p, patch);
     }
@@ -961,6 +907,14 @@ namespace pcl_sparse
       ByteReader vert = open (vertex_bytes);
       readVertices (vert, quantised, h.num_input_vertices, model.patches);
     }
+    if (h.flags & kFlagAttributes)
+    {
+      std::vector<std::uint8_t> channel_bytes, attribute_atom_bytes, attribute_coef_bytes;
+      ByteReader channels = open (channel_bytes);
+      ByteReader attribute_atoms = open (attribute_atom_bytes);
+      ByteReader attribute_coefs = open (attribute_coef_bytes);
+      decodeAttributeSections (channels, attribute_atoms, attribute_coefs, quantised, model);
+    }
     return model;
   }
 
@@ -972,6 +926,14 @@ namespace pcl_sparse
     info.version = container.header.version;
     info.quantised = container.header.flags & kFlagQuantised;
     info.has_vertices = container.header.flags & kFlagVertices;
+    if (container.header.flags & kFlagAttributes)
+    {
+      const StoredSection& section = container.sections[container.sections.size () - 3];
+      const std::vector<std::uint8_t> bytes = sectionBytes (section, name);
+      ByteReader channels (bytes.data (), bytes.size (), name + ": section " + section.tag);
+      for (const AttributeChannelInfo& channel : decodeAttributeChannels (channels, info.quantised))
+        info.attributes.push_back (attributeChannelName (channel.channel));
+    }
     info.basis = std::string (container.header.basis_kind == kBasisDctCosine ? "dct cosine " : "cosine ") +
                  std::to_string (container.header.basis_parameter) + "x" +
                  std::to_string (container.header.basis_parameter);

@@ -44,6 +44,25 @@ namespace pcl_sparse
     const PatchCode& code = patches[p];
     return basis->evaluateCode (code.atoms, code.coefficients, x, y);
   }
+
+  int
+  SparseSurfaceModel::attributeIndex (AttributeChannel channel) const
+  {
+    for (std::size_t c = 0; c < attribute_channels.size (); ++c)
+      if (attribute_channels[c].channel == channel)
+        return static_cast<int> (c);
+    return -1;
+  }
+
+  double
+  SparseSurfaceModel::evaluateAttribute (std::size_t p, std::size_t c, double x, double y) const
+  {
+    const AttributeChannelInfo& info = attribute_channels[c];
+    const std::vector<SparseCode>& codes = patches[p].attributes;
+    const double value =
+        c < codes.size () && attribute_basis ? attribute_basis->evaluateCodeValue (codes[c].atoms, codes[c].coefficients, x, y) : 0.0;
+    return std::min (info.upper, std::max (info.lower, value));
+  }
 } // namespace pcl_sparse
 
 namespace pcl_sparse
@@ -79,6 +98,31 @@ namespace pcl_sparse
     for (std::size_t v = 0; v < num_vertices; ++v)
       sum[v] = count[v] > 0 ? Eigen::Vector3d (sum[v] / count[v]) : Eigen::Vector3d (nan, nan, nan);
     return sum;
+  }
+
+  Eigen::MatrixXf
+  SparseSurfaceModel::reconstructVertexAttributes (std::size_t num_vertices) const
+  {
+    const Eigen::Index channels = static_cast<Eigen::Index> (attribute_channels.size ());
+    Eigen::MatrixXd sum = Eigen::MatrixXd::Zero (static_cast<Eigen::Index> (num_vertices), channels);
+    std::vector<int> count (num_vertices, 0);
+    for (std::size_t p = 0; p < patches.size (); ++p)
+    {
+      const PatchCode& code = patches[p];
+      const std::size_t n = std::min (code.vertices.size (), code.vertex_xy.size ());
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        const int v = code.vertices[k];
+        if (v < 0 || static_cast<std::size_t> (v) >= num_vertices)
+          continue;
+        for (Eigen::Index c = 0; c < channels; ++c)
+          sum (v, c) += evaluateAttribute (p, static_cast<std::size_t> (c), code.vertex_xy[k].x (), code.vertex_xy[k].y ());
+        ++count[v];
+      }
+    }
+    for (std::size_t v = 0; v < num_vertices; ++v)
+      sum.row (static_cast<Eigen::Index> (v)) /= count[v] > 0 ? count[v] : std::numeric_limits<double>::quiet_NaN ();
+    return sum.cast<float> ();
   }
 
   ModelStatistics

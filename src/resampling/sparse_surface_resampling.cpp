@@ -230,9 +230,10 @@ namespace pcl_sparse
       }
 
       /// Exactly \a count points from \a candidates by systematic sampling of their cumulative weight.
+      /// With \a attributes (optional), also each point's attribute channels, C per point.
       void
       selectPoints (std::size_t p, const PatchGrid& grid, std::uint64_t key, const std::vector<Candidate>& candidates,
-                    const Points& evaluated, std::size_t count, pcl::PointNormal* out) const
+                    const Points& evaluated, std::size_t count, pcl::PointNormal* out, float* attributes) const
       {
         if (count == 0 || candidates.empty ())
           return;
@@ -250,18 +251,31 @@ namespace pcl_sparse
           const double high = (k + 1 == candidates.size ()) ? std::numeric_limits<double>::infinity () : cumulative + c.weight;
           for (int draw = 0; t < high && emitted < count; ++draw, t += step)
           {
+            Eigen::Vector2d xy (c.x, c.y);
             if (draw == 0 && c.evaluated >= 0)
-              out[emitted++] = evaluated[c.evaluated];
+              out[emitted] = evaluated[c.evaluated];
             else
-              emit (p, grid, key, c, draw, cells, out[emitted++]);
+              xy = emit (p, grid, key, c, draw, cells, out[emitted]);
+            if (attributes)
+              attributesAt (p, xy, attributes + emitted * model_.attribute_channels.size ());
+            ++emitted;
           }
           cumulative = high;
         }
       }
 
     private:
-      /// The first point of a cell is its candidate; further ones are fresh places in the same cell.
+      /// Every attribute channel of patch \a p at local \a xy.
       void
+      attributesAt (std::size_t p, const Eigen::Vector2d& xy, float* values) const
+      {
+        for (std::size_t c = 0; c < model_.attribute_channels.size (); ++c)
+          values[c] = static_cast<float> (model_.evaluateAttribute (p, c, xy.x (), xy.y ()));
+      }
+
+      /// The first point of a cell is its candidate; further ones are fresh places in the same cell.
+      /// Returns the local (x, y) of the point.
+      Eigen::Vector2d
       emit (std::size_t p, const PatchGrid& grid, std::uint64_t key, const Candidate& c, int draw, std::uint64_t cells,
             pcl::PointNormal& point) const
       {
@@ -286,6 +300,7 @@ namespace pcl_sparse
         }
         h = evaluator_.sample (p, x, y);
         makePoint (p, x, y, h, point);
+        return Eigen::Vector2d (x, y);
       }
 
       const SparseSurfaceModel& model_;
@@ -375,8 +390,9 @@ namespace pcl_sparse
   }
 
   void
-  SparseSurfaceResamplingBase::resample (PointCloud& output)
+  SparseSurfaceResamplingBase::resample (PointCloud& output, bool with_attributes)
   {
+    with_attributes_ = with_attributes;
     if (!model_)
       throw Error (name_ + "::compute: no input model (setInputModel)");
     if (!model_->basis)
@@ -523,13 +539,16 @@ namespace pcl_sparse
     output.clear ();
     output.resize (offsets[m]);
     point_patches_.assign (offsets[m], 0);
+    const std::size_t channels = with_attributes_ ? model_->attribute_channels.size () : 0;
+    point_attributes_.assign (offsets[m] * channels, 0.0f);
     std::atomic<std::size_t> done (0);
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threadsToUse ())
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
       passes.sampler.selectPoints (p, passes.grids[p], patchKey (options_.seed, p, 3), passes.candidates[p],
-                                   passes.evaluated[p], counts[p], output.data () + offsets[p]);
+                                   passes.evaluated[p], counts[p], output.data () + offsets[p],
+                                   channels > 0 ? point_attributes_.data () + offsets[p] * channels : nullptr);
       std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
       std::vector<Candidate> ().swap (passes.candidates[p]);
       Points ().swap (passes.evaluated[p]);

@@ -1,5 +1,5 @@
 /// Writes the seed corpus for fuzz_model_file: small valid .psm files in every mode (lossless,
-/// quantised, with and without vertices, empty, a single patch). Usage: make_seed_corpus DIR
+/// quantised, with and without vertices, with and without colour / intensity, empty, a single patch). Usage: make_seed_corpus DIR
 
 #include "../test_format_models.h"
 
@@ -23,12 +23,15 @@ main (int argc, char** argv)
     for (double tolerance : {0.0, 1e-3, 1e-5})
       for (bool vertices : {false, true})
         for (int level : {0, 19})
+          for (bool attributes : {false, true})
       {
         pcl_sparse::ModelWriteOptions options;
         options.zstd_level = level;
         options.tolerance = tolerance;
         options.include_vertices = vertices;
-        const auto model = pcl_sparse::test::makeSyntheticModel (patches, 7 + static_cast<unsigned> (patches), vertices, 8);
+        auto model = pcl_sparse::test::makeSyntheticModel (patches, 7 + static_cast<unsigned> (patches), vertices, 8);
+        if (attributes)
+          pcl_sparse::test::addSyntheticAttributes (model, 3 + static_cast<unsigned> (patches));
         const auto bytes = pcl_sparse::encodeModel (model, options);
         const std::string path = directory + "/seed_" + std::to_string (written++) + ".psm";
         std::ofstream out (path, std::ios::binary);

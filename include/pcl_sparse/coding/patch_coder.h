@@ -3,6 +3,7 @@
 /// Codes one patch as a sparse height field (docs/METHOD.md steps 7-9): samples, Nyquist cap, OMP, footprint.
 
 #include <pcl_sparse/coding/nyquist_cap.h>
+#include <pcl_sparse/coding/patch_attribute_coder.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
@@ -55,8 +56,12 @@ namespace pcl_sparse
   /// \param[in]  basis                   the dictionary
   /// \param[in]  options                 cap, OMP, samples, footprint and support options
   /// \param[out] info                    diagnostics of the coding (optional)
-  /// \return origin, frame, radius, atoms, coefficients, footprint, vertices and their local x', y'
+  /// \param[in]  attributes              colour / intensity to code at the same samples (optional;
+  ///                                     codePatchAttributes); the height's code is the same without them
+  /// \return origin, frame, radius, atoms, coefficients, footprint, vertices and their local x', y', and
+  ///         with \a attributes one code per attribute channel
   PatchCode
   codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh,
-             const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr);
+             const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr,
+             const AttributeCodingInput* attributes = nullptr);
 } // namespace pcl_sparse

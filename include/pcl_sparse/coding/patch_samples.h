@@ -36,9 +36,35 @@ namespace pcl_sparse
   std::vector<double>
   meanRingEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology);
 
+  /// A point on one of a patch's triangles: its corners as positions in patch.vertices / patch.local, and
+  /// barycentric weights (summing to 1).
+  struct PatchSurfacePoint
+  {
+    Eigen::Vector3i corners;
+    Eigen::Vector3d weights;
+
+    /// The weighted combination of \a values at the corners (e.g. patch.local).
+    Eigen::Vector3d
+    interpolate (const std::vector<Eigen::Vector3d>& values) const
+    {
+      return weights[0] * values[corners[0]] + weights[1] * values[corners[1]] + weights[2] * values[corners[2]];
+    }
+  };
+
+  /// Points drawn uniformly by area on a patch's own triangles: a random triangle by area and a uniform
+  /// barycentric point in it.
+  /// \param[in] patch  triangles (face ids of \a mesh) and vertices set
+  /// \param[in] mesh   the mesh
+  /// \param[in] count  number of points
+  /// \param[in] seed   seed of the draws: the same seed gives the same points
+  /// \return \a count points; empty when the patch has no triangle of positive area
+  std::vector<PatchSurfacePoint>
+  drawPatchSurfacePoints (const Patch& patch, const TriangleMesh& mesh, int count, std::uint64_t seed);
+
   /// Points drawn uniformly by area on a patch's own triangles, in local coordinates (x', y', z'): a
   /// random triangle by area, a uniform barycentric point in it, and the barycentric combination of the
-  /// corners' local coordinates (the mesh's own surface there, since the local map is affine).
+  /// corners' local coordinates (the mesh's own surface there, since the local map is affine):
+  /// drawPatchSurfacePoints interpolating patch.local.
   /// \param[in] patch  triangles (face ids of \a mesh) and local coordinates set
   /// \param[in] mesh   the mesh
   /// \param[in] count  number of points

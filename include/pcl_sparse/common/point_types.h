@@ -18,9 +18,10 @@
   MACRO (pcl::PointXYZRGBNormal)
 
 /// \brief Calls \a MACRO once for every output point type of resampling the library is compiled for:
-/// PointNormal, PointXYZ, PointXYZRGBNormal and PointXYZINormal.
+/// PointNormal, PointXYZ, PointXYZRGB, PointXYZRGBNormal and PointXYZINormal.
 #define PCL_SPARSE_FOR_EACH_OUTPUT_POINT_TYPE(MACRO) \
   MACRO (pcl::PointNormal)                             \
   MACRO (pcl::PointXYZ)                                \
+  MACRO (pcl::PointXYZRGB)                             \
   MACRO (pcl::PointXYZRGBNormal)                       \
   MACRO (pcl::PointXYZINormal)

@@ -21,6 +21,7 @@
 #include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/model/vertex_attributes.h>
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_options.h>
 
@@ -44,9 +45,12 @@ namespace pcl_sparse
     /// scan's estimated noise (CloudSurface::noise) and not below, so that sensor noise is smoothed, not
     /// coded (docs/METHOD.md, scans). Meshes are never affected.
     bool scan_noise_floor = true;
+    /// Colour / intensity coding (only when the input has them): L per channel, RMS tolerance.
+    AttributeCodingOptions attributes;
 
     /// Throws pcl_sparse::Error naming the first option out of range: the patch options, rho > 0,
-    /// 0 <= f <= 1, L >= 1, eps in (0, 1), m_min >= 0, footprint angles >= 3, n in [1, 64].
+    /// 0 <= f <= 1, L >= 1, eps in (0, 1), m_min >= 0, footprint angles >= 3, n in [1, 64], attribute
+    /// L >= 1 and tolerance >= 0.
     void validate () const;
   };
 
@@ -86,6 +90,24 @@ namespace pcl_sparse
                  const SurfaceBasis::ConstPtr& basis, int num_threads, const ProgressCallback& progress,
                  SparseSurfaceModel& model);
 
+  /// \brief The same with colour / intensity: every patch also codes each channel of \a attributes
+  /// (patch_attribute_coder.h) and the model gets their channels (SparseSurfaceModel::attribute_channels).
+  /// The geometry is exactly that of the encoding without attributes. Throws pcl_sparse::Error for
+  /// attributes that do not fit the mesh (VertexAttributes::validate).
+  /// \param[in] mesh the mesh, with at least one face of non-zero area
+  /// \param[in] attributes one row per vertex of \a mesh; empty: as encodeSurface without them
+  /// \param[in] topology buildMeshTopology (mesh)
+  /// \param[in] options validated options (options.attributes: the attribute coding)
+  /// \param[in] basis the basis to code the height over
+  /// \param[in] num_threads OpenMP threads (0 = default); the model does not depend on it
+  /// \param[in] progress progress callback (may be empty)
+  /// \param[out] model the model (replaced)
+  /// \return the patches, coding diagnostics and timings
+  SurfaceEncoding
+  encodeSurface (const TriangleMesh& mesh, const VertexAttributes& attributes, const MeshTopology& topology,
+                 const SparseSurfaceEncoderOptions& options, const SurfaceBasis::ConstPtr& basis, int num_threads,
+                 const ProgressCallback& progress, SparseSurfaceModel& model);
+
   /// \brief The encoder as a PCL-style stage (input: see SurfaceStage).
   /// \tparam PointInT point type of the input cloud
   template <typename PointInT>
@@ -104,6 +126,16 @@ namespace pcl_sparse
     /// \brief A basis other than the cosine dictionary (optional; default: makeCosineBasis (basis, n)).
     void setBasis (const SurfaceBasis::ConstPtr& basis) { basis_ = basis; }
 
+    /// \brief Colour / intensity per input point (or mesh vertex, or scan point), coded with the geometry.
+    /// Without it, a cloud input (with or without polygons) whose point type has rgb / rgba or intensity
+    /// gives them automatically (channels r g b [a] and / or intensity), and so does a scan
+    /// (setInputScan) with colours or intensities; a TriangleMesh input has none. With setIndices cropping,
+    /// and for the points a scan's cleaning keeps, the rows of the surface's points are used. An empty
+    /// pointer goes back to automatic.
+    /// \param[in] attributes one row per input point (cloud), vertex (mesh) or point (setInputScan)
+    void setVertexAttributes (const VertexAttributes::ConstPtr& attributes) { attributes_ = attributes; }
+    const VertexAttributes::ConstPtr& getVertexAttributes () const { return attributes_; }
+
     /// \brief Encodes the surface into \a model (replacing its content). Throws pcl_sparse::Error for a
     /// missing or empty surface, one without area, and options out of range.
     /// \param[out] model the sparse surface model
@@ -120,8 +152,13 @@ namespace pcl_sparse
     /// \brief The stage proper, on the surface initCompute prepared.
     virtual void computeModel (SparseSurfaceModel& model);
 
+    /// \brief The attributes of the surface's vertices: setVertexAttributes, else the input cloud's or scan's
+    /// colour / intensity (none for a mesh), for the points the surface kept; empty when there are none.
+    VertexAttributes surfaceAttributes () const;
+
     SparseSurfaceEncoderOptions options_;
     SurfaceBasis::ConstPtr basis_;
+    VertexAttributes::ConstPtr attributes_;
     SurfaceEncoding encoding_;
   };
 } // namespace pcl_sparse

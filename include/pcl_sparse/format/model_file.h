@@ -10,7 +10,8 @@
 ///    footprint extents are quantised with steps chosen so that every surface point s + r R (x, y, h(x, y))
 ///    of every patch, at any (x, y) of its footprint, moves by at most t * bbox_diagonal (worst case;
 ///    see docs/FORMAT.md for the error budget). Atoms of a patch come back sorted by frequency shell
-///    (max(i, j), then i, j); footprints keep at most max_footprint_angles angles.
+///    (max(i, j), then i, j); footprints keep at most max_footprint_angles angles. Colour / intensity codes
+///    are quantised so that no attribute value moves by more than attribute_tolerance x its range.
 /// All streams are zstd-coded; every section carries a CRC-32; the loader refuses anything malformed
 /// with pcl_sparse::Error and never allocates more than the file's declared, bounds-checked sizes.
 
@@ -40,6 +41,10 @@ namespace pcl_sparse
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
     /// input vertices, docs/METHOD.md step 10). Off by default: decoding and resampling do not need them.
     bool include_vertices = false;
+    /// Quantised mode, models with colour / intensity: the largest change of an attribute value, as a
+    /// fraction of its channel's range (AttributeChannelInfo; 255 for colour, so 1/2 grey level by default).
+    /// Lossless files store the attribute codes bit for bit.
+    double attribute_tolerance = 0.5 / 255.0;
     /// zstd level (1..22); 19 compresses well and still writes a 1 MB model in well under a second.
     /// 0 stores every section uncompressed (for inspection and the fuzzer's seed corpus).
     int zstd_level = 19;
@@ -59,6 +64,7 @@ namespace pcl_sparse
     std::uint16_t version = 0;              ///< format version
     bool quantised = false;                 ///< written with a tolerance > 0
     bool has_vertices = false;              ///< holds the patches' input vertices and their (x', y')
+    std::vector<std::string> attributes;    ///< attribute channels ("r", "g", "b", "a", "intensity"); empty: none
     std::string basis;                      ///< "cosine nxn" (the paper's atoms) or "dct cosine nxn"
     std::uint32_t num_patches = 0;          ///< M
     std::uint64_t num_input_vertices = 0;   ///< N_V of the encoded mesh

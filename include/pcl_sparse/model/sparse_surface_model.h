@@ -5,6 +5,7 @@
 /// format stores.
 
 #include <pcl_sparse/model/surface_basis.h>
+#include <pcl_sparse/model/vertex_attributes.h>
 
 #include <Eigen/Core>
 
@@ -27,6 +28,13 @@ namespace pcl_sparse
     bool contains (double x, double y) const;
   };
 
+  /// A sparse code over a model's basis: sum_k coefficients[k] * atom_{atoms[k]}.
+  struct SparseCode
+  {
+    std::vector<int> atoms;            ///< atom indices, in selection order
+    std::vector<double> coefficients;  ///< one per atom
+  };
+
   /// One coded patch.
   struct PatchCode
   {
@@ -41,6 +49,10 @@ namespace pcl_sparse
     /// vertices (docs/METHOD.md step 10); empty in a model loaded without its mesh.
     std::vector<int> vertices;
     std::vector<Eigen::Vector2d> vertex_xy;
+
+    /// One code per attribute channel of the model (SparseSurfaceModel::attribute_channels), over the same
+    /// basis and local (x, y) as the height; empty when the model has no attributes.
+    std::vector<SparseCode> attributes;
 
     Eigen::Vector3d toWorld (const Eigen::Vector3d& local) const { return origin + radius * (frame * local); }
   };
@@ -69,12 +81,25 @@ namespace pcl_sparse
     std::vector<PatchCode> patches;
     std::size_t num_input_vertices = 0;
     double bbox_diagonal = 0.0;      ///< of the input mesh
+    /// Colour / intensity channels every patch codes (PatchCode::attributes); empty: geometry only.
+    std::vector<AttributeChannelInfo> attribute_channels;
+    /// The basis the attribute codes are over (the encoder's default: half-period cosines, both parities,
+    /// since colour gradients are odd; patch_attribute_coder.h). Set when attribute_channels is not empty.
+    SurfaceBasis::ConstPtr attribute_basis;
 
     std::size_t numPatches () const { return patches.size (); }
     /// Total number of non-zero coefficients ||alpha||_0.
     std::size_t numNonZeros () const;
     /// Height, gradient and Hessian of patch \a p at local (x, y).
     HeightSample evaluate (std::size_t p, double x, double y) const;
+
+    /// Whether the patches code attribute channels.
+    bool hasAttributes () const { return !attribute_channels.empty (); }
+    /// Index of \a channel in attribute_channels, -1 if the model does not have it.
+    int attributeIndex (AttributeChannel channel) const;
+    /// Attribute channel \a c (index into attribute_channels) of patch \a p at local (x, y), clamped to the
+    /// channel's range. 0 clamped to the range for a patch without that code.
+    double evaluateAttribute (std::size_t p, std::size_t c, double x, double y) const;
 
     /// \brief Moves the whole model by \a offset (every patch's seed; frames, radii and codes are
     /// unchanged): the same surface in a frame whose origin is at -offset.
@@ -89,6 +114,11 @@ namespace pcl_sparse
     /// s + r R (x', y', h(x', y')), with its stored x', y'. Vertices in no patch (and indices >=
     /// \a num_vertices are ignored) come back as NaN. Needs the patches' vertices / vertex_xy.
     std::vector<Eigen::Vector3d> reconstructVertices (std::size_t num_vertices) const;
+
+    /// Attributes of the input vertices, blended as reconstructVertices blends positions (mean over the
+    /// patches listing a vertex of each channel's code at its x', y', clamped): \a num_vertices by
+    /// attribute_channels.size(), NaN rows for vertices in no patch. Needs the patches' vertices / vertex_xy.
+    Eigen::MatrixXf reconstructVertexAttributes (std::size_t num_vertices) const;
 
     /// Statistics against the input vertices; \a errors (optional) receives |v - v^| per vertex (0 for
     /// uncovered ones).

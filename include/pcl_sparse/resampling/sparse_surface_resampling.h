@@ -10,7 +10,8 @@
 ///   resampling.compute (cloud);
 ///
 /// The output point type takes what it has fields for: x y z always, normal_x.. and curvature where it
-/// has them (PointNormal is filled directly; other types are copied from it field by field).
+/// has them (PointNormal is filled directly; other types are copied from it field by field), and r g b
+/// (a) and intensity from the model's attribute codes when it has them (point_attributes.h).
 ///
 /// Each patch draws points only inside its own footprint and keeps those it owns (patch_ownership.h),
 /// so overlaps do not double the density. Heights come from the codes, normals from the analytic
@@ -101,6 +102,10 @@ namespace pcl_sparse
 
     /// \brief Patch that produced each point of the last compute.
     const std::vector<int>& getPointPatches () const { return point_patches_; }
+    /// \brief Attribute values of each point of the last compute, model->attribute_channels.size () per
+    /// point, point after point (clamped to each channel's range). Empty unless the output type has
+    /// colour or intensity and the model has attributes.
+    const std::vector<float>& getPointAttributes () const { return point_attributes_; }
     /// \brief Surface area of the model (sum of owned areas) estimated by the last compute.
     double getEstimatedArea () const { return estimated_area_; }
     /// \brief Density used by the last compute (points per unit area).
@@ -110,9 +115,10 @@ namespace pcl_sparse
     SparseSurfaceResamplingBase () : StageBase ("SparseSurfaceResampling") {}
 
     /// \brief Checks the input and options, then resamples into \a output (replaced; one row,
-    /// is_dense = true). Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, or
-    /// the density would give more than max_points points.
-    void resample (PointCloud& output);
+    /// is_dense = true), and with \a with_attributes each point's attribute channels (getPointAttributes).
+    /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, or the density
+    /// would give more than max_points points.
+    void resample (PointCloud& output, bool with_attributes = false);
 
     /// \brief The stage proper, after the checks.
     virtual void computeResampling (PointCloud& output);
@@ -141,6 +147,8 @@ namespace pcl_sparse
     std::shared_ptr<PatchEvaluator> evaluator_;
     std::shared_ptr<PatchOwnership> ownership_;
     std::vector<int> point_patches_;
+    bool with_attributes_ = false;
+    std::vector<float> point_attributes_;
     double estimated_area_ = 0.0;
     double density_used_ = 0.0;
   };

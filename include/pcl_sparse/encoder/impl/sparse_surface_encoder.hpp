@@ -3,6 +3,7 @@
 /// \brief Definitions of SparseSurfaceEncoder (encoder/sparse_surface_encoder.h).
 
 #include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/encoder/cloud_vertex_attributes.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/surface/impl/surface_stage.hpp>
@@ -34,8 +35,9 @@ namespace pcl_sparse
     if (this->surfaceIsScan () && options.scan_noise_floor && options.coding.noise_level == 0.0)
       options.coding.noise_level = this->cloud_surface_->noise;
     options.patches.harris_rings = harrisRingsFor (options.patches.harris_rings, this->surfaceIsScan ());
-    encoding_ = encodeSurface (*this->surface_, *this->surface_topology_, options, basis, this->num_threads_,
-                               this->progress_, model);
+    const VertexAttributes attributes = surfaceAttributes ();
+    encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,
+                               this->num_threads_, this->progress_, model);
     // A scan is encoded in its local frame: the model and patches go back to the input's frame.
     if (!this->surface_origin_.isZero (0.0))
     {
@@ -43,5 +45,35 @@ namespace pcl_sparse
       for (Patch& patch : encoding_.patches)
         patch.origin += this->surface_origin_;
     }
+  }
+
+  template <typename PointInT>
+  VertexAttributes
+  SparseSurfaceEncoder<PointInT>::surfaceAttributes () const
+  {
+    // The input initCompute used: a mesh (attributes only if set), a scan, or a cloud with or without polygons.
+    VertexAttributes attributes;
+    if (attributes_)
+      attributes = *attributes_;
+    else if (this->scan_ && !this->mesh_)
+      attributes = scanVertexAttributes (*this->scan_);
+    else if (this->input_ && !this->mesh_)
+      attributes = cloudVertexAttributes (*this->input_);
+    if (attributes.empty ())
+      return attributes;
+    const std::size_t num_inputs =
+        this->mesh_ ? this->mesh_->vertices.size () : this->scan_ ? this->scan_->size () : this->input_->size ();
+    if (static_cast<std::size_t> (attributes.values.rows ()) != num_inputs)
+      this->fail ("setVertexAttributes: " + std::to_string (attributes.values.rows ()) + " rows for " +
+                  std::to_string (num_inputs) + " input points");
+    // Surface vertex v is: for a cloud without polygons, input point getSurfaceInputIndices ()[v]; for
+    // setInputScan, scan point v; otherwise input point v, or indices[v] when setIndices crops.
+    if (this->surfaceIsScan () && !this->scan_)
+      attributes = attributes.selectRows (this->surface_input_indices_);
+    else if (!this->surfaceIsScan () && this->use_indices_ && this->indices_ && this->index_use_ == IndexUse::CropSurface)
+      attributes = attributes.selectRows (*this->indices_);
+    if (static_cast<std::size_t> (attributes.values.rows ()) != this->surface_->vertices.size ())
+      this->fail ("the surface's vertices do not correspond to the input points: cannot carry their attributes");
+    return attributes;
   }
 } // namespace pcl_sparse

@@ -1,0 +1,49 @@
+#pragma once
+/// \file sparse_code_stream.h
+/// One sparse code (atoms and coefficients over a cosine basis of n^2 atoms) in the model file's byte
+/// streams: the layout the height's sections ATOM / COEF and the attributes' AATM / ACOF share
+/// (docs/FORMAT.md).
+///
+/// Lossless: varint count, varint atom indices in selection order; f64 coefficients in that order.
+/// Quantised: varint count, varint deltas of the sorted shell ranks (shellRank); svarint coefficients in
+/// steps, in rank order (the code is the same sum).
+
+#include <pcl_sparse/format/byte_stream.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// Rank of cosine atom (i, j) = (atom / n, atom % n) in "shell order": by max(i, j) first (the Nyquist
+  /// cap allows exactly the shells up to a frequency, and OMP picks low shells most), so a code's sorted
+  /// ranks form a near-prefix with small deltas. Shell m = max(i, j) holds ranks m^2 .. m^2 + 2m.
+  int
+  shellRank (int atom, int frequencies);
+
+  /// The atom of shell rank \a rank (inverse of shellRank).
+  int
+  atomOfShellRank (int rank, int frequencies);
+
+  /// \brief Writes the atoms of a code; returns the order they were written in (positions in \a atoms):
+  /// selection order lossless, shell-rank order quantised.
+  std::vector<std::size_t>
+  putCodeAtoms (ByteWriter& out, const std::vector<int>& atoms, bool quantised, int frequencies);
+
+  /// \brief Reads the atoms of a code written by putCodeAtoms. Refuses (ByteReader::fail, naming \a code,
+  /// e.g. "patch 3") a count above n^2 or the bytes left, indices outside the basis, and repeats.
+  void
+  getCodeAtoms (ByteReader& in, bool quantised, int frequencies, const std::string& code, std::vector<int>& atoms);
+
+  /// \brief Writes \a coefficients in \a order: f64 when \a step is 0, else svarint multiples of \a step.
+  /// Throws pcl_sparse::Error for a coefficient too large for the step. Returns the values the reader
+  /// gets back, in \a order.
+  std::vector<double>
+  putCodeCoefficients (ByteWriter& out, const std::vector<double>& coefficients, const std::vector<std::size_t>& order,
+                       double step);
+
+  /// \brief Reads \a count coefficients written by putCodeCoefficients with \a step; refuses non-finite ones.
+  void
+  getCodeCoefficients (ByteReader& in, std::size_t count, double step, std::vector<double>& coefficients);
+} // namespace pcl_sparse

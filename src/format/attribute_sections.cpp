@@ -1,0 +1,202 @@
+#include <pcl_sparse/format/attribute_sections.h>
+
+#include <pcl_sparse/coding/cosine_atoms.h>
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/frame_quantization.h>
+#include <pcl_sparse/format/sparse_code_stream.h>
+
+#include <cmath>
+#include <string>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    // Basis kinds as in the file header (docs/FORMAT.md).
+    constexpr std::uint8_t kBasisCosine = 1;
+    constexpr std::uint8_t kBasisDctCosine = 2;
+
+    /// What ACHN holds besides the channels.
+    struct ChannelTable
+    {
+      CosineBasisKind kind = CosineBasisKind::Dct;
+      int frequencies = 12;
+      std::vector<AttributeChannelInfo> channels;
+      std::vector<double> budgets;  ///< quantised: largest change of a value, per channel
+    };
+
+    /// Largest change of channel \a info's values a tolerance allows (the range, 1 for a constant channel).
+    double
+    channelBudget (const AttributeChannelInfo& info, double tolerance)
+    {
+      const double range = info.upper - info.lower;
+      return tolerance * (range > 0.0 ? range : 1.0);
+    }
+
+    /// The model's attribute basis; throws unless it is a cosine one.
+    const CosineAtoms&
+    attributeBasis (const SparseSurfaceModel& model)
+    {
+      const auto* cosine = dynamic_cast<const CosineAtoms*> (model.attribute_basis.get ());
+      if (!cosine)
+        throw Error ("encodeModel: the attribute basis must be a cosine basis (CosineDictionary or DctCosineDictionary)");
+      return *cosine;
+    }
+
+    void
+    validateAttributes (const SparseSurfaceModel& model, int basis_size)
+    {
+      std::vector<bool> seen (num_attribute_channels, false);
+      for (const AttributeChannelInfo& info : model.attribute_channels)
+      {
+        const int id = static_cast<int> (info.channel);
+        if (id < 0 || id >= num_attribute_channels || seen[id])
+          throw Error ("encodeModel: attribute channel " + std::to_string (id) + " unknown or repeated");
+        seen[id] = true;
+        if (!std::isfinite (info.lower) || !std::isfinite (info.upper) || info.lower > info.upper)
+          throw Error ("encodeModel: attribute channel range is not finite or empty");
+      }
+      for (std::size_t p = 0; p < model.patches.size (); ++p)
+      {
+        const std::vector<SparseCode>& codes = model.patches[p].attributes;
+        const std::string name = "patch " + std::to_string (p);
+        if (codes.size () != model.attribute_channels.size ())
+          throw Error ("encodeModel: " + name + " has " + std::to_string (codes.size ()) + " attribute codes for " +
+                       std::to_string (model.attribute_channels.size ()) + " channels");
+        for (const SparseCode& code : codes)
+        {
+          if (code.atoms.size () != code.coefficients.size () || code.atoms.size () > static_cast<std::size_t> (basis_size))
+            throw Error ("encodeModel: " + name + " attribute code has mismatched or too many atoms");
+          std::vector<bool> used (basis_size, false);
+          for (int a : code.atoms)
+          {
+            if (a < 0 || a >= basis_size || used[a])
+              throw Error ("encodeModel: " + name + " attribute atom " + std::to_string (a) + " outside the basis or repeated");
+            used[a] = true;
+          }
+          for (double c : code.coefficients)
+            if (!std::isfinite (c))
+              throw Error ("encodeModel: " + name + " attribute coefficient is not finite");
+        }
+      }
+    }
+
+    double
+    readFiniteF64 (ByteReader& in, const char* field)
+    {
+      const double v = in.getF64 (field);
+      if (!std::isfinite (v))
+        in.fail (std::string (field) + " is not finite");
+      return v;
+    }
+
+    ChannelTable
+    readChannelTable (ByteReader& in, bool quantised)
+    {
+      ChannelTable table;
+      const std::uint8_t kind = in.getU8 ("attribute basis kind");
+      if (kind != kBasisCosine && kind != kBasisDctCosine)
+        in.fail ("unknown attribute basis kind " + std::to_string (kind));
+      table.kind = kind == kBasisDctCosine ? CosineBasisKind::Dct : CosineBasisKind::Paper;
+      table.frequencies = in.getU16 ("attribute basis parameter");
+      if (table.frequencies < 1 || table.frequencies > CosineAtoms::max_frequencies)
+        in.fail ("attribute basis with " + std::to_string (table.frequencies) + " frequencies is out of range");
+      const std::size_t count = in.getU8 ("channel count");
+      const std::size_t entry = quantised ? 25 : 17;
+      if (count < 1 || count > static_cast<std::size_t> (num_attribute_channels) || in.remaining () != count * entry)
+        in.fail ("holds " + std::to_string (in.remaining ()) + " bytes for " + std::to_string (count) + " channels");
+      std::vector<bool> seen (num_attribute_channels, false);
+      for (std::size_t c = 0; c < count; ++c)
+      {
+        AttributeChannelInfo info;
+        const std::uint8_t id = in.getU8 ("channel");
+        if (id >= num_attribute_channels || seen[id])
+          in.fail ("attribute channel " + std::to_string (id) + " unknown or repeated");
+        seen[id] = true;
+        info.channel = static_cast<AttributeChannel> (id);
+        info.lower = readFiniteF64 (in, "channel lower bound");
+        info.upper = readFiniteF64 (in, "channel upper bound");
+        if (info.lower > info.upper)
+          in.fail ("channel range is empty");
+        table.channels.push_back (info);
+        if (quantised)
+        {
+          table.budgets.push_back (readFiniteF64 (in, "channel budget"));
+          if (!(table.budgets.back () > 0.0))
+            in.fail ("channel budget must be positive");
+        }
+      }
+      in.expectEnd ();
+      return table;
+    }
+  } // namespace
+
+  AttributeSectionBytes
+  encodeAttributeSections (const SparseSurfaceModel& model, double tolerance)
+  {
+    const CosineAtoms& basis = attributeBasis (model);
+    const int n = basis.frequencies ();
+    validateAttributes (model, basis.size ());
+    const bool quantised = tolerance > 0.0;
+    ByteWriter channels, atoms, coefficients;
+    channels.putU8 (basis.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine);
+    channels.putU16 (static_cast<std::uint16_t> (n));
+    channels.putU8 (static_cast<std::uint8_t> (model.attribute_channels.size ()));
+    std::vector<double> budgets;
+    for (const AttributeChannelInfo& info : model.attribute_channels)
+    {
+      channels.putU8 (static_cast<std::uint8_t> (info.channel));
+      channels.putF64 (info.lower);
+      channels.putF64 (info.upper);
+      budgets.push_back (channelBudget (info, tolerance));
+      if (quantised)
+        channels.putF64 (budgets.back ());
+    }
+    for (const PatchCode& patch : model.patches)
+      for (std::size_t c = 0; c < patch.attributes.size (); ++c)
+      {
+        const SparseCode& code = patch.attributes[c];
+        const std::vector<std::size_t> order = putCodeAtoms (atoms, code.atoms, quantised, n);
+        // A value moves by at most n_atoms step / 2 (cosine atoms are bounded by 1): the channel's budget.
+        putCodeCoefficients (coefficients, code.coefficients, order,
+                             quantised ? coefficientStep (budgets[c], 1.0, order.size ()) : 0.0);
+      }
+    return {std::move (channels.bytes ()), std::move (atoms.bytes ()), std::move (coefficients.bytes ())};
+  }
+
+  std::vector<AttributeChannelInfo>
+  decodeAttributeChannels (ByteReader& channels, bool quantised)
+  {
+    return readChannelTable (channels, quantised).channels;
+  }
+
+  void
+  decodeAttributeSections (ByteReader& channels, ByteReader& atoms, ByteReader& coefficients, bool quantised,
+                           SparseSurfaceModel& model)
+  {
+    const ChannelTable table = readChannelTable (channels, quantised);
+    const std::size_t m = model.patches.size (), count = table.channels.size ();
+    // Every code takes at least its count byte in AATM: checked before the codes are allocated.
+    if (atoms.remaining () < m * count)
+      atoms.fail ("holds " + std::to_string (atoms.remaining ()) + " bytes, " + std::to_string (m) + " patches x " +
+                  std::to_string (count) + " channels need at least " + std::to_string (m * count));
+    model.attribute_channels = table.channels;
+    model.attribute_basis = makeCosineBasis (table.kind, table.frequencies);
+    for (std::size_t p = 0; p < m; ++p)
+    {
+      std::vector<SparseCode>& codes = model.patches[p].attributes;
+      codes.resize (count);
+      for (std::size_t c = 0; c < count; ++c)
+      {
+        getCodeAtoms (atoms, quantised, table.frequencies,
+                      "patch " + std::to_string (p) + " channel " + attributeChannelName (table.channels[c].channel),
+                      codes[c].atoms);
+        const std::size_t k = codes[c].atoms.size ();
+        getCodeCoefficients (coefficients, k, quantised ? coefficientStep (table.budgets[c], 1.0, k) : 0.0,
+                             codes[c].coefficients);
+      }
+    }
+    atoms.expectEnd ();
+    coefficients.expectEnd ();
+  }
+} // namespace pcl_sparse
