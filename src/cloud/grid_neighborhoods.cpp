@@ -39,12 +39,15 @@ namespace pcl_sparse
     {
       float v[5];
       int m = 0;
-      for (int q = 0; q < count; ++q)
+      for (int q = 0; q < std::min (count, 5); ++q)
         if (values[q] >= 0.0f)
           v[m++] = values[q];
       if (m == 0)
         return -1.0f;
-      std::sort (v, v + m);
+      // Insertion sort of at most 5 values (std::sort's bounds are past GCC 12's -Warray-bounds analysis).
+      for (int i = 1; i < m; ++i)
+        for (int j = i; j > 0 && v[j] < v[j - 1]; --j)
+          std::swap (v[j], v[j - 1]);
       return v[m / 2];
     }
 
