@@ -10,6 +10,8 @@
 #include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
+#include <pcl/io/pcd_io.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -176,4 +178,38 @@ TEST (ScanPipeline, StanfordScanResamplesOntoTheBunny)
   EXPECT_LT (quality.flipped, out.size () / 1000);
   EXPECT_LT (quality_dct.flipped, out.size () / 1000);
   EXPECT_LT (quality_dct.mean_normal_angle, 10.0);
+}
+
+TEST (ScanPipeline, MergedScansFaceTheirOwnViewpoints)
+{
+  // A sphere seen by two sensors, at x = +10 and x = -10, each keeping the half it sees; merged, with each
+  // point's viewpoint in vp_x vp_y vp_z (pcl::PointWithViewpoint). Every normal faces its own sensor, so
+  // outward; the cloud's sensor_origin_ (0, 0, 0, the centre) would turn them all inward.
+  std::mt19937 random (11);
+  std::normal_distribution<double> normal (0.0, 1.0);
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointWithViewpoint>> ();
+  for (int i = 0; i < 4000; ++i)
+  {
+    Eigen::Vector3d d (normal (random), normal (random), normal (random));
+    d.normalize ();
+    const float side = d.x () >= 0.0 ? 10.0f : -10.0f;
+    cloud->push_back (pcl::PointWithViewpoint (static_cast<float> (d.x ()), static_cast<float> (d.y ()),
+                                               static_cast<float> (d.z ()), side, 0.0f, 0.0f));
+  }
+  // Through a PCD file with vp_x vp_y vp_z fields, as a merged map is stored.
+  const std::string file = (std::filesystem::temp_directory_path () / ("merged_" + std::to_string (::getpid ()) + ".pcd")).string ();
+  ASSERT_EQ (pcl::io::savePCDFileBinary (file, *cloud), 0);
+  auto scan = std::make_shared<ScanCloud> ();
+  loadScanCloud (file, *scan);
+  std::filesystem::remove (file);
+  ASSERT_EQ (scan->viewpoints.size (), cloud->size ());
+  MeshNormalEstimation<pcl::PointXYZ> ne;
+  ne.setInputScan (scan);
+  pcl::PointCloud<pcl::PointNormal> normals;
+  ne.compute (normals);
+  ASSERT_EQ (normals.size (), cloud->size ());
+  std::size_t outward = 0;
+  for (const pcl::PointNormal& p : normals)
+    outward += p.getNormalVector3fMap ().dot (p.getVector3fMap ()) > 0.9f;
+  EXPECT_EQ (outward, normals.size ());
 }

@@ -38,6 +38,7 @@ namespace pcl_sparse
   {
     const std::size_t n = scan.positions.size ();
     requireSize (scan.normals, n, "normals");
+    requireSize (scan.viewpoints, n, "viewpoints");
     requireSize (scan.colors, n, "colors");
     requireSize (scan.intensities, n, "intensities");
     requireSize (scan.indices, n, "indices");
@@ -97,6 +98,7 @@ namespace pcl_sparse
 
     keepFlagged (scan.positions, keep);
     keepFlagged (scan.normals, keep);
+    keepFlagged (scan.viewpoints, keep);
     keepFlagged (scan.colors, keep);
     keepFlagged (scan.intensities, keep);
     keepFlagged (scan.indices, keep);

@@ -69,6 +69,15 @@ namespace pcl_sparse
         for (std::size_t i = 0; i < n; ++i)
           std::memcpy (&scan.colors[i], point (i) + color->offset, 4);
       }
+      const pcl::PCLPointField* viewpoint[3] = {io_detail::findField (cloud, "vp_x"), io_detail::findField (cloud, "vp_y"),
+                                                io_detail::findField (cloud, "vp_z")};
+      if (viewpoint[0] && viewpoint[1] && viewpoint[2])
+      {
+        scan.viewpoints.resize (n);
+        for (std::size_t i = 0; i < n; ++i)
+          for (int k = 0; k < 3; ++k)
+            scan.viewpoints[i][k] = io_detail::readFieldValue (point (i) + viewpoint[k]->offset, viewpoint[k]->datatype);
+      }
       if (const pcl::PCLPointField* intensity = io_detail::findField (cloud, "intensity"))
       {
         scan.intensities.resize (n);

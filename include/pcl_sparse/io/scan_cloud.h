@@ -48,6 +48,9 @@ namespace pcl_sparse
     std::vector<Eigen::Vector3d> normals;    ///< empty or #P normals as stored (not normalised)
     std::vector<std::uint32_t> colors;       ///< empty or #P colours packed as PCL's rgba: 0xAARRGGBB
     std::vector<float> intensities;          ///< empty or #P intensities
+    /// Empty or #P viewpoints, one per point, in the file's frame (vp_x vp_y vp_z of a merged scan, as
+    /// pcl::PointWithViewpoint holds them): each point's normal faces its own sensor.
+    std::vector<Eigen::Vector3d> viewpoints;
     /// #P: index of each point in the file, row * width + column for an organized scan (so the grid can be
     /// rebuilt), the position in the file otherwise.
     std::vector<std::size_t> indices;

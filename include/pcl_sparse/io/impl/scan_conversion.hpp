@@ -37,6 +37,12 @@ namespace pcl_sparse
       for (std::size_t i = 0; i < n; ++i)
         out.intensities[i] = cloud[i].intensity;
     }
+    if constexpr (pcl::traits::has_field<PointT, pcl::fields::vp_x>::value)  // pcl::PointWithViewpoint
+    {
+      out.viewpoints.resize (n);
+      for (std::size_t i = 0; i < n; ++i)
+        out.viewpoints[i] = Eigen::Vector3d (cloud[i].vp_x, cloud[i].vp_y, cloud[i].vp_z);
+    }
     out.indices.resize (n);
     std::iota (out.indices.begin (), out.indices.end (), std::size_t (0));
     // A cloud whose width x height disagrees with its size is not a grid: keep it as a list.

@@ -107,6 +107,9 @@ namespace pcl_sparse
     }
     CloudSurfaceOptions options = cloud_options_;
     options.num_threads = num_threads_;
+    // A merged scan's per-point viewpoints (vp_x vp_y vp_z), unless the caller gave viewpoints of its own.
+    if (options.point_viewpoints.empty () && !options.has_viewpoint && !scan->viewpoints.empty ())
+      options.point_viewpoints = scan->viewpoints;
     CloudSurface surface = buildCloudSurface (*scan, options);
     surface_ = std::make_shared<const TriangleMesh> (std::move (surface.mesh));
     surface.mesh = TriangleMesh ();
