@@ -342,6 +342,13 @@ TEST (Attributes, ScanWithColourGivesTheColoursAutomatically)
   }
   EXPECT_LT (mean, 1.5);
 
+  // Opting out: empty attributes code the geometry only.
+  encoder.setVertexAttributes (std::make_shared<VertexAttributes> ());
+  SparseSurfaceModel geometry;
+  encoder.compute (geometry);
+  EXPECT_FALSE (geometry.hasAttributes ());
+  EXPECT_EQ (geometry.numNonZeros (), model->numNonZeros ());
+
   // The same scan through setInputScan gives the same model.
   auto scan = std::make_shared<ScanCloud> ();
   toScanCloud (*cloud, *scan);

@@ -130,8 +130,8 @@ namespace pcl_sparse
     /// Without it, a cloud input (with or without polygons) whose point type has rgb / rgba or intensity
     /// gives them automatically (channels r g b [a] and / or intensity), and so does a scan
     /// (setInputScan) with colours or intensities; a TriangleMesh input has none. With setIndices cropping,
-    /// and for the points a scan's cleaning keeps, the rows of the surface's points are used. An empty
-    /// pointer goes back to automatic.
+    /// and for the points a scan's cleaning keeps, the rows of the surface's points are used. A pointer to
+    /// an empty VertexAttributes codes none (geometry only); an empty pointer goes back to automatic.
     /// \param[in] attributes one row per input point (cloud), vertex (mesh) or point (setInputScan)
     void setVertexAttributes (const VertexAttributes::ConstPtr& attributes) { attributes_ = attributes; }
     const VertexAttributes::ConstPtr& getVertexAttributes () const { return attributes_; }
