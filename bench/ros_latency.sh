@@ -21,7 +21,7 @@ ws=${PCL_SPARSE_CACHE:-$HOME/.cache/pcl_sparse}/ros_bench_ws
 
 export PATH="/usr/bin:/bin:$PATH" ROS_VERSION=1 CCACHE_BASEDIR=$ws
 mkdir -p "$ws/src"
-[ -e "$ws/src/pcl_sparse" ] || ln -s "$root" "$ws/src/pcl_sparse"
+ln -sfn "$root" "$ws/src/pcl_sparse"  # this checkout, even if another one made the workspace
 echo "building $ws (catkin_make) ..."
 catkin_make -C "$ws" -DCMAKE_BUILD_TYPE=Release -DPCL_SPARSE_BUILD_BENCH=OFF -DPCL_SPARSE_BUILD_SAMPLES=OFF \
   -DBUILD_TESTING=OFF -DCATKIN_ENABLE_TESTING=OFF -DPYTHON_EXECUTABLE=/usr/bin/python3 \
