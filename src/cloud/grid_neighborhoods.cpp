@@ -187,12 +187,7 @@ namespace pcl_sparse
               out[counts[i]++] = j;
           }
       }
-    hoods.offsets.assign (n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i)
-      hoods.offsets[i + 1] = hoods.offsets[i] + counts[i];
-    hoods.neighbors.resize (hoods.offsets[n]);
-    for (std::size_t i = 0; i < n; ++i)
-      std::copy_n (found.begin () + i * stride, counts[i], hoods.neighbors.begin () + hoods.offsets[i]);
+    packNeighborSlots (found, static_cast<std::size_t> (stride), counts, hoods);
     return hoods;
   }
 } // namespace pcl_sparse

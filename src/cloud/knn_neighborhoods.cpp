@@ -136,12 +136,7 @@ namespace pcl_sparse
     counts.candidates = candidates;
     counts.refused = refused;
     counts.shadowed = shadowed;
-    hoods.offsets.assign (n + 1, 0);
-    for (std::ptrdiff_t i = 0; i < n; ++i)
-      hoods.offsets[i + 1] = hoods.offsets[i] + count[i];
-    hoods.neighbors.resize (hoods.offsets[n]);
-    for (std::ptrdiff_t i = 0; i < n; ++i)
-      std::copy_n (kept.begin () + i * k, count[i], hoods.neighbors.begin () + hoods.offsets[i]);
+    packNeighborSlots (kept, static_cast<std::size_t> (k), count, hoods);
     return hoods;
   }
 } // namespace pcl_sparse

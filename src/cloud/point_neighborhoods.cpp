@@ -45,4 +45,17 @@ namespace pcl_sparse
       std::copy (merged[i].begin (), merged[i].end (), out.neighbors.begin () + out.offsets[i]);
     return out;
   }
+  void
+  packNeighborSlots (const std::vector<int>& slots, std::size_t stride, const std::vector<int>& counts,
+                     PointNeighborhoods& neighborhoods)
+  {
+    const std::size_t n = counts.size ();
+    neighborhoods.offsets.assign (n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      neighborhoods.offsets[i + 1] = neighborhoods.offsets[i] + counts[i];
+    neighborhoods.neighbors.resize (static_cast<std::size_t> (neighborhoods.offsets[n]));
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy_n (slots.begin () + static_cast<std::ptrdiff_t> (i * stride), counts[i],
+                   neighborhoods.neighbors.begin () + neighborhoods.offsets[i]);
+  }
 } // namespace pcl_sparse

@@ -31,6 +31,16 @@ namespace pcl_sparse
     }
   };
 
+  /// \brief Fills \a neighborhoods' offsets and neighbours from fixed-size slots: point i's neighbours are
+  /// the first counts[i] of slots[i * stride ...], in order (the spacing is left as it is).
+  /// \param[in] slots #points x stride neighbour indices
+  /// \param[in] stride slots per point
+  /// \param[in] counts #points: how many slots of each point are used
+  /// \param[in,out] neighborhoods the lists
+  void
+  packNeighborSlots (const std::vector<int>& slots, std::size_t stride, const std::vector<int>& counts,
+                     PointNeighborhoods& neighborhoods);
+
   /// The neighbour lists made symmetric: j lists i whenever i lists j, each list ascending (a kNN graph is
   /// not symmetric, and the local triangulation and the spanning tree need both ends to see an edge).
   /// Spacing is copied.
