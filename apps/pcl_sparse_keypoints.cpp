@@ -131,9 +131,7 @@ main (int argc, char** argv)
     harris.compute (keypoints);
     const double harris_seconds = timer.toc () / 1000.0;
     // The surface Harris ran on: the mesh, or a scan's neighbourhood surface (moved to the file's frame).
-    auto mesh = std::make_shared<TriangleMesh> (*harris.getSurface ());
-    for (Eigen::Vector3d& v : mesh->vertices)
-      v += harris.getSurfaceOrigin ();
+    const TriangleMesh::ConstPtr mesh = tools::surfaceInInputFrame (harris);
     if (harris.getResponses ().size () != mesh->numVertices ())
       throw Error (input + ": Harris 3D failed on this mesh");
 

@@ -108,9 +108,7 @@ main (int argc, char** argv)
     sampling.compute (patches);
     const double seconds = timer.toc () / 1000.0;
     // The surface the patches grew on: the mesh, or a scan's neighbourhood surface (moved to the file's frame).
-    auto mesh = std::make_shared<TriangleMesh> (*sampling.getSurface ());
-    for (Eigen::Vector3d& v : mesh->vertices)
-      v += sampling.getSurfaceOrigin ();
+    const TriangleMesh::ConstPtr mesh = tools::surfaceInInputFrame (sampling);
 
     // Statistics.
     std::vector<std::size_t> sizes;

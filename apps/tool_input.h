@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,20 @@ namespace pcl_sparse
         stage.setInputMesh (input.mesh);
       else
         stage.setInputScan (input.scan);
+    }
+
+    /// The surface \a stage's last compute worked on, in the input file's frame: the mesh itself, or a
+    /// scan's neighbourhood surface moved back from its local frame (a copy only then).
+    template <typename Stage>
+    TriangleMesh::ConstPtr
+    surfaceInInputFrame (const Stage& stage)
+    {
+      if (stage.getSurfaceOrigin ().isZero (0.0))
+        return stage.getSurface ();
+      auto moved = std::make_shared<TriangleMesh> (*stage.getSurface ());
+      for (Eigen::Vector3d& v : moved->vertices)
+        v += stage.getSurfaceOrigin ();
+      return moved;
     }
 
     /// Option -viewpoint X,Y,Z of the scan tools: true and \a viewpoint set when given. Throws Error
