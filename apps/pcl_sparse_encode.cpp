@@ -38,8 +38,9 @@ namespace
       {"-L N", "atoms per patch at most (default 12)"},
       {"-eps E", "relative residual to stop at, in (0, 1) (default 0.01)"},
       {"-min-samples N", "patches with fewer points get extra samples (default 64; authors 128)"},
-      {"-basis paper|dct", "cosine atoms: paper cos(i pi x) cos(j pi y) (default);"},
-      {"", "dct cos(i pi (x+1)/2) cos(j pi (y+1)/2), odd parts too (ours)"},
+      {"-preset P", "default (measured best) or paper (the paper's configuration); options below override"},
+      {"-basis paper|dct", "cosine atoms: dct cos(i pi (x+1)/2) cos(j pi (y+1)/2), odd parts too (default);"},
+      {"", "paper cos(i pi x) cos(j pi y) (-preset paper)"},
       {"-seed S", "seed of the extra samples (default 42)"},
       {"-threads N", "OpenMP threads (default: all; the model does not depend on it)"},
       {"-recon RECON", "write the reconstructed mesh (input vertex order and faces)"},
@@ -52,7 +53,7 @@ namespace
     },
     1,
     {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
-     "-viewpoint"},
+     "-viewpoint", "-preset"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices"}};
 } // namespace
 
@@ -65,7 +66,7 @@ main (int argc, char** argv)
     args.expectPositional (1, "exactly one input");
     const std::string& path = args.positional ().front ();
 
-    SparseSurfaceEncoderOptions options;
+    SparseSurfaceEncoderOptions options = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default")));
     args.number ("-rho", options.patches.rho);
     args.number ("-f", options.coding.nyquist_factor);
     args.integer ("-L", options.coding.max_atoms);

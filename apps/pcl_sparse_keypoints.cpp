@@ -9,6 +9,7 @@
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/color_map.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/keypoints/harris_keypoint3d_mesh.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -41,10 +42,11 @@ namespace
       {"-k K", "Harris constant (default 0.04)"},
       {"-responses R.ply", "also write the mesh coloured by response percentile"},
       {"", "(dark blue = low, yellow = high, grey = no response)"},
+      {"-preset P", "default or paper: accepted as by every tool; both use these keypoints"},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-fraction", "-cluster", "-rings", "-adaptive", "-k", "-responses", "-viewpoint"}, {"--json", "-q"}};
+    2, {"-fraction", "-cluster", "-rings", "-adaptive", "-k", "-responses", "-viewpoint", "-preset"}, {"--json", "-q"}};
 
   /// Colours by percentile of the response (the raw values span many orders of magnitude).
   std::vector<RgbColor>
@@ -90,6 +92,7 @@ main (int argc, char** argv)
     if (quiet || json)
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
     args.expectPositional (2, "IN and OUT");
+    encoderPresetFromName (args.value ("-preset", "default"));  // checked; Harris 3D is the same in both
     const std::string input = args.positional ()[0], output = args.positional ()[1];
     if (!tools::hasExtension (output, ".pcd") && !tools::hasExtension (output, ".ply"))
       throw Error (output + ": output must end in .pcd or .ply");

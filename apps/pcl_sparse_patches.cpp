@@ -10,6 +10,7 @@
 #include <pcl_sparse/common/color_map.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/patches/patch_checks.h>
@@ -47,10 +48,11 @@ namespace
       {"-sigma S", tools::format ("seed overlap control (default %g)", kDefaults.sigma)},
       {"-min-size N", tools::format ("smallest patch the sampling keeps (default %d)", kDefaults.min_patch_size)},
       {"--authors", "the authors' code: cone 72 degrees, no pairwise cone, no coverage pass"},
+      {"-preset P", "default or paper: accepted as by every tool; both grow these patches (they differ in coding)"},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet (no progress, no messages besides the report and errors)"},
     },
-    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint"}, {"--json", "-q", "--authors"}};
+    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint", "-preset"}, {"--json", "-q", "--authors"}};
 } // namespace
 
 int
@@ -67,6 +69,7 @@ main (int argc, char** argv)
     if (!tools::hasExtension (output, ".ply"))
       throw Error (output + ": the output must be a .ply file");
 
+    encoderPresetFromName (args.value ("-preset", "default"));  // checked; the patch options are the same
     PatchOptions options;
     if (args.has ("--authors"))
     {
@@ -133,7 +136,8 @@ main (int argc, char** argv)
     const double per_vertex = covered > 0 ? static_cast<double> (memberships) / covered : 0.0;
     const std::size_t smin = sizes.empty () ? 0 : sizes.front (), smax = sizes.empty () ? 0 : sizes.back ();
     const std::size_t smed = sizes.empty () ? 0 : sizes[sizes.size () / 2];
-    PatchInvariantChecker checker (*mesh, options);
+    const std::shared_ptr<const CloudSurface>& scan_surface = sampling.getCloudSurface ();
+    PatchInvariantChecker checker (*mesh, options, scan_surface ? scan_surface->normals : std::vector<Eigen::Vector3d> ());
     std::size_t invalid = 0;
     for (const Patch& p : patches)
       if (!checker.check (p).empty ())

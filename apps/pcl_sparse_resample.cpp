@@ -1,7 +1,8 @@
 /// pcl_sparse_resample: a mesh (encoded first) or a saved model (.psm) to a point cloud with analytic
 /// normals and curvature, at any density (docs/METHOD.md step 12).
 ///
-///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-basis paper|dct] [-seed S]
+///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-preset default|paper]
+///                       [-basis dct|paper] [-seed S]
 ///                       [-threads T] [-ascii] [-q] [--json]
 
 #include "tool_input.h"
@@ -41,8 +42,9 @@ namespace
       {"-rho R", "encoder: patch area bound rho (default: 0.001, paper)"},
       {"-f F", "encoder: Nyquist factor f in [0, 1] (default: 0.5, paper)"},
       {"-angles K", "encoder: footprint angles (default: 64)"},
-      {"-basis paper|dct", "encoder: cosine atoms, paper (default) or half-period dct (both parities: about"},
-      {"", "half the distance and normal error; see README)"},
+      {"-preset P", "encoder: default (measured best) or paper (the paper's configuration)"},
+      {"-basis paper|dct", "encoder: cosine atoms, half-period dct (default: both parities, about half the"},
+      {"", "distance and normal error; see README) or paper"},
       {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
       {"", "when plausible, else consistently oriented, outward on closed surfaces)"},
       {"-seed S", "seed of the sampling (default: 42)"},
@@ -51,7 +53,8 @@ namespace
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
     },
-    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles", "-basis", "-viewpoint"}, {"-ascii", "-q", "--json"}};
+    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles", "-basis", "-viewpoint", "-preset"},
+    {"-ascii", "-q", "--json"}};
 
   struct Settings
   {
@@ -98,6 +101,7 @@ namespace
     }
     if (given > 1)
       throw Error ("options -n, -density and -spacing exclude each other");
+    s.encoder = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default")));
     args.number ("-rho", s.encoder.patches.rho, Range::aboveUpTo (0.0, 1.0));
     args.number ("-f", s.encoder.coding.nyquist_factor, Range::closed (0.0, 1.0));
     args.integer ("-angles", s.encoder.coding.footprint_angles, Range::closed (3, 4096));

@@ -114,6 +114,9 @@ TEST_F (EncodeTool, DctBasisReachesTheModelFile)
   EXPECT_EQ (model.basis->size (), 144);
   ASSERT_EQ (run (input_ + " -q --json -basis paper", out), 0);
   EXPECT_NE (out.find ("\"basis\": \"paper\""), std::string::npos) << out;
-  ASSERT_EQ (run (input_ + " -q --json", out), 0);
+  ASSERT_EQ (run (input_ + " -q --json -preset paper", out), 0);
   EXPECT_NE (out.find ("\"basis\": \"paper\""), std::string::npos) << out;
+  ASSERT_EQ (run (input_ + " -q --json", out), 0);  // the default since issue 13
+  EXPECT_NE (out.find ("\"basis\": \"dct\""), std::string::npos) << out;
+  EXPECT_NE (run (input_ + " -q --json -preset authors", out), 0);  // unknown preset: refused
 }

@@ -41,6 +41,10 @@ namespace
   {
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+    // The paper's atoms: the tolerances below were measured with them. With the dct atoms (the default) the
+    // exact scales give the identical model too, but at x1e-6 the 4 % of patches that tie-breaking moves
+    // change the RMSE by 22 % on fandisk (dct codes each patch closer, so its layout matters more).
+    encoder.setOptions (encoderPresetOptions (EncoderPreset::Paper));
     SparseSurfaceModel model;
     encoder.compute (model);
     Encoded e;

@@ -116,10 +116,9 @@ namespace pcl_sparse_ros
   pcl_sparse::SparseSurfaceEncoderOptions
   presetOptions (const std::string& preset)
   {
-    // Both names give the library's defaults, which are the paper's parameters today. Should the
-    // defaults move away from the paper (say for scans), "paper" keeps the paper's and "default" follows.
+    // The library's presets (encoderPresetOptions), with the node's own parameter name in the error.
     if (preset == "paper" || preset == "default")
-      return pcl_sparse::SparseSurfaceEncoderOptions ();
+      return pcl_sparse::encoderPresetOptions (pcl_sparse::encoderPresetFromName (preset));
     throw pcl_sparse::Error ("parameter ~preset must be \"paper\" or \"default\", not \"" + preset + "\"");
   }
 
@@ -137,7 +136,7 @@ namespace pcl_sparse_ros
   readEncoderSettings (const ros::NodeHandle& private_nh)
   {
     EncoderSettings settings;
-    private_nh.param<std::string> ("preset", settings.preset, "paper");
+    private_nh.param<std::string> ("preset", settings.preset, "default");
     settings.options = presetOptions (settings.preset);
     double rho = 0.0;
     if (readNumber (private_nh, "rho", rho))

@@ -90,6 +90,25 @@ namespace pcl_sparse
     return false;
   }
 
+  SparseSurfaceEncoderOptions
+  encoderPresetOptions (EncoderPreset preset)
+  {
+    SparseSurfaceEncoderOptions options;
+    if (preset == EncoderPreset::Paper)
+      options.basis = CosineBasisKind::Paper;
+    return options;
+  }
+
+  EncoderPreset
+  encoderPresetFromName (const std::string& name)
+  {
+    if (name == "default")
+      return EncoderPreset::Default;
+    if (name == "paper")
+      return EncoderPreset::Paper;
+    throw Error ("unknown preset '" + name + "': expected default or paper");
+  }
+
   SurfaceEncoding
   encodeSurface (const TriangleMesh& mesh, const MeshTopology& topology, const SparseSurfaceEncoderOptions& options,
                  const SurfaceBasis::ConstPtr& basis, int num_threads, const ProgressCallback& progress,
@@ -101,7 +120,8 @@ namespace pcl_sparse
   SurfaceEncoding
   encodeSurface (const TriangleMesh& mesh, const VertexAttributes& attributes, const MeshTopology& topology,
                  const SparseSurfaceEncoderOptions& options, const SurfaceBasis::ConstPtr& basis, int num_threads,
-                 const ProgressCallback& progress, SparseSurfaceModel& model)
+                 const ProgressCallback& progress, SparseSurfaceModel& model,
+                 const std::vector<Eigen::Vector3d>& point_normals)
   {
     AttributeCodingInput attribute_input;
     if (!attributes.empty ())
@@ -118,7 +138,7 @@ namespace pcl_sparse
     SurfaceEncoding encoding;
 
     // Steps 2-6: patches with frames and local coordinates.
-    encoding.patches = sampleFeatureAwarePatches (mesh, topology, options.patches, {}, {}, num_threads, progress).patches;
+    encoding.patches = sampleFeatureAwarePatches (mesh, topology, options.patches, {}, {}, num_threads, progress, point_normals).patches;
     encoding.timings.patches = secondsSince (start);
 
     // Steps 7-9: code every patch into its own slot.

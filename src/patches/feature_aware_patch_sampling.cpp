@@ -80,7 +80,8 @@ namespace pcl_sparse
 
     void
     validateInputs (const TriangleMesh& mesh, const MeshTopology& topology, const PatchOptions& options,
-                    const std::vector<double>& responses, const std::vector<int>& keypoints)
+                    const std::vector<double>& responses, const std::vector<int>& keypoints,
+                    const std::vector<Eigen::Vector3d>& point_normals)
     {
       options.validate ();
       const std::size_t num_vertices = mesh.vertices.size ();
@@ -91,6 +92,8 @@ namespace pcl_sparse
       require (responses.empty () || responses.size () == num_vertices,
                std::to_string (responses.size ()) + " responses for " + std::to_string (num_vertices) + " vertices");
       require (topology.numVertices () == num_vertices, "the topology (setTopology) is not the input mesh's");
+      require (point_normals.empty () || point_normals.size () == num_vertices,
+               std::to_string (point_normals.size ()) + " point normals for " + std::to_string (num_vertices) + " vertices");
       for (int k : keypoints)
         require (k >= 0 && static_cast<std::size_t> (k) < num_vertices, "keypoint " + std::to_string (k) + " out of range");
     }
@@ -114,6 +117,18 @@ namespace pcl_sparse
         topology = is_split ? &split_topology : &input_topology;
       }
       int originalOf (int v) const { return is_split ? split.original[v] : v; }
+
+      /// Per-vertex values of the input on the growth mesh (a split copy takes its original's).
+      std::vector<Eigen::Vector3d>
+      normalsOf (const std::vector<Eigen::Vector3d>& input_normals) const
+      {
+        if (!is_split || input_normals.empty ())
+          return input_normals;
+        std::vector<Eigen::Vector3d> normals (mesh->vertices.size ());
+        for (std::size_t v = 0; v < normals.size (); ++v)
+          normals[v] = input_normals[originalOf (static_cast<int> (v))];
+        return normals;
+      }
     };
 
     /// Candidates on the input's vertices (\a input_order), each followed by its split copies.
@@ -341,9 +356,9 @@ namespace pcl_sparse
   PatchSamplingResult
   sampleFeatureAwarePatches (const TriangleMesh& input, const MeshTopology& input_topology, const PatchOptions& options,
                              const std::vector<double>& responses, const std::vector<int>& keypoints, int num_threads,
-                             const ProgressCallback& progress)
+                             const ProgressCallback& progress, const std::vector<Eigen::Vector3d>& point_normals)
   {
-    validateInputs (input, input_topology, options, responses, keypoints);
+    validateInputs (input, input_topology, options, responses, keypoints, point_normals);
     const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
     const int num_input = static_cast<int> (input.vertices.size ());
     PatchSamplingResult result;
@@ -358,7 +373,7 @@ namespace pcl_sparse
     const TriangleMesh& mesh = *growth.mesh;
     const MeshTopology& topology = *growth.topology;
     const int num_vertices = static_cast<int> (mesh.vertices.size ());
-    const PatchGrowthGeometry geometry = computePatchGrowthGeometry (mesh, topology);
+    const PatchGrowthGeometry geometry = computePatchGrowthGeometry (mesh, topology, growth.normalsOf (point_normals));
     const std::vector<int> order =
       orderWithCopies (growth, candidateOrder (num_input, result.responses, result.keypoints), num_input);
 

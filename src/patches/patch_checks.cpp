@@ -10,7 +10,8 @@
 
 namespace pcl_sparse
 {
-  PatchInvariantChecker::PatchInvariantChecker (const TriangleMesh& mesh, const PatchOptions& options)
+  PatchInvariantChecker::PatchInvariantChecker (const TriangleMesh& mesh, const PatchOptions& options,
+                                                const std::vector<Eigen::Vector3d>& point_normals)
     : mesh_ (mesh), options_ (options)
   {
     topology_ = buildMeshTopology (mesh);
@@ -18,7 +19,14 @@ namespace pcl_sparse
     if (is_split_)
       topology_ = buildMeshTopology (split_.mesh);
     grown_mesh_ = is_split_ ? &split_.mesh : &mesh_;
-    geometry_ = computePatchGrowthGeometry (*grown_mesh_, topology_);
+    std::vector<Eigen::Vector3d> normals = point_normals;
+    if (is_split_ && !normals.empty ())
+    {
+      normals.resize (split_.mesh.vertices.size ());
+      for (std::size_t v = mesh.vertices.size (); v < normals.size (); ++v)
+        normals[v] = point_normals[split_.original[v]];
+    }
+    geometry_ = computePatchGrowthGeometry (*grown_mesh_, topology_, normals);
   }
 
   std::string

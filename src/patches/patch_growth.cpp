@@ -1,5 +1,7 @@
 #include <pcl_sparse/patches/patch_growth.h>
 
+#include <pcl_sparse/common/error.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -26,13 +28,19 @@ namespace pcl_sparse
   } // namespace
 
   PatchGrowthGeometry
-  computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology)
+  computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology,
+                              const std::vector<Eigen::Vector3d>& point_normals)
   {
     PatchGrowthGeometry g;
     const int num_faces = static_cast<int> (mesh.triangles.size ());
     const int num_vertices = static_cast<int> (mesh.vertices.size ());
+    if (!point_normals.empty () && point_normals.size () != mesh.vertices.size ())
+      throw Error ("computePatchGrowthGeometry: " + std::to_string (point_normals.size ()) + " point normals for " +
+                   std::to_string (mesh.vertices.size ()) + " vertices");
+    const bool given = !point_normals.empty ();
     g.face_normals.resize (num_faces);
     g.face_areas.resize (num_faces);
+    g.geometric_normals.resize (given ? num_faces : 0);
     std::vector<Eigen::Vector3d> crosses (num_faces);
 #pragma omp parallel for schedule(static)
     for (int f = 0; f < num_faces; ++f)
@@ -46,11 +54,25 @@ namespace pcl_sparse
       const double n = c.norm ();
       g.face_areas[f] = 0.5 * n;
       g.face_normals[f] = n > 0.0 ? Eigen::Vector3d (c / n) : Eigen::Vector3d::Zero ();
+      if (given)
+        g.geometric_normals[f] = g.face_normals[f];
+      if (given && n > 0.0)
+      {
+        const Eigen::Vector3d sum = point_normals[t[0]] + point_normals[t[1]] + point_normals[t[2]];
+        const double s = sum.norm ();
+        if (s > 0.5)  // corners roughly agree (three unit normals; zero ones count as missing)
+          g.face_normals[f] = sum / s;
+      }
     }
     g.vertex_normals.resize (num_vertices);
 #pragma omp parallel for schedule(static)
     for (int v = 0; v < num_vertices; ++v)
     {
+      if (given && point_normals[v].squaredNorm () > 0.25)
+      {
+        g.vertex_normals[v] = point_normals[v].normalized ();
+        continue;
+      }
       Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
       for (int f : topology.facesOf (v))
         sum += crosses[f];
@@ -103,6 +125,8 @@ namespace pcl_sparse
     if (!(geometry_.face_areas[f] > 0.0))
       return -1.0;
     const double c = geometry_.face_normals[f].dot (ns);
+    if (!geometry_.geometric_normals.empty () && !(geometry_.geometric_normals[f].dot (ns) > kMinProjectionCosine))
+      return -1.0;
     return c > cos_cone_ && c > kMinProjectionCosine ? c : -1.0;
   }
 
@@ -325,8 +349,8 @@ namespace pcl_sparse
       if (face_state_[g] != Queued || d > face_distance_[g])
         continue;
       bool ok = false;
-      const double c = areas[g] > 0.0 ? normals[g].dot (ns) : -1.0;
-      if (c > cos_cone_ && c > kMinProjectionCosine && areaConditionHolds (area + areas[g], projected + areas[g] * c))
+      const double c = coneCosine (g, ns);
+      if (c > 0.0 && areaConditionHolds (area + areas[g], projected + areas[g] * c))
       {
         for (int k = 0; k < 3 && !ok; ++k)
         {

@@ -32,15 +32,18 @@
 namespace pcl_sparse
 {
   /// Every parameter of the pipeline. Defaults are the paper's (delta = pi/6, cone pi/2, eta = 1.01,
-  /// rho = 0.001, sigma = 0.8, f = 0.5, L = 12, eps = 0.01, m_min = 64, 144 cosine atoms).
+  /// rho = 0.001, sigma = 0.8, f = 0.5, L = 12, eps = 0.01, m_min = 64, 144 cosine atoms) except the basis:
+  /// the half-period cosines (Dct) measure better on meshes and scans alike (README, issue 13);
+  /// encoderPresetOptions (EncoderPreset::Paper) gives the paper's configuration.
   struct SparseSurfaceEncoderOptions
   {
     PatchOptions patches;             ///< seed sampling and growth: rho, delta, cone_angle, eta, sigma, ...
     SparseCodingOptions coding;       ///< f, Nyquist rule, L, eps, m_min, footprint angles, seed
     int dictionary_frequencies = 12;  ///< n: the cosine dictionary has n^2 atoms (paper: 12, 144 atoms)
-    /// Cosine atoms: Paper = cos(i pi x) cos(j pi y) (the paper's, even only); Dct = cos(i pi (x + 1) / 2)
-    /// cos(j pi (y + 1) / 2), same count, even and odd (ours, lower error floor). Ignored after setBasis.
-    CosineBasisKind basis = CosineBasisKind::Paper;
+    /// Cosine atoms: Dct (default) = cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2), even and odd (ours: a
+    /// tilt or an offset left by the frame costs one atom, so the error floor is lower); Paper =
+    /// cos(i pi x) cos(j pi y), the paper's, same count, even only. Ignored after setBasis.
+    CosineBasisKind basis = CosineBasisKind::Dct;
     /// For a scan (a cloud without polygons, or setInputScan) with coding.noise_level 0: code down to the
     /// scan's estimated noise (CloudSurface::noise) and not below, so that sensor noise is smoothed, not
     /// coded (docs/METHOD.md, scans). Meshes are never affected.
@@ -53,6 +56,27 @@ namespace pcl_sparse
     /// L >= 1 and tolerance >= 0.
     void validate () const;
   };
+
+  /// Named option sets: Default (the struct's defaults, what measures best) and Paper (the paper's
+  /// configuration: its cosine atoms; every other default already is the paper's value).
+  enum class EncoderPreset
+  {
+    Default,
+    Paper
+  };
+
+  /// The options of a preset.
+  /// \param[in] preset the preset
+  /// \return its options (valid)
+  SparseSurfaceEncoderOptions
+  encoderPresetOptions (EncoderPreset preset);
+
+  /// The preset named \a name ("default" or "paper").
+  /// \param[in] name the name
+  /// \return the preset
+  /// \throws pcl_sparse::Error for any other name
+  EncoderPreset
+  encoderPresetFromName (const std::string& name);
 
   /// Wall-clock seconds of the stages of the last compute().
   struct EncoderTimings
@@ -102,11 +126,14 @@ namespace pcl_sparse
   /// \param[in] num_threads OpenMP threads (0 = default); the model does not depend on it
   /// \param[in] progress progress callback (may be empty)
   /// \param[out] model the model (replaced)
+  /// \param[in] point_normals #V unit normals to grow and frame patches with (a scan's PCA normals,
+  ///            sampleFeatureAwarePatches), or empty (default) for the mesh's own
   /// \return the patches, coding diagnostics and timings
   SurfaceEncoding
   encodeSurface (const TriangleMesh& mesh, const VertexAttributes& attributes, const MeshTopology& topology,
                  const SparseSurfaceEncoderOptions& options, const SurfaceBasis::ConstPtr& basis, int num_threads,
-                 const ProgressCallback& progress, SparseSurfaceModel& model);
+                 const ProgressCallback& progress, SparseSurfaceModel& model,
+                 const std::vector<Eigen::Vector3d>& point_normals = {});
 
   /// \brief The encoder as a PCL-style stage (input: see SurfaceStage).
   /// \tparam PointInT point type of the input cloud

@@ -88,13 +88,15 @@ namespace pcl_sparse
   /// \param[in] keypoints vertex indices tried first; with \a responses empty too, Harris 3D gives both
   /// \param[in] num_threads OpenMP threads (0 = default); the result does not depend on it
   /// \param[in] progress progress callback (may be empty)
+  /// \param[in] point_normals #V unit normals to grow and frame patches with (a scan's PCA normals; see
+  ///            computePatchGrowthGeometry), or empty (default) for the mesh's own
   /// \return the patches and what the sampling saw
   /// Throws pcl_sparse::Error for options out of range, face indices out of range, or responses /
-  /// keypoints that do not fit the mesh.
+  /// keypoints / normals that do not fit the mesh.
   PatchSamplingResult
   sampleFeatureAwarePatches (const TriangleMesh& mesh, const MeshTopology& topology, const PatchOptions& options,
                              const std::vector<double>& responses, const std::vector<int>& keypoints, int num_threads,
-                             const ProgressCallback& progress);
+                             const ProgressCallback& progress, const std::vector<Eigen::Vector3d>& point_normals = {});
 
   /// \brief Feature-aware patch sampling as a PCL-style stage (input: see SurfaceStage).
   /// \tparam PointInT point type of the input cloud

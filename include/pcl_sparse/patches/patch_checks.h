@@ -24,7 +24,10 @@ namespace pcl_sparse
     /// Prepares the checks (normals, topology, the same non-manifold split as the growth).
     /// \param[in] mesh     the mesh the patches were built on; must outlive the checker
     /// \param[in] options  the options they were built with
-    PatchInvariantChecker (const TriangleMesh& mesh, const PatchOptions& options);
+    /// \param[in] point_normals the normals they were grown with (a scan's; sampleFeatureAwarePatches), or
+    ///            empty for the mesh's own
+    PatchInvariantChecker (const TriangleMesh& mesh, const PatchOptions& options,
+                           const std::vector<Eigen::Vector3d>& point_normals = {});
 
     /// Checks one patch against the invariants of a partition:
     /// - seed first, distinct valid vertices;

@@ -38,6 +38,10 @@ namespace pcl_sparse
   struct PatchGrowthGeometry
   {
     std::vector<Eigen::Vector3d> face_normals;    ///< #F unit normals (zero for degenerate faces)
+    /// #F the triangles' own unit normals where face_normals are smoothed (point normals given), else
+    /// empty. A patch triangle must still project on the seed's plane without flipping: the frames and
+    /// footprints rely on it.
+    std::vector<Eigen::Vector3d> geometric_normals;
     std::vector<double> face_areas;               ///< #F face areas
     /// #V unit vertex normals, area weighted (zero for vertices with no proper face).
     std::vector<Eigen::Vector3d> vertex_normals;
@@ -49,11 +53,17 @@ namespace pcl_sparse
 
   /// Face normals, areas, area-weighted vertex normals, edge lengths and total area of a mesh (parallel,
   /// deterministic).
-  /// \param[in] mesh      the mesh
-  /// \param[in] topology  its topology
+  /// With \a point_normals (a scan's PCA normals), vertex v takes point_normals[v] and a face the normalised
+  /// sum of its corners' normals, where they are non-zero: the triangles of noisy points tilt by tens of
+  /// degrees, so their own normals would stop the growth (delta, eta) at a few points and every patch would
+  /// code noise. Areas stay the triangles' own.
+  /// \param[in] mesh           the mesh
+  /// \param[in] topology       its topology
+  /// \param[in] point_normals  #V unit normals (zero: none for that vertex), or empty to use the mesh's
   /// \return the quantities every growth on this mesh reads
   PatchGrowthGeometry
-  computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology);
+  computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology,
+                              const std::vector<Eigen::Vector3d>& point_normals = {});
 
   /// Grows patches on one mesh. Scratch arrays (the walk's included) are sized once for the mesh and only
   /// the entries a growth touched are reset, so one growth costs O(R log R) for R visited vertices, independent of the mesh

@@ -37,7 +37,7 @@ namespace pcl_sparse_ros
   /// What the resample node passes to the encoder and the model writer.
   struct EncoderSettings
   {
-    std::string preset = "paper";                    ///< ~preset
+    std::string preset = "default";                  ///< ~preset
     pcl_sparse::SparseSurfaceEncoderOptions options; ///< the preset's options, then ~rho
     bool has_viewpoint = false;                      ///< ~viewpoint given
     Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero ();
@@ -50,8 +50,8 @@ namespace pcl_sparse_ros
   EncoderSettings
   readEncoderSettings (const ros::NodeHandle& private_nh);
 
-  /// \brief The encoder options of a named preset: "paper" (the paper's parameters, the library's
-  /// defaults) or "default" (the library's defaults; today the same as "paper"). Throws for other names.
+  /// \brief The encoder options of a named preset (pcl_sparse::encoderPresetOptions): "default" (the
+  /// library's defaults, the dct atoms) or "paper" (the paper's configuration). Throws for other names.
   pcl_sparse::SparseSurfaceEncoderOptions
   presetOptions (const std::string& preset);
 

@@ -37,7 +37,7 @@ namespace pcl_sparse
     options.patches.harris_rings = harrisRingsFor (options.patches.harris_rings, this->surfaceIsScan ());
     const VertexAttributes attributes = surfaceAttributes ();
     encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,
-                               this->num_threads_, this->progress_, model);
+                               this->num_threads_, this->progress_, model, this->surfaceNormals ());
     // A scan is encoded in its local frame: the model and patches go back to the input's frame.
     if (!this->surface_origin_.isZero (0.0))
     {

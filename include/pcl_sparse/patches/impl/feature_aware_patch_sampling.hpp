@@ -25,7 +25,7 @@ namespace pcl_sparse
     PatchOptions options = options_;
     options.harris_rings = harrisRingsFor (options.harris_rings, this->surfaceIsScan ());
     result_ = sampleFeatureAwarePatches (*this->surface_, *this->surface_topology_, options, responses_, keypoints_,
-                                         this->num_threads_, this->progress_);
+                                         this->num_threads_, this->progress_, this->surfaceNormals ());
     patches = std::move (result_.patches);
     result_.patches.clear ();
     if (!this->surface_origin_.isZero (0.0))  // a scan's local frame back to the input's
