@@ -46,7 +46,8 @@ namespace
       {"-recon RECON", "write the reconstructed mesh (input vertex order and faces)"},
       {"-error ERR.ply", "write the reconstruction coloured by vertex error, blue (0) to red (max)"},
       {"-o MODEL.psm", "write the model file (docs/FORMAT.md)"},
-      {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default 0 = lossless)"},
+      {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default: a tenth of the"},
+      {"", "model's mean error, so the file adds at most ~10 % to it; 0 = lossless)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
       {"--json", "print one JSON object on stdout instead of the table row"},
       {"-q", "quiet (no progress, only the result and errors)"},
@@ -83,9 +84,9 @@ main (int argc, char** argv)
     const std::string error_path = args.value ("-error");
     const std::string model_path = args.value ("-o");
     ModelWriteOptions write_options;
-    args.number ("-tolerance", write_options.tolerance, tools::Range::closed (0.0, 0.1));
+    const bool tolerance_given = args.number ("-tolerance", write_options.tolerance, tools::Range::closed (0.0, 0.1));
     write_options.include_vertices = args.has ("--store-vertices");
-    if (model_path.empty () && (write_options.tolerance > 0.0 || write_options.include_vertices))
+    if (model_path.empty () && (tolerance_given || write_options.include_vertices))
       throw Error ("options -tolerance and --store-vertices need -o MODEL.psm");
     options.validate ();
     Eigen::Vector3d viewpoint;
@@ -115,6 +116,8 @@ main (int argc, char** argv)
     std::vector<double> errors;
     const ModelStatistics stats = model.statistics (input_positions, &errors);
     const double statistics_seconds = timer.toc () / 1000.0;
+    if (!tolerance_given)
+      write_options.tolerance = derivedFileTolerance (stats);
 
     timer.tic ();
     if (!model_path.empty ())
@@ -156,6 +159,7 @@ main (int argc, char** argv)
         .add ("max_atoms", options.coding.max_atoms)
         .add ("tolerance", options.coding.tolerance)
         .add ("min_samples", options.coding.min_samples)
+        .add ("file_tolerance", model_path.empty () ? 0.0 : write_options.tolerance)
         .add ("nnz", stats.num_nonzeros)
         .add ("cr", stats.compression_ratio)
         .add ("rmse", stats.rmse)

@@ -4,10 +4,13 @@
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/resampling/cloud_quality.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <iostream>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -119,4 +122,34 @@ TEST_F (EncodeTool, DctBasisReachesTheModelFile)
   ASSERT_EQ (run (input_ + " -q --json", out), 0);  // the default since issue 13
   EXPECT_NE (out.find ("\"basis\": \"dct\""), std::string::npos) << out;
   EXPECT_NE (run (input_ + " -q --json -preset authors", out), 0);  // unknown preset: refused
+}
+
+// -o without -tolerance: the quantised file, with a tolerance of a tenth of the model's mean vertex error, so
+// that the file adds at most about 10 % to the distance of the resampled surface to the input (issue 13).
+TEST_F (EncodeTool, DefaultFileAddsAtMostATenthOfTheModelError)
+{
+  const std::string quantised = (dir_ / "default.psm").string (), lossless = (dir_ / "lossless.psm").string ();
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q --json -o " + quantised, out), 0);
+  const std::size_t at = out.find ("\"file_tolerance\": ");
+  ASSERT_NE (at, std::string::npos) << out;
+  const double tolerance = std::stod (out.substr (at + 18));
+  ASSERT_EQ (run (input_ + " -q --json -tolerance 0 -o " + lossless, out), 0);
+  EXPECT_NE (out.find ("\"file_tolerance\": 0"), std::string::npos) << out;
+  EXPECT_GT (tolerance, 0.0);
+  EXPECT_LT (std::filesystem::file_size (quantised), std::filesystem::file_size (lossless) / 2);
+
+  auto distance = [&] (const std::string& file) {
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (std::make_shared<SparseSurfaceModel> (loadModel (file)));
+    resampling.setPointCount (20000);
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    resampling.compute (cloud);
+    return evaluateCloudQuality (mesh_, cloud, CloudQualityOptions ()).mean_distance;
+  };
+  const double d_lossless = distance (lossless), d_quantised = distance (quantised);
+  std::cout << "  sphere: tolerance " << tolerance << ", mean distance lossless " << d_lossless << ", default file "
+            << d_quantised << ", bytes " << std::filesystem::file_size (lossless) << " -> "
+            << std::filesystem::file_size (quantised) << std::endl;
+  EXPECT_LE (d_quantised, 1.1 * d_lossless);
 }

@@ -137,7 +137,7 @@ namespace pcl_sparse
     const std::vector<Eigen::Vector3d> reconstructed = reconstructVertices (input_vertices.size ());
     if (errors)
       errors->assign (input_vertices.size (), 0.0);
-    double sum = 0.0;
+    double sum = 0.0, sum_abs = 0.0;
     std::size_t covered = 0;
     for (std::size_t v = 0; v < input_vertices.size (); ++v)
     {
@@ -150,12 +150,14 @@ namespace pcl_sparse
       if (errors)
         (*errors)[v] = e;
       sum += e * e;
+      sum_abs += e;
       stats.max_error = std::max (stats.max_error, e);
       ++covered;
     }
     stats.rmse = covered > 0 ? std::sqrt (sum / covered) : 0.0;
     const double diagonal = bbox_diagonal > 0.0 ? bbox_diagonal : boundingBoxDiagonal (input_vertices);
     stats.rmse_over_diagonal = diagonal > 0.0 ? stats.rmse / diagonal : 0.0;
+    stats.mean_error_over_diagonal = diagonal > 0.0 && covered > 0 ? sum_abs / covered / diagonal : 0.0;
     return stats;
   }
   void

@@ -17,6 +17,8 @@
 
 #include <pcl_sparse/model/sparse_surface_model.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -24,6 +26,20 @@
 
 namespace pcl_sparse
 {
+  /// The file tolerance that costs at most \a fraction of a model's own error: no surface point moves by
+  /// more than fraction x its mean vertex error, so the Chamfer distance to the input grows by at most
+  /// about that fraction (pcl_sparse_encode -o uses 0.1 unless -tolerance is given). Never below 1e-7 (the
+  /// precision of float coordinates, and quantisation steps must stay below 2^32 over the seeds' range).
+  /// \param[in] stats     the model's figures against its input (SparseSurfaceModel::statistics)
+  /// \param[in] fraction  the share of the model's error quantisation may add (default 0.1)
+  /// \return a ModelWriteOptions::tolerance in [1e-7, 0.1]
+  inline double
+  derivedFileTolerance (const ModelStatistics& stats, double fraction = 0.1)
+  {
+    const double t = fraction * stats.mean_error_over_diagonal;
+    return std::isfinite (t) ? std::clamp (t, 1e-7, 0.1) : 1e-7;
+  }
+
   /// Options for saveModel / encodeModel.
   struct ModelWriteOptions
   {

@@ -67,6 +67,7 @@ namespace pcl_sparse
     double rmse = 0.0;                 ///< sqrt(mean |v - v^|^2) over covered vertices
     double rmse_over_diagonal = 0.0;   ///< rmse / bounding-box diagonal of the input
     double max_error = 0.0;            ///< largest |v - v^|
+    double mean_error_over_diagonal = 0.0;  ///< mean |v - v^| over covered vertices / bbox diagonal
     double compression_ratio = 0.0;    ///< CR = (13 M + nnz) / (3 N_V)
   };
 
