@@ -55,6 +55,30 @@ TEST (QuadricFit, RefusesUnderdeterminedLayouts)
   EXPECT_EQ (q.c[0], 7.0);  // untouched on failure
 }
 
+// The noise a patch codes down to on a scan: the spread of heights about their best quadric.
+TEST (QuadricFit, NoiseLevelIsTheSpreadAboutTheQuadric)
+{
+  std::mt19937 rng (7);
+  std::uniform_real_distribution<double> uniform (-1.0, 1.0);
+  std::normal_distribution<double> noise (0.0, 0.01);
+  std::vector<Eigen::Vector3d> exact, noisy, stepped;
+  for (int i = 0; i < 400; ++i)
+  {
+    const double x = uniform (rng), y = uniform (rng), z = 0.3 * x * x + 0.1 * x * y - 0.2 * y;
+    exact.emplace_back (x, y, z);
+    noisy.emplace_back (x, y, z + noise (rng));
+    stepped.emplace_back (x, y, 0.2 * std::round (5.0 * z));  // a depth sensor's steps of 0.2
+  }
+  EXPECT_LT (quadricNoiseLevel (exact), 1e-9);
+  EXPECT_NEAR (quadricNoiseLevel (noisy), 0.01, 0.0015);
+  // Uniform rounding error of a step q has standard deviation q / sqrt (12) = 0.058; the robust
+  // median-based estimate of a uniform spread is 0.5 q / 0.6745 / 2 = 0.074 for q = 0.2.
+  EXPECT_GT (quadricNoiseLevel (stepped), 0.04);
+  EXPECT_LT (quadricNoiseLevel (stepped), 0.1);
+  noisy.resize (11);
+  EXPECT_EQ (quadricNoiseLevel (noisy), 0.0);  // fewer than 12 points: no estimate
+}
+
 TEST (MongeJet, SaddleQuadricHasUnitCurvaturesOfOppositeSign)
 {
   // z = (x^2 - y^2) / 2 with the normal +z: bends toward the normal along x (k = -1), away along y (+1).

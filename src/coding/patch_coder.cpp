@@ -3,6 +3,7 @@
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/coding/patch_footprint.h>
 #include <pcl_sparse/coding/patch_samples.h>
+#include <pcl_sparse/geometry/quadric_fit.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,14 +13,18 @@ namespace pcl_sparse
   namespace
   {
     /// OMP's relative tolerance: eps, or looser where the noise level is reached first (a residual RMS of
-    /// noise_level / r_P in local units), at most 1 (the empty code: the patch's plane).
+    /// noise_level / r_P in local units, or the patch's own noise if larger), at most 1 (the empty code:
+    /// the patch's plane).
     double
-    stoppingTolerance (const Eigen::VectorXd& signal, double radius, const SparseCodingOptions& options)
+    stoppingTolerance (const Eigen::VectorXd& signal, const Patch& patch, const SparseCodingOptions& options)
     {
       const double norm = signal.norm ();
-      if (!(options.noise_level > 0.0) || !(norm > 0.0) || !(radius > 0.0))
+      if (!(options.noise_level > 0.0) || !(norm > 0.0) || !(patch.radius > 0.0))
         return options.tolerance;
-      const double noise_norm = options.noise_level / radius * std::sqrt (static_cast<double> (signal.size ()));
+      double noise = options.noise_level / patch.radius;
+      if (options.local_noise)
+        noise = std::max (noise, quadricNoiseLevel (patch.local));
+      const double noise_norm = noise * std::sqrt (static_cast<double> (signal.size ()));
       return std::min (1.0, std::max (options.tolerance, noise_norm / norm));
     }
   } // namespace
@@ -79,7 +84,7 @@ namespace pcl_sparse
     Eigen::MatrixXd dictionary;
     basis.evaluate (positions, allowed_atoms, dictionary);
     const Eigen::VectorXd signal = Eigen::Map<const Eigen::VectorXd> (heights.data (), heights.size ());
-    OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, {}, stoppingTolerance (signal, patch.radius, options),
+    OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, {}, stoppingTolerance (signal, patch, options),
                                                options.max_atoms);
     code.atoms.reserve (omp.atoms.size ());
     for (int a : omp.atoms)

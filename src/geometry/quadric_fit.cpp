@@ -4,47 +4,90 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// One row of the quadric's design matrix at scaled coordinates (x, y).
+    Eigen::Matrix<double, 6, 1>
+    quadricRow (double x, double y)
+    {
+      Eigen::Matrix<double, 6, 1> row;
+      row << 1.0, x, y, 0.5 * x * x, x * y, 0.5 * y * y;
+      return row;
+    }
+
+    /// Least squares on coordinates scaled by 1 / extent (returned in \a scale): the factorised normal
+    /// equations and the scaled coefficients. False for fewer than 6 points or an undetermined layout.
+    bool
+    solveScaledQuadric (const std::vector<Eigen::Vector3d>& points, double& scale,
+                        Eigen::LDLT<Eigen::Matrix<double, 6, 6>>& ldlt, Eigen::Matrix<double, 6, 1>& c)
+    {
+      if (points.size () < 6)
+        return false;
+      double extent = 0.0;
+      for (const auto& p : points)
+        extent = std::max (extent, std::max (std::abs (p.x ()), std::abs (p.y ())));
+      if (!(extent > 0.0) || !std::isfinite (extent))
+        return false;
+      scale = 1.0 / extent;
+      // Normal equations on scaled coordinates: a 6 x 6 system, cheap for the many small fits of Harris 3D.
+      Eigen::Matrix<double, 6, 6> AtA = Eigen::Matrix<double, 6, 6>::Zero ();
+      Eigen::Matrix<double, 6, 1> Atz = Eigen::Matrix<double, 6, 1>::Zero ();
+      for (const auto& p : points)
+      {
+        const Eigen::Matrix<double, 6, 1> row = quadricRow (p.x () * scale, p.y () * scale);
+        AtA.selfadjointView<Eigen::Lower> ().rankUpdate (row);
+        Atz += row * p.z ();
+      }
+      AtA = AtA.selfadjointView<Eigen::Lower> ();
+      ldlt.compute (AtA);
+      if (ldlt.info () != Eigen::Success || !ldlt.isPositive ())
+        return false;
+      // Reject rank-deficient layouts (e.g. all points on a line): tiny pivots relative to the largest.
+      const auto d = ldlt.vectorD ();
+      if (d.minCoeff () <= 1e-12 * d.maxCoeff ())
+        return false;
+      c = ldlt.solve (Atz);
+      return c.allFinite ();
+    }
+  } // namespace
+
   bool
   fitHeightQuadric (const std::vector<Eigen::Vector3d>& points, HeightQuadric& quadric)
   {
-    if (points.size () < 6)
-      return false;
-    double extent = 0.0;
-    for (const auto& p : points)
-      extent = std::max (extent, std::max (std::abs (p.x ()), std::abs (p.y ())));
-    if (!(extent > 0.0) || !std::isfinite (extent))
-      return false;
-    const double s = 1.0 / extent;
-
-    // Normal equations on scaled coordinates: a 6 x 6 system, cheap for the many small fits of Harris 3D.
-    Eigen::Matrix<double, 6, 6> AtA = Eigen::Matrix<double, 6, 6>::Zero ();
-    Eigen::Matrix<double, 6, 1> Atz = Eigen::Matrix<double, 6, 1>::Zero ();
-    for (const auto& p : points)
-    {
-      const double x = p.x () * s, y = p.y () * s;
-      Eigen::Matrix<double, 6, 1> row;
-      row << 1.0, x, y, 0.5 * x * x, x * y, 0.5 * y * y;
-      AtA.selfadjointView<Eigen::Lower> ().rankUpdate (row);
-      Atz += row * p.z ();
-    }
-    AtA = AtA.selfadjointView<Eigen::Lower> ();
-    Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt (AtA);
-    if (ldlt.info () != Eigen::Success || !ldlt.isPositive ())
-      return false;
-    // Reject rank-deficient layouts (e.g. all points on a line): tiny pivots relative to the largest.
-    const auto d = ldlt.vectorD ();
-    if (d.minCoeff () <= 1e-12 * d.maxCoeff ())
-      return false;
-    const Eigen::Matrix<double, 6, 1> c = ldlt.solve (Atz);
-    if (!c.allFinite ())
+    double s = 1.0;
+    Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt;
+    Eigen::Matrix<double, 6, 1> c;
+    if (!solveScaledQuadric (points, s, ldlt, c))
       return false;
     // Undo the scaling: coefficient of x^a y^b was multiplied by s^(a + b).
     quadric.c << c[0], c[1] * s, c[2] * s, c[3] * s * s, c[4] * s * s, c[5] * s * s;
     return true;
+  }
+
+  double
+  quadricNoiseLevel (const std::vector<Eigen::Vector3d>& points)
+  {
+    double s = 1.0;
+    Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt;
+    Eigen::Matrix<double, 6, 1> c;
+    if (points.size () < 12 || !solveScaledQuadric (points, s, ldlt, c))
+      return 0.0;
+    std::vector<double> standardized;
+    standardized.reserve (points.size ());
+    for (const auto& p : points)
+    {
+      const Eigen::Matrix<double, 6, 1> row = quadricRow (p.x () * s, p.y () * s);
+      const double leverage = row.dot (ldlt.solve (row));
+      standardized.push_back (std::abs (p.z () - row.dot (c)) / std::sqrt (std::max (1.0 - leverage, 1e-3)));
+    }
+    auto middle = standardized.begin () + standardized.size () / 2;
+    std::nth_element (standardized.begin (), middle, standardized.end ());
+    return *middle / 0.6745;
   }
 
   MongeJet

@@ -34,6 +34,10 @@ namespace pcl_sparse
     /// stops once the residual's RMS over the patch's samples is at most this (in the patch's local units),
     /// so that the code smooths sensor noise instead of coding it (ours, for scans).
     double noise_level = 0.0;
+    /// With noise_level > 0 (scans): each patch stops at the larger of noise_level and its own noise, the
+    /// robust residual of a height quadric over its points (quadricNoiseLevel), so that parts noisier than
+    /// the scan's median and the depth steps of a quantising sensor are smoothed as well (ours).
+    bool local_noise = true;
   };
 
   /// Diagnostics of one coded patch (not stored in the model).

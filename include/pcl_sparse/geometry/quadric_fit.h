@@ -28,6 +28,16 @@ namespace pcl_sparse
   bool
   fitHeightQuadric (const std::vector<Eigen::Vector3d>& points, HeightQuadric& quadric);
 
+  /// Robust noise of heights about their least-squares height quadric: the median over points of
+  /// |e_i| / sqrt (1 - h_i) / 0.6745, where e_i is a point's residual and h_i its leverage (so each term has
+  /// the noise's spread, however the points are laid out). What a quadric cannot follow counts as noise:
+  /// over a patch of a scan that is the sensor noise where the surface is smooth, and the depth steps
+  /// where the sensor quantises depth.
+  /// \param[in] points  #P local positions (z = height), #P >= 12
+  /// \return the noise level in the points' units; 0 with fewer than 12 points or no determined fit
+  double
+  quadricNoiseLevel (const std::vector<Eigen::Vector3d>& points);
+
   /// Principal curvatures and directions of a surface at one point.
   /// Convention: curvature is positive where the surface bends away from its normal, so a sphere with
   /// outward normals has k1 = k2 = 1 / r.
