@@ -109,6 +109,34 @@ TEST (PatchFootprint, CoversEveryProjectedTriangle)
   EXPECT_FALSE (footprint.contains (0.0, 0.9));
 }
 
+// Scans: a patch that grew around a hole must not cover it (clip_at_first_exit).
+TEST (PatchFootprint, FirstExitClipsAHoleBesideTheSeed)
+{
+  const TriangleMesh grid = makePlaneGrid (20, 1.0);
+  TriangleMesh mesh;
+  mesh.vertices = grid.vertices;
+  for (const Eigen::Vector3i& t : grid.triangles)
+  {
+    const Eigen::Vector3d c = (grid.vertices[t[0]] + grid.vertices[t[1]] + grid.vertices[t[2]]) / 3.0;
+    if (!(c.x () > 0.4 && c.x () < 0.6 && std::abs (c.y ()) < 0.15))  // a hole on the +x side of the seed
+      mesh.triangles.push_back (t);
+  }
+  ASSERT_LT (mesh.triangles.size (), grid.triangles.size ());
+  const Patch patch = wholeMeshPatch (mesh, 1.5);  // seed at the origin, inside the triangles
+  const PatchFootprint exact = computePatchFootprint (patch, mesh, 64);
+  const PatchFootprint clipped = computePatchFootprint (patch, mesh, 64, true);
+  // Along +x the triangles resume beyond the hole (the square ends at 1): the exact cover reaches
+  // 1 / 1.5, the clipped one stops at the hole's near rim, x = 0.4 / 1.5 = 0.267.
+  EXPECT_NEAR (exact.extentAt (0.0), 1.0 / 1.5, 0.01);
+  EXPECT_NEAR (clipped.extentAt (0.0), 0.4 / 1.5, 0.01);
+  EXPECT_FALSE (clipped.contains (0.5 / 1.5, 0.0));  // the hole
+  EXPECT_TRUE (exact.contains (0.5 / 1.5, 0.0));
+  // Where no hole lies between the seed and the border, only the exact cover's margin between two rays
+  // goes (the exit is taken on the rays themselves: 0.6667 against 0.6699 here).
+  EXPECT_NEAR (clipped.extentAt (M_PI / 2.0), exact.extentAt (M_PI / 2.0), 0.005);
+  EXPECT_NEAR (clipped.extentAt (M_PI), exact.extentAt (M_PI), 0.005);
+}
+
 TEST (PatchCoder, CodesAParaboloidPatch)
 {
   // Principal axes along x and y, as in a patch's jet frame: the even cosines fit it closely.

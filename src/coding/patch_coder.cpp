@@ -54,7 +54,7 @@ namespace pcl_sparse
     code.vertex_xy.reserve (patch.local.size ());
     for (const Eigen::Vector3d& p : patch.local)
       code.vertex_xy.emplace_back (p.x (), p.y ());
-    code.footprint = computePatchFootprint (patch, mesh, options.footprint_angles);
+    code.footprint = computePatchFootprint (patch, mesh, options.footprint_angles, options.clip_footprints_at_holes);
 
     // Samples: the vertices, then extra points on the patch's own triangles (docs/METHOD.md step 7).
     std::vector<Eigen::Vector2d> positions (code.vertex_xy);

@@ -1,7 +1,9 @@
 #include <pcl_sparse/coding/patch_footprint.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -77,10 +79,48 @@ namespace pcl_sparse
           break;
       }
     }
+
+    /// Per ray, the smallest radius r > 0 where it crosses an edge used by one patch triangle only (a border
+    /// of the triangles' union); +infinity where it crosses none. \a triangles: local corner indices.
+    std::vector<double>
+    firstExits (const std::vector<std::array<int, 3>>& triangles, const std::vector<Corner>& corners,
+                const std::vector<Eigen::Vector2d>& rays)
+    {
+      std::vector<std::pair<int, int>> edges;
+      edges.reserve (3 * triangles.size ());
+      for (const auto& t : triangles)
+        for (int c = 0; c < 3; ++c)
+          edges.emplace_back (std::min (t[c], t[(c + 1) % 3]), std::max (t[c], t[(c + 1) % 3]));
+      std::sort (edges.begin (), edges.end ());
+      std::vector<double> exits (rays.size (), std::numeric_limits<double>::infinity ());
+      for (std::size_t i = 0; i < edges.size ();)
+      {
+        std::size_t j = i;
+        while (j < edges.size () && edges[j] == edges[i])
+          ++j;
+        if (j - i == 1)  // a border edge
+        {
+          const Eigen::Vector2d& a = corners[edges[i].first].p;
+          const Eigen::Vector2d& b = corners[edges[i].second].p;
+          for (std::size_t k = 0; k < rays.size (); ++k)
+          {
+            const double ca = cross2 (rays[k], a), cb = cross2 (rays[k], b);
+            if ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0) || ca == cb)
+              continue;
+            const double r = rays[k].dot (a + ca / (ca - cb) * (b - a));
+            // Edges through the seed (a seed on the border) are crossed at r = 0: not an exit.
+            if (r > 1e-9)
+              exits[k] = std::min (exits[k], r);
+          }
+        }
+        i = j;
+      }
+      return exits;
+    }
   } // namespace
 
   PatchFootprint
-  computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles)
+  computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles, bool clip_at_first_exit)
   {
     PatchFootprint footprint;
     if (angles < 1)
@@ -105,6 +145,7 @@ namespace pcl_sparse
         sector_max[c.sector] = std::max (sector_max[c.sector], c.r);
     }
     std::sort (lookup.begin (), lookup.end ());
+    std::vector<std::array<int, 3>> local_triangles;
     for (int f : patch.triangles)
     {
       if (f < 0 || static_cast<std::size_t> (f) >= mesh.triangles.size ())
@@ -123,12 +164,19 @@ namespace pcl_sparse
         continue;
       for (int c = 0; c < 3; ++c)
         addSegment (corners[corner[c]], corners[corner[(c + 1) % 3]], rays, sector_max);
+      if (clip_at_first_exit)
+        local_triangles.push_back ({corner[0], corner[1], corner[2]});
     }
+    std::vector<double> exits;
+    if (clip_at_first_exit && !local_triangles.empty ())
+      exits = firstExits (local_triangles, corners, rays);
 
     footprint.extent.resize (angles);
     for (int k = 0; k < angles; ++k)
     {
-      const double e = std::max (sector_max[k], sector_max[(k + angles - 1) % angles]);
+      double e = std::max (sector_max[k], sector_max[(k + angles - 1) % angles]);
+      if (!exits.empty ())
+        e = std::min (e, exits[k]);
       // Round up so the float never cuts a vertex lying exactly on the boundary.
       footprint.extent[k] = static_cast<float> (e * (1.0 + 1e-6) + 1e-9);
     }

@@ -38,6 +38,10 @@ namespace pcl_sparse
     /// robust residual of a height quadric over its points (quadricNoiseLevel), so that parts noisier than
     /// the scan's median and the depth steps of a quantising sensor are smoothed as well (ours).
     bool local_noise = true;
+    /// Clip footprints where a ray from the seed first leaves the patch's triangles
+    /// (computePatchFootprint), so a patch that grew around a hole does not cover it. The encoder turns it
+    /// on for scans, whose neighbourhood surfaces have holes (shadows, missing depth); default false.
+    bool clip_footprints_at_holes = false;
   };
 
   /// Diagnostics of one coded patch (not stored in the model).

@@ -22,6 +22,13 @@ namespace pcl_sparse
   /// interpolation of PatchFootprint never cuts a triangle: every point of every projected triangle
   /// satisfies footprint.contains() (it may also admit a little outside, never less). A projected
   /// triangle containing the origin cannot exceed its edges' radii, so edges suffice.
+  ///
+  /// With \a clip_at_first_exit (scans), extent k is also at most the radius where ray k first leaves the
+  /// union of the projected triangles (crosses a patch border edge): a patch that grew around a hole of
+  /// the scan (a shadow, missing depth) or along a concave border then does not cover it. Points of the
+  /// triangles beyond such an exit are left to the patches around them.
+  /// \param[in] clip_at_first_exit  clip the extents as above (default false: the exact cover)
   PatchFootprint
-  computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles = 16);
+  computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles = 16,
+                         bool clip_at_first_exit = false);
 } // namespace pcl_sparse

@@ -34,6 +34,8 @@ namespace pcl_sparse
     SparseSurfaceEncoderOptions options = options_;
     if (this->surfaceIsScan () && options.scan_noise_floor && options.coding.noise_level == 0.0)
       options.coding.noise_level = this->cloud_surface_->noise;
+    if (this->surfaceIsScan ())
+      options.coding.clip_footprints_at_holes = true;
     options.patches.harris_rings = harrisRingsFor (options.patches.harris_rings, this->surfaceIsScan ());
     const VertexAttributes attributes = surfaceAttributes ();
     encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,
