@@ -82,13 +82,14 @@ TEST (ScanPipeline, NoisySphereCloudIsSmoothedNotCoded)
   // The scan's own points are sigma * sqrt(2 / pi) = 0.8 sigma from the sphere on average.
   const double input_error = 0.8 * sigma;
   const double output_error = meanRadiusError (out);
-  std::cout << "  mean |r - 1|: scan " << input_error << ", resampled " << output_error << std::endl;
-  EXPECT_LT (output_error, 0.7 * input_error);
   std::size_t outward = 0;
   for (const pcl::PointNormal& p : out)
     outward += p.getNormalVector3fMap ().dot (p.getVector3fMap ()) > 0.0f;
-  // Consistently oriented, outward on a closed surface; measured 19996 of 20000 (the paper's even atoms
-  // tilt a few normals at patch borders).
+  std::cout << "  mean |r - 1|: scan " << input_error << ", resampled " << output_error << "; outward normals "
+            << outward << " of " << out.size () << std::endl;
+  // Measured 0.39x since patches grow on the PCA normals and code to their own noise (0.54x before).
+  EXPECT_LT (output_error, 0.5 * input_error);
+  // Consistently oriented, outward on a closed surface.
   EXPECT_GE (outward, out.size () - out.size () / 1000);
 }
 
@@ -214,4 +215,45 @@ TEST (ScanPipeline, MergedScansFaceTheirOwnViewpoints)
   for (const pcl::PointNormal& p : normals)
     outward += p.getNormalVector3fMap ().dot (p.getVector3fMap ()) > 0.9f;
   EXPECT_EQ (outward, normals.size ());
+}
+
+// A scan's hole (a shadow, missing depth) stays a hole: patches on a flat scan grow large (the PCA normals
+// agree) and may grow around it, but their footprints stop at its rim (clip_footprints_at_holes).
+TEST (ScanPipeline, HolesAreNotFilled)
+{
+  std::mt19937 random (11);
+  std::uniform_real_distribution<double> uniform (0.0, 1.0);
+  std::normal_distribution<double> noise (0.0, 0.001);
+  const Eigen::Vector2d hole (0.6, 0.5);
+  const double hole_radius = 0.1;
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  while (cloud->size () < 20000)
+  {
+    const Eigen::Vector2d p (uniform (random), uniform (random));
+    if ((p - hole).norm () > hole_radius)
+      cloud->push_back (pcl::PointXYZ (p.x (), p.y (), noise (random)));
+  }
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputCloud (cloud);
+  encoder.setViewPoint (0.5f, 0.5f, 2.0f);
+  auto model = std::make_shared<SparseSurfaceModel> ();
+  encoder.compute (*model);
+  SparseSurfaceResampling<pcl::PointNormal> resampling;
+  resampling.setInputModel (model);
+  resampling.setPointCount (20000);
+  pcl::PointCloud<pcl::PointNormal> out;
+  resampling.compute (out);
+  ASSERT_EQ (out.size (), 20000u);
+  std::size_t in_hole = 0, facing = 0;
+  for (const pcl::PointNormal& p : out)
+  {
+    in_hole += (Eigen::Vector2d (p.x, p.y) - hole).norm () < hole_radius - 0.02;  // 3 spacings inside the rim
+    facing += p.normal_z > 0.9f;
+  }
+  std::cout << "  " << model->numPatches () << " patches; points in the hole " << in_hole << ", normals within 25 deg of +z "
+            << facing << " of " << out.size () << std::endl;
+  EXPECT_EQ (in_hole, 0u);
+  EXPECT_GE (facing, out.size () - out.size () / 1000);  // measured 19999 of 20000
+  // Patches stop at 4096 vertices on scans (max_patch_vertices): measured 19 patches here, 7 unbounded.
+  EXPECT_GE (model->numPatches (), 5u);
 }

@@ -194,6 +194,7 @@ namespace pcl_sparse
     {
       std::vector<std::uint8_t> invalid (mesh.vertices.size (), 0);
       std::size_t num_grown = 0;
+      int fruitless = 0;  // grown seeds in a row that covered nothing new
       Patch patch;
       const int progress_step = std::max (1, target / 100);
       int next_progress = 0;
@@ -201,14 +202,18 @@ namespace pcl_sparse
       {
         if (coverage.num_covered >= target)
           break;
+        if (options.max_fruitless_seeds > 0 && fruitless >= options.max_fruitless_seeds)
+          break;
         if (invalid[v] || !referenced[v])
           continue;
         ++num_grown;
+        ++fruitless;
         const double radius = grower.grow (v, patch);
         if (static_cast<int> (patch.size ()) < options.min_patch_size)
           continue;
         if (coverage.newlyCovered (patch) == 0)
           continue;
+        fruitless = 0;
         coverage.keep (patch);
         const double reach = options.sigma * radius;
         for (int u : patch.vertices)

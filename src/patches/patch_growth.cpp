@@ -98,6 +98,7 @@ namespace pcl_sparse
     , eta_ (options.eta)
     , rho_area_ (options.rho * geometry.total_area)
     , stop_at_first_refusal_ (options.stop_at_first_refusal)
+    , max_vertices_ (static_cast<std::size_t> (std::max (0, options.max_patch_vertices)))
     , walk_ (mesh, topology)
     , state_ (mesh.vertices.size (), Untouched)
   {
@@ -242,6 +243,8 @@ namespace pcl_sparse
     auto visit = [&] (int u, double, int) {
       if (u == seed)
         return GeodesicVisit::Accept;
+      if (max_vertices_ > 0 && patch.vertices.size () >= max_vertices_)
+        return GeodesicVisit::Stop;
       double new_area = 0.0, new_projected = 0.0;
       collectFaces (u, ns, new_area, new_projected);
       const double area_after = area + new_area, projected_after = projected + new_projected;
@@ -341,7 +344,7 @@ namespace pcl_sparse
     touched_faces_.push_back (seed_face);
     face_distance_[seed_face] = 0.0;
     accept (seed_face, 1.0);
-    while (!heap_.empty ())
+    while (!heap_.empty () && (max_vertices_ == 0 || patch.vertices.size () < max_vertices_))
     {
       std::pop_heap (heap_.begin (), heap_.end (), HeapGreater ());
       const auto [d, g] = heap_.back ();

@@ -20,6 +20,10 @@ namespace pcl_sparse
       fail ("rho", rho, "rho >= 0, finite");
     if (!(sigma >= 0.0) || !std::isfinite (sigma))
       fail ("sigma", sigma, "sigma >= 0, finite");
+    if (max_fruitless_seeds < -1)
+      fail ("max_fruitless_seeds", max_fruitless_seeds, "max_fruitless_seeds >= -1");
+    if (max_patch_vertices < -1)
+      fail ("max_patch_vertices", max_patch_vertices, "max_patch_vertices >= -1");
     if (min_patch_size < 1)
       fail ("min_patch_size", min_patch_size, "min_patch_size >= 1");
   }

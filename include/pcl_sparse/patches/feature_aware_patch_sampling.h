@@ -67,6 +67,22 @@ namespace pcl_sparse
     return harris_rings == 0 ? (scan ? 2 : 0) : std::max (0, harris_rings);
   }
 
+  /// \brief The options whose defaults depend on the surface (harris_rings, max_fruitless_seeds,
+  /// max_patch_vertices) resolved for a mesh or a scan.
+  /// \param[in] options the options as given
+  /// \param[in] scan    whether the surface is a scan's neighbourhood surface
+  /// \return the options with those fields resolved
+  inline PatchOptions
+  patchOptionsFor (PatchOptions options, bool scan)
+  {
+    options.harris_rings = harrisRingsFor (options.harris_rings, scan);
+    if (options.max_fruitless_seeds < 0)
+      options.max_fruitless_seeds = scan ? 256 : 0;
+    if (options.max_patch_vertices < 0)
+      options.max_patch_vertices = scan ? 4096 : 0;
+    return options;
+  }
+
   /// \brief Everything feature-aware patch sampling produces.
   struct PatchSamplingResult
   {

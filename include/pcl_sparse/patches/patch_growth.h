@@ -133,6 +133,7 @@ namespace pcl_sparse
     double eta_;
     double rho_area_;  // rho * A
     bool stop_at_first_refusal_;
+    std::size_t max_vertices_;  // 0: no bound
 
     DijkstraGeodesic walk_;  // the vertex walk of grow ()
     std::vector<std::uint8_t> state_;  // face growth: vertex membership

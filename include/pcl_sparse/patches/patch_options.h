@@ -51,6 +51,16 @@ namespace pcl_sparse
     /// 1 % of the diagonal holds hundreds of points and took most of the encoding time; k > 0 = k rings;
     /// < 0 = adaptive on scans too.
     int harris_rings = 0;
+    /// The sampling loop ends after this many grown seeds in a row covered no new vertex (the coverage
+    /// pass covers the rest): on a flat scan one patch can span the whole cloud, and vertices no patch can
+    /// take (folded triangles) would otherwise keep every later candidate growing that whole patch again,
+    /// O(N^2). 0 = never (the paper's loop, and the default on meshes); < 0 (default) = 0 on a mesh and
+    /// 256 on a scan.
+    int max_fruitless_seeds = -1;
+    /// Growth stops once a patch has this many vertices. 0 = no bound (the paper's, and the default on
+    /// meshes, where eta bounds curved patches and flat ones are cheap); < 0 (default) = 0 on a mesh and
+    /// 4096 on a scan, where a flat wall or floor would otherwise make each grown seed cost O(N).
+    int max_patch_vertices = -1;
 
     /// Checks the ranges: angles in (0, pi], eta >= 1, rho >= 0, sigma >= 0, min_patch_size >= 1.
     /// \throws pcl_sparse::Error naming the first out-of-range field

@@ -36,7 +36,7 @@ namespace pcl_sparse
       options.coding.noise_level = this->cloud_surface_->noise;
     if (this->surfaceIsScan ())
       options.coding.clip_footprints_at_holes = true;
-    options.patches.harris_rings = harrisRingsFor (options.patches.harris_rings, this->surfaceIsScan ());
+    options.patches = patchOptionsFor (options.patches, this->surfaceIsScan ());
     const VertexAttributes attributes = surfaceAttributes ();
     encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,
                                this->num_threads_, this->progress_, model, this->surfaceNormals ());
