@@ -5,6 +5,7 @@
 ///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [--store-vertices]] [--json] [-q]
 
 #include "tool_input.h"
+#include "tool_render.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/color_map.h>
@@ -49,12 +50,13 @@ namespace
       {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default: a tenth of the"},
       {"", "model's mean error, so the file adds at most ~10 % to it; 0 = lossless)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
+      tools::pngHelpLine (),
       {"--json", "print one JSON object on stdout instead of the table row"},
       {"-q", "quiet (no progress, only the result and errors)"},
     },
     1,
     {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
-     "-viewpoint", "-preset"},
+     "-viewpoint", "-preset", "-png", "-size", "-view"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices"}};
 } // namespace
 
@@ -122,7 +124,7 @@ main (int argc, char** argv)
     timer.tic ();
     if (!model_path.empty ())
       saveModel (model_path, model, write_options);
-    if (!recon_path.empty () || !error_path.empty ())
+    if (!recon_path.empty () || !error_path.empty () || args.has ("-png"))
     {
       // A scan's reconstruction is its points (its neighbourhood surface is the encoder's, not the file's).
       TriangleMesh reconstructed;
@@ -142,6 +144,7 @@ main (int argc, char** argv)
           colors[v] = errorColor (stats.max_error > 0.0 ? errors[v] / stats.max_error : 0.0);
         saveColoredMesh (error_path, reconstructed, colors);
       }
+      tools::writeErrorPng (args, reconstructed, errors, model.bbox_diagonal);
     }
     const double write_seconds = timer.toc () / 1000.0;
     const EncoderTimings& t = encoder.getTimings ();

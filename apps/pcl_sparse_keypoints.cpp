@@ -4,6 +4,7 @@
 ///                        [-responses RESP.ply] [--json] [-q]
 
 #include "tool_input.h"
+#include "tool_render.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/atomic_write.h>
@@ -43,10 +44,12 @@ namespace
       {"-responses R.ply", "also write the mesh coloured by response percentile"},
       {"", "(dark blue = low, yellow = high, grey = no response)"},
       {"-preset P", "default or paper: accepted as by every tool; both use these keypoints"},
+      tools::pngHelpLine (),
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-fraction", "-cluster", "-rings", "-adaptive", "-k", "-responses", "-viewpoint", "-preset"}, {"--json", "-q"}};
+    2, {"-fraction", "-cluster", "-rings", "-adaptive", "-k", "-responses", "-viewpoint", "-preset", "-png", "-size", "-view"},
+    {"--json", "-q"}};
 
   /// Colours by percentile of the response (the raw values span many orders of magnitude).
   std::vector<RgbColor>
@@ -139,6 +142,7 @@ main (int argc, char** argv)
       throw Error (input + ": Harris 3D failed on this mesh");
 
     saveKeypoints (output, keypoints);
+    tools::writeMeshPng (args, *mesh, {}, false, tools::cloudPositions (keypoints));
     if (!responses_path.empty ())
       saveColoredMesh (responses_path, *mesh, responseColors (harris.getResponses ()));
     const double seconds = total.toc () / 1000.0;

@@ -5,6 +5,7 @@
 ///                      [--authors] [--json] [-q]
 
 #include "tool_input.h"
+#include "tool_render.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/color_map.h>
@@ -49,10 +50,12 @@ namespace
       {"-min-size N", tools::format ("smallest patch the sampling keeps (default %d)", kDefaults.min_patch_size)},
       {"--authors", "the authors' code: cone 72 degrees, no pairwise cone, no coverage pass"},
       {"-preset P", "default or paper: accepted as by every tool; both grow these patches (they differ in coding)"},
+      tools::pngHelpLine (),
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet (no progress, no messages besides the report and errors)"},
     },
-    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint", "-preset"}, {"--json", "-q", "--authors"}};
+    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint", "-preset", "-png", "-size", "-view"},
+    {"--json", "-q", "--authors"}};
 } // namespace
 
 int
@@ -161,6 +164,7 @@ main (int argc, char** argv)
     for (const Patch& p : patches)
       colors[p.seed] = {0, 0, 0};
     saveColoredMesh (output, *mesh, colors);
+    tools::writeMeshPng (args, *mesh, colors, true);
 
     if (json)
       tools::JsonObject ()

@@ -6,6 +6,7 @@
 ///                       [-threads T] [-ascii] [-q] [--json]
 
 #include "tool_input.h"
+#include "tool_render.h"
 #include "tool_resampling.h"
 #include "tool_support.h"
 
@@ -50,10 +51,12 @@ namespace
       {"-seed S", "seed of the sampling (default: 42)"},
       {"-threads T", "threads (default: all; the cloud does not depend on it)"},
       {"-ascii", "write ascii instead of binary"},
+      tools::pngHelpLine (),
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
     },
-    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles", "-basis", "-viewpoint", "-preset"},
+    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles", "-basis", "-viewpoint", "-preset",
+     "-png", "-size", "-view"},
     {"-ascii", "-q", "--json"}};
 
   struct Settings
@@ -194,6 +197,7 @@ main (int argc, char** argv)
 
     timer.tic ();
     tools::saveLocalCloud (s.output, local, s.binary);
+    tools::writeCloudPng (args, local.cloud, local.origin);
     const double save_seconds = timer.toc () / 1000.0;
     const double seconds = total.toc () / 1000.0;
     if (!s.quiet && !s.json)

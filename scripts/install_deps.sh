@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(build-essential cmake pkg-config libpcl-dev libeigen3-dev libflann-dev libboost-dev
-          libgtest-dev libzstd-dev doxygen "$@")
+          libgtest-dev libzstd-dev libpng-dev doxygen "$@")
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,212 @@
+#include "tool_render.h"
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/mesh/bounding_box.h>
+#include <pcl_sparse/render/color_bar.h>
+#include <pcl_sparse/render/png_file.h>
+#include <pcl_sparse/render/render_camera.h>
+#include <pcl_sparse/render/surface_renderer.h>
+#include <pcl_sparse/resampling/cloud_quality.h>
+
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace pcl_sparse
+{
+  namespace tools
+  {
+    PictureOptions
+    parsePictureOptions (const CommandLine& args)
+    {
+      PictureOptions options;
+      if (args.has ("-size"))
+      {
+        const std::string size = args.value ("-size");
+        int w = 0, h = 0;
+        char tail = 0;
+        if (std::sscanf (size.c_str (), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+          throw Error ("option -size: '" + size + "' is not WxH with 1 .. 16384 pixels each (e.g. 800x600)");
+        options.width = w;
+        options.height = h;
+      }
+      if (args.has ("-view"))
+      {
+        try
+        {
+          options.toward = viewDirectionFromName (args.value ("-view"));
+        }
+        catch (const Error& e)
+        {
+          throw Error (std::string ("option -") + e.what ());
+        }
+      }
+      return options;
+    }
+
+    RenderedPicture
+    renderPicture (const Picture& picture, const PictureOptions& options)
+    {
+      pcl::console::TicToc timer;
+      timer.tic ();
+      std::vector<Eigen::Vector3d> all = picture.points;
+      if (picture.mesh)
+        all.insert (all.end (), picture.mesh->vertices.begin (), picture.mesh->vertices.end ());
+      const int bar = picture.bar_max > 0.0 ? colorBarWidth (options.height) : 0;
+      const int view_width = std::max (1, options.width - bar);
+      RenderOptions render_options;
+      render_options.width = options.width;
+      render_options.height = options.height;
+      render_options.interpolate_colors = !picture.crisp_colors;
+      SurfaceRenderer renderer;
+      renderer.setOptions (render_options);
+      renderer.setCamera (fitRenderCamera (all, options.toward, 0, 0, view_width, options.height));
+      renderer.setInputMesh (picture.mesh, &picture.vertex_colors);
+      renderer.setInputPoints (&picture.points, &picture.normals, &picture.point_colors);
+      renderer.setMarkers (&picture.markers);
+      RenderedPicture out;
+      renderer.compute (out.image);
+      if (bar > 0)
+        drawColorBar (out.image, picture.bar_max, picture.bar_title);
+      out.covered = renderer.getCoveredPixels ();
+      out.splat_radius = renderer.getSplatRadius ();
+      out.seconds = timer.toc () / 1000.0;
+      return out;
+    }
+
+    std::vector<double>
+    distancesToSurface (const std::vector<Eigen::Vector3d>& points, const TriangleMesh& reference)
+    {
+      if (reference.empty ())
+        throw Error ("the reference surface has no triangle");
+      pcl::PointCloud<pcl::PointNormal> cloud;
+      std::vector<std::size_t> finite;
+      for (std::size_t i = 0; i < points.size (); ++i)
+        if (points[i].allFinite ())
+        {
+          pcl::PointNormal p;
+          p.getVector3fMap () = points[i].cast<float> ();
+          p.getNormalVector3fMap () = Eigen::Vector3f::UnitZ ();  // any valid normal: only distances are used
+          cloud.push_back (p);
+          finite.push_back (i);
+        }
+      CloudQualityOptions options;
+      options.probes = 1;  // the hole probes are not needed here
+      options.keep_per_point = true;
+      const CloudQuality quality = evaluateCloudQuality (reference, cloud, options);
+      std::vector<double> distances (points.size (), std::nan (""));
+      for (std::size_t k = 0; k < finite.size () && k < quality.point_distances.size (); ++k)
+        distances[finite[k]] = quality.point_distances[k];
+      return distances;
+    }
+
+    double
+    errorMapColors (const std::vector<double>& distances, double diagonal, std::vector<RgbColor>& colors)
+    {
+      std::vector<double> sorted;
+      for (double d : distances)
+        if (std::isfinite (d))
+          sorted.push_back (d);
+      double scale = 0.0;
+      if (!sorted.empty ())
+      {
+        const std::size_t k = static_cast<std::size_t> (0.99 * (sorted.size () - 1));
+        std::nth_element (sorted.begin (), sorted.begin () + k, sorted.end ());
+        scale = sorted[k];
+      }
+      if (!(scale > 0.0))
+        scale = diagonal > 0.0 ? 1e-12 * diagonal : 1e-12;
+      colors.resize (distances.size ());
+      for (std::size_t i = 0; i < distances.size (); ++i)
+        colors[i] = std::isfinite (distances[i]) ? errorColor (distances[i] / scale) : RgbColor{128, 128, 128};
+      return diagonal > 0.0 ? scale / diagonal : scale;
+    }
+
+    HelpLine
+    pngHelpLine ()
+    {
+      return {"-png OUT.png", "also draw a picture (-size WxH, -view front|side|top|iso|x,y,z as pcl_sparse_render)"};
+    }
+
+    namespace
+    {
+      /// Renders and writes \a picture to the -png path, with a line on the console.
+      void
+      savePicture (const CommandLine& args, const Picture& picture)
+      {
+        const std::string path = args.value ("-png");
+        if (!hasExtension (path, ".png"))
+          throw Error ("option -png: '" + path + "' must end in .png");
+        const RenderedPicture rendered = renderPicture (picture, parsePictureOptions (args));
+        savePng (path, rendered.image);
+        pcl::console::print_info ("Wrote %s: %dx%d, %zu pixels covered\n", path.c_str (), rendered.image.width,
+                                  rendered.image.height, rendered.covered);
+      }
+    } // namespace
+
+    void
+    writeMeshPng (const CommandLine& args, const TriangleMesh& mesh, const std::vector<RgbColor>& colors, bool crisp,
+                  const std::vector<Eigen::Vector3d>& markers)
+    {
+      if (!args.has ("-png"))
+        return;
+      Picture picture;
+      picture.mesh = &mesh;
+      picture.vertex_colors = colors;
+      picture.crisp_colors = crisp;
+      picture.markers = markers;
+      savePicture (args, picture);
+    }
+
+    std::vector<Eigen::Vector3d>
+    cloudPositions (const pcl::PointCloud<pcl::PointXYZI>& cloud)
+    {
+      std::vector<Eigen::Vector3d> positions;
+      for (const pcl::PointXYZI& p : cloud)
+        positions.push_back (p.getVector3fMap ().cast<double> ());
+      return positions;
+    }
+
+    void
+    writeCloudPng (const CommandLine& args, const pcl::PointCloud<pcl::PointNormal>& cloud, const Eigen::Vector3d& origin)
+    {
+      if (!args.has ("-png"))
+        return;
+      Picture picture;
+      picture.points.reserve (cloud.size ());
+      picture.normals.reserve (cloud.size ());
+      for (const pcl::PointNormal& p : cloud)
+      {
+        picture.points.push_back (origin + p.getVector3fMap ().cast<double> ());
+        picture.normals.push_back (p.getNormalVector3fMap ().cast<double> ());
+      }
+      savePicture (args, picture);
+    }
+
+    void
+    writeErrorPng (const CommandLine& args, const TriangleMesh& surface, const std::vector<double>& errors, double diagonal)
+    {
+      if (!args.has ("-png"))
+        return;
+      Picture picture;
+      std::vector<RgbColor> colors;
+      picture.bar_max = errorMapColors (errors, diagonal, colors);
+      if (picture.bar_max <= 0.0)
+        picture.bar_max = 1e-12;
+      if (surface.empty ())
+      {
+        picture.points = surface.vertices;
+        picture.point_colors = colors;
+      }
+      else
+      {
+        picture.mesh = &surface;
+        picture.vertex_colors = colors;
+      }
+      savePicture (args, picture);
+    }
+  } // namespace tools
+} // namespace pcl_sparse

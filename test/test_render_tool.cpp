@@ -1,0 +1,163 @@
+// pcl_sparse_render and the -png option of the other tools: pictures written, byte-identical across runs
+// and thread counts, and a bad input or option gives one stderr line, exit 1 and no file.
+
+#include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+
+#include "test_file_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using pcl_sparse_test::readBytes;
+
+namespace
+{
+  std::string
+  tool (const std::string& name)
+  {
+    return std::string (PCL_SPARSE_BINARY_DIR) + "/apps/pcl_sparse_" + name;
+  }
+
+  struct ToolRun
+  {
+    int code = -1;
+    std::string out, err;
+  };
+
+  /// Runs \a command (arguments already quoted where needed) with stdout and stderr captured in \a dir.
+  ToolRun
+  run (const pcl_sparse_test::TempDir& dir, const std::string& command)
+  {
+    const std::string out = dir.file ("stdout.txt"), err = dir.file ("stderr.txt");
+    const int status = std::system ((command + " > " + out + " 2> " + err).c_str ());
+    ToolRun r;
+    r.code = WIFEXITED (status) ? WEXITSTATUS (status) : -1;
+    r.out = readBytes (out);
+    r.err = readBytes (err);
+    return r;
+  }
+
+  int
+  lines (const std::string& text)
+  {
+    int n = 0;
+    for (std::size_t i = 0; i < text.size (); ++i)
+      n += text[i] == '\n';
+    return n + (!text.empty () && text.back () != '\n');
+  }
+
+  class RenderTool : public ::testing::Test
+  {
+  protected:
+    void
+    SetUp () override
+    {
+      if (!fs::exists (tool ("render")))
+        GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
+      pcl_sparse::saveTriangleMesh (dir_.file ("sphere.off"), pcl_sparse::makeIcosphere (3));
+    }
+    pcl_sparse_test::TempDir dir_{"render_tool"};
+  };
+} // namespace
+
+TEST_F (RenderTool, WritesTheSameBytesForAnyRunAndThreadCount)
+{
+  const std::string in = dir_.file ("sphere.off");
+  const ToolRun a = run (dir_, "OMP_NUM_THREADS=1 " + tool ("render") + " " + in + " " + dir_.file ("a.png") + " -size 160x120 --json");
+  ASSERT_EQ (a.code, 0) << a.err;
+  EXPECT_NE (a.out.find ("\"pixels_covered\": "), std::string::npos) << a.out;
+  EXPECT_NE (a.out.find ("\"render_seconds\": "), std::string::npos) << a.out;
+  run (dir_, "OMP_NUM_THREADS=1 " + tool ("render") + " " + in + " " + dir_.file ("b.png") + " -size 160x120 -q");
+  run (dir_, "OMP_NUM_THREADS=2 " + tool ("render") + " " + in + " " + dir_.file ("c.png") + " -size 160x120 -q");
+  const std::string png = readBytes (dir_.file ("a.png"));
+  ASSERT_GT (png.size (), 100u);
+  EXPECT_EQ (png.substr (1, 3), "PNG");
+  EXPECT_EQ (png, readBytes (dir_.file ("b.png")));
+  EXPECT_EQ (png, readBytes (dir_.file ("c.png")));
+}
+
+TEST_F (RenderTool, ColorModes)
+{
+  const std::string in = dir_.file ("sphere.off");
+  for (const std::string& mode : std::vector<std::string>{"plain", "normal", "height", "patch", "error -ref " + in})
+  {
+    const ToolRun r = run (dir_, tool ("render") + " " + in + " " + dir_.file ("m.png") + " -size 200x150 -view iso -q -color " + mode);
+    EXPECT_EQ (r.code, 0) << mode << ": " << r.err;
+    EXPECT_TRUE (fs::exists (dir_.file ("m.png"))) << mode;
+    fs::remove (dir_.file ("m.png"));
+  }
+}
+
+TEST_F (RenderTool, BadInputOrOptionGivesOneLineAndNoFile)
+{
+  const std::string in = dir_.file ("sphere.off"), out = dir_.file ("bad.png");
+  pcl_sparse_test::writeBytes (dir_.file ("broken.off"), "OFF\n3 1 0\n0 0 0\n1 0\n");
+  const std::vector<std::string> cases = {
+    dir_.file ("missing.off") + " " + out,
+    dir_.file ("broken.off") + " " + out,
+    in + " " + dir_.file ("bad.jpg"),
+    in + " " + out + " -size 0x10",
+    in + " " + out + " -size 100",
+    in + " " + out + " -view back",
+    in + " " + out + " -color rainbow",
+    in + " " + out + " -color error",
+    in + " " + out + " -color rgb",
+    in + " " + out + " -color error -ref " + dir_.file ("missing.off"),
+    in + " " + out + " -bogus 3",
+    in + " " + dir_.file ("no_such_dir/out.png"),
+  };
+  for (const std::string& c : cases)
+  {
+    const ToolRun r = run (dir_, tool ("render") + " " + c);
+    EXPECT_EQ (r.code, 1) << c;
+    EXPECT_EQ (lines (r.err), 1) << c << "\n" << r.err;
+    EXPECT_FALSE (fs::exists (out)) << c;
+    EXPECT_FALSE (fs::exists (dir_.file ("bad.jpg"))) << c;
+  }
+}
+
+TEST_F (RenderTool, OtherToolsDrawWithPng)
+{
+  const std::string in = dir_.file ("sphere.off");
+  const std::vector<std::string> commands = {
+    tool ("patches") + " " + in + " " + dir_.file ("p.ply") + " -q -png " + dir_.file ("patches.png") + " -size 160x120",
+    tool ("keypoints") + " " + in + " " + dir_.file ("k.pcd") + " -q -png " + dir_.file ("keypoints.png"),
+    tool ("resample") + " " + in + " " + dir_.file ("r.pcd") + " -q -png " + dir_.file ("resample.png") + " -view side",
+    tool ("encode") + " " + in + " -q -png " + dir_.file ("encode.png") + " -size 200x150",
+  };
+  for (const char* png : {"patches", "keypoints", "resample", "encode"})
+    fs::remove (dir_.file (std::string (png) + ".png"));
+  for (const std::string& c : commands)
+  {
+    const ToolRun r = run (dir_, c);
+    EXPECT_EQ (r.code, 0) << c << "\n" << r.err;
+  }
+  for (const char* png : {"patches", "keypoints", "resample", "encode"})
+    EXPECT_TRUE (fs::exists (dir_.file (std::string (png) + ".png"))) << png;
+  const ToolRun bad = run (dir_, tool ("patches") + " " + in + " " + dir_.file ("p.ply") + " -q -png " + dir_.file ("x.gif"));
+  EXPECT_EQ (bad.code, 1);
+  EXPECT_EQ (lines (bad.err), 1) << bad.err;
+}
+
+TEST_F (RenderTool, SharedMeshAndScan)
+{
+  const std::string mesh = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
+  const std::string scan = std::string (PCL_SPARSE_SHARED_CLOUDS) + "/bun000.ply";
+  if (!fs::exists (mesh) || !fs::exists (scan))
+    GTEST_SKIP () << "needs ../shared/meshes/fandisk.off and ../shared/clouds/bun000.ply (not present)";
+  const ToolRun m = run (dir_, tool ("render") + " " + mesh + " " + dir_.file ("f.png") + " -size 320x240 -view iso --json");
+  EXPECT_EQ (m.code, 0) << m.err;
+  const ToolRun s = run (dir_, tool ("render") + " " + scan + " " + dir_.file ("s.png") + " -size 320x240 --json");
+  EXPECT_EQ (s.code, 0) << s.err;
+  // A scan is drawn as touching splats: a good part of the image is covered.
+  const std::size_t at = s.out.find ("\"pixels_covered\": ");
+  ASSERT_NE (at, std::string::npos) << s.out;
+  EXPECT_GT (std::stoul (s.out.substr (at + 18)), 320u * 240u / 10u) << s.out;
+}
