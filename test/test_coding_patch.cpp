@@ -118,7 +118,7 @@ TEST (PatchFootprint, FirstExitClipsAHoleBesideTheSeed)
   for (const Eigen::Vector3i& t : grid.triangles)
   {
     const Eigen::Vector3d c = (grid.vertices[t[0]] + grid.vertices[t[1]] + grid.vertices[t[2]]) / 3.0;
-    if (!(c.x () > 0.4 && c.x () < 0.6 && std::abs (c.y ()) < 0.15))  // a hole on the +x side of the seed
+    if (!(c.x () > 0.4 && c.x () < 0.8 && std::abs (c.y ()) < 0.25))  // a hole on the +x side of the seed
       mesh.triangles.push_back (t);
   }
   ASSERT_LT (mesh.triangles.size (), grid.triangles.size ());
@@ -129,12 +129,30 @@ TEST (PatchFootprint, FirstExitClipsAHoleBesideTheSeed)
   // 1 / 1.5, the clipped one stops at the hole's near rim, x = 0.4 / 1.5 = 0.267.
   EXPECT_NEAR (exact.extentAt (0.0), 1.0 / 1.5, 0.01);
   EXPECT_NEAR (clipped.extentAt (0.0), 0.4 / 1.5, 0.01);
-  EXPECT_FALSE (clipped.contains (0.5 / 1.5, 0.0));  // the hole
-  EXPECT_TRUE (exact.contains (0.5 / 1.5, 0.0));
+  EXPECT_FALSE (clipped.contains (0.6 / 1.5, 0.0));  // the hole
+  EXPECT_TRUE (exact.contains (0.6 / 1.5, 0.0));
   // Where no hole lies between the seed and the border, only the exact cover's margin between two rays
   // goes (the exit is taken on the rays themselves: 0.6667 against 0.6699 here).
   EXPECT_NEAR (clipped.extentAt (M_PI / 2.0), exact.extentAt (M_PI / 2.0), 0.005);
   EXPECT_NEAR (clipped.extentAt (M_PI), exact.extentAt (M_PI), 0.005);
+}
+
+// A gap narrower than 3 edge lengths (a missing triangle of a scan's triangulation) does not cut the
+// footprint: clipping there would open holes between patches.
+TEST (PatchFootprint, FirstExitCrossesAMissingTriangle)
+{
+  const TriangleMesh grid = makePlaneGrid (20, 1.0);
+  TriangleMesh mesh;
+  mesh.vertices = grid.vertices;
+  for (const Eigen::Vector3i& t : grid.triangles)
+  {
+    const Eigen::Vector3d c = (grid.vertices[t[0]] + grid.vertices[t[1]] + grid.vertices[t[2]]) / 3.0;
+    if (!(c.x () > 0.4 && c.x () < 0.5 && std::abs (c.y ()) < 0.1))
+      mesh.triangles.push_back (t);
+  }
+  ASSERT_LT (mesh.triangles.size (), grid.triangles.size ());
+  const Patch patch = wholeMeshPatch (mesh, 1.5);
+  EXPECT_NEAR (computePatchFootprint (patch, mesh, 64, true).extentAt (0.0), 1.0 / 1.5, 0.01);
 }
 
 TEST (PatchCoder, CodesAParaboloidPatch)

@@ -80,8 +80,25 @@ namespace pcl_sparse
       }
     }
 
-    /// Per ray, the smallest radius r > 0 where it crosses an edge used by one patch triangle only (a border
-    /// of the triangles' union); +infinity where it crosses none. \a triangles: local corner indices.
+    /// Whether \a q lies in one of the projected triangles (corner indices into \a corners).
+    bool
+    insideSomeTriangle (const Eigen::Vector2d& q, const std::vector<std::array<int, 3>>& triangles,
+                        const std::vector<Corner>& corners)
+    {
+      for (const auto& t : triangles)
+      {
+        const Eigen::Vector2d &a = corners[t[0]].p, &b = corners[t[1]].p, &c = corners[t[2]].p;
+        const double d1 = cross2 (b - a, q - a), d2 = cross2 (c - b, q - b), d3 = cross2 (a - c, q - c);
+        if ((d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0) || (d1 <= 0.0 && d2 <= 0.0 && d3 <= 0.0))
+          return true;
+      }
+      return false;
+    }
+
+    /// Per ray, the radius where it first leaves the union of the projected triangles for a gap wider than
+    /// 3 median edge lengths before meeting them again (a hole, or a concave bay of the patch's border);
+    /// +infinity where it meets no such gap. Narrower gaps (a missing triangle of a scan's triangulation)
+    /// are crossed: clipping there would open holes between patches. \a triangles: local corner indices.
     std::vector<double>
     firstExits (const std::vector<std::array<int, 3>>& triangles, const std::vector<Corner>& corners,
                 const std::vector<Eigen::Vector2d>& rays)
@@ -92,13 +109,21 @@ namespace pcl_sparse
         for (int c = 0; c < 3; ++c)
           edges.emplace_back (std::min (t[c], t[(c + 1) % 3]), std::max (t[c], t[(c + 1) % 3]));
       std::sort (edges.begin (), edges.end ());
-      std::vector<double> exits (rays.size (), std::numeric_limits<double>::infinity ());
+      std::vector<double> lengths;
+      lengths.reserve (edges.size ());
+      for (const auto& e : edges)
+        lengths.push_back ((corners[e.first].p - corners[e.second].p).norm ());
+      std::nth_element (lengths.begin (), lengths.begin () + lengths.size () / 2, lengths.end ());
+      const double gap = 3.0 * lengths[lengths.size () / 2];
+
+      // Crossings of each ray with the border edges (used by one patch triangle).
+      std::vector<std::vector<double>> crossings (rays.size ());
       for (std::size_t i = 0; i < edges.size ();)
       {
         std::size_t j = i;
         while (j < edges.size () && edges[j] == edges[i])
           ++j;
-        if (j - i == 1)  // a border edge
+        if (j - i == 1)
         {
           const Eigen::Vector2d& a = corners[edges[i].first].p;
           const Eigen::Vector2d& b = corners[edges[i].second].p;
@@ -108,12 +133,23 @@ namespace pcl_sparse
             if ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0) || ca == cb)
               continue;
             const double r = rays[k].dot (a + ca / (ca - cb) * (b - a));
-            // Edges through the seed (a seed on the border) are crossed at r = 0: not an exit.
-            if (r > 1e-9)
-              exits[k] = std::min (exits[k], r);
+            if (r > 0.0)
+              crossings[k].push_back (r);
           }
         }
         i = j;
+      }
+      std::vector<double> exits (rays.size (), std::numeric_limits<double>::infinity ());
+      for (std::size_t k = 0; k < rays.size (); ++k)
+      {
+        std::vector<double>& c = crossings[k];
+        std::sort (c.begin (), c.end ());
+        for (std::size_t i = 0; i + 1 < c.size (); ++i)
+          if (c[i + 1] - c[i] > gap && !insideSomeTriangle (0.5 * (c[i] + c[i + 1]) * rays[k], triangles, corners))
+          {
+            exits[k] = c[i];
+            break;
+          }
       }
       return exits;
     }

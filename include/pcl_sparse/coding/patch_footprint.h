@@ -24,8 +24,9 @@ namespace pcl_sparse
   /// triangle containing the origin cannot exceed its edges' radii, so edges suffice.
   ///
   /// With \a clip_at_first_exit (scans), extent k is also at most the radius where ray k first leaves the
-  /// union of the projected triangles (crosses a patch border edge): a patch that grew around a hole of
-  /// the scan (a shadow, missing depth) or along a concave border then does not cover it. Points of the
+  /// union of the projected triangles for a gap wider than 3 median edge lengths before meeting them again:
+  /// a patch that grew around a hole of the scan (a shadow, missing depth) or along a concave border then
+  /// does not cover it, while a missing triangle here and there does not cut it short. Points of the
   /// triangles beyond such an exit are left to the patches around them.
   /// \param[in] clip_at_first_exit  clip the extents as above (default false: the exact cover)
   PatchFootprint
