@@ -210,6 +210,48 @@ TEST (PatchEvaluator, MatchesTheBasis)
   }
 }
 
+TEST (PatchEvaluator, BlockEqualsPointByPointBitForBit)
+{
+  // The block evaluation (vectorised, maybe AVX2) must give the same bits as sample, so that the resampled
+  // cloud does not depend on which path made a point: the sphere's codes, and random codes on all atoms.
+  const auto model = makeSphereModel ();
+  std::mt19937 random (7);
+  std::uniform_real_distribution<double> coefficient (-0.3, 0.3);
+  for (int k = 0; k < 3; ++k)
+  {
+    PatchCode code = model->patches[k];
+    code.atoms.clear ();
+    code.coefficients.clear ();
+    for (int atom = 0; atom < 144; atom += 1 + k)
+    {
+      code.atoms.push_back (atom);
+      code.coefficients.push_back (coefficient (random));
+    }
+    model->patches.push_back (code);
+  }
+  const PatchEvaluator evaluator (*model);
+  std::uniform_real_distribution<double> uniform (-1.6, 1.6);
+  PatchEvaluator::Block block;
+  for (std::size_t p = 0; p < model->numPatches (); ++p)
+    for (int round = 0; round < 4; ++round)
+    {
+      for (int b = 0; b < PatchEvaluator::Block::size; ++b)
+      {
+        block.x[b] = uniform (random);
+        block.y[b] = round == 3 ? 0.25 * b : uniform (random);  // quarter turns: every quadrant of sinCosPi
+      }
+      evaluator.sampleBlock (p, block);
+      for (int b = 0; b < PatchEvaluator::Block::size; ++b)
+      {
+        const HeightSample expected = evaluator.sample (p, block.x[b], block.y[b]);
+        const HeightSample got = block.sample (b);
+        ASSERT_EQ (std::memcmp (&got.value, &expected.value, sizeof (double)), 0) << p << " " << b;
+        ASSERT_EQ (std::memcmp (got.gradient.data (), expected.gradient.data (), 2 * sizeof (double)), 0);
+        ASSERT_EQ (std::memcmp (got.hessian.data (), expected.hessian.data (), 4 * sizeof (double)), 0);
+      }
+    }
+}
+
 TEST (Resampling, PlaneExactCountOnSurfaceUniform)
 {
   const auto model = makePlaneModel ();

@@ -245,6 +245,9 @@ namespace pcl_sparse
         double cumulative = 0.0;
         const std::uint64_t cells = static_cast<std::uint64_t> (grid.n) * grid.n;
         std::size_t emitted = 0;
+        // The first point of a cell not yet evaluated (most points) waits in a block of places evaluated
+        // together; the others (evaluated with the candidate, or redrawn in the cell) are made at once.
+        PointBlock block;
         for (std::size_t k = 0; k < candidates.size () && emitted < count; ++k)
         {
           const Candidate& c = candidates[k];
@@ -254,6 +257,8 @@ namespace pcl_sparse
             Eigen::Vector2d xy (c.x, c.y);
             if (draw == 0 && c.evaluated >= 0)
               out[emitted] = evaluated[c.evaluated];
+            else if (draw == 0)
+              block.add (*this, p, xy.x (), xy.y (), out + emitted);
             else
               xy = emit (p, grid, key, c, draw, cells, out[emitted]);
             if (attributes)
@@ -262,9 +267,39 @@ namespace pcl_sparse
           }
           cumulative = high;
         }
+        block.flush (*this, p);
       }
 
     private:
+      /// Places waiting for their point, evaluated a block at a time (PatchEvaluator::sampleBlock).
+      struct PointBlock
+      {
+        PatchEvaluator::Block places;
+        pcl::PointNormal* targets[PatchEvaluator::Block::size];
+        int filled = 0;
+
+        void
+        add (const PatchSampler& sampler, std::size_t p, double x, double y, pcl::PointNormal* target)
+        {
+          places.x[filled] = x;
+          places.y[filled] = y;
+          targets[filled] = target;
+          if (++filled == PatchEvaluator::Block::size)
+            flush (sampler, p);
+        }
+
+        void
+        flush (const PatchSampler& sampler, std::size_t p)
+        {
+          if (filled == 0)
+            return;
+          sampler.evaluator_.sampleBlock (p, places);
+          for (int b = 0; b < filled; ++b)
+            sampler.makePoint (p, places.x[b], places.y[b], places.sample (b), *targets[b]);
+          filled = 0;
+        }
+      };
+
       /// Every attribute channel of patch \a p at local \a xy.
       void
       attributesAt (std::size_t p, const Eigen::Vector2d& xy, float* values) const
