@@ -132,11 +132,14 @@ namespace pcl_sparse
     /// Throws if \a density could give more than max_points points.
     void checkDensityBound (double density) const;
     /// Candidate pass at \a density (redone once if a count is asked and the area is off by > 2 %).
-    void drawAllCandidates (double& density, Passes& passes) const;
+    /// With \a prefill, one thread first constructs that cloud with count_ points (a few page faults per
+    /// point, serial) while the others start on the patches.
+    void drawAllCandidates (double& density, Passes& passes, PointCloud* prefill) const;
     /// Points per patch: largest remainder of the weights for a count, else rounded at random.
     std::vector<std::size_t> pointsPerPatch (const std::vector<double>& weights) const;
-    /// Selection pass: every patch writes its own slice of the output, in patch order.
-    void selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output);
+    /// Selection pass: every patch writes its own slice of the output, in patch order (\a output is
+    /// reconstructed unless \a prefilled and already of the right size).
+    void selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output, bool prefilled);
 
     SparseSurfaceModel::ConstPtr model_;
     SparseSurfaceResamplingOptions options_;
