@@ -201,6 +201,10 @@ namespace pcl_sparse
         evaluated.clear ();
         std::vector<float> cells, nodes;
         const bool classified = classifyCells (p, grid, cells, nodes);
+        // One allocation per patch instead of a doubling series (copies and page faults): at most the
+        // cells not dropped by the classification keep a candidate.
+        out.reserve (classified ? static_cast<std::size_t> (std::count_if (cells.begin (), cells.end (), [] (float c) { return c != 0.0f; }))
+                                : static_cast<std::size_t> (grid.n) * grid.n);
         double sum = 0.0;
         for (int row = 0; row < grid.n; ++row)
           for (int k = 0; k < grid.n; ++k)
@@ -625,7 +629,7 @@ namespace pcl_sparse
     if (!evaluator_)
       evaluator_ = std::make_shared<PatchEvaluator> (*model_);
     if (!ownership_)
-      ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership);
+      ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership, threadsToUse ());
 
     // Density: given, or from a coarse area pass when a total count is asked for.
     double density = mode_ == Mode::Count ? densityForCount () : density_;
