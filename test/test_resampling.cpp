@@ -252,6 +252,37 @@ TEST (PatchEvaluator, BlockEqualsPointByPointBitForBit)
     }
 }
 
+TEST (Resampling, ReusedOutputCloudGivesTheSameBytes)
+{
+  // With a count, the output is constructed while the candidate pass runs (one thread) and every point is
+  // then overwritten: a cloud holding other points of the same size, or of another size, must end up with
+  // the bytes of a fresh compute, for 1 and 2 threads.
+  const auto model = makeSphereModel ();
+  auto run = [&] (int threads, pcl::PointCloud<pcl::PointNormal>& cloud) {
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (model);
+    resampling.setPointCount (30000);
+    resampling.setNumberOfThreads (threads);
+    resampling.compute (cloud);
+  };
+  pcl::PointCloud<pcl::PointNormal> fresh;
+  run (1, fresh);
+  ASSERT_EQ (fresh.size (), 30000u);
+  for (int threads : {1, 2})
+    for (std::size_t size : {std::size_t (30000), std::size_t (12345)})
+    {
+      pcl::PointCloud<pcl::PointNormal> reused;
+      reused.resize (size);
+      for (auto& p : reused)
+        p.x = p.y = p.z = p.normal_x = p.normal_y = p.normal_z = p.curvature = 7.0f;
+      run (threads, reused);
+      ASSERT_EQ (reused.size (), fresh.size ());
+      EXPECT_EQ (reused.width, fresh.width);
+      EXPECT_EQ (std::memcmp (reused.data (), fresh.data (), fresh.size () * sizeof (pcl::PointNormal)), 0)
+        << threads << " threads, reused size " << size;
+    }
+}
+
 TEST (Resampling, PlaneExactCountOnSurfaceUniform)
 {
   const auto model = makePlaneModel ();
