@@ -5,6 +5,13 @@
 #include <algorithm>
 #include <cmath>
 
+// GCC / Clang on x86-64 with ifunc (glibc): an AVX2 copy chosen at load time; elsewhere the plain one.
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__)
+#define PCL_SPARSE_AVX2_CLONE __attribute__ ((target_clones ("avx2", "default")))
+#else
+#define PCL_SPARSE_AVX2_CLONE
+#endif
+
 namespace pcl_sparse
 {
   namespace
@@ -86,7 +93,7 @@ namespace pcl_sparse
     /// PatchEvaluator::sample with the Hessian for a block of places: the same operations in the same
     /// order per lane, so the same bits; the lanes are independent, so the loops vectorise. Compiled for
     /// AVX2 too (no FMA: a fused multiply-add would round differently) and chosen at load time.
-    __attribute__ ((target_clones ("avx2", "default"))) void
+    PCL_SPARSE_AVX2_CLONE void
     cosineBlock (const PatchEvaluator::Term* begin, const PatchEvaluator::Term* end, int nx, int ny,
                  PatchEvaluator::Block& block)
     {
