@@ -210,6 +210,79 @@ TEST (PatchEvaluator, MatchesTheBasis)
   }
 }
 
+TEST (PatchEvaluator, BlockEqualsPointByPointBitForBit)
+{
+  // The block evaluation (vectorised, maybe AVX2) must give the same bits as sample, so that the resampled
+  // cloud does not depend on which path made a point: the sphere's codes, and random codes on all atoms.
+  const auto model = makeSphereModel ();
+  std::mt19937 random (7);
+  std::uniform_real_distribution<double> coefficient (-0.3, 0.3);
+  for (int k = 0; k < 3; ++k)
+  {
+    PatchCode code = model->patches[k];
+    code.atoms.clear ();
+    code.coefficients.clear ();
+    for (int atom = 0; atom < 144; atom += 1 + k)
+    {
+      code.atoms.push_back (atom);
+      code.coefficients.push_back (coefficient (random));
+    }
+    model->patches.push_back (code);
+  }
+  const PatchEvaluator evaluator (*model);
+  std::uniform_real_distribution<double> uniform (-1.6, 1.6);
+  PatchEvaluator::Block block;
+  for (std::size_t p = 0; p < model->numPatches (); ++p)
+    for (int round = 0; round < 4; ++round)
+    {
+      for (int b = 0; b < PatchEvaluator::Block::size; ++b)
+      {
+        block.x[b] = uniform (random);
+        block.y[b] = round == 3 ? 0.25 * b : uniform (random);  // quarter turns: every quadrant of sinCosPi
+      }
+      evaluator.sampleBlock (p, block);
+      for (int b = 0; b < PatchEvaluator::Block::size; ++b)
+      {
+        const HeightSample expected = evaluator.sample (p, block.x[b], block.y[b]);
+        const HeightSample got = block.sample (b);
+        ASSERT_EQ (std::memcmp (&got.value, &expected.value, sizeof (double)), 0) << p << " " << b;
+        ASSERT_EQ (std::memcmp (got.gradient.data (), expected.gradient.data (), 2 * sizeof (double)), 0);
+        ASSERT_EQ (std::memcmp (got.hessian.data (), expected.hessian.data (), 4 * sizeof (double)), 0);
+      }
+    }
+}
+
+TEST (Resampling, ReusedOutputCloudGivesTheSameBytes)
+{
+  // With a count, the output is constructed while the candidate pass runs (one thread) and every point is
+  // then overwritten: a cloud holding other points of the same size, or of another size, must end up with
+  // the bytes of a fresh compute, for 1 and 2 threads.
+  const auto model = makeSphereModel ();
+  auto run = [&] (int threads, pcl::PointCloud<pcl::PointNormal>& cloud) {
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (model);
+    resampling.setPointCount (30000);
+    resampling.setNumberOfThreads (threads);
+    resampling.compute (cloud);
+  };
+  pcl::PointCloud<pcl::PointNormal> fresh;
+  run (1, fresh);
+  ASSERT_EQ (fresh.size (), 30000u);
+  for (int threads : {1, 2})
+    for (std::size_t size : {std::size_t (30000), std::size_t (12345)})
+    {
+      pcl::PointCloud<pcl::PointNormal> reused;
+      reused.resize (size);
+      for (auto& p : reused)
+        p.x = p.y = p.z = p.normal_x = p.normal_y = p.normal_z = p.curvature = 7.0f;
+      run (threads, reused);
+      ASSERT_EQ (reused.size (), fresh.size ());
+      EXPECT_EQ (reused.width, fresh.width);
+      EXPECT_EQ (std::memcmp (reused.data (), fresh.data (), fresh.size () * sizeof (pcl::PointNormal)), 0)
+        << threads << " threads, reused size " << size;
+    }
+}
+
 TEST (Resampling, PlaneExactCountOnSurfaceUniform)
 {
   const auto model = makePlaneModel ();

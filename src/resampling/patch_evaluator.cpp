@@ -5,10 +5,33 @@
 #include <algorithm>
 #include <cmath>
 
+// GCC / Clang on x86-64 with ifunc (glibc): an AVX2 copy chosen at load time; elsewhere the plain one.
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__)
+#define PCL_SPARSE_AVX2_CLONE __attribute__ ((target_clones ("avx2", "default")))
+#else
+#define PCL_SPARSE_AVX2_CLONE
+#endif
+
 namespace pcl_sparse
 {
   namespace
   {
+    /// sin(r) on [-pi/4, pi/4] (Taylor, truncation below 1e-16); r2 = r * r.
+    inline double
+    sinPoly (double r, double r2)
+    {
+      return r * (1.0 + r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362880.0 + r2 * (-1.0 / 39916800.0 +
+             r2 * (1.0 / 6227020800.0 + r2 * (-1.0 / 1307674368000.0))))))));
+    }
+
+    /// cos(r) on [-pi/4, pi/4] from r2 = r * r.
+    inline double
+    cosPoly (double r2)
+    {
+      return 1.0 + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40320.0 + r2 * (-1.0 / 3628800.0 +
+             r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0 + r2 * (1.0 / 20922789888000.0))))))));
+    }
+
     /// sin(pi t) and cos(pi t): reduction to the nearest quarter turn, then Taylor polynomials on
     /// [-pi/4, pi/4] (truncation below 1e-16), a few times faster than std::sin and std::cos.
     inline void
@@ -16,18 +39,100 @@ namespace pcl_sparse
     {
       const double k = std::nearbyint (2.0 * t);
       const double r = (t - 0.5 * k) * M_PI, r2 = r * r;
-      const double sr =
-        r * (1.0 + r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362880.0 + r2 * (-1.0 / 39916800.0 +
-        r2 * (1.0 / 6227020800.0 + r2 * (-1.0 / 1307674368000.0))))))));
-      const double cr =
-        1.0 + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40320.0 + r2 * (-1.0 / 3628800.0 +
-        r2 * (1.0 / 479001600.0 + r2 * (-1.0 / 87178291200.0 + r2 * (1.0 / 20922789888000.0))))))));
+      const double sr = sinPoly (r, r2), cr = cosPoly (r2);
       switch (static_cast<long long> (k) & 3)
       {
         case 0: s = sr; c = cr; break;
         case 1: s = cr; c = -sr; break;
         case 2: s = -sr; c = -cr; break;
         default: s = -cr; c = sr; break;
+      }
+    }
+
+    constexpr int lanes = PatchEvaluator::Block::size;
+
+    /// sinCosPi of every lane, branch free so that it vectorises; the same rounding (the quarter turn
+    /// k mod 4 is exact in doubles).
+    inline void
+    sinCosPiLanes (const double* t, double* s, double* c)
+    {
+      for (int b = 0; b < lanes; ++b)
+      {
+        const double k = std::nearbyint (2.0 * t[b]);
+        const double r = (t[b] - 0.5 * k) * M_PI, r2 = r * r;
+        const double sr = sinPoly (r, r2), cr = cosPoly (r2);
+        const double q = k - 4.0 * std::floor (0.25 * k);
+        s[b] = q == 0.0 ? sr : q == 1.0 ? cr : q == 2.0 ? -sr : -cr;
+        c[b] = q == 0.0 ? cr : q == 1.0 ? -sr : q == 2.0 ? -cr : sr;
+      }
+    }
+
+    /// cos and sin of k pi t for k < n by angle addition, row k at table[k * lanes], as in sample.
+    inline void
+    harmonicLanes (const double* s1, const double* c1, int n, double* cos_table, double* sin_table)
+    {
+      for (int b = 0; b < lanes; ++b)
+      {
+        cos_table[b] = 1.0;
+        sin_table[b] = 0.0;
+      }
+      for (int k = 1; k < n; ++k)
+      {
+        const double* cp = cos_table + (k - 1) * lanes;
+        const double* sp = sin_table + (k - 1) * lanes;
+        double* ck = cos_table + k * lanes;
+        double* sk = sin_table + k * lanes;
+        for (int b = 0; b < lanes; ++b)
+        {
+          ck[b] = cp[b] * c1[b] - sp[b] * s1[b];
+          sk[b] = sp[b] * c1[b] + cp[b] * s1[b];
+        }
+      }
+    }
+
+    /// PatchEvaluator::sample with the Hessian for a block of places: the same operations in the same
+    /// order per lane, so the same bits; the lanes are independent, so the loops vectorise. Compiled for
+    /// AVX2 too (no FMA: a fused multiply-add would round differently) and chosen at load time.
+    PCL_SPARSE_AVX2_CLONE void
+    cosineBlock (const PatchEvaluator::Term* begin, const PatchEvaluator::Term* end, int nx, int ny,
+                 PatchEvaluator::Block& block)
+    {
+      block.tables.resize (static_cast<std::size_t> (2 * (nx + ny) * lanes));
+      double* const cx = block.tables.data ();
+      double* const sx = cx + nx * lanes;
+      double* const cy = sx + nx * lanes;
+      double* const sy = cy + ny * lanes;
+      double s1x[lanes], c1x[lanes], s1y[lanes], c1y[lanes];
+      sinCosPiLanes (block.x, s1x, c1x);
+      sinCosPiLanes (block.y, s1y, c1y);
+      harmonicLanes (s1x, c1x, nx, cx, sx);
+      harmonicLanes (s1y, c1y, ny, cy, sy);
+      double v[lanes] = {}, gx[lanes] = {}, gy[lanes] = {}, hxx[lanes] = {}, hxy[lanes] = {}, hyy[lanes] = {};
+      for (const PatchEvaluator::Term* term = begin; term != end; ++term)
+      {
+        const double *ci = cx + term->i * lanes, *si = sx + term->i * lanes;
+        const double *cj = cy + term->j * lanes, *sj = sy + term->j * lanes;
+        const double a = term->coefficient, ai = term->ai, aj = term->aj, aij = term->aij, ii = term->ii, jj = term->jj;
+        for (int b = 0; b < lanes; ++b)
+        {
+          const double cc = a * ci[b] * cj[b];
+          v[b] += cc;
+          gx[b] -= ai * si[b] * cj[b];
+          gy[b] -= aj * ci[b] * sj[b];
+          hxx[b] -= ii * cc;
+          hxy[b] += aij * si[b] * sj[b];
+          hyy[b] -= jj * cc;
+        }
+      }
+      const double pi2 = M_PI * M_PI;
+      for (int b = 0; b < lanes; ++b)
+      {
+        block.value[b] = v[b];
+        block.gx[b] = M_PI * gx[b];
+        block.gy[b] = M_PI * gy[b];
+        block.hxx[b] = pi2 * hxx[b];
+        block.hxy[b] = pi2 * hxy[b];
+        block.hyy[b] = pi2 * hyy[b];
       }
     }
   } // namespace
@@ -152,5 +257,25 @@ namespace pcl_sparse
     if (hessian)
       sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
     return sample;
+  }
+
+  void
+  PatchEvaluator::sampleBlock (std::size_t p, Block& block) const
+  {
+    if (cosine_)
+    {
+      cosineBlock (terms_.data () + term_begin_[p], terms_.data () + term_begin_[p + 1], count_x_[p], count_y_[p], block);
+      return;
+    }
+    for (int b = 0; b < Block::size; ++b)
+    {
+      const HeightSample h = model_.evaluate (p, block.x[b], block.y[b]);
+      block.value[b] = h.value;
+      block.gx[b] = h.gradient.x ();
+      block.gy[b] = h.gradient.y ();
+      block.hxx[b] = h.hessian (0, 0);
+      block.hxy[b] = h.hessian (0, 1);
+      block.hyy[b] = h.hessian (1, 1);
+    }
   }
 } // namespace pcl_sparse

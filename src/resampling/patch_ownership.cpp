@@ -3,15 +3,18 @@
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace pcl_sparse
 {
-  PatchOwnership::PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options)
+  PatchOwnership::PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options, int threads)
     : evaluator_ (evaluator), options_ (options)
   {
+    threads = threads > 0 ? threads : omp_get_max_threads ();
     const double slope = std::tan (std::min (options.max_slope_angle, 90.0) * M_PI / 180.0);
     max_slope_squared_ = options.max_slope_angle >= 90.0 ? std::numeric_limits<double>::infinity () : slope * slope;
     const SparseSurfaceModel& model = evaluator.model ();
@@ -24,7 +27,7 @@ namespace pcl_sparse
     // and the largest height seen on a coarse grid over it, with a margin for what the grid misses.
     std::vector<double> reach (m, 0.0);
     std::vector<char> tame (m, 0);
-#pragma omp parallel for schedule(dynamic, 16)
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
@@ -59,7 +62,7 @@ namespace pcl_sparse
     tree.setInputCloud (seeds);
 
     std::vector<std::vector<int>> lists (m);
-#pragma omp parallel for schedule(dynamic, 16)
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);

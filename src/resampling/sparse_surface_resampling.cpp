@@ -9,6 +9,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <numeric>
 #include <sstream>
 
@@ -200,6 +201,10 @@ namespace pcl_sparse
         evaluated.clear ();
         std::vector<float> cells, nodes;
         const bool classified = classifyCells (p, grid, cells, nodes);
+        // One allocation per patch instead of a doubling series (copies and page faults): at most the
+        // cells not dropped by the classification keep a candidate.
+        out.reserve (classified ? static_cast<std::size_t> (std::count_if (cells.begin (), cells.end (), [] (float c) { return c != 0.0f; }))
+                                : static_cast<std::size_t> (grid.n) * grid.n);
         double sum = 0.0;
         for (int row = 0; row < grid.n; ++row)
           for (int k = 0; k < grid.n; ++k)
@@ -245,6 +250,9 @@ namespace pcl_sparse
         double cumulative = 0.0;
         const std::uint64_t cells = static_cast<std::uint64_t> (grid.n) * grid.n;
         std::size_t emitted = 0;
+        // The first point of a cell not yet evaluated (most points) waits in a block of places evaluated
+        // together; the others (evaluated with the candidate, or redrawn in the cell) are made at once.
+        PointBlock block;
         for (std::size_t k = 0; k < candidates.size () && emitted < count; ++k)
         {
           const Candidate& c = candidates[k];
@@ -254,6 +262,8 @@ namespace pcl_sparse
             Eigen::Vector2d xy (c.x, c.y);
             if (draw == 0 && c.evaluated >= 0)
               out[emitted] = evaluated[c.evaluated];
+            else if (draw == 0)
+              block.add (*this, p, xy.x (), xy.y (), out + emitted);
             else
               xy = emit (p, grid, key, c, draw, cells, out[emitted]);
             if (attributes)
@@ -262,9 +272,39 @@ namespace pcl_sparse
           }
           cumulative = high;
         }
+        block.flush (*this, p);
       }
 
     private:
+      /// Places waiting for their point, evaluated a block at a time (PatchEvaluator::sampleBlock).
+      struct PointBlock
+      {
+        PatchEvaluator::Block places;
+        pcl::PointNormal* targets[PatchEvaluator::Block::size];
+        int filled = 0;
+
+        void
+        add (const PatchSampler& sampler, std::size_t p, double x, double y, pcl::PointNormal* target)
+        {
+          places.x[filled] = x;
+          places.y[filled] = y;
+          targets[filled] = target;
+          if (++filled == PatchEvaluator::Block::size)
+            flush (sampler, p);
+        }
+
+        void
+        flush (const PatchSampler& sampler, std::size_t p)
+        {
+          if (filled == 0)
+            return;
+          sampler.evaluator_.sampleBlock (p, places);
+          for (int b = 0; b < filled; ++b)
+            sampler.makePoint (p, places.x[b], places.y[b], places.sample (b), *targets[b]);
+          filled = 0;
+        }
+      };
+
       /// Every attribute channel of patch \a p at local \a xy.
       void
       attributesAt (std::size_t p, const Eigen::Vector2d& xy, float* values) const
@@ -471,7 +511,7 @@ namespace pcl_sparse
   }
 
   void
-  SparseSurfaceResamplingBase::drawAllCandidates (double& density, Passes& passes) const
+  SparseSurfaceResamplingBase::drawAllCandidates (double& density, Passes& passes, PointCloud* prefill) const
   {
     // Every patch's kept places and owned area at the final density. With a total count, cells hold one
     // point each only if the area pass was right: if the measured area differs by more than 2%, the pass
@@ -484,18 +524,35 @@ namespace pcl_sparse
     for (int attempt = 0, corrections = 0; attempt < 16; ++attempt)
     {
       done = 0;
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
-      for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
+      std::exception_ptr failure;
+#pragma omp parallel num_threads(threads)
       {
-        const std::size_t p = static_cast<std::size_t> (pi);
-        const double r = model_->patches[p].radius;
-        passes.grids[p] = makeGrid (evaluator_->maxExtent (p), 1.0 / (r * std::sqrt (density)));
-        passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, p, 1),
-                                                          passes.candidates[p], passes.evaluated[p]);
-        const std::size_t finished = ++done;
-        if (progress_ && omp_get_thread_num () == 0)
-          progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
+#pragma omp single nowait
+        if (prefill && attempt == 0)
+          try
+          {
+            prefill->clear ();
+            prefill->resize (count_);
+          }
+          catch (...)
+          {
+            failure = std::current_exception ();
+          }
+#pragma omp for schedule(dynamic, 4)
+        for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
+        {
+          const std::size_t p = static_cast<std::size_t> (pi);
+          const double r = model_->patches[p].radius;
+          passes.grids[p] = makeGrid (evaluator_->maxExtent (p), 1.0 / (r * std::sqrt (density)));
+          passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, p, 1),
+                                                            passes.candidates[p], passes.evaluated[p]);
+          const std::size_t finished = ++done;
+          if (progress_ && omp_get_thread_num () == 0)
+            progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
+        }
       }
+      if (failure)
+        std::rethrow_exception (failure);
       if (mode_ != Mode::Count)
         break;
       const double expected = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
@@ -530,14 +587,19 @@ namespace pcl_sparse
   }
 
   void
-  SparseSurfaceResamplingBase::selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output)
+  SparseSurfaceResamplingBase::selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output,
+                                                bool prefilled)
   {
     const std::size_t m = counts.size ();
     std::vector<std::size_t> offsets (m + 1, 0);
     for (std::size_t p = 0; p < m; ++p)
       offsets[p + 1] = offsets[p] + counts[p];
-    output.clear ();
-    output.resize (offsets[m]);
+    // Every point is written below; a prefilled cloud holds freshly constructed points, as resize gives.
+    if (!prefilled || output.size () != offsets[m])
+    {
+      output.clear ();
+      output.resize (offsets[m]);
+    }
     point_patches_.assign (offsets[m], 0);
     const std::size_t channels = with_attributes_ ? model_->attribute_channels.size () : 0;
     point_attributes_.assign (offsets[m] * channels, 0.0f);
@@ -567,20 +629,22 @@ namespace pcl_sparse
     if (!evaluator_)
       evaluator_ = std::make_shared<PatchEvaluator> (*model_);
     if (!ownership_)
-      ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership);
+      ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership, threadsToUse ());
 
     // Density: given, or from a coarse area pass when a total count is asked for.
     double density = mode_ == Mode::Count ? densityForCount () : density_;
     checkDensityBound (density);
     Passes passes (*evaluator_, *ownership_, options_, model_->numPatches ());
-    drawAllCandidates (density, passes);
+    // With a count, the cloud's size is known: its construction overlaps the candidate pass.
+    const bool prefill = mode_ == Mode::Count;
+    drawAllCandidates (density, passes, prefill ? &output : nullptr);
     const double weight = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
     if (!(weight > 0.0))
       throw Error (name_ + "::compute: the model has no surface area to sample");
     // A cell holds one expected point on flat ground, so weights are areas in units of 1 / density.
     estimated_area_ = weight / density;
     density_used_ = density;
-    selectAllPoints (pointsPerPatch (passes.weights), passes, output);
+    selectAllPoints (pointsPerPatch (passes.weights), passes, output, prefill);
     if (progress_)
       progress_ ("resample", 1.0);
   }

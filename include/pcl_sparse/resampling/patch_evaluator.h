@@ -76,6 +76,36 @@ namespace pcl_sparse
     /// \return the height sample
     HeightSample sample (std::size_t p, double x, double y, bool hessian = true) const;
 
+    /// Height samples of a block of places of one patch in structure-of-arrays form, so the atoms are
+    /// evaluated for the whole block at once (vectorised); also holds the per-frequency tables, kept
+    /// across blocks so that evaluation does not allocate.
+    struct Block
+    {
+      /// Places per block: enough to fill the vector lanes, small enough to stay in L1.
+      static constexpr int size = 32;
+      double x[size] = {}, y[size] = {};  ///< input: local positions (unused lanes are evaluated too)
+      double value[size], gx[size], gy[size], hxx[size], hxy[size], hyy[size];  ///< output
+      std::vector<double> tables;  ///< cos / sin of k pi x and k pi y per frequency k, lane-minor
+
+      /// The sample of lane \a b, equal bit for bit to PatchEvaluator::sample at (x[b], y[b]).
+      /// \param[in] b  lane
+      /// \return the height sample with the Hessian
+      HeightSample
+      sample (int b) const
+      {
+        HeightSample h;
+        h.value = value[b];
+        h.gradient = Eigen::Vector2d (gx[b], gy[b]);
+        h.hessian << hxx[b], hxy[b], hxy[b], hyy[b];
+        return h;
+      }
+    };
+
+    /// sample (p, x, y) with the Hessian for every lane of \a block, with the same rounding.
+    /// \param[in]     p      patch index
+    /// \param[in,out] block  places in, samples out
+    void sampleBlock (std::size_t p, Block& block) const;
+
     /// atan2 with absolute error below 1e-9 rad: octant reduction, atan(a) = pi/6 + atan((sqrt(3) a - 1) /
     /// (a + sqrt(3))) above tan(pi/12), then the Taylor series to z^15.
     static double
@@ -101,13 +131,15 @@ namespace pcl_sparse
       return y < 0.0 ? -r : r;
     }
 
-  private:
+    /// One cosine atom of a code, with the products its derivatives need.
     struct Term
     {
       int i, j;  ///< frequencies along x and y
       double coefficient;
       double ai, aj, aij, ii, jj;  ///< a i, a j, a i j, i^2, j^2 (a the coefficient), for the derivatives
     };
+
+  private:
 
     const SparseSurfaceModel& model_;
     bool cosine_ = false;

@@ -59,7 +59,10 @@ namespace pcl_sparse
     /// Finds, for each patch and angular sector, the patches that may own its places.
     /// \param[in] evaluator  the model's evaluator; kept by reference, it must outlive this object
     /// \param[in] options    surface and validity tolerances
-    PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options = PatchOwnershipOptions ());
+    /// \param[in] threads    OpenMP threads for building the tables (0: OpenMP's default); the tables do not
+    ///                       depend on it
+    PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options = PatchOwnershipOptions (),
+                    int threads = 0);
 
     /// Angular sectors of a patch's local plane; each keeps only the contenders that can reach it.
     static constexpr int sectors = 16;

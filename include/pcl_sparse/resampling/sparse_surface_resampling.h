@@ -33,6 +33,10 @@
 /// Deterministic: every random number is a hash of (seed, patch, cell, draw), patches run in parallel and
 /// their points are concatenated in patch order, so the cloud is the same for any thread count.
 ///
+/// Speed (bench/results/resample_speed.md): the first point of each cell, most points, is evaluated 32
+/// places at a time (PatchEvaluator::sampleBlock, the same bits as one by one); with a count, the output
+/// cloud is constructed by one thread while the others start the candidate pass.
+///
 /// The authors' code draws (r, angle) uniformly in the whole unit disk, which clusters points at the
 /// centre and places points where the patch has no data; we sample uniformly by area inside the footprint.
 
@@ -132,11 +136,14 @@ namespace pcl_sparse
     /// Throws if \a density could give more than max_points points.
     void checkDensityBound (double density) const;
     /// Candidate pass at \a density (redone once if a count is asked and the area is off by > 2 %).
-    void drawAllCandidates (double& density, Passes& passes) const;
+    /// With \a prefill, one thread first constructs that cloud with count_ points (a few page faults per
+    /// point, serial) while the others start on the patches.
+    void drawAllCandidates (double& density, Passes& passes, PointCloud* prefill) const;
     /// Points per patch: largest remainder of the weights for a count, else rounded at random.
     std::vector<std::size_t> pointsPerPatch (const std::vector<double>& weights) const;
-    /// Selection pass: every patch writes its own slice of the output, in patch order.
-    void selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output);
+    /// Selection pass: every patch writes its own slice of the output, in patch order (\a output is
+    /// reconstructed unless \a prefilled and already of the right size).
+    void selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output, bool prefilled);
 
     SparseSurfaceModel::ConstPtr model_;
     SparseSurfaceResamplingOptions options_;
