@@ -147,20 +147,7 @@ main (int argc, char** argv)
         ++invalid;
     const std::size_t uncovered = mesh->vertices.size () - covered;
 
-    // Colour: for each vertex the patch where it is most central (smallest local |(x', y')|).
-    std::vector<RgbColor> colors (mesh->vertices.size (), {128, 128, 128});
-    std::vector<double> best (mesh->vertices.size (), std::numeric_limits<double>::infinity ());
-    for (std::size_t i = 0; i < patches.size (); ++i)
-      for (std::size_t k = 0; k < patches[i].size (); ++k)
-      {
-        const int v = patches[i].vertices[k];
-        const double r = patches[i].local[k].head<2> ().norm ();
-        if (r < best[v])
-        {
-          best[v] = r;
-          colors[v] = categoryColor (i);
-        }
-      }
+    std::vector<RgbColor> colors = tools::centralPatchColors (patches, mesh->vertices.size ());
     for (const Patch& p : patches)
       colors[p.seed] = {0, 0, 0};
     saveColoredMesh (output, *mesh, colors);

@@ -124,20 +124,7 @@ namespace
     scene.points.clear ();
     scene.normals.clear ();
     scene.patches = patches.size ();
-    std::vector<RgbColor>& colors = picture.vertex_colors;
-    colors.assign (scene.mesh->vertices.size (), {128, 128, 128});
-    std::vector<double> best (colors.size (), std::numeric_limits<double>::infinity ());
-    for (std::size_t i = 0; i < patches.size (); ++i)
-      for (std::size_t k = 0; k < patches[i].size (); ++k)
-      {
-        const int v = patches[i].vertices[k];
-        const double r = patches[i].local[k].head<2> ().norm ();
-        if (r < best[v])
-        {
-          best[v] = r;
-          colors[v] = categoryColor (i);
-        }
-      }
+    picture.vertex_colors = tools::centralPatchColors (patches, scene.mesh->vertices.size ());
     picture.crisp_colors = true;
   }
 

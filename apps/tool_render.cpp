@@ -14,11 +14,31 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace pcl_sparse
 {
   namespace tools
   {
+    std::vector<RgbColor>
+    centralPatchColors (const std::vector<Patch>& patches, std::size_t num_vertices)
+    {
+      std::vector<RgbColor> colors (num_vertices, {128, 128, 128});
+      std::vector<double> best (num_vertices, std::numeric_limits<double>::infinity ());
+      for (std::size_t i = 0; i < patches.size (); ++i)
+        for (std::size_t k = 0; k < patches[i].size (); ++k)
+        {
+          const int v = patches[i].vertices[k];
+          const double r = patches[i].local[k].head<2> ().norm ();
+          if (r < best[v])
+          {
+            best[v] = r;
+            colors[v] = categoryColor (i);
+          }
+        }
+      return colors;
+    }
+
     PictureOptions
     parsePictureOptions (const CommandLine& args)
     {

@@ -7,6 +7,7 @@
 
 #include <pcl_sparse/common/color_map.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/render/rgb_image.h>
 
 #include <pcl/point_cloud.h>
@@ -21,6 +22,11 @@ namespace pcl_sparse
 {
   namespace tools
   {
+    /// Patch map colours: each vertex takes the colour of the patch where it is most central (smallest local
+    /// |(x', y')|); vertices in no patch are grey.
+    std::vector<RgbColor>
+    centralPatchColors (const std::vector<Patch>& patches, std::size_t num_vertices);
+
     /// Image size and view of a picture (-size WxH, -view NAME|x,y,z).
     struct PictureOptions
     {

@@ -31,6 +31,23 @@ namespace
     return patch;
   }
 
+  /// makePlaneGrid (20) ([-1, 1]^2) without the triangles whose centroid has x0 < x < x1, |y| < y_max.
+  TriangleMesh
+  gridWithHole (double x0, double x1, double y_max)
+  {
+    const TriangleMesh grid = makePlaneGrid (20, 1.0);
+    TriangleMesh mesh;
+    mesh.vertices = grid.vertices;
+    for (const Eigen::Vector3i& t : grid.triangles)
+    {
+      const Eigen::Vector3d c = (grid.vertices[t[0]] + grid.vertices[t[1]] + grid.vertices[t[2]]) / 3.0;
+      if (!(c.x () > x0 && c.x () < x1 && std::abs (c.y ()) < y_max))
+        mesh.triangles.push_back (t);
+    }
+    EXPECT_LT (mesh.triangles.size (), grid.triangles.size ());
+    return mesh;
+  }
+
   double
   paraboloid (double x, double y)
   {
@@ -112,16 +129,7 @@ TEST (PatchFootprint, CoversEveryProjectedTriangle)
 // Scans: a patch that grew around a hole must not cover it (clip_at_first_exit).
 TEST (PatchFootprint, FirstExitClipsAHoleBesideTheSeed)
 {
-  const TriangleMesh grid = makePlaneGrid (20, 1.0);
-  TriangleMesh mesh;
-  mesh.vertices = grid.vertices;
-  for (const Eigen::Vector3i& t : grid.triangles)
-  {
-    const Eigen::Vector3d c = (grid.vertices[t[0]] + grid.vertices[t[1]] + grid.vertices[t[2]]) / 3.0;
-    if (!(c.x () > 0.4 && c.x () < 0.8 && std::abs (c.y ()) < 0.25))  // a hole on the +x side of the seed
-      mesh.triangles.push_back (t);
-  }
-  ASSERT_LT (mesh.triangles.size (), grid.triangles.size ());
+  const TriangleMesh mesh = gridWithHole (0.4, 0.8, 0.25);  // a hole on the +x side of the seed
   const Patch patch = wholeMeshPatch (mesh, 1.5);  // seed at the origin, inside the triangles
   const PatchFootprint exact = computePatchFootprint (patch, mesh, 64);
   const PatchFootprint clipped = computePatchFootprint (patch, mesh, 64, true);
@@ -141,16 +149,7 @@ TEST (PatchFootprint, FirstExitClipsAHoleBesideTheSeed)
 // footprint: clipping there would open holes between patches.
 TEST (PatchFootprint, FirstExitCrossesAMissingTriangle)
 {
-  const TriangleMesh grid = makePlaneGrid (20, 1.0);
-  TriangleMesh mesh;
-  mesh.vertices = grid.vertices;
-  for (const Eigen::Vector3i& t : grid.triangles)
-  {
-    const Eigen::Vector3d c = (grid.vertices[t[0]] + grid.vertices[t[1]] + grid.vertices[t[2]]) / 3.0;
-    if (!(c.x () > 0.4 && c.x () < 0.5 && std::abs (c.y ()) < 0.1))
-      mesh.triangles.push_back (t);
-  }
-  ASSERT_LT (mesh.triangles.size (), grid.triangles.size ());
+  const TriangleMesh mesh = gridWithHole (0.4, 0.5, 0.1);
   const Patch patch = wholeMeshPatch (mesh, 1.5);
   EXPECT_NEAR (computePatchFootprint (patch, mesh, 64, true).extentAt (0.0), 1.0 / 1.5, 0.01);
 }
