@@ -67,6 +67,7 @@ main (int argc, char** argv)
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
     args.expectPositional (1, "exactly one input");
+    tools::checkPngOptions (args);
     const std::string& path = args.positional ().front ();
 
     SparseSurfaceEncoderOptions options = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default")));

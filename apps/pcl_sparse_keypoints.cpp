@@ -95,6 +95,7 @@ main (int argc, char** argv)
     if (quiet || json)
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
     args.expectPositional (2, "IN and OUT");
+    tools::checkPngOptions (args);
     encoderPresetFromName (args.value ("-preset", "default"));  // checked; Harris 3D is the same in both
     const std::string input = args.positional ()[0], output = args.positional ()[1];
     if (!tools::hasExtension (output, ".pcd") && !tools::hasExtension (output, ".ply"))

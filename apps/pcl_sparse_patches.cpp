@@ -67,6 +67,7 @@ main (int argc, char** argv)
     if (quiet)
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
     args.expectPositional (2, "IN and OUT.ply");
+    tools::checkPngOptions (args);
     const std::string& input = args.positional ()[0];
     const std::string& output = args.positional ()[1];
     if (!tools::hasExtension (output, ".ply"))

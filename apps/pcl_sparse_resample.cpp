@@ -79,6 +79,7 @@ namespace
     using tools::Range;
     Settings s;
     args.expectPositional (2, "IN and OUT");
+    tools::checkPngOptions (args);
     s.input = args.positional ()[0];
     s.output = args.positional ()[1];
     if (!tools::hasExtension (s.output, ".pcd") && !tools::hasExtension (s.output, ".ply"))

@@ -151,15 +151,25 @@ namespace pcl_sparse
       return {"-png OUT.png", "also draw a picture (-size WxH, -view front|side|top|iso|x,y,z as pcl_sparse_render)"};
     }
 
+    void
+    checkPngOptions (const CommandLine& args)
+    {
+      if (!args.has ("-png"))
+        return;
+      const std::string path = args.value ("-png");
+      if (!hasExtension (path, ".png"))
+        throw Error ("option -png: '" + path + "' must end in .png");
+      parsePictureOptions (args);
+    }
+
     namespace
     {
       /// Renders and writes \a picture to the -png path, with a line on the console.
       void
       savePicture (const CommandLine& args, const Picture& picture)
       {
+        checkPngOptions (args);
         const std::string path = args.value ("-png");
-        if (!hasExtension (path, ".png"))
-          throw Error ("option -png: '" + path + "' must end in .png");
         const RenderedPicture rendered = renderPicture (picture, parsePictureOptions (args));
         savePng (path, rendered.image);
         pcl::console::print_info ("Wrote %s: %dx%d, %zu pixels covered\n", path.c_str (), rendered.image.width,

@@ -81,6 +81,13 @@ namespace pcl_sparse
     HelpLine
     pngHelpLine ();
 
+    /// Checks -png, -size and -view before a tool does its work, so that a bad one is refused before any
+    /// output is written. Does nothing without -png.
+    /// \param[in] args the command line
+    /// \throws Error naming the option
+    void
+    checkPngOptions (const CommandLine& args);
+
     /// -png OUT.png (with -size, -view) of the other tools: the mesh with \a colors (crisp: patch maps) and
     /// \a markers. Does nothing without -png.
     void

@@ -141,9 +141,17 @@ TEST_F (RenderTool, OtherToolsDrawWithPng)
   }
   for (const char* png : {"patches", "keypoints", "resample", "encode"})
     EXPECT_TRUE (fs::exists (dir_.file (std::string (png) + ".png"))) << png;
-  const ToolRun bad = run (dir_, tool ("patches") + " " + in + " " + dir_.file ("p.ply") + " -q -png " + dir_.file ("x.gif"));
-  EXPECT_EQ (bad.code, 1);
-  EXPECT_EQ (lines (bad.err), 1) << bad.err;
+  // A bad picture option is refused before the tool writes anything.
+  for (const std::string& bad_option : {" -png " + dir_.file ("x.gif"), " -png " + dir_.file ("x.png") + " -size 0x10",
+                                        " -png " + dir_.file ("x.png") + " -view sideways"})
+  {
+    fs::remove (dir_.file ("never.ply"));
+    const ToolRun bad = run (dir_, tool ("patches") + " " + in + " " + dir_.file ("never.ply") + " -q" + bad_option);
+    EXPECT_EQ (bad.code, 1) << bad_option;
+    EXPECT_EQ (lines (bad.err), 1) << bad.err;
+    EXPECT_FALSE (fs::exists (dir_.file ("never.ply"))) << bad_option;
+    EXPECT_FALSE (fs::exists (dir_.file ("x.png"))) << bad_option;
+  }
 }
 
 TEST_F (RenderTool, SharedMeshAndScan)
