@@ -43,6 +43,18 @@ namespace
     return cloud;
   }
 
+  /// \a count points resampled from \a model.
+  pcl::PointCloud<pcl::PointNormal>
+  resampleModel (const SparseSurfaceModel::ConstPtr& model, std::size_t count)
+  {
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (model);
+    resampling.setPointCount (count);
+    pcl::PointCloud<pcl::PointNormal> out;
+    resampling.compute (out);
+    return out;
+  }
+
   double
   meanRadiusError (const pcl::PointCloud<pcl::PointNormal>& cloud)
   {
@@ -73,11 +85,7 @@ TEST (ScanPipeline, NoisySphereCloudIsSmoothedNotCoded)
   // The estimated noise is the true one within 30 %.
   EXPECT_NEAR (encoder.getCloudSurface ()->noise, sigma, 0.3 * sigma);
 
-  SparseSurfaceResampling<pcl::PointNormal> resampling;
-  resampling.setInputModel (model);
-  resampling.setPointCount (20000);
-  pcl::PointCloud<pcl::PointNormal> out;
-  resampling.compute (out);
+  const pcl::PointCloud<pcl::PointNormal> out = resampleModel (model, 20000);
   ASSERT_EQ (out.size (), 20000u);
   // The scan's own points are sigma * sqrt(2 / pi) = 0.8 sigma from the sphere on average.
   const double input_error = 0.8 * sigma;
@@ -238,11 +246,7 @@ TEST (ScanPipeline, HolesAreNotFilled)
   encoder.setViewPoint (0.5f, 0.5f, 2.0f);
   auto model = std::make_shared<SparseSurfaceModel> ();
   encoder.compute (*model);
-  SparseSurfaceResampling<pcl::PointNormal> resampling;
-  resampling.setInputModel (model);
-  resampling.setPointCount (20000);
-  pcl::PointCloud<pcl::PointNormal> out;
-  resampling.compute (out);
+  const pcl::PointCloud<pcl::PointNormal> out = resampleModel (model, 20000);
   ASSERT_EQ (out.size (), 20000u);
   std::size_t in_hole = 0, facing = 0;
   for (const pcl::PointNormal& p : out)
