@@ -10,9 +10,9 @@
 // Flipped normals: pcl_sparse::evaluateCloudQuality (angle to the nearest face's normal over 120 degrees),
 // with its own completeness (50k probes, 3 spacings) for reference.
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 
-#include <pcl/io/pcd_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 
 #include <algorithm>
@@ -91,14 +91,25 @@ main (int argc, char** argv)
         seed = std::stoull (argv[i + 1]);
     }
     const TriangleMesh mesh = loadTriangleMesh (argv[1]);
+    // loadScanCloud reads the double x y z that pcl_sparse_resample writes for meshes far from the origin
+    // (pcl::io::loadPCDFile into PointNormal leaves them 0). The kd-tree holds float positions relative to
+    // the mesh's first vertex.
+    ScanCloud scan;
+    loadScanCloud (argv[2], scan);
+    const Eigen::Vector3d centre = mesh.vertices.empty () ? Eigen::Vector3d::Zero () : mesh.vertices.front ();
     pcl::PointCloud<pcl::PointNormal>::Ptr cloud (new pcl::PointCloud<pcl::PointNormal>);
-    if (pcl::io::loadPCDFile (argv[2], *cloud) != 0)
-      throw std::runtime_error (std::string (argv[2]) + ": cannot read");
-
     pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
-    for (const auto& p : cloud->points)
-      if (std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z))
-        xyz->push_back (pcl::PointXYZ (p.x, p.y, p.z));
+    for (std::size_t i = 0; i < scan.positions.size (); ++i)
+    {
+      const Eigen::Vector3d p = scan.origin + scan.positions[i];
+      const Eigen::Vector3d n = scan.normals.empty () ? Eigen::Vector3d (NAN, NAN, NAN) : scan.normals[i];
+      pcl::PointNormal q;
+      q.getVector3fMap () = p.cast<float> ();
+      q.getNormalVector3fMap () = n.cast<float> ();
+      cloud->push_back (q);
+      if (p.allFinite ())
+        xyz->push_back (pcl::PointXYZ ((p - centre).x (), (p - centre).y (), (p - centre).z ()));
+    }
     const std::size_t points = cloud->size ();
     const std::size_t n = probes_wanted > 0 ? probes_wanted : std::max<std::size_t> (200000, points);
     double area = 0.0;
@@ -114,7 +125,7 @@ main (int argc, char** argv)
     {
       std::vector<int> index (1);
       std::vector<float> squared (1);
-      const Eigen::Vector3d& q = probes[i];
+      const Eigen::Vector3d q = probes[i] - centre;
       tree.nearestKSearch (pcl::PointXYZ (q.x (), q.y (), q.z ()), 1, index, squared);
       gaps[i] = (q - xyz->points[index[0]].getVector3fMap ().cast<double> ()).norm () / spacing;
       within3 += gaps[i] <= 3.0 ? 1 : 0;
