@@ -3,6 +3,7 @@
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/scan_cloud.h>
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -34,7 +35,28 @@ namespace pcl_sparse
     void
     saveLocalCloud (const std::string& path, const LocalCloud& local, bool binary)
     {
-      savePointNormalCloud (path, local.cloud, binary, local.origin);
+      // Double x y z only where floats would lose the cloud's resolution (map coordinates): PCL's own
+      // loader reads a PCD with double x y z into PointXYZ as zeros, so a mesh merely off the origin
+      // (fandisk-large sits at y = 15, 5 extents away) gets float coordinates in its own frame.
+      Eigen::Vector3f lo = Eigen::Vector3f::Constant (std::numeric_limits<float>::max ()), hi = -lo;
+      for (const pcl::PointNormal& p : local.cloud)
+        if (p.getVector3fMap ().allFinite ())
+        {
+          lo = lo.cwiseMin (p.getVector3fMap ());
+          hi = hi.cwiseMax (p.getVector3fMap ());
+        }
+      const double extent = local.cloud.empty () || !(hi.x () >= lo.x ()) ? 0.0 : (hi - lo).maxCoeff ();
+      const double largest = local.origin.cwiseAbs ().maxCoeff () + (hi.cwiseAbs ().cwiseMax (lo.cwiseAbs ())).maxCoeff ();
+      // A float's spacing at |c| is about 1.2e-7 |c|: within 16 extents it is at most 2e-6 of the extent.
+      if (local.origin.isZero (0.0) || !(extent > 0.0) || largest > 16.0 * extent)
+      {
+        savePointNormalCloud (path, local.cloud, binary, local.origin);
+        return;
+      }
+      pcl::PointCloud<pcl::PointNormal> world = local.cloud;
+      for (pcl::PointNormal& p : world)
+        p.getVector3fMap () = (p.getVector3fMap ().cast<double> () + local.origin).cast<float> ();
+      savePointNormalCloud (path, world, binary);
     }
   } // namespace tools
 } // namespace pcl_sparse

@@ -25,8 +25,9 @@ namespace pcl_sparse
     LocalCloud
     resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model);
 
-    /// Writes \a local to \a path (.pcd / .ply) in the model's frame: float x y z when its origin is 0 (as
-    /// before), else double x y z = origin + point.
+    /// Writes \a local to \a path (.pcd / .ply) in the model's frame: float x y z where floats keep the
+    /// cloud's resolution (the origin is 0, or every coordinate is within 16 extents of 0), else double
+    /// x y z = origin + point (map coordinates; PCL's loader cannot read those into PointXYZ).
     void
     saveLocalCloud (const std::string& path, const LocalCloud& local, bool binary);
   } // namespace tools

@@ -5,6 +5,9 @@
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -95,4 +98,17 @@ TEST_F (MapCoordinates, CloudsNearTheOriginStayFloat)
   ASSERT_GT (std::fread (header, 1, sizeof (header) - 1, file), 0u);
   std::fclose (file);
   EXPECT_NE (std::string (header).find ("SIZE 4 4 4 4 4 4 4"), std::string::npos) << header;
+}
+
+// A mesh merely off the origin (a few extents away: fandisk-large sits at y = 15) keeps float x y z, which
+// PCL's own loader reads (it reads double x y z into PointXYZ as zeros).
+TEST_F (MapCoordinates, CloudsAFewExtentsOffTheOriginStayFloatAndReadableByPcl)
+{
+  saveTriangleMesh (path ("off.off"), makeIcosphere (3, 1.0, Eigen::Vector3d (0.0, 15.0, 0.0)));
+  ASSERT_EQ (runTool ("pcl_sparse_resample", path ("off.off") + " " + path ("off.pcd") + " -n 1000 -q"), 0);
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  ASSERT_EQ (pcl::io::loadPCDFile (path ("off.pcd"), cloud), 0);
+  ASSERT_EQ (cloud.size (), 1000u);
+  for (const pcl::PointXYZ& p : cloud)
+    ASSERT_NEAR ((p.getVector3fMap () - Eigen::Vector3f (0.0f, 15.0f, 0.0f)).norm (), 1.0f, 0.02f);  // 642-vertex sphere: chords sag 1.5 %
 }
