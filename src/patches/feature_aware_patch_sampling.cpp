@@ -122,12 +122,7 @@ namespace pcl_sparse
       std::vector<Eigen::Vector3d>
       normalsOf (const std::vector<Eigen::Vector3d>& input_normals) const
       {
-        if (!is_split || input_normals.empty ())
-          return input_normals;
-        std::vector<Eigen::Vector3d> normals (mesh->vertices.size ());
-        for (std::size_t v = 0; v < normals.size (); ++v)
-          normals[v] = input_normals[originalOf (static_cast<int> (v))];
-        return normals;
+        return is_split ? valuesOnSplit (split, input_normals) : input_normals;
       }
     };
 

@@ -111,4 +111,15 @@ namespace pcl_sparse
     }
     return true;
   }
+
+  std::vector<Eigen::Vector3d>
+  valuesOnSplit (const NonManifoldSplit& split, const std::vector<Eigen::Vector3d>& values)
+  {
+    if (values.empty ())
+      return values;
+    std::vector<Eigen::Vector3d> on_split (split.original.size ());
+    for (std::size_t v = 0; v < on_split.size (); ++v)
+      on_split[v] = values[split.original[v]];
+    return on_split;
+  }
 } // namespace pcl_sparse

@@ -19,14 +19,8 @@ namespace pcl_sparse
     if (is_split_)
       topology_ = buildMeshTopology (split_.mesh);
     grown_mesh_ = is_split_ ? &split_.mesh : &mesh_;
-    std::vector<Eigen::Vector3d> normals = point_normals;
-    if (is_split_ && !normals.empty ())
-    {
-      normals.resize (split_.mesh.vertices.size ());
-      for (std::size_t v = mesh.vertices.size (); v < normals.size (); ++v)
-        normals[v] = point_normals[split_.original[v]];
-    }
-    geometry_ = computePatchGrowthGeometry (*grown_mesh_, topology_, normals);
+    geometry_ = computePatchGrowthGeometry (*grown_mesh_, topology_,
+                                            is_split_ ? valuesOnSplit (split_, point_normals) : point_normals);
   }
 
   std::string

@@ -6,6 +6,8 @@
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
+#include <Eigen/Core>
+
 #include <vector>
 
 namespace pcl_sparse
@@ -28,4 +30,11 @@ namespace pcl_sparse
   /// \return false (and \a split untouched) when every vertex has at most one umbrella
   bool
   splitNonManifoldVertices (const TriangleMesh& mesh, const MeshTopology& topology, NonManifoldSplit& split);
+
+  /// Per-vertex vectors of the input (a scan's normals) on the split mesh: each copy takes its original's.
+  /// \param[in] split   the split
+  /// \param[in] values  #V_input values, or empty
+  /// \return #V_split values (empty for empty \a values)
+  std::vector<Eigen::Vector3d>
+  valuesOnSplit (const NonManifoldSplit& split, const std::vector<Eigen::Vector3d>& values);
 } // namespace pcl_sparse
