@@ -34,18 +34,25 @@ namespace pcl_sparse
       int sector;
     };
 
+    /// The radius r > 0 where \a ray (a unit direction from the origin) crosses segment [a, b], if it does.
+    bool
+    rayCrossing (const Eigen::Vector2d& ray, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double& r)
+    {
+      const double ca = cross2 (ray, a), cb = cross2 (ray, b);
+      if ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0) || ca == cb)
+        return false;
+      r = ray.dot (a + ca / (ca - cb) * (b - a));
+      return r > 0.0;
+    }
+
     /// Raises the maximum of sector \a k and of its predecessor with the crossing of ray k by [a, b].
     void
     addRayCrossing (const Corner& a, const Corner& b, int k, const std::vector<Eigen::Vector2d>& rays,
                     std::vector<double>& sector_max)
     {
       const int angles = static_cast<int> (rays.size ());
-      const double ca = cross2 (rays[k], a.p), cb = cross2 (rays[k], b.p);
-      if ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0) || ca == cb)
-        return;
-      const double t = ca / (ca - cb);
-      const double r = rays[k].dot (a.p + t * (b.p - a.p));
-      if (r <= 0.0)
+      double r = 0.0;
+      if (!rayCrossing (rays[k], a.p, b.p, r))
         return;
       sector_max[k] = std::max (sector_max[k], r);
       sector_max[(k + angles - 1) % angles] = std::max (sector_max[(k + angles - 1) % angles], r);
@@ -125,15 +132,10 @@ namespace pcl_sparse
           ++j;
         if (j - i == 1)
         {
-          const Eigen::Vector2d& a = corners[edges[i].first].p;
-          const Eigen::Vector2d& b = corners[edges[i].second].p;
           for (std::size_t k = 0; k < rays.size (); ++k)
           {
-            const double ca = cross2 (rays[k], a), cb = cross2 (rays[k], b);
-            if ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0) || ca == cb)
-              continue;
-            const double r = rays[k].dot (a + ca / (ca - cb) * (b - a));
-            if (r > 0.0)
+            double r = 0.0;
+            if (rayCrossing (rays[k], corners[edges[i].first].p, corners[edges[i].second].p, r))
               crossings[k].push_back (r);
           }
         }
