@@ -3,7 +3,8 @@
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/scan_cloud.h>
 
-#include <limits>
+#include <pcl/common/common.h>
+
 #include <memory>
 #include <vector>
 
@@ -38,15 +39,12 @@ namespace pcl_sparse
       // Double x y z only where floats would lose the cloud's resolution (map coordinates): PCL's own
       // loader reads a PCD with double x y z into PointXYZ as zeros, so a mesh merely off the origin
       // (fandisk-large sits at y = 15, 5 extents away) gets float coordinates in its own frame.
-      Eigen::Vector3f lo = Eigen::Vector3f::Constant (std::numeric_limits<float>::max ()), hi = -lo;
-      for (const pcl::PointNormal& p : local.cloud)
-        if (p.getVector3fMap ().allFinite ())
-        {
-          lo = lo.cwiseMin (p.getVector3fMap ());
-          hi = hi.cwiseMax (p.getVector3fMap ());
-        }
-      const double extent = local.cloud.empty () || !(hi.x () >= lo.x ()) ? 0.0 : (hi - lo).maxCoeff ();
-      const double largest = local.origin.cwiseAbs ().maxCoeff () + (hi.cwiseAbs ().cwiseMax (lo.cwiseAbs ())).maxCoeff ();
+      pcl::PointNormal lo, hi;
+      if (!local.cloud.empty ())
+        pcl::getMinMax3D (local.cloud, lo, hi);
+      const double extent = local.cloud.empty () ? 0.0 : (hi.getVector3fMap () - lo.getVector3fMap ()).maxCoeff ();
+      const double largest = local.origin.cwiseAbs ().maxCoeff () +
+                             hi.getVector3fMap ().cwiseAbs ().cwiseMax (lo.getVector3fMap ().cwiseAbs ()).maxCoeff ();
       // A float's spacing at |c| is about 1.2e-7 |c|: within 16 extents it is at most 2e-6 of the extent.
       if (local.origin.isZero (0.0) || !(extent > 0.0) || largest > 16.0 * extent)
       {
