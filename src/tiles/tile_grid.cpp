@@ -1,0 +1,43 @@
+#include <pcl_sparse/tiles/tile_grid.h>
+
+#include <pcl_sparse/common/error.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_sparse
+{
+  TileGrid
+  makeTileGrid (const Eigen::AlignedBox3d& box, std::size_t points, const TileGridOptions& options)
+  {
+    if (box.isEmpty () || !box.min ().allFinite () || !box.max ().allFinite ())
+      throw Error ("makeTileGrid: the input's bounding box is empty or not finite");
+    if (options.points_per_tile == 0 || options.tiles_along_longest < 0 ||
+        !(options.margin_fraction >= 0.0 && options.margin_fraction <= 0.5))
+      throw Error ("makeTileGrid: points_per_tile must be positive, tiles_along_longest >= 0 and "
+                   "margin_fraction in [0, 0.5]");
+    const Eigen::Vector3d sides = box.sizes ();
+    const double longest = std::max (sides.maxCoeff (), 1e-12);
+    double edge = longest;
+    if (options.tiles_along_longest > 0)
+      edge = longest / options.tiles_along_longest;
+    else if (points > options.points_per_tile)
+    {
+      // A surface spread through the box: its area is about the sum of the box's three face areas at
+      // worst and the largest one for a height field; the mean of the two keeps tiles near their target
+      // on terrain (flat boxes) and on objects alike.
+      const double largest_face = std::max ({sides.x () * sides.y (), sides.y () * sides.z (), sides.x () * sides.z ()});
+      const double all_faces = sides.x () * sides.y () + sides.y () * sides.z () + sides.x () * sides.z ();
+      const double area = std::max (0.5 * (largest_face + all_faces), longest * longest * 1e-12);
+      edge = std::sqrt (area * static_cast<double> (options.points_per_tile) / static_cast<double> (points));
+      edge = std::min (edge, longest);
+    }
+    TileGrid grid;
+    grid.edge = edge;
+    for (int axis = 0; axis < 3; ++axis)
+      grid.counts[axis] = std::max (1, static_cast<int> (std::ceil (sides[axis] / edge * (1.0 - 1e-12))));
+    grid.origin = box.center () - 0.5 * edge * grid.counts.cast<double> ();
+    grid.margin = options.margin_fraction * edge;
+    return grid;
+  }
+} // namespace pcl_sparse
