@@ -1,0 +1,45 @@
+#pragma once
+/// \file tile_source.h
+/// Where a tiled encoder gets each tile's input from (issue 16). Two implementations share this
+/// interface: one cuts tiles out of an input held in memory, the other reads the per-tile files a
+/// streaming pass spilled to disk (for inputs larger than memory). Both give a tile's points in the
+/// order of the input file, so a tiled model does not depend on which one was used.
+
+#include <pcl_sparse/io/scan_cloud.h>
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/tiles/tile_grid.h>
+
+#include <cstddef>
+#include <memory>
+
+namespace pcl_sparse
+{
+  /// The input of one tile: the points (a scan) or the faces (a mesh) of its margin box; exactly one is set.
+  /// A scan keeps every point of the margin box (cleaned as the whole input would be), in file order, in
+  /// the local frame of its own origin (ScanCloud::origin); a mesh keeps every face with a vertex in the
+  /// margin box, in file order, with its vertices renumbered in order of first use.
+  struct TileInput
+  {
+    ScanCloud::Ptr scan;
+    TriangleMesh::Ptr mesh;
+
+    bool empty () const { return !(scan && scan->size () > 0) && !(mesh && !mesh->triangles.empty ()); }
+  };
+
+  /// \brief A tiled input: its grid, and each tile's input on demand.
+  class TileSource
+  {
+  public:
+    using Ptr = std::shared_ptr<TileSource>;
+    virtual ~TileSource () = default;
+
+    /// The grid the input is cut along.
+    virtual const TileGrid& grid () const = 0;
+    /// Points of the whole input (after cleaning), for statistics and the grid's choice.
+    virtual std::size_t totalPoints () const = 0;
+    /// Points whose position lies in tile \a t's core box (0: the tile has nothing to encode).
+    virtual std::size_t corePoints (std::size_t t) const = 0;
+    /// The input of tile \a t's margin box. Safe to call from several threads for different tiles.
+    virtual TileInput loadTile (std::size_t t) const = 0;
+  };
+} // namespace pcl_sparse
