@@ -124,9 +124,9 @@ TEST_F (EncodeTool, DctBasisReachesTheModelFile)
   EXPECT_NE (run (input_ + " -q --json -preset authors", out), 0);  // unknown preset: refused
 }
 
-// -o without -tolerance: the quantised file, with a tolerance of a tenth of the model's mean vertex error, so
-// that the file adds at most about 10 % to the distance of the resampled surface to the input (issue 13).
-TEST_F (EncodeTool, DefaultFileAddsAtMostATenthOfTheModelError)
+// -o without -tolerance: the quantised file, with a tolerance of 3 x the model's mean vertex error, so that the
+// file adds at most 10 % to the distance of the resampled surface to the input (issue 13).
+TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
 {
   const std::string quantised = (dir_ / "default.psm").string (), lossless = (dir_ / "lossless.psm").string ();
   std::string out;
