@@ -1,8 +1,8 @@
 /// bench_encode: the paper-style table (N_V, M, rho, nnz, RMSE, RMSE / diag, CR, seconds) of the sparse
 /// surface encoder for meshes at several rho, as Markdown on stdout.
 ///
-///   bench_encode [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-authors-nyquist] [-basis paper|dct] [-threads N]
-///                [-repeat K] [-header 0|1] MESH...
+///   bench_encode [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-authors-nyquist] [-basis paper|dct] [-cone DEG]
+///                [-threads N] [-repeat K] [-header 0|1] MESH...
 ///   bench_encode -evaluate [dct] (throughput of evaluateCode / evaluateCodeValue of the cosine basis, one thread)
 ///
 /// Seconds are the encoder's wall clock (patches + coding; load and statistics excluded), best of K runs;
@@ -100,6 +100,8 @@ main (int argc, char** argv)
       base.coding.max_atoms = std::atoi (argv[++i]);
     else if (arg == "-min-samples" && i + 1 < argc)
       base.coding.min_samples = std::atoi (argv[++i]);
+    else if (arg == "-cone" && i + 1 < argc)
+      base.patches.cone_angle = std::atof (argv[++i]) * M_PI / 180.0;  // degrees on the command line
     else if (arg == "-authors-nyquist")
       base.coding.nyquist_rule = NyquistRule::AuthorsCode;
     else if (arg == "-basis" && i + 1 < argc)
