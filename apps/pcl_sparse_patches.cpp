@@ -44,7 +44,7 @@ namespace
       {"-rho R", tools::format ("size bound A_p / A (default %g)", kDefaults.rho)},
       {"-delta D", tools::format ("smooth variation angle in degrees (default %g)", kDefaults.delta * 180.0 / M_PI)},
       {"-cone C",
-       tools::format ("normal cone angle in degrees (default %g; authors' code 72)", kDefaults.cone_angle * 180.0 / M_PI)},
+       tools::format ("normal cone angle in degrees (default %g, the authors' code's; paper 90)", kDefaults.cone_angle * 180.0 / M_PI)},
       {"-eta E", tools::format ("flatness bound A_p / A_p^proj (default %g)", kDefaults.eta)},
       {"-sigma S", tools::format ("seed overlap control (default %g)", kDefaults.sigma)},
       {"-min-size N", tools::format ("smallest patch the sampling keeps (default %d)", kDefaults.min_patch_size)},
@@ -73,8 +73,7 @@ main (int argc, char** argv)
     if (!tools::hasExtension (output, ".ply"))
       throw Error (output + ": the output must be a .ply file");
 
-    encoderPresetFromName (args.value ("-preset", "default"));  // checked; the patch options are the same
-    PatchOptions options;
+    PatchOptions options = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default"))).patches;
     if (args.has ("--authors"))
     {
       options.cone_angle = M_PI / 2.5;

@@ -95,7 +95,10 @@ namespace pcl_sparse
   {
     SparseSurfaceEncoderOptions options;
     if (preset == EncoderPreset::Paper)
+    {
       options.basis = CosineBasisKind::Paper;
+      options.patches.cone_angle = M_PI / 2.0;
+    }
     return options;
   }
 

@@ -58,7 +58,8 @@ namespace pcl_sparse
   };
 
   /// Named option sets: Default (the struct's defaults, what measures best) and Paper (the paper's
-  /// configuration: its cosine atoms; every other default already is the paper's value).
+  /// configuration: its cosine atoms and its normal cone of pi / 2; every other default already is the
+  /// paper's value).
   enum class EncoderPreset
   {
     Default,
