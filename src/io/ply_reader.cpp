@@ -684,5 +684,92 @@ namespace pcl_sparse
       points.grid_width = static_cast<std::uint32_t> (columns);
       points.grid_height = static_cast<std::uint32_t> (rows);
     }
+
+    struct PlyVertexRecords::Layout
+    {
+      PlyLayout header;             ///< the whole file's header
+      std::size_t vertex = 0;       ///< index of the vertex element in header.elements
+      bool streamable = false;
+      std::size_t record_bytes = 0;
+    };
+
+    PlyVertexRecords::PlyVertexRecords (const std::string& head, const std::string& path) : path_ (path)
+    {
+      auto layout = std::make_shared<Layout> ();
+      layout->header = parseHeader (head, path);
+      const std::vector<PlyElement>& elements = layout->header.elements;
+      // Streamable: binary, and the vertex element is the first with records in the body (an element
+      // without properties or records takes no bytes), with fixed-size records.
+      bool before = true;
+      layout->streamable = layout->header.format != PlyFormat::Ascii;
+      for (std::size_t e = 0; e < elements.size (); ++e)
+      {
+        if (elements[e].name == "range_grid")
+          layout->streamable = false;  // the scan's order is the grid's, known only after the vertices
+        if (elements[e].name == "vertex" && before)
+        {
+          layout->vertex = e;
+          before = false;
+          for (const PlyProperty& property : elements[e].properties)
+          {
+            layout->streamable = layout->streamable && !property.is_list;
+            layout->record_bytes += sizeOf (property.type);
+          }
+        }
+        else if (before && elements[e].count > 0 && !elements[e].properties.empty ())
+          layout->streamable = false;
+      }
+      if (before)
+        layout->streamable = false;  // no vertex element: the whole-file reader says what is wrong
+      layout_ = layout;
+    }
+
+    bool
+    PlyVertexRecords::streamable () const
+    {
+      return layout_->streamable;
+    }
+
+    std::size_t
+    PlyVertexRecords::bodyOffset () const
+    {
+      return layout_->header.body_offset;
+    }
+
+    std::size_t
+    PlyVertexRecords::recordBytes () const
+    {
+      return layout_->record_bytes;
+    }
+
+    long long
+    PlyVertexRecords::count () const
+    {
+      return layout_->streamable ? layout_->header.elements[layout_->vertex].count : 0;
+    }
+
+    void
+    PlyVertexRecords::decode (const std::string& records, const std::vector<std::string>& wanted, PlyPoints& points) const
+    {
+      if (!layout_->streamable || layout_->record_bytes == 0 || records.size () % layout_->record_bytes != 0)
+        throw Error (path_ + ": PLY vertex records cannot be decoded in chunks");
+      // The same body reader as for the whole file, over a layout of just these records.
+      PlyLayout chunk;
+      chunk.format = layout_->header.format;
+      chunk.elements.push_back (layout_->header.elements[layout_->vertex]);
+      chunk.elements[0].count = static_cast<long long> (records.size () / layout_->record_bytes);
+      points.positions.clear ();
+      points.values.clear ();
+      points.range_grid.clear ();
+      points.vertex_properties.clear ();
+      for (const PlyProperty& property : chunk.elements[0].properties)
+        points.vertex_properties.push_back (property.name);
+      TriangleMesh mesh;
+      PlyPointSink sink;
+      sink.wanted = &wanted;
+      sink.values = &points.values;
+      PlyBodyReader (records, path_, chunk).read (mesh, sink);
+      points.positions = std::move (mesh.vertices);
+    }
   } // namespace io_detail
 } // namespace pcl_sparse
