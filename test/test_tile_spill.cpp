@@ -409,6 +409,10 @@ TEST (SpilledTileSource, MapCoordinatesInDouble)
   const SpilledTileSource source (dir.file ("map.pcd"), tilesAlong (3));
   EXPECT_TRUE (source.wasStreamed ());
   EXPECT_EQ (source.grid ().size (), 9u);  // a flat box: 3 x 3 x 1
+  std::size_t records = 0;
+  for (std::size_t t = 0; t < source.grid ().size (); ++t)
+    records += source.spilledPoints (t);
+  EXPECT_EQ (source.spilledBytes (), 28 * records);  // double x y z need 8 bytes each (and a 4-byte index)
   expectTilesEqualReference (source, whole);
   const TileInput tile = source.loadTile (4);
   ASSERT_TRUE (tile.scan);
@@ -450,7 +454,10 @@ TEST (SpilledTileSource, EveryPointInEveryMarginBoxHoldingIt)
     in_overlaps += expected[i] > 1;
   }
   EXPECT_GT (in_overlaps, whole.size () / 10);
-  EXPECT_EQ (source.spilledBytes () / source.totalPoints () / 32, 1u);  // x y z only: 32-byte records
+  std::size_t records = 0;
+  for (std::size_t t = 0; t < grid.size (); ++t)
+    records += source.spilledPoints (t);
+  EXPECT_EQ (source.spilledBytes (), 16 * records);  // float x y z and a 4-byte index: 16-byte records
 }
 
 TEST (SpilledTileSource, GridFromTheCountAfterMergingDuplicates)
@@ -540,6 +547,9 @@ TEST (SpilledTileSource, BrokenFilesThrowAndLeaveNoSpillFiles)
   EXPECT_TRUE (emptyDirectory (parent));
   SpillOptions bad;
   bad.chunk_points = 0;
+  EXPECT_THROW (SpilledTileSource (dir.file ("good.pcd"), bad), Error);
+  bad = SpillOptions ();
+  bad.grid.margin_fraction = 0.7;
   EXPECT_THROW (SpilledTileSource (dir.file ("good.pcd"), bad), Error);
 }
 

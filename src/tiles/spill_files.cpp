@@ -1,5 +1,6 @@
 #include "spill_files.h"
 
+#include <cmath>
 #include <filesystem>
 #include <system_error>
 
@@ -65,37 +66,56 @@ namespace pcl_sparse
         in += sizeof (T);
         return value;
       }
-
-      void
-      putVector (char*& out, const Eigen::Vector3d& v)
-      {
-        for (int k = 0; k < 3; ++k)
-          put (out, v[k]);
-      }
-
-      Eigen::Vector3d
-      getVector (const char*& in)
-      {
-        Eigen::Vector3d v;
-        for (int k = 0; k < 3; ++k)
-          v[k] = get<double> (in);
-        return v;
-      }
     } // namespace
 
-    SpillRecord::SpillRecord (const ScanCloud& like)
+    SpillRecord::SpillRecord (const ScanCloud& like, bool float_vectors, bool narrow_index)
     : normals_ (!like.normals.empty ()), viewpoints_ (!like.viewpoints.empty ()), colors_ (!like.colors.empty ()),
-      intensities_ (!like.intensities.empty ())
+      intensities_ (!like.intensities.empty ()), float_vectors_ (float_vectors), narrow_index_ (narrow_index)
     {
-      bytes_ = sizeof (std::uint64_t) + 3 * sizeof (double) + (normals_ ? 3 * sizeof (double) : 0) +
-               (viewpoints_ ? 3 * sizeof (double) : 0) + (colors_ ? sizeof (std::uint32_t) : 0) +
-               (intensities_ ? sizeof (float) : 0);
+      const std::size_t vector = float_vectors ? 3 * sizeof (float) : 3 * sizeof (double);
+      bytes_ = (narrow_index ? sizeof (std::uint32_t) : sizeof (std::uint64_t)) + vector + (normals_ ? vector : 0) +
+               (viewpoints_ ? vector : 0) + (colors_ ? sizeof (std::uint32_t) : 0) + (intensities_ ? sizeof (float) : 0);
+    }
+
+    bool
+    SpillRecord::isFloat (const ScanCloud& scan, std::size_t i)
+    {
+      const auto exact = [] (const Eigen::Vector3d& v) {
+        for (int k = 0; k < 3; ++k)
+          if (!std::isnan (v[k]) && static_cast<double> (static_cast<float> (v[k])) != v[k])
+            return false;
+        return true;
+      };
+      return exact (scan.positions[i]) && (scan.normals.empty () || exact (scan.normals[i])) &&
+             (scan.viewpoints.empty () || exact (scan.viewpoints[i]));
+    }
+
+    void
+    SpillRecord::putVector (char*& out, const Eigen::Vector3d& v) const
+    {
+      for (int k = 0; k < 3; ++k)
+        if (float_vectors_)
+          put (out, static_cast<float> (v[k]));
+        else
+          put (out, v[k]);
+    }
+
+    Eigen::Vector3d
+    SpillRecord::getVector (const char*& in) const
+    {
+      Eigen::Vector3d v;
+      for (int k = 0; k < 3; ++k)
+        v[k] = float_vectors_ ? static_cast<double> (get<float> (in)) : get<double> (in);
+      return v;
     }
 
     void
     SpillRecord::encode (const ScanCloud& scan, std::size_t i, char* out) const
     {
-      put (out, static_cast<std::uint64_t> (scan.indices[i]));
+      if (narrow_index_)
+        put (out, static_cast<std::uint32_t> (scan.indices[i]));
+      else
+        put (out, static_cast<std::uint64_t> (scan.indices[i]));
       putVector (out, scan.positions[i]);
       if (normals_)
         putVector (out, scan.normals[i]);
@@ -110,7 +130,8 @@ namespace pcl_sparse
     void
     SpillRecord::decode (const char* in, ScanCloud& scan) const
     {
-      scan.indices.push_back (static_cast<std::size_t> (get<std::uint64_t> (in)));
+      scan.indices.push_back (narrow_index_ ? static_cast<std::size_t> (get<std::uint32_t> (in))
+                                            : static_cast<std::size_t> (get<std::uint64_t> (in)));
       scan.positions.push_back (getVector (in));
       if (normals_)
         scan.normals.push_back (getVector (in));
@@ -123,9 +144,9 @@ namespace pcl_sparse
     }
 
     Eigen::Vector3d
-    SpillRecord::position (const char* in)
+    SpillRecord::position (const char* in) const
     {
-      in += sizeof (std::uint64_t);
+      in += narrow_index_ ? sizeof (std::uint32_t) : sizeof (std::uint64_t);
       return getVector (in);
     }
 

@@ -50,12 +50,19 @@ namespace pcl_sparse
     };
 
     /// One point of a scan as a spill record: file index, position, then the attributes the scan has
-    /// (normals, viewpoints, colour, intensity), at full precision, so a record gives back the point exactly.
+    /// (normals, viewpoints, colour, intensity), so that a record gives the point back exactly. Compact where
+    /// that loses nothing: vectors as float when every value is a float (float fields of the file), the
+    /// index in 4 bytes when the file has fewer than 2^32 points.
     class SpillRecord
     {
     public:
-      /// The record layout for scans with the attributes of \a like (a chunk of the input).
-      explicit SpillRecord (const ScanCloud& like);
+      /// The record layout for points with the attributes of \a like (a chunk of the input).
+      SpillRecord (const ScanCloud& like, bool float_vectors, bool narrow_index);
+
+      /// True if every coordinate of the vectors of point \a i of \a scan (position, normal, viewpoint)
+      /// is a float (or NaN).
+      static bool
+      isFloat (const ScanCloud& scan, std::size_t i);
 
       /// Bytes of one record.
       std::size_t
@@ -73,11 +80,16 @@ namespace pcl_sparse
       decode (const char* in, ScanCloud& scan) const;
 
       /// The position of the record at \a in.
-      static Eigen::Vector3d
-      position (const char* in);
+      Eigen::Vector3d
+      position (const char* in) const;
 
     private:
-      bool normals_, viewpoints_, colors_, intensities_;
+      void
+      putVector (char*& out, const Eigen::Vector3d& v) const;
+      Eigen::Vector3d
+      getVector (const char*& in) const;
+
+      bool normals_, viewpoints_, colors_, intensities_, float_vectors_, narrow_index_;
       std::size_t bytes_;
     };
 

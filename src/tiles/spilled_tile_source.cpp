@@ -7,6 +7,7 @@
 #include "spill_files.h"
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 
 namespace pcl_sparse
@@ -26,7 +27,8 @@ namespace pcl_sparse
     {
       Eigen::AlignedBox3d box;
       ScanCleaningReport report;  ///< input_points, non_finite, at_sensor_origin; kept = the rest
-      std::optional<tiles_detail::SpillRecord> record;
+      bool float_vectors = true;  ///< every kept point's vectors are floats: 4-byte coordinates in the spill
+      ScanCloud like;             ///< the first chunk's attributes (which ones the file has)
     };
 
     /// True if cleaning keeps \a p as a single point (it may still be a duplicate); counts it otherwise.
@@ -56,14 +58,22 @@ namespace pcl_sparse
       ScanCloud chunk;
       while (reader.read (chunk, options.chunk_points))
       {
-        if (!pass.record)
-          pass.record.emplace (chunk);
+        if (pass.report.input_points == 0)
+        {
+          // One point is enough to say which attributes the file has.
+          pass.like = chunk;
+          for (auto* vectors : {&pass.like.positions, &pass.like.normals, &pass.like.viewpoints})
+            vectors->resize (std::min<std::size_t> (vectors->size (), 1));
+          pass.like.colors.resize (std::min<std::size_t> (pass.like.colors.size (), 1));
+          pass.like.intensities.resize (std::min<std::size_t> (pass.like.intensities.size (), 1));
+        }
         pass.report.input_points += chunk.size ();
-        for (const Eigen::Vector3d& p : chunk.positions)
-          if (keepsPoint (p, sensor, options.cleaning, pass.report))
+        for (std::size_t i = 0; i < chunk.size (); ++i)
+          if (keepsPoint (chunk.positions[i], sensor, options.cleaning, pass.report))
           {
-            pass.box.extend (p);
+            pass.box.extend (chunk.positions[i]);
             ++pass.report.kept;
+            pass.float_vectors = pass.float_vectors && tiles_detail::SpillRecord::isFloat (chunk, i);
           }
       }
       if (pass.report.kept == 0)
@@ -114,7 +124,7 @@ namespace pcl_sparse
       {
         positions.clear ();
         tiles_detail::readSpillFile (directory.tileFile (t), spilled[t], record.bytes (), [&] (const char* in) {
-          const Eigen::Vector3d p = tiles_detail::SpillRecord::position (in);
+          const Eigen::Vector3d p = record.position (in);
           if (grid.tileOf (p) == t)
             positions.push_back (p);
         });
@@ -142,6 +152,8 @@ namespace pcl_sparse
   {
     if (options.chunk_points == 0 || options.buffer_bytes == 0)
       throw Error ("SpilledTileSource: chunk_points and buffer_bytes must be positive");
+    // Bad grid options are refused before the file is read (makeTileGrid checks them).
+    makeTileGrid (Eigen::AlignedBox3d (Eigen::Vector3d::Zero (), Eigen::Vector3d::Ones ()), 1, options.grid);
     ScanStreamReader reader (path);
     directory_ = std::make_unique<tiles_detail::SpillDirectory> (options.directory);
     streamed_ = reader.isStreamed ();
@@ -149,7 +161,8 @@ namespace pcl_sparse
     const FirstPass pass = firstPass (reader, options);
     auto impl = std::make_unique<Impl> ();
     impl->layout = reader.layout ();
-    impl->record = pass.record;
+    impl->record.emplace (pass.like, pass.float_vectors,
+                          reader.size () <= static_cast<std::size_t> (std::numeric_limits<std::uint32_t>::max ()));
     impl->cleaning = options.cleaning;
 
     // The grid from the count before merging duplicates (all pass 1 knows), then from the true count; the

@@ -2,8 +2,9 @@
 /// \file spilled_tile_source.h
 /// Tiles of a scan file larger than memory (issue 16): the file is streamed twice, once for its bounding box
 /// and point count, once to append every point to a temporary file per tile; a tile's points are read back
-/// from its file when asked for. Memory stays bounded by the write buffers and one chunk of the file, not by
-/// the number of points (for the formats ScanStreamReader streams).
+/// from its file when asked for. Memory stays bounded by the write buffers, one chunk of the file and one
+/// tile's points (counting its duplicates, or loading it), not by the number of points in the file (for the
+/// formats ScanStreamReader streams; the others are read whole first).
 
 #include <pcl_sparse/io/scan_cleaning.h>
 #include <pcl_sparse/tiles/tile_source.h>
