@@ -80,13 +80,14 @@ namespace pcl_sparse
             (types[i] != "I" && types[i] != "U" && types[i] != "F"))
           throw Error (path + ": bad PCD field type for '" + fields[i] + "'");
         const long long count = number (counts[i], 1 << 20);
-        // The layout PCL's reader gives: fields packed in header order.
+        // The layout PCL's reader gives: fields packed in header order, those of COUNT 0 removed.
         pcl::PCLPointField field;
         field.name = fields[i];
         field.offset = static_cast<std::uint32_t> (point_size);
         field.datatype = pcl::getFieldType (static_cast<int> (size), types[i][0]);
         field.count = static_cast<std::uint32_t> (count);
-        result.layout.fields.push_back (field);
+        if (count > 0)
+          result.layout.fields.push_back (field);
         point_size += size * count;
       }
       for (const char* name : {"x", "y", "z"})
@@ -123,20 +124,21 @@ namespace pcl_sparse
       result.layout.row_step = result.layout.point_step * result.layout.width;
       result.data_kind = data_kind;
       result.data_offset = position;
-      // VIEWPOINT as PCL's reader takes it: origin x y z, then the quaternion w x y z, as floats.
+      // VIEWPOINT as PCL's reader takes it: origin x y z, then the quaternion w x y z, seven floats (PCL
+      // refuses the file otherwise, so we do too, with a clearer message).
       if (header.count ("VIEWPOINT"))
       {
-        std::string text;
-        for (const std::string& value : header["VIEWPOINT"])
-          text += value + " ";
-        std::istringstream line (text);
-        line.imbue (std::locale::classic ());
+        const std::vector<std::string>& values = header["VIEWPOINT"];
         float v[7];
-        if (line >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6])
+        for (std::size_t k = 0; k < 7; ++k)
         {
-          result.sensor_origin = Eigen::Vector4f (v[0], v[1], v[2], 0.0f);
-          result.sensor_orientation = Eigen::Quaternionf (v[3], v[4], v[5], v[6]);
+          std::istringstream token (k < values.size () ? values[k] : std::string ());
+          token.imbue (std::locale::classic ());
+          if (values.size () != 7 || !(token >> v[k]) || !(token >> std::ws).eof ())
+            throw Error (path + ": bad PCD VIEWPOINT line (seven numbers expected)");
         }
+        result.sensor_origin = Eigen::Vector4f (v[0], v[1], v[2], 0.0f);
+        result.sensor_orientation = Eigen::Quaternionf (v[3], v[4], v[5], v[6]);
       }
       return result;
     }

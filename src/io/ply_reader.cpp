@@ -360,6 +360,15 @@ namespace pcl_sparse
             }
         }
 
+        /// Throws as read () would for an element without its x y z or index list (read () checks each
+        /// element when it gets to it; a reader of only the vertex records checks the others here).
+        void
+        checkElements () const
+        {
+          for (const PlyElement& element : layout_.elements)
+            rolesOf (element, false);
+        }
+
       private:
         /// What an element is to the reader and where its x, y, z and index list are.
         struct ElementRoles
@@ -697,6 +706,7 @@ namespace pcl_sparse
     {
       auto layout = std::make_shared<Layout> ();
       layout->header = parseHeader (head, path);
+      PlyBodyReader (head, path, layout->header).checkElements ();
       const std::vector<PlyElement>& elements = layout->header.elements;
       // Streamable: binary, and the vertex element is the first with records in the body (an element
       // without properties or records takes no bytes), with fixed-size records.
