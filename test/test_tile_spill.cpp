@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <random>
 
 #include <sys/resource.h>
@@ -755,4 +756,25 @@ TEST (ScanStreamReader, DamagedFilesStreamedOrRefusedAsLoadScanCloudDoes)
     }
   EXPECT_GT (refused, 100);
   EXPECT_GT (agreed, 50);
+}
+
+TEST (SpilledTileSource, ProgressOfEachPass)
+{
+  TempDir dir;
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.points = 10000;
+  pcl_sparse_test::writeTerrainPcd (dir.file ("terrain.pcd"), terrain);
+  std::map<std::string, std::vector<double>> calls;
+  SpillOptions options = tilesAlong (3);
+  options.progress = [&] (const std::string& stage, double fraction) { calls[stage].push_back (fraction); };
+  const SpilledTileSource source (dir.file ("terrain.pcd"), options);
+  ASSERT_EQ (calls.size (), 3u);
+  for (const auto& [stage, fractions] : calls)
+  {
+    SCOPED_TRACE (stage);
+    EXPECT_GT (fractions.size (), 3u);
+    EXPECT_TRUE (std::is_sorted (fractions.begin (), fractions.end ()));
+    EXPECT_EQ (fractions.front (), 0.0);
+    EXPECT_EQ (fractions.back (), 1.0);
+  }
 }

@@ -31,6 +31,13 @@ namespace pcl_sparse
       ScanCloud like;             ///< the first chunk's attributes (which ones the file has)
     };
 
+    void
+    report (const SpillOptions& options, const char* stage, std::size_t done, std::size_t total)
+    {
+      if (options.progress)
+        options.progress (stage, total == 0 ? 1.0 : static_cast<double> (done) / static_cast<double> (total));
+    }
+
     /// True if cleaning keeps \a p as a single point (it may still be a duplicate); counts it otherwise.
     bool
     keepsPoint (const Eigen::Vector3d& p, const Eigen::Vector3d& sensor, const ScanCleaningOptions& options,
@@ -58,6 +65,7 @@ namespace pcl_sparse
       ScanCloud chunk;
       while (reader.read (chunk, options.chunk_points))
       {
+        report (options, "spill: reading", pass.report.input_points, reader.size ());
         if (pass.report.input_points == 0)
         {
           // One point is enough to say which attributes the file has.
@@ -76,6 +84,7 @@ namespace pcl_sparse
             pass.float_vectors = pass.float_vectors && tiles_detail::SpillRecord::isFloat (chunk, i);
           }
       }
+      report (options, "spill: reading", 1, 1);
       if (pass.report.kept == 0)
         throw Error (reader.path () + ": no point left after cleaning (" + std::to_string (pass.report.non_finite) +
                      " non-finite, " + std::to_string (pass.report.at_sensor_origin) + " at the sensor origin)");
@@ -95,7 +104,11 @@ namespace pcl_sparse
       std::vector<char> bytes (record.bytes ());
       std::vector<std::size_t> tiles;
       ScanCloud chunk;
+      std::size_t done = 0;
       while (reader.read (chunk, options.chunk_points))
+      {
+        report (options, "spill: binning", done, reader.size ());
+        done += chunk.size ();
         for (std::size_t i = 0; i < chunk.size (); ++i)
         {
           if (!keepsPoint (chunk.positions[i], sensor, options.cleaning, ignored))
@@ -105,7 +118,9 @@ namespace pcl_sparse
           for (const std::size_t t : tiles)
             writer.append (t, bytes.data ());
         }
+      }
       writer.flush ();
+      report (options, "spill: binning", 1, 1);
       std::vector<std::size_t> spilled (grid.size ());
       for (std::size_t t = 0; t < spilled.size (); ++t)
         spilled[t] = writer.records (t);
@@ -116,19 +131,20 @@ namespace pcl_sparse
     /// lie in its file). Reads one tile's positions at a time.
     std::vector<std::size_t>
     ownedPoints (const TileGrid& grid, const std::vector<std::size_t>& spilled, const tiles_detail::SpillRecord& record,
-                 const tiles_detail::SpillDirectory& directory, bool merge_duplicates)
+                 const tiles_detail::SpillDirectory& directory, const SpillOptions& options)
     {
       std::vector<std::size_t> owned (grid.size (), 0);
       std::vector<Eigen::Vector3d> positions;
       for (std::size_t t = 0; t < grid.size (); ++t)
       {
+        report (options, "spill: counting", t, grid.size ());
         positions.clear ();
         tiles_detail::readSpillFile (directory.tileFile (t), spilled[t], record.bytes (), [&] (const char* in) {
           const Eigen::Vector3d p = record.position (in);
           if (grid.tileOf (p) == t)
             positions.push_back (p);
         });
-        if (merge_duplicates)
+        if (options.cleaning.merge_duplicates)
         {
           const auto less = [] (const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
             return std::lexicographical_compare (a.data (), a.data () + 3, b.data (), b.data () + 3);
@@ -138,6 +154,7 @@ namespace pcl_sparse
         }
         owned[t] = positions.size ();
       }
+      report (options, "spill: counting", 1, 1);
       return owned;
     }
 
@@ -171,7 +188,7 @@ namespace pcl_sparse
     for (int attempt = 0;; ++attempt)
     {
       impl->spilled = binPoints (reader, grid_, *impl->record, *directory_, options);
-      core_points_ = ownedPoints (grid_, impl->spilled, *impl->record, *directory_, options.cleaning.merge_duplicates);
+      core_points_ = ownedPoints (grid_, impl->spilled, *impl->record, *directory_, options);
       report_ = pass.report;
       report_.kept = 0;
       for (const std::size_t n : core_points_)

@@ -18,7 +18,9 @@ namespace pcl_sparse
   /// vertex element comes first. Every other file loadScanCloud reads (binary_compressed PCD, which PCL
   /// compresses as one block; ascii PLY; PLY with a range grid; .xyz .obj .off .stl) is read whole on
   /// construction and then handed out in chunks: same points, but memory grows with the file (isStreamed ()
-  /// says which).
+  /// says which). A streamed file is refused for what loadScanCloud refuses it for, with one exception: the
+  /// elements after a PLY file's vertex records (faces) are checked in the header but never read, so damage
+  /// inside them goes unnoticed.
   ///
   /// A chunk is a ScanCloud in the file's frame (origin 0) holding the chunk's positions, the attributes
   /// the file has (normals, colours, intensities, viewpoints; as loadScanCloud reads them) and indices (the

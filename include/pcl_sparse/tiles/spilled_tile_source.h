@@ -6,6 +6,7 @@
 /// tile's points (counting its duplicates, or loading it), not by the number of points in the file (for the
 /// formats ScanStreamReader streams; the others are read whole first).
 
+#include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/io/scan_cleaning.h>
 #include <pcl_sparse/tiles/tile_source.h>
 
@@ -35,6 +36,9 @@ namespace pcl_sparse
     std::size_t buffer_bytes = std::size_t (64) << 20;
     /// Points read from the input file at a time.
     std::size_t chunk_points = 1 << 16;
+    /// Called with "spill: reading" (pass 1), "spill: binning" (pass 2) and "spill: counting" (the tiles'
+    /// duplicates) and the fraction done; may be empty.
+    ProgressCallback progress;
   };
 
   /// \brief A TileSource backed by one temporary file per tile, made from a scan file by streaming it.
