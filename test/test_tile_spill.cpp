@@ -778,3 +778,22 @@ TEST (SpilledTileSource, ProgressOfEachPass)
     EXPECT_EQ (fractions.back (), 1.0);
   }
 }
+
+TEST (SpilledTileSource, LoadTileFromSeveralThreads)
+{
+  TempDir dir;
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.points = 40000;
+  pcl_sparse_test::writeTerrainPcd (dir.file ("terrain.pcd"), terrain);
+  const SpilledTileSource source (dir.file ("terrain.pcd"), tilesAlong (4));
+  const int tiles = static_cast<int> (source.grid ().size ());
+  std::vector<std::vector<std::size_t>> sequential (tiles), parallel (tiles);
+  for (int t = 0; t < tiles; ++t)
+    if (const TileInput input = source.loadTile (static_cast<std::size_t> (t)); input.scan)
+      sequential[t] = input.scan->indices;
+#pragma omp parallel for num_threads(4) schedule(dynamic)
+  for (int t = 0; t < tiles; ++t)
+    if (const TileInput input = source.loadTile (static_cast<std::size_t> (t)); input.scan)
+      parallel[t] = input.scan->indices;
+  EXPECT_EQ (parallel, sequential);
+}
