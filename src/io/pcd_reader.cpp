@@ -19,6 +19,26 @@ namespace pcl_sparse
 {
   namespace io_detail
   {
+    namespace
+    {
+      /// VIEWPOINT as PCL's reader takes it: origin x y z, then the quaternion w x y z, seven floats (PCL
+      /// refuses the file otherwise, so we do too, with a clearer message).
+      void
+      readViewpoint (const std::vector<std::string>& values, const std::string& path, PcdHeader& header)
+      {
+        float v[7];
+        for (std::size_t k = 0; k < 7; ++k)
+        {
+          std::istringstream token (k < values.size () ? values[k] : std::string ());
+          token.imbue (std::locale::classic ());
+          if (values.size () != 7 || !(token >> v[k]) || !(token >> std::ws).eof ())
+            throw Error (path + ": bad PCD VIEWPOINT line (seven numbers expected)");
+        }
+        header.sensor_origin = Eigen::Vector4f (v[0], v[1], v[2], 0.0f);
+        header.sensor_orientation = Eigen::Quaternionf (v[3], v[4], v[5], v[6]);
+      }
+    } // namespace
+
     PcdHeader
     readPcdHeader (const std::string& path)
     {
@@ -124,22 +144,8 @@ namespace pcl_sparse
       result.layout.row_step = result.layout.point_step * result.layout.width;
       result.data_kind = data_kind;
       result.data_offset = position;
-      // VIEWPOINT as PCL's reader takes it: origin x y z, then the quaternion w x y z, seven floats (PCL
-      // refuses the file otherwise, so we do too, with a clearer message).
       if (header.count ("VIEWPOINT"))
-      {
-        const std::vector<std::string>& values = header["VIEWPOINT"];
-        float v[7];
-        for (std::size_t k = 0; k < 7; ++k)
-        {
-          std::istringstream token (k < values.size () ? values[k] : std::string ());
-          token.imbue (std::locale::classic ());
-          if (values.size () != 7 || !(token >> v[k]) || !(token >> std::ws).eof ())
-            throw Error (path + ": bad PCD VIEWPOINT line (seven numbers expected)");
-        }
-        result.sensor_origin = Eigen::Vector4f (v[0], v[1], v[2], 0.0f);
-        result.sensor_orientation = Eigen::Quaternionf (v[3], v[4], v[5], v[6]);
-      }
+        readViewpoint (header["VIEWPOINT"], path, result);
       return result;
     }
 
