@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numeric>
 
 namespace pcl_sparse
@@ -35,6 +36,7 @@ namespace pcl_sparse
     std::size_t size = 0;   ///< points in the file
     bool streamed = true;   ///< false: the file is held in memory
     std::size_t next = 0;   ///< the next point to read
+    std::size_t max_chunk = std::numeric_limits<std::size_t>::max ();  ///< points a chunk may hold
   };
 
   namespace
@@ -73,6 +75,8 @@ namespace pcl_sparse
       {
         io_detail::pcdScanLayout (header.layout, header.sensor_origin, header.sensor_orientation, layout);
         size = static_cast<std::size_t> (header.layout.width) * header.layout.height;
+        // A chunk's bytes must fit PCLPointCloud2's 32-bit row_step (a point may have 8 MB of fields).
+        max_chunk = std::max<std::size_t> (1, (std::size_t (1) << 30) / std::max<std::size_t> (1, header.layout.point_step));
         restart ();
       }
 
@@ -273,7 +277,7 @@ namespace pcl_sparse
     if (max_points == 0)
       throw Error ("ScanStreamReader::read: max_points must be positive");
     const std::size_t first = format_->next;
-    const std::size_t n = std::min (max_points, format_->size - first);
+    const std::size_t n = std::min ({max_points, format_->max_chunk, format_->size - first});
     copyLayout (format_->layout, chunk);
     if (n == 0)
     {

@@ -50,7 +50,7 @@ namespace pcl_sparse
     bool
     isStreamed () const;
 
-    /// Reads the next points, at most \a max_points (> 0), into \a chunk (replacing its points); false,
+    /// Reads the next points, at most \a max_points (> 0; fewer for PCD points of over 16 kB), into \a chunk (replacing its points); false,
     /// with \a chunk empty, when every point has been read. Throws pcl_sparse::Error for a truncated file
     /// or bad data.
     bool
