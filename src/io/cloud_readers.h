@@ -135,6 +135,37 @@ namespace pcl_sparse
       std::string path_;
     };
 
+    /// The face records of a binary PLY mesh, for reading a large file a chunk at a time after its vertex
+    /// records (PlyVertexRecords); decoded with the same reader as readPly.
+    class PlyFaceRecords
+    {
+    public:
+      /// Parses the header in \a head (the file's first bytes, at least up to end_header).
+      PlyFaceRecords (const std::string& head, const std::string& path);
+
+      /// True if the faces can be read in chunks: a binary file whose vertex element comes first with
+      /// fixed-size records and whose face element comes next (elements without bytes may sit between).
+      bool
+      streamable () const;
+      /// Bytes before the first face record.
+      std::size_t
+      bodyOffset () const;
+      /// Face records the header announces (0 when not streamable).
+      long long
+      count () const;
+      /// Decodes the complete face records at the start of \a data (at most \a max_records),
+      /// fan-triangulated, appending to \a triangles (indices checked against the header's vertex count);
+      /// \a records gets their number. Returns the bytes they take.
+      std::size_t
+      decode (const std::string& data, long long max_records, std::vector<Eigen::Vector3i>& triangles,
+              long long& records) const;
+
+    private:
+      struct Layout;
+      std::shared_ptr<const Layout> layout_;
+      std::string path_;
+    };
+
     /// The points of \a cloud (width x height, decoded PCD records) into \a scan: positions, and normals
     /// (normal_x/y/z), colours (rgba or rgb), viewpoints (vp_x/y/z) and intensities where the fields exist;
     /// other members of \a scan are left as they are. Throws if x y z are missing or the data is short.
