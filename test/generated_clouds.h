@@ -1,7 +1,7 @@
 #pragma once
 // Large test clouds made by the tests and benches themselves (issue 16 point 5; never committed): a
-// terrain-like height field, a shared mesh sampled with noise, and many noisy copies of it laid out on a
-// grid like a city block. Written as binary PCD a row at a time, so even 10^8 points need little memory.
+// terrain-like height field (as a cloud or a mesh), a shared mesh sampled with noise, and many noisy copies
+// of it laid out on a grid like a city block. Written as binary PCD a row at a time, so even 10^8 points need little memory.
 // Deterministic: the same options and seed give the same file, byte for byte.
 
 #include <pcl_sparse/mesh/triangle_mesh.h>
@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -134,6 +135,57 @@ namespace pcl_sparse_test
       p = Eigen::Vector3d (x, y, z) + options.offset;
       ++i;
     });
+  }
+
+  /// A terrain-like triangle mesh: the height field of writeTerrainPcd on a regular grid of
+  /// \a side x \a side vertices (no jitter), two triangles per cell, written as binary little-endian PLY
+  /// (double x y z; faces as uchar-int lists), vertices then faces, a block at a time.
+  inline void
+  writeTerrainMeshPly (const std::string& path, std::size_t side, const TerrainOptions& options)
+  {
+    std::FILE* file = std::fopen (path.c_str (), "wb");
+    if (!file || side < 2)
+      throw std::runtime_error ("cannot write " + path);
+    const std::size_t cells = (side - 1) * (side - 1);
+    std::fprintf (file,
+                  "ply\nformat binary_little_endian 1.0\nelement vertex %zu\nproperty double x\nproperty double y\n"
+                  "property double z\nelement face %zu\nproperty list uchar int vertex_indices\nend_header\n",
+                  side * side, 2 * cells);
+    std::mt19937_64 rng (options.seed);
+    std::normal_distribution<double> noise (0.0, options.noise);
+    const double step = options.side / static_cast<double> (side - 1);
+    const double k = 2.0 * M_PI / options.side;
+    std::string block;
+    const auto flush = [&] (bool last) {
+      if ((block.size () >= (1 << 20) || last) && std::fwrite (block.data (), 1, block.size (), file) != block.size ())
+        throw std::runtime_error ("cannot write " + path);
+      if (block.size () >= (1 << 20) || last)
+        block.clear ();
+    };
+    for (std::size_t i = 0; i < side * side; ++i)
+    {
+      const double x = static_cast<double> (i % side) * step, y = static_cast<double> (i / side) * step;
+      const double z = options.relief * (0.5 * std::sin (1.3 * k * x) * std::cos (0.9 * k * y) +
+                                         0.3 * std::sin (3.7 * k * (x + 0.4 * y)) + 0.2 * std::cos (7.1 * k * (y - 0.3 * x))) +
+                       noise (rng);
+      const double v[3] = {x + options.offset.x (), y + options.offset.y (), z + options.offset.z ()};
+      block.append (reinterpret_cast<const char*> (v), sizeof (v));
+      flush (false);
+    }
+    for (std::size_t c = 0; c < cells; ++c)
+    {
+      const int a = static_cast<int> ((c / (side - 1)) * side + c % (side - 1));
+      const int s = static_cast<int> (side);
+      for (const std::array<int, 3>& t : {std::array<int, 3>{a, a + 1, a + s + 1}, std::array<int, 3>{a, a + s + 1, a + s}})
+      {
+        block += '\3';
+        block.append (reinterpret_cast<const char*> (t.data ()), sizeof (t));
+      }
+      flush (false);
+    }
+    flush (true);
+    if (std::fclose (file) != 0)
+      throw std::runtime_error ("cannot write " + path);
   }
 
   /// Options of writeCityBlockPcd.

@@ -5,6 +5,8 @@
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/io/scan_stream.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/tiles/spilled_mesh_tile_source.h>
 #include <pcl_sparse/tiles/spilled_tile_source.h>
 #include <pcl_sparse/tiles/tile_membership.h>
 
@@ -152,6 +154,31 @@ namespace
   emptyDirectory (const std::string& path)
   {
     return std::filesystem::is_empty (path);
+  }
+
+  /// Each file of \a cases (name, part of the message) is refused by Source with an Error naming it, and
+  /// the spill parent \a parent stays empty.
+  template <typename Source>
+  void
+  expectRefusedWithoutSpillFiles (const TempDir& dir, const std::vector<std::pair<std::string, std::string>>& cases,
+                                  const std::string& parent)
+  {
+    for (const auto& [name, message] : cases)
+    {
+      SCOPED_TRACE (name);
+      try
+      {
+        Source source (dir.file (name), tilesAlong (3, parent));
+        ADD_FAILURE () << "no error";
+      }
+      catch (const Error& error)
+      {
+        const std::string what = error.what ();
+        EXPECT_NE (what.find (dir.file (name)), std::string::npos) << what;
+        EXPECT_NE (what.find (message), std::string::npos) << what;
+      }
+      EXPECT_TRUE (emptyDirectory (parent));
+    }
   }
 
   /// Peak resident memory (kB) of a child process running \a work (0: nothing after the fork).
@@ -523,22 +550,7 @@ TEST (SpilledTileSource, BrokenFilesThrowAndLeaveNoSpillFiles)
     {"truncated.pcd", "truncated PCD data"},     {"short_ascii.pcd", "truncated or bad ascii PCD data"},
     {"truncated.ply", "truncated"},              {"nothing.pcd", "no point left after cleaning"},
     {"garbage.pcd", "PCD"},                      {"missing.pcd", "missing.pcd"}};
-  for (const auto& [name, message] : cases)
-  {
-    SCOPED_TRACE (name);
-    try
-    {
-      SpilledTileSource source (dir.file (name), tilesAlong (3, parent));
-      ADD_FAILURE () << "no error";
-    }
-    catch (const Error& error)
-    {
-      const std::string what = error.what ();
-      EXPECT_NE (what.find (dir.file (name)), std::string::npos) << what;
-      EXPECT_NE (what.find (message), std::string::npos) << what;
-    }
-    EXPECT_TRUE (emptyDirectory (parent));
-  }
+  expectRefusedWithoutSpillFiles<SpilledTileSource> (dir, cases, parent);
   // A good file spills into the parent, and the spill directory goes with the source.
   {
     const SpilledTileSource source (dir.file ("good.pcd"), tilesAlong (3, parent));
@@ -796,4 +808,175 @@ TEST (SpilledTileSource, LoadTileFromSeveralThreads)
     if (const TileInput input = source.loadTile (static_cast<std::size_t> (t)); input.scan)
       parallel[t] = input.scan->indices;
   EXPECT_EQ (parallel, sequential);
+}
+
+namespace
+{
+  /// The in-memory reference of a mesh tile: the triangles of \a mesh with a vertex that tilesHolding puts
+  /// in tile \a t, in order, vertices renumbered in order of first use.
+  TriangleMesh
+  referenceMeshTile (const TriangleMesh& mesh, const TileGrid& grid, std::size_t t)
+  {
+    TriangleMesh tile;
+    std::vector<int> local (mesh.vertices.size (), -1);
+    std::vector<std::size_t> tiles;
+    for (const Eigen::Vector3i& triangle : mesh.triangles)
+    {
+      bool in = false;
+      for (int k = 0; k < 3 && !in; ++k)
+      {
+        tilesHolding (grid, mesh.vertices[triangle[k]], tiles);
+        in = std::binary_search (tiles.begin (), tiles.end (), t);
+      }
+      if (!in)
+        continue;
+      Eigen::Vector3i renumbered;
+      for (int k = 0; k < 3; ++k)
+      {
+        int& v = local[triangle[k]];
+        if (v < 0)
+        {
+          v = static_cast<int> (tile.vertices.size ());
+          tile.vertices.push_back (mesh.vertices[triangle[k]]);
+        }
+        renumbered[k] = v;
+      }
+      tile.triangles.push_back (renumbered);
+    }
+    return tile;
+  }
+
+  /// A binary PLY of an n x n grid of quads on a wavy surface (faces of 4 vertices, fan-triangulated by the
+  /// readers), \a big_endian or not.
+  std::string
+  quadGridPly (int n, bool big_endian)
+  {
+    std::string ply = std::string ("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\nelement vertex " + std::to_string ((n + 1) * (n + 1)) +
+                      "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string (n * n) +
+                      "\nproperty list uchar int vertex_indices\nproperty uchar flags\nend_header\n";
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i)
+      {
+        pcl_sparse_test::put (ply, 0.1 * i, big_endian);
+        pcl_sparse_test::put (ply, 0.1 * j, big_endian);
+        pcl_sparse_test::put (ply, 0.05 * std::sin (0.3 * i + 0.2 * j), big_endian);
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        ply += '\4';
+        const int a = j * (n + 1) + i;
+        for (const int v : {a, a + 1, a + n + 2, a + n + 1})
+          pcl_sparse_test::put (ply, v, big_endian);
+        ply += '\7';
+      }
+    return ply;
+  }
+
+  void
+  expectMeshTilesEqualReference (const SpilledMeshTileSource& source, const TriangleMesh& mesh)
+  {
+    std::size_t core = 0, triangles = 0;
+    for (std::size_t t = 0; t < source.grid ().size (); ++t)
+    {
+      SCOPED_TRACE (t);
+      const TriangleMesh reference = referenceMeshTile (mesh, source.grid (), t);
+      const TileInput input = source.loadTile (t);
+      core += source.corePoints (t);
+      if (reference.triangles.empty ())
+      {
+        EXPECT_TRUE (input.empty ());
+        continue;
+      }
+      ASSERT_TRUE (input.mesh);
+      EXPECT_FALSE (input.scan);
+      EXPECT_EQ (input.mesh->vertices, reference.vertices);
+      EXPECT_EQ (input.mesh->triangles, reference.triangles);
+      triangles += reference.triangles.size ();
+    }
+    EXPECT_EQ (core, mesh.vertices.size ());
+    EXPECT_GT (triangles, mesh.triangles.size ());  // triangles across borders go to several tiles
+  }
+} // namespace
+
+TEST (SpilledMeshTileSource, TilesEqualTheCutOfLoadTriangleMesh)
+{
+  TempDir dir;
+  TriangleMesh shapes = makeTorus (90, 30, 2.0, 0.5);
+  appendMesh (shapes, makeIcosphere (3, 0.7, Eigen::Vector3d (3.5, 0.0, 0.2)));
+  saveTriangleMesh (dir.file ("shapes.ply"), shapes);  // binary little endian, double coordinates
+  saveTriangleMesh (dir.file ("shapes.obj"), shapes);  // read whole
+  pcl_sparse_test::writeBytes (dir.file ("quads.ply"), quadGridPly (40, false));
+  pcl_sparse_test::writeBytes (dir.file ("quads_be.ply"), quadGridPly (40, true));
+  for (const char* name : {"shapes.ply", "shapes.obj", "quads.ply", "quads_be.ply"})
+  {
+    SCOPED_TRACE (name);
+    const TriangleMesh mesh = loadTriangleMesh (dir.file (name));
+    SpillOptions options = tilesAlong (4);
+    options.chunk_points = 500;  // many chunks of triangles, cut records between blocks
+    const SpilledMeshTileSource source (dir.file (name), options);
+    EXPECT_EQ (source.wasStreamed (), std::string (name) != "shapes.obj");
+    EXPECT_EQ (source.totalPoints (), mesh.vertices.size ());
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& v : mesh.vertices)
+      box.extend (v);
+    const TileGrid grid = makeTileGrid (box, mesh.vertices.size (), options.grid);
+    EXPECT_EQ (source.grid ().origin, grid.origin);
+    EXPECT_EQ (source.grid ().counts, grid.counts);
+    expectMeshTilesEqualReference (source, mesh);
+  }
+}
+
+TEST (SpilledMeshTileSource, BrokenMeshesThrowAndLeaveNoSpillFiles)
+{
+  TempDir dir;
+  TempDir spill ("pcl_sparse_spill_parent");
+  const std::string parent = spill.file ("");
+  const std::string quads = quadGridPly (20, false);
+  pcl_sparse_test::writeBytes (dir.file ("cut_faces.ply"), quads.substr (0, quads.size () - 30));
+  std::string bad_index = quads;
+  bad_index[bad_index.size () - 6] = '\x7f';  // the last face's last index: far out of range
+  pcl_sparse_test::writeBytes (dir.file ("bad_index.ply"), bad_index);
+  std::string nan_vertex = quads;
+  const double nan = kNaN;
+  std::memcpy (&nan_vertex[quads.find ("end_header\n") + 11 + 8], &nan, 8);
+  pcl_sparse_test::writeBytes (dir.file ("nan.ply"), nan_vertex);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    {"cut_faces.ply", "truncated"}, {"bad_index.ply", "out of range"}, {"nan.ply", "non-finite"}};
+  for (const auto& [name, message] : cases)
+    EXPECT_THROW (loadTriangleMesh (dir.file (name)), Error) << name;
+  expectRefusedWithoutSpillFiles<SpilledMeshTileSource> (dir, cases, parent);
+}
+
+TEST (SpilledMeshTileSource, BoundedMemory)
+{
+  // A 1200 x 1200 terrain mesh (1.44M vertices, 2.9M triangles): loadTriangleMesh holds 35 MB of
+  // vertices and 35 MB of triangles; spilled, a chunk of triangles and one 100k-vertex tile at a time.
+  TempDir dir;
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.side = 500.0;
+  const std::string path = dir.file ("terrain.ply");
+  pcl_sparse_test::writeTerrainMeshPly (path, 1200, terrain);
+  bool ok = false;
+  const long base = childPeakKb ([] {}, ok);
+  ASSERT_TRUE (ok);
+  const long spilled = childPeakKb (
+      [&] {
+        SpillOptions options;
+        options.grid.points_per_tile = 100000;
+        options.buffer_bytes = std::size_t (4) << 20;
+        options.directory = dir.file ("");
+        const SpilledMeshTileSource source (path, options);
+        if (!source.wasStreamed () || source.totalPoints () != 1200u * 1200u || source.grid ().size () < 10)
+          throw Error ("unexpected tiles");
+        for (std::size_t t = 0; t < source.grid ().size (); ++t)
+          source.loadTile (t);
+      },
+      ok);
+  ASSERT_TRUE (ok);
+  const long whole = childPeakKb ([&] { loadTriangleMesh (path); }, ok);
+  ASSERT_TRUE (ok);
+  std::printf ("peak RSS above a bare child: spilled %ld kB, loaded whole %ld kB\n", spilled - base, whole - base);
+  EXPECT_LT (spilled - base, (whole - base) / 3);
 }
