@@ -1,7 +1,7 @@
 #!/bin/sh
 # The bounded-memory reader (issue 16 point 2) on generated clouds (point 5): a terrain-like height field of
 # 20 million points (and 5 million, to see the scaling) and a city block of 8 x 8 noisy copies of spot.obj,
-# written as binary PCD into a temporary folder (never into the repository), then spilled into tiles by
+# written as binary PCD into a temporary folder, and a terrain mesh of about POINTS / 2 vertices (binary PLY) (never into the repository), then spilled into tiles by
 # SpilledTileSource and every tile loaded once (bench_tiles_spill spill), under /usr/bin/time -v. For
 # comparison, loading the whole terrain with loadScanCloud (bench_load-like, via bench_tiles_spill whole).
 #   bench/tiles_spill.sh [BUILD_DIR] [POINTS]   (defaults: build, 20000000) -> bench/results/tiles_spill.md
@@ -39,11 +39,13 @@ cpuSeconds () {  # user + system seconds from a /usr/bin/time -v report
   python3 -c "import re, sys; t = open(sys.argv[1]).read(); print(sum(float(x) for x in re.findall(r'(?:User|System) time \(seconds\): ([0-9.]+)', t)))" "$1"
 }
 
-run () {  # name file [spill options...]
+run () {  # name file [spill options...]   (a .ply file is spilled as a mesh)
   name=$1
   file=$2
   shift 2
-  /usr/bin/time -v "$bench" spill "$file" -dir "$work" "$@" > "$work/json" 2> "$work/time"
+  mode=spill
+  case "$file" in *.ply) mode=spillmesh ;; esac
+  /usr/bin/time -v "$bench" $mode "$file" -dir "$work" "$@" > "$work/json" 2> "$work/time"
   kb=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$work/time")
   cpu=$(cpuSeconds "$work/time")
   python3 - "$name" "$kb" "$work/json" "$cpu" >> "$tmp" << 'EOF'
@@ -72,7 +74,17 @@ if [ -f "$meshes/spot.obj" ]; then
   run "city block 8 x 8 spot" "$work/block.pcd"
   rm -f "$work/block.pcd"
 fi
+side=$(python3 -c "import math; print(int(math.sqrt($points / 2)))")
+"$bench" terrainmesh "$side" "$work/terrain-mesh.ply"
+run "terrain mesh $side x $side (vertices)" "$work/terrain-mesh.ply"
+/usr/bin/time -v "$bench" wholemesh "$work/terrain-mesh.ply" > /dev/null 2> "$work/time"
+mesh_kb=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$work/time")
+mesh_wall=$(sed -n 's/.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' "$work/time")
+rm -f "$work/terrain-mesh.ply"
 {
+  echo
+  echo "wholemesh: loadTriangleMesh of the $side x $side terrain mesh ($((2 * (side - 1) * (side - 1))) triangles) in one piece:"
+  echo "peak $((mesh_kb / 1024)) MB, $mesh_wall (m:ss). Mesh rows count vertices; their tiles hold triangles."
   echo
   echo "whole: loadScanCloud of the $points-point terrain in one piece: peak $((whole_kb / 1024)) MB, $whole_wall (m:ss),"
   echo "cpu $whole_cpu s."

@@ -37,7 +37,7 @@ namespace pcl_sparse
     /// Points read from the input file at a time.
     std::size_t chunk_points = 1 << 16;
     /// Called with "spill: reading" (pass 1), "spill: binning" (pass 2) and "spill: counting" (the tiles'
-    /// duplicates) and the fraction done; may be empty.
+    /// duplicates), or for a mesh "spill: vertices", and the fraction done; may be empty.
     ProgressCallback progress;
   };
 

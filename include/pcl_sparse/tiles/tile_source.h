@@ -7,9 +7,10 @@
 ///
 /// The rules both follow (tested in test/test_tile_spill.cpp):
 /// - The grid is in the input file's frame (ScanCloud::worldPosition), made by makeTileGrid from the bounding
-///   box and the number of the points cleaning keeps.
+///   box and the number of the points cleaning keeps (of all vertices for a mesh).
 /// - A tile holds the points tilesHolding (tile_membership.h) gives it: those in its closed margin box, and
-///   those it owns (TileGrid::tileOf), so that rounding at a border loses no point.
+///   those it owns (TileGrid::tileOf), so that rounding at a border loses no point. A mesh tile holds the
+///   triangles (after fan triangulation) with a vertex tilesHolding gives it.
 /// - Cleaning the whole input and then cutting equals cutting and then cleaning each tile: non-finite points
 ///   and points at the sensor are dropped one by one, and exact duplicates share one position, hence the
 ///   same tiles, so each tile keeps the first of them in file order, as cleaning the whole input does.
