@@ -133,6 +133,9 @@ namespace
       EXPECT_EQ (tile.fields, whole.fields);
       EXPECT_EQ (tile.sensor_origin, whole.sensor_origin);
       EXPECT_EQ (tile.report.kept, tile.size ());
+      EXPECT_EQ (tile.report.input_points, tile.size ());
+      EXPECT_EQ (tile.width, tile.size ());
+      EXPECT_EQ (tile.height, 1u);
     }
     EXPECT_EQ (core, whole.size ());
     return total;
@@ -179,6 +182,17 @@ namespace
       }
       EXPECT_TRUE (emptyDirectory (parent));
     }
+  }
+
+  /// Options for the memory tests: tiles of \a points_per_tile points, 4 MB of write buffers.
+  SpillOptions
+  smallBuffers (std::size_t points_per_tile, const std::string& directory)
+  {
+    SpillOptions options;
+    options.grid.points_per_tile = points_per_tile;
+    options.buffer_bytes = std::size_t (4) << 20;
+    options.directory = directory;
+    return options;
   }
 
   /// Peak resident memory (kB) of a child process running \a work (0: nothing after the fork).
@@ -624,10 +638,7 @@ TEST (SpilledTileSource, BoundedMemory)
   ASSERT_TRUE (ok);
   const long spilled = childPeakKb (
       [&] {
-        SpillOptions options;
-        options.grid.points_per_tile = 200000;
-        options.buffer_bytes = std::size_t (4) << 20;
-        options.directory = dir.file ("");
+        const SpillOptions options = smallBuffers (200000, dir.file (""));
         const SpilledTileSource source (path, options);
         if (source.totalPoints () != terrain.points || source.grid ().size () < 10)
           throw Error ("unexpected tiles");
@@ -963,10 +974,7 @@ TEST (SpilledMeshTileSource, BoundedMemory)
   ASSERT_TRUE (ok);
   const long spilled = childPeakKb (
       [&] {
-        SpillOptions options;
-        options.grid.points_per_tile = 100000;
-        options.buffer_bytes = std::size_t (4) << 20;
-        options.directory = dir.file ("");
+        const SpillOptions options = smallBuffers (100000, dir.file (""));
         const SpilledMeshTileSource source (path, options);
         if (!source.wasStreamed () || source.totalPoints () != 1200u * 1200u || source.grid ().size () < 10)
           throw Error ("unexpected tiles");

@@ -259,6 +259,9 @@ namespace pcl_sparse
     scan->height = 1;
     cleanScan (*scan, impl_->cleaning);
     scan->width = static_cast<std::uint32_t> (scan->size ());
+    // What cleaning removed is the whole input's (cleaningReport); a tile is a cut of the cleaned input.
+    scan->report = ScanCleaningReport ();
+    scan->report.input_points = scan->report.kept = scan->size ();
     centreScan (*scan);
     input.scan = std::move (scan);
     return input;

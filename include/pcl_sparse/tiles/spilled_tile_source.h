@@ -91,9 +91,9 @@ namespace pcl_sparse
     corePoints (std::size_t t) const override;
 
     /// Tile \a t's points in file order (see the class comment); an empty TileInput for a tile nothing falls
-    /// in. The scan has the input's fields and sensor pose, indices into the input file, width = its size and
-    /// height = 1, and report = what cleaning removed among the tile's points (non-finite and at-sensor
-    /// points never reach a tile). Safe to call from several threads.
+    /// in. The scan has the input's fields and sensor pose, indices into the input file, width = its size,
+    /// height = 1, and report.input_points = report.kept = its size (a cut of the cleaned input; what
+    /// cleaning removed is in cleaningReport ()). Safe to call from several threads.
     TileInput
     loadTile (std::size_t t) const override;
 

@@ -11,6 +11,8 @@
 /// - A tile holds the points tilesHolding (tile_membership.h) gives it: those in its closed margin box, and
 ///   those it owns (TileGrid::tileOf), so that rounding at a border loses no point. A mesh tile holds the
 ///   triangles (after fan triangulation) with a vertex tilesHolding gives it.
+/// - A tile's scan is in the local frame centreScan gives its points, with the input's fields and sensor pose,
+///   indices into the input file, width = its size, height = 1, report.input_points = report.kept = its size.
 /// - Cleaning the whole input and then cutting equals cutting and then cleaning each tile: non-finite points
 ///   and points at the sensor are dropped one by one, and exact duplicates share one position, hence the
 ///   same tiles, so each tile keeps the first of them in file order, as cleaning the whole input does.
