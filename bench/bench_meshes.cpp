@@ -13,6 +13,8 @@
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 
+#include "generated_clouds.h"
+
 #include <pcl/kdtree/kdtree_flann.h>
 
 #include <algorithm>
@@ -24,43 +26,10 @@
 #include <vector>
 
 using namespace pcl_sparse;
+using pcl_sparse_test::sampleSurface;
 
 namespace
 {
-  /// Points drawn uniformly by area on the mesh, seeded.
-  std::vector<Eigen::Vector3d>
-  sampleSurface (const TriangleMesh& mesh, std::size_t n, std::uint64_t seed, double& area)
-  {
-    std::vector<double> cumulative (mesh.numTriangles ());
-    area = 0.0;
-    for (std::size_t t = 0; t < mesh.numTriangles (); ++t)
-    {
-      const Eigen::Vector3i& f = mesh.triangles[t];
-      area += 0.5 * (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross (mesh.vertices[f[2]] - mesh.vertices[f[0]]).norm ();
-      cumulative[t] = area;
-    }
-    std::mt19937_64 rng (seed);
-    std::uniform_real_distribution<double> uniform (0.0, 1.0);
-    std::vector<Eigen::Vector3d> probes;
-    probes.reserve (n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const double pick = uniform (rng) * area;
-      const std::size_t t = std::min<std::size_t> (
-        mesh.numTriangles () - 1, std::lower_bound (cumulative.begin (), cumulative.end (), pick) - cumulative.begin ());
-      double u = uniform (rng), v = uniform (rng);
-      if (u + v > 1.0)
-      {
-        u = 1.0 - u;
-        v = 1.0 - v;
-      }
-      const Eigen::Vector3i& f = mesh.triangles[t];
-      probes.push_back (mesh.vertices[f[0]] + u * (mesh.vertices[f[1]] - mesh.vertices[f[0]]) +
-                        v * (mesh.vertices[f[2]] - mesh.vertices[f[0]]));
-    }
-    return probes;
-  }
-
   double
   percentile (std::vector<double> sorted, double q)
   {

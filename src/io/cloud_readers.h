@@ -5,6 +5,7 @@
 /// throw pcl_sparse::Error with messages that start with the file path.
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/io/scan_cloud.h>
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/console/print.h>
@@ -15,6 +16,7 @@
 #include <cstdint>
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,20 @@ namespace pcl_sparse
     /// fields, and binary data must be as long as the counts say.
     void
     validatePcdHeader (const std::string& path);
+
+    /// A PCD header, as validatePcdHeader checks it and PCL's reader would lay out the points.
+    struct PcdHeader
+    {
+      pcl::PCLPointCloud2 layout;  ///< fields (offset, datatype, count), point_step, row_step, width, height; no data
+      std::string data_kind;       ///< "ascii", "binary" or "binary_compressed"
+      std::size_t data_offset = 0; ///< bytes before the data (just after the DATA line)
+      Eigen::Vector4f sensor_origin = Eigen::Vector4f::Zero ();              ///< VIEWPOINT origin
+      Eigen::Quaternionf sensor_orientation = Eigen::Quaternionf::Identity ();  ///< VIEWPOINT orientation
+    };
+
+    /// validatePcdHeader, returning the header it checked.
+    PcdHeader
+    readPcdHeader (const std::string& path);
 
     /// A PCD file as PCL's reader gives it, after checkReadableFile and validatePcdHeader: the raw blob (any
     /// field types) and the VIEWPOINT pose.
@@ -85,5 +101,91 @@ namespace pcl_sparse
     void
     readPlyPoints (const std::string& data, const std::string& path, const std::vector<std::string>& wanted,
                    PlyPoints& points);
+
+    /// The vertex records of a PLY file, for reading a large file a chunk at a time: parses the header and
+    /// decodes chunks of records with the same reader as readPlyPoints.
+    class PlyVertexRecords
+    {
+    public:
+      /// Parses the header in \a head (the file's first bytes, at least up to end_header); throws as the
+      /// whole-file reader does for a bad header.
+      PlyVertexRecords (const std::string& head, const std::string& path);
+
+      /// True if the vertex records can be read in chunks: a binary file whose vertex element is the first
+      /// with data and has no list property, and no range_grid element (whose cell order is the scan's).
+      bool
+      streamable () const;
+      /// Bytes before the first vertex record.
+      std::size_t
+      bodyOffset () const;
+      /// Bytes of one vertex record.
+      std::size_t
+      recordBytes () const;
+      /// Vertex records the header announces (0 when not streamable).
+      long long
+      count () const;
+      /// Decodes whole records (a multiple of recordBytes ()) into \a points: positions, vertex_properties
+      /// and the scalar properties named in \a wanted.
+      void
+      decode (const std::string& records, const std::vector<std::string>& wanted, PlyPoints& points) const;
+
+    private:
+      struct Layout;
+      std::shared_ptr<const Layout> layout_;
+      std::string path_;
+    };
+
+    /// The face records of a binary PLY mesh, for reading a large file a chunk at a time after its vertex
+    /// records (PlyVertexRecords); decoded with the same reader as readPly.
+    class PlyFaceRecords
+    {
+    public:
+      /// Parses the header in \a head (the file's first bytes, at least up to end_header).
+      PlyFaceRecords (const std::string& head, const std::string& path);
+
+      /// True if the faces can be read in chunks: a binary file whose vertex element comes first with
+      /// fixed-size records and whose face element comes next (elements without bytes may sit between).
+      bool
+      streamable () const;
+      /// Bytes before the first face record.
+      std::size_t
+      bodyOffset () const;
+      /// Face records the header announces (0 when not streamable).
+      long long
+      count () const;
+      /// Decodes the complete face records at the start of \a data (at most \a max_records),
+      /// fan-triangulated, appending to \a triangles (indices checked against the header's vertex count);
+      /// \a records gets their number. Returns the bytes they take.
+      std::size_t
+      decode (const std::string& data, long long max_records, std::vector<Eigen::Vector3i>& triangles,
+              long long& records) const;
+
+    private:
+      struct Layout;
+      std::shared_ptr<const Layout> layout_;
+      std::string path_;
+    };
+
+    /// The points of \a cloud (width x height, decoded PCD records) into \a scan: positions, and normals
+    /// (normal_x/y/z), colours (rgba or rgb), viewpoints (vp_x/y/z) and intensities where the fields exist;
+    /// other members of \a scan are left as they are. Throws if x y z are missing or the data is short.
+    void
+    pcdScanPoints (const pcl::PCLPointCloud2& cloud, const std::string& path, ScanCloud& scan);
+
+    /// What a PCD file says about its scan besides the points: width x height, the fields (without PCL's
+    /// "_" padding) and the VIEWPOINT pose.
+    void
+    pcdScanLayout (const pcl::PCLPointCloud2& cloud, const Eigen::Vector4f& sensor_origin,
+                   const Eigen::Quaternionf& sensor_orientation, ScanCloud& scan);
+
+    /// The vertex properties a scan takes from a PLY file besides x y z (normals, colours, intensity).
+    const std::vector<std::string>&
+    plyScanProperties ();
+
+    /// The points of \a ply (read with plyScanProperties) into \a scan: positions, normals, colours,
+    /// intensities, fields, and width x height (the range grid's, whose empty cells become NaN points; the
+    /// grid is moved out of \a ply). Other members of \a scan are left as they are.
+    void
+    plyScanPoints (PlyPoints& ply, const std::string& path, ScanCloud& scan);
   } // namespace io_detail
 } // namespace pcl_sparse

@@ -3,11 +3,13 @@
 #include "cloud_readers.h"
 #include "mesh_readers.h"
 
+#include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <locale>
 #include <map>
 #include <set>
 #include <sstream>
@@ -17,8 +19,28 @@ namespace pcl_sparse
 {
   namespace io_detail
   {
-    void
-    validatePcdHeader (const std::string& path)
+    namespace
+    {
+      /// VIEWPOINT as PCL's reader takes it: origin x y z, then the quaternion w x y z, seven floats (PCL
+      /// refuses the file otherwise, so we do too, with a clearer message).
+      void
+      readViewpoint (const std::vector<std::string>& values, const std::string& path, PcdHeader& header)
+      {
+        float v[7];
+        for (std::size_t k = 0; k < 7; ++k)
+        {
+          std::istringstream token (k < values.size () ? values[k] : std::string ());
+          token.imbue (std::locale::classic ());
+          if (values.size () != 7 || !(token >> v[k]) || !(token >> std::ws).eof ())
+            throw Error (path + ": bad PCD VIEWPOINT line (seven numbers expected)");
+        }
+        header.sensor_origin = Eigen::Vector4f (v[0], v[1], v[2], 0.0f);
+        header.sensor_orientation = Eigen::Quaternionf (v[3], v[4], v[5], v[6]);
+      }
+    } // namespace
+
+    PcdHeader
+    readPcdHeader (const std::string& path)
     {
       std::FILE* file = std::fopen (path.c_str (), "rb");
       if (!file)
@@ -69,6 +91,7 @@ namespace pcl_sparse
           throw Error (path + ": bad PCD header value '" + text.substr (0, 20) + "'");
         return value;
       };
+      PcdHeader result;
       long long point_size = 0;
       for (std::size_t i = 0; i < fields.size (); ++i)
       {
@@ -76,7 +99,16 @@ namespace pcl_sparse
         if ((size != 1 && size != 2 && size != 4 && size != 8) ||
             (types[i] != "I" && types[i] != "U" && types[i] != "F"))
           throw Error (path + ": bad PCD field type for '" + fields[i] + "'");
-        point_size += size * number (counts[i], 1 << 20);
+        const long long count = number (counts[i], 1 << 20);
+        // The layout PCL's reader gives: fields packed in header order, those of COUNT 0 removed.
+        pcl::PCLPointField field;
+        field.name = fields[i];
+        field.offset = static_cast<std::uint32_t> (point_size);
+        field.datatype = pcl::getFieldType (static_cast<int> (size), types[i][0]);
+        field.count = static_cast<std::uint32_t> (count);
+        if (count > 0)
+          result.layout.fields.push_back (field);
+        point_size += size * count;
       }
       for (const char* name : {"x", "y", "z"})
         if (std::find (fields.begin (), fields.end (), name) == fields.end ())
@@ -105,6 +137,22 @@ namespace pcl_sparse
       }
       else
         throw Error (path + ": unknown PCD DATA kind '" + data_kind.substr (0, 20) + "'");
+
+      result.layout.width = static_cast<std::uint32_t> (number (header["WIDTH"][0], 1ll << 32));
+      result.layout.height = static_cast<std::uint32_t> (number (header["HEIGHT"][0], 1ll << 32));
+      result.layout.point_step = static_cast<std::uint32_t> (point_size);
+      result.layout.row_step = result.layout.point_step * result.layout.width;
+      result.data_kind = data_kind;
+      result.data_offset = position;
+      if (header.count ("VIEWPOINT"))
+        readViewpoint (header["VIEWPOINT"], path, result);
+      return result;
+    }
+
+    void
+    validatePcdHeader (const std::string& path)
+    {
+      readPcdHeader (path);
     }
 
     void

@@ -349,7 +349,7 @@ namespace pcl_sparse
             }
           }
           // Trailing bytes after the last element are tolerated (some writers pad).
-          const long long num_vertices = static_cast<long long> (mesh.vertices.size ());
+          const long long num_vertices = vertex_count_ >= 0 ? vertex_count_ : static_cast<long long> (mesh.vertices.size ());
           for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
             for (int k = 0; k < 3; ++k)
             {
@@ -358,6 +358,22 @@ namespace pcl_sparse
                 throw Error (path_ + ": face index " + std::to_string (index) + " is out of range (the file has " +
                              std::to_string (num_vertices) + " vertices)");
             }
+        }
+
+        /// Checks face indices against \a n vertices instead of those read (for faces read without them).
+        void
+        setVertexCount (long long n)
+        {
+          vertex_count_ = n;
+        }
+
+        /// Throws as read () would for an element without its x y z or index list (read () checks each
+        /// element when it gets to it; a reader of only the vertex records checks the others here).
+        void
+        checkElements () const
+        {
+          for (const PlyElement& element : layout_.elements)
+            rolesOf (element, false);
         }
 
       private:
@@ -613,6 +629,7 @@ namespace pcl_sparse
         const std::string& data_;
         const std::string& path_;
         const PlyLayout& layout_;
+        long long vertex_count_ = -1;  ///< face indices are checked against it (-1: the vertices read)
       };
     } // namespace
 
@@ -683,6 +700,219 @@ namespace pcl_sparse
         throw Error (path + ": vertex " + std::to_string (missing - seen.begin ()) + " is in no range_grid cell");
       points.grid_width = static_cast<std::uint32_t> (columns);
       points.grid_height = static_cast<std::uint32_t> (rows);
+    }
+
+    struct PlyVertexRecords::Layout
+    {
+      PlyLayout header;             ///< the whole file's header
+      std::size_t vertex = 0;       ///< index of the vertex element in header.elements
+      bool streamable = false;
+      std::size_t record_bytes = 0;
+    };
+
+    PlyVertexRecords::PlyVertexRecords (const std::string& head, const std::string& path) : path_ (path)
+    {
+      auto layout = std::make_shared<Layout> ();
+      layout->header = parseHeader (head, path);
+      PlyBodyReader (head, path, layout->header).checkElements ();
+      const std::vector<PlyElement>& elements = layout->header.elements;
+      // Streamable: binary, and the vertex element is the first with records in the body (an element
+      // without properties or records takes no bytes), with fixed-size records.
+      bool before = true;
+      layout->streamable = layout->header.format != PlyFormat::Ascii;
+      for (std::size_t e = 0; e < elements.size (); ++e)
+      {
+        if (elements[e].name == "range_grid")
+          layout->streamable = false;  // the scan's order is the grid's, known only after the vertices
+        if (elements[e].name == "vertex" && before)
+        {
+          layout->vertex = e;
+          before = false;
+          for (const PlyProperty& property : elements[e].properties)
+          {
+            layout->streamable = layout->streamable && !property.is_list;
+            layout->record_bytes += sizeOf (property.type);
+          }
+        }
+        else if (before && elements[e].count > 0 && !elements[e].properties.empty ())
+          layout->streamable = false;
+      }
+      if (before)
+        layout->streamable = false;  // no vertex element: the whole-file reader says what is wrong
+      layout_ = layout;
+    }
+
+    bool
+    PlyVertexRecords::streamable () const
+    {
+      return layout_->streamable;
+    }
+
+    std::size_t
+    PlyVertexRecords::bodyOffset () const
+    {
+      return layout_->header.body_offset;
+    }
+
+    std::size_t
+    PlyVertexRecords::recordBytes () const
+    {
+      return layout_->record_bytes;
+    }
+
+    long long
+    PlyVertexRecords::count () const
+    {
+      return layout_->streamable ? layout_->header.elements[layout_->vertex].count : 0;
+    }
+
+    void
+    PlyVertexRecords::decode (const std::string& records, const std::vector<std::string>& wanted, PlyPoints& points) const
+    {
+      if (!layout_->streamable || layout_->record_bytes == 0 || records.size () % layout_->record_bytes != 0)
+        throw Error (path_ + ": PLY vertex records cannot be decoded in chunks");
+      // The same body reader as for the whole file, over a layout of just these records.
+      PlyLayout chunk;
+      chunk.format = layout_->header.format;
+      chunk.elements.push_back (layout_->header.elements[layout_->vertex]);
+      chunk.elements[0].count = static_cast<long long> (records.size () / layout_->record_bytes);
+      points.positions.clear ();
+      points.values.clear ();
+      points.range_grid.clear ();
+      points.vertex_properties.clear ();
+      for (const PlyProperty& property : chunk.elements[0].properties)
+        points.vertex_properties.push_back (property.name);
+      TriangleMesh mesh;
+      PlyPointSink sink;
+      sink.wanted = &wanted;
+      sink.values = &points.values;
+      PlyBodyReader (records, path_, chunk).read (mesh, sink);
+      points.positions = std::move (mesh.vertices);
+    }
+
+    struct PlyFaceRecords::Layout
+    {
+      PlyLayout header;
+      std::size_t face = 0;  ///< index of the face element
+      bool streamable = false;
+      std::size_t body_offset = 0;
+      long long vertices = 0;
+    };
+
+    PlyFaceRecords::PlyFaceRecords (const std::string& head, const std::string& path) : path_ (path)
+    {
+      auto layout = std::make_shared<Layout> ();
+      layout->header = parseHeader (head, path);
+      PlyBodyReader (head, path, layout->header).checkElements ();
+      const std::vector<PlyElement>& elements = layout->header.elements;
+      // Streamable: binary, the vertex element first with fixed-size records, the face element next (only
+      // elements without bytes between), so the faces start at a known offset.
+      layout->streamable = layout->header.format != PlyFormat::Ascii;
+      layout->body_offset = layout->header.body_offset;
+      int stage = 0;  // 0: before the vertices, 1: between vertices and faces, 2: faces found
+      for (std::size_t e = 0; e < elements.size () && stage < 2; ++e)
+      {
+        const PlyElement& element = elements[e];
+        const bool empty = element.count == 0 || element.properties.empty ();
+        if (element.name == "vertex" && stage == 0)
+        {
+          stage = 1;
+          layout->vertices = element.count;
+          std::size_t bytes = 0;
+          for (const PlyProperty& property : element.properties)
+          {
+            layout->streamable = layout->streamable && !property.is_list;
+            bytes += sizeOf (property.type);
+          }
+          layout->body_offset += bytes * static_cast<std::size_t> (element.count);
+        }
+        else if (element.name == "face" && stage == 1)
+        {
+          stage = 2;
+          layout->face = e;
+        }
+        else if (!empty)
+          layout->streamable = false;
+      }
+      layout->streamable = layout->streamable && stage == 2;
+      layout_ = layout;
+    }
+
+    bool
+    PlyFaceRecords::streamable () const
+    {
+      return layout_->streamable;
+    }
+
+    std::size_t
+    PlyFaceRecords::bodyOffset () const
+    {
+      return layout_->body_offset;
+    }
+
+    long long
+    PlyFaceRecords::count () const
+    {
+      return layout_->streamable ? layout_->header.elements[layout_->face].count : 0;
+    }
+
+    std::size_t
+    PlyFaceRecords::decode (const std::string& data, long long max_records, std::vector<Eigen::Vector3i>& triangles,
+                            long long& records) const
+    {
+      if (!layout_->streamable)
+        throw Error (path_ + ": PLY faces cannot be decoded in chunks");
+      const PlyElement& element = layout_->header.elements[layout_->face];
+      const bool swap = layout_->header.format == PlyFormat::BinaryBigEndian;
+      // The complete records at the start of data (each list's size is in the record).
+      const char* begin = data.data ();
+      const char* end = begin + data.size ();
+      const char* p = begin;
+      records = 0;
+      while (records < max_records)
+      {
+        const char* q = p;
+        bool complete = true;
+        for (const PlyProperty& property : element.properties)
+        {
+          std::size_t bytes = sizeOf (property.is_list ? property.count_type : property.type);
+          if (static_cast<std::size_t> (end - q) < bytes)
+          {
+            complete = false;
+            break;
+          }
+          if (property.is_list)
+          {
+            const double count = swap ? readBinary<true> (q, property.count_type) : readBinary<false> (q, property.count_type);
+            if (count < 0)
+              throw Error (path_ + ": bad PLY face list size");
+            q += bytes;
+            bytes = static_cast<std::size_t> (count) * sizeOf (property.type);
+            if (static_cast<std::size_t> (end - q) < bytes)
+            {
+              complete = false;
+              break;
+            }
+          }
+          q += bytes;
+        }
+        if (!complete)
+          break;
+        p = q;
+        ++records;
+      }
+      // Those records through the same body reader as the whole file.
+      PlyLayout chunk;
+      chunk.format = layout_->header.format;
+      chunk.elements.push_back (element);
+      chunk.elements[0].count = records;
+      const std::string bytes (begin, p);
+      TriangleMesh mesh;
+      PlyBodyReader reader (bytes, path_, chunk);
+      reader.setVertexCount (layout_->vertices);
+      reader.read (mesh);
+      triangles.insert (triangles.end (), mesh.triangles.begin (), mesh.triangles.end ());
+      return static_cast<std::size_t> (p - begin);
     }
   } // namespace io_detail
 } // namespace pcl_sparse

@@ -4,6 +4,18 @@
 /// interface: one cuts tiles out of an input held in memory, the other reads the per-tile files a
 /// streaming pass spilled to disk (for inputs larger than memory). Both give a tile's points in the
 /// order of the input file, so a tiled model does not depend on which one was used.
+///
+/// The rules both follow (tested in test/test_tile_spill.cpp):
+/// - The grid is in the input file's frame (ScanCloud::worldPosition), made by makeTileGrid from the bounding
+///   box and the number of the points cleaning keeps (of all vertices for a mesh).
+/// - A tile holds the points tilesHolding (tile_membership.h) gives it: those in its closed margin box, and
+///   those it owns (TileGrid::tileOf), so that rounding at a border loses no point. A mesh tile holds the
+///   triangles (after fan triangulation) with a vertex tilesHolding gives it.
+/// - A tile's scan is in the local frame centreScan gives its points, with the input's fields and sensor pose,
+///   indices into the input file, width = its size, height = 1, report.input_points = report.kept = its size.
+/// - Cleaning the whole input and then cutting equals cutting and then cleaning each tile: non-finite points
+///   and points at the sensor are dropped one by one, and exact duplicates share one position, hence the
+///   same tiles, so each tile keeps the first of them in file order, as cleaning the whole input does.
 
 #include <pcl_sparse/io/scan_cloud.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
@@ -37,7 +49,9 @@ namespace pcl_sparse
     virtual const TileGrid& grid () const = 0;
     /// Points of the whole input (after cleaning), for statistics and the grid's choice.
     virtual std::size_t totalPoints () const = 0;
-    /// Points whose position lies in tile \a t's core box (0: the tile has nothing to encode).
+    /// Points whose position lies in tile \a t's core box (0: the tile has nothing to encode); a point on a
+    /// border between core boxes counts for the tile that owns it (TileGrid::tileOf), so the counts of all
+    /// tiles add up to totalPoints ().
     virtual std::size_t corePoints (std::size_t t) const = 0;
     /// The input of tile \a t's margin box. Safe to call from several threads for different tiles.
     virtual TileInput loadTile (std::size_t t) const = 0;

@@ -1,0 +1,275 @@
+#include <pcl_sparse/tiles/spilled_tile_source.h>
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/io/scan_stream.h>
+#include <pcl_sparse/tiles/tile_membership.h>
+
+#include "spill_files.h"
+
+#include <algorithm>
+#include <limits>
+#include <optional>
+
+namespace pcl_sparse
+{
+  struct SpilledTileSource::Impl
+  {
+    ScanCloud layout;                  ///< the input's fields and sensor pose, no points
+    std::optional<tiles_detail::SpillRecord> record;
+    ScanCleaningOptions cleaning;
+    std::vector<std::size_t> spilled;  ///< records in each tile's file
+  };
+
+  namespace
+  {
+    /// What pass 1 learns: the box and count of the points cleaning does not drop one by one.
+    struct FirstPass
+    {
+      Eigen::AlignedBox3d box;
+      ScanCleaningReport report;  ///< input_points, non_finite, at_sensor_origin; kept = the rest
+      bool float_vectors = true;  ///< every kept point's vectors are floats: 4-byte coordinates in the spill
+      ScanCloud like;             ///< the first chunk's attributes (which ones the file has)
+    };
+
+    void
+    report (const SpillOptions& options, const char* stage, std::size_t done, std::size_t total)
+    {
+      if (options.progress)
+        options.progress (stage, total == 0 ? 1.0 : static_cast<double> (done) / static_cast<double> (total));
+    }
+
+    /// True if cleaning keeps \a p as a single point (it may still be a duplicate); counts it otherwise.
+    bool
+    keepsPoint (const Eigen::Vector3d& p, const Eigen::Vector3d& sensor, const ScanCleaningOptions& options,
+                ScanCleaningReport& report)
+    {
+      if (!p.allFinite ())
+      {
+        ++report.non_finite;
+        return false;
+      }
+      if (options.drop_at_sensor_origin && p == sensor)
+      {
+        ++report.at_sensor_origin;
+        return false;
+      }
+      return true;
+    }
+
+    FirstPass
+    firstPass (ScanStreamReader& reader, const SpillOptions& options)
+    {
+      FirstPass pass;
+      // cleanScan compares in the local frame, p == sensor_origin - origin; chunks are in the file's frame.
+      const Eigen::Vector3d sensor = reader.layout ().sensor_origin;
+      ScanCloud chunk;
+      while (reader.read (chunk, options.chunk_points))
+      {
+        report (options, "spill: reading", pass.report.input_points, reader.size ());
+        if (pass.report.input_points == 0)
+        {
+          // One point is enough to say which attributes the file has.
+          pass.like = chunk;
+          for (auto* vectors : {&pass.like.positions, &pass.like.normals, &pass.like.viewpoints})
+            vectors->resize (std::min<std::size_t> (vectors->size (), 1));
+          pass.like.colors.resize (std::min<std::size_t> (pass.like.colors.size (), 1));
+          pass.like.intensities.resize (std::min<std::size_t> (pass.like.intensities.size (), 1));
+        }
+        pass.report.input_points += chunk.size ();
+        for (std::size_t i = 0; i < chunk.size (); ++i)
+          if (keepsPoint (chunk.positions[i], sensor, options.cleaning, pass.report))
+          {
+            pass.box.extend (chunk.positions[i]);
+            ++pass.report.kept;
+            pass.float_vectors = pass.float_vectors && tiles_detail::SpillRecord::isFloat (chunk, i);
+          }
+      }
+      report (options, "spill: reading", 1, 1);
+      if (pass.report.kept == 0)
+        throw Error (reader.path () + ": no point left after cleaning (" + std::to_string (pass.report.non_finite) +
+                     " non-finite, " + std::to_string (pass.report.at_sensor_origin) + " at the sensor origin)");
+      return pass;
+    }
+
+    /// Pass 2: every point cleaning keeps one by one, appended to the file of each tile holding it.
+    std::vector<std::size_t>
+    binPoints (ScanStreamReader& reader, const TileGrid& grid, const tiles_detail::SpillRecord& record,
+               const tiles_detail::SpillDirectory& directory, const SpillOptions& options)
+    {
+      reader.rewind ();
+      directory.clear ();
+      tiles_detail::SpillWriter writer (directory, grid.size (), record.bytes (), options.buffer_bytes);
+      const Eigen::Vector3d sensor = reader.layout ().sensor_origin;
+      ScanCleaningReport ignored;
+      std::vector<char> bytes (record.bytes ());
+      std::vector<std::size_t> tiles;
+      ScanCloud chunk;
+      std::size_t done = 0;
+      while (reader.read (chunk, options.chunk_points))
+      {
+        report (options, "spill: binning", done, reader.size ());
+        done += chunk.size ();
+        for (std::size_t i = 0; i < chunk.size (); ++i)
+        {
+          if (!keepsPoint (chunk.positions[i], sensor, options.cleaning, ignored))
+            continue;
+          record.encode (chunk, i, bytes.data ());
+          tilesHolding (grid, chunk.positions[i], tiles);
+          for (const std::size_t t : tiles)
+            writer.append (t, bytes.data ());
+        }
+      }
+      writer.flush ();
+      report (options, "spill: binning", 1, 1);
+      std::vector<std::size_t> spilled (grid.size ());
+      for (std::size_t t = 0; t < spilled.size (); ++t)
+        spilled[t] = writer.records (t);
+      return spilled;
+    }
+
+    /// Points each tile owns after merging exact duplicates (all copies of a position own the same tile and
+    /// lie in its file). Reads one tile's positions at a time.
+    std::vector<std::size_t>
+    ownedPoints (const TileGrid& grid, const std::vector<std::size_t>& spilled, const tiles_detail::SpillRecord& record,
+                 const tiles_detail::SpillDirectory& directory, const SpillOptions& options)
+    {
+      std::vector<std::size_t> owned (grid.size (), 0);
+      std::vector<Eigen::Vector3d> positions;
+      for (std::size_t t = 0; t < grid.size (); ++t)
+      {
+        report (options, "spill: counting", t, grid.size ());
+        positions.clear ();
+        tiles_detail::readSpillFile (directory.tileFile (t), spilled[t], record.bytes (), [&] (const char* in) {
+          const Eigen::Vector3d p = record.position (in);
+          if (grid.tileOf (p) == t)
+            positions.push_back (p);
+        });
+        if (options.cleaning.merge_duplicates)
+        {
+          const auto less = [] (const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+            return std::lexicographical_compare (a.data (), a.data () + 3, b.data (), b.data () + 3);
+          };
+          std::sort (positions.begin (), positions.end (), less);
+          positions.erase (std::unique (positions.begin (), positions.end ()), positions.end ());
+        }
+        owned[t] = positions.size ();
+      }
+      report (options, "spill: counting", 1, 1);
+      return owned;
+    }
+
+    bool
+    sameGrid (const TileGrid& a, const TileGrid& b)
+    {
+      return a.origin == b.origin && a.edge == b.edge && a.counts == b.counts && a.margin == b.margin;
+    }
+  } // namespace
+
+  SpilledTileSource::SpilledTileSource (const std::string& path, const SpillOptions& options)
+  {
+    if (options.chunk_points == 0 || options.buffer_bytes == 0)
+      throw Error ("SpilledTileSource: chunk_points and buffer_bytes must be positive");
+    // Bad grid options are refused before the file is read (makeTileGrid checks them).
+    makeTileGrid (Eigen::AlignedBox3d (Eigen::Vector3d::Zero (), Eigen::Vector3d::Ones ()), 1, options.grid);
+    ScanStreamReader reader (path);
+    directory_ = std::make_unique<tiles_detail::SpillDirectory> (options.directory);
+    streamed_ = reader.isStreamed ();
+
+    const FirstPass pass = firstPass (reader, options);
+    auto impl = std::make_unique<Impl> ();
+    impl->layout = reader.layout ();
+    impl->record.emplace (pass.like, pass.float_vectors,
+                          reader.size () <= static_cast<std::size_t> (std::numeric_limits<std::uint32_t>::max ()));
+    impl->cleaning = options.cleaning;
+
+    // The grid from the count before merging duplicates (all pass 1 knows), then from the true count; the
+    // true count does not depend on the grid, so a second binning is the last.
+    grid_ = makeTileGrid (pass.box, pass.report.kept, options.grid);
+    for (int attempt = 0;; ++attempt)
+    {
+      impl->spilled = binPoints (reader, grid_, *impl->record, *directory_, options);
+      core_points_ = ownedPoints (grid_, impl->spilled, *impl->record, *directory_, options);
+      report_ = pass.report;
+      report_.kept = 0;
+      for (const std::size_t n : core_points_)
+        report_.kept += n;
+      report_.duplicates_merged = pass.report.kept - report_.kept;
+      const TileGrid exact = makeTileGrid (pass.box, report_.kept, options.grid);
+      if (sameGrid (exact, grid_) || attempt > 0)
+        break;
+      grid_ = exact;
+    }
+    impl_ = std::move (impl);
+  }
+
+  SpilledTileSource::~SpilledTileSource () = default;
+
+  std::size_t
+  SpilledTileSource::corePoints (std::size_t t) const
+  {
+    if (t >= core_points_.size ())
+      throw Error ("SpilledTileSource::corePoints: tile " + std::to_string (t) + " is not in the grid");
+    return core_points_[t];
+  }
+
+  std::size_t
+  SpilledTileSource::spilledPoints (std::size_t t) const
+  {
+    if (t >= impl_->spilled.size ())
+      throw Error ("SpilledTileSource::spilledPoints: tile " + std::to_string (t) + " is not in the grid");
+    return impl_->spilled[t];
+  }
+
+  std::size_t
+  SpilledTileSource::spilledBytes () const
+  {
+    std::size_t records = 0;
+    for (const std::size_t n : impl_->spilled)
+      records += n;
+    return records * impl_->record->bytes ();
+  }
+
+  const std::string&
+  SpilledTileSource::directory () const
+  {
+    return directory_->path ();
+  }
+
+  TileInput
+  SpilledTileSource::loadTile (std::size_t t) const
+  {
+    if (t >= impl_->spilled.size ())
+      throw Error ("SpilledTileSource::loadTile: tile " + std::to_string (t) + " is not in the grid");
+    TileInput input;
+    if (impl_->spilled[t] == 0)
+      return input;
+    auto scan = std::make_shared<ScanCloud> ();
+    const ScanCloud& layout = impl_->layout;
+    scan->fields = layout.fields;
+    scan->sensor_origin = layout.sensor_origin;
+    scan->sensor_orientation = layout.sensor_orientation;
+    scan->has_sensor_pose = layout.has_sensor_pose;
+    const std::size_t n = impl_->spilled[t];
+    scan->positions.reserve (n);
+    scan->indices.reserve (n);
+    const tiles_detail::SpillRecord& record = *impl_->record;
+    tiles_detail::readSpillFile (directory_->tileFile (t), n, record.bytes (),
+                                 [&] (const char* in) { record.decode (in, *scan); });
+    scan->width = static_cast<std::uint32_t> (n);
+    scan->height = 1;
+    cleanScan (*scan, impl_->cleaning);
+    scan->width = static_cast<std::uint32_t> (scan->size ());
+    // What cleaning removed is the whole input's (cleaningReport); a tile is a cut of the cleaned input.
+    scan->report = ScanCleaningReport ();
+    scan->report.input_points = scan->report.kept = scan->size ();
+    centreScan (*scan);
+    input.scan = std::move (scan);
+    return input;
+  }
+
+  SpilledTileSource::Ptr
+  spillIntoTiles (const std::string& path, const SpillOptions& options)
+  {
+    return std::make_shared<SpilledTileSource> (path, options);
+  }
+} // namespace pcl_sparse

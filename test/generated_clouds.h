@@ -1,0 +1,236 @@
+#pragma once
+// Large test clouds made by the tests and benches themselves (issue 16 point 5; never committed): a
+// terrain-like height field (as a cloud or a mesh), a shared mesh sampled with noise, and many noisy copies
+// of it laid out on a grid like a city block. Written as binary PCD a row at a time, so even 10^8 points need little memory.
+// Deterministic: the same options and seed give the same file, byte for byte.
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pcl_sparse_test
+{
+  /// Points drawn uniformly by area on \a mesh, seeded; \a area gets the mesh's area.
+  inline std::vector<Eigen::Vector3d>
+  sampleSurface (const pcl_sparse::TriangleMesh& mesh, std::size_t n, std::uint64_t seed, double& area)
+  {
+    std::vector<double> cumulative (mesh.numTriangles ());
+    area = 0.0;
+    for (std::size_t t = 0; t < mesh.numTriangles (); ++t)
+    {
+      const Eigen::Vector3i& f = mesh.triangles[t];
+      area += 0.5 * (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross (mesh.vertices[f[2]] - mesh.vertices[f[0]]).norm ();
+      cumulative[t] = area;
+    }
+    std::mt19937_64 rng (seed);
+    std::uniform_real_distribution<double> uniform (0.0, 1.0);
+    std::vector<Eigen::Vector3d> probes;
+    probes.reserve (n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double pick = uniform (rng) * area;
+      const std::size_t t = std::min<std::size_t> (
+        mesh.numTriangles () - 1, std::lower_bound (cumulative.begin (), cumulative.end (), pick) - cumulative.begin ());
+      double u = uniform (rng), v = uniform (rng);
+      if (u + v > 1.0)
+      {
+        u = 1.0 - u;
+        v = 1.0 - v;
+      }
+      const Eigen::Vector3i& f = mesh.triangles[t];
+      probes.push_back (mesh.vertices[f[0]] + u * (mesh.vertices[f[1]] - mesh.vertices[f[0]]) +
+                        v * (mesh.vertices[f[2]] - mesh.vertices[f[0]]));
+    }
+    return probes;
+  }
+
+  /// Writes a binary PCD of x y z (float, or double when \a double_xyz) whose points come from
+  /// next (Eigen::Vector3d&), called \a n times; the points are written in blocks as they come.
+  template <typename Next>
+  void
+  writeBinaryPcd (const std::string& path, std::size_t n, bool double_xyz, Next next)
+  {
+    std::FILE* file = std::fopen (path.c_str (), "wb");
+    if (!file)
+      throw std::runtime_error ("cannot write " + path);
+    const char* size = double_xyz ? "8 8 8" : "4 4 4";
+    std::fprintf (file,
+                  "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z\nSIZE %s\nTYPE F F F\n"
+                  "COUNT 1 1 1\nWIDTH %zu\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS %zu\nDATA binary\n",
+                  size, n, n);
+    std::vector<char> block;
+    const std::size_t point_bytes = double_xyz ? 24 : 12;
+    block.reserve (65536 * point_bytes);
+    Eigen::Vector3d p;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      next (p);
+      for (int k = 0; k < 3; ++k)
+      {
+        char bytes[8];
+        if (double_xyz)
+          std::memcpy (bytes, &p[k], 8);
+        else
+        {
+          const float f = static_cast<float> (p[k]);
+          std::memcpy (bytes, &f, 4);
+        }
+        block.insert (block.end (), bytes, bytes + (double_xyz ? 8 : 4));
+      }
+      if (block.size () >= 65536 * point_bytes || i + 1 == n)
+      {
+        if (std::fwrite (block.data (), 1, block.size (), file) != block.size ())
+        {
+          std::fclose (file);
+          throw std::runtime_error ("cannot write " + path);
+        }
+        block.clear ();
+      }
+    }
+    if (std::fclose (file) != 0)
+      throw std::runtime_error ("cannot write " + path);
+  }
+
+  /// Options of writeTerrainPcd.
+  struct TerrainOptions
+  {
+    std::size_t points = 1000000;  ///< points of the height field
+    double side = 1000.0;          ///< side of the square it covers (metres)
+    double relief = 40.0;          ///< height of its hills (metres)
+    double noise = 0.02;           ///< standard deviation of the height noise (metres)
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero ();  ///< added to every point (map coordinates)
+    bool double_xyz = false;       ///< write x y z as double (for map coordinates)
+    std::uint64_t seed = 1;        ///< the random generator's seed
+  };
+
+  /// A terrain-like height field: a jittered grid over a square, rows along y, with hills of a few wave
+  /// lengths and noise, like an aerial survey; exactly options.points points.
+  inline void
+  writeTerrainPcd (const std::string& path, const TerrainOptions& options)
+  {
+    const std::size_t columns = std::max<std::size_t> (1, static_cast<std::size_t> (std::ceil (std::sqrt (double (options.points)))));
+    const double step = options.side / static_cast<double> (columns);
+    std::mt19937_64 rng (options.seed);
+    std::uniform_real_distribution<double> jitter (-0.4, 0.4);
+    std::normal_distribution<double> noise (0.0, options.noise);
+    const double k = 2.0 * M_PI / options.side;
+    std::size_t i = 0;
+    writeBinaryPcd (path, options.points, options.double_xyz, [&] (Eigen::Vector3d& p) {
+      const double x = (static_cast<double> (i % columns) + 0.5 + jitter (rng)) * step;
+      const double y = (static_cast<double> (i / columns) + 0.5 + jitter (rng)) * step;
+      const double z = options.relief * (0.5 * std::sin (1.3 * k * x) * std::cos (0.9 * k * y) +
+                                         0.3 * std::sin (3.7 * k * (x + 0.4 * y)) + 0.2 * std::cos (7.1 * k * (y - 0.3 * x))) +
+                       noise (rng);
+      p = Eigen::Vector3d (x, y, z) + options.offset;
+      ++i;
+    });
+  }
+
+  /// A terrain-like triangle mesh: the height field of writeTerrainPcd on a regular grid of
+  /// \a side x \a side vertices (no jitter), two triangles per cell, written as binary little-endian PLY
+  /// (double x y z; faces as uchar-int lists), vertices then faces, a block at a time.
+  inline void
+  writeTerrainMeshPly (const std::string& path, std::size_t side, const TerrainOptions& options)
+  {
+    std::FILE* file = std::fopen (path.c_str (), "wb");
+    if (!file || side < 2)
+      throw std::runtime_error ("cannot write " + path);
+    const std::size_t cells = (side - 1) * (side - 1);
+    std::fprintf (file,
+                  "ply\nformat binary_little_endian 1.0\nelement vertex %zu\nproperty double x\nproperty double y\n"
+                  "property double z\nelement face %zu\nproperty list uchar int vertex_indices\nend_header\n",
+                  side * side, 2 * cells);
+    std::mt19937_64 rng (options.seed);
+    std::normal_distribution<double> noise (0.0, options.noise);
+    const double step = options.side / static_cast<double> (side - 1);
+    const double k = 2.0 * M_PI / options.side;
+    std::string block;
+    const auto flush = [&] (bool last) {
+      if ((block.size () >= (1 << 20) || last) && std::fwrite (block.data (), 1, block.size (), file) != block.size ())
+        throw std::runtime_error ("cannot write " + path);
+      if (block.size () >= (1 << 20) || last)
+        block.clear ();
+    };
+    for (std::size_t i = 0; i < side * side; ++i)
+    {
+      const double x = static_cast<double> (i % side) * step, y = static_cast<double> (i / side) * step;
+      const double z = options.relief * (0.5 * std::sin (1.3 * k * x) * std::cos (0.9 * k * y) +
+                                         0.3 * std::sin (3.7 * k * (x + 0.4 * y)) + 0.2 * std::cos (7.1 * k * (y - 0.3 * x))) +
+                       noise (rng);
+      const double v[3] = {x + options.offset.x (), y + options.offset.y (), z + options.offset.z ()};
+      block.append (reinterpret_cast<const char*> (v), sizeof (v));
+      flush (false);
+    }
+    for (std::size_t c = 0; c < cells; ++c)
+    {
+      const int a = static_cast<int> ((c / (side - 1)) * side + c % (side - 1));
+      const int s = static_cast<int> (side);
+      for (const std::array<int, 3>& t : {std::array<int, 3>{a, a + 1, a + s + 1}, std::array<int, 3>{a, a + s + 1, a + s}})
+      {
+        block += '\3';
+        block.append (reinterpret_cast<const char*> (t.data ()), sizeof (t));
+      }
+      flush (false);
+    }
+    flush (true);
+    if (std::fclose (file) != 0)
+      throw std::runtime_error ("cannot write " + path);
+  }
+
+  /// Options of writeCityBlockPcd.
+  struct CityBlockOptions
+  {
+    int copies_x = 4;                  ///< copies along x
+    int copies_y = 4;                  ///< copies along y
+    std::size_t points_per_copy = 100000;  ///< points sampled on each copy
+    double size = 20.0;                ///< each copy is scaled to this largest side (metres)
+    double spacing = 30.0;             ///< distance between the copies' centres (metres)
+    double noise = 0.01;               ///< standard deviation of the noise on every coordinate (metres)
+    std::uint64_t seed = 1;            ///< the random generator's seed (each copy draws its own points)
+  };
+
+  /// Copies of \a mesh laid out on a grid in the xy plane like a city block, each sampled on its own
+  /// (options.points_per_copy points, uniformly by area) with noise; copies_x x copies_y x points_per_copy
+  /// points. With one copy: the mesh sampled with noise.
+  inline void
+  writeCityBlockPcd (const std::string& path, const pcl_sparse::TriangleMesh& mesh, const CityBlockOptions& options)
+  {
+    Eigen::Vector3d low = mesh.vertices.front (), high = low;
+    for (const Eigen::Vector3d& v : mesh.vertices)
+    {
+      low = low.cwiseMin (v);
+      high = high.cwiseMax (v);
+    }
+    const double scale = options.size / std::max ((high - low).maxCoeff (), 1e-12);
+    const Eigen::Vector3d centre = 0.5 * (low + high);
+    std::mt19937_64 rng (options.seed);
+    std::normal_distribution<double> noise (0.0, options.noise);
+    const std::size_t copies = static_cast<std::size_t> (options.copies_x) * static_cast<std::size_t> (options.copies_y);
+    std::vector<Eigen::Vector3d> samples;
+    std::size_t copy = 0, next = 0;
+    writeBinaryPcd (path, copies * options.points_per_copy, false, [&] (Eigen::Vector3d& p) {
+      if (next == samples.size ())
+      {
+        double area = 0.0;
+        samples = sampleSurface (mesh, options.points_per_copy, options.seed * 7919 + copy, area);
+        ++copy;
+        next = 0;
+      }
+      const std::size_t c = copy - 1;
+      const Eigen::Vector3d place (options.spacing * static_cast<double> (c % static_cast<std::size_t> (options.copies_x)),
+                                   options.spacing * static_cast<double> (c / static_cast<std::size_t> (options.copies_x)), 0.0);
+      p = scale * (samples[next++] - centre) + place + Eigen::Vector3d (noise (rng), noise (rng), noise (rng));
+    });
+  }
+} // namespace pcl_sparse_test
