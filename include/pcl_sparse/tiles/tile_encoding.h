@@ -1,0 +1,76 @@
+#pragma once
+/// \file tile_encoding.h
+/// Encoding one tile of a tiled input, and merging the tiles into one model (issue 16).
+///
+/// A tile is encoded from its margin box's input with the ordinary encoder and the same options, except:
+///  - only points of the tile's core (TileGrid::tileOf) seed patches, and the encoder covers every one of
+///    them (SparseSurfaceEncoder::setSeedVertices): the tile owns exactly the patches seeded in its core,
+///    the margin is surface they may grow over, and every input point is covered by its own tile's
+///    patches, so seams have no gap;
+///  - rho, a fraction of the surface's area, is rescaled to the tile: rho x (points of the whole input) /
+///    (points of the tile's input), so patches are as large as in an untiled encoding of the same density.
+/// Per-model fields are the whole input's: the vertex count, the bounding-box diagonal (union of the tiles'
+/// core bounds) and each attribute channel's range (union over the tiles), so the file tolerance and the
+/// statistics do not depend on the tiling. Each tile's encoding depends only on the tile's input and the
+/// options, never on which process or thread encodes it.
+
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/tiles/tile_source.h>
+#include <pcl_sparse/tiles/tiled_model.h>
+
+#include <Eigen/Geometry>
+
+#include <cstddef>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// \brief Encodes tile \a t of \a source (see the file's comment).
+  /// \param[in] source       the tiled input
+  /// \param[in] t            the tile
+  /// \param[in] options      the encoder's options, as for the whole input (validated)
+  /// \param[in] num_threads  OpenMP threads (0 = default); the result does not depend on it
+  /// \return the tile's patches (none when its core has no point or its input no surface)
+  /// \throws pcl_sparse::Error naming the tile when its encoding fails
+  TileEncoding
+  encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads = 0);
+
+  /// \brief The whole model from its tiles' encodings (patches in tile order; whole-input vertex count,
+  /// diagonal and attribute ranges).
+  /// \param[in] grid          the grid
+  /// \param[in] total_points  points of the whole input (TileSource::totalPoints)
+  /// \param[in] tiles         encodings of every tile with core points, in any order
+  /// \return the tiled model
+  /// \throws pcl_sparse::Error for a tile twice, tiles with different bases or attribute channels
+  TiledModel
+  mergeTileEncodings (const TileGrid& grid, std::size_t total_points, std::vector<TileEncoding> tiles);
+
+  /// \brief Tiled encoding as a stage: setTileSource, setOptions, compute (TiledModel&).
+  class TiledSurfaceEncoder : public StageBase
+  {
+  public:
+    using Ptr = std::shared_ptr<TiledSurfaceEncoder>;
+    using ConstPtr = std::shared_ptr<const TiledSurfaceEncoder>;
+
+    TiledSurfaceEncoder () : StageBase ("TiledSurfaceEncoder") {}
+
+    /// \brief The tiled input (MemoryTileSource, or a file-backed source).
+    void setTileSource (const TileSource::Ptr& source) { source_ = source; }
+    /// \brief The encoder's options (as for an untiled encoding).
+    void setOptions (const SparseSurfaceEncoderOptions& options) { options_ = options; }
+    const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
+
+    /// \brief Encodes every tile with core points, one after the other (each with the stage's threads),
+    /// and merges them. Throws pcl_sparse::Error for a missing source or a tile that fails.
+    /// \param[out] model the tiled model
+    void compute (TiledModel& model);
+
+    /// \brief Seconds each tile took in the last compute (tile order).
+    const std::vector<double>& getTileSeconds () const { return tile_seconds_; }
+
+  private:
+    TileSource::Ptr source_;
+    SparseSurfaceEncoderOptions options_;
+    std::vector<double> tile_seconds_;
+  };
+} // namespace pcl_sparse
