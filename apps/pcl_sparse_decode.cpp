@@ -1,8 +1,11 @@
 /// pcl_sparse_decode: reads a .psm model file and resamples it into a point cloud with normals and
 /// curvature (docs/METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
 ///
-///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-seed S] [-threads T]
-///                     [-recon MESH RECON.{ply,obj,off,stl}] [--json] [-q]
+///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-box XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]
+///                     [-seed S] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}] [--json] [-q]
+///
+/// -box decodes a region: of a tiled model (pcl_sparse_encode -tiles) only the tiles whose patches reach
+/// into the box are read, and the points are exactly those the whole model gives inside the box.
 
 #include "tool_resampling.h"
 #include "tool_support.h"
@@ -10,6 +13,8 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/tiled_model_file.h>
+#include <pcl_sparse/io/scan_cloud.h>
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
@@ -18,7 +23,10 @@
 #include <pcl/console/time.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,6 +41,8 @@ namespace
       {"OUT", "the resampled cloud: x y z, normal, curvature (.pcd or .ply)"},
       {"-n N", "exactly N points (default: the model's number of input vertices)"},
       {"-density D", "D points per unit area instead of -n"},
+      {"-box X0,Y0,Z0,X1,Y1,Z1", "only the points inside this box (needs -density); of a tiled model only the"},
+      {"", "tiles reaching into it are read"},
       {"-seed S", "seed of the sampling (default 42)"},
       {"-threads T", "OpenMP threads (default: all; the output does not depend on it)"},
       {"-recon MESH RECON", "reconstruct MESH's vertices from the model (needs a model written with"},
@@ -40,7 +50,31 @@ namespace
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-n", "-density", "-seed", "-threads", {"-recon", 2}}, {"--json", "-q"}};
+    2, {"-n", "-density", "-seed", "-threads", "-box", {"-recon", 2}}, {"--json", "-q"}};
+
+  /// Option -box: six numbers, min corner then max corner.
+  Eigen::AlignedBox3d
+  parseBox (const std::string& text)
+  {
+    std::vector<double> v;
+    std::size_t at = 0;
+    while (at <= text.size () && v.size () < 7)
+    {
+      const std::size_t comma = std::min (text.find (',', at), text.size ());
+      const std::string item = text.substr (at, comma - at);
+      char* end = nullptr;
+      const double x = std::strtod (item.c_str (), &end);
+      if (item.empty () || *end != '\0' || !std::isfinite (x))
+        v.push_back (NAN);
+      else
+        v.push_back (x);
+      at = comma + 1;
+    }
+    if (v.size () != 6 || !std::all_of (v.begin (), v.end (), [] (double x) { return std::isfinite (x); }) ||
+        v[0] > v[3] || v[1] > v[4] || v[2] > v[5])
+      throw Error ("option -box: expected XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (six finite numbers, min <= max), got '" + text + "'");
+    return Eigen::AlignedBox3d (Eigen::Vector3d (v[0], v[1], v[2]), Eigen::Vector3d (v[3], v[4], v[5]));
+  }
 } // namespace
 
 int
@@ -70,9 +104,36 @@ main (int argc, char** argv)
     int threads = 0;
     args.integer ("-threads", threads, tools::Range::atLeast (0));
 
+    const bool has_box = args.has ("-box");
+    const Eigen::AlignedBox3d box = has_box ? parseBox (args.value ("-box")) : Eigen::AlignedBox3d ();
+    if (has_box && !has_density)
+      throw Error ("option -box needs -density D (points per unit area: -n counts the whole model's points)");
+    if (has_box && !recon_mesh.empty ())
+      throw Error ("options -box and -recon exclude each other");
+
     pcl::console::TicToc timer;
     timer.tic ();
-    const auto model = std::make_shared<const SparseSurfaceModel> (loadModel (model_path));
+    // A tiled model: the tiles reaching into the box (or all), their patch numbers and the grid's frame,
+    // so a region resamples exactly as the whole model does there.
+    const bool is_tiled = isTiledModelFile (model_path);
+    std::uint64_t bytes_read = 0;
+    std::vector<std::size_t> patch_numbers;
+    Eigen::Vector3d frame_origin = Eigen::Vector3d::Zero ();
+    SparseSurfaceModel::ConstPtr model;
+    if (is_tiled)
+    {
+      const Eigen::Vector3d inf = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
+      TiledModel tiled = loadTiledModelRegion (model_path, has_box ? box : Eigen::AlignedBox3d (-inf, inf), &bytes_read);
+      patch_numbers = tiled.patchNumbers ();
+      const Eigen::Vector3d far = tiled.grid.origin + tiled.grid.edge * tiled.grid.counts.cast<double> ();
+      frame_origin = localFrameOrigin ({tiled.grid.origin, far});
+      model = std::make_shared<const SparseSurfaceModel> (std::move (tiled.model));
+    }
+    else
+    {
+      model = std::make_shared<const SparseSurfaceModel> (loadModel (model_path));
+      bytes_read = static_cast<std::uint64_t> (inspectModelFile (model_path).file_bytes);
+    }
     const double load_seconds = timer.toc () / 1000.0;
 
     // Check -recon before writing anything, so that a bad request leaves no output behind.
@@ -101,7 +162,21 @@ main (int argc, char** argv)
       resampling.setPointCount (has_n ? n : std::max<std::size_t> (model->num_input_vertices, 1));
     resampling.setNumberOfThreads (threads);
     resampling.setProgressCallback (makeConsoleProgress (quiet || json));
-    const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
+    resampling.setPatchNumbers (patch_numbers);
+    tools::LocalCloud local;
+    if (is_tiled && !model->patches.empty ())
+      local = tools::resampleInLocalFrame (resampling, model, frame_origin);
+    else if (!model->patches.empty () || !has_box)
+      local = tools::resampleInLocalFrame (resampling, model);
+    if (has_box)
+    {
+      // Exactly the points inside the box (closed), as the whole model places them.
+      std::size_t kept = 0;
+      for (const pcl::PointNormal& p : local.cloud)
+        if (box.contains (local.origin + p.getVector3fMap ().cast<double> ()))
+          local.cloud[kept++] = p;
+      local.cloud.resize (kept);
+    }
     const pcl::PointCloud<pcl::PointNormal>& cloud = local.cloud;
     const double resample_seconds = timer.toc () / 1000.0;
 
@@ -124,6 +199,8 @@ main (int argc, char** argv)
         .add ("nnz", model->numNonZeros ())
         .add ("points", cloud.size ())
         .add ("area", resampling.getEstimatedArea ())
+        .add ("tiled", is_tiled)
+        .add ("bytes_read", bytes_read)
         .add ("seconds", tools::JsonObject ()
                            .addSeconds ("load", load_seconds)
                            .addSeconds ("resample", resample_seconds)
