@@ -99,6 +99,31 @@ namespace pcl_sparse
       return all;
     }
 
+    std::vector<std::vector<std::uint8_t>>
+    ProcessGroup::allGather (const std::vector<std::uint8_t>& mine) const
+    {
+      std::vector<std::vector<std::uint8_t>> all = gather (mine);
+      if (size_ == 1)
+        return all;
+#ifdef PCL_SPARSE_WITH_MPI
+      // Rank 0 broadcasts the sizes, then each rank's bytes in pieces of at most 1 GiB.
+      std::vector<unsigned long long> sizes (static_cast<std::size_t> (size_));
+      if (rank_ == 0)
+        for (int r = 0; r < size_; ++r)
+          sizes[r] = all[r].size ();
+      MPI_Bcast (sizes.data (), size_, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+      all.resize (static_cast<std::size_t> (size_));
+      constexpr std::size_t piece = std::size_t (1) << 30;
+      for (int r = 0; r < size_; ++r)
+      {
+        all[r].resize (sizes[r]);
+        for (std::size_t at = 0; at < all[r].size (); at += piece)
+          MPI_Bcast (all[r].data () + at, static_cast<int> (std::min (piece, all[r].size () - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+      }
+#endif
+      return all;
+    }
+
     std::vector<std::size_t>
     tilesOfRank (const std::vector<std::size_t>& points, int ranks, int rank)
     {

@@ -35,6 +35,9 @@ namespace pcl_sparse
       /// Every rank must call it.
       std::vector<std::vector<std::uint8_t>> gather (const std::vector<std::uint8_t>& mine) const;
 
+      /// Every rank receives every rank's bytes, in rank order. Every rank must call it.
+      std::vector<std::vector<std::uint8_t>> allGather (const std::vector<std::uint8_t>& mine) const;
+
     private:
       int rank_ = 0;
       int size_ = 1;

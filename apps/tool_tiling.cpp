@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 namespace pcl_sparse
 {
@@ -52,68 +53,89 @@ namespace pcl_sparse
       return true;
     }
 
+    namespace
+    {
+      /// Encodes \a tiles (a rank's share of one phase) into a message: a flag (0 tiles, 1 an error), the
+      /// seconds taken, then the tiles' bytes or the error text.
+      std::vector<std::uint8_t>
+      encodeShare (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
+                   int threads, const std::vector<std::size_t>& covered, const ProcessGroup& group, bool quiet)
+      {
+        const auto start = std::chrono::steady_clock::now ();
+        std::vector<TileEncoding> encodings;
+        std::string failure;
+        try
+        {
+          for (std::size_t i = 0; i < tiles.size (); ++i)
+          {
+            encodings.push_back (encodeTile (source, tiles[i], options, threads, covered));
+            if (!quiet && group.rank () == 0)
+              pcl::console::print_info ("\rtiles: %zu / %zu of rank 0 (%d ranks)", i + 1, tiles.size (), group.size ());
+          }
+          if (!quiet && group.rank () == 0 && !tiles.empty ())
+            pcl::console::print_info ("\n");
+        }
+        catch (const std::exception& e)
+        {
+          failure = e.what ();
+        }
+        const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+        std::vector<std::uint8_t> message (1 + sizeof seconds, failure.empty () ? 0 : 1);
+        std::memcpy (message.data () + 1, &seconds, sizeof seconds);
+        const std::vector<std::uint8_t> body = failure.empty () ? encodeTileEncodings (encodings, source.totalPoints ())
+                                                                : std::vector<std::uint8_t> (failure.begin (), failure.end ());
+        message.insert (message.end (), body.begin (), body.end ());
+        return message;
+      }
+
+      /// Decodes the messages of every rank into \a tiles; returns the largest seconds. Throws the first
+      /// rank's error.
+      double
+      decodeShares (const std::vector<std::vector<std::uint8_t>>& messages, std::vector<TileEncoding>& tiles)
+      {
+        double slowest = 0.0;
+        for (std::size_t r = 0; r < messages.size (); ++r)
+        {
+          const std::vector<std::uint8_t>& m = messages[r];
+          double seconds = 0.0;
+          if (m.size () < 1 + sizeof seconds)
+            throw Error ("rank " + std::to_string (r) + " sent no tiles");
+          std::memcpy (&seconds, m.data () + 1, sizeof seconds);
+          slowest = std::max (slowest, seconds);
+          const std::uint8_t* data = m.data () + 1 + sizeof seconds;
+          const std::size_t size = m.size () - 1 - sizeof seconds;
+          if (m[0] != 0)
+            throw Error (std::string (reinterpret_cast<const char*> (data), size) + (r > 0 ? " (rank " + std::to_string (r) + ")" : ""));
+          decodeTileEncodings (data, size, "tiles of rank " + std::to_string (r), tiles);
+        }
+        return slowest;
+      }
+    } // namespace
+
     double
     encodeTilesAcross (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
                        int threads, bool quiet, TiledModel& tiled)
     {
       const TileGrid& grid = source.grid ();
+      // Phase 0 (tilePhase), shared with every rank: phase-1 tiles need to know what its patches cover.
       std::vector<std::size_t> points (grid.size ());
       for (std::size_t t = 0; t < grid.size (); ++t)
-        points[t] = source.corePoints (t);
-      const std::vector<std::size_t> mine = tilesOfRank (points, group.size (), group.rank ());
-      const auto start = std::chrono::steady_clock::now ();
-      std::vector<TileEncoding> encodings;
-      std::string failure;
-      try
-      {
-        for (std::size_t i = 0; i < mine.size (); ++i)
-        {
-          encodings.push_back (encodeTile (source, mine[i], options, threads));
-          if (!quiet && group.rank () == 0)
-            pcl::console::print_info ("\rtiles: %zu / %zu of rank 0 (%d ranks)", i + 1, mine.size (), group.size ());
-        }
-        if (!quiet && group.rank () == 0 && !mine.empty ())
-          pcl::console::print_info ("\n");
-      }
-      catch (const std::exception& e)
-      {
-        failure = e.what ();
-      }
-      const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-      // Each rank sends a flag (0 tiles, 1 an error), its seconds and its tiles' bytes.
-      std::vector<std::uint8_t> message;
-      message.push_back (failure.empty () ? 0 : 1);
-      const std::vector<std::uint8_t> body =
-        failure.empty () ? encodeTileEncodings (encodings, source.totalPoints ())
-                         : std::vector<std::uint8_t> (failure.begin (), failure.end ());
-      const unsigned char* s = reinterpret_cast<const unsigned char*> (&seconds);
-      message.insert (message.end (), s, s + sizeof seconds);
-      message.insert (message.end (), body.begin (), body.end ());
-      const std::vector<std::vector<std::uint8_t>> all = group.gather (message);
-      if (group.rank () != 0)
-      {
-        if (!failure.empty ())
-          throw Error (failure);
-        return seconds;
-      }
+        points[t] = tilePhase (grid, t) == 0 ? source.corePoints (t) : 0;
       std::vector<TileEncoding> tiles;
-      double slowest = 0.0;
-      for (std::size_t r = 0; r < all.size (); ++r)
-      {
-        const std::vector<std::uint8_t>& m = all[r];
-        if (m.size () < 1 + sizeof (double))
-          throw Error ("rank " + std::to_string (r) + " sent no tiles");
-        double rank_seconds = 0.0;
-        std::copy (m.begin () + 1, m.begin () + 1 + sizeof (double), reinterpret_cast<unsigned char*> (&rank_seconds));
-        slowest = std::max (slowest, rank_seconds);
-        const std::uint8_t* data = m.data () + 1 + sizeof (double);
-        const std::size_t size = m.size () - 1 - sizeof (double);
-        if (m[0] != 0)
-          throw Error (std::string (reinterpret_cast<const char*> (data), size) + (r > 0 ? " (rank " + std::to_string (r) + ")" : ""));
-        decodeTileEncodings (data, size, "tiles of rank " + std::to_string (r), tiles);
-      }
+      double seconds = decodeShares (group.allGather (encodeShare (source, tilesOfRank (points, group.size (), group.rank ()),
+                                                                    options, threads, {}, group, quiet)),
+                                     tiles);
+      const std::vector<std::size_t> covered = coveredPoints (tiles);
+      for (std::size_t t = 0; t < grid.size (); ++t)
+        points[t] = tilePhase (grid, t) == 1 ? source.corePoints (t) : 0;
+      const std::vector<std::vector<std::uint8_t>> phase1 =
+        group.gather (encodeShare (source, tilesOfRank (points, group.size (), group.rank ()), options, threads, covered,
+                                   group, quiet));
+      if (group.rank () != 0)
+        return seconds;
+      seconds += decodeShares (phase1, tiles);
       tiled = mergeTileEncodings (grid, source.totalPoints (), std::move (tiles));
-      return slowest;
+      return seconds;
     }
   } // namespace tools
 } // namespace pcl_sparse

@@ -33,16 +33,17 @@ namespace pcl_sparse
     bool
     chooseTiling (const CommandLine& args, std::size_t points, TileGridOptions& options);
 
-    /// \brief The tiled encoding of \a source by the processes of \a group: each rank encodes its share of the
-    /// tiles (tilesOfRank) with \a threads threads, rank 0 gathers and merges them. The result is the same
-    /// for any number of processes and threads.
+    /// \brief The tiled encoding of \a source by the processes of \a group, in the two phases of tilePhase:
+    /// each rank encodes its share of the phase-0 tiles (tilesOfRank) with \a threads threads and every rank
+    /// receives them all (what they cover); then each encodes its share of the phase-1 tiles, and rank 0
+    /// gathers and merges everything. The result is the same for any number of processes and threads.
     /// \param[in] group      the processes
     /// \param[in] source     the tiled input (the same on every rank)
     /// \param[in] options    the encoder's options
     /// \param[in] threads    OpenMP threads per process (0 = default)
     /// \param[in] quiet      no progress lines
     /// \param[out] tiled     on rank 0: the tiled model (untouched elsewhere)
-    /// \return the seconds of the slowest rank's tiles (on rank 0)
+    /// \return the seconds of the slowest rank's tiles, phase by phase (on rank 0)
     double
     encodeTilesAcross (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
                        int threads, bool quiet, TiledModel& tiled);

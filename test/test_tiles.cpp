@@ -174,17 +174,25 @@ TEST (TiledEncoding, SameForAnyThreadsAndTileOrder)
   const std::vector<std::uint8_t> a = encodeTiledModel (one, ModelWriteOptions (), 1);
   const std::vector<std::uint8_t> b = encodeTiledModel (two, ModelWriteOptions (), 2);
   EXPECT_TRUE (a == b);
-  // Tiles encoded apart (as on MPI ranks), sent as bytes in another order, merge to the same file.
+  // Tiles encoded apart (as on MPI ranks: phase 0, what it covers, then phase 1), sent as bytes in another
+  // order, merge to the same file.
   TileGridOptions grid;
   grid.tiles_along_longest = 2;
   const MemoryTileSource source (mesh, grid);
-  std::vector<TileEncoding> first, second, received;
-  for (std::size_t t = 0; t < source.grid ().size (); ++t)
-    (t % 2 ? first : second).push_back (encodeTile (source, t, SparseSurfaceEncoderOptions (), 1));
-  for (const auto* part : {&first, &second})
+  std::vector<TileEncoding> received;
+  std::vector<std::size_t> covered;
+  for (int phase = 0; phase < 2; ++phase)
   {
-    const std::vector<std::uint8_t> bytes = encodeTileEncodings (*part, source.totalPoints ());
-    decodeTileEncodings (bytes.data (), bytes.size (), "rank", received);
+    std::vector<TileEncoding> first, second;
+    for (std::size_t t = source.grid ().size (); t-- > 0;)
+      if (tilePhase (source.grid (), t) == phase)
+        (t % 3 ? first : second).push_back (encodeTile (source, t, SparseSurfaceEncoderOptions (), 1, covered));
+    for (const auto* part : {&second, &first})
+    {
+      const std::vector<std::uint8_t> bytes = encodeTileEncodings (*part, source.totalPoints ());
+      decodeTileEncodings (bytes.data (), bytes.size (), "rank", received);
+    }
+    covered = coveredPoints (received);
   }
   const TiledModel merged = mergeTileEncodings (source.grid (), source.totalPoints (), received);
   EXPECT_TRUE (encodeTiledModel (merged, ModelWriteOptions (), 1) == a);
@@ -325,6 +333,10 @@ TEST (TiledEncoding, SharedMeshWithinTwoPercent)
                tiled_stats.rmse, tiled_bytes);
   EXPECT_EQ (tiled_stats.uncovered, 0u);
   EXPECT_LT (tiled_stats.rmse, 1.02 * whole_stats.rmse);
-  // Issue 16's target is 2 %; at tiles of 50k vertices the format's per-tile cost alone is 2.9 % (docs/TILES.md).
-  EXPECT_LT (static_cast<double> (tiled_bytes), 1.07 * whole_bytes);
+  EXPECT_LE (tiled.model.patches.size (), whole.patches.size () * 101 / 100);
+  // Issue 16's target is 2 %; at tiles of 50k vertices the format's per-tile cost alone (a version-1 model
+  // per tile, ~470 bytes, and the index) is 2.8 % of this file (docs/TILES.md), the patches themselves 1 % less.
+  const std::size_t patch_bytes = encodeModel (tiled.model, options).size ();
+  EXPECT_LT (static_cast<double> (patch_bytes), 1.02 * whole_bytes);
+  EXPECT_LT (static_cast<double> (tiled_bytes), 1.035 * whole_bytes);
 }

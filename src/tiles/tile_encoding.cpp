@@ -41,8 +41,22 @@ namespace pcl_sparse
     }
   } // namespace
 
+  std::vector<std::size_t>
+  coveredPoints (const std::vector<TileEncoding>& tiles)
+  {
+    std::vector<std::size_t> points;
+    for (const TileEncoding& tile : tiles)
+      for (const PatchCode& patch : tile.model.patches)
+        for (int v : patch.vertices)
+          points.push_back (static_cast<std::size_t> (v));
+    std::sort (points.begin (), points.end ());
+    points.erase (std::unique (points.begin (), points.end ()), points.end ());
+    return points;
+  }
+
   TileEncoding
-  encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads)
+  encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads,
+              const std::vector<std::size_t>& covered)
   {
     const auto start = std::chrono::steady_clock::now ();
     const TileGrid& grid = source.grid ();
@@ -58,16 +72,21 @@ namespace pcl_sparse
       throw Error ("encodeTile: tile " + std::to_string (t) + " has " + std::to_string (input.point_numbers.size ()) +
                    " point numbers for " + std::to_string (num_points) + " points");
     auto seeds = std::make_shared<std::vector<std::uint8_t>> (num_points, 0);
+    bool any = false;
     for (std::size_t i = 0; i < num_points; ++i)
     {
       const Eigen::Vector3d p = input.scan ? input.scan->worldPosition (i) : input.mesh->vertices[i];
       if (grid.tileOf (p) == t)
       {
-        (*seeds)[i] = 1;
         result.core_bounds.extend (p);
+        // Points another tile's patches cover need no patch here (without point numbers: all do).
+        const bool done = !input.point_numbers.empty () &&
+                          std::binary_search (covered.begin (), covered.end (), input.point_numbers[i]);
+        (*seeds)[i] = done ? 0 : 1;
+        any = any || !done;
       }
     }
-    if (result.core_bounds.isEmpty ())
+    if (!any)
       return result;
     if (input.mesh && !hasSurfaceArea (*input.mesh))
       return result;
@@ -165,17 +184,23 @@ namespace pcl_sparse
     options_.validate ();
     const TileGrid& grid = source_->grid ();
     std::vector<TileEncoding> tiles;
-    tile_seconds_.clear ();
+    tile_seconds_.assign (grid.size (), 0.0);
     std::size_t done = 0, todo = 0;
     for (std::size_t t = 0; t < grid.size (); ++t)
       todo += source_->corePoints (t) > 0;
-    for (std::size_t t = 0; t < grid.size (); ++t)
+    std::vector<std::size_t> covered;
+    for (int phase = 0; phase < 2; ++phase)
     {
-      if (source_->corePoints (t) == 0)
-        continue;
-      tiles.push_back (encodeTile (*source_, t, options_, num_threads_));
-      tile_seconds_.push_back (tiles.back ().seconds);
-      reportProgress ("tiles", static_cast<double> (++done) / static_cast<double> (todo));
+      if (phase == 1)
+        covered = coveredPoints (tiles);
+      for (std::size_t t = 0; t < grid.size (); ++t)
+      {
+        if (source_->corePoints (t) == 0 || tilePhase (grid, t) != phase)
+          continue;
+        tiles.push_back (encodeTile (*source_, t, options_, num_threads_, covered));
+        tile_seconds_[t] = tiles.back ().seconds;
+        reportProgress ("tiles", static_cast<double> (++done) / static_cast<double> (todo));
+      }
     }
     model = mergeTileEncodings (grid, source_->totalPoints (), std::move (tiles));
   }

@@ -7,12 +7,15 @@
 ///    them (SparseSurfaceEncoder::setSeedVertices): the tile owns exactly the patches seeded in its core,
 ///    the margin is surface they may grow over, and every input point is covered by its own tile's
 ///    patches, so seams have no gap;
+///  - tiles are encoded in two phases (a checkerboard, tilePhase): a phase-1 tile knows which of its points
+///    the phase-0 tiles' patches cover (those seed nothing and need no patch of its own), so the band along
+///    a seam is covered once, as in an untiled encoding;
 ///  - rho, a fraction of the surface's area, is rescaled to the tile: rho x (points of the whole input) /
 ///    (points of the tile's input), so patches are as large as in an untiled encoding of the same density.
 /// Per-model fields are the whole input's: the vertex count, the bounding-box diagonal (union of the tiles'
 /// core bounds) and each attribute channel's range (union over the tiles), so the file tolerance and the
-/// statistics do not depend on the tiling. Each tile's encoding depends only on the tile's input and the
-/// options, never on which process or thread encodes it.
+/// statistics do not depend on the tiling. Each tile's encoding depends only on the tile's input, the
+/// options and (phase 1) the phase-0 patches, never on which process or thread encodes it.
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/tiles/tile_source.h>
@@ -25,15 +28,36 @@
 
 namespace pcl_sparse
 {
+  /// \brief The phase of tile \a t, 0 or 1: the parity of i + j + k, so that tiles sharing a face are in
+  /// different phases. Phase-1 tiles are encoded knowing which of their points phase-0 tiles' patches cover
+  /// (encodeTile's \a covered), so the band along a seam is not covered twice.
+  /// \param[in] grid the grid
+  /// \param[in] t    the tile
+  inline int
+  tilePhase (const TileGrid& grid, std::size_t t)
+  {
+    return grid.coordinates (t).sum () % 2;
+  }
+
+  /// \brief The input points (their numbers in the whole input, ascending, distinct) the patches of
+  /// \a tiles cover.
+  /// \param[in] tiles encodings (of phase 0)
+  std::vector<std::size_t>
+  coveredPoints (const std::vector<TileEncoding>& tiles);
+
   /// \brief Encodes tile \a t of \a source (see the file's comment).
   /// \param[in] source       the tiled input
   /// \param[in] t            the tile
   /// \param[in] options      the encoder's options, as for the whole input (validated)
   /// \param[in] num_threads  OpenMP threads (0 = default); the result does not depend on it
+  /// \param[in] covered      points (numbers in the whole input, ascending) that patches of other tiles
+  ///                         already cover (coveredPoints of phase 0 for a phase-1 tile): they seed no
+  ///                         patch and need none; empty (default) for phase 0
   /// \return the tile's patches (none when its core has no point or its input no surface)
   /// \throws pcl_sparse::Error naming the tile when its encoding fails
   TileEncoding
-  encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads = 0);
+  encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads = 0,
+              const std::vector<std::size_t>& covered = {});
 
   /// \brief The whole model from its tiles' encodings (patches in tile order; whole-input vertex count,
   /// diagonal and attribute ranges).
@@ -61,11 +85,11 @@ namespace pcl_sparse
     const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
 
     /// \brief Encodes every tile with core points, one after the other (each with the stage's threads),
-    /// and merges them. Throws pcl_sparse::Error for a missing source or a tile that fails.
+    /// phase 0 then phase 1 (tilePhase), and merges them. Throws pcl_sparse::Error for a missing source or a tile that fails.
     /// \param[out] model the tiled model
     void compute (TiledModel& model);
 
-    /// \brief Seconds each tile took in the last compute (tile order).
+    /// \brief Seconds each tile took in the last compute, one per tile of the grid (0: not encoded).
     const std::vector<double>& getTileSeconds () const { return tile_seconds_; }
 
   private:
