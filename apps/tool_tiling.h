@@ -19,9 +19,10 @@ namespace pcl_sparse
 {
   namespace tools
   {
-    /// Bytes the untiled encoder needs per input point, measured (peak resident set over points, encode
-    /// tool on the shared meshes and scans: 1.3-2.6 KB), with room to spare.
-    constexpr double kEncoderBytesPerPoint = 4096.0;
+    /// Bytes the untiled encoder needs per input point: the peak resident set of pcl_sparse_encode less its
+    /// 35 MB at start, over the points, measured 450 (koala-loop1-200k, a mesh) to 895 (table_scene_mug,
+    /// a kNN scan surface), taken as 1.5 KB for room to spare.
+    constexpr double kEncoderBytesPerPoint = 1536.0;
 
     /// A byte count with an optional binary suffix: "2G", "512M", "1.5T", "100000" (K, M, G, T = 2^10 ..
     /// 2^40). Throws Error naming \a option for anything else or a value below 1 MiB.

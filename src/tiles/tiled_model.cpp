@@ -39,11 +39,16 @@ namespace pcl_sparse
     double height = 0.0;
     for (double c : patch.coefficients)
       height += std::abs (c);
-    // One local unit above and below the surface: the places resampling lets the patch compete for lie
-    // within its height tolerance (0.1 by default) of it. A little more, for the rounding of s + r R q.
-    height += 1.0;
-    const double reach = patch.radius * std::sqrt (extent * extent + height * height) * (1.0 + 1e-9) + 1e-12;
-    const Eigen::Vector3d r = Eigen::Vector3d::Constant (reach);
-    return Eigen::AlignedBox3d (patch.origin - r, patch.origin + r);
+    // Surface points have |h| <= max_height (1 by default, PatchOwnershipOptions) where resampling keeps
+    // them, and a place competed for lies within the height tolerance (0.1) of one: 0.25 covers it.
+    const double z = std::min (height, 1.0) + 0.25;
+    // The footprint's disk (radius extent in the tangent plane) plus a segment of +-z along the normal,
+    // projected on each axis; a little more for the rounding of s + r R q.
+    const Eigen::Vector3d n = patch.frame.col (2);
+    Eigen::Vector3d half;
+    for (int a = 0; a < 3; ++a)
+      half[a] = patch.radius * (extent * std::sqrt (std::max (0.0, 1.0 - n[a] * n[a])) + z * std::abs (n[a]));
+    half = half * (1.0 + 1e-9) + Eigen::Vector3d::Constant (1e-12 + 1e-9 * patch.origin.cwiseAbs ().maxCoeff ());
+    return Eigen::AlignedBox3d (patch.origin - half, patch.origin + half);
   }
 } // namespace pcl_sparse

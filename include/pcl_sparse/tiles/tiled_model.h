@@ -54,12 +54,12 @@ namespace pcl_sparse
   SparseSurfaceModel
   subModel (const SparseSurfaceModel& model, std::size_t first, std::size_t count);
 
-  /// \brief A box holding every point patch \a patch can place on the surface and every place it can compete
-  /// for in resampling: s + r R (x, y, z) with (x, y) in its footprint and |z| at most 1 (a local unit, the
-  /// bound of resampling's height tolerance) plus the sum of its coefficients' magnitudes (atoms are
-  /// bounded by 1).
-  /// \param[in] patch the patch
-  /// \return the box (the seed alone for a patch without footprint)
+  /// \brief A box holding every point patch \a patch can give in resampling and every place it can compete
+  /// for there (with the default PatchOwnershipOptions, or any with max_height <= 1 and height_tolerance <=
+  /// 0.25): s + r R (x, y, z) with (x, y) in the disk of its largest footprint extent and |z| at most
+  /// min (sum of its coefficients' magnitudes, 1) + 0.25 (atoms are bounded by 1).
+  /// \param[in] patch the patch (frame orthonormal)
+  /// \return the box
   Eigen::AlignedBox3d
   patchReachBox (const PatchCode& patch);
 } // namespace pcl_sparse
