@@ -66,13 +66,12 @@ namespace pcl_sparse
         std::string failure;
         try
         {
-          for (std::size_t i = 0; i < tiles.size (); ++i)
-          {
-            encodings.push_back (encodeTile (source, tiles[i], options, threads, covered));
-            if (!quiet && group.rank () == 0)
-              pcl::console::print_info ("\rtiles: %zu / %zu of rank 0 (%d ranks)", i + 1, tiles.size (), group.size ());
-          }
-          if (!quiet && group.rank () == 0 && !tiles.empty ())
+          const bool report = !quiet && group.rank () == 0;
+          encodings = encodeTiles (source, tiles, options, threads, covered, [&] (std::size_t done) {
+            if (report)
+              pcl::console::print_info ("\rtiles: %zu / %zu of rank 0 (%d ranks)", done, tiles.size (), group.size ());
+          });
+          if (report && !tiles.empty ())
             pcl::console::print_info ("\n");
         }
         catch (const std::exception& e)

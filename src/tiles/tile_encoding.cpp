@@ -4,9 +4,13 @@
 #include <pcl_sparse/common/error.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <string>
+
+#include <omp.h>
 
 namespace pcl_sparse
 {
@@ -129,6 +133,38 @@ namespace pcl_sparse
     return result;
   }
 
+  std::vector<TileEncoding>
+  encodeTiles (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
+               int num_threads, const std::vector<std::size_t>& covered, const std::function<void (std::size_t)>& progress)
+  {
+    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const long count = static_cast<long> (tiles.size ());
+    std::vector<TileEncoding> result (tiles.size ());
+    std::vector<std::string> errors (tiles.size ());
+    std::atomic<std::size_t> done (0);
+    // Tiles side by side, one thread each, when there are enough of them; else one tile with all threads.
+    const bool side_by_side = threads > 1 && count > 1;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if(side_by_side)
+    for (long i = 0; i < count; ++i)
+    {
+      try
+      {
+        result[i] = encodeTile (source, tiles[i], options, side_by_side ? 1 : threads, covered);
+      }
+      catch (const std::exception& e)
+      {
+        errors[i] = e.what ();
+      }
+      const std::size_t finished = ++done;
+      if (progress && omp_get_thread_num () == 0)
+        progress (finished);
+    }
+    for (const std::string& e : errors)
+      if (!e.empty ())
+        throw Error (e);
+    return result;
+  }
+
   TiledModel
   mergeTileEncodings (const TileGrid& grid, std::size_t total_points, std::vector<TileEncoding> tiles)
   {
@@ -193,14 +229,18 @@ namespace pcl_sparse
     {
       if (phase == 1)
         covered = coveredPoints (tiles);
+      std::vector<std::size_t> these;
       for (std::size_t t = 0; t < grid.size (); ++t)
+        if (source_->corePoints (t) > 0 && tilePhase (grid, t) == phase)
+          these.push_back (t);
+      for (TileEncoding& tile : encodeTiles (*source_, these, options_, num_threads_, covered, [&] (std::size_t finished) {
+             reportProgress ("tiles", static_cast<double> (done + finished) / static_cast<double> (todo));
+           }))
       {
-        if (source_->corePoints (t) == 0 || tilePhase (grid, t) != phase)
-          continue;
-        tiles.push_back (encodeTile (*source_, t, options_, num_threads_, covered));
-        tile_seconds_[t] = tiles.back ().seconds;
-        reportProgress ("tiles", static_cast<double> (++done) / static_cast<double> (todo));
+        tile_seconds_[tile.tile] = tile.seconds;
+        tiles.push_back (std::move (tile));
       }
+      done += these.size ();
     }
     model = mergeTileEncodings (grid, source_->totalPoints (), std::move (tiles));
   }

@@ -24,6 +24,7 @@
 #include <Eigen/Geometry>
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace pcl_sparse
@@ -59,6 +60,22 @@ namespace pcl_sparse
   encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads = 0,
               const std::vector<std::size_t>& covered = {});
 
+  /// \brief Encodes several tiles (encodeTile), in parallel over the tiles when \a num_threads allows
+  /// (each tile's encoder then runs on one thread: the sampling loop is sequential, so tiles side by side
+  /// use the cores better than threads inside one tile). The result does not depend on \a num_threads.
+  /// \param[in] source       the tiled input
+  /// \param[in] tiles        the tiles, in the order of the result
+  /// \param[in] options      the encoder's options
+  /// \param[in] num_threads  OpenMP threads (0 = default)
+  /// \param[in] covered      as for encodeTile
+  /// \param[in] progress     called with the number of tiles done (may be empty)
+  /// \return one encoding per tile
+  /// \throws pcl_sparse::Error of the first tile (in \a tiles' order) that fails
+  std::vector<TileEncoding>
+  encodeTiles (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
+               int num_threads = 0, const std::vector<std::size_t>& covered = {},
+               const std::function<void (std::size_t)>& progress = {});
+
   /// \brief The whole model from its tiles' encodings (patches in tile order; whole-input vertex count,
   /// diagonal and attribute ranges).
   /// \param[in] grid          the grid
@@ -84,7 +101,7 @@ namespace pcl_sparse
     void setOptions (const SparseSurfaceEncoderOptions& options) { options_ = options; }
     const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
 
-    /// \brief Encodes every tile with core points, one after the other (each with the stage's threads),
+    /// \brief Encodes every tile with core points (encodeTiles: in parallel over the stage's threads),
     /// phase 0 then phase 1 (tilePhase), and merges them. Throws pcl_sparse::Error for a missing source or a tile that fails.
     /// \param[out] model the tiled model
     void compute (TiledModel& model);
