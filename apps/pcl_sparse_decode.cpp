@@ -6,7 +6,11 @@
 ///
 /// -box decodes a region: of a tiled model (pcl_sparse_encode -tiles) only the tiles whose patches reach
 /// into the box are read, and the points are exactly those the whole model gives inside the box.
+/// Under `mpirun -n K` a tiled model at a -density is decoded tile by tile over the K processes (each reads
+/// its tiles and the neighbours reaching them, keeps its own patches' points, rank 0 writes them in tile
+/// order): the same file as without mpirun. Otherwise rank 0 decodes alone.
 
+#include "tool_processes.h"
 #include "tool_resampling.h"
 #include "tool_support.h"
 
@@ -26,6 +30,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -51,6 +56,85 @@ namespace
       {"-q", "quiet"},
     },
     2, {"-n", "-density", "-seed", "-threads", "-box", {"-recon", 2}}, {"--json", "-q"}};
+
+  /// The points of a tiled model at a density, decoded over the processes of \a group: each rank takes a
+  /// run of tiles (about the same number of patches each), reads them and every tile whose patches reach into them (ownership
+  /// at their borders), resamples with the whole model's patch numbers and keeps its own tiles' points;
+  /// rank 0 concatenates them in tile order, which is the order of the full decode, and gets them in
+  /// \a local (the other ranks get nothing). Returns the bytes this rank read.
+  std::uint64_t
+  decodeAcross (const tools::ProcessGroup& group, const std::string& path, SparseSurfaceResampling<pcl::PointNormal>& resampling,
+                tools::LocalCloud& local, std::size_t& patches)
+  {
+    // Contiguous runs of tiles of about equal patch counts, so a rank's neighbours are few.
+    const TiledModelIndex index = readTiledModelIndex (path);
+    std::vector<std::size_t> mine;
+    const double share = static_cast<double> (index.total_patches) / group.size ();
+    for (std::size_t i = 0; i < index.entries.size (); ++i)
+    {
+      const double middle = index.entries[i].first_patch + 0.5 * index.entries[i].num_patches;
+      if (std::min (static_cast<int> (middle / share), group.size () - 1) == group.rank ())
+        mine.push_back (i);
+    }
+    std::vector<Eigen::AlignedBox3d> boxes;
+    for (std::size_t i : mine)
+      boxes.push_back (index.entries[i].reach);
+    std::uint64_t bytes_read = 0;
+    std::vector<std::uint8_t> message;
+    const Eigen::Vector3d far = index.grid.origin + index.grid.edge * index.grid.counts.cast<double> ();
+    const Eigen::Vector3d origin = localFrameOrigin ({index.grid.origin, far});
+    if (!mine.empty ())
+    {
+      TiledModel tiled = loadTiledModelRegions (path, boxes, &bytes_read);
+      const std::vector<std::size_t> numbers = tiled.patchNumbers ();
+      resampling.setPatchNumbers (numbers);
+      const tools::LocalCloud part =
+        tools::resampleInLocalFrame (resampling, std::make_shared<const SparseSurfaceModel> (std::move (tiled.model)), origin);
+      const std::vector<int>& from = resampling.getPointPatches ();
+      // Points come in patch order: each own tile's points are one run. Message: per tile, its entry, count, points.
+      std::size_t p = 0;
+      for (std::size_t i : mine)
+      {
+        const TileIndexEntry& e = index.entries[i];
+        while (p < from.size () && numbers[from[p]] < e.first_patch)
+          ++p;
+        const std::size_t first = p;
+        while (p < from.size () && numbers[from[p]] < e.first_patch + e.num_patches)
+          ++p;
+        const std::uint64_t header[2] = {i, p - first};
+        const auto* h = reinterpret_cast<const std::uint8_t*> (header);
+        message.insert (message.end (), h, h + sizeof header);
+        const auto* points = reinterpret_cast<const std::uint8_t*> (part.cloud.points.data () + first);
+        message.insert (message.end (), points, points + (p - first) * sizeof (pcl::PointNormal));
+      }
+    }
+    const std::vector<std::vector<std::uint8_t>> all = group.gather (message);
+    if (group.rank () != 0)
+      return bytes_read;
+    std::vector<std::pair<const std::uint8_t*, std::uint64_t>> runs (index.entries.size (), {nullptr, 0});
+    std::size_t total = 0;
+    for (const std::vector<std::uint8_t>& m : all)
+      for (std::size_t at = 0; at + 16 <= m.size ();)
+      {
+        std::uint64_t header[2];
+        std::memcpy (header, m.data () + at, sizeof header);
+        at += sizeof header;
+        runs.at (header[0]) = {m.data () + at, header[1]};
+        at += header[1] * sizeof (pcl::PointNormal);
+        total += header[1];
+      }
+    local.origin = origin;
+    local.cloud.resize (total);
+    std::size_t at = 0;
+    for (const auto& run : runs)
+      if (run.second > 0)
+      {
+        std::memcpy (static_cast<void*> (local.cloud.points.data () + at), run.first, run.second * sizeof (pcl::PointNormal));
+        at += run.second;
+      }
+    patches = index.total_patches;
+    return bytes_read;
+  }
 
   /// Option -box: six numbers, min corner then max corner.
   Eigen::AlignedBox3d
@@ -80,6 +164,7 @@ namespace
 int
 main (int argc, char** argv)
 {
+  const tools::ProcessGroup group (argc, argv);
   return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
@@ -111,11 +196,49 @@ main (int argc, char** argv)
     if (has_box && !recon_mesh.empty ())
       throw Error ("options -box and -recon exclude each other");
 
+    const bool is_tiled = isTiledModelFile (model_path);
+    const bool across = group.size () > 1 && is_tiled && has_density && !has_box && recon_mesh.empty ();
+    if (group.size () > 1 && !across && group.rank () != 0)
+      return 0;  // rank 0 decodes alone
+    if (across)
+    {
+      pcl::console::TicToc timer;
+      timer.tic ();
+      SparseSurfaceResampling<pcl::PointNormal> resampling;
+      SparseSurfaceResamplingOptions options;
+      options.seed = seed;
+      resampling.setOptions (options);
+      resampling.setDensity (density);
+      resampling.setNumberOfThreads (threads);
+      tools::LocalCloud local;
+      std::size_t patches = 0;
+      const std::uint64_t bytes_read = decodeAcross (group, model_path, resampling, local, patches);
+      if (group.rank () != 0)
+        return 0;
+      const double resample_seconds = timer.toc () / 1000.0;
+      timer.tic ();
+      tools::saveLocalCloud (out_path, local, true);
+      const double write_seconds = timer.toc () / 1000.0;
+      if (json)
+        tools::JsonObject ()
+          .add ("model", model_path)
+          .add ("patches", patches)
+          .add ("points", local.cloud.size ())
+          .add ("tiled", true)
+          .add ("ranks", group.size ())
+          .add ("bytes_read_rank0", bytes_read)
+          .add ("seconds", tools::JsonObject ().addSeconds ("resample", resample_seconds).addSeconds ("write", write_seconds))
+          .print ();
+      else if (!quiet)
+        std::printf ("%zu patches -> %zu points over %d processes; seconds: resample %.3f, write %.3f\n", patches,
+                     local.cloud.size (), group.size (), resample_seconds, write_seconds);
+      return 0;
+    }
+
     pcl::console::TicToc timer;
     timer.tic ();
     // A tiled model: the tiles reaching into the box (or all), their patch numbers and the grid's frame,
     // so a region resamples exactly as the whole model does there.
-    const bool is_tiled = isTiledModelFile (model_path);
     std::uint64_t bytes_read = 0;
     std::vector<std::size_t> patch_numbers;
     Eigen::Vector3d frame_origin = Eigen::Vector3d::Zero ();

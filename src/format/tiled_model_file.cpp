@@ -330,13 +330,19 @@ namespace pcl_sparse
   TiledModel
   loadTiledModelRegion (const std::string& path, const Eigen::AlignedBox3d& box, std::uint64_t* bytes_read)
   {
+    return loadTiledModelRegions (path, {box}, bytes_read);
+  }
+
+  TiledModel
+  loadTiledModelRegions (const std::string& path, const std::vector<Eigen::AlignedBox3d>& boxes, std::uint64_t* bytes_read)
+  {
     std::ifstream in;
     std::uint64_t file_size = 0;
     const TiledModelIndex index = openIndex (path, in, file_size);
     std::vector<std::size_t> selected;
     std::uint64_t bytes = index.index_bytes;
     for (std::size_t i = 0; i < index.entries.size (); ++i)
-      if (index.entries[i].reach.intersects (box))
+      if (std::any_of (boxes.begin (), boxes.end (), [&] (const Eigen::AlignedBox3d& box) { return index.entries[i].reach.intersects (box); }))
       {
         selected.push_back (i);
         bytes += index.entries[i].size;

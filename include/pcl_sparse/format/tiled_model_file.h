@@ -103,6 +103,15 @@ namespace pcl_sparse
   ModelFileInfo
   inspectTiledModel (const std::uint8_t* data, std::size_t size, const std::string& name = "model");
 
+  /// \brief loadTiledModelRegion for several regions at once: the tiles reaching into any of \a boxes.
+  /// \param[in]  path        the file
+  /// \param[in]  boxes       the regions, in the model's frame
+  /// \param[out] bytes_read  if not null: bytes read from the file
+  /// \return the tiles touching the regions
+  TiledModel
+  loadTiledModelRegions (const std::string& path, const std::vector<Eigen::AlignedBox3d>& boxes,
+                         std::uint64_t* bytes_read = nullptr);
+
   /// \brief Loads a tiled file whole (a version-1 file: one tile covering everything).
   /// \param[in] path the file
   /// \return the tiled model
