@@ -340,3 +340,26 @@ TEST (TiledEncoding, SharedMeshWithinTwoPercent)
   EXPECT_LT (static_cast<double> (patch_bytes), 1.02 * whole_bytes);
   EXPECT_LT (static_cast<double> (tiled_bytes), 1.035 * whole_bytes);
 }
+
+TEST (TiledEncoding, StrayScanPointsDoNotFailTheEncoding)
+{
+  // A plane of scan points and three stray points in a tile of their own, too few to make a surface.
+  auto scan = std::make_shared<ScanCloud> ();
+  std::mt19937 mt (42);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  for (int i = 0; i < 3000; ++i)
+    scan->positions.emplace_back (u (mt), u (mt), 0.001 * u (mt));
+  for (int i = 0; i < 3; ++i)
+    scan->positions.emplace_back (0.9 + 0.01 * i, 0.9, 1.9);
+  scan->width = static_cast<std::uint32_t> (scan->positions.size ());
+  scan->height = 1;
+  TileGridOptions grid;
+  grid.tiles_along_longest = 4;
+  TiledSurfaceEncoder encoder;
+  encoder.setTileSource (std::make_shared<MemoryTileSource> (scan, grid));
+  TiledModel tiled;
+  ASSERT_NO_THROW (encoder.compute (tiled));
+  const ModelStatistics stats = tiled.model.statistics (worldPositions (*scan));
+  EXPECT_LE (stats.uncovered, 3u);
+  EXPECT_GT (tiled.model.patches.size (), 0u);
+}

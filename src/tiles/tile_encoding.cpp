@@ -16,6 +16,9 @@ namespace pcl_sparse
 {
   namespace
   {
+    /// Scan tiles with fewer input points than this may fail to make a surface without failing the encoding.
+    constexpr std::size_t kSmallScanTile = 256;
+
     /// Union of two attribute channel lists of the same channels (ranges widened).
     void
     widenChannels (std::vector<AttributeChannelInfo>& into, const std::vector<AttributeChannelInfo>& from, std::size_t t)
@@ -111,6 +114,10 @@ namespace pcl_sparse
     }
     catch (const Error& e)
     {
+      // A few stray points of a scan in a tile of their own may make no surface (no neighbours close enough):
+      // they stay in no patch (statistics count them as uncovered) rather than failing the whole encoding.
+      if (input.scan && num_points < kSmallScanTile)
+        return result;
       throw Error ("tile " + std::to_string (t) + ": " + e.what ());
     }
     // Every patch is seeded in the core (setSeedVertices); the test guards the ownership rule.

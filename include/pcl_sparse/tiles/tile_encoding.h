@@ -54,7 +54,8 @@ namespace pcl_sparse
   /// \param[in] covered      points (numbers in the whole input, ascending) that patches of other tiles
   ///                         already cover (coveredPoints of phase 0 for a phase-1 tile): they seed no
   ///                         patch and need none; empty (default) for phase 0
-  /// \return the tile's patches (none when its core has no point or its input no surface)
+  /// \return the tile's patches (none when its core has no point or its input no surface, or when a scan
+  ///         tile of fewer than 256 points makes no surface: a few stray points, left in no patch)
   /// \throws pcl_sparse::Error naming the tile when its encoding fails
   TileEncoding
   encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads = 0,
