@@ -323,7 +323,7 @@ TEST (TiledEncoding, SharedMeshWithinTwoPercent)
   encoder.compute (whole);
   const ModelStatistics whole_stats = whole.statistics (mesh->vertices);
   ModelWriteOptions options;
-  options.tolerance = derivedFileTolerance (whole_stats);
+  options.tolerance = derivedFileTolerance (whole_stats, 0.1);  // pinned: the per-tile cost's share grows as files shrink
   const std::size_t whole_bytes = encodeModel (whole, options).size ();
   const TiledModel tiled = encodeTiled (mesh, 2);
   const ModelStatistics tiled_stats = tiled.model.statistics (mesh->vertices);
