@@ -1,15 +1,24 @@
 /// pcl_sparse_decode: reads a .psm model file and resamples it into a point cloud with normals and
 /// curvature (docs/METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
 ///
-///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-seed S] [-threads T]
-///                     [-recon MESH RECON.{ply,obj,off,stl}] [--json] [-q]
+///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-box XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]
+///                     [-seed S] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}] [--json] [-q]
+///
+/// -box decodes a region: of a tiled model (pcl_sparse_encode -tiles) only the tiles whose patches reach
+/// into the box are read, and the points are exactly those the whole model gives inside the box.
+/// Under `mpirun -n K` a tiled model at a -density is decoded tile by tile over the K processes (each reads
+/// its tiles and the neighbours reaching them, keeps its own patches' points, rank 0 writes them in tile
+/// order): the same file as without mpirun. Otherwise rank 0 decodes alone.
 
+#include "tool_processes.h"
 #include "tool_resampling.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/tiled_model_file.h>
+#include <pcl_sparse/io/scan_cloud.h>
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
@@ -18,7 +27,11 @@
 #include <pcl/console/time.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,6 +46,8 @@ namespace
       {"OUT", "the resampled cloud: x y z, normal, curvature (.pcd or .ply)"},
       {"-n N", "exactly N points (default: the model's number of input vertices)"},
       {"-density D", "D points per unit area instead of -n"},
+      {"-box X0,Y0,Z0,X1,Y1,Z1", "only the points inside this box (needs -density); of a tiled model only the"},
+      {"", "tiles reaching into it are read"},
       {"-seed S", "seed of the sampling (default 42)"},
       {"-threads T", "OpenMP threads (default: all; the output does not depend on it)"},
       {"-recon MESH RECON", "reconstruct MESH's vertices from the model (needs a model written with"},
@@ -40,12 +55,116 @@ namespace
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-n", "-density", "-seed", "-threads", {"-recon", 2}}, {"--json", "-q"}};
+    2, {"-n", "-density", "-seed", "-threads", "-box", {"-recon", 2}}, {"--json", "-q"}};
+
+  /// The points of a tiled model at a density, decoded over the processes of \a group: each rank takes a
+  /// run of tiles (about the same number of patches each), reads them and every tile whose patches reach into them (ownership
+  /// at their borders), resamples with the whole model's patch numbers and keeps its own tiles' points;
+  /// rank 0 concatenates them in tile order, which is the order of the full decode, and gets them in
+  /// \a local (the other ranks get nothing). Returns the bytes this rank read.
+  std::uint64_t
+  decodeAcross (const tools::ProcessGroup& group, const std::string& path, SparseSurfaceResampling<pcl::PointNormal>& resampling,
+                tools::LocalCloud& local, std::size_t& patches)
+  {
+    // Contiguous runs of tiles of about equal patch counts, so a rank's neighbours are few.
+    const TiledModelIndex index = readTiledModelIndex (path);
+    std::vector<std::size_t> mine;
+    const double share = static_cast<double> (index.total_patches) / group.size ();
+    for (std::size_t i = 0; i < index.entries.size (); ++i)
+    {
+      const double middle = index.entries[i].first_patch + 0.5 * index.entries[i].num_patches;
+      if (std::min (static_cast<int> (middle / share), group.size () - 1) == group.rank ())
+        mine.push_back (i);
+    }
+    std::vector<Eigen::AlignedBox3d> boxes;
+    for (std::size_t i : mine)
+      boxes.push_back (index.entries[i].reach);
+    std::uint64_t bytes_read = 0;
+    std::vector<std::uint8_t> message;
+    const Eigen::Vector3d far = index.grid.origin + index.grid.edge * index.grid.counts.cast<double> ();
+    const Eigen::Vector3d origin = localFrameOrigin ({index.grid.origin, far});
+    if (!mine.empty ())
+    {
+      TiledModel tiled = loadTiledModelRegions (path, boxes, &bytes_read);
+      const std::vector<std::size_t> numbers = tiled.patchNumbers ();
+      resampling.setPatchNumbers (numbers);
+      const tools::LocalCloud part =
+        tools::resampleInLocalFrame (resampling, std::make_shared<const SparseSurfaceModel> (std::move (tiled.model)), origin);
+      const std::vector<int>& from = resampling.getPointPatches ();
+      // Points come in patch order: each own tile's points are one run. Message: per tile, its entry, count, points.
+      std::size_t p = 0;
+      for (std::size_t i : mine)
+      {
+        const TileIndexEntry& e = index.entries[i];
+        while (p < from.size () && numbers[from[p]] < e.first_patch)
+          ++p;
+        const std::size_t first = p;
+        while (p < from.size () && numbers[from[p]] < e.first_patch + e.num_patches)
+          ++p;
+        const std::uint64_t header[2] = {i, p - first};
+        const auto* h = reinterpret_cast<const std::uint8_t*> (header);
+        message.insert (message.end (), h, h + sizeof header);
+        const auto* points = reinterpret_cast<const std::uint8_t*> (part.cloud.points.data () + first);
+        message.insert (message.end (), points, points + (p - first) * sizeof (pcl::PointNormal));
+      }
+    }
+    const std::vector<std::vector<std::uint8_t>> all = group.gather (message);
+    if (group.rank () != 0)
+      return bytes_read;
+    std::vector<std::pair<const std::uint8_t*, std::uint64_t>> runs (index.entries.size (), {nullptr, 0});
+    std::size_t total = 0;
+    for (const std::vector<std::uint8_t>& m : all)
+      for (std::size_t at = 0; at + 16 <= m.size ();)
+      {
+        std::uint64_t header[2];
+        std::memcpy (header, m.data () + at, sizeof header);
+        at += sizeof header;
+        runs.at (header[0]) = {m.data () + at, header[1]};
+        at += header[1] * sizeof (pcl::PointNormal);
+        total += header[1];
+      }
+    local.origin = origin;
+    local.cloud.resize (total);
+    std::size_t at = 0;
+    for (const auto& run : runs)
+      if (run.second > 0)
+      {
+        std::memcpy (static_cast<void*> (local.cloud.points.data () + at), run.first, run.second * sizeof (pcl::PointNormal));
+        at += run.second;
+      }
+    patches = index.total_patches;
+    return bytes_read;
+  }
+
+  /// Option -box: six numbers, min corner then max corner.
+  Eigen::AlignedBox3d
+  parseBox (const std::string& text)
+  {
+    std::vector<double> v;
+    std::size_t at = 0;
+    while (at <= text.size () && v.size () < 7)
+    {
+      const std::size_t comma = std::min (text.find (',', at), text.size ());
+      const std::string item = text.substr (at, comma - at);
+      char* end = nullptr;
+      const double x = std::strtod (item.c_str (), &end);
+      if (item.empty () || *end != '\0' || !std::isfinite (x))
+        v.push_back (NAN);
+      else
+        v.push_back (x);
+      at = comma + 1;
+    }
+    if (v.size () != 6 || !std::all_of (v.begin (), v.end (), [] (double x) { return std::isfinite (x); }) ||
+        v[0] > v[3] || v[1] > v[4] || v[2] > v[5])
+      throw Error ("option -box: expected XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (six finite numbers, min <= max), got '" + text + "'");
+    return Eigen::AlignedBox3d (Eigen::Vector3d (v[0], v[1], v[2]), Eigen::Vector3d (v[3], v[4], v[5]));
+  }
 } // namespace
 
 int
 main (int argc, char** argv)
 {
+  const tools::ProcessGroup group (argc, argv);
   return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
@@ -70,9 +189,74 @@ main (int argc, char** argv)
     int threads = 0;
     args.integer ("-threads", threads, tools::Range::atLeast (0));
 
+    const bool has_box = args.has ("-box");
+    const Eigen::AlignedBox3d box = has_box ? parseBox (args.value ("-box")) : Eigen::AlignedBox3d ();
+    if (has_box && !has_density)
+      throw Error ("option -box needs -density D (points per unit area: -n counts the whole model's points)");
+    if (has_box && !recon_mesh.empty ())
+      throw Error ("options -box and -recon exclude each other");
+
+    const bool is_tiled = isTiledModelFile (model_path);
+    const bool across = group.size () > 1 && is_tiled && has_density && !has_box && recon_mesh.empty ();
+    if (group.size () > 1 && !across && group.rank () != 0)
+      return 0;  // rank 0 decodes alone
+    if (across)
+    {
+      pcl::console::TicToc timer;
+      timer.tic ();
+      SparseSurfaceResampling<pcl::PointNormal> resampling;
+      SparseSurfaceResamplingOptions options;
+      options.seed = seed;
+      resampling.setOptions (options);
+      resampling.setDensity (density);
+      resampling.setNumberOfThreads (threads);
+      tools::LocalCloud local;
+      std::size_t patches = 0;
+      const std::uint64_t bytes_read = decodeAcross (group, model_path, resampling, local, patches);
+      if (group.rank () != 0)
+        return 0;
+      const double resample_seconds = timer.toc () / 1000.0;
+      timer.tic ();
+      tools::saveLocalCloud (out_path, local, true);
+      const double write_seconds = timer.toc () / 1000.0;
+      if (json)
+        tools::JsonObject ()
+          .add ("model", model_path)
+          .add ("patches", patches)
+          .add ("points", local.cloud.size ())
+          .add ("tiled", true)
+          .add ("ranks", group.size ())
+          .add ("bytes_read_rank0", bytes_read)
+          .add ("seconds", tools::JsonObject ().addSeconds ("resample", resample_seconds).addSeconds ("write", write_seconds))
+          .print ();
+      else if (!quiet)
+        std::printf ("%zu patches -> %zu points over %d processes; seconds: resample %.3f, write %.3f\n", patches,
+                     local.cloud.size (), group.size (), resample_seconds, write_seconds);
+      return 0;
+    }
+
     pcl::console::TicToc timer;
     timer.tic ();
-    const auto model = std::make_shared<const SparseSurfaceModel> (loadModel (model_path));
+    // A tiled model: the tiles reaching into the box (or all), their patch numbers and the grid's frame,
+    // so a region resamples exactly as the whole model does there.
+    std::uint64_t bytes_read = 0;
+    std::vector<std::size_t> patch_numbers;
+    Eigen::Vector3d frame_origin = Eigen::Vector3d::Zero ();
+    SparseSurfaceModel::ConstPtr model;
+    if (is_tiled)
+    {
+      const Eigen::Vector3d inf = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
+      TiledModel tiled = loadTiledModelRegion (model_path, has_box ? box : Eigen::AlignedBox3d (-inf, inf), &bytes_read);
+      patch_numbers = tiled.patchNumbers ();
+      const Eigen::Vector3d far = tiled.grid.origin + tiled.grid.edge * tiled.grid.counts.cast<double> ();
+      frame_origin = localFrameOrigin ({tiled.grid.origin, far});
+      model = std::make_shared<const SparseSurfaceModel> (std::move (tiled.model));
+    }
+    else
+    {
+      model = std::make_shared<const SparseSurfaceModel> (loadModel (model_path));
+      bytes_read = static_cast<std::uint64_t> (inspectModelFile (model_path).file_bytes);
+    }
     const double load_seconds = timer.toc () / 1000.0;
 
     // Check -recon before writing anything, so that a bad request leaves no output behind.
@@ -101,7 +285,21 @@ main (int argc, char** argv)
       resampling.setPointCount (has_n ? n : std::max<std::size_t> (model->num_input_vertices, 1));
     resampling.setNumberOfThreads (threads);
     resampling.setProgressCallback (makeConsoleProgress (quiet || json));
-    const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
+    resampling.setPatchNumbers (patch_numbers);
+    tools::LocalCloud local;
+    if (is_tiled && !model->patches.empty ())
+      local = tools::resampleInLocalFrame (resampling, model, frame_origin);
+    else if (!model->patches.empty () || !has_box)
+      local = tools::resampleInLocalFrame (resampling, model);
+    if (has_box)
+    {
+      // Exactly the points inside the box (closed), as the whole model places them.
+      std::size_t kept = 0;
+      for (const pcl::PointNormal& p : local.cloud)
+        if (box.contains (local.origin + p.getVector3fMap ().cast<double> ()))
+          local.cloud[kept++] = p;
+      local.cloud.resize (kept);
+    }
     const pcl::PointCloud<pcl::PointNormal>& cloud = local.cloud;
     const double resample_seconds = timer.toc () / 1000.0;
 
@@ -124,6 +322,8 @@ main (int argc, char** argv)
         .add ("nnz", model->numNonZeros ())
         .add ("points", cloud.size ())
         .add ("area", resampling.getEstimatedArea ())
+        .add ("tiled", is_tiled)
+        .add ("bytes_read", bytes_read)
         .add ("seconds", tools::JsonObject ()
                            .addSeconds ("load", load_seconds)
                            .addSeconds ("resample", resample_seconds)

@@ -2,18 +2,26 @@
 /// (N_V, M, rho, nnz, RMSE, RMSE / diag, CR) and the seconds per stage.
 ///
 ///   pcl_sparse_encode MESH [-rho R] [-f F] [-L N] [-eps E] [-min-samples N] [-recon RECON.ply]
-///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [--store-vertices]] [--json] [-q]
+///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [--store-vertices]] [-tiles N]
+///                     [-memory SIZE] [--json] [-q]
+///
+/// Under `mpirun -n K` (tools built with MPI) the tiles are shared out over the K processes and rank 0
+/// writes the one model file, byte-identical to the run without MPI.
 
 #include "tool_input.h"
+#include "tool_processes.h"
 #include "tool_render.h"
 #include "tool_support.h"
+#include "tool_tiling.h"
 
 #include <pcl_sparse/common/color_map.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/tiles/memory_tile_source.h>
 
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
@@ -50,19 +58,24 @@ namespace
       {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default: 3 x the model's"},
       {"", "mean error, which adds 0-5 % to its Chamfer distance; 0 = lossless)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
+      {"-tiles N", "tile the input: N tiles along the longest side of its bounding box, each encoded apart"},
+      {"", "(docs/TILES.md); -o then writes a tiled model, which -box decodes region by region"},
+      {"-memory SIZE", "tile by itself when the untiled encoding would need more (default 2G; K, M, G, T)"},
+      {"", "under mpirun -n K the tiles are shared out over the K processes (same model file)"},
       tools::pngHelpLine (),
       {"--json", "print one JSON object on stdout instead of the table row"},
       {"-q", "quiet (no progress, only the result and errors)"},
     },
     1,
     {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
-     "-viewpoint", "-preset", "-png", "-size", "-view"},
+     "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices"}};
 } // namespace
 
 int
 main (int argc, char** argv)
 {
+  const tools::ProcessGroup group (argc, argv);
   return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
@@ -105,15 +118,38 @@ main (int argc, char** argv)
     const double load_seconds = timer.toc () / 1000.0;
     const std::vector<Eigen::Vector3d> input_positions = input.worldPositions ();
 
+    TileGridOptions grid_options;
+    const bool tiled = tools::chooseTiling (args, input.points (), grid_options);
+    if (tiled && has_viewpoint)
+      throw Error ("option -viewpoint is not supported with tiling yet");
+    if (!tiled && group.rank () != 0)
+      return 0;  // an untiled encoding is rank 0's alone
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-    tools::setSurfaceInput (encoder, input);
-    if (has_viewpoint)
-      encoder.setViewPoint (viewpoint.x (), viewpoint.y (), viewpoint.z ());
-    encoder.setOptions (options);
-    encoder.setNumberOfThreads (threads);
-    encoder.setProgressCallback (makeConsoleProgress (quiet || json));
     SparseSurfaceModel model;
-    encoder.compute (model);
+    TiledModel tiled_model;
+    EncoderTimings tiled_timings;
+    if (tiled)
+    {
+      // Every rank cuts the same tiles from its own copy of the input; rank 0 merges and writes.
+      const MemoryTileSource source = input.mesh ? MemoryTileSource (input.mesh, grid_options)
+                                                 : MemoryTileSource (input.scan, grid_options);
+      timer.tic ();
+      tiled_timings.coding = tools::encodeTilesAcross (group, source, options, threads, quiet || json, tiled_model);
+      tiled_timings.total = timer.toc () / 1000.0;
+      if (group.rank () != 0)
+        return 0;
+      model = std::move (tiled_model.model);
+    }
+    else
+    {
+      tools::setSurfaceInput (encoder, input);
+      if (has_viewpoint)
+        encoder.setViewPoint (viewpoint.x (), viewpoint.y (), viewpoint.z ());
+      encoder.setOptions (options);
+      encoder.setNumberOfThreads (threads);
+      encoder.setProgressCallback (makeConsoleProgress (quiet || json));
+      encoder.compute (model);
+    }
 
     timer.tic ();
     std::vector<double> errors;
@@ -123,7 +159,13 @@ main (int argc, char** argv)
       write_options.tolerance = derivedFileTolerance (stats);
 
     timer.tic ();
-    if (!model_path.empty ())
+    if (!model_path.empty () && tiled)
+    {
+      tiled_model.model = std::move (model);
+      saveTiledModel (model_path, tiled_model, write_options, threads);
+      model = std::move (tiled_model.model);
+    }
+    else if (!model_path.empty ())
       saveModel (model_path, model, write_options);
     if (!recon_path.empty () || !error_path.empty () || args.has ("-png"))
     {
@@ -148,7 +190,7 @@ main (int argc, char** argv)
       tools::writeErrorPng (args, reconstructed, errors, model.bbox_diagonal);
     }
     const double write_seconds = timer.toc () / 1000.0;
-    const EncoderTimings& t = encoder.getTimings ();
+    const EncoderTimings& t = tiled ? tiled_timings : encoder.getTimings ();
 
     if (json)
     {
@@ -171,6 +213,8 @@ main (int argc, char** argv)
         .add ("max_error", stats.max_error)
         .add ("bbox_diagonal", model.bbox_diagonal)
         .add ("uncovered", stats.uncovered)
+        .add ("tiles", tiled ? tiled_model.tiles.size () : 0)
+        .add ("ranks", group.size ())
         .add ("seconds", tools::JsonObject ()
                            .addSeconds ("load", load_seconds)
                            .addSeconds ("patches", t.patches)
@@ -190,6 +234,10 @@ main (int argc, char** argv)
                    stats.compression_ratio);
       if (stats.uncovered > 0)
         std::printf ("uncovered vertices (not in the RMSE): %zu\n", stats.uncovered);
+      if (tiled)
+        std::printf ("tiles: %zu with patches of %zu (%d x %d x %d, edge %.4g), %d process%s\n", tiled_model.tiles.size (),
+                     tiled_model.grid.size (), tiled_model.grid.counts.x (), tiled_model.grid.counts.y (),
+                     tiled_model.grid.counts.z (), tiled_model.grid.edge, group.size (), group.size () > 1 ? "es" : "");
       if (input.scan)
         tools::printScanSummary (input, encoder.getCloudSurface ().get ());
       std::printf ("seconds: load %.3f, patches %.3f, coding %.3f, statistics %.3f, write %.3f (encode %.3f)\n",

@@ -19,8 +19,15 @@ namespace pcl_sparse
       seeds.reserve (model->patches.size ());
       for (const PatchCode& patch : model->patches)
         seeds.push_back (patch.origin);
+      return resampleInLocalFrame (resampling, model, localFrameOrigin (seeds));
+    }
+
+    LocalCloud
+    resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+                          const Eigen::Vector3d& origin)
+    {
       LocalCloud local;
-      local.origin = localFrameOrigin (seeds);
+      local.origin = origin;
       if (local.origin.isZero (0.0))
         resampling.setInputModel (model);
       else

@@ -25,6 +25,12 @@ namespace pcl_sparse
     LocalCloud
     resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model);
 
+    /// As above, in the local frame of \a origin (a tiled model's: the same for the whole model and any
+    /// region of it, so a region's points are exactly the whole model's there).
+    LocalCloud
+    resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+                          const Eigen::Vector3d& origin);
+
     /// Writes \a local to \a path (.pcd / .ply) in the model's frame: float x y z where floats keep the
     /// cloud's resolution (the origin is 0, or every coordinate is within 16 extents of 0), else double
     /// x y z = origin + point (map coordinates; PCL's loader cannot read those into PointXYZ).

@@ -14,7 +14,7 @@ cxx=${CXX_FUZZ:-clang++}
 common=(-std=c++17 -g -I"$root/include" -I/usr/include/eigen3)
 sources=("$root"/src/format/*.cpp "$root/src/coding/cosine_dictionary.cpp" "$root/src/model/sparse_surface_model.cpp" "$root/src/model/vertex_attributes.cpp"
          "$root/src/mesh/bounding_box.cpp"
-         "$root/src/common/atomic_write.cpp")
+         "$root/src/common/atomic_write.cpp" "$root/src/tiles/tile_grid.cpp" "$root/src/tiles/tiled_model.cpp")
 
 echo "building $build/fuzz_model_file" >&2
 "$cxx" "${common[@]}" -O1 -DFUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Installs the Debian (bookworm) packages pcl_sparse needs to build, test and run its demo (doxygen: the
+# Installs the Debian (bookworm) packages pcl_sparse needs to build, test and run its demo (Open MPI: the
+# tiled encoder across processes, mpirun in the tests; doxygen: the
 # API reference and its warning check, test doxygen_clean).
 # Idempotent: packages already present are skipped. Uses sudo only when not root.
 set -euo pipefail
 
 packages=(build-essential cmake pkg-config libpcl-dev libeigen3-dev libflann-dev libboost-dev
-          libgtest-dev libzstd-dev libpng-dev doxygen "$@")
+          libgtest-dev libzstd-dev libpng-dev doxygen libopenmpi-dev openmpi-bin "$@")
 
 missing=()
 for p in "${packages[@]}"; do

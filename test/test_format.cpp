@@ -431,8 +431,10 @@ TEST (ModelFile, ForgedHeadersGiveClearErrors)
   expectErrorContaining (bytes, "wrong magic");
 
   bytes = good;  // the version is checked first: a later version may lay out its header differently
-  bytes[8] = 2;
-  expectErrorContaining (bytes, "unsupported model file version 2");
+  bytes[8] = 3;
+  expectErrorContaining (bytes, "unsupported model file version 3");
+  bytes[8] = 2;  // version 2 is a tiled file (tiled_model_file.h), whose header this is not
+  expectErrorContaining (bytes, "tiled model file");
 
   bytes = good;
   bytes[17] ^= 1;

@@ -124,7 +124,7 @@ namespace pcl_sparse
   encodeSurface (const TriangleMesh& mesh, const VertexAttributes& attributes, const MeshTopology& topology,
                  const SparseSurfaceEncoderOptions& options, const SurfaceBasis::ConstPtr& basis, int num_threads,
                  const ProgressCallback& progress, SparseSurfaceModel& model,
-                 const std::vector<Eigen::Vector3d>& point_normals)
+                 const std::vector<Eigen::Vector3d>& point_normals, const std::vector<std::uint8_t>& seed_vertices)
   {
     AttributeCodingInput attribute_input;
     if (!attributes.empty ())
@@ -141,7 +141,8 @@ namespace pcl_sparse
     SurfaceEncoding encoding;
 
     // Steps 2-6: patches with frames and local coordinates.
-    encoding.patches = sampleFeatureAwarePatches (mesh, topology, options.patches, {}, {}, num_threads, progress, point_normals).patches;
+    encoding.patches = sampleFeatureAwarePatches (mesh, topology, options.patches, {}, {}, num_threads, progress, point_normals,
+                                                  seed_vertices).patches;
     encoding.timings.patches = secondsSince (start);
 
     // Steps 7-9: code every patch into its own slot.

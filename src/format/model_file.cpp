@@ -8,6 +8,7 @@
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
 #include <pcl_sparse/format/sparse_code_stream.h>
+#include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/format/zstd_codec.h>
 
 #include <algorithm>
@@ -843,6 +844,8 @@ namespace pcl_sparse
   SparseSurfaceModel
   decodeModel (const std::uint8_t* data, std::size_t size, const std::string& name)
   {
+    if (isTiledModelData (data, size))
+      return decodeTiledModel (data, size, name).model;
     const Container container = readContainer (data, size, name);
     const Header& h = container.header;
     const bool quantised = h.flags & kFlagQuantised;
@@ -921,6 +924,8 @@ namespace pcl_sparse
   ModelFileInfo
   inspectModel (const std::uint8_t* data, std::size_t size, const std::string& name)
   {
+    if (isTiledModelData (data, size))
+      return inspectTiledModel (data, size, name);
     const Container container = readContainer (data, size, name);
     ModelFileInfo info;
     info.version = container.header.version;

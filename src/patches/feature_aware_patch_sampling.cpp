@@ -149,14 +149,22 @@ namespace pcl_sparse
       return order;
     }
 
-    /// The patches kept so far and the vertices they cover.
+    /// The patches kept so far and the vertices they cover. Only the vertices that must be covered (all,
+    /// or the seed region's) count: a patch covering nothing new of them is not kept.
     struct Coverage
     {
       std::vector<Patch>& patches;
-      std::vector<std::uint8_t> covered;
+      std::vector<std::uint8_t> covered;  ///< 1 covered, 2 need not be covered (outside the seed region)
       int num_covered = 0;
 
-      Coverage (std::vector<Patch>& kept, std::size_t num_vertices) : patches (kept), covered (num_vertices, 0) {}
+      ///  seedable: empty (every vertex must be covered) or one flag per vertex.
+      Coverage (std::vector<Patch>& kept, std::size_t num_vertices, const std::vector<std::uint8_t>& seedable)
+        : patches (kept), covered (num_vertices, 0)
+      {
+        if (!seedable.empty ())
+          for (std::size_t v = 0; v < num_vertices; ++v)
+            covered[v] = seedable[v] ? 0 : 2;
+      }
 
       void
       keep (const Patch& p)
@@ -199,7 +207,7 @@ namespace pcl_sparse
           break;
         if (options.max_fruitless_seeds > 0 && fruitless >= options.max_fruitless_seeds)
           break;
-        if (invalid[v] || !referenced[v])
+        if (invalid[v] || !referenced[v] || coverage.covered[v] == 2)
           continue;
         ++num_grown;
         ++fruitless;
@@ -356,9 +364,13 @@ namespace pcl_sparse
   PatchSamplingResult
   sampleFeatureAwarePatches (const TriangleMesh& input, const MeshTopology& input_topology, const PatchOptions& options,
                              const std::vector<double>& responses, const std::vector<int>& keypoints, int num_threads,
-                             const ProgressCallback& progress, const std::vector<Eigen::Vector3d>& point_normals)
+                             const ProgressCallback& progress, const std::vector<Eigen::Vector3d>& point_normals,
+                             const std::vector<std::uint8_t>& seed_vertices)
   {
     validateInputs (input, input_topology, options, responses, keypoints, point_normals);
+    require (seed_vertices.empty () || seed_vertices.size () == input.vertices.size (),
+             std::to_string (seed_vertices.size ()) + " seed flags for " + std::to_string (input.vertices.size ()) +
+               " vertices");
     const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
     const int num_input = static_cast<int> (input.vertices.size ());
     PatchSamplingResult result;
@@ -378,12 +390,22 @@ namespace pcl_sparse
       orderWithCopies (growth, candidateOrder (num_input, result.responses, result.keypoints), num_input);
 
     std::vector<std::uint8_t> referenced (num_vertices, 0);
+    std::vector<std::uint8_t> seedable;  // on the growth mesh: a split copy takes its original's flag
+    if (!seed_vertices.empty ())
+    {
+      seedable.resize (num_vertices);
+      for (int v = 0; v < num_vertices; ++v)
+        seedable[v] = seed_vertices[growth.originalOf (v)] ? 1 : 0;
+    }
+    int target = 0;
     for (int v = 0; v < num_vertices; ++v)
+    {
       referenced[v] = topology.facesOf (v).size () > 0;
-    const int target = static_cast<int> (std::count (referenced.begin (), referenced.end (), 1));
+      target += referenced[v] && (seedable.empty () || seedable[v]);
+    }
 
     PatchGrower grower (mesh, topology, geometry, options);
-    Coverage coverage (result.patches, num_vertices);
+    Coverage coverage (result.patches, num_vertices, seedable);
     result.num_grown = runSamplingLoop (mesh, order, referenced, target, options, grower, coverage, progress);
     const std::size_t num_sampled = result.patches.size ();
     if (options.cover_all_vertices)
@@ -392,7 +414,7 @@ namespace pcl_sparse
       progress ("patches", 1.0);
     Patch patch;
     for (int v = 0; v < num_vertices; ++v)
-      if (!referenced[v] && growth.originalOf (v) == v)
+      if (!referenced[v] && growth.originalOf (v) == v && (seedable.empty () || seedable[v]))
       {
         result.unreferenced.push_back (v);
         if (options.cover_unreferenced_vertices)

@@ -448,6 +448,9 @@ namespace pcl_sparse
     for (const PatchCode& code : model_->patches)
       if (!(code.radius > 0.0) || !std::isfinite (code.radius))
         throw Error (name_ + "::compute: a patch has a non-positive radius");
+    if (!patch_numbers_.empty () && patch_numbers_.size () != model_->patches.size ())
+      throw Error (name_ + "::compute: " + std::to_string (patch_numbers_.size ()) + " patch numbers for " +
+                   std::to_string (model_->patches.size ()) + " patches");
     computeResampling (output);
   }
 
@@ -482,7 +485,7 @@ namespace pcl_sparse
       std::vector<Candidate> candidates;
       Points evaluated;
       const double r = model.patches[p].radius;
-      areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, p, 0), candidates, evaluated) * grid.cell *
+      areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, patchNumber (p), 0), candidates, evaluated) * grid.cell *
                  grid.cell * r * r;
     }
     const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
@@ -544,7 +547,7 @@ namespace pcl_sparse
           const std::size_t p = static_cast<std::size_t> (pi);
           const double r = model_->patches[p].radius;
           passes.grids[p] = makeGrid (evaluator_->maxExtent (p), 1.0 / (r * std::sqrt (density)));
-          passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, p, 1),
+          passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 1),
                                                             passes.candidates[p], passes.evaluated[p]);
           const std::size_t finished = ++done;
           if (progress_ && omp_get_thread_num () == 0)
@@ -578,7 +581,7 @@ namespace pcl_sparse
     for (std::size_t p = 0; p < weights.size (); ++p)
     {
       const double whole = std::floor (weights[p]);
-      counts[p] = static_cast<std::size_t> (whole) + (uniform (patchKey (options_.seed, p, 2), 0) < weights[p] - whole ? 1 : 0);
+      counts[p] = static_cast<std::size_t> (whole) + (uniform (patchKey (options_.seed, patchNumber (p), 2), 0) < weights[p] - whole ? 1 : 0);
       total += static_cast<double> (counts[p]);
     }
     if (total > static_cast<double> (max_points))
@@ -608,7 +611,7 @@ namespace pcl_sparse
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
-      passes.sampler.selectPoints (p, passes.grids[p], patchKey (options_.seed, p, 3), passes.candidates[p],
+      passes.sampler.selectPoints (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 3), passes.candidates[p],
                                    passes.evaluated[p], counts[p], output.data () + offsets[p],
                                    channels > 0 ? point_attributes_.data () + offsets[p] * channels : nullptr);
       std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));

@@ -25,6 +25,7 @@
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_options.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -129,12 +130,15 @@ namespace pcl_sparse
   /// \param[out] model the model (replaced)
   /// \param[in] point_normals #V unit normals to grow and frame patches with (a scan's PCA normals,
   ///            sampleFeatureAwarePatches), or empty (default) for the mesh's own
+  /// \param[in] seed_vertices empty (default), or #V flags: only flagged vertices seed patches and must be
+  ///            covered (sampleFeatureAwarePatches; a tile's core, tiles/tiled_surface_encoder.h)
   /// \return the patches, coding diagnostics and timings
   SurfaceEncoding
   encodeSurface (const TriangleMesh& mesh, const VertexAttributes& attributes, const MeshTopology& topology,
                  const SparseSurfaceEncoderOptions& options, const SurfaceBasis::ConstPtr& basis, int num_threads,
                  const ProgressCallback& progress, SparseSurfaceModel& model,
-                 const std::vector<Eigen::Vector3d>& point_normals = {});
+                 const std::vector<Eigen::Vector3d>& point_normals = {},
+                 const std::vector<std::uint8_t>& seed_vertices = {});
 
   /// \brief The encoder as a PCL-style stage (input: see SurfaceStage).
   /// \tparam PointInT point type of the input cloud
@@ -164,6 +168,13 @@ namespace pcl_sparse
     void setVertexAttributes (const VertexAttributes::ConstPtr& attributes) { attributes_ = attributes; }
     const VertexAttributes::ConstPtr& getVertexAttributes () const { return attributes_; }
 
+    /// \brief Restricts the seeds (the encoding of one tile of a larger input, tiles/tiled_surface_encoder.h):
+    /// only flagged points seed patches, and only they must be covered; the others are surface the patches
+    /// may grow over. Rows as setVertexAttributes (per input point, vertex or scan point). An empty pointer
+    /// (default): every point seeds and is covered.
+    /// \param[in] seed_vertices one flag per input point (cloud), vertex (mesh) or point (setInputScan)
+    void setSeedVertices (const std::shared_ptr<const std::vector<std::uint8_t>>& seed_vertices) { seed_vertices_ = seed_vertices; }
+
     /// \brief Encodes the surface into \a model (replacing its content). Throws pcl_sparse::Error for a
     /// missing or empty surface, one without area, and options out of range.
     /// \param[out] model the sparse surface model
@@ -183,10 +194,13 @@ namespace pcl_sparse
     /// \brief The attributes of the surface's vertices: setVertexAttributes, else the input cloud's or scan's
     /// colour / intensity (none for a mesh), for the points the surface kept; empty when there are none.
     VertexAttributes surfaceAttributes () const;
+    /// \brief setSeedVertices' flags for the surface's vertices (empty when none were set).
+    std::vector<std::uint8_t> surfaceSeedVertices () const;
 
     SparseSurfaceEncoderOptions options_;
     SurfaceBasis::ConstPtr basis_;
     VertexAttributes::ConstPtr attributes_;
+    std::shared_ptr<const std::vector<std::uint8_t>> seed_vertices_;
     SurfaceEncoding encoding_;
   };
 } // namespace pcl_sparse

@@ -90,6 +90,7 @@ namespace pcl_sparse
     double bbox_diagonal = 0.0;             ///< of the encoded mesh
     double tolerance = 0.0;                 ///< as written (fraction of bbox_diagonal)
     std::uint64_t file_bytes = 0;           ///< total size
+    std::size_t num_tiles = 0;              ///< tiles of a tiled file (version 2, tiled_model_file.h); 0 otherwise
     std::vector<ModelFileSection> sections; ///< in file order
   };
 
@@ -103,7 +104,8 @@ namespace pcl_sparse
   std::vector<std::uint8_t>
   encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options = ModelWriteOptions ());
 
-  /// Decodes the bytes of a .psm file.
+  /// Decodes the bytes of a .psm file; a tiled file (version 2, tiled_model_file.h) gives its tiles' patches
+  /// merged into one model.
   /// \param[in] data  first byte
   /// \param[in] size  number of bytes
   /// \param[in] name  names the data in error messages

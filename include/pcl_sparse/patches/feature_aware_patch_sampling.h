@@ -39,6 +39,7 @@
 #include <pcl_sparse/patches/patch_options.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -106,13 +107,17 @@ namespace pcl_sparse
   /// \param[in] progress progress callback (may be empty)
   /// \param[in] point_normals #V unit normals to grow and frame patches with (a scan's PCA normals; see
   ///            computePatchGrowthGeometry), or empty (default) for the mesh's own
+  /// \param[in] seed_vertices empty (default: every vertex may seed a patch and must be covered), or #V
+  ///            flags: only flagged vertices seed patches and must be covered, the others are surface the
+  ///            patches may grow over (a tile's margin, tiles/tiled_surface_encoder.h)
   /// \return the patches and what the sampling saw
   /// Throws pcl_sparse::Error for options out of range, face indices out of range, or responses /
   /// keypoints / normals that do not fit the mesh.
   PatchSamplingResult
   sampleFeatureAwarePatches (const TriangleMesh& mesh, const MeshTopology& topology, const PatchOptions& options,
                              const std::vector<double>& responses, const std::vector<int>& keypoints, int num_threads,
-                             const ProgressCallback& progress, const std::vector<Eigen::Vector3d>& point_normals = {});
+                             const ProgressCallback& progress, const std::vector<Eigen::Vector3d>& point_normals = {},
+                             const std::vector<std::uint8_t>& seed_vertices = {});
 
   /// \brief Feature-aware patch sampling as a PCL-style stage (input: see SurfaceStage).
   /// \tparam PointInT point type of the input cloud

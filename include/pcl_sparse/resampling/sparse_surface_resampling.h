@@ -100,6 +100,13 @@ namespace pcl_sparse
     /// \brief Mean spacing \a spacing between neighbouring points: density 1 / spacing^2.
     void setSpacing (double spacing);
 
+    /// \brief The number of each patch of the model in a larger model it was cut from (a region of a tiled
+    /// model, TiledModel::patchNumbers): random draws are keyed by it, so the region gives the points the
+    /// whole model gives there. Empty (default): patch p is number p. Kept across computes.
+    /// \param[in] numbers one per patch of the input model, increasing
+    void setPatchNumbers (const std::vector<std::size_t>& numbers) { patch_numbers_ = numbers; }
+    const std::vector<std::size_t>& getPatchNumbers () const { return patch_numbers_; }
+
     /// \brief Options (seed, jitter, ownership).
     void setOptions (const SparseSurfaceResamplingOptions& options) { options_ = options; ownership_.reset (); }
     const SparseSurfaceResamplingOptions& getOptions () const { return options_; }
@@ -145,8 +152,12 @@ namespace pcl_sparse
     /// reconstructed unless \a prefilled and already of the right size).
     void selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output, bool prefilled);
 
+    /// The number patch \a p has in the model random draws are keyed by (setPatchNumbers).
+    std::size_t patchNumber (std::size_t p) const { return patch_numbers_.empty () ? p : patch_numbers_[p]; }
+
     SparseSurfaceModel::ConstPtr model_;
     SparseSurfaceResamplingOptions options_;
+    std::vector<std::size_t> patch_numbers_;
     Mode mode_ = Mode::None;
     std::size_t count_ = 0;
     double density_ = 0.0;

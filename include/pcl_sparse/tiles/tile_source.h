@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 namespace pcl_sparse
 {
@@ -32,9 +33,14 @@ namespace pcl_sparse
   /// margin box, in file order, with its vertices renumbered in order of first use.
   struct TileInput
   {
-    ScanCloud::Ptr scan;
-    TriangleMesh::Ptr mesh;
+    ScanCloud::Ptr scan;    ///< the scan's points of the margin box, or empty
+    TriangleMesh::Ptr mesh; ///< the mesh's faces of the margin box, or empty
+    /// Empty, or one per tile point (scan point, mesh vertex): its number in the whole input (the kept
+    /// point's rank in the cleaned scan, the mesh's vertex index), so that a tiled model's patches list
+    /// the whole input's vertices (statistics, reconstruction). Empty: the tile's patches list none.
+    std::vector<std::size_t> point_numbers;
 
+    /// Whether the tile has nothing to encode.
     bool empty () const { return !(scan && scan->size () > 0) && !(mesh && !mesh->triangles.empty ()); }
   };
 

@@ -39,7 +39,8 @@ namespace pcl_sparse
     options.patches = patchOptionsFor (options.patches, this->surfaceIsScan ());
     const VertexAttributes attributes = surfaceAttributes ();
     encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,
-                               this->num_threads_, this->progress_, model, this->surfaceNormals ());
+                               this->num_threads_, this->progress_, model, this->surfaceNormals (),
+                               surfaceSeedVertices ());
     // A scan is encoded in its local frame: the model and patches go back to the input's frame.
     if (!this->surface_origin_.isZero (0.0))
     {
@@ -47,6 +48,32 @@ namespace pcl_sparse
       for (Patch& patch : encoding_.patches)
         patch.origin += this->surface_origin_;
     }
+  }
+
+  template <typename PointInT>
+  std::vector<std::uint8_t>
+  SparseSurfaceEncoder<PointInT>::surfaceSeedVertices () const
+  {
+    std::vector<std::uint8_t> flags;
+    if (!seed_vertices_)
+      return flags;
+    const std::size_t num_inputs =
+        this->mesh_ ? this->mesh_->vertices.size () : this->scan_ ? this->scan_->size () : this->input_->size ();
+    if (seed_vertices_->size () != num_inputs)
+      this->fail ("setSeedVertices: " + std::to_string (seed_vertices_->size ()) + " flags for " +
+                  std::to_string (num_inputs) + " input points");
+    // Surface vertices as in surfaceAttributes.
+    if (this->surfaceIsScan () && !this->scan_)
+      for (std::size_t i : this->surface_input_indices_)
+        flags.push_back ((*seed_vertices_)[i]);
+    else if (!this->surfaceIsScan () && this->use_indices_ && this->indices_ && this->index_use_ == IndexUse::CropSurface)
+      for (const auto i : *this->indices_)
+        flags.push_back ((*seed_vertices_)[i]);
+    else
+      flags = *seed_vertices_;
+    if (flags.size () != this->surface_->vertices.size ())
+      this->fail ("the surface's vertices do not correspond to the input points: cannot carry the seed flags");
+    return flags;
   }
 
   template <typename PointInT>

@@ -1,0 +1,140 @@
+#include "tool_tiling.h"
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/tile_encoding_bytes.h>
+#include <pcl_sparse/tiles/tile_encoding.h>
+
+#include <pcl/console/print.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+namespace pcl_sparse
+{
+  namespace tools
+  {
+    std::uint64_t
+    parseByteSize (const std::string& option, const std::string& text)
+    {
+      char* end = nullptr;
+      const double value = std::strtod (text.c_str (), &end);
+      double scale = 1.0;
+      const std::string suffix = end ? std::string (end) : std::string ();
+      if (suffix == "K" || suffix == "k")
+        scale = 1024.0;
+      else if (suffix == "M" || suffix == "m")
+        scale = 1024.0 * 1024.0;
+      else if (suffix == "G" || suffix == "g")
+        scale = 1024.0 * 1024.0 * 1024.0;
+      else if (suffix == "T" || suffix == "t")
+        scale = 1024.0 * 1024.0 * 1024.0 * 1024.0;
+      else if (!suffix.empty ())
+        throw Error ("option " + option + ": '" + text + "' is not a size (a number with K, M, G or T)");
+      const double bytes = value * scale;
+      if (end == text.c_str () || !std::isfinite (bytes) || bytes < 1024.0 * 1024.0 || bytes > 1e18)
+        throw Error ("option " + option + ": '" + text + "' is not a size of at least 1M");
+      return static_cast<std::uint64_t> (bytes);
+    }
+
+    bool
+    chooseTiling (const CommandLine& args, std::size_t points, TileGridOptions& options)
+    {
+      options = TileGridOptions ();
+      if (args.integer ("-tiles", options.tiles_along_longest, Range::closed (1, 4096)))
+        return true;
+      const std::uint64_t budget = parseByteSize ("-memory", args.value ("-memory", "2G"));
+      if (static_cast<double> (points) * kEncoderBytesPerPoint <= static_cast<double> (budget))
+        return false;
+      // A tile's input is its core and margins (up to (1 + 2 x 0.1)^2 = 1.44 times its points on a surface).
+      options.points_per_tile =
+        std::max<std::size_t> (1000, static_cast<std::size_t> (static_cast<double> (budget) / kEncoderBytesPerPoint / 1.5));
+      return true;
+    }
+
+    namespace
+    {
+      /// Encodes \a tiles (a rank's share of one phase) into a message: a flag (0 tiles, 1 an error), the
+      /// seconds taken, then the tiles' bytes or the error text.
+      std::vector<std::uint8_t>
+      encodeShare (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
+                   int threads, const std::vector<std::size_t>& covered, const ProcessGroup& group, bool quiet)
+      {
+        const auto start = std::chrono::steady_clock::now ();
+        std::vector<TileEncoding> encodings;
+        std::string failure;
+        try
+        {
+          const bool report = !quiet && group.rank () == 0;
+          encodings = encodeTiles (source, tiles, options, threads, covered, [&] (std::size_t done) {
+            if (report)
+              pcl::console::print_info ("\rtiles: %zu / %zu of rank 0 (%d ranks)", done, tiles.size (), group.size ());
+          });
+          if (report && !tiles.empty ())
+            pcl::console::print_info ("\n");
+        }
+        catch (const std::exception& e)
+        {
+          failure = e.what ();
+        }
+        const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+        std::vector<std::uint8_t> message (1 + sizeof seconds, failure.empty () ? 0 : 1);
+        std::memcpy (message.data () + 1, &seconds, sizeof seconds);
+        const std::vector<std::uint8_t> body = failure.empty () ? encodeTileEncodings (encodings, source.totalPoints ())
+                                                                : std::vector<std::uint8_t> (failure.begin (), failure.end ());
+        message.insert (message.end (), body.begin (), body.end ());
+        return message;
+      }
+
+      /// Decodes the messages of every rank into \a tiles; returns the largest seconds. Throws the first
+      /// rank's error.
+      double
+      decodeShares (const std::vector<std::vector<std::uint8_t>>& messages, std::vector<TileEncoding>& tiles)
+      {
+        double slowest = 0.0;
+        for (std::size_t r = 0; r < messages.size (); ++r)
+        {
+          const std::vector<std::uint8_t>& m = messages[r];
+          double seconds = 0.0;
+          if (m.size () < 1 + sizeof seconds)
+            throw Error ("rank " + std::to_string (r) + " sent no tiles");
+          std::memcpy (&seconds, m.data () + 1, sizeof seconds);
+          slowest = std::max (slowest, seconds);
+          const std::uint8_t* data = m.data () + 1 + sizeof seconds;
+          const std::size_t size = m.size () - 1 - sizeof seconds;
+          if (m[0] != 0)
+            throw Error (std::string (reinterpret_cast<const char*> (data), size) + (r > 0 ? " (rank " + std::to_string (r) + ")" : ""));
+          decodeTileEncodings (data, size, "tiles of rank " + std::to_string (r), tiles);
+        }
+        return slowest;
+      }
+    } // namespace
+
+    double
+    encodeTilesAcross (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
+                       int threads, bool quiet, TiledModel& tiled)
+    {
+      const TileGrid& grid = source.grid ();
+      // Phase 0 (tilePhase), shared with every rank: phase-1 tiles need to know what its patches cover.
+      std::vector<std::size_t> points (grid.size ());
+      for (std::size_t t = 0; t < grid.size (); ++t)
+        points[t] = tilePhase (grid, t) == 0 ? source.corePoints (t) : 0;
+      std::vector<TileEncoding> tiles;
+      double seconds = decodeShares (group.allGather (encodeShare (source, tilesOfRank (points, group.size (), group.rank ()),
+                                                                    options, threads, {}, group, quiet)),
+                                     tiles);
+      const std::vector<std::size_t> covered = coveredPoints (tiles);
+      for (std::size_t t = 0; t < grid.size (); ++t)
+        points[t] = tilePhase (grid, t) == 1 ? source.corePoints (t) : 0;
+      const std::vector<std::vector<std::uint8_t>> phase1 =
+        group.gather (encodeShare (source, tilesOfRank (points, group.size (), group.rank ()), options, threads, covered,
+                                   group, quiet));
+      if (group.rank () != 0)
+        return seconds;
+      seconds += decodeShares (phase1, tiles);
+      tiled = mergeTileEncodings (grid, source.totalPoints (), std::move (tiles));
+      return seconds;
+    }
+  } // namespace tools
+} // namespace pcl_sparse

@@ -1,0 +1,52 @@
+#pragma once
+/// \file tool_tiling.h
+/// How pcl_sparse_encode decides to tile (issue 16): -tiles N forces N tiles along the longest side of
+/// the bounding box; otherwise an input whose untiled encoding would not fit the -memory budget (default
+/// 2G) is cut into tiles sized to fit it. And the tiled encoding across the processes of an mpirun.
+
+#include "tool_processes.h"
+#include "tool_support.h"
+
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/tiles/tile_source.h>
+#include <pcl_sparse/tiles/tiled_model.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace pcl_sparse
+{
+  namespace tools
+  {
+    /// Bytes the untiled encoder needs per input point: the peak resident set of pcl_sparse_encode less its
+    /// 35 MB at start, over the points, measured 450 (koala-loop1-200k, a mesh) to 895 (table_scene_mug,
+    /// a kNN scan surface), taken as 1.5 KB for room to spare.
+    constexpr double kEncoderBytesPerPoint = 1536.0;
+
+    /// A byte count with an optional binary suffix: "2G", "512M", "1.5T", "100000" (K, M, G, T = 2^10 ..
+    /// 2^40). Throws Error naming \a option for anything else or a value below 1 MiB.
+    std::uint64_t
+    parseByteSize (const std::string& option, const std::string& text);
+
+    /// How to tile an input of \a points points from -tiles and -memory: false (not tiled), or true and
+    /// \a options set (tiles_along_longest from -tiles, else points_per_tile from the budget).
+    bool
+    chooseTiling (const CommandLine& args, std::size_t points, TileGridOptions& options);
+
+    /// \brief The tiled encoding of \a source by the processes of \a group, in the two phases of tilePhase:
+    /// each rank encodes its share of the phase-0 tiles (tilesOfRank) with \a threads threads and every rank
+    /// receives them all (what they cover); then each encodes its share of the phase-1 tiles, and rank 0
+    /// gathers and merges everything. The result is the same for any number of processes and threads.
+    /// \param[in] group      the processes
+    /// \param[in] source     the tiled input (the same on every rank)
+    /// \param[in] options    the encoder's options
+    /// \param[in] threads    OpenMP threads per process (0 = default)
+    /// \param[in] quiet      no progress lines
+    /// \param[out] tiled     on rank 0: the tiled model (untouched elsewhere)
+    /// \return the seconds of the slowest rank's tiles, phase by phase (on rank 0)
+    double
+    encodeTilesAcross (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
+                       int threads, bool quiet, TiledModel& tiled);
+  } // namespace tools
+} // namespace pcl_sparse

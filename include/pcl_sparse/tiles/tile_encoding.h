@@ -1,0 +1,118 @@
+#pragma once
+/// \file tile_encoding.h
+/// Encoding one tile of a tiled input, and merging the tiles into one model (issue 16).
+///
+/// A tile is encoded from its margin box's input with the ordinary encoder and the same options, except:
+///  - only points of the tile's core (TileGrid::tileOf) seed patches, and the encoder covers every one of
+///    them (SparseSurfaceEncoder::setSeedVertices): the tile owns exactly the patches seeded in its core,
+///    the margin is surface they may grow over, and every input point is covered by its own tile's
+///    patches, so seams have no gap;
+///  - tiles are encoded in two phases (a checkerboard, tilePhase): a phase-1 tile knows which of its points
+///    the phase-0 tiles' patches cover (those seed nothing and need no patch of its own), so the band along
+///    a seam is covered once, as in an untiled encoding;
+///  - rho, a fraction of the surface's area, is rescaled to the tile: rho x (points of the whole input) /
+///    (points of the tile's input), so patches are as large as in an untiled encoding of the same density.
+/// Per-model fields are the whole input's: the vertex count, the bounding-box diagonal (union of the tiles'
+/// core bounds) and each attribute channel's range (union over the tiles), so the file tolerance and the
+/// statistics do not depend on the tiling. Each tile's encoding depends only on the tile's input, the
+/// options and (phase 1) the phase-0 patches, never on which process or thread encodes it.
+
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/tiles/tile_source.h>
+#include <pcl_sparse/tiles/tiled_model.h>
+
+#include <Eigen/Geometry>
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// \brief The phase of tile \a t, 0 or 1: the parity of i + j + k, so that tiles sharing a face are in
+  /// different phases. Phase-1 tiles are encoded knowing which of their points phase-0 tiles' patches cover
+  /// (encodeTile's \a covered), so the band along a seam is not covered twice.
+  /// \param[in] grid the grid
+  /// \param[in] t    the tile
+  inline int
+  tilePhase (const TileGrid& grid, std::size_t t)
+  {
+    return grid.coordinates (t).sum () % 2;
+  }
+
+  /// \brief The input points (their numbers in the whole input, ascending, distinct) the patches of
+  /// \a tiles cover.
+  /// \param[in] tiles encodings (of phase 0)
+  std::vector<std::size_t>
+  coveredPoints (const std::vector<TileEncoding>& tiles);
+
+  /// \brief Encodes tile \a t of \a source (see the file's comment).
+  /// \param[in] source       the tiled input
+  /// \param[in] t            the tile
+  /// \param[in] options      the encoder's options, as for the whole input (validated)
+  /// \param[in] num_threads  OpenMP threads (0 = default); the result does not depend on it
+  /// \param[in] covered      points (numbers in the whole input, ascending) that patches of other tiles
+  ///                         already cover (coveredPoints of phase 0 for a phase-1 tile): they seed no
+  ///                         patch and need none; empty (default) for phase 0
+  /// \return the tile's patches (none when its core has no point or its input no surface, or when a scan
+  ///         tile of fewer than 256 points makes no surface: a few stray points, left in no patch)
+  /// \throws pcl_sparse::Error naming the tile when its encoding fails
+  TileEncoding
+  encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads = 0,
+              const std::vector<std::size_t>& covered = {});
+
+  /// \brief Encodes several tiles (encodeTile), in parallel over the tiles when \a num_threads allows
+  /// (each tile's encoder then runs on one thread: the sampling loop is sequential, so tiles side by side
+  /// use the cores better than threads inside one tile). The result does not depend on \a num_threads.
+  /// \param[in] source       the tiled input
+  /// \param[in] tiles        the tiles, in the order of the result
+  /// \param[in] options      the encoder's options
+  /// \param[in] num_threads  OpenMP threads (0 = default)
+  /// \param[in] covered      as for encodeTile
+  /// \param[in] progress     called with the number of tiles done (may be empty)
+  /// \return one encoding per tile
+  /// \throws pcl_sparse::Error of the first tile (in \a tiles' order) that fails
+  std::vector<TileEncoding>
+  encodeTiles (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
+               int num_threads = 0, const std::vector<std::size_t>& covered = {},
+               const std::function<void (std::size_t)>& progress = {});
+
+  /// \brief The whole model from its tiles' encodings (patches in tile order; whole-input vertex count,
+  /// diagonal and attribute ranges).
+  /// \param[in] grid          the grid
+  /// \param[in] total_points  points of the whole input (TileSource::totalPoints)
+  /// \param[in] tiles         encodings of every tile with core points, in any order
+  /// \return the tiled model
+  /// \throws pcl_sparse::Error for a tile twice, tiles with different bases or attribute channels
+  TiledModel
+  mergeTileEncodings (const TileGrid& grid, std::size_t total_points, std::vector<TileEncoding> tiles);
+
+  /// \brief Tiled encoding as a stage: setTileSource, setOptions, compute (TiledModel&).
+  class TiledSurfaceEncoder : public StageBase
+  {
+  public:
+    using Ptr = std::shared_ptr<TiledSurfaceEncoder>;
+    using ConstPtr = std::shared_ptr<const TiledSurfaceEncoder>;
+
+    TiledSurfaceEncoder () : StageBase ("TiledSurfaceEncoder") {}
+
+    /// \brief The tiled input (MemoryTileSource, or a file-backed source).
+    void setTileSource (const TileSource::Ptr& source) { source_ = source; }
+    /// \brief The encoder's options (as for an untiled encoding).
+    void setOptions (const SparseSurfaceEncoderOptions& options) { options_ = options; }
+    const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
+
+    /// \brief Encodes every tile with core points (encodeTiles: in parallel over the stage's threads),
+    /// phase 0 then phase 1 (tilePhase), and merges them. Throws pcl_sparse::Error for a missing source or a tile that fails.
+    /// \param[out] model the tiled model
+    void compute (TiledModel& model);
+
+    /// \brief Seconds each tile took in the last compute, one per tile of the grid (0: not encoded).
+    const std::vector<double>& getTileSeconds () const { return tile_seconds_; }
+
+  private:
+    TileSource::Ptr source_;
+    SparseSurfaceEncoderOptions options_;
+    std::vector<double> tile_seconds_;
+  };
+} // namespace pcl_sparse

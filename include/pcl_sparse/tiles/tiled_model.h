@@ -1,0 +1,65 @@
+#pragma once
+/// \file tiled_model.h
+/// A model encoded tile by tile (issue 16): the whole model (the tiles' patches concatenated in tile
+/// order, with the whole input's vertex count, bounding-box diagonal and attribute ranges), the grid, and
+/// which patches each tile owns. The tiled .psm file (format/tiled_model_file.h) stores each tile apart.
+
+#include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/tiles/tile_grid.h>
+
+#include <Eigen/Geometry>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// The patches one tile owns: model.patches[first_patch, first_patch + num_patches).
+  struct TileRange
+  {
+    std::size_t tile = 0;         ///< tile number in the grid
+    std::size_t first_patch = 0;  ///< number of its first patch in the whole model
+    std::size_t num_patches = 0;  ///< patches whose seed lies in the tile's core box
+  };
+
+  /// One encoded tile (tile_encoding.h).
+  struct TileEncoding
+  {
+    std::size_t tile = 0;                 ///< tile number
+    SparseSurfaceModel model;             ///< its patches (vertices numbered in the whole input)
+    Eigen::AlignedBox3d core_bounds;      ///< bounding box of its core points (empty if none)
+    double seconds = 0.0;                 ///< wall-clock seconds the encoding took
+  };
+
+  /// A tiled model, or the part of one that was loaded (a region: some tiles only).
+  struct TiledModel
+  {
+    TileGrid grid;                   ///< the grid the input was cut along
+    SparseSurfaceModel model;        ///< the patches of the tiles below, in their order
+    std::vector<TileRange> tiles;    ///< tiles with patches, ascending; ranges into the whole model
+    std::size_t total_patches = 0;   ///< patches of the whole model (more than model's for a region)
+
+    /// For each patch of \a model, its number in the whole model (as resampling keys use it,
+    /// SparseSurfaceResamplingBase::setPatchNumbers), so a region resamples as the whole model does there.
+    std::vector<std::size_t> patchNumbers () const;
+  };
+
+  /// \brief The patches of tile range \a range as a model of their own (same basis, vertex count, diagonal
+  /// and attribute channels as \a model).
+  /// \param[in] model the whole model
+  /// \param[in] first first patch
+  /// \param[in] count number of patches
+  /// \return the sub-model
+  SparseSurfaceModel
+  subModel (const SparseSurfaceModel& model, std::size_t first, std::size_t count);
+
+  /// \brief A box holding every point patch \a patch can give in resampling and every place it can compete
+  /// for there (with the default PatchOwnershipOptions, or any with max_height <= 1 and height_tolerance <=
+  /// 0.25): s + r R (x, y, z) with (x, y) in the disk of its largest footprint extent and |z| at most
+  /// min (sum of its coefficients' magnitudes, 1) + 0.25 (atoms are bounded by 1).
+  /// \param[in] patch the patch (frame orthonormal)
+  /// \return the box
+  Eigen::AlignedBox3d
+  patchReachBox (const PatchCode& patch);
+} // namespace pcl_sparse

@@ -1,0 +1,65 @@
+#include <pcl_sparse/format/tile_encoding_bytes.h>
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/byte_stream.h>
+#include <pcl_sparse/format/model_file.h>
+
+namespace pcl_sparse
+{
+  std::vector<std::uint8_t>
+  encodeTileEncodings (const std::vector<TileEncoding>& tiles, std::size_t total_points)
+  {
+    ByteWriter out;
+    out.putVarint (tiles.size ());
+    ModelWriteOptions lossless;
+    lossless.include_vertices = true;
+    lossless.zstd_level = 1;
+    for (const TileEncoding& tile : tiles)
+    {
+      out.putU64 (tile.tile);
+      out.putU8 (tile.core_bounds.isEmpty () ? 0 : 1);
+      for (int a = 0; a < 3; ++a)
+        out.putF64 (tile.core_bounds.isEmpty () ? 0.0 : tile.core_bounds.min ()[a]);
+      for (int a = 0; a < 3; ++a)
+        out.putF64 (tile.core_bounds.isEmpty () ? 0.0 : tile.core_bounds.max ()[a]);
+      out.putF64 (tile.seconds);
+      if (tile.model.patches.empty ())
+      {
+        out.putVarint (0);
+        continue;
+      }
+      SparseSurfaceModel model = tile.model;
+      model.num_input_vertices = total_points;
+      const std::vector<std::uint8_t> bytes = encodeModel (model, lossless);
+      out.putVarint (bytes.size ());
+      out.putBytes (bytes.data (), bytes.size ());
+    }
+    return std::move (out.bytes ());
+  }
+
+  void
+  decodeTileEncodings (const std::uint8_t* data, std::size_t size, const std::string& name, std::vector<TileEncoding>& tiles)
+  {
+    ByteReader in (data, size, name);
+    const std::uint64_t count = in.getCount ("number of tiles", size / 58 + 1);
+    for (std::uint64_t i = 0; i < count; ++i)
+    {
+      TileEncoding tile;
+      tile.tile = in.getU64 ("tile");
+      const bool has_bounds = in.getU8 ("bounds flag") != 0;
+      Eigen::Vector3d lo, hi;
+      for (int a = 0; a < 3; ++a)
+        lo[a] = in.getF64 ("bounds");
+      for (int a = 0; a < 3; ++a)
+        hi[a] = in.getF64 ("bounds");
+      if (has_bounds)
+        tile.core_bounds = Eigen::AlignedBox3d (lo, hi);
+      tile.seconds = in.getF64 ("seconds");
+      const std::uint64_t bytes = in.getCount ("model bytes", size);
+      if (bytes > 0)
+        tile.model = decodeModel (in.getBytes (bytes, "model"), bytes, name + ": tile " + std::to_string (tile.tile));
+      tiles.push_back (std::move (tile));
+    }
+    in.expectEnd ();
+  }
+} // namespace pcl_sparse

@@ -1,0 +1,137 @@
+// The tools on tiled models (issue 16): pcl_sparse_encode -tiles / -memory (bounded memory), pcl_sparse_decode
+// -box (a region equals the same region of the full decode, and reads a small part of the file).
+
+#include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/tiled_model_file.h>
+#include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/scan_cloud.h>
+#include <pcl_sparse/io/scan_io.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+
+#include <gtest/gtest.h>
+
+#include "test_file_helpers.h"
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  const std::string tools = std::string (PCL_SPARSE_BINARY_DIR) + "/apps";
+
+  /// Runs a tool with \a arguments; returns its exit code, \a out receives stdout and stderr.
+  int
+  run (const std::string& tool, const std::string& arguments, std::string& out)
+  {
+    out.clear ();
+    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen ((tools + "/" + tool + " " + arguments + " 2>&1").c_str (), "r"),
+                                                 pclose);
+    if (!pipe)
+      return -1;
+    char buffer[4096];
+    std::size_t n;
+    while ((n = std::fread (buffer, 1, sizeof (buffer), pipe.get ())) > 0)
+      out.append (buffer, n);
+    const int status = pclose (pipe.release ());
+    return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
+  }
+
+  /// Largest resident set of the children waited for so far, in KB.
+  long
+  childrenPeakKb ()
+  {
+    rusage usage {};
+    getrusage (RUSAGE_CHILDREN, &usage);
+    return usage.ru_maxrss;
+  }
+
+  /// A terrain with (cells + 1)^2 vertices, written to \a path.
+  void
+  writeTerrain (const std::string& path, int cells)
+  {
+    saveTriangleMesh (path, makeHeightFieldGrid (cells, cells, 1.0, 1.0, [] (double x, double y) {
+                        return 0.06 * std::sin (9.0 * x) * std::cos (8.0 * y) + 0.05 * x * y;
+                      }));
+  }
+
+  class TilesTool : public ::testing::Test
+  {
+  protected:
+    void
+    SetUp () override
+    {
+      if (!std::filesystem::exists (tools + "/pcl_sparse_encode") || !std::filesystem::exists (tools + "/pcl_sparse_decode"))
+        GTEST_SKIP () << "tools not built";
+    }
+    pcl_sparse_test::TempDir dir_ {"pcl_sparse_tiles_tool"};
+  };
+} // namespace
+
+TEST_F (TilesTool, MemoryBudgetTilesAndBoundsThePeak)
+{
+  // Each test runs in a process of its own (gtest_discover_tests), so the children's peak starts here.
+  const std::string mesh = dir_.file ("terrain.off");
+  writeTerrain (mesh, 300);
+  std::string out;
+  ASSERT_EQ (run ("pcl_sparse_encode", mesh + " -q -memory 24M -o " + dir_.file ("tiled.psm"), out), 0) << out;
+  const long tiled_peak = childrenPeakKb ();
+  ASSERT_EQ (run ("pcl_sparse_encode", mesh + " -q -o " + dir_.file ("whole.psm"), out), 0) << out;
+  const long whole_peak = childrenPeakKb ();
+  EXPECT_TRUE (isTiledModelFile (dir_.file ("tiled.psm")));
+  EXPECT_FALSE (isTiledModelFile (dir_.file ("whole.psm")));
+  // The input stays in memory (90k vertices); the encoder's working set is a tile's.
+  EXPECT_LT (tiled_peak, whole_peak * 85 / 100) << "tiled " << tiled_peak << " KB, untiled " << whole_peak << " KB";
+  const ModelFileInfo info = inspectModelFile (dir_.file ("tiled.psm"));
+  EXPECT_GT (info.num_tiles, 4u);
+  EXPECT_NE (run ("pcl_sparse_encode", mesh + " -q -memory 2X", out), 0);
+  EXPECT_NE (out.find ("-memory"), std::string::npos) << out;
+}
+
+TEST_F (TilesTool, RegionDecodeEqualsTheFullDecodeThereAndReadsLittle)
+{
+  const std::string mesh = dir_.file ("terrain.off");
+  writeTerrain (mesh, 200);
+  const std::string model = dir_.file ("terrain.psm");
+  std::string out;
+  ASSERT_EQ (run ("pcl_sparse_encode", mesh + " -q -tiles 10 -o " + model, out), 0) << out;
+  ASSERT_EQ (run ("pcl_sparse_decode", model + " " + dir_.file ("full.pcd") + " -density 20000 -q", out), 0) << out;
+  // 1 % of the area: a 0.2 x 0.2 square of the 2 x 2 terrain.
+  const std::string box = "0.13,-0.41,-1,0.33,-0.21,1";
+  ASSERT_EQ (run ("pcl_sparse_decode", model + " " + dir_.file ("box.pcd") + " -density 20000 -box " + box + " --json", out), 0)
+    << out;
+  const std::size_t at = out.find ("\"bytes_read\": ");
+  ASSERT_NE (at, std::string::npos) << out;
+  const double bytes_read = std::stod (out.substr (at + 14));
+  const double file_bytes = static_cast<double> (std::filesystem::file_size (model));
+  // The header and index (104 + 88 bytes a tile) and the few tiles reaching the box. Issue 16's target (1 % of
+  // the area in under 5 % of the file) needs tiles much larger than an index entry: bench/bench_tiles.cpp
+  // measures it at scale (docs/TILES.md); these 100 tiles of ~600 vertices hold ~1 kB each.
+  const TiledModelIndex index = readTiledModelIndex (model);
+  EXPECT_LT (bytes_read, static_cast<double> (index.index_bytes) + 0.1 * file_bytes) << bytes_read << " of " << file_bytes;
+
+  ScanCloud full, part;
+  loadScanCloud (dir_.file ("full.pcd"), full);
+  loadScanCloud (dir_.file ("box.pcd"), part);
+  const Eigen::AlignedBox3d region (Eigen::Vector3d (0.13, -0.41, -1.0), Eigen::Vector3d (0.33, -0.21, 1.0));
+  std::vector<Eigen::Vector3d> expected;
+  for (std::size_t i = 0; i < full.size (); ++i)
+    if (region.contains (full.worldPosition (i)))
+      expected.push_back (full.worldPosition (i));
+  ASSERT_GT (expected.size (), 500u);
+  ASSERT_EQ (part.size (), expected.size ());
+  for (std::size_t i = 0; i < part.size (); ++i)
+    ASSERT_EQ (part.worldPosition (i), expected[i]) << "point " << i;
+
+  EXPECT_NE (run ("pcl_sparse_decode", model + " " + dir_.file ("x.pcd") + " -box " + box, out), 0);
+  EXPECT_NE (out.find ("-density"), std::string::npos) << out;
+  EXPECT_NE (run ("pcl_sparse_decode", model + " " + dir_.file ("x.pcd") + " -density 10 -box 1,2,3", out), 0);
+  EXPECT_NE (out.find ("-box"), std::string::npos) << out;
+}
