@@ -2,7 +2,7 @@
 /// curvature (docs/METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
 ///
 ///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-seed S] [-threads T]
-///                     [-recon MESH RECON.{ply,obj,off,stl}] [--json] [-q]
+///                     [-recon MESH RECON.{ply,obj,off,stl}] [-stream auto|on|off] [-block N] [--json] [-q]
 
 #include "tool_resampling.h"
 #include "tool_support.h"
@@ -37,10 +37,13 @@ namespace
       {"-threads T", "OpenMP threads (default: all; the output does not depend on it)"},
       {"-recon MESH RECON", "reconstruct MESH's vertices from the model (needs a model written with"},
       {"", "--store-vertices) and write MESH with them to RECON"},
+      {"-stream M", "auto (default) or on: write the cloud block by block as it is made, memory"},
+      {"", "bounded whatever N; off: make the whole cloud first (the same bytes either way)"},
+      {"-block N", "streamed: N points per block (default 2097152; memory about 200 x N bytes)"},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-n", "-density", "-seed", "-threads", {"-recon", 2}}, {"--json", "-q"}};
+    2, {"-n", "-density", "-seed", "-threads", {"-recon", 2}, "-stream", "-block"}, {"--json", "-q"}};
 } // namespace
 
 int
@@ -69,6 +72,7 @@ main (int argc, char** argv)
     args.integer ("-seed", seed, tools::Range::atLeast (0));
     int threads = 0;
     args.integer ("-threads", threads, tools::Range::atLeast (0));
+    const bool stream = tools::chooseStreaming (args, out_path, true, false);
 
     pcl::console::TicToc timer;
     timer.tic ();
@@ -101,12 +105,27 @@ main (int argc, char** argv)
       resampling.setPointCount (has_n ? n : std::max<std::size_t> (model->num_input_vertices, 1));
     resampling.setNumberOfThreads (threads);
     resampling.setProgressCallback (makeConsoleProgress (quiet || json));
-    const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
-    const pcl::PointCloud<pcl::PointNormal>& cloud = local.cloud;
-    const double resample_seconds = timer.toc () / 1000.0;
+    tools::setStreamBlock (args, resampling);
+    std::size_t points = 0;
+    double resample_seconds = 0.0, write_seconds = 0.0;
+    if (stream)
+    {
+      const tools::StreamedCloud streamed = tools::streamResampledCloud (resampling, model, out_path, true);
+      points = streamed.points;
+      resample_seconds = streamed.resample_seconds;
+      write_seconds = streamed.save_seconds;
+    }
+    else
+    {
+      const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
+      points = local.cloud.size ();
+      resample_seconds = timer.toc () / 1000.0;
+      timer.tic ();
+      tools::saveLocalCloud (out_path, local, true);
+      write_seconds = timer.toc () / 1000.0;
+    }
 
     timer.tic ();
-    tools::saveLocalCloud (out_path, local, true);
     if (!recon_mesh.empty ())
     {
       const std::vector<Eigen::Vector3d> vertices = model->reconstructVertices (recon.vertices.size ());
@@ -115,14 +134,15 @@ main (int argc, char** argv)
           recon.vertices[v] = vertices[v];
       saveTriangleMesh (recon_out, recon);
     }
-    const double write_seconds = timer.toc () / 1000.0;
+    write_seconds += timer.toc () / 1000.0;
 
     if (json)
       tools::JsonObject ()
         .add ("model", model_path)
         .add ("patches", model->numPatches ())
         .add ("nnz", model->numNonZeros ())
-        .add ("points", cloud.size ())
+        .add ("points", points)
+        .add ("streamed", stream)
         .add ("area", resampling.getEstimatedArea ())
         .add ("seconds", tools::JsonObject ()
                            .addSeconds ("load", load_seconds)
@@ -131,7 +151,7 @@ main (int argc, char** argv)
         .print ();
     else if (!quiet)
       std::printf ("%zu patches, %zu atoms -> %zu points; seconds: load %.3f, resample %.3f, write %.3f\n",
-                   model->numPatches (), model->numNonZeros (), cloud.size (), load_seconds, resample_seconds,
+                   model->numPatches (), model->numNonZeros (), points, load_seconds, resample_seconds,
                    write_seconds);
     return 0;
   });
