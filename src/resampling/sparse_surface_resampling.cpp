@@ -122,28 +122,36 @@ namespace pcl_sparse
         point.curvature = static_cast<float> (patchMeanCurvature (code, h));
       }
 
+      /// Side, in cells, of the top blocks of the cell classification (a power of two, at most 1/8 of
+      /// the grid); below 4 the grid is too coarse for blocks to pay and cells are tested one by one.
+      static int
+      topBlock (const PatchGrid& grid)
+      {
+        int top = 1;
+        while (top * 2 <= grid.n / 8)
+          top *= 2;
+        return top;
+      }
+
       /// At high density most cells lie well inside or well outside the part a patch keeps. A quadtree over
       /// the cell corners finds them: a block whose four corners agree is taken whole (kept cells get the
       /// bilinear weight of the corners), a block whose corners disagree is split, down to single cells
-      /// that are tested candidate by candidate. Blocks start at 1/8 of the grid (a quarter of the
-      /// footprint radius), far smaller than the curvature of ownership borders and footprints.
-      /// \a cells receives per cell: 0 dropped, > 0 kept with that weight, < 0 to be tested.
-      /// Returns false (and leaves \a cells empty) when the grid is too coarse for blocks to pay.
-      bool
-      classifyCells (std::size_t p, const PatchGrid& grid, std::vector<float>& cells, std::vector<float>& nodes) const
+      /// that are tested candidate by candidate. Blocks start at \a top cells (1/8 of the grid or less: a
+      /// quarter of the footprint radius), far smaller than the curvature of ownership borders and
+      /// footprints. This classifies the rows [\a row0, \a row1) (a band of whole top blocks): \a cells
+      /// receives per cell of the band, row after row: 0 dropped, > 0 kept with that weight, < 0 to be
+      /// tested. \a nodes memoises the corner weights of node rows row0 .. row1; its first row may hold the
+      /// previous band's last one (-1 where not evaluated). A node's weight does not depend on the band, so
+      /// a grid classified band by band (bounded memory) is classified exactly as in one piece.
+      void
+      classifyBand (std::size_t p, const PatchGrid& grid, int top, int row0, int row1, std::vector<float>& cells,
+                    std::vector<float>& nodes) const
       {
         const int n = grid.n;
-        int top = 1;
-        while (top * 2 <= n / 8)
-          top *= 2;
-        cells.clear ();
-        if (top < 4)
-          return false;
         const int stride = n + 1;
-        nodes.assign (static_cast<std::size_t> (stride) * stride, -1.0f);
-        cells.assign (static_cast<std::size_t> (n) * n, -1.0f);
+        cells.assign (static_cast<std::size_t> (row1 - row0) * n, -1.0f);
         auto node = [&] (int a, int b) {
-          float& w = nodes[static_cast<std::size_t> (b) * stride + a];
+          float& w = nodes[static_cast<std::size_t> (b - row0) * stride + a];
           if (w < 0.0f)
           {
             HeightSample h;
@@ -152,7 +160,7 @@ namespace pcl_sparse
           return static_cast<double> (w);
         };
         std::vector<std::array<int, 3>> stack;
-        for (int j = 0; j < n; j += top)
+        for (int j = row0; j < row1; j += top)
           for (int i = 0; i < n; i += top)
             stack.push_back ({i, j, top});
         while (!stack.empty ())
@@ -178,7 +186,7 @@ namespace pcl_sparse
           for (int j = j0; j < j1; ++j)
             for (int i = i0; i < i1; ++i)
             {
-              float& cell = cells[static_cast<std::size_t> (j) * n + i];
+              float& cell = cells[static_cast<std::size_t> (j - row0) * n + i];
               if (all_out)
                 cell = 0.0f;
               else
@@ -188,49 +196,86 @@ namespace pcl_sparse
               }
             }
         }
-        return true;
       }
 
+      /// Cells classified at once, at most (4 MB of cell and node weights; larger grids go by bands of
+      /// top blocks, so that memory stays bounded whatever the density).
+      static constexpr std::size_t whole_grid_cells = std::size_t (1) << 19;
+
       /// One jittered candidate per cell, kept ones in serpentine cell order; returns their weight sum.
-      /// Candidates tested one by one keep their evaluated point in \a evaluated, for the selection.
+      /// Candidates tested one by one keep their evaluated point in \a evaluated, for the selection. With
+      /// \a store false, only the sum is computed (the same sum) and \a out and \a evaluated stay empty;
+      /// \a kept (optional) receives the number of candidates either way. \a expected (0: unknown) is the
+      /// number of candidates, when a previous draw told it.
       double
       drawCandidates (std::size_t p, const PatchGrid& grid, std::uint64_t key, std::vector<Candidate>& out,
-                      Points& evaluated) const
+                      Points& evaluated, bool store = true, std::size_t* kept = nullptr, std::size_t expected = 0) const
       {
         out.clear ();
         evaluated.clear ();
+        const int n = grid.n, top = topBlock (grid);
+        const bool classified = top >= 4;
+        // Whole grid when small enough (one allocation per patch instead of a doubling series: at most the
+        // cells not dropped keep a candidate), else bands of top blocks.
+        const std::size_t cells_total = static_cast<std::size_t> (n) * n;
+        const int band = (!classified || cells_total <= whole_grid_cells) ? n : top;
         std::vector<float> cells, nodes;
-        const bool classified = classifyCells (p, grid, cells, nodes);
-        // One allocation per patch instead of a doubling series (copies and page faults): at most the
-        // cells not dropped by the classification keep a candidate.
-        out.reserve (classified ? static_cast<std::size_t> (std::count_if (cells.begin (), cells.end (), [] (float c) { return c != 0.0f; }))
-                                : static_cast<std::size_t> (grid.n) * grid.n);
+        if (classified)
+          nodes.assign (static_cast<std::size_t> (band + 1) * (n + 1), -1.0f);
         double sum = 0.0;
-        for (int row = 0; row < grid.n; ++row)
-          for (int k = 0; k < grid.n; ++k)
+        std::size_t count = 0;
+        for (int row0 = 0; row0 < n; row0 += band)
+        {
+          const int row1 = std::min (n, row0 + band);
+          if (classified)
           {
-            const int col = (row % 2 == 0) ? k : grid.n - 1 - k;
-            const std::int32_t cell = row * grid.n + col;
-            const float state = classified ? cells[cell] : -1.0f;
-            if (state == 0.0f)
-              continue;
-            const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
-            const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
-            std::int32_t index = -1;
-            double w = state;
-            if (state < 0.0f)
+            if (row0 > 0)
             {
-              HeightSample h;
-              w = placeWeight (p, x, y, h, true);
-              if (w == 0.0)
-                continue;
-              index = static_cast<std::int32_t> (evaluated.size ());
-              evaluated.emplace_back ();
-              makePoint (p, x, y, h, evaluated.back ());
+              // The previous band's last node row is this band's first.
+              std::copy (nodes.end () - (n + 1), nodes.end (), nodes.begin ());
+              std::fill (nodes.begin () + (n + 1), nodes.end (), -1.0f);
             }
-            out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell, index});
-            sum += w;
+            classifyBand (p, grid, top, row0, row1, cells, nodes);
           }
+          if (store && band == n)
+            out.reserve (expected > 0 ? expected
+                         : classified ? static_cast<std::size_t> (std::count_if (cells.begin (), cells.end (), [] (float c) { return c != 0.0f; }))
+                                      : cells_total);
+          else if (store && row0 == 0 && expected > 0)
+            out.reserve (expected);
+          for (int row = row0; row < row1; ++row)
+            for (int k = 0; k < n; ++k)
+            {
+              const int col = (row % 2 == 0) ? k : n - 1 - k;
+              const std::int32_t cell = row * n + col;
+              const float state = classified ? cells[static_cast<std::size_t> (row - row0) * n + col] : -1.0f;
+              if (state == 0.0f)
+                continue;
+              const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
+              const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
+              std::int32_t index = -1;
+              double w = state;
+              if (state < 0.0f)
+              {
+                HeightSample h;
+                w = placeWeight (p, x, y, h, true);
+                if (w == 0.0)
+                  continue;
+                if (store)
+                {
+                  index = static_cast<std::int32_t> (evaluated.size ());
+                  evaluated.emplace_back ();
+                  makePoint (p, x, y, h, evaluated.back ());
+                }
+              }
+              if (store)
+                out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell, index});
+              ++count;
+              sum += w;
+            }
+        }
+        if (kept)
+          *kept = count;
         return sum;
       }
 
@@ -425,13 +470,14 @@ namespace pcl_sparse
     Passes (const PatchEvaluator& evaluator, const PatchOwnership& ownership, const SparseSurfaceResamplingOptions& options,
             std::size_t m)
       : sampler (evaluator, ownership, options.jitter, options.max_area_weight), candidates (m), evaluated (m),
-        weights (m, 0.0), grids (m), kept (m, 0)
+        weights (m, 0.0), sizes (m, 0), grids (m), kept (m, 0)
     {}
 
     const PatchSampler sampler;
     std::vector<std::vector<Candidate>> candidates;
     std::vector<Points> evaluated;
     std::vector<double> weights;
+    std::vector<std::size_t> sizes;  ///< number of candidates of each patch
     std::vector<PatchGrid> grids;
     std::vector<std::uint8_t> kept;  ///< whether candidates[p] holds the patch's candidates
   };
@@ -566,7 +612,7 @@ namespace pcl_sparse
       std::vector<Candidate> candidates;
       Points evaluated;
       const double r = model.patches[p].radius;
-      areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, p, 0), candidates, evaluated) * grid.cell *
+      areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, p, 0), candidates, evaluated, false) * grid.cell *
                  grid.cell * r * r;
     }
     const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
@@ -630,14 +676,19 @@ namespace pcl_sparse
           const std::size_t p = static_cast<std::size_t> (pi);
           const double r = model_->patches[p].radius;
           passes.grids[p] = makeGrid (evaluator_->maxExtent (p), 1.0 / (r * std::sqrt (density)));
-          passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, p, 1),
-                                                            passes.candidates[p], passes.evaluated[p]);
           // Which patches keep their candidates depends on the threads' timing, the points do not: a
-          // dropped patch draws the same candidates again from the same hashes.
+          // patch not kept only sums its weights now, and draws the same candidates from the same hashes
+          // in its block.
+          // A patch whose grid alone could take a quarter of the budget is not even drawn for keeping.
+          const std::size_t cells = static_cast<std::size_t> (passes.grids[p].n) * passes.grids[p].n;
+          const bool store = kept_bytes.load () < keep_bytes && cells <= keep_bytes / 4 / sizeof (Candidate);
+          passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, p, 1),
+                                                            passes.candidates[p], passes.evaluated[p], store,
+                                                            &passes.sizes[p]);
           const std::size_t bytes = passes.candidates[p].capacity () * sizeof (Candidate) +
                                     passes.evaluated[p].capacity () * sizeof (pcl::PointNormal);
-          passes.kept[p] = kept_bytes.fetch_add (bytes) + bytes <= keep_bytes;
-          if (!passes.kept[p])
+          passes.kept[p] = store && kept_bytes.fetch_add (bytes) + bytes <= keep_bytes;
+          if (store && !passes.kept[p])
           {
             kept_bytes -= bytes;
             std::vector<Candidate> ().swap (passes.candidates[p]);
@@ -816,7 +867,7 @@ namespace pcl_sparse
       if (!passes.kept[q])
       {
         passes.sampler.drawCandidates (q, passes.grids[q], patchKey (options_.seed, q, 1), passes.candidates[q],
-                                       passes.evaluated[q]);
+                                       passes.evaluated[q], true, nullptr, passes.sizes[q]);
         passes.kept[q] = 1;
       }
       PatchSampler::Cursor cursor = offsets[q] >= begin
