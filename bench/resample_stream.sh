@@ -28,7 +28,7 @@ load=$(cut -d' ' -f1-3 /proc/loadavg)
 for mesh in $meshes; do
   path="$meshes_dir/$mesh"
   [ -f "$path" ] || continue
-  "$build/apps/pcl_sparse_encode" "$path" -o "$work/model.psm" -q
+  "$build/apps/pcl_sparse_encode" "$path" -o "$work/model.psm" -q >/dev/null
   for run in $(seq "$repeat"); do
     # The disk's sequential write speed now, as the issue asks: dd with the data flushed.
     sync

@@ -96,6 +96,32 @@ namespace pcl_sparse
     std::vector<std::string> spare;  ///< written buffers, reused for the next blocks
     std::thread thread;
 
+    /// Bytes of the file written so far, and where the block before the last starts and ends.
+    std::size_t written_bytes = 0, previous_begin = 0, previous_end = 0;
+
+    /// After a block is written at [begin, end): starts its writeback at once and waits for the one
+    /// before, then drops that one from the page cache. The disk is kept busy from the first block
+    /// instead of when the kernel's dirty threshold is reached, the dirty data stays two blocks (a
+    /// 200M-point file would otherwise fill gigabytes of page cache and then throttle every writer on
+    /// the machine), and the file is on the disk, bar two blocks, when the tool returns. Advisory: the
+    /// bytes written do not depend on it.
+    void
+    flushBehind (std::size_t begin, std::size_t end)
+    {
+#ifdef __linux__
+      ::sync_file_range (fd, static_cast<off64_t> (begin), static_cast<off64_t> (end - begin), SYNC_FILE_RANGE_WRITE);
+      if (previous_end > previous_begin)
+      {
+        ::sync_file_range (fd, static_cast<off64_t> (previous_begin), static_cast<off64_t> (previous_end - previous_begin),
+                           SYNC_FILE_RANGE_WAIT_BEFORE | SYNC_FILE_RANGE_WRITE | SYNC_FILE_RANGE_WAIT_AFTER);
+        ::posix_fadvise (fd, static_cast<off_t> (previous_begin), static_cast<off_t> (previous_end - previous_begin),
+                         POSIX_FADV_DONTNEED);
+      }
+#endif
+      previous_begin = begin;
+      previous_end = end;
+    }
+
     void
     run ()
     {
@@ -111,6 +137,11 @@ namespace pcl_sparse
         const bool failed = !failure.empty ();
         lock.unlock ();
         const std::string error = failed ? std::string () : writeAll (fd, buffer);
+        if (!failed && error.empty ())
+        {
+          flushBehind (written_bytes, written_bytes + buffer.size ());
+          written_bytes += buffer.size ();
+        }
         lock.lock ();
         if (!error.empty () && failure.empty ())
           failure = error;
@@ -171,6 +202,7 @@ namespace pcl_sparse
     if (w.fd < 0)
       w.fail (std::strerror (errno));
     const std::string error = writeAll (w.fd, header);
+    w.written_bytes = header.size ();
     if (!error.empty ())
     {
       ::close (w.fd);

@@ -21,9 +21,11 @@ namespace pcl_sparse
   ///
   /// The file is written to a temporary file next to \a path, renamed onto \a path by finish (): a writer
   /// destroyed before finish (an exception, a cancelled run) removes it, so nothing half-written is left.
-  /// Blocks are formatted in the calling thread and written by a thread of the writer, at most two blocks
-  /// ahead: the caller can compute the next block while the disk takes the last one, and memory stays
-  /// two formatted blocks.
+  /// Blocks are formatted in the calling thread and written by a thread of the writer, one block ahead:
+  /// the caller computes the next block while the disk takes the last one, and memory stays two
+  /// formatted blocks. On Linux each block's writeback starts as soon as it is written and the block
+  /// before leaves the page cache once on the disk, so the disk works from the first block and a huge
+  /// file does not fill the page cache.
   ///
   ///   pcl_sparse::PointNormalStreamWriter writer ("out.pcd", total);
   ///   writer.write (block);   // as many times as needed, total points in all

@@ -39,11 +39,20 @@
 ///
 /// Streaming (clouds larger than memory): compute (callback) hands the same points to a callback block by
 /// block, in cloud order, with memory bounded by the block size (ResamplingStreamOptions) instead of the
-/// point count. A first pass keeps only each patch's weight (and the candidates of the first patches, up
-/// to a budget), the counts per patch follow as in the in-memory form, then each block draws again the
+/// point count (and the largest patch's candidates, about 20 bytes each). A first pass keeps only each
+/// patch's weight (and the candidates of the first patches, up to a budget), the counts per patch follow as in the in-memory form, then each block draws again the
 /// candidates of its patches that were not kept (the same hashes give the same candidates) and selects
 /// its points; a patch cut by a block edge resumes where the previous block stopped. The points are bit
 /// for bit those of compute (cloud), for any block size and thread count.
+///
+///   resampling.setPointCount (200000000);
+///   std::unique_ptr<pcl_sparse::PointNormalStreamWriter> writer;   // io/cloud_stream_writer.h
+///   resampling.compute ([&] (const pcl_sparse::ResampledBlock<pcl::PointNormal>& block) {
+///     if (!writer)
+///       writer = std::make_unique<pcl_sparse::PointNormalStreamWriter> ("huge.pcd", block.total);
+///     writer->write (block.cloud);
+///   });
+///   writer->finish ();                                              // renames the complete file
 ///
 /// The authors' code draws (r, angle) uniformly in the whole unit disk, which clusters points at the
 /// centre and places points where the patch has no data; we sample uniformly by area inside the footprint.
