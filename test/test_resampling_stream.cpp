@@ -142,7 +142,7 @@ TEST (ResamplingStream, CountModeEqualsInMemoryForAnyBlocksAndThreads)
 
 TEST (ResamplingStream, DensityModeAndLargePatchesEqualInMemory)
 {
-  // Five patches and 300000 points: a patch holds about 60000 points, so spans (32768 points) and
+  // Five patches and 200000 points: a patch holds about 40000 points, so spans (32768 points) and
   // blocks cut inside it, and a patch runs over several blocks.
   const auto model = syntheticModel (5, 3);
   for (int threads : {1, 2})
@@ -151,9 +151,9 @@ TEST (ResamplingStream, DensityModeAndLargePatchesEqualInMemory)
       SparseSurfaceResampling<pcl::PointNormal> resampling;
       resampling.setInputModel (model);
       if (density)
-        resampling.setDensity (4.0e5);
+        resampling.setDensity (2.5e5);
       else
-        resampling.setPointCount (300000);
+        resampling.setPointCount (200000);
       resampling.setNumberOfThreads (threads);
       pcl::PointCloud<pcl::PointNormal> whole;
       resampling.compute (whole);
@@ -366,11 +366,13 @@ TEST (ResamplingStreamTools, StreamedAndWholeFilesAreTheSameBytes)
     for (const std::string& output : {std::string ("pcd"), std::string ("ply")})
     {
       const std::string on = dir.file (name + "_on." + output), off = dir.file (name + "_off." + output);
-      const std::string common = psm + " -n 54321 -threads 2 -q ";
+      if (output == "ply" && name == "near")
+        continue;  // the float world frame is the same code for both formats
+      const std::string common = psm + " -n 23456 -threads 2 -q ";
       ASSERT_EQ (runTool ("pcl_sparse_resample", common + on + " -stream on -block 4096"), 0) << name;
       ASSERT_EQ (runTool ("pcl_sparse_resample", common + off + " -stream off"), 0) << name;
       const std::string bytes = readBytes (off);
-      ASSERT_GT (bytes.size (), 54321u * 28);
+      ASSERT_GT (bytes.size (), 23456u * 28);
       EXPECT_TRUE (readBytes (on) == bytes) << name << " ." << output;
       // Double x y z exactly at map coordinates.
       EXPECT_EQ (bytes.find (output == "pcd" ? "SIZE 8 8 8" : "property double x") != std::string::npos, name == "map")
@@ -390,8 +392,10 @@ TEST (ResamplingStreamTools, StreamedAndWholeFilesAreTheSameBytes)
 
 TEST (ResamplingStreamTools, MemoryIsBoundedByTheBlockNotTheCount)
 {
-  // 1.5 and 4 million points (42 and 112 MB of file; 72 and 192 MB as a PointNormal cloud) in blocks of
-  // 65536: the streamed run's peak memory does not grow with the count, the whole run's holds the cloud.
+  // 1 and 4 million points (28 and 112 MB of file; 48 and 192 MB as a PointNormal cloud) in blocks of
+  // 32768: the streamed run's peak memory does not grow with the count, the whole run's holds the cloud.
+  // Measured: streamed 39-62 MB for both counts (libraries, model, the largest patch's candidates),
+  // whole 350-360 MB.
   if (!toolsBuilt ())
     GTEST_SKIP () << "the tools are not built";
   TempDir dir ("pcl_sparse_stream");
@@ -399,16 +403,17 @@ TEST (ResamplingStreamTools, MemoryIsBoundedByTheBlockNotTheCount)
   saveModel (psm, test::makeSyntheticModel (200, 13));
   long streamed_small = 0, streamed_large = 0, whole_large = 0;
   const std::string out = dir.file ("m.pcd");
-  ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 1500000 -block 65536 -q", &streamed_small), 0);
-  ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 4000000 -block 65536 -q", &streamed_large), 0);
+  ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 1000000 -block 32768 -threads 2 -q", &streamed_small), 0);
+  ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 4000000 -block 32768 -threads 2 -q", &streamed_large), 0);
   const std::size_t file_size = std::filesystem::file_size (out);
   EXPECT_GT (file_size, 4000000u * 28);
-  ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 4000000 -stream off -q", &whole_large), 0);
+  ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 4000000 -stream off -threads 2 -q", &whole_large), 0);
   EXPECT_EQ (std::filesystem::file_size (out), file_size);
-  std::cout << "peak RSS: streamed 1.5M " << streamed_small / 1024 << " MB, 4M " << streamed_large / 1024
+  std::cout << "peak RSS: streamed 1M " << streamed_small / 1024 << " MB, 4M " << streamed_large / 1024
             << " MB; whole 4M " << whole_large / 1024 << " MB" << std::endl;
   const long cloud_kb = 4000000L * sizeof (pcl::PointNormal) / 1024;
-  EXPECT_LT (streamed_large, streamed_small + 16 * 1024);  // + 16 MB at most for 2.5 M more points
+  EXPECT_LT (streamed_large, streamed_small + 16 * 1024);  // + 16 MB at most for 3 M more points
   EXPECT_LT (streamed_large, cloud_kb / 2);
+  EXPECT_LT (streamed_large, whole_large / 3);
   EXPECT_GT (whole_large, cloud_kb);
 }
