@@ -99,16 +99,23 @@ namespace pcl_sparse
     /// Bytes of the file written so far, and where the block before the last starts and ends.
     std::size_t written_bytes = 0, previous_begin = 0, previous_end = 0;
 
-    /// After a block is written at [begin, end): starts its writeback at once and waits for the one
-    /// before, then drops that one from the page cache. The disk is kept busy from the first block
-    /// instead of when the kernel's dirty threshold is reached, the dirty data stays two blocks (a
-    /// 200M-point file would otherwise fill gigabytes of page cache and then throttle every writer on
-    /// the machine), and the file is on the disk, bar two blocks, when the tool returns. Advisory: the
-    /// bytes written do not depend on it.
+    /// Files up to this size are left to the page cache, as any writer leaves them (the tool returns
+    /// before the disk has them); beyond it the writer flushes behind itself (flushBehind).
+    static constexpr std::size_t cached_bytes = std::size_t (256) << 20;
+
+    /// After a block is written at [begin, end) beyond cached_bytes: starts its writeback at once and
+    /// waits for the one before, then drops that one from the page cache. The disk is kept busy instead of
+    /// waiting for the kernel's dirty threshold, the dirty data stays two blocks (a 200M-point file would
+    /// otherwise fill gigabytes of page cache and then throttle every writer on the machine), and the
+    /// file is on the disk, bar two blocks, when the tool returns. Advisory: the bytes do not depend on it.
     void
     flushBehind (std::size_t begin, std::size_t end)
     {
+      if (end <= cached_bytes)
+        return;
 #ifdef __linux__
+      if (previous_end == 0)
+        begin = 0;  // the first flush takes the cached start of the file with it
       ::sync_file_range (fd, static_cast<off64_t> (begin), static_cast<off64_t> (end - begin), SYNC_FILE_RANGE_WRITE);
       if (previous_end > previous_begin)
       {

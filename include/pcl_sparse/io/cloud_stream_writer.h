@@ -23,9 +23,9 @@ namespace pcl_sparse
   /// destroyed before finish (an exception, a cancelled run) removes it, so nothing half-written is left.
   /// Blocks are formatted in the calling thread and written by a thread of the writer, one block ahead:
   /// the caller computes the next block while the disk takes the last one, and memory stays two
-  /// formatted blocks. On Linux each block's writeback starts as soon as it is written and the block
-  /// before leaves the page cache once on the disk, so the disk works from the first block and a huge
-  /// file does not fill the page cache.
+  /// formatted blocks. On Linux, beyond the first 256 MB of a file, each block's writeback starts as
+  /// soon as it is written and the block before leaves the page cache once on the disk, so a huge file
+  /// keeps the disk busy and does not fill the page cache.
   ///
   ///   pcl_sparse::PointNormalStreamWriter writer ("out.pcd", total);
   ///   writer.write (block);   // as many times as needed, total points in all
