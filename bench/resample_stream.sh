@@ -64,7 +64,7 @@ out="$here/results/resample_stream.md"
   echo "with other jobs, so every figure is noisy; each run is repeated and the best counts). Each mesh is encoded"
   echo "with the defaults, then \`pcl_sparse_resample MODEL.psm OUT.pcd -n $n -threads 2\` streams a binary PCD"
   echo "(28 bytes a point). tool s = its wall time (/usr/bin/time); + fsync s = then \`sync OUT.pcd\`, until the"
-  echo "bytes are on the disk (the tool, like PCL's writer, leaves the last GB in the page cache); dd MB/s ="
+  echo "bytes are on the disk (the tool flushes behind itself beyond 256 MB, so this is short); dd MB/s ="
   echo "\`dd if=/dev/zero bs=1M count=$dd_mb conv=fdatasync\` just before, on the same folder. ratio = the"
   echo "cloud's bytes / (tool s + fsync s) / dd's rate; target (issue 14): at least 0.80, peak under 1 GB."
   echo
