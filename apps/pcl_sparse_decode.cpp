@@ -2,7 +2,8 @@
 /// curvature (docs/METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
 ///
 ///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-box XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]
-///                     [-seed S] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}] [--json] [-q]
+///                     [-seed S] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}] [-stream auto|on|off]
+///                     [-block N] [--json] [-q]
 ///
 /// -box decodes a region: of a tiled model (pcl_sparse_encode -tiles) only the tiles whose patches reach
 /// into the box are read, and the points are exactly those the whole model gives inside the box.
@@ -52,10 +53,13 @@ namespace
       {"-threads T", "OpenMP threads (default: all; the output does not depend on it)"},
       {"-recon MESH RECON", "reconstruct MESH's vertices from the model (needs a model written with"},
       {"", "--store-vertices) and write MESH with them to RECON"},
+      {"-stream M", "auto (default) or on: write the cloud block by block as it is made, memory set"},
+      {"", "by -block, not N; off: make the whole cloud first (the same bytes either way)"},
+      {"-block N", "streamed: N points per block (default 2097152; memory about 200 x N bytes)"},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-n", "-density", "-seed", "-threads", "-box", {"-recon", 2}}, {"--json", "-q"}};
+    2, {"-n", "-density", "-seed", "-threads", "-box", {"-recon", 2}, "-stream", "-block"}, {"--json", "-q"}};
 
   /// The points of a tiled model at a density, decoded over the processes of \a group: each rank takes a
   /// run of tiles (about the same number of patches each), reads them and every tile whose patches reach into them (ownership
@@ -188,6 +192,7 @@ main (int argc, char** argv)
     args.integer ("-seed", seed, tools::Range::atLeast (0));
     int threads = 0;
     args.integer ("-threads", threads, tools::Range::atLeast (0));
+    const bool stream = tools::chooseStreaming (args, out_path, true, false);
 
     const bool has_box = args.has ("-box");
     const Eigen::AlignedBox3d box = has_box ? parseBox (args.value ("-box")) : Eigen::AlignedBox3d ();
@@ -286,25 +291,41 @@ main (int argc, char** argv)
     resampling.setNumberOfThreads (threads);
     resampling.setProgressCallback (makeConsoleProgress (quiet || json));
     resampling.setPatchNumbers (patch_numbers);
-    tools::LocalCloud local;
-    if (is_tiled && !model->patches.empty ())
-      local = tools::resampleInLocalFrame (resampling, model, frame_origin);
-    else if (!model->patches.empty () || !has_box)
-      local = tools::resampleInLocalFrame (resampling, model);
-    if (has_box)
+    tools::setStreamBlock (args, resampling);
+    // A tiled model resamples in its grid's frame, so that a region's points are the whole model's there.
+    const Eigen::Vector3d* origin = is_tiled ? &frame_origin : nullptr;
+    std::size_t points = 0;
+    double resample_seconds = 0.0, write_seconds = 0.0;
+    const bool streamed = stream && !has_box && !model->patches.empty ();
+    if (streamed)
     {
-      // Exactly the points inside the box (closed), as the whole model places them.
-      std::size_t kept = 0;
-      for (const pcl::PointNormal& p : local.cloud)
-        if (box.contains (local.origin + p.getVector3fMap ().cast<double> ()))
-          local.cloud[kept++] = p;
-      local.cloud.resize (kept);
+      const tools::StreamedCloud result = tools::streamResampledCloud (resampling, model, out_path, true, origin);
+      points = result.points;
+      resample_seconds = result.resample_seconds;
+      write_seconds = result.save_seconds;
     }
-    const pcl::PointCloud<pcl::PointNormal>& cloud = local.cloud;
-    const double resample_seconds = timer.toc () / 1000.0;
+    else
+    {
+      tools::LocalCloud local;
+      if (!model->patches.empty () || !has_box)
+        local = origin ? tools::resampleInLocalFrame (resampling, model, *origin) : tools::resampleInLocalFrame (resampling, model);
+      if (has_box)
+      {
+        // Exactly the points inside the box (closed), as the whole model places them.
+        std::size_t kept = 0;
+        for (const pcl::PointNormal& p : local.cloud)
+          if (box.contains (local.origin + p.getVector3fMap ().cast<double> ()))
+            local.cloud[kept++] = p;
+        local.cloud.resize (kept);
+      }
+      points = local.cloud.size ();
+      resample_seconds = timer.toc () / 1000.0;
+      timer.tic ();
+      tools::saveLocalCloud (out_path, local, true);
+      write_seconds = timer.toc () / 1000.0;
+    }
 
     timer.tic ();
-    tools::saveLocalCloud (out_path, local, true);
     if (!recon_mesh.empty ())
     {
       const std::vector<Eigen::Vector3d> vertices = model->reconstructVertices (recon.vertices.size ());
@@ -313,14 +334,15 @@ main (int argc, char** argv)
           recon.vertices[v] = vertices[v];
       saveTriangleMesh (recon_out, recon);
     }
-    const double write_seconds = timer.toc () / 1000.0;
+    write_seconds += timer.toc () / 1000.0;
 
     if (json)
       tools::JsonObject ()
         .add ("model", model_path)
         .add ("patches", model->numPatches ())
         .add ("nnz", model->numNonZeros ())
-        .add ("points", cloud.size ())
+        .add ("points", points)
+        .add ("streamed", streamed)
         .add ("area", resampling.getEstimatedArea ())
         .add ("tiled", is_tiled)
         .add ("bytes_read", bytes_read)
@@ -331,7 +353,7 @@ main (int argc, char** argv)
         .print ();
     else if (!quiet)
       std::printf ("%zu patches, %zu atoms -> %zu points; seconds: load %.3f, resample %.3f, write %.3f\n",
-                   model->numPatches (), model->numNonZeros (), cloud.size (), load_seconds, resample_seconds,
+                   model->numPatches (), model->numNonZeros (), points, load_seconds, resample_seconds,
                    write_seconds);
     return 0;
   });

@@ -3,7 +3,7 @@
 ///
 ///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-preset default|paper]
 ///                       [-basis dct|paper] [-seed S]
-///                       [-threads T] [-ascii] [-q] [--json]
+///                       [-threads T] [-ascii] [-stream auto|on|off] [-block N] [-q] [--json]
 
 #include "tool_input.h"
 #include "tool_render.h"
@@ -51,12 +51,16 @@ namespace
       {"-seed S", "seed of the sampling (default: 42)"},
       {"-threads T", "threads (default: all; the cloud does not depend on it)"},
       {"-ascii", "write ascii instead of binary"},
+      {"-stream M", "auto (default): write the cloud block by block as it is made, memory set by"},
+      {"", "-block, not N, for binary .pcd and any .ply without -png; on: so, or fail; off: whole"},
+      {"", "(the same bytes either way)"},
+      {"-block N", "streamed: N points per block (default 2097152; memory about 200 x N bytes)"},
       tools::pngHelpLine (),
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
     },
     1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-threads", "-angles", "-basis", "-viewpoint", "-preset",
-     "-png", "-size", "-view"},
+     "-png", "-size", "-view", "-stream", "-block"},
     {"-ascii", "-q", "--json"}};
 
   struct Settings
@@ -69,6 +73,7 @@ namespace
     SparseSurfaceResamplingOptions resampling;
     int threads = 0;
     bool binary = true, quiet = false, json = false;
+    bool stream = true;  ///< write block by block (tools::streamResampledCloud)
     bool has_viewpoint = false;
     Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero ();
   };
@@ -117,6 +122,7 @@ namespace
     s.binary = !args.has ("-ascii");
     s.quiet = args.has ("-q");
     s.json = args.has ("--json");
+    s.stream = tools::chooseStreaming (args, s.output, s.binary, args.has ("-png"));
     return s;
   }
 } // namespace
@@ -176,6 +182,7 @@ main (int argc, char** argv)
     resampling.setOptions (s.resampling);
     resampling.setNumberOfThreads (s.threads);
     resampling.setProgressCallback (progress);
+    tools::setStreamBlock (args, resampling);
     if (s.mode == 0)
     {
       if (input_vertices == 0)
@@ -189,22 +196,37 @@ main (int argc, char** argv)
       resampling.setDensity (s.density);
     else
       resampling.setSpacing (s.spacing);
-    timer.tic ();
-    const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
-    const pcl::PointCloud<pcl::PointNormal>& cloud = local.cloud;
-    const double resample_seconds = timer.toc () / 1000.0;
-    pcl::console::print_info ("Resampled %zu points (area %.6g, density %.6g) in %.3f s\n", cloud.size (),
-                              resampling.getEstimatedArea (), resampling.getDensityUsed (), resample_seconds);
-
-    timer.tic ();
-    tools::saveLocalCloud (s.output, local, s.binary);
-    tools::writeCloudPng (args, local.cloud, local.origin);
-    const double save_seconds = timer.toc () / 1000.0;
+    std::size_t points = 0;
+    double resample_seconds = 0.0, save_seconds = 0.0;
+    if (s.stream)
+    {
+      const tools::StreamedCloud streamed = tools::streamResampledCloud (resampling, model, s.output, s.binary);
+      points = streamed.points;
+      resample_seconds = streamed.resample_seconds;
+      save_seconds = streamed.save_seconds;
+      pcl::console::print_info ("Resampled and wrote %zu points block by block (area %.6g, density %.6g%s) in %.3f s\n",
+                                points, resampling.getEstimatedArea (), resampling.getDensityUsed (),
+                                streamed.bounds_pass ? "; map coordinates: a first pass for the bounds" : "",
+                                resample_seconds);
+    }
+    else
+    {
+      timer.tic ();
+      const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
+      points = local.cloud.size ();
+      resample_seconds = timer.toc () / 1000.0;
+      pcl::console::print_info ("Resampled %zu points (area %.6g, density %.6g) in %.3f s\n", points,
+                                resampling.getEstimatedArea (), resampling.getDensityUsed (), resample_seconds);
+      timer.tic ();
+      tools::saveLocalCloud (s.output, local, s.binary);
+      tools::writeCloudPng (args, local.cloud, local.origin);
+      save_seconds = timer.toc () / 1000.0;
+    }
     const double seconds = total.toc () / 1000.0;
     if (!s.quiet && !s.json)
     {
       pcl::console::print_highlight ("Wrote %s: ", s.output.c_str ());
-      pcl::console::print_value ("%zu", cloud.size ());
+      pcl::console::print_value ("%zu", points);
       pcl::console::print_info (" points in %.3f s (save %.3f s)\n", seconds, save_seconds);
     }
     if (s.json)
@@ -212,7 +234,8 @@ main (int argc, char** argv)
       tools::JsonObject json;
       json.add ("input", s.input)
         .add ("output", s.output)
-        .add ("points", cloud.size ())
+        .add ("points", points)
+        .add ("streamed", s.stream)
         .add ("patches", model->numPatches ())
         .add ("input_vertices", input_vertices)
         .add ("area", resampling.getEstimatedArea ())

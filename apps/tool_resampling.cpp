@@ -1,9 +1,12 @@
 #include "tool_resampling.h"
 
+#include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/cloud_io.h>
+#include <pcl_sparse/io/cloud_stream_writer.h>
 #include <pcl_sparse/io/scan_cloud.h>
 
 #include <pcl/common/common.h>
+#include <pcl/console/time.h>
 
 #include <memory>
 #include <vector>
@@ -12,14 +15,65 @@ namespace pcl_sparse
 {
   namespace tools
   {
+    namespace
+    {
+      /// Whether a cloud in the local frame at \a origin, with bounds \a lo .. \a hi (\a empty: none),
+      /// is written with double x y z = origin + point; otherwise floats, moved to the model's frame.
+      bool
+      doublePositions (const Eigen::Vector3d& origin, bool empty, const pcl::PointNormal& lo, const pcl::PointNormal& hi)
+      {
+        // Double x y z only where floats would lose the cloud's resolution (map coordinates): PCL's own
+        // loader reads a PCD with double x y z into PointXYZ as zeros, so a mesh merely off the origin
+        // (fandisk-large sits at y = 15, 5 extents away) gets float coordinates in its own frame.
+        const double extent = empty ? 0.0 : (hi.getVector3fMap () - lo.getVector3fMap ()).maxCoeff ();
+        const double largest = origin.cwiseAbs ().maxCoeff () +
+                               hi.getVector3fMap ().cwiseAbs ().cwiseMax (lo.getVector3fMap ().cwiseAbs ()).maxCoeff ();
+        // A float's spacing at |c| is about 1.2e-7 |c|: within 16 extents it is at most 2e-6 of the extent.
+        return !origin.isZero (0.0) && (!(extent > 0.0) || largest > 16.0 * extent);
+      }
+
+      /// \a cloud moved by \a origin, in float (the points of a float file in the model's frame).
+      void
+      moveToWorld (const pcl::PointCloud<pcl::PointNormal>& cloud, const Eigen::Vector3d& origin,
+                   pcl::PointCloud<pcl::PointNormal>& world)
+      {
+        world = cloud;
+        for (pcl::PointNormal& p : world)
+          p.getVector3fMap () = (p.getVector3fMap ().cast<double> () + origin).cast<float> ();
+      }
+
+      /// The local frame a model is resampled in: localFrameOrigin of its seeds (0 unless it lies far from
+      /// the origin for its size).
+      Eigen::Vector3d
+      modelFrameOrigin (const SparseSurfaceModel& model)
+      {
+        std::vector<Eigen::Vector3d> seeds;
+        seeds.reserve (model.patches.size ());
+        for (const PatchCode& patch : model.patches)
+          seeds.push_back (patch.origin);
+        return localFrameOrigin (seeds);
+      }
+
+      /// Sets the model of \a resampling, moved to the local frame at \a origin.
+      void
+      setLocalModel (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+                     const Eigen::Vector3d& origin)
+      {
+        if (origin.isZero (0.0))
+          resampling.setInputModel (model);
+        else
+        {
+          auto moved = std::make_shared<SparseSurfaceModel> (*model);
+          moved->translate (-origin);
+          resampling.setInputModel (moved);
+        }
+      }
+    } // namespace
+
     LocalCloud
     resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model)
     {
-      std::vector<Eigen::Vector3d> seeds;
-      seeds.reserve (model->patches.size ());
-      for (const PatchCode& patch : model->patches)
-        seeds.push_back (patch.origin);
-      return resampleInLocalFrame (resampling, model, localFrameOrigin (seeds));
+      return resampleInLocalFrame (resampling, model, modelFrameOrigin (*model));
     }
 
     LocalCloud
@@ -28,40 +82,104 @@ namespace pcl_sparse
     {
       LocalCloud local;
       local.origin = origin;
-      if (local.origin.isZero (0.0))
-        resampling.setInputModel (model);
-      else
-      {
-        auto moved = std::make_shared<SparseSurfaceModel> (*model);
-        moved->translate (-local.origin);
-        resampling.setInputModel (moved);
-      }
+      setLocalModel (resampling, model, origin);
       resampling.compute (local.cloud);
       return local;
     }
 
+
     void
     saveLocalCloud (const std::string& path, const LocalCloud& local, bool binary)
     {
-      // Double x y z only where floats would lose the cloud's resolution (map coordinates): PCL's own
-      // loader reads a PCD with double x y z into PointXYZ as zeros, so a mesh merely off the origin
-      // (fandisk-large sits at y = 15, 5 extents away) gets float coordinates in its own frame.
       pcl::PointNormal lo, hi;
       if (!local.cloud.empty ())
         pcl::getMinMax3D (local.cloud, lo, hi);
-      const double extent = local.cloud.empty () ? 0.0 : (hi.getVector3fMap () - lo.getVector3fMap ()).maxCoeff ();
-      const double largest = local.origin.cwiseAbs ().maxCoeff () +
-                             hi.getVector3fMap ().cwiseAbs ().cwiseMax (lo.getVector3fMap ().cwiseAbs ()).maxCoeff ();
-      // A float's spacing at |c| is about 1.2e-7 |c|: within 16 extents it is at most 2e-6 of the extent.
-      if (local.origin.isZero (0.0) || !(extent > 0.0) || largest > 16.0 * extent)
+      if (local.origin.isZero (0.0) || doublePositions (local.origin, local.cloud.empty (), lo, hi))
       {
         savePointNormalCloud (path, local.cloud, binary, local.origin);
         return;
       }
-      pcl::PointCloud<pcl::PointNormal> world = local.cloud;
-      for (pcl::PointNormal& p : world)
-        p.getVector3fMap () = (p.getVector3fMap ().cast<double> () + local.origin).cast<float> ();
+      pcl::PointCloud<pcl::PointNormal> world;
+      moveToWorld (local.cloud, local.origin, world);
       savePointNormalCloud (path, world, binary);
+    }
+
+    bool
+    chooseStreaming (const CommandLine& args, const std::string& output, bool binary, bool png)
+    {
+      const std::string mode = args.value ("-stream", "auto");
+      if (mode != "auto" && mode != "on" && mode != "off")
+        throw Error ("option -stream: '" + mode + "' is not auto, on or off");
+      const bool possible = PointNormalStreamWriter::supports (output, binary) && !png;
+      if (mode == "on" && !possible)
+        throw Error ("option -stream on: " + std::string (png ? "-png needs the whole cloud"
+                                                               : "an ascii .pcd is written whole (use .ply or binary)"));
+      return mode != "off" && possible;
+    }
+
+    void
+    setStreamBlock (const CommandLine& args, SparseSurfaceResamplingBase& resampling)
+    {
+      ResamplingStreamOptions options;
+      args.integer ("-block", options.block_points, Range::closed (4096, 1 << 26));
+      options.kept_candidate_bytes = 64 * options.block_points;
+      resampling.setStreamOptions (options);
+    }
+
+    StreamedCloud
+    streamResampledCloud (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+                          const std::string& path, bool binary, const Eigen::Vector3d* frame_origin)
+    {
+      if (!PointNormalStreamWriter::supports (path, binary))
+        throw Error (path + ": a streamed cloud is written as .pcd (binary) or .ply");
+      StreamedCloud result;
+      pcl::console::TicToc timer;
+      timer.tic ();
+      const Eigen::Vector3d origin = frame_origin ? *frame_origin : modelFrameOrigin (*model);
+      setLocalModel (resampling, model, origin);
+      bool doubles = false;
+      if (!origin.isZero (0.0))
+      {
+        // The bounds of the whole cloud, from the same points (min and max do not depend on the blocks).
+        result.bounds_pass = true;
+        bool empty = true;
+        pcl::PointNormal lo, hi;
+        resampling.compute ([&] (const ResampledBlock<pcl::PointNormal>& block) {
+          if (block.cloud.empty ())
+            return;
+          pcl::PointNormal a, b;
+          pcl::getMinMax3D (block.cloud, a, b);
+          if (!empty)
+          {
+            a.getVector3fMap () = a.getVector3fMap ().cwiseMin (lo.getVector3fMap ());
+            b.getVector3fMap () = b.getVector3fMap ().cwiseMax (hi.getVector3fMap ());
+          }
+          lo = a;
+          hi = b;
+          empty = false;
+        });
+        doubles = doublePositions (origin, empty, lo, hi);
+      }
+      std::unique_ptr<PointNormalStreamWriter> writer;
+      pcl::PointCloud<pcl::PointNormal> world;
+      resampling.compute ([&] (const ResampledBlock<pcl::PointNormal>& block) {
+        if (!writer)
+          writer = std::make_unique<PointNormalStreamWriter> (path, block.total, binary,
+                                                              doubles ? origin : Eigen::Vector3d::Zero ());
+        if (origin.isZero (0.0) || doubles)
+          writer->write (block.cloud);
+        else
+        {
+          moveToWorld (block.cloud, origin, world);
+          writer->write (world);
+        }
+      });
+      result.points = writer->written ();
+      result.resample_seconds = timer.toc () / 1000.0;
+      timer.tic ();
+      writer->finish ();
+      result.save_seconds = timer.toc () / 1000.0;
+      return result;
     }
   } // namespace tools
 } // namespace pcl_sparse

@@ -3,6 +3,8 @@
 /// What pcl_sparse_resample and pcl_sparse_decode share: resampling a model in a local frame when it lies
 /// far from the origin (map coordinates), and writing the cloud back in the model's frame.
 
+#include "tool_support.h"
+
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
@@ -36,5 +38,38 @@ namespace pcl_sparse
     /// x y z = origin + point (map coordinates; PCL's loader cannot read those into PointXYZ).
     void
     saveLocalCloud (const std::string& path, const LocalCloud& local, bool binary);
+
+    /// The -stream option of the resampling tools (auto, on or off; auto when absent): true to write
+    /// the cloud with streamResampledCloud. auto streams whenever the output can be streamed (binary .pcd,
+    /// .ply) and no -png needs the whole cloud; on throws where it cannot.
+    /// \throws Error naming the option for another value, or on with an output that cannot be streamed
+    bool
+    chooseStreaming (const CommandLine& args, const std::string& output, bool binary, bool png);
+
+    /// The -block N option of the resampling tools: N points per streamed block (default 2^21), and 64 N
+    /// bytes of candidates kept from the weight pass (ResamplingStreamOptions); a streamed run takes
+    /// about 200 N bytes besides the model. Sets them on \a resampling.
+    /// \throws Error naming the option for a value out of [4096, 2^26]
+    void
+    setStreamBlock (const CommandLine& args, SparseSurfaceResamplingBase& resampling);
+
+    /// What streamResampledCloud did.
+    struct StreamedCloud
+    {
+      std::size_t points = 0;
+      double resample_seconds = 0.0;  ///< the passes, writing included (the writes overlap them)
+      double save_seconds = 0.0;      ///< the wait for the last writes, and the rename
+      bool bounds_pass = false;       ///< map coordinates: a first pass found the cloud's bounds
+    };
+
+    /// As resampleInLocalFrame then saveLocalCloud, the same bytes, with memory bounded by the stream's
+    /// block size instead of the point count (SparseSurfaceResampling::compute with a callback,
+    /// PointNormalStreamWriter; PointNormalStreamWriter::supports (path, binary) must hold). A model in
+    /// map coordinates is resampled twice: the first pass finds the bounds that decide between float and
+    /// double x y z, as saveLocalCloud does from the whole cloud. \a frame_origin (optional) gives the local
+    /// frame, as the second resampleInLocalFrame (a tiled model's).
+    StreamedCloud
+    streamResampledCloud (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+                          const std::string& path, bool binary, const Eigen::Vector3d* frame_origin = nullptr);
   } // namespace tools
 } // namespace pcl_sparse

@@ -6,10 +6,10 @@
 
 #include "cloud_readers.h"
 #include "mesh_readers.h"
+#include "point_normal_records.h"
 
 #include <pcl/io/pcd_io.h>
 
-#include <charconv>
 #include <cstring>
 #include <cstdio>
 #include <vector>
@@ -57,43 +57,14 @@ namespace pcl_sparse
 
   namespace
   {
-    /// Appends \a value in binary (native little endian) or as shortest round-trip text followed by \a separator.
-    template <typename T>
-    void
-    appendValue (std::string& out, T value, bool binary, char separator)
-    {
-      if (binary)
-      {
-        out.append (reinterpret_cast<const char*> (&value), sizeof (value));
-        return;
-      }
-      char text[32];
-      const auto result = std::to_chars (text, text + sizeof (text), value);
-      out.append (text, result.ptr);
-      out += separator;
-    }
-
     /// The PLY file of \a cloud; with \a doubles, x y z are written as double offset + position.
     std::string
     plyText (const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary, bool doubles, const Eigen::Vector3d& offset)
     {
-      const std::string xyz_type = doubles ? "double" : "float";
-      std::string out = std::string ("ply\nformat ") + (binary ? "binary_little_endian" : "ascii") +
-                        " 1.0\ncomment written by pcl_sparse\nelement vertex " + std::to_string (cloud.size ()) +
-                        "\nproperty " + xyz_type + " x\nproperty " + xyz_type + " y\nproperty " + xyz_type +
-                        " z\nproperty float nx\nproperty float ny\nproperty float nz\nproperty float curvature\nend_header\n";
-      out.reserve (out.size () + cloud.size () * (binary ? 40 : 120));
+      std::string out = io_detail::plyHeader (cloud.size (), binary, doubles);
+      out.reserve (out.size () + cloud.size () * (binary ? io_detail::binaryRecordSize (doubles) : 120));
       for (const pcl::PointNormal& point : cloud)
-      {
-        for (int k = 0; k < 3; ++k)
-          if (doubles)
-            appendValue (out, offset[k] + static_cast<double> (point.data[k]), binary, ' ');
-          else
-            appendValue (out, point.data[k], binary, ' ');
-        const float rest[4] = {point.normal_x, point.normal_y, point.normal_z, point.curvature};
-        for (int k = 0; k < 4; ++k)
-          appendValue (out, rest[k], binary, k < 3 ? ' ' : '\n');
-      }
+        io_detail::appendPlyVertex (out, point, binary, doubles, offset);
       return out;
     }
 
@@ -120,17 +91,11 @@ namespace pcl_sparse
       blob.row_step = blob.point_step * blob.width;
       blob.is_dense = cloud.is_dense;
       blob.data.resize (static_cast<std::size_t> (blob.row_step));
-      std::uint8_t* out = blob.data.data ();
+      char* out = reinterpret_cast<char*> (blob.data.data ());
       for (const pcl::PointNormal& point : cloud)
       {
-        for (int k = 0; k < 3; ++k, out += 8)
-        {
-          const double value = offset[k] + static_cast<double> (point.data[k]);
-          std::memcpy (out, &value, 8);
-        }
-        const float rest[4] = {point.normal_x, point.normal_y, point.normal_z, point.curvature};
-        std::memcpy (out, rest, sizeof (rest));
-        out += sizeof (rest);
+        io_detail::writeBinaryRecord (point, true, offset, out);
+        out += io_detail::binaryRecordSize (true);
       }
       return blob;
     }

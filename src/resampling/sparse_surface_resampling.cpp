@@ -122,28 +122,36 @@ namespace pcl_sparse
         point.curvature = static_cast<float> (patchMeanCurvature (code, h));
       }
 
+      /// Side, in cells, of the top blocks of the cell classification (a power of two, at most 1/8 of
+      /// the grid); below 4 the grid is too coarse for blocks to pay and cells are tested one by one.
+      static int
+      topBlock (const PatchGrid& grid)
+      {
+        int top = 1;
+        while (top * 2 <= grid.n / 8)
+          top *= 2;
+        return top;
+      }
+
       /// At high density most cells lie well inside or well outside the part a patch keeps. A quadtree over
       /// the cell corners finds them: a block whose four corners agree is taken whole (kept cells get the
       /// bilinear weight of the corners), a block whose corners disagree is split, down to single cells
-      /// that are tested candidate by candidate. Blocks start at 1/8 of the grid (a quarter of the
-      /// footprint radius), far smaller than the curvature of ownership borders and footprints.
-      /// \a cells receives per cell: 0 dropped, > 0 kept with that weight, < 0 to be tested.
-      /// Returns false (and leaves \a cells empty) when the grid is too coarse for blocks to pay.
-      bool
-      classifyCells (std::size_t p, const PatchGrid& grid, std::vector<float>& cells, std::vector<float>& nodes) const
+      /// that are tested candidate by candidate. Blocks start at \a top cells (1/8 of the grid or less: a
+      /// quarter of the footprint radius), far smaller than the curvature of ownership borders and
+      /// footprints. This classifies the rows [\a row0, \a row1) (a band of whole top blocks): \a cells
+      /// receives per cell of the band, row after row: 0 dropped, > 0 kept with that weight, < 0 to be
+      /// tested. \a nodes memoises the corner weights of node rows row0 .. row1; its first row may hold the
+      /// previous band's last one (-1 where not evaluated). A node's weight does not depend on the band, so
+      /// a grid classified band by band (bounded memory) is classified exactly as in one piece.
+      void
+      classifyBand (std::size_t p, const PatchGrid& grid, int top, int row0, int row1, std::vector<float>& cells,
+                    std::vector<float>& nodes) const
       {
         const int n = grid.n;
-        int top = 1;
-        while (top * 2 <= n / 8)
-          top *= 2;
-        cells.clear ();
-        if (top < 4)
-          return false;
         const int stride = n + 1;
-        nodes.assign (static_cast<std::size_t> (stride) * stride, -1.0f);
-        cells.assign (static_cast<std::size_t> (n) * n, -1.0f);
+        cells.assign (static_cast<std::size_t> (row1 - row0) * n, -1.0f);
         auto node = [&] (int a, int b) {
-          float& w = nodes[static_cast<std::size_t> (b) * stride + a];
+          float& w = nodes[static_cast<std::size_t> (b - row0) * stride + a];
           if (w < 0.0f)
           {
             HeightSample h;
@@ -152,7 +160,7 @@ namespace pcl_sparse
           return static_cast<double> (w);
         };
         std::vector<std::array<int, 3>> stack;
-        for (int j = 0; j < n; j += top)
+        for (int j = row0; j < row1; j += top)
           for (int i = 0; i < n; i += top)
             stack.push_back ({i, j, top});
         while (!stack.empty ())
@@ -178,7 +186,7 @@ namespace pcl_sparse
           for (int j = j0; j < j1; ++j)
             for (int i = i0; i < i1; ++i)
             {
-              float& cell = cells[static_cast<std::size_t> (j) * n + i];
+              float& cell = cells[static_cast<std::size_t> (j - row0) * n + i];
               if (all_out)
                 cell = 0.0f;
               else
@@ -188,90 +196,169 @@ namespace pcl_sparse
               }
             }
         }
-        return true;
       }
 
+      /// Cells classified at once, at most (4 MB of cell and node weights; larger grids go by bands of
+      /// top blocks, so that memory stays bounded whatever the density).
+      static constexpr std::size_t whole_grid_cells = std::size_t (1) << 19;
+
       /// One jittered candidate per cell, kept ones in serpentine cell order; returns their weight sum.
-      /// Candidates tested one by one keep their evaluated point in \a evaluated, for the selection.
+      /// Candidates tested one by one keep their evaluated point in \a evaluated, for the selection. With
+      /// \a store false, only the sum is computed (the same sum) and \a out and \a evaluated stay empty;
+      /// \a kept (optional) receives the number of candidates either way. \a expected (0: unknown) is the
+      /// number of candidates, when a previous draw told it.
       double
       drawCandidates (std::size_t p, const PatchGrid& grid, std::uint64_t key, std::vector<Candidate>& out,
-                      Points& evaluated) const
+                      Points& evaluated, bool store = true, std::size_t* kept = nullptr, std::size_t expected = 0) const
       {
         out.clear ();
         evaluated.clear ();
+        const int n = grid.n, top = topBlock (grid);
+        const bool classified = top >= 4;
+        // Whole grid when small enough (one allocation per patch instead of a doubling series: at most the
+        // cells not dropped keep a candidate), else bands of top blocks.
+        const std::size_t cells_total = static_cast<std::size_t> (n) * n;
+        const int band = (!classified || cells_total <= whole_grid_cells) ? n : top;
         std::vector<float> cells, nodes;
-        const bool classified = classifyCells (p, grid, cells, nodes);
-        // One allocation per patch instead of a doubling series (copies and page faults): at most the
-        // cells not dropped by the classification keep a candidate.
-        out.reserve (classified ? static_cast<std::size_t> (std::count_if (cells.begin (), cells.end (), [] (float c) { return c != 0.0f; }))
-                                : static_cast<std::size_t> (grid.n) * grid.n);
+        if (classified)
+          nodes.assign (static_cast<std::size_t> (band + 1) * (n + 1), -1.0f);
         double sum = 0.0;
-        for (int row = 0; row < grid.n; ++row)
-          for (int k = 0; k < grid.n; ++k)
+        std::size_t count = 0;
+        for (int row0 = 0; row0 < n; row0 += band)
+        {
+          const int row1 = std::min (n, row0 + band);
+          if (classified)
           {
-            const int col = (row % 2 == 0) ? k : grid.n - 1 - k;
-            const std::int32_t cell = row * grid.n + col;
-            const float state = classified ? cells[cell] : -1.0f;
-            if (state == 0.0f)
-              continue;
-            const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
-            const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
-            std::int32_t index = -1;
-            double w = state;
-            if (state < 0.0f)
+            if (row0 > 0)
             {
-              HeightSample h;
-              w = placeWeight (p, x, y, h, true);
-              if (w == 0.0)
-                continue;
-              index = static_cast<std::int32_t> (evaluated.size ());
-              evaluated.emplace_back ();
-              makePoint (p, x, y, h, evaluated.back ());
+              // The previous band's last node row is this band's first.
+              std::copy (nodes.end () - (n + 1), nodes.end (), nodes.begin ());
+              std::fill (nodes.begin () + (n + 1), nodes.end (), -1.0f);
             }
-            out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell, index});
-            sum += w;
+            classifyBand (p, grid, top, row0, row1, cells, nodes);
           }
+          if (store && band == n)
+            out.reserve (expected > 0 ? expected
+                         : classified ? static_cast<std::size_t> (std::count_if (cells.begin (), cells.end (), [] (float c) { return c != 0.0f; }))
+                                      : cells_total);
+          else if (store && row0 == 0 && expected > 0)
+            out.reserve (expected);
+          for (int row = row0; row < row1; ++row)
+            for (int k = 0; k < n; ++k)
+            {
+              const int col = (row % 2 == 0) ? k : n - 1 - k;
+              const std::int32_t cell = row * n + col;
+              const float state = classified ? cells[static_cast<std::size_t> (row - row0) * n + col] : -1.0f;
+              if (state == 0.0f)
+                continue;
+              const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
+              const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
+              std::int32_t index = -1;
+              double w = state;
+              if (state < 0.0f)
+              {
+                HeightSample h;
+                w = placeWeight (p, x, y, h, true);
+                if (w == 0.0)
+                  continue;
+                if (store)
+                {
+                  index = static_cast<std::int32_t> (evaluated.size ());
+                  evaluated.emplace_back ();
+                  makePoint (p, x, y, h, evaluated.back ());
+                }
+              }
+              if (store)
+                out.push_back ({static_cast<float> (x), static_cast<float> (y), static_cast<float> (w), cell, index});
+              ++count;
+              sum += w;
+            }
+        }
+        if (kept)
+          *kept = count;
         return sum;
       }
 
-      /// Exactly \a count points from \a candidates by systematic sampling of their cumulative weight.
-      /// With \a attributes (optional), also each point's attribute channels, C per point.
-      void
-      selectPoints (std::size_t p, const PatchGrid& grid, std::uint64_t key, const std::vector<Candidate>& candidates,
-                    const Points& evaluated, std::size_t count, pcl::PointNormal* out, float* attributes) const
+      /// Where the systematic sampling of one patch's candidates stands between two points: a patch's
+      /// selection can stop after any point and resume (blocks of a streamed compute) with the same
+      /// arithmetic as one uninterrupted run.
+      struct Cursor
       {
-        if (count == 0 || candidates.empty ())
-          return;
+        std::size_t k = 0;        ///< current candidate
+        int draw = 0;             ///< points already drawn in candidate k
+        double t = 0.0;           ///< position of the next point along the cumulative weight
+        double cumulative = 0.0;  ///< cumulative weight before candidate k
+        double step = 0.0;        ///< weight between two points
+        std::size_t emitted = 0;  ///< points of the patch emitted (or skipped) so far
+      };
+
+      /// The cursor before the first of \a count points of \a candidates.
+      static Cursor
+      startSelection (std::uint64_t key, const std::vector<Candidate>& candidates, std::size_t count)
+      {
+        Cursor cursor;
         double total = 0.0;
         for (const Candidate& c : candidates)
           total += c.weight;
-        const double step = total / static_cast<double> (count);
-        double t = uniform (key, ~0ULL) * step;
-        double cumulative = 0.0;
+        cursor.step = total / static_cast<double> (count);
+        cursor.t = uniform (key, ~0ULL) * cursor.step;
+        return cursor;
+      }
+
+      /// Moves \a cursor on to point \a limit, calling \a visit (candidate, draw, point) for each point.
+      template <typename Visit>
+      static void
+      advance (Cursor& cursor, const std::vector<Candidate>& candidates, std::size_t limit, Visit&& visit)
+      {
+        while (cursor.k < candidates.size () && cursor.emitted < limit)
+        {
+          const Candidate& c = candidates[cursor.k];
+          const double high = (cursor.k + 1 == candidates.size ()) ? std::numeric_limits<double>::infinity ()
+                                                                   : cursor.cumulative + c.weight;
+          for (; cursor.t < high && cursor.emitted < limit; ++cursor.draw, cursor.t += cursor.step)
+            visit (c, cursor.draw, cursor.emitted++);
+          if (cursor.emitted >= limit)
+            return;  // resumes in the same candidate: t tells whether it has more points
+          cursor.cumulative = high;
+          ++cursor.k;
+          cursor.draw = 0;
+        }
+      }
+
+      /// Skips to point \a limit of the patch without making points (no evaluation).
+      static void
+      skip (Cursor& cursor, const std::vector<Candidate>& candidates, std::size_t limit)
+      {
+        advance (cursor, candidates, limit, [] (const Candidate&, int, std::size_t) {});
+      }
+
+      /// Points \a cursor.emitted .. \a limit - 1 of patch \a p from \a candidates by systematic sampling of
+      /// their cumulative weight, into \a out (which receives point \a cursor.emitted first). With \a
+      /// attributes (optional), also each point's attribute channels, C per point.
+      void
+      selectPoints (std::size_t p, const PatchGrid& grid, std::uint64_t key, const std::vector<Candidate>& candidates,
+                    const Points& evaluated, Cursor& cursor, std::size_t limit, pcl::PointNormal* out,
+                    float* attributes) const
+      {
+        if (candidates.empty ())
+          return;
         const std::uint64_t cells = static_cast<std::uint64_t> (grid.n) * grid.n;
-        std::size_t emitted = 0;
+        const std::size_t first = cursor.emitted;
         // The first point of a cell not yet evaluated (most points) waits in a block of places evaluated
         // together; the others (evaluated with the candidate, or redrawn in the cell) are made at once.
         PointBlock block;
-        for (std::size_t k = 0; k < candidates.size () && emitted < count; ++k)
-        {
-          const Candidate& c = candidates[k];
-          const double high = (k + 1 == candidates.size ()) ? std::numeric_limits<double>::infinity () : cumulative + c.weight;
-          for (int draw = 0; t < high && emitted < count; ++draw, t += step)
-          {
-            Eigen::Vector2d xy (c.x, c.y);
-            if (draw == 0 && c.evaluated >= 0)
-              out[emitted] = evaluated[c.evaluated];
-            else if (draw == 0)
-              block.add (*this, p, xy.x (), xy.y (), out + emitted);
-            else
-              xy = emit (p, grid, key, c, draw, cells, out[emitted]);
-            if (attributes)
-              attributesAt (p, xy, attributes + emitted * model_.attribute_channels.size ());
-            ++emitted;
-          }
-          cumulative = high;
-        }
+        advance (cursor, candidates, limit, [&] (const Candidate& c, int draw, std::size_t point) {
+          const std::size_t i = point - first;
+          Eigen::Vector2d xy (c.x, c.y);
+          if (draw == 0 && c.evaluated >= 0)
+            out[i] = evaluated[c.evaluated];
+          else if (draw == 0)
+            block.add (*this, p, xy.x (), xy.y (), out + i);
+          else
+            xy = emit (p, grid, key, c, draw, cells, out[i]);
+          if (attributes)
+            attributesAt (p, xy, attributes + i * model_.attribute_channels.size ());
+        });
         block.flush (*this, p);
       }
 
@@ -383,14 +470,35 @@ namespace pcl_sparse
     Passes (const PatchEvaluator& evaluator, const PatchOwnership& ownership, const SparseSurfaceResamplingOptions& options,
             std::size_t m)
       : sampler (evaluator, ownership, options.jitter, options.max_area_weight), candidates (m), evaluated (m),
-        weights (m, 0.0), grids (m)
+        weights (m, 0.0), sizes (m, 0), grids (m), kept (m, 0)
     {}
 
     const PatchSampler sampler;
     std::vector<std::vector<Candidate>> candidates;
     std::vector<Points> evaluated;
     std::vector<double> weights;
+    std::vector<std::size_t> sizes;  ///< number of candidates of each patch
     std::vector<PatchGrid> grids;
+    std::vector<std::uint8_t> kept;  ///< whether candidates[p] holds the patch's candidates
+  };
+
+  /// What one block of a streamed compute does: the pieces of patches it holds, each cut into spans
+  /// the threads share, with where each span's selection starts.
+  struct SparseSurfaceResamplingBase::BlockPlan
+  {
+    struct Span
+    {
+      std::size_t patch;
+      PatchSampler::Cursor cursor;  ///< at the span's first point
+      std::size_t limit;            ///< the point of the patch after its last
+      std::size_t out;              ///< position of its first point in the block
+      bool closes;                  ///< the last span of the block's piece of this patch
+    };
+    std::vector<Span> spans;
+    /// Span-index range of each patch of the block, in patch order.
+    std::vector<std::pair<std::size_t, std::size_t>> patches;
+    /// Where each unfinished patch's selection stands after the previous block (by patch).
+    std::vector<PatchSampler::Cursor> cursors;
   };
 
   void
@@ -433,6 +541,29 @@ namespace pcl_sparse
   SparseSurfaceResamplingBase::resample (PointCloud& output, bool with_attributes)
   {
     with_attributes_ = with_attributes;
+    checkSetup ();
+    computeResampling (output);
+  }
+
+  void
+  SparseSurfaceResamplingBase::resampleBlocks (const std::function<void (const ResampledBlock<pcl::PointNormal>&)>& callback,
+                                               bool with_attributes)
+  {
+    with_attributes_ = with_attributes;
+    checkSetup ();
+    point_patches_.clear ();
+    point_attributes_.clear ();
+    prepareTables ();
+    Passes passes (*evaluator_, *ownership_, options_, model_->numPatches ());
+    weighPatches (passes, nullptr, stream_.kept_candidate_bytes);
+    streamAllPoints (pointsPerPatch (passes.weights), passes, callback);
+    if (progress_)
+      progress_ ("resample", 1.0);
+  }
+
+  void
+  SparseSurfaceResamplingBase::checkSetup () const
+  {
     if (!model_)
       throw Error (name_ + "::compute: no input model (setInputModel)");
     if (!model_->basis)
@@ -451,7 +582,6 @@ namespace pcl_sparse
     if (!patch_numbers_.empty () && patch_numbers_.size () != model_->patches.size ())
       throw Error (name_ + "::compute: " + std::to_string (patch_numbers_.size ()) + " patch numbers for " +
                    std::to_string (model_->patches.size ()) + " patches");
-    computeResampling (output);
   }
 
   double
@@ -485,7 +615,7 @@ namespace pcl_sparse
       std::vector<Candidate> candidates;
       Points evaluated;
       const double r = model.patches[p].radius;
-      areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, patchNumber (p), 0), candidates, evaluated) * grid.cell *
+      areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, patchNumber (p), 0), candidates, evaluated, false) * grid.cell *
                  grid.cell * r * r;
     }
     const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
@@ -514,7 +644,8 @@ namespace pcl_sparse
   }
 
   void
-  SparseSurfaceResamplingBase::drawAllCandidates (double& density, Passes& passes, PointCloud* prefill) const
+  SparseSurfaceResamplingBase::drawAllCandidates (double& density, Passes& passes, PointCloud* prefill,
+                                                  std::size_t keep_bytes) const
   {
     // Every patch's kept places and owned area at the final density. With a total count, cells hold one
     // point each only if the area pass was right: if the measured area differs by more than 2%, the pass
@@ -523,10 +654,11 @@ namespace pcl_sparse
     // also retries, at 4 x the density.
     const std::size_t m = model_->numPatches ();
     const int threads = threadsToUse ();
-    std::atomic<std::size_t> done (0);
+    std::atomic<std::size_t> done (0), kept_bytes (0);
     for (int attempt = 0, corrections = 0; attempt < 16; ++attempt)
     {
       done = 0;
+      kept_bytes = 0;
       std::exception_ptr failure;
 #pragma omp parallel num_threads(threads)
       {
@@ -547,8 +679,24 @@ namespace pcl_sparse
           const std::size_t p = static_cast<std::size_t> (pi);
           const double r = model_->patches[p].radius;
           passes.grids[p] = makeGrid (evaluator_->maxExtent (p), 1.0 / (r * std::sqrt (density)));
+          // Which patches keep their candidates depends on the threads' timing, the points do not: a
+          // patch not kept only sums its weights now, and draws the same candidates from the same hashes
+          // in its block.
+          // A patch whose grid alone could take a quarter of the budget is not even drawn for keeping.
+          const std::size_t cells = static_cast<std::size_t> (passes.grids[p].n) * passes.grids[p].n;
+          const bool store = kept_bytes.load () < keep_bytes && cells <= keep_bytes / 4 / sizeof (Candidate);
           passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 1),
-                                                            passes.candidates[p], passes.evaluated[p]);
+                                                            passes.candidates[p], passes.evaluated[p], store,
+                                                            &passes.sizes[p]);
+          const std::size_t bytes = passes.candidates[p].capacity () * sizeof (Candidate) +
+                                    passes.evaluated[p].capacity () * sizeof (pcl::PointNormal);
+          passes.kept[p] = store && kept_bytes.fetch_add (bytes) + bytes <= keep_bytes;
+          if (store && !passes.kept[p])
+          {
+            kept_bytes -= bytes;
+            std::vector<Candidate> ().swap (passes.candidates[p]);
+            Points ().swap (passes.evaluated[p]);
+          }
           const std::size_t finished = ++done;
           if (progress_ && omp_get_thread_num () == 0)
             progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
@@ -611,9 +759,14 @@ namespace pcl_sparse
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
       const std::size_t p = static_cast<std::size_t> (pi);
-      passes.sampler.selectPoints (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 3), passes.candidates[p],
-                                   passes.evaluated[p], counts[p], output.data () + offsets[p],
-                                   channels > 0 ? point_attributes_.data () + offsets[p] * channels : nullptr);
+      if (counts[p] > 0)
+      {
+        const std::uint64_t key = patchKey (options_.seed, patchNumber (p), 3);
+        PatchSampler::Cursor cursor = PatchSampler::startSelection (key, passes.candidates[p], counts[p]);
+        passes.sampler.selectPoints (p, passes.grids[p], key, passes.candidates[p], passes.evaluated[p], cursor, counts[p],
+                                     output.data () + offsets[p],
+                                     channels > 0 ? point_attributes_.data () + offsets[p] * channels : nullptr);
+      }
       std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
       std::vector<Candidate> ().swap (passes.candidates[p]);
       Points ().swap (passes.evaluated[p]);
@@ -627,26 +780,144 @@ namespace pcl_sparse
   }
 
   void
-  SparseSurfaceResamplingBase::computeResampling (PointCloud& output)
+  SparseSurfaceResamplingBase::streamAllPoints (const std::vector<std::size_t>& counts, Passes& passes,
+                                                const std::function<void (const ResampledBlock<pcl::PointNormal>&)>& callback)
+  {
+    const std::size_t m = counts.size ();
+    std::vector<std::size_t> offsets (m + 1, 0);
+    for (std::size_t p = 0; p < m; ++p)
+      offsets[p + 1] = offsets[p] + counts[p];
+    const std::size_t total = offsets[m];
+    const std::size_t block_points = std::max<std::size_t> (1, stream_.block_points);
+    const std::size_t channels = with_attributes_ ? model_->attribute_channels.size () : 0;
+    ResampledBlock<pcl::PointNormal> block;
+    block.total = total;
+    BlockPlan plan;
+    plan.cursors.resize (m);
+    std::size_t begin = 0;
+    do
+    {
+      const std::size_t end = std::min (total, begin + block_points);
+      planBlock (offsets, begin, end, passes, plan);
+      // Every point of the block is written below, as in selectAllPoints.
+      block.cloud.resize (end - begin);
+      block.patches.resize (end - begin);
+      block.attributes.resize ((end - begin) * channels);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threadsToUse ())
+      for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (plan.spans.size ()); ++k)
+      {
+        BlockPlan::Span& span = plan.spans[static_cast<std::size_t> (k)];
+        const std::size_t p = span.patch, first = span.out, size = span.limit - span.cursor.emitted;
+        passes.sampler.selectPoints (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 3), passes.candidates[p],
+                                     passes.evaluated[p], span.cursor, span.limit, block.cloud.data () + first,
+                                     channels > 0 ? block.attributes.data () + first * channels : nullptr);
+        std::fill (block.patches.begin () + first, block.patches.begin () + first + size, static_cast<int> (p));
+        if (span.closes)
+          plan.cursors[p] = span.cursor;
+      }
+      // A patch finished in this block frees its candidates; one cut by the block's end keeps them.
+      for (const auto& range : plan.patches)
+      {
+        const std::size_t p = plan.spans[range.first].patch;
+        if (offsets[p + 1] <= end)
+        {
+          std::vector<Candidate> ().swap (passes.candidates[p]);
+          Points ().swap (passes.evaluated[p]);
+          passes.kept[p] = 0;
+        }
+      }
+      block.cloud.width = static_cast<std::uint32_t> (block.cloud.size ());
+      block.cloud.height = 1;
+      block.cloud.is_dense = true;
+      block.first = begin;
+      callback (block);
+      if (progress_ && total > 0)
+        progress_ ("resample", 0.5 + 0.5 * static_cast<double> (end) / static_cast<double> (total));
+      begin = end;
+    } while (begin < total);
+  }
+
+  void
+  SparseSurfaceResamplingBase::planBlock (const std::vector<std::size_t>& offsets, std::size_t begin, std::size_t end,
+                                          Passes& passes, BlockPlan& plan) const
+  {
+    // Spans of at most 32768 points: enough for two threads to share a block held by one large patch.
+    constexpr std::size_t span_points = 32768;
+    const std::size_t m = offsets.size () - 1;
+    plan.spans.clear ();
+    plan.patches.clear ();
+    std::size_t p = static_cast<std::size_t> (std::upper_bound (offsets.begin (), offsets.end (), begin) - offsets.begin ()) - 1;
+    for (; p < m && offsets[p] < end; ++p)
+    {
+      const std::size_t from = std::max (begin, offsets[p]) - offsets[p], to = std::min (end, offsets[p + 1]) - offsets[p];
+      if (from == to)
+        continue;
+      const std::size_t first_span = plan.spans.size ();
+      for (std::size_t a = from; a < to; a += span_points)
+      {
+        const std::size_t b = std::min (to, a + span_points);
+        plan.spans.push_back ({p, PatchSampler::Cursor (), b, offsets[p] + a - begin, b == to});
+      }
+      plan.patches.emplace_back (first_span, plan.spans.size ());
+    }
+    // Each patch: its candidates unless kept from the weight pass, then the cursor at each span's start
+    // (skipping is cheap: no evaluation), in parallel over the patches.
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threadsToUse ())
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (plan.patches.size ()); ++k)
+    {
+      const auto [s0, s1] = plan.patches[static_cast<std::size_t> (k)];
+      const std::size_t q = plan.spans[s0].patch;
+      if (!passes.kept[q])
+      {
+        passes.sampler.drawCandidates (q, passes.grids[q], patchKey (options_.seed, patchNumber (q), 1), passes.candidates[q],
+                                       passes.evaluated[q], true, nullptr, passes.sizes[q]);
+        passes.kept[q] = 1;
+      }
+      PatchSampler::Cursor cursor = offsets[q] >= begin
+                                      ? PatchSampler::startSelection (patchKey (options_.seed, patchNumber (q), 3), passes.candidates[q],
+                                                                      offsets[q + 1] - offsets[q])
+                                      : plan.cursors[q];
+      for (std::size_t span = s0; span < s1; ++span)
+      {
+        if (span > s0)
+          PatchSampler::skip (cursor, passes.candidates[q], plan.spans[span - 1].limit);
+        plan.spans[span].cursor = cursor;
+      }
+    }
+  }
+
+  void
+  SparseSurfaceResamplingBase::prepareTables ()
   {
     if (!evaluator_)
       evaluator_ = std::make_shared<PatchEvaluator> (*model_);
     if (!ownership_)
       ownership_ = std::make_shared<PatchOwnership> (*evaluator_, options_.ownership, threadsToUse ());
+  }
 
+  void
+  SparseSurfaceResamplingBase::weighPatches (Passes& passes, PointCloud* prefill, std::size_t keep_bytes)
+  {
     // Density: given, or from a coarse area pass when a total count is asked for.
     double density = mode_ == Mode::Count ? densityForCount () : density_;
     checkDensityBound (density);
-    Passes passes (*evaluator_, *ownership_, options_, model_->numPatches ());
-    // With a count, the cloud's size is known: its construction overlaps the candidate pass.
-    const bool prefill = mode_ == Mode::Count;
-    drawAllCandidates (density, passes, prefill ? &output : nullptr);
+    drawAllCandidates (density, passes, prefill, keep_bytes);
     const double weight = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
     if (!(weight > 0.0))
       throw Error (name_ + "::compute: the model has no surface area to sample");
     // A cell holds one expected point on flat ground, so weights are areas in units of 1 / density.
     estimated_area_ = weight / density;
     density_used_ = density;
+  }
+
+  void
+  SparseSurfaceResamplingBase::computeResampling (PointCloud& output)
+  {
+    prepareTables ();
+    Passes passes (*evaluator_, *ownership_, options_, model_->numPatches ());
+    // With a count, the cloud's size is known: its construction overlaps the candidate pass.
+    const bool prefill = mode_ == Mode::Count;
+    weighPatches (passes, prefill ? &output : nullptr, std::numeric_limits<std::size_t>::max ());
     selectAllPoints (pointsPerPatch (passes.weights), passes, output, prefill);
     if (progress_)
       progress_ ("resample", 1.0);

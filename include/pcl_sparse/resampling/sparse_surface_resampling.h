@@ -37,6 +37,23 @@
 /// places at a time (PatchEvaluator::sampleBlock, the same bits as one by one); with a count, the output
 /// cloud is constructed by one thread while the others start the candidate pass.
 ///
+/// Streaming (clouds larger than memory): compute (callback) hands the same points to a callback block by
+/// block, in cloud order, with memory bounded by the block size (ResamplingStreamOptions) instead of the
+/// point count (and the largest patch's candidates, about 20 bytes each). A first pass keeps only each
+/// patch's weight (and the candidates of the first patches, up to a budget), the counts per patch follow as in the in-memory form, then each block draws again the
+/// candidates of its patches that were not kept (the same hashes give the same candidates) and selects
+/// its points; a patch cut by a block edge resumes where the previous block stopped. The points are bit
+/// for bit those of compute (cloud), for any block size and thread count.
+///
+///   resampling.setPointCount (200000000);
+///   std::unique_ptr<pcl_sparse::PointNormalStreamWriter> writer;   // io/cloud_stream_writer.h
+///   resampling.compute ([&] (const pcl_sparse::ResampledBlock<pcl::PointNormal>& block) {
+///     if (!writer)
+///       writer = std::make_unique<pcl_sparse::PointNormalStreamWriter> ("huge.pcd", block.total);
+///     writer->write (block.cloud);
+///   });
+///   writer->finish ();                                              // renames the complete file
+///
 /// The authors' code draws (r, angle) uniformly in the whole unit disk, which clusters points at the
 /// centre and places points where the patch has no data; we sample uniformly by area inside the footprint.
 
@@ -51,6 +68,8 @@
 #include <pcl/point_types.h>
 
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -75,6 +94,36 @@ namespace pcl_sparse
     int area_pass_cells = 64;
     /// Ownership of overlapping places.
     PatchOwnershipOptions ownership;
+  };
+
+  /// Options of the streamed compute (SparseSurfaceResampling::compute with a callback). They bound its
+  /// memory and never change the points.
+  struct ResamplingStreamOptions
+  {
+    /// Largest number of points per block (2^21: 96 MB of pcl::PointNormal, plus 4 bytes of patch number
+    /// per point). Larger blocks give the threads more patches to share.
+    std::size_t block_points = std::size_t (1) << 21;
+    /// Bytes of candidate places (about 20 per point) the weight pass may keep for the blocks (128 MB);
+    /// the patches beyond it are drawn a second time in their block. A cloud whose candidates fit costs
+    /// what an in-memory compute costs.
+    std::size_t kept_candidate_bytes = std::size_t (128) << 20;
+  };
+
+  /// One block of a streamed compute: consecutive points of the cloud compute (cloud) would give.
+  template <typename PointT>
+  struct ResampledBlock
+  {
+    /// The block's points (one row, is_dense = true).
+    pcl::PointCloud<PointT> cloud;
+    /// Patch that produced each point.
+    std::vector<int> patches;
+    /// Attribute channels of each point, as getPointAttributes (empty unless the output type has colour
+    /// or intensity and the model has attributes).
+    std::vector<float> attributes;
+    /// Index of the block's first point in the whole cloud.
+    std::size_t first = 0;
+    /// Number of points of the whole cloud (known from the first block on).
+    std::size_t total = 0;
   };
 
   /// \brief What the resampling stage is, whatever the output point type: its input, density, options
@@ -111,7 +160,12 @@ namespace pcl_sparse
     void setOptions (const SparseSurfaceResamplingOptions& options) { options_ = options; ownership_.reset (); }
     const SparseSurfaceResamplingOptions& getOptions () const { return options_; }
 
-    /// \brief Patch that produced each point of the last compute.
+    /// \brief Block size and kept candidates of the streamed compute (never change the points).
+    void setStreamOptions (const ResamplingStreamOptions& options) { stream_ = options; }
+    const ResamplingStreamOptions& getStreamOptions () const { return stream_; }
+
+    /// \brief Patch that produced each point of the last compute (empty after a streamed compute: each
+    /// block has its own).
     const std::vector<int>& getPointPatches () const { return point_patches_; }
     /// \brief Attribute values of each point of the last compute, model->attribute_channels.size () per
     /// point, point after point (clamped to each channel's range). Empty unless the output type has
@@ -131,12 +185,26 @@ namespace pcl_sparse
     /// would give more than max_points points.
     void resample (PointCloud& output, bool with_attributes = false);
 
+    /// \brief The streamed form of resample: the same points, handed to \a callback block by block in
+    /// cloud order (at least one call: an empty cloud gives one empty block). Same checks and errors.
+    void resampleBlocks (const std::function<void (const ResampledBlock<pcl::PointNormal>&)>& callback,
+                         bool with_attributes = false);
+
     /// \brief The stage proper, after the checks.
     virtual void computeResampling (PointCloud& output);
 
   private:
     enum class Mode { None, Count, Density };
     struct Passes;
+    struct BlockPlan;
+
+    /// Throws unless the model, the density and the options can be resampled.
+    void checkSetup () const;
+    /// Builds the evaluator and ownership tables unless kept from the last compute.
+    void prepareTables ();
+    /// The density, then the candidate pass (drawAllCandidates) at it; sets the estimated area and the
+    /// density used.
+    void weighPatches (Passes& passes, PointCloud* prefill, std::size_t keep_bytes);
 
     /// Density for a total count, from a coarse pass measuring each patch's owned area.
     double densityForCount () const;
@@ -145,12 +213,19 @@ namespace pcl_sparse
     /// Candidate pass at \a density (redone once if a count is asked and the area is off by > 2 %).
     /// With \a prefill, one thread first constructs that cloud with count_ points (a few page faults per
     /// point, serial) while the others start on the patches.
-    void drawAllCandidates (double& density, Passes& passes, PointCloud* prefill) const;
+    /// Each patch's candidates take at most \a keep_bytes in all: the others are dropped once weighed.
+    void drawAllCandidates (double& density, Passes& passes, PointCloud* prefill, std::size_t keep_bytes) const;
     /// Points per patch: largest remainder of the weights for a count, else rounded at random.
     std::vector<std::size_t> pointsPerPatch (const std::vector<double>& weights) const;
     /// Selection pass: every patch writes its own slice of the output, in patch order (\a output is
     /// reconstructed unless \a prefilled and already of the right size).
     void selectAllPoints (const std::vector<std::size_t>& counts, Passes& passes, PointCloud& output, bool prefilled);
+    /// Streamed selection: the points of blocks of at most stream_.block_points, each handed to \a callback.
+    void streamAllPoints (const std::vector<std::size_t>& counts, Passes& passes,
+                          const std::function<void (const ResampledBlock<pcl::PointNormal>&)>& callback);
+    /// Draws the candidates a block's patches lack and cuts its patches into pieces for the threads.
+    void planBlock (const std::vector<std::size_t>& offsets, std::size_t begin, std::size_t end, Passes& passes,
+                    BlockPlan& plan) const;
 
     /// The number patch \a p has in the model random draws are keyed by (setPatchNumbers).
     std::size_t patchNumber (std::size_t p) const { return patch_numbers_.empty () ? p : patch_numbers_[p]; }
@@ -158,6 +233,7 @@ namespace pcl_sparse
     SparseSurfaceModel::ConstPtr model_;
     SparseSurfaceResamplingOptions options_;
     std::vector<std::size_t> patch_numbers_;
+    ResamplingStreamOptions stream_;
     Mode mode_ = Mode::None;
     std::size_t count_ = 0;
     double density_ = 0.0;
@@ -187,6 +263,20 @@ namespace pcl_sparse
     /// would give more than max_points points.
     /// \param[out] output the resampled cloud
     void compute (PointCloudOut& output);
+
+    /// What the streamed compute hands over: one block of the cloud.
+    using Block = ResampledBlock<PointOutT>;
+    /// Called once per block, in cloud order, from the calling thread.
+    using BlockCallback = std::function<void (const Block&)>;
+
+    /// \brief The streamed form, for clouds larger than memory: the points compute (cloud) would give, bit
+    /// for bit, handed to \a callback in blocks of at most getStreamOptions ().block_points points (at
+    /// least one call; an empty cloud gives one empty block). Memory is bounded by the block size and
+    /// ResamplingStreamOptions::kept_candidate_bytes, not by the point count; it costs at most one more
+    /// candidate pass than compute (cloud). The estimated area and density are set before the first call.
+    /// Throws as compute (cloud) does, and passes on what \a callback throws (no further block is made).
+    /// \param[in] callback receives each block (valid during the call only)
+    void compute (const BlockCallback& callback);
   };
 } // namespace pcl_sparse
 

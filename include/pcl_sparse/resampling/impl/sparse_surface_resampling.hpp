@@ -28,4 +28,30 @@ namespace pcl_sparse
         writePointAttributes (getInputModel ()->attribute_channels, getPointAttributes (), output);
     }
   }
+
+  template <typename PointOutT>
+  void
+  SparseSurfaceResampling<PointOutT>::compute (const BlockCallback& callback)
+  {
+    constexpr bool attributes = pcl::traits::has_color_v<PointOutT> || pcl::traits::has_intensity_v<PointOutT>;
+    if constexpr (std::is_same_v<PointOutT, pcl::PointNormal>)
+      resampleBlocks (callback);
+    else
+    {
+      // One block of the output type, reused: converted as compute (cloud) converts the whole cloud.
+      Block out;
+      resampleBlocks (
+        [&] (const ResampledBlock<pcl::PointNormal>& block) {
+          pcl::copyPointCloud (block.cloud, out.cloud);
+          if constexpr (attributes)
+            writePointAttributes (getInputModel ()->attribute_channels, block.attributes, out.cloud);
+          out.patches = block.patches;
+          out.attributes = block.attributes;
+          out.first = block.first;
+          out.total = block.total;
+          callback (out);
+        },
+        attributes);
+    }
+  }
 } // namespace pcl_sparse
