@@ -146,7 +146,7 @@ TEST (CompressionBound, CoarseMeshGetsTheCheaperCode)
   // sphere stand 1.1e-2 off it, 3.3e-3 of the diagonal).
   EXPECT_LT (after.rmse_over_diagonal, 3e-3);
 
-  // Same model for any thread count.
+  // Same model for any thread count (the bunny case below has enough patches to code them in parallel).
   const SparseSurfaceModel threaded = encode (mesh, SparseSurfaceEncoderOptions (), 2);
   ASSERT_EQ (threaded.patches.size (), model.patches.size ());
   for (std::size_t p = 0; p < model.patches.size (); ++p)
@@ -214,5 +214,13 @@ TEST (CompressionBound, BunnyNpm1kAtEveryRho)
     EXPECT_LT (s.rmse_over_diagonal, 6e-4) << "rho " << rho;  // the authors': 5.84e-4 at CR 1.35
     EXPECT_GE (q.completeness, 0.99) << "rho " << rho;         // p99 hole within 3 spacings
     EXPECT_LE (q.flipped, cloud.size () / 1000) << "rho " << rho;
+    if (rho == 0.001)
+    {
+      // The candidates are coded in parallel (over 64 patches): the same model on one thread.
+      const SparseSurfaceModel single = encode (mesh, options, 1);
+      ASSERT_EQ (single.patches.size (), model->patches.size ());
+      for (std::size_t p = 0; p < single.patches.size (); ++p)
+        ASSERT_EQ (single.patches[p].coefficients, model->patches[p].coefficients) << p;
+    }
   }
 }
