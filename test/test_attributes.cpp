@@ -204,8 +204,10 @@ TEST (Attributes, CloudWithColourGivesTheColoursAutomatically)
   encoder.compute (cropped);
   ASSERT_EQ (cropped.attribute_channels.size (), 3u);
   const Eigen::MatrixXf at_vertices = cropped.reconstructVertexAttributes (upper->size ());
+  // The cropped 642-vertex sphere is over CR 1, so the compression bound gives it fewer, larger patches
+  // (SparseSurfaceEncoderOptions::max_compression_ratio), whose colour codes miss by up to 3.03 (3.0 before).
   for (std::size_t i = 0; i < upper->size (); i += 37)
-    EXPECT_NEAR (at_vertices (static_cast<Eigen::Index> (i), 0), (*cloud)[(*upper)[i]].r, 3.0) << i;
+    EXPECT_NEAR (at_vertices (static_cast<Eigen::Index> (i), 0), (*cloud)[(*upper)[i]].r, 3.5) << i;
 }
 
 TEST (Attributes, IntensityCloudAndMeshWithoutAttributes)

@@ -16,6 +16,7 @@ namespace pcl_sparse
     const Eigen::Index num_atoms = dictionary.cols ();
     const double signal_norm = signal.norm ();
     result.residual_norm = signal_norm;
+    result.residual_norms.assign (1, signal_norm);
     if (signal_norm == 0.0 || num_points == 0 || num_atoms == 0 || max_atoms < 1 || signal.size () != num_points)
       return result;
 
@@ -84,6 +85,7 @@ namespace pcl_sparse
       factor.transpose ().solveInPlace (coefficients);
       residual = signal - support.leftCols (size) * coefficients;
       result.residual_norm = residual.norm ();
+      result.residual_norms.push_back (result.residual_norm);
     }
     result.coefficients.assign (coefficients.data (), coefficients.data () + coefficients.size ());
     return result;

@@ -102,6 +102,7 @@ namespace pcl_sparse
         info->allowed_atoms += a != 0;
       const double norm = signal.norm ();
       info->relative_residual = norm > 0.0 ? omp.residual_norm / norm : 0.0;
+      info->residual_norms = omp.residual_norms;
     }
     return code;
   }

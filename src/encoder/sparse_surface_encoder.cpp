@@ -1,3 +1,4 @@
+#include <pcl_sparse/coding/atom_budget.h>
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/coding/patch_samples.h>
 #include <pcl_sparse/common/error.h>
@@ -15,6 +16,8 @@
 #include <memory>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <set>
 
 namespace pcl_sparse
 {
@@ -42,6 +45,187 @@ namespace pcl_sparse
     {
       if (!condition)
         throw Error ("SparseSurfaceEncoder: " + message);
+    }
+
+    /// What coding a patch needs besides the patch (docs/METHOD.md steps 7-9).
+    struct CodingContext
+    {
+      const TriangleMesh& mesh;
+      std::vector<double> ring_lengths;  ///< meanRingEdgeLengths
+      const SurfaceBasis& basis;
+      SparseCodingOptions coding;
+      const AttributeCodingInput* attributes;  ///< or nullptr
+      int threads;
+      ProgressCallback progress;
+    };
+
+    /// Codes every patch into its own slot, in parallel (the result does not depend on the threads);
+    /// \a max_atoms, when given, is each patch's L instead of coding.max_atoms (the others are copied from
+    /// \a previous).
+    std::vector<PatchCode>
+    codePatches (const CodingContext& context, const std::vector<Patch>& patches, std::vector<PatchCodingInfo>& info,
+                 const std::vector<int>* max_atoms = nullptr, const std::vector<PatchCode>* previous = nullptr)
+    {
+      const long num_patches = static_cast<long> (patches.size ());
+      std::vector<PatchCode> codes (patches.size ());
+      info.resize (patches.size ());
+      std::atomic<long> done (0);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(context.threads) if(num_patches > 64)
+      for (long p = 0; p < num_patches; ++p)
+      {
+        if (max_atoms && previous && (*max_atoms)[p] >= static_cast<int> ((*previous)[p].atoms.size ()))
+          codes[p] = (*previous)[p];
+        else
+        {
+          SparseCodingOptions coding = context.coding;
+          if (max_atoms)
+            coding.max_atoms = (*max_atoms)[p];
+          codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), context.mesh, context.ring_lengths,
+                                context.basis, coding, &info[p], context.attributes);
+        }
+        const long finished = ++done;
+        if (context.progress && omp_get_thread_num () == 0 && finished % 64 == 0)
+          context.progress ("coding", static_cast<double> (finished) / num_patches);
+      }
+      if (context.progress)
+        context.progress ("coding", 1.0);
+      return codes;
+    }
+
+    /// Per patch, the sum over its vertices of 1 / (patches holding the vertex).
+    std::vector<double>
+    vertexShares (const std::vector<PatchCode>& codes, std::size_t num_vertices)
+    {
+      std::vector<int> holders (num_vertices, 0);
+      for (const PatchCode& code : codes)
+        for (int v : code.vertices)
+          ++holders[v];
+      std::vector<double> shares (codes.size (), 0.0);
+      for (std::size_t p = 0; p < codes.size (); ++p)
+        for (int v : codes[p].vertices)
+          shares[p] += 1.0 / holders[v];
+      return shares;
+    }
+
+    /// What re-sampling the patches needs: the first sampling's candidate order, so Harris 3D runs once.
+    struct BoundInputs
+    {
+      const MeshTopology& topology;
+      const SparseSurfaceEncoderOptions& options;
+      const std::vector<double>& responses;
+      const std::vector<int>& keypoints;
+      const std::vector<Eigen::Vector3d>& point_normals;
+      const std::vector<std::uint8_t>& seed_vertices;
+      int num_threads;
+    };
+
+    /// One candidate of enforceCompressionBound: patches, their codes trimmed to the bound, and its error.
+    struct BoundCandidate
+    {
+      std::vector<Patch> patches;
+      std::vector<PatchCode> codes;
+      std::vector<PatchCodingInfo> info;
+      double rmse = std::numeric_limits<double>::infinity ();
+      double cr = std::numeric_limits<double>::infinity ();
+    };
+
+    /// Trims \a candidate's codes (coded with the full L) to the atoms left by the bound once its frames
+    /// are paid for, and measures its RMSE. False when the frames alone exceed the bound.
+    bool
+    trimToBound (const CodingContext& context, const SparseSurfaceModel& shape, double bound, BoundCandidate& candidate)
+    {
+      const std::size_t num_vertices = shape.num_input_vertices;
+      const long total = static_cast<long> (std::floor (bound * 3.0 * static_cast<double> (num_vertices)));
+      const long budget = total - 13L * static_cast<long> (candidate.codes.size ());
+      if (budget < 0)
+        return false;
+      long nnz = 0;
+      for (const PatchCode& code : candidate.codes)
+        nnz += static_cast<long> (code.atoms.size ());
+      if (nnz > budget)
+      {
+        const std::vector<double> shares = vertexShares (candidate.codes, num_vertices);
+        AtomGains gains (candidate.codes.size ());
+        for (std::size_t p = 0; p < gains.size (); ++p)
+          gains[p] = patchAtomGains (candidate.info[p].residual_norms, candidate.codes[p].radius, shares[p],
+                                     candidate.info[p].num_samples);
+        const std::vector<int> counts = allocateAtoms (gains, budget);
+        CodingContext quiet = context;
+        quiet.progress = nullptr;
+        candidate.codes = codePatches (quiet, candidate.patches, candidate.info, &counts, &candidate.codes);
+      }
+      SparseSurfaceModel model = shape;
+      model.patches = candidate.codes;
+      candidate.cr = model.compressionRatio ();
+      candidate.rmse = model.statistics (context.mesh.vertices).rmse;
+      return true;
+    }
+
+    /// Makes \a model (and \a encoding) fit options.max_compression_ratio: the model's own patches and
+    /// those grown with each growth floor and sigma are coded, trimmed to the bound, and the lowest RMSE
+    /// over the input vertices is kept. When no candidate's frames fit, the one with the fewest patches is
+    /// kept, with no atoms.
+    void
+    enforceCompressionBound (const CodingContext& context, const BoundInputs& inputs, SurfaceEncoding& encoding,
+                             SparseSurfaceModel& model)
+    {
+      const double bound = inputs.options.max_compression_ratio;
+      SparseSurfaceModel shape = model;
+      shape.patches.clear ();
+      BoundCandidate best, fewest;
+      auto consider = [&] (BoundCandidate&& candidate) {
+        if (fewest.patches.empty () || candidate.patches.size () < fewest.patches.size ())
+          fewest = candidate;
+        if (trimToBound (context, shape, bound, candidate) && candidate.rmse < best.rmse)
+          best = std::move (candidate);
+      };
+      BoundCandidate own;
+      own.patches = std::move (encoding.patches);
+      own.codes = std::move (model.patches);
+      own.info = std::move (encoding.coding_info);
+      auto vertexCount = [] (const std::vector<Patch>& patches) {
+        return std::accumulate (patches.begin (), patches.end (), std::size_t (0),
+                                [] (std::size_t n, const Patch& p) { return n + p.size (); });
+      };
+      std::pair<std::size_t, std::size_t> last (own.patches.size (), vertexCount (own.patches));
+      consider (std::move (own));
+      std::vector<std::pair<int, double>> grid;  // (growth floor, sigma), the model's own first
+      const double own_sigma = inputs.options.patches.sigma;
+      for (double sigma : {own_sigma, std::max (own_sigma, inputs.options.budget_sigma)})
+        for (int growth_floor : inputs.options.budget_growth_floors)
+          grid.emplace_back (growth_floor, sigma);
+      std::set<std::pair<std::size_t, std::size_t>> seen{last};
+      for (const auto& [growth_floor, sigma] : grid)
+      {
+        PatchOptions patch_options = inputs.options.patches;
+        if (growth_floor <= patch_options.min_growth_vertices && sigma == patch_options.sigma)
+          continue;  // the model's own patches
+        patch_options.min_growth_vertices = std::max (patch_options.min_growth_vertices, growth_floor);
+        patch_options.sigma = sigma;
+        BoundCandidate candidate;
+        candidate.patches = sampleFeatureAwarePatches (context.mesh, inputs.topology, patch_options, inputs.responses,
+                                                       inputs.keypoints, inputs.num_threads, nullptr,
+                                                       inputs.point_normals, inputs.seed_vertices).patches;
+        // The same patch counts as an earlier candidate: the floor or sigma changed nothing there.
+        if (!seen.emplace (candidate.patches.size (), vertexCount (candidate.patches)).second)
+          continue;
+        CodingContext quiet = context;
+        quiet.progress = nullptr;
+        candidate.codes = codePatches (quiet, candidate.patches, candidate.info);
+        consider (std::move (candidate));
+      }
+      if (!std::isfinite (best.rmse))
+      {
+        // Even the fewest patches' frames exceed the bound: keep them, as cheap as they get.
+        best = std::move (fewest);
+        const std::vector<int> none (best.patches.size (), 0);
+        CodingContext quiet = context;
+        quiet.progress = nullptr;
+        best.codes = codePatches (quiet, best.patches, best.info, &none, &best.codes);
+      }
+      encoding.patches = std::move (best.patches);
+      encoding.coding_info = std::move (best.info);
+      model.patches = std::move (best.codes);
     }
   } // namespace
 
@@ -72,6 +256,12 @@ namespace pcl_sparse
              "attribute L (atoms per channel) must be >= 1, got " + std::to_string (attributes.max_atoms));
     require (attributes.tolerance >= 0.0 && std::isfinite (attributes.tolerance),
              "attribute tolerance must be >= 0, got " + std::to_string (attributes.tolerance));
+    require (max_compression_ratio >= 0.0 && std::isfinite (max_compression_ratio),
+             "max compression ratio must be >= 0, got " + std::to_string (max_compression_ratio));
+    for (int growth_floor : budget_growth_floors)
+      require (growth_floor >= 0, "budget growth floors must be >= 0, got " + std::to_string (growth_floor));
+    require (budget_sigma >= 0.0 && std::isfinite (budget_sigma),
+             "budget sigma must be >= 0, got " + std::to_string (budget_sigma));
   }
 
   bool
@@ -98,6 +288,7 @@ namespace pcl_sparse
     {
       options.basis = CosineBasisKind::Paper;
       options.patches.cone_angle = M_PI / 2.0;
+      options.max_compression_ratio = 0.0;
     }
     return options;
   }
@@ -139,32 +330,19 @@ namespace pcl_sparse
     }
     const auto start = std::chrono::steady_clock::now ();
     SurfaceEncoding encoding;
+    const CodingContext context{mesh, meanRingEdgeLengths (mesh, topology), *basis, options.coding,
+                                attribute_input.values ? &attribute_input : nullptr,
+                                num_threads > 0 ? num_threads : omp_get_max_threads (), progress};
 
     // Steps 2-6: patches with frames and local coordinates.
-    encoding.patches = sampleFeatureAwarePatches (mesh, topology, options.patches, {}, {}, num_threads, progress, point_normals,
-                                                  seed_vertices).patches;
+    PatchSamplingResult sampling = sampleFeatureAwarePatches (mesh, topology, options.patches, {}, {}, num_threads, progress,
+                                                              point_normals, seed_vertices);
+    encoding.patches = std::move (sampling.patches);
     encoding.timings.patches = secondsSince (start);
 
     // Steps 7-9: code every patch into its own slot.
     const auto coding_start = std::chrono::steady_clock::now ();
-    const std::vector<Patch>& patches = encoding.patches;
-    const std::vector<double> ring_lengths = meanRingEdgeLengths (mesh, topology);
-    const long num_patches = static_cast<long> (patches.size ());
-    std::vector<PatchCode> codes (patches.size ());
-    encoding.coding_info.assign (patches.size (), PatchCodingInfo ());
-    std::atomic<long> done (0);
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) if(num_patches > 64)
-    for (long p = 0; p < num_patches; ++p)
-    {
-      codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), mesh, ring_lengths, *basis, options.coding,
-                            &encoding.coding_info[p], attribute_input.values ? &attribute_input : nullptr);
-      const long finished = ++done;
-      if (progress && omp_get_thread_num () == 0 && finished % 64 == 0)
-        progress ("coding", static_cast<double> (finished) / num_patches);
-    }
-    if (progress)
-      progress ("coding", 1.0);
+    std::vector<PatchCode> codes = codePatches (context, encoding.patches, encoding.coding_info);
     encoding.timings.coding = secondsSince (coding_start);
 
     model.basis = basis;
@@ -173,6 +351,15 @@ namespace pcl_sparse
     model.attribute_basis = attribute_input.basis;
     model.num_input_vertices = mesh.vertices.size ();
     model.bbox_diagonal = boundingBoxDiagonal (mesh);
+
+    // Never bigger than the input (issue 13): cheaper candidates, measured, only where the bound is exceeded.
+    if (options.max_compression_ratio > 0.0 && model.compressionRatio () > options.max_compression_ratio)
+    {
+      const auto bound_start = std::chrono::steady_clock::now ();
+      BoundInputs inputs{topology, options, sampling.responses, sampling.keypoints, point_normals, seed_vertices, num_threads};
+      enforceCompressionBound (context, inputs, encoding, model);
+      encoding.timings.coding += secondsSince (bound_start);
+    }
     encoding.timings.total = secondsSince (start);
     return encoding;
   }

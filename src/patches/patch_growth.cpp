@@ -99,6 +99,7 @@ namespace pcl_sparse
     , rho_area_ (options.rho * geometry.total_area)
     , stop_at_first_refusal_ (options.stop_at_first_refusal)
     , max_vertices_ (static_cast<std::size_t> (std::max (0, options.max_patch_vertices)))
+    , min_vertices_ (static_cast<std::size_t> (std::max (0, options.min_growth_vertices)))
     , walk_ (mesh, topology)
     , state_ (mesh.vertices.size (), Untouched)
   {
@@ -106,9 +107,9 @@ namespace pcl_sparse
   }
 
   bool
-  PatchGrower::areaConditionHolds (double area, double projected_area) const
+  PatchGrower::areaConditionHolds (double area, double projected_area, std::size_t size) const
   {
-    return area <= rho_area_ || area <= eta_ * projected_area;
+    return size < min_vertices_ || area <= rho_area_ || area <= eta_ * projected_area;
   }
 
   void
@@ -202,15 +203,15 @@ namespace pcl_sparse
   }
 
   bool
-  PatchGrower::isJustified (double area, double projected_area) const
+  PatchGrower::isJustified (double area, double projected_area, std::size_t size) const
   {
     // A justifying face's area counts in A_p even while it is not complete.
-    if (!areaConditionHolds (area, projected_area))
+    if (!areaConditionHolds (area, projected_area, size))
       return false;
     const auto& areas = geometry_.face_areas;
     for (const auto& [f, c] : candidates_)
     {
-      const bool ok = c < 0.0 || (areaConditionHolds (area + areas[f], projected_area + areas[f] * c) &&
+      const bool ok = c < 0.0 || (areaConditionHolds (area + areas[f], projected_area + areas[f] * c, size) &&
                                   (!pairwise_cone_ || pairwiseConeHolds (f, c)));
       if (ok)
         return true;
@@ -248,7 +249,7 @@ namespace pcl_sparse
       double new_area = 0.0, new_projected = 0.0;
       collectFaces (u, ns, new_area, new_projected);
       const double area_after = area + new_area, projected_after = projected + new_projected;
-      if (!isJustified (area_after, projected_after))
+      if (!isJustified (area_after, projected_after, patch.vertices.size ()))
       {
         if (pairwise_cone_)  // undo the provisional normals of this vertex's completed faces
           for (int f : completed_)
@@ -353,7 +354,7 @@ namespace pcl_sparse
         continue;
       bool ok = false;
       const double c = coneCosine (g, ns);
-      if (c > 0.0 && areaConditionHolds (area + areas[g], projected + areas[g] * c))
+      if (c > 0.0 && areaConditionHolds (area + areas[g], projected + areas[g] * c, patch.vertices.size ()))
       {
         for (int k = 0; k < 3 && !ok; ++k)
         {

@@ -24,6 +24,8 @@ namespace pcl_sparse
       fail ("max_fruitless_seeds", max_fruitless_seeds, "max_fruitless_seeds >= -1");
     if (max_patch_vertices < -1)
       fail ("max_patch_vertices", max_patch_vertices, "max_patch_vertices >= -1");
+    if (min_growth_vertices < 0)
+      fail ("min_growth_vertices", min_growth_vertices, "min_growth_vertices >= 0");
     if (min_patch_size < 1)
       fail ("min_patch_size", min_patch_size, "min_patch_size >= 1");
   }

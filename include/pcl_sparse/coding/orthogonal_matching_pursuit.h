@@ -15,6 +15,9 @@ namespace pcl_sparse
     std::vector<int> atoms;             ///< selected columns, in selection order
     std::vector<double> coefficients;   ///< one per atom, for the columns as given (not normalised)
     double residual_norm = 0.0;         ///< ||y - D_S alpha||
+    /// ||r|| after 0, 1, ..., atoms.size () atoms (so residual_norms.front () = ||y||): the code's first k
+    /// atoms are what OMP with max_atoms = k selects, and these are their residuals (atom_budget.h).
+    std::vector<double> residual_norms;
   };
 
   /// Greedy sparse approximation y ~ D alpha.

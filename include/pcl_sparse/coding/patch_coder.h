@@ -11,6 +11,7 @@
 #include <pcl_sparse/patches/patch.h>
 
 #include <cstdint>
+#include <vector>
 
 namespace pcl_sparse
 {
@@ -51,6 +52,9 @@ namespace pcl_sparse
     double spacing = 0.0;         ///< mu, local units
     int allowed_atoms = 0;        ///< atoms passing the Nyquist cap
     double relative_residual = 0.0;  ///< ||r|| / ||y|| (0 for a zero signal)
+    /// ||r|| over the samples after each prefix of the code (0, 1, ..., all its atoms), in the patch's
+    /// local units (OmpResult::residual_norms): what each atom buys (atom_budget.h).
+    std::vector<double> residual_norms;
   };
 
   /// Codes one patch as a sparse height field (docs/METHOD.md steps 7 to 9). The signal is the local

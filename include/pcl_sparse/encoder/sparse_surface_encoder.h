@@ -51,16 +51,33 @@ namespace pcl_sparse
     bool scan_noise_floor = true;
     /// Colour / intensity coding (only when the input has them): L per channel, RMS tolerance.
     AttributeCodingOptions attributes;
+    /// Never bigger than the input (ours, issue 13): a model whose compression ratio (13 M + nnz) / (3 N_V)
+    /// exceeds this is made cheaper, measured rather than guessed. The patches are sampled again with each
+    /// growth floor of budget_growth_floors (PatchOptions::min_growth_vertices: fewer, larger patches where
+    /// rho allowed only a few vertices each), with sigma and budget_sigma; every candidate whose frames fit is coded and trimmed to the
+    /// coefficients the bound leaves (allocateAtoms: the atoms that remove least error go first), and the
+    /// candidate with the lowest RMSE is kept. A model within the bound is not touched. On meshes whose
+    /// triangles are large against rho A (bunny-npm-1k, fertility, cheese-cgal at rho 0.001) this keeps
+    /// CR <= 1 at the price of some accuracy (bench/results/meshes.md). 0 = no bound (the paper).
+    double max_compression_ratio = 1.0;
+    /// Growth floors tried when the model exceeds max_compression_ratio (the first candidate is the
+    /// model's own patches), with 0 meaning the model's own floor; a candidate with the same patch and
+    /// vertex counts as an earlier one is skipped.
+    std::vector<int> budget_growth_floors = {0, 16, 24, 32};
+    /// The floors are tried with PatchOptions::sigma and with this larger overlap control too: with
+    /// sigma >= 1 nearly every vertex of a kept patch stops being a seed, so patches overlap less
+    /// (about one patch per vertex instead of two on bunny-npm-1k) and the frames cost less.
+    double budget_sigma = 1.2;
 
     /// Throws pcl_sparse::Error naming the first option out of range: the patch options, rho > 0,
     /// 0 <= f <= 1, L >= 1, eps in (0, 1), m_min >= 0, footprint angles >= 3, n in [1, 64], attribute
-    /// L >= 1 and tolerance >= 0.
+    /// L >= 1 and tolerance >= 0, max_compression_ratio >= 0, growth floors >= 0, budget_sigma >= 0.
     void validate () const;
   };
 
   /// Named option sets: Default (the struct's defaults, what measures best) and Paper (the paper's
-  /// configuration: its cosine atoms and its normal cone of pi / 2; every other default already is the
-  /// paper's value).
+  /// configuration: its cosine atoms, its normal cone of pi / 2 and no bound on the compression ratio;
+  /// every other default already is the paper's value).
   enum class EncoderPreset
   {
     Default,

@@ -106,7 +106,9 @@ namespace pcl_sparse
   private:
     enum : std::uint8_t { Untouched = 0, Queued = 1, Accepted = 2, Refused = 3 };
 
-    bool areaConditionHolds (double area, double projected_area) const;
+    /// The area condition (rho or eta) for a patch of \a size vertices before the candidate joins; waived
+    /// below PatchOptions::min_growth_vertices.
+    bool areaConditionHolds (double area, double projected_area, std::size_t size) const;
     void reset ();
     /// Cone and no-flip test of face \a f against the seed normal \a ns: n_f . n_s, or -1 when it fails.
     double coneCosine (int f, const Eigen::Vector3d& ns) const;
@@ -121,7 +123,7 @@ namespace pcl_sparse
     void collectFaces (int u, const Eigen::Vector3d& ns, double& new_area, double& new_projected);
     /// Whether the patch may take area \a area (projected \a projected_area) with some justifying face
     /// of candidates_ for the vertex being tested.
-    bool isJustified (double area, double projected_area) const;
+    bool isJustified (double area, double projected_area, std::size_t size) const;
 
     const TriangleMesh& mesh_;
     const MeshTopology& topology_;
@@ -134,6 +136,7 @@ namespace pcl_sparse
     double rho_area_;  // rho * A
     bool stop_at_first_refusal_;
     std::size_t max_vertices_;  // 0: no bound
+    std::size_t min_vertices_;  // area bound waived below this many vertices (0: never)
 
     DijkstraGeodesic walk_;  // the vertex walk of grow ()
     std::vector<std::uint8_t> state_;  // face growth: vertex membership

@@ -65,8 +65,16 @@ namespace pcl_sparse
     /// meshes, where eta bounds curved patches and flat ones are cheap); < 0 (default) = 0 on a mesh and
     /// 4096 on a scan, where a flat wall or floor would otherwise make each grown seed cost O(N).
     int max_patch_vertices = -1;
+    /// Growth floor (ours): while a patch has fewer than this many vertices the area bound (rho, eta) is
+    /// waived; smooth variation, the cone and no flip still hold, so patches still stop at sharp features.
+    /// On a mesh whose triangles are large against rho A a patch otherwise stops after a few vertices
+    /// and its 13 frame values cost more than the vertices it holds. 0 (default, the paper's) = no floor;
+    /// the encoder raises it only where its model would exceed SparseSurfaceEncoderOptions::
+    /// max_compression_ratio.
+    int min_growth_vertices = 0;
 
-    /// Checks the ranges: angles in (0, pi], eta >= 1, rho >= 0, sigma >= 0, min_patch_size >= 1.
+    /// Checks the ranges: angles in (0, pi], eta >= 1, rho >= 0, sigma >= 0, min_patch_size >= 1,
+    /// min_growth_vertices >= 0.
     /// \throws pcl_sparse::Error naming the first out-of-range field
     void validate () const;
   };
