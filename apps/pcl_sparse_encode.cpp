@@ -22,13 +22,18 @@
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/tiles/memory_tile_source.h>
+#include <pcl_sparse/tiles/spilled_mesh_tile_source.h>
+#include <pcl_sparse/tiles/spilled_tile_source.h>
+#include <pcl_sparse/tiles/tile_statistics.h>
 
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdint>
 #include <string>
+#include <thread>
 #include <vector>
 
 using namespace pcl_sparse;
@@ -60,7 +65,9 @@ namespace
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
       {"-tiles N", "tile the input: N tiles along the longest side of its bounding box, each encoded apart"},
       {"", "(docs/TILES.md); -o then writes a tiled model, which -box decodes region by region"},
-      {"-memory SIZE", "tile by itself when the untiled encoding would need more (default 2G; K, M, G, T)"},
+      {"-memory SIZE", "tile by itself when the untiled encoding would need more (default 2G; K, M, G, T);"},
+      {"", "a PCD / binary PLY whose header says so is spilled into tiles on disk, never loaded whole"},
+      {"", "(then -recon, -error and -png are refused)"},
       {"", "under mpirun -n K the tiles are shared out over the K processes (same model file)"},
       tools::pngHelpLine (),
       {"--json", "print one JSON object on stdout instead of the table row"},
@@ -114,31 +121,56 @@ main (int argc, char** argv)
 
     pcl::console::TicToc timer;
     timer.tic ();
-    const tools::SurfaceInput input = tools::loadSurfaceInput (path);
-    const double load_seconds = timer.toc () / 1000.0;
-    const std::vector<Eigen::Vector3d> input_positions = input.worldPositions ();
+    // A large PCD / PLY is spilled into tiles on disk instead of loaded (docs/TILES.md, "Bounded memory").
+    bool spilled_mesh = false;
+    std::size_t header_points = 0;
+    const bool bounded = tools::spillsInput (args, path, spilled_mesh, header_points);
+    const bool needs_input = !recon_path.empty () || !error_path.empty () || args.has ("-png");
+    if (bounded && needs_input)
+      throw Error (path + ": " + std::to_string (header_points) +
+                   " points are more than -memory allows to hold, so it is encoded tile by tile from disk; -recon, "
+                   "-error and -png need the whole input in memory: raise -memory to use them");
+    tools::SurfaceInput input;
+    if (!bounded)
+      input = tools::loadSurfaceInput (path);
+    std::vector<Eigen::Vector3d> input_positions;
+    if (!bounded)
+      input_positions = input.worldPositions ();
 
     TileGridOptions grid_options;
-    const bool tiled = tools::chooseTiling (args, input.points (), grid_options);
+    const bool tiled = tools::chooseTiling (args, bounded ? header_points : input.points (), grid_options);
     if (tiled && has_viewpoint)
       throw Error ("option -viewpoint is not supported with tiling yet");
+    if (tiled && !args.has ("-tiles"))  // tiles sized for the budget, so many side by side at most
+      threads = std::min (threads > 0 ? threads : static_cast<int> (std::max (1u, std::thread::hardware_concurrency ())), tools::kBudgetTilesAtOnce);
     if (!tiled && group.rank () != 0)
       return 0;  // an untiled encoding is rank 0's alone
+    TileSource::Ptr source;
+    if (bounded)
+    {
+      // Every rank spills its own copy of the input (its own temporary directory), as every rank of the
+      // in-memory path loads its own: the same tiles, no shared file system needed.
+      SpillOptions spill;
+      spill.grid = grid_options;
+      spill.progress = makeConsoleProgress (quiet || json || group.rank () != 0);
+      source = spilled_mesh ? TileSource::Ptr (spillMeshIntoTiles (path, spill)) : TileSource::Ptr (spillIntoTiles (path, spill));
+    }
+    else if (tiled)
+      source = input.mesh ? std::make_shared<MemoryTileSource> (input.mesh, grid_options)
+                          : std::make_shared<MemoryTileSource> (input.scan, grid_options);
+    const double load_seconds = timer.toc () / 1000.0;
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     SparseSurfaceModel model;
     TiledModel tiled_model;
     EncoderTimings tiled_timings;
     if (tiled)
     {
-      // Every rank cuts the same tiles from its own copy of the input; rank 0 merges and writes.
-      const MemoryTileSource source = input.mesh ? MemoryTileSource (input.mesh, grid_options)
-                                                 : MemoryTileSource (input.scan, grid_options);
+      // Every rank encodes its share of the same tiles; rank 0 merges and writes.
       timer.tic ();
-      tiled_timings.coding = tools::encodeTilesAcross (group, source, options, threads, quiet || json, tiled_model);
+      tiled_timings.coding = tools::encodeTilesAcross (group, *source, options, threads, quiet || json, tiled_model);
       tiled_timings.total = timer.toc () / 1000.0;
       if (group.rank () != 0)
         return 0;
-      model = std::move (tiled_model.model);
     }
     else
     {
@@ -153,7 +185,20 @@ main (int argc, char** argv)
 
     timer.tic ();
     std::vector<double> errors;
-    const ModelStatistics stats = model.statistics (input_positions, &errors);
+    ModelStatistics stats;
+    if (tiled)
+    {
+      // From the tiles, so that both tile sources give the same figures (and file tolerance); the patches'
+      // vertex lists go once measured unless the file or the reconstruction needs them.
+      TiledStatisticsOptions statistics_options;
+      statistics_options.drop_vertices = !write_options.include_vertices && !needs_input;
+      stats = tiledModelStatistics (*source, tiled_model, statistics_options);
+      model = std::move (tiled_model.model);
+      if (needs_input)
+        model.statistics (input_positions, &errors);  // the errors per vertex, for -error and -png
+    }
+    else
+      stats = model.statistics (input_positions, &errors);
     const double statistics_seconds = timer.toc () / 1000.0;
     if (!tolerance_given)
       write_options.tolerance = derivedFileTolerance (stats);
@@ -196,7 +241,7 @@ main (int argc, char** argv)
     {
       tools::JsonObject object;
       object.add ("file", path)
-        .add ("vertices", input_positions.size ())
+        .add ("vertices", stats.num_vertices)
         .add ("faces", input.mesh ? input.mesh->triangles.size () : 0)
         .add ("patches", stats.num_patches)
         .add ("rho", options.patches.rho)
@@ -215,6 +260,7 @@ main (int argc, char** argv)
         .add ("uncovered", stats.uncovered)
         .add ("tiles", tiled ? tiled_model.tiles.size () : 0)
         .add ("ranks", group.size ())
+        .add ("spilled", bounded)
         .add ("seconds", tools::JsonObject ()
                            .addSeconds ("load", load_seconds)
                            .addSeconds ("patches", t.patches)
@@ -238,6 +284,8 @@ main (int argc, char** argv)
         std::printf ("tiles: %zu with patches of %zu (%d x %d x %d, edge %.4g), %d process%s\n", tiled_model.tiles.size (),
                      tiled_model.grid.size (), tiled_model.grid.counts.x (), tiled_model.grid.counts.y (),
                      tiled_model.grid.counts.z (), tiled_model.grid.edge, group.size (), group.size () > 1 ? "es" : "");
+      if (bounded)
+        std::printf ("input spilled into tiles on disk (%zu points in the file, more than -memory holds)\n", header_points);
       if (input.scan)
         tools::printScanSummary (input, encoder.getCloudSurface ().get ());
       std::printf ("seconds: load %.3f, patches %.3f, coding %.3f, statistics %.3f, write %.3f (encode %.3f)\n",

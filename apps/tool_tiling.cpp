@@ -1,7 +1,10 @@
 #include "tool_tiling.h"
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/format/tile_encoding_bytes.h>
+#include <pcl_sparse/io/mesh_stream.h>
+#include <pcl_sparse/io/scan_stream.h>
 #include <pcl_sparse/tiles/tile_encoding.h>
 
 #include <pcl/console/print.h>
@@ -10,6 +13,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 namespace pcl_sparse
 {
@@ -38,18 +42,66 @@ namespace pcl_sparse
       return static_cast<std::uint64_t> (bytes);
     }
 
+    std::uint64_t
+    memoryBudget (const CommandLine& args)
+    {
+      return parseByteSize ("-memory", args.value ("-memory", "2G"));
+    }
+
+    bool
+    spillsInput (const CommandLine& args, const std::string& path, bool& mesh, std::size_t& points)
+    {
+      mesh = false;
+      points = 0;
+      const bool ply = hasExtension (path, ".ply");
+      if (!ply && !hasExtension (path, ".pcd"))
+        return false;
+      const double budget = static_cast<double> (memoryBudget (args));
+      std::error_code error;
+      const std::uintmax_t bytes = std::filesystem::file_size (path, error);
+      if (error || static_cast<double> (bytes) / 12.0 * kEncoderBytesPerPoint <= budget)
+        return false;  // missing (loading says so) or too small to exceed the budget
+      if (ply)
+      {
+        try
+        {
+          const MeshStreamReader reader (path);
+          mesh = true;
+          points = reader.numVertices ();
+          return reader.isStreamed () && static_cast<double> (points) * kEncoderBytesPerPoint > budget;
+        }
+        catch (const Error&)
+        {
+          // No faces (a .ply of points, read as a scan) or a bad file (loading says what is wrong).
+        }
+      }
+      mesh = false;
+      try
+      {
+        const ScanStreamReader reader (path);
+        points = reader.size ();
+        return reader.isStreamed () && static_cast<double> (points) * kEncoderBytesPerPoint > budget;
+      }
+      catch (const Error&)
+      {
+        return false;  // loading gives the error
+      }
+    }
+
     bool
     chooseTiling (const CommandLine& args, std::size_t points, TileGridOptions& options)
     {
       options = TileGridOptions ();
       if (args.integer ("-tiles", options.tiles_along_longest, Range::closed (1, 4096)))
         return true;
-      const std::uint64_t budget = parseByteSize ("-memory", args.value ("-memory", "2G"));
+      const std::uint64_t budget = memoryBudget (args);
       if (static_cast<double> (points) * kEncoderBytesPerPoint <= static_cast<double> (budget))
         return false;
-      // A tile's input is its core and margins (up to (1 + 2 x 0.1)^2 = 1.44 times its points on a surface).
-      options.points_per_tile =
-        std::max<std::size_t> (1000, static_cast<std::size_t> (static_cast<double> (budget) / kEncoderBytesPerPoint / 1.5));
+      // A tile's input is its core and margins (up to (1 + 2 x 0.1)^2 = 1.44 times its points on a surface),
+      // and kBudgetTilesAtOnce tiles are encoded side by side in half the budget: the other half is for the
+      // patches encoded so far (their vertex lists hold a few tens of bytes per input point until measured).
+      options.points_per_tile = std::max<std::size_t> (
+        1000, static_cast<std::size_t> (0.5 * static_cast<double> (budget) / kEncoderBytesPerPoint / 1.5 / kBudgetTilesAtOnce));
       return true;
     }
 
@@ -116,6 +168,18 @@ namespace pcl_sparse
                        int threads, bool quiet, TiledModel& tiled)
     {
       const TileGrid& grid = source.grid ();
+      if (group.size () == 1)
+      {
+        // One process: no messages, so the tiles' patches (and vertex lists) are held once, not copied.
+        TiledSurfaceEncoder encoder;
+        encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
+        encoder.setOptions (options);
+        encoder.setNumberOfThreads (threads);
+        encoder.setProgressCallback (makeConsoleProgress (quiet));
+        const auto start = std::chrono::steady_clock::now ();
+        encoder.compute (tiled);
+        return std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+      }
       // Phase 0 (tilePhase), shared with every rank: phase-1 tiles need to know what its patches cover.
       std::vector<std::size_t> points (grid.size ());
       for (std::size_t t = 0; t < grid.size (); ++t)

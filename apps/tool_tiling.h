@@ -24,10 +24,30 @@ namespace pcl_sparse
     /// a kNN scan surface), taken as 1.5 KB for room to spare.
     constexpr double kEncoderBytesPerPoint = 1536.0;
 
+    /// Tiles a process encodes side by side when tiling for a -memory budget (its threads are capped at
+    /// this): tiles are sized so that this many fit the budget together. A fixed number, so that the tiles
+    /// (and the model) do not depend on the number of threads.
+    constexpr int kBudgetTilesAtOnce = 2;
+
     /// A byte count with an optional binary suffix: "2G", "512M", "1.5T", "100000" (K, M, G, T = 2^10 ..
     /// 2^40). Throws Error naming \a option for anything else or a value below 1 MiB.
     std::uint64_t
     parseByteSize (const std::string& option, const std::string& text);
+
+    /// The -memory budget in bytes (default 2G).
+    std::uint64_t
+    memoryBudget (const CommandLine& args);
+
+    /// \brief Whether \a path is to be encoded without loading it whole (issue 16): a PCD or PLY file that
+    /// can be streamed (ScanStreamReader, or MeshStreamReader for a PLY with faces) and whose point count,
+    /// read from its header, times kEncoderBytesPerPoint exceeds the -memory budget. Files too small to
+    /// hold that many points (12 bytes a point at least) are not opened.
+    /// \param[in] args    the command line (-memory)
+    /// \param[in] path    the input file
+    /// \param[out] mesh   whether it is a mesh (a PLY with faces)
+    /// \param[out] points its points (vertices) by its header, when true is returned
+    bool
+    spillsInput (const CommandLine& args, const std::string& path, bool& mesh, std::size_t& points);
 
     /// How to tile an input of \a points points from -tiles and -memory: false (not tiled), or true and
     /// \a options set (tiles_along_longest from -tiles, else points_per_tile from the budget).

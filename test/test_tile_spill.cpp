@@ -6,6 +6,7 @@
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/io/scan_stream.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/tiles/memory_tile_source.h>
 #include <pcl_sparse/tiles/spilled_mesh_tile_source.h>
 #include <pcl_sparse/tiles/spilled_tile_source.h>
 #include <pcl_sparse/tiles/tile_membership.h>
@@ -102,7 +103,22 @@ namespace
     return tile;
   }
 
-  /// Every tile of \a source equals the reference cut of \a whole; returns the points over all tiles.
+  /// The numbers in \a whole (its point indices) of the points of tile \a t, as MemoryTileSource gives them.
+  std::vector<std::size_t>
+  referenceNumbers (const ScanCloud& whole, const TileGrid& grid, std::size_t t)
+  {
+    std::vector<std::size_t> numbers, tiles;
+    for (std::size_t i = 0; i < whole.size (); ++i)
+    {
+      tilesHolding (grid, whole.worldPosition (i), tiles);
+      if (std::binary_search (tiles.begin (), tiles.end (), t))
+        numbers.push_back (i);
+    }
+    return numbers;
+  }
+
+  /// Every tile of \a source equals the reference cut of \a whole (point numbers too); returns the points
+  /// over all tiles.
   std::size_t
   expectTilesEqualReference (const SpilledTileSource& source, const ScanCloud& whole)
   {
@@ -126,6 +142,7 @@ namespace
       EXPECT_EQ (tile.origin, reference.origin) << "tile " << t;
       EXPECT_EQ (tile.positions, reference.positions) << "tile " << t;
       EXPECT_EQ (tile.indices, reference.indices) << "tile " << t;
+      EXPECT_EQ (input.point_numbers, referenceNumbers (whole, source.grid (), t)) << "tile " << t;
       EXPECT_EQ (tile.normals, reference.normals) << "tile " << t;
       EXPECT_EQ (tile.colors, reference.colors) << "tile " << t;
       EXPECT_EQ (tile.intensities, reference.intensities) << "tile " << t;
@@ -886,14 +903,17 @@ namespace
   }
 
   void
-  expectMeshTilesEqualReference (const SpilledMeshTileSource& source, const TriangleMesh& mesh)
+  expectMeshTilesEqualReference (const SpilledMeshTileSource& source, const TriangleMesh& mesh, const TileGridOptions& options)
   {
+    const MemoryTileSource memory (std::make_shared<const TriangleMesh> (mesh), options);
     std::size_t core = 0, triangles = 0;
     for (std::size_t t = 0; t < source.grid ().size (); ++t)
     {
       SCOPED_TRACE (t);
       const TriangleMesh reference = referenceMeshTile (mesh, source.grid (), t);
       const TileInput input = source.loadTile (t);
+      // Point numbers: the input's vertex indices, as the memory source's.
+      EXPECT_EQ (input.point_numbers, memory.loadTile (t).point_numbers);
       core += source.corePoints (t);
       if (reference.triangles.empty ())
       {
@@ -935,7 +955,7 @@ TEST (SpilledMeshTileSource, TilesEqualTheCutOfLoadTriangleMesh)
     const TileGrid grid = makeTileGrid (box, mesh.vertices.size (), options.grid);
     EXPECT_EQ (source.grid ().origin, grid.origin);
     EXPECT_EQ (source.grid ().counts, grid.counts);
-    expectMeshTilesEqualReference (source, mesh);
+    expectMeshTilesEqualReference (source, mesh, options.grid);
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "generated_clouds.h"
 #include "test_file_helpers.h"
 
 #include <cmath>
@@ -22,6 +23,10 @@ using namespace pcl_sparse;
 namespace
 {
   const std::string tools = std::string (PCL_SPARSE_BINARY_DIR) + "/apps";
+
+  /// Open MPI refuses root without these (CI runs as the same user as the developers' machine).
+  const std::string kMpiEnvironment = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
+                                      "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_rmaps_base_oversubscribe=1 ";
 
   /// Runs \a command through the shell; returns its exit code, \a out receives stdout and stderr.
   int
@@ -58,19 +63,31 @@ TEST (TilesMpi, SameFilesForOneTwoThreeRanksAndWithout)
   ASSERT_EQ (run (encode + " -o " + dir.file ("alone.psm"), out), 0) << out;
   const std::string alone = pcl_sparse_test::readBytes (dir.file ("alone.psm"));
   ASSERT_TRUE (isTiledModelFile (dir.file ("alone.psm")));
-  // Open MPI refuses root without these (CI runs as the same user as the developers' machine).
-  const std::string environment = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
-                                  "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_rmaps_base_oversubscribe=1 ";
   for (int ranks : {1, 2, 3})
   {
     const std::string file = dir.file ("ranks" + std::to_string (ranks) + ".psm");
-    const int code = run (environment + mpiexec + " --oversubscribe -n " + std::to_string (ranks) + " " + encode +
+    const int code = run (kMpiEnvironment + mpiexec + " --oversubscribe -n " + std::to_string (ranks) + " " + encode +
                             " -o " + file + " --json",
                           out);
     ASSERT_EQ (code, 0) << out;
     EXPECT_NE (out.find ("\"ranks\": " + std::to_string (ranks)), std::string::npos) << out;
     EXPECT_TRUE (pcl_sparse_test::readBytes (file) == alone) << ranks << " ranks";
   }
+  // A cloud over -memory, spilled into tiles on disk by each rank: the same file as loaded without mpirun.
+  const std::string terrain_pcd = dir.file ("terrain.pcd");
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.points = 30000;
+  pcl_sparse_test::writeTerrainPcd (terrain_pcd, terrain);
+  const std::string encode_cloud = tools + "/pcl_sparse_encode " + terrain_pcd + " -tiles 3 -threads 1";
+  ASSERT_EQ (run (encode_cloud + " -q -o " + dir.file ("cloud_alone.psm"), out), 0) << out;
+  ASSERT_EQ (run (kMpiEnvironment + mpiexec + " --oversubscribe -n 2 " + encode_cloud + " -memory 1M --json -o " +
+                    dir.file ("cloud_two.psm"),
+                  out),
+             0)
+    << out;
+  EXPECT_NE (out.find ("\"spilled\": true"), std::string::npos) << out;
+  EXPECT_NE (out.find ("\"ranks\": 2"), std::string::npos) << out;
+  EXPECT_TRUE (pcl_sparse_test::readBytes (dir.file ("cloud_two.psm")) == pcl_sparse_test::readBytes (dir.file ("cloud_alone.psm")));
   // Decoding spread the same way: each rank its run of tiles, rank 0 writes the same cloud.
   const std::string decode = tools + "/pcl_sparse_decode " + dir.file ("alone.psm") + " ";
   ASSERT_EQ (run (decode + dir.file ("alone.pcd") + " -density 30000 -q", out), 0) << out;
@@ -79,7 +96,7 @@ TEST (TilesMpi, SameFilesForOneTwoThreeRanksAndWithout)
   for (int ranks : {2, 3})
   {
     const std::string file = dir.file ("ranks" + std::to_string (ranks) + ".pcd");
-    ASSERT_EQ (run (environment + mpiexec + " --oversubscribe -n " + std::to_string (ranks) + " " + decode + file +
+    ASSERT_EQ (run (kMpiEnvironment + mpiexec + " --oversubscribe -n " + std::to_string (ranks) + " " + decode + file +
                       " -density 30000 --json",
                     out),
                0)

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "generated_clouds.h"
 #include "test_file_helpers.h"
 
 #include <sys/resource.h>
@@ -93,6 +94,53 @@ TEST_F (TilesTool, MemoryBudgetTilesAndBoundsThePeak)
   EXPECT_GT (info.num_tiles, 4u);
   EXPECT_NE (run ("pcl_sparse_encode", mesh + " -q -memory 2X", out), 0);
   EXPECT_NE (out.find ("-memory"), std::string::npos) << out;
+}
+
+TEST_F (TilesTool, SpilledPathWritesTheInMemoryPathsFile)
+{
+  // A binary PCD over a small -memory is spilled into tiles on disk instead of loaded: same model file.
+  const std::string cloud = dir_.file ("terrain.pcd");
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.points = 60000;
+  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  std::string out;
+  ASSERT_EQ (run ("pcl_sparse_encode", cloud + " -tiles 4 --json -o " + dir_.file ("memory.psm"), out), 0) << out;
+  EXPECT_NE (out.find ("\"spilled\": false"), std::string::npos) << out;
+  ASSERT_EQ (run ("pcl_sparse_encode", cloud + " -tiles 4 -memory 1M --json -o " + dir_.file ("spilled.psm"), out), 0) << out;
+  EXPECT_NE (out.find ("\"spilled\": true"), std::string::npos) << out;
+  EXPECT_NE (out.find ("\"vertices\": 60000"), std::string::npos) << out;
+  const std::string memory = pcl_sparse_test::readBytes (dir_.file ("memory.psm"));
+  ASSERT_GT (memory.size (), 1000u);
+  EXPECT_TRUE (pcl_sparse_test::readBytes (dir_.file ("spilled.psm")) == memory);
+  // With the patch vertices stored too.
+  ASSERT_EQ (run ("pcl_sparse_encode", cloud + " -tiles 4 -q --store-vertices -o " + dir_.file ("memory_v.psm"), out), 0) << out;
+  ASSERT_EQ (run ("pcl_sparse_encode", cloud + " -tiles 4 -memory 1M -q --store-vertices -o " + dir_.file ("spilled_v.psm"), out), 0)
+    << out;
+  EXPECT_TRUE (pcl_sparse_test::readBytes (dir_.file ("spilled_v.psm")) == pcl_sparse_test::readBytes (dir_.file ("memory_v.psm")));
+  // Without -tiles the budget tiles it; the reconstruction needs the whole input, so it is refused.
+  EXPECT_NE (run ("pcl_sparse_encode", cloud + " -memory 1M -recon " + dir_.file ("recon.ply"), out), 0);
+  EXPECT_NE (out.find ("raise -memory"), std::string::npos) << out;
+  EXPECT_FALSE (std::filesystem::exists (dir_.file ("recon.ply")));
+}
+
+TEST_F (TilesTool, SpilledPathPeakBelowTheInMemoryPath)
+{
+  // Each test runs in a process of its own (gtest_discover_tests), so the children's peak starts here.
+  const std::string cloud = dir_.file ("terrain.pcd");
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.points = 150000;
+  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  std::string out;
+  // Fast options: the memory, not the model, is measured; 64 tiles of ~2.3k points.
+  const std::string options = " -q -tiles 8 -rho 0.01 -L 4 -eps 0.05 -min-samples 16";
+  ASSERT_EQ (run ("pcl_sparse_encode", cloud + options + " -memory 1M -o " + dir_.file ("spilled.psm"), out), 0) << out;
+  const long spilled_peak = childrenPeakKb ();
+  ASSERT_EQ (run ("pcl_sparse_encode", cloud + options + " -o " + dir_.file ("memory.psm"), out), 0) << out;
+  const long memory_peak = childrenPeakKb ();
+  EXPECT_TRUE (pcl_sparse_test::readBytes (dir_.file ("spilled.psm")) == pcl_sparse_test::readBytes (dir_.file ("memory.psm")));
+  // Without the input in memory (about 57 bytes a point loaded, 24 more for its positions, 4 for the cut):
+  // what stays is the patches' vertex lists until measured (docs/TILES.md, "Bounded memory").
+  EXPECT_LT (spilled_peak, memory_peak * 9 / 10) << "spilled " << spilled_peak << " KB, in memory " << memory_peak << " KB";
 }
 
 TEST_F (TilesTool, RegionDecodeEqualsTheFullDecodeThereAndReadsLittle)

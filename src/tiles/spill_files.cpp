@@ -143,6 +143,12 @@ namespace pcl_sparse
         scan.intensities.push_back (get<float> (in));
     }
 
+    std::size_t
+    SpillRecord::index (const char* in) const
+    {
+      return narrow_index_ ? static_cast<std::size_t> (get<std::uint32_t> (in)) : static_cast<std::size_t> (get<std::uint64_t> (in));
+    }
+
     Eigen::Vector3d
     SpillRecord::position (const char* in) const
     {

@@ -79,6 +79,10 @@ namespace pcl_sparse
       void
       decode (const char* in, ScanCloud& scan) const;
 
+      /// The file index of the record at \a in.
+      std::size_t
+      index (const char* in) const;
+
       /// The position of the record at \a in.
       Eigen::Vector3d
       position (const char* in) const;

@@ -202,6 +202,7 @@ namespace pcl_sparse
         {
           local[at] = static_cast<int> (mesh->vertices.size ());
           mesh->vertices.push_back (positions[at]);
+          input.point_numbers.push_back (static_cast<std::size_t> (ids[at]));
         }
         triangle[k] = local[at];
       }

@@ -18,6 +18,21 @@ namespace pcl_sparse
     std::optional<tiles_detail::SpillRecord> record;
     ScanCleaningOptions cleaning;
     std::vector<std::size_t> spilled;  ///< records in each tile's file
+    /// Runs of points pass 1 dropped (non-finite, at the sensor): first file index of each run, ascending,
+    /// and the points dropped before the run's end (prefix sums), for pointNumber.
+    std::vector<std::size_t> dropped_from, dropped_through;
+    std::vector<std::size_t> duplicates;  ///< file indices of the duplicates cleaning removes, ascending
+
+    /// The rank in the cleaned input of the kept point at file index \a index: the index less the points
+    /// dropped or merged before it.
+    std::size_t
+    pointNumber (std::size_t index) const
+    {
+      const std::size_t runs = static_cast<std::size_t> (std::upper_bound (dropped_from.begin (), dropped_from.end (), index) - dropped_from.begin ());
+      const std::size_t dropped = runs == 0 ? 0 : dropped_through[runs - 1];
+      const std::size_t merged = static_cast<std::size_t> (std::lower_bound (duplicates.begin (), duplicates.end (), index) - duplicates.begin ());
+      return index - dropped - merged;
+    }
   };
 
   namespace
@@ -29,6 +44,24 @@ namespace pcl_sparse
       ScanCleaningReport report;  ///< input_points, non_finite, at_sensor_origin; kept = the rest
       bool float_vectors = true;  ///< every kept point's vectors are floats: 4-byte coordinates in the spill
       ScanCloud like;             ///< the first chunk's attributes (which ones the file has)
+      std::vector<std::size_t> dropped_from;     ///< runs of dropped points: first file index
+      std::vector<std::size_t> dropped_through;  ///< points dropped up to the end of each run
+
+      std::size_t next_dropped = 0;              ///< the file index that would extend the last run
+
+      /// Notes that the point at file index \a index (ascending calls) was dropped.
+      void
+      drop (std::size_t index)
+      {
+        if (!dropped_from.empty () && index == next_dropped)
+          ++dropped_through.back ();
+        else
+        {
+          dropped_from.push_back (index);
+          dropped_through.push_back ((dropped_through.empty () ? 0 : dropped_through.back ()) + 1);
+        }
+        next_dropped = index + 1;
+      }
     };
 
     void
@@ -75,6 +108,7 @@ namespace pcl_sparse
           pass.like.colors.resize (std::min<std::size_t> (pass.like.colors.size (), 1));
           pass.like.intensities.resize (std::min<std::size_t> (pass.like.intensities.size (), 1));
         }
+        const std::size_t first = pass.report.input_points;
         pass.report.input_points += chunk.size ();
         for (std::size_t i = 0; i < chunk.size (); ++i)
           if (keepsPoint (chunk.positions[i], sensor, options.cleaning, pass.report))
@@ -83,6 +117,8 @@ namespace pcl_sparse
             ++pass.report.kept;
             pass.float_vectors = pass.float_vectors && tiles_detail::SpillRecord::isFloat (chunk, i);
           }
+          else
+            pass.drop (first + i);
       }
       report (options, "spill: reading", 1, 1);
       if (pass.report.kept == 0)
@@ -128,32 +164,42 @@ namespace pcl_sparse
     }
 
     /// Points each tile owns after merging exact duplicates (all copies of a position own the same tile and
-    /// lie in its file). Reads one tile's positions at a time.
+    /// lie in its file), and in \a duplicates the file indices of the copies merging removes (all but the
+    /// first in file order), ascending. Reads one tile's positions at a time.
     std::vector<std::size_t>
     ownedPoints (const TileGrid& grid, const std::vector<std::size_t>& spilled, const tiles_detail::SpillRecord& record,
-                 const tiles_detail::SpillDirectory& directory, const SpillOptions& options)
+                 const tiles_detail::SpillDirectory& directory, const SpillOptions& options,
+                 std::vector<std::size_t>& duplicates)
     {
       std::vector<std::size_t> owned (grid.size (), 0);
-      std::vector<Eigen::Vector3d> positions;
+      duplicates.clear ();
+      std::vector<std::pair<Eigen::Vector3d, std::size_t>> points;  // position, file index
       for (std::size_t t = 0; t < grid.size (); ++t)
       {
         report (options, "spill: counting", t, grid.size ());
-        positions.clear ();
+        points.clear ();
         tiles_detail::readSpillFile (directory.tileFile (t), spilled[t], record.bytes (), [&] (const char* in) {
           const Eigen::Vector3d p = record.position (in);
-          if (grid.tileOf (p) == t)
-            positions.push_back (p);
+          if (grid.tileOf (p) != t)
+            return;
+          points.emplace_back (p, record.index (in));
         });
-        if (options.cleaning.merge_duplicates)
-        {
-          const auto less = [] (const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-            return std::lexicographical_compare (a.data (), a.data () + 3, b.data (), b.data () + 3);
-          };
-          std::sort (positions.begin (), positions.end (), less);
-          positions.erase (std::unique (positions.begin (), positions.end ()), positions.end ());
-        }
-        owned[t] = positions.size ();
+        owned[t] = points.size ();
+        if (!options.cleaning.merge_duplicates)
+          continue;
+        std::sort (points.begin (), points.end (), [] (const auto& a, const auto& b) {
+          if (a.first != b.first)
+            return std::lexicographical_compare (a.first.data (), a.first.data () + 3, b.first.data (), b.first.data () + 3);
+          return a.second < b.second;
+        });
+        for (std::size_t i = 1; i < points.size (); ++i)
+          if (points[i].first == points[i - 1].first)
+          {
+            duplicates.push_back (points[i].second);
+            --owned[t];
+          }
       }
+      std::sort (duplicates.begin (), duplicates.end ());
       report (options, "spill: counting", 1, 1);
       return owned;
     }
@@ -181,6 +227,8 @@ namespace pcl_sparse
     impl->record.emplace (pass.like, pass.float_vectors,
                           reader.size () <= static_cast<std::size_t> (std::numeric_limits<std::uint32_t>::max ()));
     impl->cleaning = options.cleaning;
+    impl->dropped_from = pass.dropped_from;
+    impl->dropped_through = pass.dropped_through;
 
     // The grid from the count before merging duplicates (all pass 1 knows), then from the true count; the
     // true count does not depend on the grid, so a second binning is the last.
@@ -188,7 +236,7 @@ namespace pcl_sparse
     for (int attempt = 0;; ++attempt)
     {
       impl->spilled = binPoints (reader, grid_, *impl->record, *directory_, options);
-      core_points_ = ownedPoints (grid_, impl->spilled, *impl->record, *directory_, options);
+      core_points_ = ownedPoints (grid_, impl->spilled, *impl->record, *directory_, options, impl->duplicates);
       report_ = pass.report;
       report_.kept = 0;
       for (const std::size_t n : core_points_)
@@ -262,6 +310,9 @@ namespace pcl_sparse
     // What cleaning removed is the whole input's (cleaningReport); a tile is a cut of the cleaned input.
     scan->report = ScanCleaningReport ();
     scan->report.input_points = scan->report.kept = scan->size ();
+    input.point_numbers.resize (scan->size ());
+    for (std::size_t i = 0; i < scan->size (); ++i)
+      input.point_numbers[i] = impl_->pointNumber (scan->indices[i]);
     centreScan (*scan);
     input.scan = std::move (scan);
     return input;

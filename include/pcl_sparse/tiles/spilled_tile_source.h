@@ -54,7 +54,10 @@ namespace pcl_sparse
   /// loadTile (t) reads tile t's file back, cleans it with cleanScan (which merges the duplicates) and moves
   /// it to its own local frame (centreScan). It equals the cut of the whole input cleaned by loadScanCloud:
   /// cleaning point by point commutes with cutting, and exact duplicates have one position, hence the same
-  /// tiles, so each tile keeps the first of them in file order, as whole-input cleaning does.
+  /// tiles, so each tile keeps the first of them in file order, as whole-input cleaning does. Its
+  /// point_numbers are the points' ranks in the cleaned input, as MemoryTileSource's: pass 1 notes the runs
+  /// of file indices it drops and the counting pass the file indices of the duplicates merging removes
+  /// (memory in the number of such runs and duplicates, not of points).
   ///
   /// The spill directory is removed by the destructor, and when construction throws.
   class SpilledTileSource : public TileSource

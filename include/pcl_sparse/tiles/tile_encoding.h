@@ -97,7 +97,7 @@ namespace pcl_sparse
     TiledSurfaceEncoder () : StageBase ("TiledSurfaceEncoder") {}
 
     /// \brief The tiled input (MemoryTileSource, or a file-backed source).
-    void setTileSource (const TileSource::Ptr& source) { source_ = source; }
+    void setTileSource (const std::shared_ptr<const TileSource>& source) { source_ = source; }
     /// \brief The encoder's options (as for an untiled encoding).
     void setOptions (const SparseSurfaceEncoderOptions& options) { options_ = options; }
     const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
@@ -111,7 +111,7 @@ namespace pcl_sparse
     const std::vector<double>& getTileSeconds () const { return tile_seconds_; }
 
   private:
-    TileSource::Ptr source_;
+    std::shared_ptr<const TileSource> source_;
     SparseSurfaceEncoderOptions options_;
     std::vector<double> tile_seconds_;
   };

@@ -36,8 +36,10 @@ namespace pcl_sparse
     ScanCloud::Ptr scan;    ///< the scan's points of the margin box, or empty
     TriangleMesh::Ptr mesh; ///< the mesh's faces of the margin box, or empty
     /// Empty, or one per tile point (scan point, mesh vertex): its number in the whole input (the kept
-    /// point's rank in the cleaned scan, the mesh's vertex index), so that a tiled model's patches list
-    /// the whole input's vertices (statistics, reconstruction). Empty: the tile's patches list none.
+    /// point's rank in the cleaned scan, i.e. its file index less the points cleaning dropped or merged
+    /// before it; the mesh's vertex index), so that a tiled model's patches list the whole input's vertices
+    /// (statistics, reconstruction). Both sources fill it, with the same numbers. Empty: the tile's patches
+    /// list none.
     std::vector<std::size_t> point_numbers;
 
     /// Whether the tile has nothing to encode.
