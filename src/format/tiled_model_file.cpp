@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numeric>
 
 namespace pcl_sparse
 {
@@ -236,6 +237,20 @@ namespace pcl_sparse
       index.index_bytes = index_end;
       return index;
     }
+
+    /// The header and tile index of a tiled model file held in memory (\a size bytes at \a data).
+    TiledModelIndex
+    indexInMemory (const std::uint8_t* data, std::size_t size, const std::string& name)
+    {
+      TiledModelIndex index;
+      if (size < kHeaderBytes + 4)
+        throw Error (name + ": tiled model file (version 2) too short for its header and index");
+      const std::size_t count = readHeader (data, kHeaderBytes, name, index);
+      if ((size - kHeaderBytes - 4) / kEntryBytes < count)
+        throw Error (name + ": the tile index runs past the end of the file");
+      readEntries (data + kHeaderBytes, count, size, name, index);
+      return index;
+    }
   } // namespace
 
   bool
@@ -306,16 +321,9 @@ namespace pcl_sparse
   TiledModel
   decodeTiledModel (const std::uint8_t* data, std::size_t size, const std::string& name)
   {
-    TiledModelIndex index;
-    if (size < kHeaderBytes + 4)
-      throw Error (name + ": tiled model file (version 2) too short for its header and index");
-    const std::size_t count = readHeader (data, kHeaderBytes, name, index);
-    if ((size - kHeaderBytes - 4) / kEntryBytes < count)
-      throw Error (name + ": the tile index runs past the end of the file");
-    readEntries (data + kHeaderBytes, count, size, name, index);
-    std::vector<std::size_t> all (count);
-    for (std::size_t i = 0; i < count; ++i)
-      all[i] = i;
+    const TiledModelIndex index = indexInMemory (data, size, name);
+    std::vector<std::size_t> all (index.entries.size ());
+    std::iota (all.begin (), all.end (), std::size_t (0));
     return decodeTiles (index, all, name, [&] (const TileIndexEntry& e, std::vector<std::uint8_t>&) { return data + e.offset; });
   }
 
@@ -390,13 +398,7 @@ namespace pcl_sparse
   ModelFileInfo
   inspectTiledModel (const std::uint8_t* data, std::size_t size, const std::string& name)
   {
-    TiledModelIndex index;
-    if (size < kHeaderBytes + 4)
-      throw Error (name + ": tiled model file (version 2) too short for its header and index");
-    const std::size_t count = readHeader (data, kHeaderBytes, name, index);
-    if ((size - kHeaderBytes - 4) / kEntryBytes < count)
-      throw Error (name + ": the tile index runs past the end of the file");
-    readEntries (data + kHeaderBytes, count, size, name, index);
+    const TiledModelIndex index = indexInMemory (data, size, name);
     ModelFileInfo info;
     info.version = kTiledVersion;
     info.num_patches = static_cast<std::uint32_t> (std::min<std::size_t> (index.total_patches, 0xffffffffu));
@@ -405,6 +407,7 @@ namespace pcl_sparse
     info.tolerance = index.tolerance;
     info.quantised = index.tolerance > 0.0;
     info.file_bytes = size;
+    const std::size_t count = index.entries.size ();
     info.num_tiles = count;
     const std::uint64_t index_bytes = kHeaderBytes + kEntryBytes * count + 4;
     info.sections.push_back ({"TIDX", index_bytes, index_bytes});
