@@ -2,12 +2,15 @@
 // Small file helpers shared by the tests that write their own input files.
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace pcl_sparse_test
@@ -57,5 +60,22 @@ namespace pcl_sparse_test
     if (big_endian)
       std::reverse (bytes, bytes + sizeof (T));
     out.append (bytes, sizeof (T));
+  }
+
+  /// Runs \a command through the shell; returns its exit code (-1 if it did not exit normally), \a out
+  /// receives its stdout and stderr.
+  inline int
+  runCommand (const std::string& command, std::string& out)
+  {
+    out.clear ();
+    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen ((command + " 2>&1").c_str (), "r"), pclose);
+    if (!pipe)
+      return -1;
+    char buffer[4096];
+    std::size_t n;
+    while ((n = std::fread (buffer, 1, sizeof (buffer), pipe.get ())) > 0)
+      out.append (buffer, n);
+    const int status = pclose (pipe.release ());
+    return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
   }
 } // namespace pcl_sparse_test

@@ -28,21 +28,7 @@ namespace
   const std::string kMpiEnvironment = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
                                       "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_rmaps_base_oversubscribe=1 ";
 
-  /// Runs \a command through the shell; returns its exit code, \a out receives stdout and stderr.
-  int
-  run (const std::string& command, std::string& out)
-  {
-    out.clear ();
-    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen ((command + " 2>&1").c_str (), "r"), pclose);
-    if (!pipe)
-      return -1;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = std::fread (buffer, 1, sizeof (buffer), pipe.get ())) > 0)
-      out.append (buffer, n);
-    const int status = pclose (pipe.release ());
-    return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
-  }
+  using pcl_sparse_test::runCommand;
 } // namespace
 
 TEST (TilesMpi, SameFilesForOneTwoThreeRanksAndWithout)
@@ -60,13 +46,13 @@ TEST (TilesMpi, SameFilesForOneTwoThreeRanksAndWithout)
                     }));
   const std::string encode = tools + "/pcl_sparse_encode " + mesh + " -tiles 3 -threads 1 -q";
   std::string out;
-  ASSERT_EQ (run (encode + " -o " + dir.file ("alone.psm"), out), 0) << out;
+  ASSERT_EQ (runCommand (encode + " -o " + dir.file ("alone.psm"), out), 0) << out;
   const std::string alone = pcl_sparse_test::readBytes (dir.file ("alone.psm"));
   ASSERT_TRUE (isTiledModelFile (dir.file ("alone.psm")));
   for (int ranks : {1, 2, 3})
   {
     const std::string file = dir.file ("ranks" + std::to_string (ranks) + ".psm");
-    const int code = run (kMpiEnvironment + mpiexec + " --oversubscribe -n " + std::to_string (ranks) + " " + encode +
+    const int code = runCommand (kMpiEnvironment + mpiexec + " --oversubscribe -n " + std::to_string (ranks) + " " + encode +
                             " -o " + file + " --json",
                           out);
     ASSERT_EQ (code, 0) << out;
@@ -79,8 +65,8 @@ TEST (TilesMpi, SameFilesForOneTwoThreeRanksAndWithout)
   terrain.points = 30000;
   pcl_sparse_test::writeTerrainPcd (terrain_pcd, terrain);
   const std::string encode_cloud = tools + "/pcl_sparse_encode " + terrain_pcd + " -tiles 3 -threads 1";
-  ASSERT_EQ (run (encode_cloud + " -q -o " + dir.file ("cloud_alone.psm"), out), 0) << out;
-  ASSERT_EQ (run (kMpiEnvironment + mpiexec + " --oversubscribe -n 2 " + encode_cloud + " -memory 1M --json -o " +
+  ASSERT_EQ (runCommand (encode_cloud + " -q -o " + dir.file ("cloud_alone.psm"), out), 0) << out;
+  ASSERT_EQ (runCommand (kMpiEnvironment + mpiexec + " --oversubscribe -n 2 " + encode_cloud + " -memory 1M --json -o " +
                     dir.file ("cloud_two.psm"),
                   out),
              0)
@@ -90,13 +76,13 @@ TEST (TilesMpi, SameFilesForOneTwoThreeRanksAndWithout)
   EXPECT_TRUE (pcl_sparse_test::readBytes (dir.file ("cloud_two.psm")) == pcl_sparse_test::readBytes (dir.file ("cloud_alone.psm")));
   // Decoding spread the same way: each rank its run of tiles, rank 0 writes the same cloud.
   const std::string decode = tools + "/pcl_sparse_decode " + dir.file ("alone.psm") + " ";
-  ASSERT_EQ (run (decode + dir.file ("alone.pcd") + " -density 30000 -q", out), 0) << out;
+  ASSERT_EQ (runCommand (decode + dir.file ("alone.pcd") + " -density 30000 -q", out), 0) << out;
   const std::string cloud = pcl_sparse_test::readBytes (dir.file ("alone.pcd"));
   ASSERT_GT (cloud.size (), 1000u);
   for (int ranks : {2, 3})
   {
     const std::string file = dir.file ("ranks" + std::to_string (ranks) + ".pcd");
-    ASSERT_EQ (run (kMpiEnvironment + mpiexec + " --oversubscribe -n " + std::to_string (ranks) + " " + decode + file +
+    ASSERT_EQ (runCommand (kMpiEnvironment + mpiexec + " --oversubscribe -n " + std::to_string (ranks) + " " + decode + file +
                       " -density 30000 --json",
                     out),
                0)

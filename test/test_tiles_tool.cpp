@@ -32,17 +32,7 @@ namespace
   int
   run (const std::string& tool, const std::string& arguments, std::string& out)
   {
-    out.clear ();
-    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen ((tools + "/" + tool + " " + arguments + " 2>&1").c_str (), "r"),
-                                                 pclose);
-    if (!pipe)
-      return -1;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = std::fread (buffer, 1, sizeof (buffer), pipe.get ())) > 0)
-      out.append (buffer, n);
-    const int status = pclose (pipe.release ());
-    return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
+    return pcl_sparse_test::runCommand (tools + "/" + tool + " " + arguments, out);
   }
 
   /// Largest resident set of the children waited for so far, in KB.
