@@ -22,7 +22,10 @@ namespace
   fs::path
   scratchDirectory ()
   {
-    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "atomic_write";
+    // One folder per test: ctest runs the tests of this file in parallel, and FailureLeavesNoFile checks
+    // that no temporary file is left in its folder, which must not see the other test's temporary file.
+    const fs::path dir =
+      fs::path (PCL_SPARSE_BINARY_DIR) / "atomic_write" / ::testing::UnitTest::GetInstance ()->current_test_info ()->name ();
     fs::create_directories (dir);
     return dir;
   }
