@@ -72,24 +72,7 @@ namespace pcl_sparse
     pcl::PCLPointCloud2
     doublePositionBlob (const pcl::PointCloud<pcl::PointNormal>& cloud, const Eigen::Vector3d& offset)
     {
-      pcl::PCLPointCloud2 blob;
-      const char* names[7] = {"x", "y", "z", "normal_x", "normal_y", "normal_z", "curvature"};
-      std::uint32_t offset_bytes = 0;
-      for (int k = 0; k < 7; ++k)
-      {
-        pcl::PCLPointField field;
-        field.name = names[k];
-        field.offset = offset_bytes;
-        field.datatype = k < 3 ? pcl::PCLPointField::FLOAT64 : pcl::PCLPointField::FLOAT32;
-        field.count = 1;
-        offset_bytes += k < 3 ? 8 : 4;
-        blob.fields.push_back (field);
-      }
-      blob.point_step = offset_bytes;
-      blob.width = static_cast<std::uint32_t> (cloud.size ());
-      blob.height = 1;
-      blob.row_step = blob.point_step * blob.width;
-      blob.is_dense = cloud.is_dense;
+      pcl::PCLPointCloud2 blob = io_detail::doublePositionLayout (cloud.size (), cloud.is_dense);
       blob.data.resize (static_cast<std::size_t> (blob.row_step));
       char* out = reinterpret_cast<char*> (blob.data.data ());
       for (const pcl::PointNormal& point : cloud)

@@ -50,24 +50,7 @@ namespace pcl_sparse
         return pcl::PCDWriter::generateHeader (pcl::PointCloud<pcl::PointNormal> (), static_cast<int> (total)) +
                "DATA binary\n";
       // As the double-position blob of savePointNormalCloud, without its data.
-      pcl::PCLPointCloud2 blob;
-      const char* names[7] = {"x", "y", "z", "normal_x", "normal_y", "normal_z", "curvature"};
-      std::uint32_t offset = 0;
-      for (int k = 0; k < 7; ++k)
-      {
-        pcl::PCLPointField field;
-        field.name = names[k];
-        field.offset = offset;
-        field.datatype = k < 3 ? pcl::PCLPointField::FLOAT64 : pcl::PCLPointField::FLOAT32;
-        field.count = 1;
-        offset += k < 3 ? 8 : 4;
-        blob.fields.push_back (field);
-      }
-      blob.point_step = offset;
-      blob.width = static_cast<std::uint32_t> (total);
-      blob.height = 1;
-      blob.row_step = blob.point_step * blob.width;
-      blob.is_dense = true;
+      const pcl::PCLPointCloud2 blob = io_detail::doublePositionLayout (total, true);
       pcl::PCDWriter writer;
       return writer.generateHeaderBinary (blob, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity ()) +
              "DATA binary\n";

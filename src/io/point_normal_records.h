@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <pcl/PCLPointCloud2.h>
 #include <pcl/point_types.h>
 
 #include <charconv>
@@ -92,6 +93,32 @@ namespace pcl_sparse
       const float rest[4] = {point.normal_x, point.normal_y, point.normal_z, point.curvature};
       for (int k = 0; k < 4; ++k)
         appendValue (out, rest[k], false, k < 3 ? ' ' : '\n');
+    }
+
+    /// The layout (fields, sizes, no data) of \a count records with double x y z: x y z FLOAT64, then
+    /// normal_x normal_y normal_z curvature FLOAT32, 40 bytes a point, one row.
+    inline pcl::PCLPointCloud2
+    doublePositionLayout (std::size_t count, bool is_dense)
+    {
+      pcl::PCLPointCloud2 blob;
+      const char* names[7] = {"x", "y", "z", "normal_x", "normal_y", "normal_z", "curvature"};
+      std::uint32_t offset = 0;
+      for (int k = 0; k < 7; ++k)
+      {
+        pcl::PCLPointField field;
+        field.name = names[k];
+        field.offset = offset;
+        field.datatype = k < 3 ? pcl::PCLPointField::FLOAT64 : pcl::PCLPointField::FLOAT32;
+        field.count = 1;
+        offset += k < 3 ? 8 : 4;
+        blob.fields.push_back (field);
+      }
+      blob.point_step = offset;
+      blob.width = static_cast<std::uint32_t> (count);
+      blob.height = 1;
+      blob.row_step = blob.point_step * blob.width;
+      blob.is_dense = is_dense;
+      return blob;
     }
   } // namespace io_detail
 } // namespace pcl_sparse
