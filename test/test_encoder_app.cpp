@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_file_helpers.h"
+
 #include <cstdio>
 #include <iostream>
 #include <filesystem>
@@ -21,21 +23,11 @@ namespace
 {
   const std::string tool = std::string (PCL_SPARSE_BINARY_DIR) + "/apps/pcl_sparse_encode";
 
-  /// Runs \a arguments through the shell; returns the exit code and fills \a out with stdout.
+  /// Runs the tool with \a arguments; returns the exit code and fills \a out with its stdout.
   int
   run (const std::string& arguments, std::string& out)
   {
-    out.clear ();
-    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen ((tool + " " + arguments + " 2>/dev/null").c_str (), "r"),
-                                                 pclose);
-    if (!pipe)
-      return -1;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = std::fread (buffer, 1, sizeof (buffer), pipe.get ())) > 0)
-      out.append (buffer, n);
-    const int status = pclose (pipe.release ());
-    return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
+    return pcl_sparse_test::runShell (tool + " " + arguments + " 2>/dev/null", out);
   }
 
   class EncodeTool : public ::testing::Test

@@ -62,13 +62,13 @@ namespace pcl_sparse_test
     out.append (bytes, sizeof (T));
   }
 
-  /// Runs \a command through the shell; returns its exit code (-1 if it did not exit normally), \a out
-  /// receives its stdout and stderr.
+  /// Runs \a shell_command (redirections included) through the shell; returns its exit code (-1 if it did
+  /// not exit normally), \a out receives what it writes to stdout.
   inline int
-  runCommand (const std::string& command, std::string& out)
+  runShell (const std::string& shell_command, std::string& out)
   {
     out.clear ();
-    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen ((command + " 2>&1").c_str (), "r"), pclose);
+    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen (shell_command.c_str (), "r"), pclose);
     if (!pipe)
       return -1;
     char buffer[4096];
@@ -77,5 +77,13 @@ namespace pcl_sparse_test
       out.append (buffer, n);
     const int status = pclose (pipe.release ());
     return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
+  }
+
+  /// Runs \a command through the shell; returns its exit code (-1 if it did not exit normally), \a out
+  /// receives its stdout and stderr.
+  inline int
+  runCommand (const std::string& command, std::string& out)
+  {
+    return runShell (command + " 2>&1", out);
   }
 } // namespace pcl_sparse_test

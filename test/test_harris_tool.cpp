@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_file_helpers.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,14 +31,9 @@ namespace
   ToolRun
   run (const std::string& arguments)
   {
-    const std::string command = kTool.string () + " " + arguments + " 2>/dev/null";
-    FILE* pipe = popen (command.c_str (), "r");
-    std::string out;
-    char buffer[512];
-    while (pipe && fgets (buffer, sizeof (buffer), pipe))
-      out += buffer;
-    const int status = pipe ? pclose (pipe) : -1;
-    return {WIFEXITED (status) ? WEXITSTATUS (status) : -1, out};
+    ToolRun result;
+    result.code = pcl_sparse_test::runShell (kTool.string () + " " + arguments + " 2>/dev/null", result.out);
+    return result;
   }
 
   struct ToolFixture : public ::testing::Test

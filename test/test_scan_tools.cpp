@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_file_helpers.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,16 +21,11 @@ namespace
   {
     const std::string tool = std::string (PCL_SPARSE_BINARY_DIR) + "/apps/" + name;
     const std::string err_file = std::filesystem::temp_directory_path () / ("scan_tools_err_" + std::to_string (::getpid ()));
-    std::unique_ptr<FILE, int (*) (FILE*)> pipe (popen ((tool + " " + arguments + " 2>" + err_file).c_str (), "r"), pclose);
-    out.clear ();
-    char buffer[4096];
-    for (std::size_t n; (n = std::fread (buffer, 1, sizeof (buffer), pipe.get ())) > 0;)
-      out.append (buffer, n);
-    const int status = pclose (pipe.release ());
+    const int code = pcl_sparse_test::runShell (tool + " " + arguments + " 2>" + err_file, out);
     std::ifstream e (err_file);
     err.assign (std::istreambuf_iterator<char> (e), std::istreambuf_iterator<char> ());
     std::filesystem::remove (err_file);
-    return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
+    return code;
   }
 
   /// The integer value of "key": N in a one-line JSON object (-1 if absent).
