@@ -431,10 +431,13 @@ TEST (ModelFile, ForgedHeadersGiveClearErrors)
   expectErrorContaining (bytes, "wrong magic");
 
   bytes = good;  // the version is checked first: a later version may lay out its header differently
-  bytes[8] = 3;
-  expectErrorContaining (bytes, "unsupported model file version 3");
-  bytes[8] = 2;  // version 2 is a tiled file (tiled_model_file.h), whose header this is not
-  expectErrorContaining (bytes, "tiled model file");
+  bytes[8] = 4;
+  expectErrorContaining (bytes, "unsupported model file version 4");
+  for (std::uint8_t tiled : {2, 3})  // versions 2 and 3 are tiled files (tiled_model_file.h), whose header this is not
+  {
+    bytes[8] = tiled;
+    expectErrorContaining (bytes, "tiled model file");
+  }
 
   bytes = good;
   bytes[17] ^= 1;
