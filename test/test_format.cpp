@@ -8,6 +8,7 @@
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/tiled_model_file.h>
 
 #include <gtest/gtest.h>
 
@@ -414,7 +415,9 @@ TEST (ModelFile, EverySingleBitFlipIsAnError)
     for (bool attributes : {false, true})
   {
     const auto bytes = smallFile (quantised, attributes);
-    for (std::size_t bit = 0; bit < 8 * bytes.size (); ++bit)
+    // Every bit of the header, shared sections and index; every 5th bit of the tiles (each has its CRC-32).
+    const std::size_t index_end = 116 + 4 + (bytes[104] | bytes[105] << 8) + (bytes[108] | bytes[109] << 8);
+    for (std::size_t bit = 0; bit < 8 * bytes.size (); bit += bit < 8 * index_end ? 1 : 5)
     {
       std::vector<std::uint8_t> flipped = bytes;
       flipped[bit / 8] ^= static_cast<std::uint8_t> (1u << (bit % 8));
@@ -612,4 +615,58 @@ TEST (ModelFile, AttributeSectionsRefuseLiesAndBadModels)
   test::addSyntheticAttributes (model, 4);
   model.attribute_channels.clear ();  // codes without channels would be dropped silently
   EXPECT_THROW (encodeModel (model), Error);
+}
+
+namespace
+{
+  /// \a model cut into three tiles of a 3 x 1 x 1 grid (the format does not check where patches lie).
+  TiledModel
+  threeTiles (const SparseSurfaceModel& model)
+  {
+    TiledModel tiled;
+    tiled.model = model;
+    tiled.grid.origin = Eigen::Vector3d (-1.0, -1.0, -1.0);
+    tiled.grid.edge = 1.0;
+    tiled.grid.counts = Eigen::Vector3i (3, 1, 1);
+    tiled.grid.margin = 0.1;
+    const std::size_t m = model.patches.size ();
+    tiled.tiles = {{0, 0, m / 3}, {1, m / 3, m / 3}, {2, 2 * (m / 3), m - 2 * (m / 3)}};
+    tiled.total_patches = m;
+    return tiled;
+  }
+} // namespace
+
+TEST (TiledModelFile, AttributesRoundTripAndEveryDamageIsAnError)
+{
+  // Version 3 (lean tiles, shared QUAN and ACHN): lossless bit for bit, quantised as the version-1 file of the
+  // same model; every truncation and every bit flip refused (this file also runs under ASan and UBSan).
+  auto model = test::makeSyntheticModel (9, 7, true, 4);
+  test::addSyntheticAttributes (model, 7);
+  for (bool quantised : {false, true})
+  {
+    ModelWriteOptions options;
+    options.tolerance = quantised ? 1e-3 : 0.0;
+    options.include_vertices = true;
+    const TiledModel tiled = threeTiles (model);
+    const std::vector<std::uint8_t> bytes = encodeTiledModel (tiled, options, 1);
+    const SparseSurfaceModel loaded = decodeModel (bytes.data (), bytes.size (), "tiled.psm");
+    const std::vector<std::uint8_t> untiled = encodeModel (model, options);
+    const SparseSurfaceModel expected = quantised ? decodeModel (untiled.data (), untiled.size ()) : model;
+    expectBitIdentical (expected, loaded, true);
+    expectSameAttributes (expected, loaded);
+    const ModelFileInfo info = inspectModel (bytes.data (), bytes.size ());
+    EXPECT_EQ (info.version, 3);
+    EXPECT_EQ (info.num_tiles, 3u);
+    EXPECT_EQ (info.attributes.size (), model.attribute_channels.size ());
+    for (std::size_t length = 0; length < bytes.size (); ++length)
+      EXPECT_THROW (decodeModel (bytes.data (), length, "cut.psm"), Error) << "length " << length;
+    // Every bit of the header, shared sections and index; every 5th bit of the tiles (each has its CRC-32).
+    const std::size_t index_end = 116 + 4 + (bytes[104] | bytes[105] << 8) + (bytes[108] | bytes[109] << 8);
+    for (std::size_t bit = 0; bit < 8 * bytes.size (); bit += bit < 8 * index_end ? 1 : 5)
+    {
+      std::vector<std::uint8_t> flipped = bytes;
+      flipped[bit / 8] ^= static_cast<std::uint8_t> (1u << (bit % 8));
+      EXPECT_THROW (decodeModel (flipped.data (), flipped.size (), "flip.psm"), Error) << "bit " << bit;
+    }
+  }
 }
