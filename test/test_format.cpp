@@ -619,7 +619,8 @@ TEST (ModelFile, AttributeSectionsRefuseLiesAndBadModels)
 
 namespace
 {
-  /// \a model cut into three tiles of a 3 x 1 x 1 grid (the format does not check where patches lie).
+  /// \a model cut into three tiles of a 3 x 1 x 1 grid (none if it has fewer than 3 patches; the format does
+  /// not check where patches lie).
   TiledModel
   threeTiles (const SparseSurfaceModel& model)
   {
@@ -630,7 +631,8 @@ namespace
     tiled.grid.counts = Eigen::Vector3i (3, 1, 1);
     tiled.grid.margin = 0.1;
     const std::size_t m = model.patches.size ();
-    tiled.tiles = {{0, 0, m / 3}, {1, m / 3, m / 3}, {2, 2 * (m / 3), m - 2 * (m / 3)}};
+    if (m >= 3)
+      tiled.tiles = {{0, 0, m / 3}, {1, m / 3, m / 3}, {2, 2 * (m / 3), m - 2 * (m / 3)}};
     tiled.total_patches = m;
     return tiled;
   }
@@ -669,4 +671,20 @@ TEST (TiledModelFile, AttributesRoundTripAndEveryDamageIsAnError)
       EXPECT_THROW (decodeModel (flipped.data (), flipped.size (), "flip.psm"), Error) << "bit " << bit;
     }
   }
+}
+
+TEST (TiledModelFile, EmptyModelKeepsItsBasisAndChannels)
+{
+  // No tiles: the merged model still has the basis and channels of the shared fields (it re-encodes).
+  auto model = test::makeSyntheticModel (0, 3, false, 4);
+  test::addSyntheticAttributes (model, 3);
+  ModelWriteOptions options;
+  options.tolerance = 1e-3;
+  const std::vector<std::uint8_t> bytes = encodeTiledModel (threeTiles (model), options, 1);
+  const SparseSurfaceModel loaded = decodeModel (bytes.data (), bytes.size ());
+  EXPECT_TRUE (loaded.patches.empty ());
+  ASSERT_TRUE (loaded.basis);
+  EXPECT_EQ (loaded.basis->size (), model.basis->size ());
+  EXPECT_EQ (loaded.attribute_channels.size (), model.attribute_channels.size ());
+  EXPECT_NO_THROW (encodeModel (loaded, options));
 }

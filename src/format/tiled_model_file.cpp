@@ -465,6 +465,18 @@ namespace pcl_sparse
         for (PatchCode& patch : tile.patches)
           tiled.model.patches.push_back (std::move (patch));
       }
+      if (!tiled.model.basis && index.version == kTiledVersion)
+      {
+        // No tile read (a model without patches, or a region no tile reaches): the basis and the attribute
+        // channels still come from the shared fields, as a version-1 file of no patches gives them.
+        static const std::uint8_t none = 0;
+        const std::vector<std::pair<const std::uint8_t*, std::size_t>> empty (runSectionTags (index.shared.flags).size (),
+                                                                              {&none, 0});
+        const SparseSurfaceModel shared = decodeModelSections (index.shared, 0, empty, name);
+        tiled.model.basis = shared.basis;
+        tiled.model.attribute_channels = shared.attribute_channels;
+        tiled.model.attribute_basis = shared.attribute_basis;
+      }
       return tiled;
     }
 
