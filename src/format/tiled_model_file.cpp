@@ -672,21 +672,70 @@ namespace pcl_sparse
     std::ifstream in;
     std::uint64_t file_size = 0;
     const TiledModelIndex index = openIndex (path, in, file_size);
-    std::vector<std::size_t> selected;
+    auto meets = [] (const Eigen::AlignedBox3d& reach, const std::vector<Eigen::AlignedBox3d>& regions) {
+      return std::any_of (regions.begin (), regions.end (), [&] (const Eigen::AlignedBox3d& r) { return reach.intersects (r); });
+    };
+    auto read = [&] (const TileIndexEntry& e, std::vector<std::uint8_t>& storage) {
+      storage.resize (e.size);
+      readAt (in, e.offset, e.size, storage.data (), path);
+      return static_cast<const std::uint8_t*> (storage.data ());
+    };
     std::uint64_t bytes = index.index_bytes;
+    // First the tiles whose patches can place a point in a box or contend for one there.
+    std::vector<std::size_t> first;
+    std::vector<bool> taken (index.entries.size (), false);
     for (std::size_t i = 0; i < index.entries.size (); ++i)
-      if (std::any_of (boxes.begin (), boxes.end (), [&] (const Eigen::AlignedBox3d& box) { return index.entries[i].reach.intersects (box); }))
+      if (meets (index.entries[i].reach, boxes))
       {
-        selected.push_back (i);
+        first.push_back (i);
+        taken[i] = true;
+        bytes += index.entries[i].size;
+      }
+    TiledModel near = decodeTiles (index, first, path, read);
+    // Then every tile that can contend anywhere in the footprint of such a patch: a patch keeps its points by
+    // systematic sampling over all the cells it owns, so which of them fall in the box depends on who owns
+    // its places outside the box too (docs/TILES.md, "Regions").
+    std::vector<Eigen::AlignedBox3d> reaches;
+    for (const PatchCode& patch : near.model.patches)
+    {
+      const Eigen::AlignedBox3d reach = patchReachBox (patch);
+      if (meets (reach, boxes))
+        reaches.push_back (reach);
+    }
+    std::vector<std::size_t> second;
+    for (std::size_t i = 0; i < index.entries.size (); ++i)
+      if (!taken[i] && meets (index.entries[i].reach, reaches))
+      {
+        second.push_back (i);
         bytes += index.entries[i].size;
       }
     if (bytes_read)
       *bytes_read = bytes;
-    return decodeTiles (index, selected, path, [&] (const TileIndexEntry& e, std::vector<std::uint8_t>& storage) {
-      storage.resize (e.size);
-      readAt (in, e.offset, e.size, storage.data (), path);
-      return static_cast<const std::uint8_t*> (storage.data ());
-    });
+    if (second.empty ())
+      return near;
+    // Merge the two reads in tile order.
+    TiledModel far = decodeTiles (index, second, path, read);
+    TiledModel merged;
+    merged.grid = near.grid;
+    merged.total_patches = near.total_patches;
+    merged.model.basis = near.model.basis;
+    merged.model.num_input_vertices = near.model.num_input_vertices;
+    merged.model.bbox_diagonal = near.model.bbox_diagonal;
+    merged.model.attribute_channels = near.model.attribute_channels;
+    merged.model.attribute_basis = near.model.attribute_basis;
+    merged.model.patches.reserve (near.model.patches.size () + far.model.patches.size ());
+    std::size_t a = 0, b = 0, pa = 0, pb = 0;
+    while (a < near.tiles.size () || b < far.tiles.size ())
+    {
+      const bool from_near = b == far.tiles.size () || (a < near.tiles.size () && near.tiles[a].tile < far.tiles[b].tile);
+      const TileRange& range = from_near ? near.tiles[a++] : far.tiles[b++];
+      std::size_t& at = from_near ? pa : pb;
+      std::vector<PatchCode>& source = from_near ? near.model.patches : far.model.patches;
+      for (std::size_t k = 0; k < range.num_patches; ++k)
+        merged.model.patches.push_back (std::move (source[at++]));
+      merged.tiles.push_back (range);
+    }
+    return merged;
   }
 
   bool

@@ -88,9 +88,11 @@ namespace pcl_sparse
   TiledModelIndex
   readTiledModelIndex (const std::string& path);
 
-  /// \brief Loads the tiles whose patches can reach into \a box: every patch that can give a point in the
-  /// box or compete for one (resampling ownership), and nothing else; with the patch numbers of the
-  /// whole model (TiledModel::patchNumbers), it resamples as the whole model does inside the box.
+  /// \brief Loads the tiles whose patches can reach into \a box (every patch that can give a point in the
+  /// box or compete for one, resampling ownership), then the tiles whose patches can compete anywhere in the
+  /// footprint of such a patch (a patch keeps its points by systematic sampling over all the places it owns,
+  /// so which of them fall in the box depends on who owns the others); with the patch numbers of the whole
+  /// model (TiledModel::patchNumbers), it resamples as the whole model does inside the box.
   /// \param[in]  path        the file
   /// \param[in]  box         the region, in the model's frame
   /// \param[out] bytes_read  if not null: bytes read from the file (header, index and the tiles)
