@@ -8,6 +8,7 @@
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/tiled_model_file.h>
 
 #include <gtest/gtest.h>
 
@@ -414,7 +415,9 @@ TEST (ModelFile, EverySingleBitFlipIsAnError)
     for (bool attributes : {false, true})
   {
     const auto bytes = smallFile (quantised, attributes);
-    for (std::size_t bit = 0; bit < 8 * bytes.size (); ++bit)
+    // Every bit of the header, shared sections and index; every 5th bit of the tiles (each has its CRC-32).
+    const std::size_t index_end = 116 + 4 + (bytes[104] | bytes[105] << 8) + (bytes[108] | bytes[109] << 8);
+    for (std::size_t bit = 0; bit < 8 * bytes.size (); bit += bit < 8 * index_end ? 1 : 5)
     {
       std::vector<std::uint8_t> flipped = bytes;
       flipped[bit / 8] ^= static_cast<std::uint8_t> (1u << (bit % 8));
@@ -431,10 +434,13 @@ TEST (ModelFile, ForgedHeadersGiveClearErrors)
   expectErrorContaining (bytes, "wrong magic");
 
   bytes = good;  // the version is checked first: a later version may lay out its header differently
-  bytes[8] = 3;
-  expectErrorContaining (bytes, "unsupported model file version 3");
-  bytes[8] = 2;  // version 2 is a tiled file (tiled_model_file.h), whose header this is not
-  expectErrorContaining (bytes, "tiled model file");
+  bytes[8] = 4;
+  expectErrorContaining (bytes, "unsupported model file version 4");
+  for (std::uint8_t tiled : {2, 3})  // versions 2 and 3 are tiled files (tiled_model_file.h), whose header this is not
+  {
+    bytes[8] = tiled;
+    expectErrorContaining (bytes, "tiled model file");
+  }
 
   bytes = good;
   bytes[17] ^= 1;
@@ -609,4 +615,76 @@ TEST (ModelFile, AttributeSectionsRefuseLiesAndBadModels)
   test::addSyntheticAttributes (model, 4);
   model.attribute_channels.clear ();  // codes without channels would be dropped silently
   EXPECT_THROW (encodeModel (model), Error);
+}
+
+namespace
+{
+  /// \a model cut into three tiles of a 3 x 1 x 1 grid (none if it has fewer than 3 patches; the format does
+  /// not check where patches lie).
+  TiledModel
+  threeTiles (const SparseSurfaceModel& model)
+  {
+    TiledModel tiled;
+    tiled.model = model;
+    tiled.grid.origin = Eigen::Vector3d (-1.0, -1.0, -1.0);
+    tiled.grid.edge = 1.0;
+    tiled.grid.counts = Eigen::Vector3i (3, 1, 1);
+    tiled.grid.margin = 0.1;
+    const std::size_t m = model.patches.size ();
+    if (m >= 3)
+      tiled.tiles = {{0, 0, m / 3}, {1, m / 3, m / 3}, {2, 2 * (m / 3), m - 2 * (m / 3)}};
+    tiled.total_patches = m;
+    return tiled;
+  }
+} // namespace
+
+TEST (TiledModelFile, AttributesRoundTripAndEveryDamageIsAnError)
+{
+  // Version 3 (lean tiles, shared QUAN and ACHN): lossless bit for bit, quantised as the version-1 file of the
+  // same model; every truncation and every bit flip refused (this file also runs under ASan and UBSan).
+  auto model = test::makeSyntheticModel (9, 7, true, 4);
+  test::addSyntheticAttributes (model, 7);
+  for (bool quantised : {false, true})
+  {
+    ModelWriteOptions options;
+    options.tolerance = quantised ? 1e-3 : 0.0;
+    options.include_vertices = true;
+    const TiledModel tiled = threeTiles (model);
+    const std::vector<std::uint8_t> bytes = encodeTiledModel (tiled, options, 1);
+    const SparseSurfaceModel loaded = decodeModel (bytes.data (), bytes.size (), "tiled.psm");
+    const std::vector<std::uint8_t> untiled = encodeModel (model, options);
+    const SparseSurfaceModel expected = quantised ? decodeModel (untiled.data (), untiled.size ()) : model;
+    expectBitIdentical (expected, loaded, true);
+    expectSameAttributes (expected, loaded);
+    const ModelFileInfo info = inspectModel (bytes.data (), bytes.size ());
+    EXPECT_EQ (info.version, 3);
+    EXPECT_EQ (info.num_tiles, 3u);
+    EXPECT_EQ (info.attributes.size (), model.attribute_channels.size ());
+    for (std::size_t length = 0; length < bytes.size (); ++length)
+      EXPECT_THROW (decodeModel (bytes.data (), length, "cut.psm"), Error) << "length " << length;
+    // Every bit of the header, shared sections and index; every 5th bit of the tiles (each has its CRC-32).
+    const std::size_t index_end = 116 + 4 + (bytes[104] | bytes[105] << 8) + (bytes[108] | bytes[109] << 8);
+    for (std::size_t bit = 0; bit < 8 * bytes.size (); bit += bit < 8 * index_end ? 1 : 5)
+    {
+      std::vector<std::uint8_t> flipped = bytes;
+      flipped[bit / 8] ^= static_cast<std::uint8_t> (1u << (bit % 8));
+      EXPECT_THROW (decodeModel (flipped.data (), flipped.size (), "flip.psm"), Error) << "bit " << bit;
+    }
+  }
+}
+
+TEST (TiledModelFile, EmptyModelKeepsItsBasisAndChannels)
+{
+  // No tiles: the merged model still has the basis and channels of the shared fields (it re-encodes).
+  auto model = test::makeSyntheticModel (0, 3, false, 4);
+  test::addSyntheticAttributes (model, 3);
+  ModelWriteOptions options;
+  options.tolerance = 1e-3;
+  const std::vector<std::uint8_t> bytes = encodeTiledModel (threeTiles (model), options, 1);
+  const SparseSurfaceModel loaded = decodeModel (bytes.data (), bytes.size ());
+  EXPECT_TRUE (loaded.patches.empty ());
+  ASSERT_TRUE (loaded.basis);
+  EXPECT_EQ (loaded.basis->size (), model.basis->size ());
+  EXPECT_EQ (loaded.attribute_channels.size (), model.attribute_channels.size ());
+  EXPECT_NO_THROW (encodeModel (loaded, options));
 }

@@ -4,8 +4,10 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/tile_encoding_bytes.h>
 #include <pcl_sparse/format/tiled_model_file.h>
+#include <pcl_sparse/format/zstd_codec.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -66,6 +68,85 @@ namespace
     pcl::PointCloud<pcl::PointNormal> cloud;
     resampling.compute (cloud);
     return cloud;
+  }
+
+  /// Bytes of the header, shared sections, index and index checksum of a version-3 tiled file.
+  std::size_t
+  indexBytes (const std::vector<std::uint8_t>& file)
+  {
+    auto u32 = [&] (std::size_t at) {
+      return static_cast<std::size_t> (file[at] | (file[at + 1] << 8) | (file[at + 2] << 16) |
+                                       (static_cast<std::uint32_t> (file[at + 3]) << 24));
+    };
+    return 116 + u32 (104) + u32 (108) + 4;
+  }
+
+  /// \a tiled written in the version-2 layout of docs/FORMAT.md (the library writes version 3 only).
+  std::vector<std::uint8_t>
+  version2File (const TiledModel& tiled, const ModelWriteOptions& options)
+  {
+    auto put = [] (std::vector<std::uint8_t>& out, const void* value, std::size_t size) {
+      const auto* bytes = static_cast<const std::uint8_t*> (value);
+      out.insert (out.end (), bytes, bytes + size);  // little-endian machine, as the format
+    };
+    auto crc = [] (const std::uint8_t* data, std::size_t size) {
+      std::uint32_t c = 0xffffffffu;
+      for (std::size_t i = 0; i < size; ++i)
+      {
+        c ^= data[i];
+        for (int k = 0; k < 8; ++k)
+          c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+      }
+      return c ^ 0xffffffffu;
+    };
+    std::vector<std::vector<std::uint8_t>> blobs;
+    for (const TileRange& range : tiled.tiles)
+      blobs.push_back (encodeModel (subModel (tiled.model, range.first_patch, range.num_patches), options));
+    std::vector<std::uint8_t> out;
+    const std::uint8_t magic[8] = {0x89, 'P', 'S', 'M', '\r', '\n', 0x1a, '\n'};
+    put (out, magic, 8);
+    const std::uint16_t version = 2, flags = 0;
+    put (out, &version, 2);
+    put (out, &flags, 2);
+    const std::uint32_t count = static_cast<std::uint32_t> (tiled.tiles.size ());
+    put (out, &count, 4);
+    const std::uint64_t vertices = tiled.model.num_input_vertices, patches = tiled.model.patches.size ();
+    put (out, &vertices, 8);
+    put (out, &tiled.model.bbox_diagonal, 8);
+    put (out, &options.tolerance, 8);
+    put (out, tiled.grid.origin.data (), 24);
+    put (out, &tiled.grid.edge, 8);
+    put (out, &tiled.grid.margin, 8);
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::uint32_t n = static_cast<std::uint32_t> (tiled.grid.counts[a]);
+      put (out, &n, 4);
+    }
+    put (out, &patches, 8);
+    const std::uint32_t header_crc = crc (out.data (), out.size ());
+    put (out, &header_crc, 4);
+    const std::size_t start = out.size ();
+    std::uint64_t offset = 104 + 88 * count + 4;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const std::uint64_t entry[5] = {tiled.tiles[i].tile, tiled.tiles[i].first_patch, tiled.tiles[i].num_patches, offset,
+                                      blobs[i].size ()};
+      put (out, entry, sizeof entry);
+      offset += blobs[i].size ();
+      Eigen::AlignedBox3d reach;
+      const SparseSurfaceModel decoded = decodeModel (blobs[i].data (), blobs[i].size ());
+      for (const PatchCode& patch : decoded.patches)
+        reach.extend (patchReachBox (patch));
+      const Eigen::Vector3d lo = reach.min ().array () - options.tolerance * tiled.model.bbox_diagonal;
+      const Eigen::Vector3d hi = reach.max ().array () + options.tolerance * tiled.model.bbox_diagonal;
+      put (out, lo.data (), 24);
+      put (out, hi.data (), 24);
+    }
+    const std::uint32_t index_crc = crc (out.data () + start, out.size () - start);
+    put (out, &index_crc, 4);
+    for (const std::vector<std::uint8_t>& blob : blobs)
+      out.insert (out.end (), blob.begin (), blob.end ());
+    return out;
   }
 
   /// The points of \a cloud inside \a box, in order.
@@ -215,7 +296,7 @@ TEST (TiledFile, LoadModelMergesAndRegionsReadOnlyTheirTiles)
   EXPECT_EQ (merged.num_input_vertices, tiled.model.num_input_vertices);
   EXPECT_EQ (merged.bbox_diagonal, tiled.model.bbox_diagonal);
   const ModelFileInfo info = inspectModelFile (path);
-  EXPECT_EQ (info.version, 2);
+  EXPECT_EQ (info.version, 3);
   EXPECT_EQ (info.num_tiles, tiled.tiles.size ());
   EXPECT_EQ (info.num_patches, tiled.model.patches.size ());
   EXPECT_EQ (info.file_bytes, std::filesystem::file_size (path));
@@ -232,7 +313,20 @@ TEST (TiledFile, LoadModelMergesAndRegionsReadOnlyTheirTiles)
     const TiledModel region = loadTiledModelRegion (path, box, &bytes_read);
     EXPECT_LT (region.tiles.size (), tiled.tiles.size ());
     EXPECT_LT (bytes_read, std::filesystem::file_size (path) / 2);
-    EXPECT_GE (bytes_read, index.index_bytes);
+    // Exactly the header, shared sections and index (at most 16 bytes an entry) and the tiles it returns: at
+    // least those whose reach box meets the box.
+    EXPECT_LE (index.index_bytes, 116 + 75 + 4 + 16 * index.entries.size ());
+    std::uint64_t needed = index.index_bytes;
+    std::size_t meeting = 0, returned_meeting = 0;
+    for (const TileIndexEntry& e : index.entries)
+    {
+      const bool returned = std::any_of (region.tiles.begin (), region.tiles.end (), [&] (const TileRange& r) { return r.tile == e.tile; });
+      needed += returned ? e.size : 0;
+      meeting += e.reach.intersects (box);
+      returned_meeting += returned && e.reach.intersects (box);
+    }
+    EXPECT_EQ (bytes_read, needed);
+    EXPECT_EQ (returned_meeting, meeting);
     const pcl::PointCloud<pcl::PointNormal> part = resample (region.model, density, region.patchNumbers ());
     const std::vector<Eigen::Vector3f> expected = inside (full, box), got = inside (part, box);
     ASSERT_GT (expected.size (), 100u);
@@ -246,6 +340,43 @@ TEST (TiledFile, LoadModelMergesAndRegionsReadOnlyTheirTiles)
   }
 }
 
+TEST (TiledFile, RegionReadsWhoOwnsTheRestOfItsPatchesFootprints)
+{
+  // bench_tiles' terrain at 36 tiles, lossless: a box in the middle of a tile meets the reach boxes of 2 tiles,
+  // but a patch of a third tile, 0.049 outside the box, owns places of a patch that reaches into it, and so
+  // changes which of that patch's points fall in the box (48 of ~4,200 differed when only the first tiles
+  // were read). The region read takes the tiles reaching those patches too, and is exact.
+  const pcl_sparse_test::TempDir dir ("pcl_sparse_tiles_region");
+  auto mesh = std::make_shared<TriangleMesh> (makeHeightFieldGrid (300, 300, 1.0, 1.0, [] (double x, double y) {
+    return 0.06 * std::sin (9.0 * x) * std::cos (8.0 * y) + 0.02 * std::sin (23.0 * x + 17.0 * y) + 0.05 * x * y;
+  }));
+  SparseSurfaceEncoderOptions options;
+  options.patches.rho = 0.0002;
+  TileGridOptions grid;
+  grid.tiles_along_longest = 6;
+  TiledSurfaceEncoder encoder;
+  encoder.setTileSource (std::make_shared<MemoryTileSource> (mesh, grid));
+  encoder.setOptions (options);
+  TiledModel tiled;
+  encoder.compute (tiled);
+  const std::string path = dir.file ("terrain.psm");
+  saveTiledModel (path, tiled, ModelWriteOptions ());
+  const Eigen::Vector3d centre = tiled.grid.coreBox (tiled.grid.tileOf (Eigen::Vector3d (-0.4, -0.4, 0.0))).center ();
+  const Eigen::Vector3d half (0.1, 0.1, 30.0);
+  const Eigen::AlignedBox3d box (Eigen::Vector3d (centre.x (), centre.y (), 0.0) - half,
+                                 Eigen::Vector3d (centre.x (), centre.y (), 0.0) + half);
+  const double density = static_cast<double> (mesh->vertices.size ()) / 4.0 * 4.0;
+  const std::vector<Eigen::Vector3f> expected = inside (resample (loadModel (path), density), box);
+  const TiledModel region = loadTiledModelRegion (path, box);
+  const std::vector<Eigen::Vector3f> got = inside (resample (region.model, density, region.patchNumbers ()), box);
+  ASSERT_GT (expected.size (), 1000u);
+  EXPECT_TRUE (expected == got) << expected.size () << " points in the full decode, " << got.size () << " in the region";
+  std::size_t meeting = 0;
+  for (const TileIndexEntry& e : readTiledModelIndex (path).entries)
+    meeting += e.reach.intersects (box);
+  EXPECT_GT (region.tiles.size (), meeting) << "the second read took no tile: the case no longer tests it";
+}
+
 TEST (TiledFile, RefusesDamage)
 {
   const TriangleMesh::Ptr mesh = terrain (24);
@@ -255,15 +386,140 @@ TEST (TiledFile, RefusesDamage)
   // Every truncation, and a flip of every bit of the header and index.
   for (std::size_t size = 0; size < bytes.size (); size += std::max<std::size_t> (1, size / 50))
     EXPECT_THROW (decodeModel (bytes.data (), size), Error) << size;
-  const std::size_t index_end = 104 + 88 * tiled.tiles.size () + 4;
+  // Version 3 -> 2 or 1 goes to those readers, which refuse it too (checksums).
+  const std::size_t index_end = indexBytes (bytes);
   for (std::size_t bit = 0; bit < 8 * index_end; ++bit)
   {
     std::vector<std::uint8_t> bad = bytes;
     bad[bit / 8] ^= static_cast<std::uint8_t> (1u << (bit % 8));
-    if (bit / 8 == 8 && bit % 8 == 1)
-      continue;  // version 2 -> 0: a version-1 reader's "unsupported version"
     EXPECT_THROW (decodeModel (bad.data (), bad.size ()), Error) << "bit " << bit;
   }
+  // A flipped bit in a tile: its CRC-32.
+  for (std::size_t at = index_end; at < bytes.size (); at += 7)
+  {
+    std::vector<std::uint8_t> bad = bytes;
+    bad[at] ^= 0x10;
+    EXPECT_THROW (decodeModel (bad.data (), bad.size ()), Error) << "byte " << at;
+  }
+}
+
+TEST (TiledFile, TilesDecodeAsTheUntiledFileDoes)
+{
+  // Quantised with the whole model's parameters, the tiles give exactly the patches of the version-1 file
+  // of the merged model; lossless, the patches bit for bit.
+  const TriangleMesh::Ptr mesh = terrain (60);
+  const TiledModel tiled = encodeTiled (mesh, 3);
+  for (double tolerance : {0.0, 1e-5})
+    for (bool vertices : {false, true})
+    {
+      ModelWriteOptions options;
+      options.tolerance = tolerance;
+      options.include_vertices = vertices;
+      const std::vector<std::uint8_t> file = encodeTiledModel (tiled, options);
+      const SparseSurfaceModel loaded = decodeModel (file.data (), file.size ());
+      const std::vector<std::uint8_t> untiled = encodeModel (tiled.model, options);
+      const SparseSurfaceModel expected = tolerance > 0.0 ? decodeModel (untiled.data (), untiled.size ()) : tiled.model;
+      ASSERT_EQ (loaded.patches.size (), expected.patches.size ());
+      EXPECT_EQ (loaded.num_input_vertices, expected.num_input_vertices);
+      EXPECT_EQ (loaded.bbox_diagonal, expected.bbox_diagonal);
+      for (std::size_t p = 0; p < loaded.patches.size (); ++p)
+      {
+        const PatchCode &a = loaded.patches[p], &b = expected.patches[p];
+        ASSERT_TRUE (a.origin == b.origin && a.frame == b.frame && a.radius == b.radius && a.atoms == b.atoms &&
+                     a.coefficients == b.coefficients && a.footprint.extent == b.footprint.extent)
+          << "patch " << p << " tolerance " << tolerance;
+        if (vertices)
+          ASSERT_TRUE (a.vertices == b.vertices) << "patch " << p;
+      }
+      const ModelFileInfo info = inspectModel (file.data (), file.size ());
+      EXPECT_EQ (info.version, 3);
+      EXPECT_EQ (info.quantised, tolerance > 0.0);
+      EXPECT_EQ (info.has_vertices, vertices);
+      EXPECT_EQ (info.basis, inspectModel (untiled.data (), untiled.size ()).basis);
+      EXPECT_EQ (info.num_tiles, tiled.tiles.size ());
+      std::uint64_t stored = 0;
+      for (const ModelFileSection& section : info.sections)
+        stored += section.stored_bytes;
+      EXPECT_EQ (stored, file.size ()) << "TIDX, the shared sections and TILE make up the file";
+    }
+}
+
+TEST (TiledFile, PerTileFramingIsBounded)
+{
+  // What the format adds to the tiles' compressed sections: the 116-byte header, the shared QUAN, the index
+  // checksum, and per tile an index entry (about 10 bytes), a varint size per section and a CRC-32. Bounded
+  // at 32 bytes a tile, so that a regression in the framing fails (version 2 took ~470 bytes a tile and 88 of
+  // index). What zstd loses by compressing each tile's sections apart is not framing: printed, not bounded
+  // here (small tiles; TiledEncoding.SharedMeshWithinTwoPercent bounds the whole file on tiles of 50k vertices).
+  const TriangleMesh::Ptr mesh = terrain (90);
+  for (int along : {2, 4})
+  {
+    const TiledModel tiled = encodeTiled (mesh, along);
+    ModelWriteOptions options;
+    options.tolerance = 1e-5;
+    const double file = static_cast<double> (encodeTiledModel (tiled, options).size ());
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    for (const TileRange& range : tiled.tiles)
+      runs.emplace_back (range.first_patch, range.num_patches);
+    const ModelSections sections = encodeModelSections (tiled.model, options, runs);
+    double payloads = 0.0;
+    for (const std::vector<std::vector<std::uint8_t>>& run : sections.runs)
+      for (const std::vector<std::uint8_t>& section : run)
+        payloads += static_cast<double> (
+          std::min (section.size (), compressBytes (section.data (), section.size (), options.zstd_level).size ()));
+    const double fixed = 116.0 + static_cast<double> (sections.shared.quantisation.size ()) + 4.0;
+    const double per_tile = (file - payloads - fixed) / static_cast<double> (tiled.tiles.size ());
+    const double untiled = static_cast<double> (encodeModel (tiled.model, options).size ());
+    std::printf ("%zu tiles, %zu patches: file %.0f bytes, of which framing %.1f bytes a tile; the same patches as one "
+                 "version-1 file %.0f (%+.1f bytes a tile)\n",
+                 tiled.tiles.size (), tiled.model.patches.size (), file, per_tile, untiled,
+                 (file - untiled) / static_cast<double> (tiled.tiles.size ()));
+    EXPECT_GT (per_tile, 4.0);
+    EXPECT_LT (per_tile, 32.0);
+  }
+}
+
+TEST (TiledFile, ReadsTheVersion2Layout)
+{
+  // Files of the older tiled layout (every tile a complete version-1 model, 88-byte index entries;
+  // docs/FORMAT.md) still load, whole and by region.
+  const pcl_sparse_test::TempDir dir ("pcl_sparse_tiles_v2");
+  const TriangleMesh::Ptr mesh = terrain (50);
+  const TiledModel tiled = encodeTiled (mesh, 3);
+  ModelWriteOptions options;
+  options.tolerance = 1e-5;
+  const std::string path = dir.file ("v2.psm");
+  const std::vector<std::uint8_t> bytes = version2File (tiled, options);
+  {
+    std::ofstream out (path, std::ios::binary);
+    out.write (reinterpret_cast<const char*> (bytes.data ()), static_cast<std::streamsize> (bytes.size ()));
+  }
+  ASSERT_TRUE (isTiledModelFile (path));
+  const SparseSurfaceModel merged = loadModel (path);
+  ASSERT_EQ (merged.patches.size (), tiled.model.patches.size ());
+  std::size_t next = 0;
+  for (const TileRange& range : tiled.tiles)
+  {
+    const std::vector<std::uint8_t> tile = encodeModel (subModel (tiled.model, range.first_patch, range.num_patches), options);
+    const SparseSurfaceModel expected = decodeModel (tile.data (), tile.size ());
+    for (const PatchCode& patch : expected.patches)
+    {
+      EXPECT_TRUE (merged.patches[next].origin == patch.origin && merged.patches[next].coefficients == patch.coefficients);
+      ++next;
+    }
+  }
+  const ModelFileInfo info = inspectModelFile (path);
+  EXPECT_EQ (info.version, 2);
+  EXPECT_EQ (info.num_tiles, tiled.tiles.size ());
+  const TiledModelIndex index = readTiledModelIndex (path);
+  EXPECT_EQ (index.version, 2);
+  EXPECT_EQ (index.index_bytes, 104 + 88 * tiled.tiles.size () + 4);
+  const Eigen::AlignedBox3d box (Eigen::Vector3d (-0.9, -0.9, -1.0), Eigen::Vector3d (-0.8, -0.8, 1.0));
+  std::uint64_t bytes_read = 0;
+  const TiledModel region = loadTiledModelRegion (path, box, &bytes_read);
+  EXPECT_LT (region.tiles.size (), tiled.tiles.size ());
+  EXPECT_GT (region.tiles.size (), 0u);
+  EXPECT_LT (bytes_read, bytes.size ());
 }
 
 TEST (TiledEncoding, SeamsLikeTheInside)
@@ -334,11 +590,12 @@ TEST (TiledEncoding, SharedMeshWithinTwoPercent)
   EXPECT_EQ (tiled_stats.uncovered, 0u);
   EXPECT_LT (tiled_stats.rmse, 1.02 * whole_stats.rmse);
   EXPECT_LE (tiled.model.patches.size (), whole.patches.size () * 101 / 100);
-  // Issue 16's target is 2 %; at tiles of 50k vertices the format's per-tile cost alone (a version-1 model
-  // per tile, ~470 bytes, and the index) is 2.8 % of this file (docs/TILES.md), the patches themselves 1 % less.
+  // Issue 16's target is 2 %: the patches themselves take about 1 % less than untiled's, and the tiled file
+  // (version 3: shared quantisation, ~20 bytes of framing a tile, each tile's sections compressed apart,
+  // which loses ~400 bytes a tile here) about 1.6 % more than they (docs/TILES.md).
   const std::size_t patch_bytes = encodeModel (tiled.model, options).size ();
   EXPECT_LT (static_cast<double> (patch_bytes), 1.02 * whole_bytes);
-  EXPECT_LT (static_cast<double> (tiled_bytes), 1.035 * whole_bytes);
+  EXPECT_LT (static_cast<double> (tiled_bytes), 1.02 * whole_bytes);
 }
 
 TEST (TiledEncoding, StrayScanPointsDoNotFailTheEncoding)

@@ -149,11 +149,13 @@ TEST_F (TilesTool, RegionDecodeEqualsTheFullDecodeThereAndReadsLittle)
   ASSERT_NE (at, std::string::npos) << out;
   const double bytes_read = std::stod (out.substr (at + 14));
   const double file_bytes = static_cast<double> (std::filesystem::file_size (model));
-  // The header and index (104 + 88 bytes a tile) and the few tiles reaching the box. Issue 16's target (1 % of
-  // the area in under 5 % of the file) needs tiles much larger than an index entry: bench/bench_tiles.cpp
-  // measures it at scale (docs/TILES.md); these 100 tiles of ~600 vertices hold ~1 kB each.
+  // The header and index (~10 bytes a tile), the tiles reaching the box and those reaching the patches that
+  // reach it (a patch's points in the box depend on who owns the rest of its footprint; docs/TILES.md,
+  // "Regions"). Issue 16's target (1 % of the area in under 5 % of the file) needs tiles much larger than a
+  // patch: bench/bench_tiles.cpp measures it at scale; these 100 tiles of ~600 vertices hold ~430 bytes and
+  // a few patches each, so the box and its patches' reach touch about a quarter of them.
   const TiledModelIndex index = readTiledModelIndex (model);
-  EXPECT_LT (bytes_read, static_cast<double> (index.index_bytes) + 0.1 * file_bytes) << bytes_read << " of " << file_bytes;
+  EXPECT_LT (bytes_read, static_cast<double> (index.index_bytes) + 0.3 * file_bytes) << bytes_read << " of " << file_bytes;
 
   ScanCloud full, part;
   loadScanCloud (dir_.file ("full.pcd"), full);

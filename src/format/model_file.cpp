@@ -7,9 +7,11 @@
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
+#include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/sparse_code_stream.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/format/zstd_codec.h>
+#include <pcl_sparse/tiles/tiled_model.h>
 
 #include <algorithm>
 #include <cmath>
@@ -236,12 +238,14 @@ namespace pcl_sparse
 
     // ---- lossless sections ------------------------------------------------------------------------
 
-    std::vector<Section>
-    encodeLossless (const SparseSurfaceModel& model)
+    /// The six per-patch sections of patches [first, first + count), lossless.
+    std::vector<std::vector<std::uint8_t>>
+    encodeLosslessRun (const SparseSurfaceModel& model, std::size_t first, std::size_t count)
     {
       ByteWriter seed, frame, radius, foot, atom, coef;
-      for (const PatchCode& patch : model.patches)
+      for (std::size_t p = first; p < first + count; ++p)
       {
+        const PatchCode& patch = model.patches[p];
         for (int i = 0; i < 3; ++i)
           seed.putF64 (patch.origin[i]);
         for (int c = 0; c < 3; ++c)
@@ -253,17 +257,26 @@ namespace pcl_sparse
           foot.putF32 (e);
         putCodeCoefficients (coef, patch.coefficients, putCodeAtoms (atom, patch.atoms, false, 0), 0.0);
       }
-      return {{"SEED", kCodecZstd, std::move (seed.bytes ())}, {"FRAM", kCodecZstd, std::move (frame.bytes ())},
-              {"RADI", kCodecZstd, std::move (radius.bytes ())}, {"FOOT", kCodecZstd, std::move (foot.bytes ())},
-              {"ATOM", kCodecZstd, std::move (atom.bytes ())},   {"COEF", kCodecZstd, std::move (coef.bytes ())}};
+      return {std::move (seed.bytes ()), std::move (frame.bytes ()), std::move (radius.bytes ()),
+              std::move (foot.bytes ()), std::move (atom.bytes ()),  std::move (coef.bytes ())};
     }
 
     // ---- quantised sections -----------------------------------------------------------------------
 
-    /// Seeds: integer steps of q.seed_step from the smallest corner, one vector per coordinate (sets
+    /// Integer steps of q.seed_step from the smallest corner of coordinate \a i of \a origin.
+    std::uint64_t
+    seedSteps (const Eigen::Vector3d& origin, int i, const QuantisationParameters& q)
+    {
+      const double steps = std::round ((origin[i] - q.seed_min[i]) / q.seed_step);
+      if (!(steps < 4294967295.0))
+        throw Error ("encodeModel: tolerance too small for the seed range (more than 2^32 steps)");
+      return static_cast<std::uint64_t> (steps);
+    }
+
+    /// Seeds: the smallest corner and the bytes of the largest step count over the model (sets
     /// q.seed_min and q.seed_bytes).
-    std::vector<std::vector<std::uint64_t>>
-    quantiseSeeds (const SparseSurfaceModel& model, QuantisationParameters& q)
+    void
+    chooseSeedRange (const SparseSurfaceModel& model, QuantisationParameters& q)
     {
       const std::size_t m = model.patches.size ();
       for (int i = 0; i < 3; ++i)
@@ -272,19 +285,11 @@ namespace pcl_sparse
         for (const PatchCode& patch : model.patches)
           q.seed_min[i] = std::min (q.seed_min[i], patch.origin[i]);
       }
-      std::vector<std::vector<std::uint64_t>> seeds (3, std::vector<std::uint64_t> (m));
       std::uint64_t seed_max = 0;
-      for (std::size_t p = 0; p < m; ++p)
+      for (const PatchCode& patch : model.patches)
         for (int i = 0; i < 3; ++i)
-        {
-          const double steps = std::round ((model.patches[p].origin[i] - q.seed_min[i]) / q.seed_step);
-          if (!(steps < 4294967295.0))
-            throw Error ("encodeModel: tolerance too small for the seed range (more than 2^32 steps)");
-          seeds[i][p] = static_cast<std::uint64_t> (steps);
-          seed_max = std::max (seed_max, seeds[i][p]);
-        }
+          seed_max = std::max (seed_max, seedSteps (patch.origin, i, q));
       q.seed_bytes = bytesFor (seed_max);
-      return seeds;
     }
 
     /// Radii: log scale, the step from the largest radius * reach over the patches (original values);
@@ -384,17 +389,17 @@ namespace pcl_sparse
       return std::move (params.bytes ());
     }
 
-    std::vector<Section>
-    encodeQuantised (const SparseSurfaceModel& model, const ModelWriteOptions& options, int frequencies)
+    /// Quantisation parameters over every patch of \a model (QUAN).
+    QuantisationParameters
+    chooseQuantisation (const SparseSurfaceModel& model, const ModelWriteOptions& options)
     {
-      const std::size_t m = model.patches.size ();
       const double tolerance = options.tolerance * model.bbox_diagonal;
       QuantisationParameters q;
       q.seed_step = 2.0 * kSeedShare * tolerance / std::sqrt (3.0);
       q.frame_budget = kFrameShare * tolerance;
       q.coefficient_budget = kCoefficientShare * tolerance;
       q.extent_bits = options.extent_bits;
-      const std::vector<std::vector<std::uint64_t>> seeds = quantiseSeeds (model, q);
+      chooseSeedRange (model, q);
 
       // Extents: a common scale, (2^bits - 1) levels.
       q.extent_max = 0.0;
@@ -403,40 +408,49 @@ namespace pcl_sparse
       if (!(q.extent_max > 0.0))
         q.extent_max = 1.0;
       chooseRadiusScale (model, tolerance, q);
-
-      // Decode as we go, so that the steps derived from decoded values match the decoder's.
-      std::vector<std::uint64_t> radii (m);
       std::uint64_t radius_max = 0;
+      for (const PatchCode& patch : model.patches)
+        radius_max = std::max (radius_max, quantiseRadius (patch.radius, q));
+      q.radius_bytes = bytesFor (radius_max);
+      return q;
+    }
+
+    /// The six per-patch sections of patches [first, first + count), quantised with \a q.
+    std::vector<std::vector<std::uint8_t>>
+    encodeQuantisedRun (const SparseSurfaceModel& model, std::size_t first, std::size_t count,
+                        const QuantisationParameters& q, const ModelWriteOptions& options, int frequencies)
+    {
+      // Decode as we go, so that the steps derived from decoded values match the decoder's.
+      std::vector<std::vector<std::uint64_t>> seeds (3, std::vector<std::uint64_t> (count));
+      std::vector<std::uint64_t> radii (count);
       ByteWriter frame, foot, atom, coef;
-      for (std::size_t p = 0; p < m; ++p)
+      for (std::size_t k = 0; k < count; ++k)
       {
-        const PatchCode& patch = model.patches[p];
+        const PatchCode& patch = model.patches[first + k];
+        for (int i = 0; i < 3; ++i)
+          seeds[i][k] = seedSteps (patch.origin, i, q);
         PatchCode decoded;
-        radii[p] = quantiseRadius (patch.radius, q);
-        radius_max = std::max (radius_max, radii[p]);
-        decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
+        radii[k] = quantiseRadius (patch.radius, q);
+        decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[k]) * q.log_radius_step);
         putQuantisedFootprint (foot, patch.footprint, q, options.max_footprint_angles);
         putQuantisedCode (atom, coef, patch, q, frequencies, decoded);
         putQuantisedFrame (frame, patch.frame, decoded, q);
       }
-      q.radius_bytes = bytesFor (radius_max);
-
       ByteWriter seed, radius;
       for (int i = 0; i < 3; ++i)
         putPlanes (seed, seeds[i], q.seed_bytes);
       putPlanes (radius, radii, q.radius_bytes);
-      return {{"QUAN", kCodecStored, quantisationBytes (q)},     {"SEED", kCodecZstd, std::move (seed.bytes ())},
-              {"FRAM", kCodecZstd, std::move (frame.bytes ())}, {"RADI", kCodecZstd, std::move (radius.bytes ())},
-              {"FOOT", kCodecZstd, std::move (foot.bytes ())},  {"ATOM", kCodecZstd, std::move (atom.bytes ())},
-              {"COEF", kCodecZstd, std::move (coef.bytes ())}};
+      return {std::move (seed.bytes ()), std::move (frame.bytes ()), std::move (radius.bytes ()),
+              std::move (foot.bytes ()), std::move (atom.bytes ()),  std::move (coef.bytes ())};
     }
 
-    Section
-    encodeVertices (const SparseSurfaceModel& model, bool quantised)
+    std::vector<std::uint8_t>
+    encodeVertices (const SparseSurfaceModel& model, std::size_t first, std::size_t count, bool quantised)
     {
       ByteWriter out;
-      for (const PatchCode& patch : model.patches)
+      for (std::size_t p = first; p < first + count; ++p)
       {
+        const PatchCode& patch = model.patches[p];
         out.putVarint (patch.vertices.size ());
         std::int64_t previous = 0;
         for (int v : patch.vertices)
@@ -456,7 +470,7 @@ namespace pcl_sparse
               out.putF64 (xy[i]);
           }
       }
-      return {"VERT", kCodecZstd, std::move (out.bytes ())};
+      return std::move (out.bytes ());
     }
 
     // ---- container --------------------------------------------------------------------------------
@@ -489,6 +503,29 @@ namespace pcl_sparse
       std::vector<StoredSection> sections;
     };
 
+    /// The checks of the header's values (shared by version-1 files and the shared fields of tiled files).
+    void
+    checkHeaderValues (std::uint16_t flags, std::uint8_t basis_kind, std::uint16_t basis_parameter, std::uint64_t num_patches,
+                       std::uint64_t num_input_vertices, double bbox_diagonal, double tolerance, const std::string& what)
+    {
+      if ((flags & ~(kFlagQuantised | kFlagVertices | kFlagAttributes)) != 0)
+        throw Error (what + ": unknown header flags");
+      if (basis_kind != kBasisCosine && basis_kind != kBasisDctCosine)
+        throw Error (what + ": unknown basis kind " + std::to_string (basis_kind));
+      if (basis_parameter < 1 || basis_parameter > CosineDictionary::max_frequencies)
+        throw Error (what + ": cosine basis with " + std::to_string (basis_parameter) + " frequencies is out of range");
+      if (num_patches > kMaxPatches)
+        throw Error (what + ": number of patches " + std::to_string (num_patches) + " out of range");
+      if (num_input_vertices > static_cast<std::uint64_t> (std::numeric_limits<std::int32_t>::max ()))
+        throw Error (what + ": number of input vertices out of range");
+      if (!std::isfinite (bbox_diagonal) || bbox_diagonal < 0.0)
+        throw Error (what + ": bbox diagonal is negative or not finite");
+      const bool quantised = flags & kFlagQuantised;
+      if (!std::isfinite (tolerance) || tolerance < 0.0 || (tolerance > 0.0) != quantised ||
+          (quantised && !(bbox_diagonal > 0.0)))
+        throw Error (what + ": tolerance does not match the quantised flag");
+    }
+
     /// Parses and checks the header and the section table (CRCs, sizes, tags, expansion bound).
     Container
     readContainer (const std::uint8_t* data, std::size_t size, const std::string& name)
@@ -516,22 +553,10 @@ namespace pcl_sparse
       const std::uint32_t header_crc = in.getU32 ("header checksum");
       if (kVerifyChecksums && crc32 (data, kHeaderBytes - 4) != header_crc)
         throw Error (what + ": header checksum mismatch (corrupt file)");
-      if ((h.flags & ~(kFlagQuantised | kFlagVertices | kFlagAttributes)) != 0 || reserved != 0)
+      if (reserved != 0)
         throw Error (what + ": unknown header flags");
-      if (h.basis_kind != kBasisCosine && h.basis_kind != kBasisDctCosine)
-        throw Error (what + ": unknown basis kind " + std::to_string (h.basis_kind));
-      if (h.basis_parameter < 1 || h.basis_parameter > CosineDictionary::max_frequencies)
-        throw Error (what + ": cosine basis with " + std::to_string (h.basis_parameter) + " frequencies is out of range");
-      if (h.num_patches > kMaxPatches)
-        throw Error (what + ": number of patches " + std::to_string (h.num_patches) + " out of range");
-      if (h.num_input_vertices > static_cast<std::uint64_t> (std::numeric_limits<std::int32_t>::max ()))
-        throw Error (what + ": number of input vertices out of range");
-      if (!std::isfinite (h.bbox_diagonal) || h.bbox_diagonal < 0.0)
-        throw Error (what + ": bbox diagonal is negative or not finite");
-      const bool quantised = h.flags & kFlagQuantised;
-      if (!std::isfinite (h.tolerance) || h.tolerance < 0.0 || (h.tolerance > 0.0) != quantised ||
-          (quantised && !(h.bbox_diagonal > 0.0)))
-        throw Error (what + ": tolerance does not match the quantised flag");
+      checkHeaderValues (h.flags, h.basis_kind, h.basis_parameter, h.num_patches, h.num_input_vertices, h.bbox_diagonal,
+                         h.tolerance, what);
       const std::vector<std::string> tags = expectedTags (h.flags);
       if (h.num_sections != tags.size ())
         throw Error (what + ": " + std::to_string (h.num_sections) + " sections, expected " + std::to_string (tags.size ()));
@@ -764,8 +789,23 @@ namespace pcl_sparse
     }
   } // namespace
 
-  std::vector<std::uint8_t>
-  encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options)
+  std::vector<std::string>
+  runSectionTags (std::uint16_t flags)
+  {
+    std::vector<std::string> tags (std::begin (kLosslessTags), std::end (kLosslessTags));
+    if (flags & kFlagVertices)
+      tags.push_back ("VERT");
+    if (flags & kFlagAttributes)
+    {
+      tags.push_back ("AATM");
+      tags.push_back ("ACOF");
+    }
+    return tags;
+  }
+
+  ModelSections
+  encodeModelSections (const SparseSurfaceModel& model, const ModelWriteOptions& options,
+                       const std::vector<std::pair<std::size_t, std::size_t>>& runs)
   {
     const CosineAtoms& cosine = cosineBasis (model);
     const int frequencies = cosine.frequencies ();
@@ -783,29 +823,76 @@ namespace pcl_sparse
     const bool quantised = options.tolerance > 0.0;
     if (quantised && !(model.bbox_diagonal > 0.0))
       throw Error ("encodeModel: a tolerance needs the model's bbox_diagonal (> 0)");
+    for (const auto& run : runs)
+      if (run.first > model.patches.size () || run.second > model.patches.size () - run.first)
+        throw Error ("encodeModel: a run of patches lies outside the model");
 
-    std::vector<Section> sections = quantised ? encodeQuantised (model, options, frequencies) : encodeLossless (model);
-    if (options.include_vertices)
-      sections.push_back (encodeVertices (model, quantised));
+    ModelSections out;
+    SharedModelFields& shared = out.shared;
     const bool attributes = model.hasAttributes ();
+    shared.flags = static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0) |
+                                               (attributes ? kFlagAttributes : 0));
+    shared.basis_kind = cosine.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine;
+    shared.basis_parameter = static_cast<std::uint16_t> (frequencies);
+    shared.num_input_vertices = model.num_input_vertices;
+    shared.bbox_diagonal = model.bbox_diagonal;
+    shared.tolerance = options.tolerance;
+    QuantisationParameters q;
+    if (quantised)
+    {
+      q = chooseQuantisation (model, options);
+      shared.quantisation = quantisationBytes (q);
+    }
     if (attributes && quantised && !(options.attribute_tolerance > 0.0 && std::isfinite (options.attribute_tolerance)))
       throw Error ("encodeModel: attribute_tolerance must be > 0");
-    if (attributes)
+    const double attribute_tolerance = quantised ? options.attribute_tolerance : 0.0;
+    for (const auto& [first, count] : runs)
     {
-      AttributeSectionBytes bytes = encodeAttributeSections (model, quantised ? options.attribute_tolerance : 0.0);
-      sections.push_back ({"ACHN", kCodecStored, std::move (bytes.channels)});
-      sections.push_back ({"AATM", kCodecZstd, std::move (bytes.atoms)});
-      sections.push_back ({"ACOF", kCodecZstd, std::move (bytes.coefficients)});
+      std::vector<std::vector<std::uint8_t>> sections =
+        quantised ? encodeQuantisedRun (model, first, count, q, options, frequencies) : encodeLosslessRun (model, first, count);
+      if (options.include_vertices)
+        sections.push_back (encodeVertices (model, first, count, quantised));
+      if (attributes)
+      {
+        AttributeSectionBytes bytes = first == 0 && count == model.patches.size ()
+                                        ? encodeAttributeSections (model, attribute_tolerance)
+                                        : encodeAttributeSections (subModel (model, first, count), attribute_tolerance);
+        sections.push_back (std::move (bytes.atoms));
+        sections.push_back (std::move (bytes.coefficients));
+        if (shared.channels.empty ())
+          shared.channels = std::move (bytes.channels);
+      }
+      out.runs.push_back (std::move (sections));
+    }
+    if (attributes && shared.channels.empty ())
+      shared.channels = encodeAttributeSections (subModel (model, 0, 0), attribute_tolerance).channels;
+    return out;
+  }
+
+  std::vector<std::uint8_t>
+  encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options)
+  {
+    ModelSections parts = encodeModelSections (model, options, {{0, model.patches.size ()}});
+    const SharedModelFields& shared = parts.shared;
+    const bool quantised = shared.flags & kFlagQuantised;
+    std::vector<Section> sections;
+    if (quantised)
+      sections.push_back ({"QUAN", kCodecStored, std::move (parts.shared.quantisation)});
+    const std::vector<std::string> tags = runSectionTags (shared.flags);
+    for (std::size_t i = 0; i < tags.size (); ++i)
+    {
+      if (tags[i] == "AATM")
+        sections.push_back ({"ACHN", kCodecStored, std::move (parts.shared.channels)});
+      sections.push_back ({tags[i], kCodecZstd, std::move (parts.runs[0][i])});
     }
 
     ByteWriter out;
     out.putBytes (kMagic, sizeof kMagic);
     out.putU16 (kVersion);
-    out.putU16 (static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0) |
-                                            (attributes ? kFlagAttributes : 0)));
-    out.putU8 (cosine.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine);
+    out.putU16 (shared.flags);
+    out.putU8 (shared.basis_kind);
     out.putU8 (0);
-    out.putU16 (static_cast<std::uint16_t> (frequencies));
+    out.putU16 (shared.basis_parameter);
     out.putU32 (static_cast<std::uint32_t> (model.patches.size ()));
     out.putU32 (static_cast<std::uint32_t> (sections.size ()));
     out.putU64 (model.num_input_vertices);
@@ -841,42 +928,51 @@ namespace pcl_sparse
     return std::move (out.bytes ());
   }
 
-  SparseSurfaceModel
-  decodeModel (const std::uint8_t* data, std::size_t size, const std::string& name)
+  void
+  checkSharedModelFields (const SharedModelFields& shared, const std::string& name)
   {
-    if (isTiledModelData (data, size))
-      return decodeTiledModel (data, size, name).model;
-    const Container container = readContainer (data, size, name);
-    const Header& h = container.header;
-    const bool quantised = h.flags & kFlagQuantised;
-    const std::size_t m = h.num_patches;
+    checkHeaderValues (shared.flags, shared.basis_kind, shared.basis_parameter, 0, shared.num_input_vertices,
+                       shared.bbox_diagonal, shared.tolerance, name);
+    if (shared.quantisation.empty () != !(shared.flags & kFlagQuantised) ||
+        shared.channels.empty () != !(shared.flags & kFlagAttributes))
+      throw Error (name + ": the shared sections do not match the flags");
+  }
+
+  SparseSurfaceModel
+  decodeModelSections (const SharedModelFields& shared, std::size_t num_patches,
+                       const std::vector<std::pair<const std::uint8_t*, std::size_t>>& payloads, const std::string& name)
+  {
+    const bool quantised = shared.flags & kFlagQuantised;
+    const std::size_t m = num_patches;
+    const std::vector<std::string> tags = runSectionTags (shared.flags);
+    if (payloads.size () != tags.size ())
+      throw Error (name + ": " + std::to_string (payloads.size ()) + " sections, expected " + std::to_string (tags.size ()));
+    if (m > kMaxPatches)
+      throw Error (name + ": number of patches " + std::to_string (m) + " out of range");
 
     SparseSurfaceModel model;
-    model.basis = makeCosineBasis (h.basis_kind == kBasisDctCosine ? CosineBasisKind::Dct : CosineBasisKind::Paper,
-                                   h.basis_parameter);
-    model.num_input_vertices = h.num_input_vertices;
-    model.bbox_diagonal = h.bbox_diagonal;
+    model.basis = makeCosineBasis (shared.basis_kind == kBasisDctCosine ? CosineBasisKind::Dct : CosineBasisKind::Paper,
+                                   shared.basis_parameter);
+    model.num_input_vertices = shared.num_input_vertices;
+    model.bbox_diagonal = shared.bbox_diagonal;
 
     std::size_t next = 0;
-    auto open = [&] (std::vector<std::uint8_t>& storage) {
-      const StoredSection& section = container.sections[next++];
-      storage = sectionBytes (section, name);
-      return ByteReader (storage.data (), storage.size (), name + ": section " + section.tag);
+    auto open = [&] () {
+      const std::size_t i = next++;
+      return ByteReader (payloads[i].first, payloads[i].second, name + ": section " + tags[i]);
     };
-
     QuantisationParameters q;
-    std::vector<std::uint8_t> quan_bytes, seed_bytes, frame_bytes, radius_bytes, foot_bytes, atom_bytes, coef_bytes;
     if (quantised)
     {
-      ByteReader in = open (quan_bytes);
+      ByteReader in (shared.quantisation.data (), shared.quantisation.size (), name + ": section QUAN");
       q = readQuantisation (in);
     }
-    ByteReader seed = open (seed_bytes);
-    ByteReader frame = open (frame_bytes);
-    ByteReader radius = open (radius_bytes);
-    ByteReader foot = open (foot_bytes);
-    ByteReader atom = open (atom_bytes);
-    ByteReader coef = open (coef_bytes);
+    ByteReader seed = open ();
+    ByteReader frame = open ();
+    ByteReader radius = open ();
+    ByteReader foot = open ();
+    ByteReader atom = open ();
+    ByteReader coef = open ();
     checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, q);
     model.patches.resize (m);
 
@@ -893,7 +989,7 @@ namespace pcl_sparse
       PatchCode& patch = model.patches[p];
       readPlacement (seed, radius, quantised, q, seeds, radii, p, patch);
       readFootprint (foot, quantised, q, p, patch.footprint);
-      getCodeAtoms (atom, quantised, h.basis_parameter, "patch " + std::to_string (p), patch.atoms);
+      getCodeAtoms (atom, quantised, shared.basis_parameter, "patch " + std::to_string (p), patch.atoms);
       readCoefficients (coef, quantised, q, patch);
       readFrame (frame, quantised, q, p, patch);
     }
@@ -904,21 +1000,52 @@ namespace pcl_sparse
     atom.expectEnd ();
     coef.expectEnd ();
 
-    if (h.flags & kFlagVertices)
+    if (shared.flags & kFlagVertices)
     {
-      std::vector<std::uint8_t> vertex_bytes;
-      ByteReader vert = open (vertex_bytes);
-      readVertices (vert, quantised, h.num_input_vertices, model.patches);
+      ByteReader vert = open ();
+      readVertices (vert, quantised, shared.num_input_vertices, model.patches);
     }
-    if (h.flags & kFlagAttributes)
+    if (shared.flags & kFlagAttributes)
     {
-      std::vector<std::uint8_t> channel_bytes, attribute_atom_bytes, attribute_coef_bytes;
-      ByteReader channels = open (channel_bytes);
-      ByteReader attribute_atoms = open (attribute_atom_bytes);
-      ByteReader attribute_coefs = open (attribute_coef_bytes);
+      ByteReader channels (shared.channels.data (), shared.channels.size (), name + ": section ACHN");
+      ByteReader attribute_atoms = open ();
+      ByteReader attribute_coefs = open ();
       decodeAttributeSections (channels, attribute_atoms, attribute_coefs, quantised, model);
     }
     return model;
+  }
+
+  SparseSurfaceModel
+  decodeModel (const std::uint8_t* data, std::size_t size, const std::string& name)
+  {
+    if (isTiledModelData (data, size))
+      return decodeTiledModel (data, size, name).model;
+    const Container container = readContainer (data, size, name);
+    const Header& h = container.header;
+    SharedModelFields shared;
+    shared.flags = h.flags;
+    shared.basis_kind = h.basis_kind;
+    shared.basis_parameter = h.basis_parameter;
+    shared.num_input_vertices = h.num_input_vertices;
+    shared.bbox_diagonal = h.bbox_diagonal;
+    shared.tolerance = h.tolerance;
+    std::vector<std::vector<std::uint8_t>> storage;
+    std::vector<std::pair<const std::uint8_t*, std::size_t>> payloads;
+    storage.reserve (container.sections.size ());
+    for (const StoredSection& section : container.sections)
+    {
+      std::vector<std::uint8_t> bytes = sectionBytes (section, name);
+      if (section.tag == "QUAN")
+        shared.quantisation = std::move (bytes);
+      else if (section.tag == "ACHN")
+        shared.channels = std::move (bytes);
+      else
+      {
+        storage.push_back (std::move (bytes));
+        payloads.emplace_back (storage.back ().data (), storage.back ().size ());
+      }
+    }
+    return decodeModelSections (shared, h.num_patches, payloads, name);
   }
 
   ModelFileInfo

@@ -25,6 +25,17 @@ namespace pcl_sparse
     return out;
   }
 
+  std::uint64_t
+  zstdFrameContentSize (const std::uint8_t* data, std::size_t size, const std::string& what)
+  {
+    const unsigned long long declared = ZSTD_getFrameContentSize (data, size);
+    if (declared == ZSTD_CONTENTSIZE_ERROR)
+      throw Error (what + ": not a valid zstd frame");
+    if (declared == ZSTD_CONTENTSIZE_UNKNOWN)
+      throw Error (what + ": zstd frame without a content size");
+    return declared;
+  }
+
   std::vector<std::uint8_t>
   decompressBytes (const std::uint8_t* data, std::size_t size, std::size_t expected_size, const std::string& what)
   {

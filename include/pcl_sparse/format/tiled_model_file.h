@@ -1,11 +1,14 @@
 #pragma once
 /// \file tiled_model_file.h
-/// The tiled .psm file (format version 2, docs/FORMAT.md "Tiled files"; issue 16): a header with the
-/// tile grid, a tile index (tile -> patch range, byte range and the box its patches can reach), then each
-/// tile's patches as a complete version-1 model. A region is decoded by reading the header, the index and
-/// only the tiles whose patches reach into it; loadModel / decodeModel read a tiled file as the merged model.
+/// The tiled .psm file (format version 3, docs/FORMAT.md "Tiled files"; issue 16): a header with the tile grid and
+/// what every tile shares (basis, quantisation parameters, attribute channels), a compact tile index (tile -> patch
+/// range, byte range and the box its patches can reach), then each tile's per-patch sections (a zstd frame each). A
+/// region is decoded by reading the header, the index and only the tiles whose patches reach into it; loadModel /
+/// decodeModel read a tiled file as the merged model. Files of the older tiled layout (version 2: every tile a
+/// complete version-1 model) are still read.
 
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/tiles/tiled_model.h>
 
 #include <Eigen/Geometry>
@@ -23,9 +26,9 @@ namespace pcl_sparse
     std::size_t tile = 0;            ///< tile number in the grid
     std::size_t first_patch = 0;     ///< number of its first patch in the whole model
     std::size_t num_patches = 0;     ///< its patches
-    std::uint64_t offset = 0;        ///< byte offset of its version-1 model from the start of the file
-    std::uint64_t size = 0;          ///< its bytes
-    Eigen::AlignedBox3d reach;       ///< every surface point its patches can give (patchReachBox, + tolerance)
+    std::uint64_t offset = 0;        ///< byte offset of its bytes from the start of the file
+    std::uint64_t size = 0;          ///< its bytes (version 3: its sections and their CRC-32)
+    Eigen::AlignedBox3d reach;       ///< every surface point its patches can give (patchReachBox, + tolerance; rounded outward)
   };
 
   /// The header and tile index of a tiled file.
@@ -37,10 +40,12 @@ namespace pcl_sparse
     double tolerance = 0.0;                 ///< as written (fraction of bbox_diagonal)
     std::size_t total_patches = 0;          ///< of the whole model
     std::vector<TileIndexEntry> entries;    ///< tiles with patches, ascending
-    std::uint64_t index_bytes = 0;          ///< bytes of the header and the index
+    std::uint64_t index_bytes = 0;          ///< bytes of the header, the shared sections and the index
+    std::uint16_t version = 3;              ///< tiled format version (2 or 3)
+    SharedModelFields shared;               ///< version 3: what the tiles share (basis, flags, QUAN, ACHN)
   };
 
-  /// Whether \a data starts like a tiled model file (magic and version 2).
+  /// Whether \a data starts like a tiled model file (magic and version 2 or 3).
   bool
   isTiledModelData (const std::uint8_t* data, std::size_t size);
 
@@ -51,7 +56,7 @@ namespace pcl_sparse
   /// \brief The bytes of a tiled file; tiles are encoded in parallel (\a num_threads, 0 = default), the bytes
   /// do not depend on it.
   /// \param[in] tiled        the tiled model
-  /// \param[in] options      as for encodeModel (each tile's model is written with them)
+  /// \param[in] options      as for encodeModel (quantisation is chosen over the whole model)
   /// \param[in] num_threads  OpenMP threads
   /// \return the file's bytes
   /// \throws pcl_sparse::Error as encodeModel, or for tile ranges that do not fit the model
@@ -83,9 +88,11 @@ namespace pcl_sparse
   TiledModelIndex
   readTiledModelIndex (const std::string& path);
 
-  /// \brief Loads the tiles whose patches can reach into \a box: every patch that can give a point in the
-  /// box or compete for one (resampling ownership), and nothing else; with the patch numbers of the
-  /// whole model (TiledModel::patchNumbers), it resamples as the whole model does inside the box.
+  /// \brief Loads the tiles whose patches can reach into \a box (every patch that can give a point in the
+  /// box or compete for one, resampling ownership), then the tiles whose patches can compete anywhere in the
+  /// footprint of such a patch (a patch keeps its points by systematic sampling over all the places it owns,
+  /// so which of them fall in the box depends on who owns the others); with the patch numbers of the whole
+  /// model (TiledModel::patchNumbers), it resamples as the whole model does inside the box.
   /// \param[in]  path        the file
   /// \param[in]  box         the region, in the model's frame
   /// \param[out] bytes_read  if not null: bytes read from the file (header, index and the tiles)
@@ -99,7 +106,9 @@ namespace pcl_sparse
   /// \param[in] data  first byte
   /// \param[in] size  number of bytes
   /// \param[in] name  names the data in error messages
-  /// \return what the file holds (version 2, num_tiles set)
+  /// \return what the file holds (num_tiles set; version 3: TIDX the header, index and their checksums, the
+  ///         shared QUAN / ACHN, the tiles' sections summed by tag, and TILE the tiles' own framing: their
+  ///         section sizes and checksums; the sizes add up to the file's)
   ModelFileInfo
   inspectTiledModel (const std::uint8_t* data, std::size_t size, const std::string& name = "model");
 

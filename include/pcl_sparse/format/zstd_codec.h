@@ -18,6 +18,15 @@ namespace pcl_sparse
   std::vector<std::uint8_t>
   compressBytes (const std::uint8_t* data, std::size_t size, int level);
 
+  /// The content size a zstd frame declares in its header (nothing is decompressed).
+  /// \param[in] data  first byte of the frame
+  /// \param[in] size  bytes of the frame
+  /// \param[in] what  names the data in error messages
+  /// \return the declared size
+  /// \throws pcl_sparse::Error "<what>: ..." if the header is malformed or declares no size
+  std::uint64_t
+  zstdFrameContentSize (const std::uint8_t* data, std::size_t size, const std::string& what);
+
   /// Decompresses one zstd frame that must hold exactly a given number of bytes. The output buffer is
   /// allocated only after the frame header agreed with that number; callers bound it beforehand.
   /// \param[in] data           first byte of the frame

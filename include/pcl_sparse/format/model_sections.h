@@ -1,0 +1,72 @@
+#pragma once
+/// \file model_sections.h
+/// A model file's sections without their container (docs/FORMAT.md): what every part of a model shares (the
+/// header's flags and basis, the quantisation parameters QUAN and the attribute channels ACHN, both chosen over the
+/// whole model) and, for runs of patches, the raw payloads of the per-patch sections. A version-1 file
+/// (model_file.h) holds one run covering every patch, each section framed and compressed on its own; a tiled file
+/// (tiled_model_file.h, version 3) stores the shared part once and each tile's run with a few bytes of framing.
+/// Quantising with the whole model's parameters makes a run decode to exactly the patches the version-1 file of the
+/// whole model gives.
+
+#include <pcl_sparse/format/model_file.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// What the parts of a model share.
+  struct SharedModelFields
+  {
+    std::uint16_t flags = 0;                 ///< as the version-1 header: bit 0 quantised, 1 vertices, 2 attributes
+    std::uint8_t basis_kind = 0;             ///< 1 the paper's cosines, 2 half-period cosines
+    std::uint16_t basis_parameter = 0;       ///< n, frequencies per axis
+    std::uint64_t num_input_vertices = 0;    ///< of the whole input
+    double bbox_diagonal = 0.0;              ///< of the whole input
+    double tolerance = 0.0;                  ///< 0: lossless
+    std::vector<std::uint8_t> quantisation;  ///< QUAN payload (quantised only)
+    std::vector<std::uint8_t> channels;      ///< ACHN payload (with attributes only)
+  };
+
+  /// A model as its shared fields and, per run of patches, its per-patch sections' raw payloads.
+  struct ModelSections
+  {
+    SharedModelFields shared;                                   ///< as above
+    std::vector<std::vector<std::vector<std::uint8_t>>> runs;   ///< per run, per tag of runSectionTags (shared.flags)
+  };
+
+  /// \brief The per-patch sections of a file with \a flags, in file order: SEED FRAM RADI FOOT ATOM COEF
+  /// [VERT] [AATM ACOF].
+  std::vector<std::string>
+  runSectionTags (std::uint16_t flags);
+
+  /// \brief Encodes \a model (checked as encodeModel does) with quantisation chosen over all its patches.
+  /// \param[in] model    the model
+  /// \param[in] options  as for encodeModel (zstd_level unused)
+  /// \param[in] runs     (first patch, count) of each run; runs may be in any order
+  /// \return the shared fields and each run's sections
+  /// \throws pcl_sparse::Error as encodeModel, or for runs outside the model
+  ModelSections
+  encodeModelSections (const SparseSurfaceModel& model, const ModelWriteOptions& options,
+                       const std::vector<std::pair<std::size_t, std::size_t>>& runs);
+
+  /// \brief Checks the shared fields as the version-1 reader checks its header (flags, basis, counts,
+  /// tolerance; QUAN and ACHN are checked by decodeModelSections).
+  /// \throws pcl_sparse::Error "<name>: ..." for anything out of range
+  void
+  checkSharedModelFields (const SharedModelFields& shared, const std::string& name);
+
+  /// \brief Decodes one run of \a num_patches patches.
+  /// \param[in] shared       the shared fields (checkSharedModelFields passed)
+  /// \param[in] num_patches  patches of the run
+  /// \param[in] payloads     (first byte, size) per tag of runSectionTags (shared.flags)
+  /// \param[in] name         names the data in error messages ("<name>: section SEED: ...")
+  /// \return the run as a model (basis, vertex count, diagonal and attribute channels of the shared fields)
+  /// \throws pcl_sparse::Error for anything malformed
+  SparseSurfaceModel
+  decodeModelSections (const SharedModelFields& shared, std::size_t num_patches,
+                       const std::vector<std::pair<const std::uint8_t*, std::size_t>>& payloads, const std::string& name);
+} // namespace pcl_sparse
