@@ -164,7 +164,7 @@ TEST (FaceCompletion, PresetPaperKeepsTheMethod)
 TEST (FaceCompletion, SharedCadMeshes)
 {
   // Before this issue's changes (default options, bench/results/meshes.md): p99 6.55 / 4.38 / 3.06 spacings
-  // and 60 / 229 / 495 flipped normals. Now (measured here): p99 2.89 / 2.89 / 0.80, flipped 47 / 219 / 36:
+  // and 60 / 229 / 495 flipped normals. Now (measured here): p99 2.84 / 2.75 / 0.79, flipped 37 / 250 / 27:
   // the holes are gone; the flips are not (issue 13 asks for none). couplingdown and cheese-cgal are held
   // at CR 1 by their frames (1829 patches of 8629 vertices leave cheese-cgal about one atom per patch), and
   // their remaining faces in no patch lie outside the cone of every patch holding a corner.
