@@ -48,7 +48,7 @@ namespace
       {"-eta E", tools::format ("flatness bound A_p / A_p^proj (default %g)", kDefaults.eta)},
       {"-sigma S", tools::format ("seed overlap control (default %g)", kDefaults.sigma)},
       {"-min-size N", tools::format ("smallest patch the sampling keeps (default %d)", kDefaults.min_patch_size)},
-      {"--authors", "the authors' code: cone 72 degrees, no pairwise cone, no coverage pass"},
+      {"--authors", "the authors' code: cone 72 degrees, no pairwise cone, no coverage pass, no face completion"},
       {"-preset P", "default or paper: accepted as by every tool; both grow these patches (they differ in coding)"},
       tools::pngHelpLine (),
       {"--json", "print one JSON object on stdout"},
@@ -80,6 +80,7 @@ main (int argc, char** argv)
       options.pairwise_cone = false;
       options.cover_all_vertices = false;
       options.cover_unreferenced_vertices = false;
+      options.complete_faces = false;
     }
     double delta_degrees = options.delta * 180.0 / M_PI, cone_degrees = options.cone_angle * 180.0 / M_PI;
     args.number ("-rho", options.rho);

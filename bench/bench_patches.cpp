@@ -3,7 +3,7 @@
 ///
 ///   bench_patches MESH... [-rho R] [-repeat N] [-authors] [-header 0]
 ///
-/// -authors: the authors' code's choices (cone 72 degrees, no pairwise cone, no coverage pass).
+/// -authors: the authors' code's choices (cone 72 degrees, no pairwise cone, no coverage pass, no face completion).
 /// Columns: vertices, Harris seconds, partition seconds (best of N, wall clock and process CPU time: on
 /// a machine shared with other jobs the CPU time is the meaningful one), microseconds per vertex, patches M,
 /// seeds grown by the sampling loop, coverage-pass patches, patch size median, mean patches per vertex.
@@ -53,6 +53,7 @@ main (int argc, char** argv)
     options.pairwise_cone = false;
     options.cover_all_vertices = false;
     options.cover_unreferenced_vertices = false;
+    options.complete_faces = false;
   }
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i)

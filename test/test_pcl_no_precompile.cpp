@@ -70,7 +70,9 @@ TEST (PclNoPrecompile, CustomInputAndOutputPointTypes)
   double dot = 0.0;
   for (const my_robot::SurfelPoint& p : out)
   {
-    EXPECT_NEAR (p.getVector3fMap ().norm (), 1.0f, 0.02f);
+    // 56 patches of 12 atoms on a 642-vertex sphere; with face completion (issue 13) they also cover the
+    // faces between them, where the farthest point is 0.022 off the sphere (0.013 without).
+    EXPECT_NEAR (p.getVector3fMap ().norm (), 1.0f, 0.025f);
     dot += p.getNormalVector3fMap ().dot (p.getVector3fMap ().normalized ());
   }
   EXPECT_GT (dot / static_cast<double> (out.size ()), 0.98);

@@ -54,7 +54,8 @@ namespace pcl_sparse
     code.vertex_xy.reserve (patch.local.size ());
     for (const Eigen::Vector3d& p : patch.local)
       code.vertex_xy.emplace_back (p.x (), p.y ());
-    code.footprint = computePatchFootprint (patch, mesh, options.footprint_angles, options.clip_footprints_at_holes);
+    code.footprint = computePatchFootprint (patch, mesh, options.footprint_angles, options.clip_footprints_at_holes,
+                                           options.clip_footprints_at_border && !patch.beside_uncovered_face);
 
     // Samples: the vertices, then extra points on the patch's own triangles (docs/METHOD.md step 7).
     std::vector<Eigen::Vector2d> positions (code.vertex_xy);
@@ -62,7 +63,9 @@ namespace pcl_sparse
     heights.reserve (patch.local.size ());
     for (const Eigen::Vector3d& p : patch.local)
       heights.push_back (p.z ());
-    const int missing = options.min_samples - static_cast<int> (patch.local.size ());
+    const int missing =
+        std::max (options.min_samples - static_cast<int> (patch.local.size ()),
+                  static_cast<int> (std::ceil (options.triangle_samples * static_cast<double> (patch.triangles.size ()))));
     const std::vector<PatchSurfacePoint> extra_samples =
         drawPatchSurfacePoints (patch, mesh, missing, mixSeed (options.seed, patch_index));
     for (const PatchSurfacePoint& sample : extra_samples)

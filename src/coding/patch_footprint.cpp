@@ -102,13 +102,11 @@ namespace pcl_sparse
       return false;
     }
 
-    /// Per ray, the radius where it first leaves the union of the projected triangles for a gap wider than
-    /// 3 median edge lengths before meeting them again (a hole, or a concave bay of the patch's border);
-    /// +infinity where it meets no such gap. Narrower gaps (a missing triangle of a scan's triangulation)
-    /// are crossed: clipping there would open holes between patches. \a triangles: local corner indices.
-    std::vector<double>
-    firstExits (const std::vector<std::array<int, 3>>& triangles, const std::vector<Corner>& corners,
-                const std::vector<Eigen::Vector2d>& rays)
+    /// The edges of the projected triangles used by only one of them (the border of their union), and the
+    /// median length of all their edges. \a triangles: local corner indices.
+    std::vector<std::pair<int, int>>
+    borderEdges (const std::vector<std::array<int, 3>>& triangles, const std::vector<Corner>& corners,
+                 double& median_length)
     {
       std::vector<std::pair<int, int>> edges;
       edges.reserve (3 * triangles.size ());
@@ -121,31 +119,52 @@ namespace pcl_sparse
       for (const auto& e : edges)
         lengths.push_back ((corners[e.first].p - corners[e.second].p).norm ());
       std::nth_element (lengths.begin (), lengths.begin () + lengths.size () / 2, lengths.end ());
-      const double gap = 3.0 * lengths[lengths.size () / 2];
-
-      // Crossings of each ray with the border edges (used by one patch triangle).
-      std::vector<std::vector<double>> crossings (rays.size ());
+      median_length = lengths[lengths.size () / 2];
+      std::vector<std::pair<int, int>> border;
       for (std::size_t i = 0; i < edges.size ();)
       {
         std::size_t j = i;
         while (j < edges.size () && edges[j] == edges[i])
           ++j;
         if (j - i == 1)
-        {
-          for (std::size_t k = 0; k < rays.size (); ++k)
-          {
-            double r = 0.0;
-            if (rayCrossing (rays[k], corners[edges[i].first].p, corners[edges[i].second].p, r))
-              crossings[k].push_back (r);
-          }
-        }
+          border.push_back (edges[i]);
         i = j;
       }
+      return border;
+    }
+
+    /// Per ray, the radii where it crosses the border edges, ascending.
+    std::vector<std::vector<double>>
+    borderCrossings (const std::vector<std::pair<int, int>>& border, const std::vector<Corner>& corners,
+                     const std::vector<Eigen::Vector2d>& rays)
+    {
+      std::vector<std::vector<double>> crossings (rays.size ());
+      for (const auto& e : border)
+        for (std::size_t k = 0; k < rays.size (); ++k)
+        {
+          double r = 0.0;
+          if (rayCrossing (rays[k], corners[e.first].p, corners[e.second].p, r))
+            crossings[k].push_back (r);
+        }
+      for (auto& c : crossings)
+        std::sort (c.begin (), c.end ());
+      return crossings;
+    }
+
+    /// Per ray, the radius where it first leaves the union of the projected triangles for a gap wider than
+    /// 3 median edge lengths before meeting them again (a hole, or a concave bay of the patch's border);
+    /// +infinity where it meets no such gap. Narrower gaps (a missing triangle of a scan's triangulation)
+    /// are crossed: clipping there would open holes between patches.
+    std::vector<double>
+    firstExits (const std::vector<std::array<int, 3>>& triangles, const std::vector<Corner>& corners,
+                const std::vector<std::vector<double>>& crossings, double median_length,
+                const std::vector<Eigen::Vector2d>& rays)
+    {
+      const double gap = 3.0 * median_length;
       std::vector<double> exits (rays.size (), std::numeric_limits<double>::infinity ());
       for (std::size_t k = 0; k < rays.size (); ++k)
       {
-        std::vector<double>& c = crossings[k];
-        std::sort (c.begin (), c.end ());
+        const std::vector<double>& c = crossings[k];
         for (std::size_t i = 0; i + 1 < c.size (); ++i)
           if (c[i + 1] - c[i] > gap && !insideSomeTriangle (0.5 * (c[i] + c[i + 1]) * rays[k], triangles, corners))
           {
@@ -155,10 +174,44 @@ namespace pcl_sparse
       }
       return exits;
     }
+
+    /// Lowers each conservative \a extent to the outermost crossing of its ray with the triangles' border
+    /// (\a outer), then raises the two extents around each corner the linear interpolation would cut, just
+    /// enough to hold it (never above the conservative extents, which hold every corner). Every point of
+    /// every projected triangle stays inside: along a segment within one sector the radius is a convex
+    /// function of the angle, so the interpolation holds the segment once it holds the segment's ends
+    /// (corners, or crossings of the rays, which are at most the outermost crossing).
+    void
+    clipAtBorder (const std::vector<Corner>& corners, const std::vector<double>& outer, std::vector<double>& extent)
+    {
+      const int angles = static_cast<int> (extent.size ());
+      const std::vector<double> conservative = extent;
+      for (int k = 0; k < angles; ++k)
+        extent[k] = std::min (extent[k], outer[k]);
+      for (const Corner& c : corners)
+      {
+        if (!(c.r > 0.0))
+          continue;
+        double t = std::atan2 (c.p.y (), c.p.x ()) / (2.0 * M_PI);
+        t -= std::floor (t);
+        const int k = c.sector, j = (k + 1) % angles;
+        const double w = std::min (1.0, std::max (0.0, t * angles - k));
+        // The nearer ray first, so the other one moves as little as possible.
+        const int near = w >= 0.5 ? j : k, far = w >= 0.5 ? k : j;
+        const double near_weight = w >= 0.5 ? w : 1.0 - w, far_weight = 1.0 - near_weight;
+        auto held = [&] () { return (1.0 - w) * extent[k] + w * extent[j]; };
+        if (held () >= c.r)
+          continue;
+        extent[near] = std::min (conservative[near], extent[near] + (c.r - held ()) / near_weight);
+        if (held () < c.r && far_weight > 0.0)
+          extent[far] = std::min (conservative[far], extent[far] + (c.r - held ()) / far_weight);
+      }
+    }
   } // namespace
 
   PatchFootprint
-  computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles, bool clip_at_first_exit)
+  computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles, bool clip_at_first_exit,
+                         bool clip_at_border)
   {
     PatchFootprint footprint;
     if (angles < 1)
@@ -202,17 +255,34 @@ namespace pcl_sparse
         continue;
       for (int c = 0; c < 3; ++c)
         addSegment (corners[corner[c]], corners[corner[(c + 1) % 3]], rays, sector_max);
-      if (clip_at_first_exit)
-        local_triangles.push_back ({corner[0], corner[1], corner[2]});
+      local_triangles.push_back ({corner[0], corner[1], corner[2]});
     }
-    std::vector<double> exits;
-    if (clip_at_first_exit && !local_triangles.empty ())
-      exits = firstExits (local_triangles, corners, rays);
+    std::vector<double> exits, outer;
+    if ((clip_at_first_exit || clip_at_border) && !local_triangles.empty ())
+    {
+      double median_length = 0.0;
+      const auto crossings = borderCrossings (borderEdges (local_triangles, corners, median_length), corners, rays);
+      if (clip_at_first_exit)
+        exits = firstExits (local_triangles, corners, crossings, median_length, rays);
+      if (clip_at_border)
+      {
+        outer.assign (angles, std::numeric_limits<double>::infinity ());
+        for (int k = 0; k < angles; ++k)
+          if (!crossings[k].empty ())
+            outer[k] = crossings[k].back ();
+      }
+    }
 
+    // The conservative extents: the larger of the two adjacent sector maxima.
+    std::vector<double> extent (angles);
+    for (int k = 0; k < angles; ++k)
+      extent[k] = std::max (sector_max[k], sector_max[(k + angles - 1) % angles]);
+    if (!outer.empty ())
+      clipAtBorder (corners, outer, extent);
     footprint.extent.resize (angles);
     for (int k = 0; k < angles; ++k)
     {
-      double e = std::max (sector_max[k], sector_max[(k + angles - 1) % angles]);
+      double e = extent[k];
       if (!exits.empty ())
         e = std::min (e, exits[k]);
       // Round up so the float never cuts a vertex lying exactly on the boundary.

@@ -240,6 +240,8 @@ namespace pcl_sparse
     require (coding.tolerance > 0.0 && coding.tolerance < 1.0,
              "eps must be in (0, 1), got " + std::to_string (coding.tolerance));
     require (coding.min_samples >= 0, "min samples must be >= 0, got " + std::to_string (coding.min_samples));
+    require (coding.triangle_samples >= 0.0 && std::isfinite (coding.triangle_samples),
+             "triangle samples must be >= 0, got " + std::to_string (coding.triangle_samples));
     require (coding.footprint_angles >= 3,
              "footprint angles must be >= 3, got " + std::to_string (coding.footprint_angles));
     require (coding.support_scale >= 1.0 && std::isfinite (coding.support_scale),
@@ -288,6 +290,9 @@ namespace pcl_sparse
     {
       options.basis = CosineBasisKind::Paper;
       options.patches.cone_angle = M_PI / 2.0;
+      options.patches.complete_faces = false;
+      options.coding.triangle_samples = 0.0;
+      options.coding.clip_footprints_at_border = false;
       options.max_compression_ratio = 0.0;
     }
     return options;

@@ -4,6 +4,7 @@
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/patches/face_completion.h>
 #include <pcl_sparse/patches/non_manifold_split.h>
 #include <pcl_sparse/patches/patch_growth.h>
 
@@ -424,6 +425,13 @@ namespace pcl_sparse
         }
       }
     result.num_coverage_patches = result.patches.size () - num_sampled;
+    if (options.complete_faces)
+    {
+      // Faces of the seed region only (a face with a seedable corner): a tile's margin is another tile's.
+      FaceCompletionResult completion = completePatchFaces (mesh, topology, geometry, options, result.patches, seedable);
+      result.num_completed_faces = completion.completed;
+      result.uncovered_faces = std::move (completion.uncovered);
+    }
 
     result.frame_kinds = fitFrames (mesh, topology, geometry, threads, result.patches);
     if (growth.is_split)

@@ -10,6 +10,42 @@
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// Whether every one of \a triangles is reached from \a seed_face through adjacent ones (across manifold
+    /// edges) whose normals differ by less than delta (\a cos_delta).
+    bool
+    reachedBySmoothSteps (const std::vector<int>& triangles, int seed_face, const MeshTopology& topology,
+                          const PatchGrowthGeometry& geometry, double cos_delta)
+    {
+      std::vector<int> tris (triangles), stack = {seed_face};
+      std::sort (tris.begin (), tris.end ());
+      std::vector<char> reached (tris.size (), 0);
+      reached[std::lower_bound (tris.begin (), tris.end (), seed_face) - tris.begin ()] = 1;
+      std::size_t count = 1;
+      while (!stack.empty ())
+      {
+        const int f = stack.back ();
+        stack.pop_back ();
+        for (int k = 0; k < 3; ++k)
+        {
+          const int g = topology.face_neighbors[f][k];
+          if (g < 0)
+            continue;
+          const auto it = std::lower_bound (tris.begin (), tris.end (), g);
+          if (it == tris.end () || *it != g || reached[it - tris.begin ()])
+            continue;
+          if (!(geometry.face_normals[f].dot (geometry.face_normals[g]) > cos_delta))
+            continue;
+          reached[it - tris.begin ()] = 1;
+          ++count;
+          stack.push_back (g);
+        }
+      }
+      return count == tris.size ();
+    }
+  } // namespace
+
   PatchInvariantChecker::PatchInvariantChecker (const TriangleMesh& mesh, const PatchOptions& options,
                                                 const std::vector<Eigen::Vector3d>& point_normals)
     : mesh_ (mesh), options_ (options)
@@ -71,10 +107,11 @@ namespace pcl_sparse
     }
     const double cos_delta = std::cos (options_.delta), cos_cone = std::cos (options_.cone_angle);
     double area = 0.0, projected = 0.0;
-    for (int f : patch.triangles)
+    const std::size_t grown = patch.triangles.size () - std::min (patch.triangles.size (), patch.completed_triangles);
+    for (std::size_t i = 0; i < patch.triangles.size (); ++i)
     {
-      const Eigen::Vector3i& t = mesh_.triangles[f];
-      const Eigen::Vector3i& tg = grown_mesh_->triangles[f];
+      const int f = patch.triangles[i];
+      const Eigen::Vector3i &t = mesh_.triangles[f], &tg = grown_mesh_->triangles[f];
       for (int k = 0; k < 3; ++k)
         if (!std::binary_search (sorted.begin (), sorted.end (), t[k]))
           return "triangle " + std::to_string (f) + " has a corner outside the patch";
@@ -88,45 +125,22 @@ namespace pcl_sparse
         return "triangle " + std::to_string (f) + " flips on the seed's tangent plane";
       if (!(nt.dot (ns) > cos_cone))
         return "triangle " + std::to_string (f) + " outside the normal cone";
-      bool smooth = patch.seed_face >= 0;  // face-grown: checked below, between adjacent faces
+      // Face-grown: smooth variation is checked below, between adjacent faces. Face completion: none.
+      bool smooth = patch.seed_face >= 0 || i >= grown;
       for (int k = 0; k < 3; ++k)
         smooth = smooth || nt.dot (geometry_.vertex_normals[tg[k]]) > cos_delta;
       if (!smooth)
         return "triangle " + std::to_string (f) + " fails smooth variation";
+      if (i >= grown)
+        continue;  // nor the area bound
       area += a;
       projected += a * nt.dot (ns);
     }
-    if (patch.seed_face >= 0)
-    {
-      // Every triangle is reached from the seed face through adjacent patch triangles (across manifold
-      // edges) whose normals differ by less than delta.
-      std::vector<int> tris = patch.triangles, stack = {patch.seed_face};
-      std::sort (tris.begin (), tris.end ());
-      std::vector<char> reached (tris.size (), 0);
-      reached[std::lower_bound (tris.begin (), tris.end (), patch.seed_face) - tris.begin ()] = 1;
-      std::size_t count = 1;
-      while (!stack.empty ())
-      {
-        const int f = stack.back ();
-        stack.pop_back ();
-        for (int k = 0; k < 3; ++k)
-        {
-          const int g = topology_.face_neighbors[f][k];
-          if (g < 0)
-            continue;
-          const auto it = std::lower_bound (tris.begin (), tris.end (), g);
-          if (it == tris.end () || *it != g || reached[it - tris.begin ()])
-            continue;
-          if (!(geometry_.face_normals[f].dot (geometry_.face_normals[g]) > cos_delta))
-            continue;
-          reached[it - tris.begin ()] = 1;
-          ++count;
-          stack.push_back (g);
-        }
-      }
-      if (count != tris.size ())
-        return "face-grown patch: a triangle is not reached from the seed face by smooth steps";
-    }
+    // Face-grown: every triangle (of growth) is reached from the seed face by smooth steps.
+    if (patch.seed_face >= 0 &&
+        !reachedBySmoothSteps (std::vector<int> (patch.triangles.begin (), patch.triangles.begin () + grown),
+                               patch.seed_face, topology_, geometry_, cos_delta))
+      return "face-grown patch: a triangle is not reached from the seed face by smooth steps";
     if (options_.pairwise_cone)
     {
       // Only a pair with a triangle further than half the cone from n_s can fail.

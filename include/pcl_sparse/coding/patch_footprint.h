@@ -29,7 +29,18 @@ namespace pcl_sparse
   /// does not cover it, while a missing triangle here and there does not cut it short. Points of the
   /// triangles beyond such an exit are left to the patches around them.
   /// \param[in] clip_at_first_exit  clip the extents as above (default false: the exact cover)
+  ///
+  /// With \a clip_at_border (ours, the encoder's default), extent k is first lowered to the outermost
+  /// radius where ray k crosses the border of the union of the projected triangles (an edge of one
+  /// triangle only), then the two extents around each corner the interpolation would cut are raised just
+  /// enough to hold it (never above the sector maxima). Every point of every projected triangle is still
+  /// inside (along a segment within one sector the radius is a convex function of the angle, so holding
+  /// its ends, corners or ray crossings, holds it), but the footprint no longer reaches the farthest
+  /// corner between two rays where the border runs closer: at open borders and sharp edges that overshoot
+  /// is where a code extrapolates past the surface, on a thin part to its other side, and resampled
+  /// normals there point the wrong way.
+  /// \param[in] clip_at_border  clip the extents as above (default false: the sector maxima)
   PatchFootprint
   computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles = 16,
-                         bool clip_at_first_exit = false);
+                         bool clip_at_first_exit = false, bool clip_at_border = false);
 } // namespace pcl_sparse

@@ -93,6 +93,10 @@ namespace pcl_sparse
     std::vector<int> uncovered;              ///< vertices in no patch, ascending
     std::vector<int> unreferenced;           ///< vertices no face uses, ascending
     std::size_t num_coverage_patches = 0;    ///< patches (a suffix) added by the coverage pass
+    std::size_t num_completed_faces = 0;     ///< faces face completion added to a patch (complete_faces)
+    /// Proper faces (area > 0) in no patch after face completion, ascending (with complete_faces; empty
+    /// without it).
+    std::vector<int> uncovered_faces;
     std::size_t num_grown = 0;               ///< seeds grown by the sampling loop, kept or not
     std::vector<PatchFrameKind> frame_kinds; ///< how each patch's frame was chosen
   };

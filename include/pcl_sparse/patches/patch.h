@@ -19,6 +19,13 @@ namespace pcl_sparse
     int seed_face = -1;
     std::vector<int> vertices;                          ///< vertex indices, seed first, in growth order
     std::vector<int> triangles;                         ///< faces whose three corners are all in the patch
+    /// The last this many entries of `triangles` were added by face completion (face_completion.h), not by
+    /// growth: they keep the cone and no-flip conditions, not smooth variation nor the area bound.
+    std::size_t completed_triangles = 0;
+    /// A corner of the patch belongs to a face that face completion could put in no patch: the patch's
+    /// footprint is then not clipped at its border (SparseCodingOptions::clip_footprints_at_border), whose
+    /// overshoot is what covers that face.
+    bool beside_uncovered_face = false;
     Eigen::Vector3d origin = Eigen::Vector3d::Zero ();  ///< s: the seed's position
     Eigen::Matrix3d frame = Eigen::Matrix3d::Identity ();  ///< R = (T1, T2, N): jet principal directions, normal
     double radius = 0.0;  ///< r_P: largest tangent-plane distance from s to a patch vertex (> 0)

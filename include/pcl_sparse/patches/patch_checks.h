@@ -39,6 +39,8 @@ namespace pcl_sparse
     /// - any two triangles differ by less than cone_angle (when options.pairwise_cone);
     /// - A_p / A <= rho or A_p / A_p^proj <= eta.
     ///
+    /// Triangles added by face completion (Patch::completed_triangles) are not held to smooth variation
+    /// and the area bound, which are growth's.
     /// Face-grown coverage patches (seed_face >= 0) use n_{seed_face} for n_s, and smooth variation means
     /// every triangle is reached from the seed face through adjacent patch triangles less than delta apart.
     /// \param[in] patch  a patch with frame, radius and local coordinates

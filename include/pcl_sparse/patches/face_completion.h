@@ -1,0 +1,59 @@
+#pragma once
+/// \file face_completion.h
+/// Face completion (ours): every face of the surface joins some patch, so every point of it, not only every
+/// vertex, lies in the footprint of a patch (issue 13 point 1).
+///
+/// Growth (patch_growth.h) makes a face a patch triangle only when its three corners joined one patch.
+/// Where the faces are long and thin (CAD meshes) or cross a crease, the corners of a face often joined
+/// different patches, and the face is in none: its points lie outside every footprint and resampling leaves
+/// a hole there (85 % of couplingdown's area, 42 % of blade's). Completion adds each such face to one of
+/// the patches holding one of its corners, among those where the face keeps the growth's guarantees:
+/// within the normal cone of the seed (PatchOptions::cone_angle) and of every patch triangle (with
+/// pairwise_cone), no flip on the seed's tangent plane, and no overlap with the patch's triangles
+/// projected there (the patch stays a height field). Preferred, in
+/// order: a patch where the face passes growth's smooth variation test (within delta of the vertex normal
+/// of a corner the patch holds, or of a patch triangle across an edge), the one holding the most corners,
+/// the one whose seed normal is closest to the face normal, the lowest index. The missing corners join the
+/// patch's vertices. No patch is added, so M does not change; the extra vertices and triangles are extra
+/// samples of the patch's fit and extend its footprint.
+///
+/// Measured (bench/results/face_completion.md): faces in no patch before / after completion, couplingdown
+/// 1767 / 688 of 3714, cheese-cgal 10696 / 4398 of 17786, blade 9627 / 136 of 16222 (what is left: faces
+/// outside the cone of every patch holding a corner, on strips between creases). The patches at the
+/// corners of a face left out are marked (Patch::beside_uncovered_face): their footprints are not clipped
+/// at their border, whose overshoot covers it.
+
+#include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/patches/patch.h>
+#include <pcl_sparse/patches/patch_growth.h>
+#include <pcl_sparse/patches/patch_options.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// What completePatchFaces did.
+  struct FaceCompletionResult
+  {
+    std::size_t faces_in_no_patch = 0;  ///< proper faces (area > 0) in no patch before completion
+    std::size_t completed = 0;          ///< of those, faces added to a patch
+    std::size_t without_smooth_variation = 0;  ///< of those, faces no candidate took with smooth variation
+    std::vector<int> uncovered;         ///< proper faces still in no patch (no patch could take them), ascending
+  };
+
+  /// \brief Adds every proper face that is in no patch to a patch holding one of its corners (see the file
+  /// comment), before the frames are fitted (patch.local is not touched).
+  /// \param[in]     mesh        the mesh the patches were grown on
+  /// \param[in]     topology    its topology
+  /// \param[in]     geometry    computePatchGrowthGeometry (mesh, topology, ...): normals of the seeds and faces
+  /// \param[in]     options     cone_angle, pairwise_cone and delta, as the patches were grown with
+  /// \param[in,out] patches     grown patches (seed, seed_face, vertices, triangles); faces and corners appended
+  /// \param[in]     must_cover  empty (every face), or #V flags: only faces with a flagged corner are completed
+  /// \return counts and the faces left in no patch
+  FaceCompletionResult
+  completePatchFaces (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                      const PatchOptions& options, std::vector<Patch>& patches, const std::vector<std::uint8_t>& must_cover = {});
+} // namespace pcl_sparse
