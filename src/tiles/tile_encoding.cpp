@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include <omp.h>
@@ -123,9 +125,19 @@ namespace pcl_sparse
     // Every patch is seeded in the core (setSeedVertices); the test guards the ownership rule.
     std::vector<PatchCode> owned;
     owned.reserve (result.model.patches.size ());
+    const Eigen::Vector3i here = grid.coordinates (t);
+    result.reach = 1;
     for (PatchCode& patch : result.model.patches)
       if (grid.tileOf (patch.origin) == t)
       {
+        // How far the points it lists lie (TiledSurfaceEncoder relies on phase-0 patches listing points of
+        // the neighbours' cores only).
+        for (const int v : patch.vertices)
+        {
+          const std::size_t i = static_cast<std::size_t> (v);
+          const Eigen::Vector3d p = input.scan ? input.scan->worldPosition (i) : input.mesh->vertices[i];
+          result.reach = std::max (result.reach, (grid.coordinates (grid.tileOf (p)) - here).cwiseAbs ().maxCoeff ());
+        }
         for (int& v : patch.vertices)
           v = input.point_numbers.empty () ? v : static_cast<int> (input.point_numbers[static_cast<std::size_t> (v)]);
         if (input.point_numbers.empty ())
@@ -222,6 +234,264 @@ namespace pcl_sparse
     return tiled;
   }
 
+  namespace
+  {
+    /// The order the wavefront measures tiles in: slab by slab along the axis with the most tiles (ties: the
+    /// later axis, z before y before x, so that the order stays closer to the tiles' numbers), ascending
+    /// within a slab. Tiles with core points only.
+    std::vector<std::size_t>
+    measuringOrder (const TileGrid& grid, const std::vector<std::size_t>& core)
+    {
+      int axis = 2;
+      for (int a = 1; a >= 0; --a)
+        if (grid.counts[a] > grid.counts[axis])
+          axis = a;
+      std::vector<std::size_t> order;
+      for (std::size_t t = 0; t < grid.size (); ++t)
+        if (core[t] > 0)
+          order.push_back (t);
+      std::stable_sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
+        return grid.coordinates (a)[axis] < grid.coordinates (b)[axis];
+      });
+      return order;
+    }
+
+    /// The order the wavefront encodes tiles in: for each tile of \a measured in turn, the tiles around it
+    /// not yet listed, a phase-1 tile after the phase-0 tiles around it.
+    std::vector<std::size_t>
+    encodingOrder (const TileGrid& grid, const std::vector<std::size_t>& core, const std::vector<std::size_t>& measured)
+    {
+      std::vector<bool> listed (grid.size (), false);
+      std::vector<std::size_t> order;
+      const auto list = [&] (std::size_t u) {
+        if (core[u] > 0 && !listed[u])
+        {
+          listed[u] = true;
+          order.push_back (u);
+        }
+      };
+      for (const std::size_t t : measured)
+        for (const std::size_t u : neighbourTiles (grid, t))
+        {
+          if (tilePhase (grid, u) == 1 && core[u] > 0 && !listed[u])
+            for (const std::size_t w : neighbourTiles (grid, u))
+              if (tilePhase (grid, w) == 0)
+                list (w);
+          list (u);
+        }
+      return order;
+    }
+
+    /// What a wavefront encoding gives.
+    struct Wavefront
+    {
+      std::vector<TileEncoding> tiles;  ///< by tile number
+      TiledErrorSums sums;              ///< errors of the tiles measured, in ascending order
+      double measurement_seconds = 0.0;
+      std::size_t peak_held_tiles = 0, peak_held_vertices = 0;
+      std::size_t peak_pending_errors = 0;  ///< most errors of measured tiles waiting for a lower tile's
+      bool far_reaching = false;        ///< a phase-0 tile's patches list points beyond its neighbours
+    };
+
+    /// Vertex listings of a tile's patches.
+    std::size_t
+    listings (const TileEncoding& tile)
+    {
+      std::size_t n = 0;
+      for (const PatchCode& patch : tile.model.patches)
+        n += patch.vertices.size ();
+      return n;
+    }
+
+    /// Encodes (and measures, with \a measure) every tile with core points in the wavefront order (see
+    /// TiledSurfaceEncoder::compute); stops early, with far_reaching set, if a phase-0 tile's patches list
+    /// points beyond its neighbours. Throws the error of the lowest tile that fails.
+    void
+    encodeWavefront (const TileSource& source, const SparseSurfaceEncoderOptions& options, int threads, bool measure,
+                     bool drop_vertices, const std::function<void (double)>& progress, Wavefront& result)
+    {
+      const TileGrid& grid = source.grid ();
+      const std::size_t n = grid.size ();
+      std::vector<std::size_t> core (n);
+      for (std::size_t t = 0; t < n; ++t)
+        core[t] = source.corePoints (t);
+      const std::vector<std::size_t> measured = measuringOrder (grid, core);
+      const std::vector<std::size_t> order = encodingOrder (grid, core, measured);
+      // For each tile, the tiles with core points around it; the last tile measured that needs each tile's
+      // patches (their vertex lists can go after it), as a position in measured; the tiles in the order
+      // their errors are added (ascending, as tiledModelStatistics adds them: the same bits).
+      std::vector<std::vector<std::size_t>> near (n);
+      std::vector<std::size_t> last_use (n, 0), ascending;
+      for (std::size_t m = 0; m < measured.size (); ++m)
+        for (const std::size_t u : neighbourTiles (grid, measured[m]))
+          if (core[u] > 0)
+          {
+            near[measured[m]].push_back (u);
+            last_use[u] = m;
+          }
+      for (std::size_t t = 0; t < n; ++t)
+        if (core[t] > 0)
+          ascending.push_back (t);
+      // Errors of tiles measured before a lower tile, until it is added.
+      std::vector<std::unique_ptr<TileErrors>> pending (n);
+      std::size_t next_add = 0, pending_points = 0;
+      result.tiles.assign (n, TileEncoding ());
+      enum class State : unsigned char { open, busy, done };
+      std::vector<State> state (n, State::open);
+      std::vector<std::size_t> held (n, 0);  // vertex listings held per tile
+      std::vector<std::string> errors (n);
+      std::size_t encoded = 0, next_measure = 0, first_open = 0, held_tiles = 0, held_vertices = 0;
+      bool measuring = false, stop = false;
+      // Tiles are taken from the next few not yet started in the order: enough for the threads to find work
+      // while a phase-1 tile waits for the phase-0 tiles around it.
+      const std::size_t window = 2 * static_cast<std::size_t> (threads) + 2;
+      const auto encodedAround = [&] (std::size_t t, bool phase0_only) {
+        for (const std::size_t u : near[t])
+          if ((!phase0_only || tilePhase (grid, u) == 0) && state[u] != State::done)
+            return false;
+        return true;
+      };
+      std::mutex mutex;
+      std::condition_variable changed;
+#pragma omp parallel num_threads(threads)
+      {
+        std::unique_lock<std::mutex> lock (mutex);
+        for (;;)
+        {
+          if (stop)
+            break;
+          // Measure the next tile in order once the tiles around it are encoded (one thread at a time).
+          if (measure && !measuring && next_measure < measured.size () && encodedAround (measured[next_measure], false))
+          {
+            const std::size_t t = measured[next_measure];
+            measuring = true;
+            std::vector<TilePatches> spans;
+            for (const std::size_t u : near[t])
+              if (!result.tiles[u].model.patches.empty ())
+                spans.push_back ({result.tiles[u].model.patches.data (), result.tiles[u].model.patches.size (),
+                                  result.tiles[u].model.basis.get ()});
+            lock.unlock ();
+            const auto start = std::chrono::steady_clock::now ();
+            std::string failure;
+            std::unique_ptr<TileErrors> measurement;
+            try
+            {
+              measurement = std::make_unique<TileErrors> (TiledErrorSums::measureTile (source, t, spans));
+              measurement->errors.shrink_to_fit ();
+            }
+            catch (const std::exception& e)
+            {
+              failure = e.what ();
+            }
+            const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+            lock.lock ();
+            result.measurement_seconds += seconds;
+            measuring = false;
+            if (!failure.empty ())
+            {
+              errors[t] = failure;
+              stop = true;
+            }
+            else
+            {
+              pending_points += measurement->errors.size ();
+              pending[t] = std::move (measurement);
+              while (next_add < ascending.size () && pending[ascending[next_add]])
+              {
+                std::unique_ptr<TileErrors> ready = std::move (pending[ascending[next_add++]]);
+                result.sums.add (*ready);
+                pending_points -= ready->errors.size ();
+              }
+              result.peak_pending_errors = std::max (result.peak_pending_errors, pending_points);
+            }
+            for (const std::size_t u : near[t])
+              if (drop_vertices && last_use[u] == next_measure && held[u] > 0)
+              {
+                for (PatchCode& patch : result.tiles[u].model.patches)
+                {
+                  std::vector<int> ().swap (patch.vertices);
+                  std::vector<Eigen::Vector2d> ().swap (patch.vertex_xy);
+                }
+                --held_tiles;
+                held_vertices -= held[u];
+                held[u] = 0;
+              }
+            ++next_measure;
+            changed.notify_all ();
+            continue;
+          }
+          // Else encode the first tile of the next few whose phase-0 neighbours are encoded.
+          std::size_t pick = order.size ();
+          for (std::size_t k = first_open; k < order.size () && k < first_open + window; ++k)
+            if (state[order[k]] == State::open && (tilePhase (grid, order[k]) == 0 || encodedAround (order[k], true)))
+            {
+              pick = k;
+              break;
+            }
+          if (pick < order.size ())
+          {
+            const std::size_t t = order[pick];
+            state[t] = State::busy;
+            while (first_open < order.size () && state[order[first_open]] != State::open)
+              ++first_open;
+            lock.unlock ();
+            TileEncoding tile;
+            std::string failure;
+            try
+            {
+              // What the phase-0 tiles around it cover (their vertex lists stay until it is measured).
+              std::vector<std::size_t> covered;
+              if (tilePhase (grid, t) == 1)
+              {
+                for (const std::size_t u : near[t])
+                  if (tilePhase (grid, u) == 0)
+                    for (const PatchCode& patch : result.tiles[u].model.patches)
+                      for (const int v : patch.vertices)
+                        covered.push_back (static_cast<std::size_t> (v));
+                std::sort (covered.begin (), covered.end ());
+                covered.erase (std::unique (covered.begin (), covered.end ()), covered.end ());
+              }
+              tile = encodeTile (source, t, options, 1, covered);
+            }
+            catch (const std::exception& e)
+            {
+              failure = e.what ();
+            }
+            lock.lock ();
+            if (!failure.empty ())
+            {
+              errors[t] = failure;
+              stop = true;
+            }
+            else if (tilePhase (grid, t) == 0 && tile.reach > 1)
+              result.far_reaching = stop = true;
+            held[t] = listings (tile);
+            if (held[t] > 0)
+            {
+              ++held_tiles;
+              held_vertices += held[t];
+              result.peak_held_tiles = std::max (result.peak_held_tiles, held_tiles);
+              result.peak_held_vertices = std::max (result.peak_held_vertices, held_vertices);
+            }
+            result.tiles[t] = std::move (tile);
+            state[t] = State::done;
+            ++encoded;
+            if (progress)
+              progress (static_cast<double> (encoded) / static_cast<double> (order.size ()));
+            changed.notify_all ();
+            continue;
+          }
+          if (encoded == order.size () && (!measure || next_measure == measured.size ()))
+            break;
+          changed.wait (lock);
+        }
+      }
+      for (const std::string& e : errors)
+        if (!e.empty ())
+          throw Error (e);
+    }
+  } // namespace
+
   void
   TiledSurfaceEncoder::compute (TiledModel& model)
   {
@@ -229,8 +499,37 @@ namespace pcl_sparse
       fail ("no input: setTileSource");
     options_.validate ();
     const TileGrid& grid = source_->grid ();
-    std::vector<TileEncoding> tiles;
     tile_seconds_.assign (grid.size (), 0.0);
+    statistics_ = ModelStatistics ();
+    measurement_seconds_ = 0.0;
+    const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
+    const bool drop = measure_ && statistics_options_.drop_vertices;
+    {
+      Wavefront wavefront;
+      encodeWavefront (*source_, options_, threads, measure_, drop,
+                       [&] (double fraction) { reportProgress ("tiles", fraction); }, wavefront);
+      if (!wavefront.far_reaching)
+      {
+        std::vector<TileEncoding> tiles;
+        for (std::size_t t = 0; t < grid.size (); ++t)
+          if (source_->corePoints (t) > 0)
+          {
+            tile_seconds_[t] = wavefront.tiles[t].seconds;
+            tiles.push_back (std::move (wavefront.tiles[t]));
+          }
+        model = mergeTileEncodings (grid, source_->totalPoints (), std::move (tiles));
+        if (measure_)
+          statistics_ = wavefront.sums.statistics (model.model, source_->totalPoints ());
+        measurement_seconds_ = wavefront.measurement_seconds;
+        peak_held_tiles_ = wavefront.peak_held_tiles;
+        peak_held_vertices_ = wavefront.peak_held_vertices;
+        peak_pending_errors_ = wavefront.peak_pending_errors;
+        return;
+      }
+    }
+    // A phase-0 tile's patches list points beyond the tiles around it: phase by phase, every phase-1 tile
+    // knowing what the whole phase 0 covers, and measured after (every vertex list held till then).
+    std::vector<TileEncoding> tiles;
     std::size_t done = 0, todo = 0;
     for (std::size_t t = 0; t < grid.size (); ++t)
       todo += source_->corePoints (t) > 0;
@@ -252,6 +551,18 @@ namespace pcl_sparse
       }
       done += these.size ();
     }
+    peak_held_tiles_ = peak_held_vertices_ = peak_pending_errors_ = 0;
+    for (const TileEncoding& tile : tiles)
+    {
+      peak_held_tiles_ += listings (tile) > 0;
+      peak_held_vertices_ += listings (tile);
+    }
     model = mergeTileEncodings (grid, source_->totalPoints (), std::move (tiles));
+    if (measure_)
+    {
+      const auto start = std::chrono::steady_clock::now ();
+      statistics_ = tiledModelStatistics (*source_, model, statistics_options_);
+      measurement_seconds_ = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+    }
   }
 } // namespace pcl_sparse
