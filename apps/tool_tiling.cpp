@@ -163,30 +163,40 @@ namespace pcl_sparse
       }
     } // namespace
 
-    double
+    TiledEncodingReport
     encodeTilesAcross (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
-                       int threads, bool quiet, TiledModel& tiled)
+                       int threads, bool quiet, const TiledStatisticsOptions& statistics_options, TiledModel& tiled,
+                       ModelStatistics& stats)
     {
       const TileGrid& grid = source.grid ();
+      TiledEncodingReport seconds;
       if (group.size () == 1)
       {
-        // One process: no messages, so the tiles' patches (and vertex lists) are held once, not copied.
+        // One process: no messages, so the tiles' patches (and vertex lists) are held once, not copied, and
+        // each tile is measured as soon as the tiles around it are encoded (a wavefront).
         TiledSurfaceEncoder encoder;
         encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
         encoder.setOptions (options);
         encoder.setNumberOfThreads (threads);
+        encoder.setMeasurement (true, statistics_options);
         encoder.setProgressCallback (makeConsoleProgress (quiet));
         const auto start = std::chrono::steady_clock::now ();
         encoder.compute (tiled);
-        return std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+        stats = encoder.getStatistics ();
+        seconds.coding = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+        seconds.statistics = encoder.getMeasurementSeconds ();
+        seconds.held_tiles = encoder.getPeakHeldTiles ();
+        seconds.held_listings = encoder.getPeakHeldVertices ();
+        seconds.pending_errors = encoder.getPeakPendingErrors ();
+        return seconds;
       }
       // Phase 0 (tilePhase), shared with every rank: phase-1 tiles need to know what its patches cover.
       std::vector<std::size_t> points (grid.size ());
       for (std::size_t t = 0; t < grid.size (); ++t)
         points[t] = tilePhase (grid, t) == 0 ? source.corePoints (t) : 0;
       std::vector<TileEncoding> tiles;
-      double seconds = decodeShares (group.allGather (encodeShare (source, tilesOfRank (points, group.size (), group.rank ()),
-                                                                    options, threads, {}, group, quiet)),
+      seconds.coding = decodeShares (group.allGather (encodeShare (source, tilesOfRank (points, group.size (), group.rank ()),
+                                                                   options, threads, {}, group, quiet)),
                                      tiles);
       const std::vector<std::size_t> covered = coveredPoints (tiles);
       for (std::size_t t = 0; t < grid.size (); ++t)
@@ -196,8 +206,20 @@ namespace pcl_sparse
                                    group, quiet));
       if (group.rank () != 0)
         return seconds;
-      seconds += decodeShares (phase1, tiles);
+      seconds.coding += decodeShares (phase1, tiles);
       tiled = mergeTileEncodings (grid, source.totalPoints (), std::move (tiles));
+      // Rank 0 holds every tile's vertex lists until measured.
+      for (const TileRange& range : tiled.tiles)
+      {
+        std::size_t listings = 0;
+        for (std::size_t p = range.first_patch; p < range.first_patch + range.num_patches; ++p)
+          listings += tiled.model.patches[p].vertices.size ();
+        seconds.held_tiles += listings > 0;
+        seconds.held_listings += listings;
+      }
+      const auto start = std::chrono::steady_clock::now ();
+      stats = tiledModelStatistics (source, tiled, statistics_options);
+      seconds.statistics = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
       return seconds;
     }
   } // namespace tools
