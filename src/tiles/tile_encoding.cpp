@@ -305,191 +305,248 @@ namespace pcl_sparse
 
     /// Encodes (and measures, with \a measure) every tile with core points in the wavefront order (see
     /// TiledSurfaceEncoder::compute); stops early, with far_reaching set, if a phase-0 tile's patches list
-    /// points beyond its neighbours. Throws the error of the lowest tile that fails.
-    void
-    encodeWavefront (const TileSource& source, const SparseSurfaceEncoderOptions& options, int threads, bool measure,
-                     bool drop_vertices, const std::function<void (double)>& progress, Wavefront& result)
+    /// points beyond its neighbours. The threads share one lock: each measures the next tile when it can
+    /// (one at a time, in order), else encodes the next tile it can, else waits.
+    class WavefrontRun
     {
-      const TileGrid& grid = source.grid ();
-      const std::size_t n = grid.size ();
-      std::vector<std::size_t> core (n);
-      for (std::size_t t = 0; t < n; ++t)
-        core[t] = source.corePoints (t);
-      const std::vector<std::size_t> measured = measuringOrder (grid, core);
-      const std::vector<std::size_t> order = encodingOrder (grid, core, measured);
-      // For each tile, the tiles with core points around it; the last tile measured that needs each tile's
-      // patches (their vertex lists can go after it), as a position in measured; the tiles in the order
-      // their errors are added (ascending, as tiledModelStatistics adds them: the same bits).
-      std::vector<std::vector<std::size_t>> near (n);
-      std::vector<std::size_t> last_use (n, 0), ascending;
-      for (std::size_t m = 0; m < measured.size (); ++m)
-        for (const std::size_t u : neighbourTiles (grid, measured[m]))
-          if (core[u] > 0)
+    public:
+      WavefrontRun (const TileSource& source, const SparseSurfaceEncoderOptions& options, int threads, bool measure,
+                    bool drop_vertices, const std::function<void (double)>& progress, Wavefront& result)
+        : source_ (source), grid_ (source.grid ()), options_ (options), threads_ (threads), measure_ (measure),
+          drop_ (drop_vertices), progress_ (progress), result_ (result)
+      {
+        const std::size_t n = grid_.size ();
+        std::vector<std::size_t> core (n);
+        for (std::size_t t = 0; t < n; ++t)
+          core[t] = source.corePoints (t);
+        measured_ = measuringOrder (grid_, core);
+        order_ = encodingOrder (grid_, core, measured_);
+        // For each tile, the tiles with core points around it; the last tile measured that needs each tile's
+        // patches (their vertex lists can go after it), as a position in measured_; the tiles in the order
+        // their errors are added (ascending, as tiledModelStatistics adds them: the same bits).
+        near_.resize (n);
+        last_use_.assign (n, 0);
+        for (std::size_t m = 0; m < measured_.size (); ++m)
+          for (const std::size_t u : neighbourTiles (grid_, measured_[m]))
+            if (core[u] > 0)
+            {
+              near_[measured_[m]].push_back (u);
+              last_use_[u] = m;
+            }
+        for (std::size_t t = 0; t < n; ++t)
+          if (core[t] > 0)
+            ascending_.push_back (t);
+        pending_.resize (n);
+        result_.tiles.assign (n, TileEncoding ());
+        state_.assign (n, State::open);
+        held_.assign (n, 0);
+        errors_.resize (n);
+      }
+
+      /// Runs the threads; throws the error of the lowest tile that failed.
+      void
+      run ()
+      {
+#pragma omp parallel num_threads(threads_)
+        {
+          std::unique_lock<std::mutex> lock (mutex_);
+          while (!stop_)
           {
-            near[measured[m]].push_back (u);
-            last_use[u] = m;
+            if (measureNext (lock) || encodeNext (lock))
+            {
+              changed_.notify_all ();
+              continue;
+            }
+            if (encoded_ == order_.size () && (!measure_ || next_measure_ == measured_.size ()))
+              break;
+            changed_.wait (lock);
           }
-      for (std::size_t t = 0; t < n; ++t)
-        if (core[t] > 0)
-          ascending.push_back (t);
-      // Errors of tiles measured before a lower tile, until it is added.
-      std::vector<std::unique_ptr<TileErrors>> pending (n);
-      std::size_t next_add = 0, pending_points = 0;
-      result.tiles.assign (n, TileEncoding ());
+        }
+        for (const std::string& e : errors_)
+          if (!e.empty ())
+            throw Error (e);
+      }
+
+    private:
       enum class State : unsigned char { open, busy, done };
-      std::vector<State> state (n, State::open);
-      std::vector<std::size_t> held (n, 0);  // vertex listings held per tile
-      std::vector<std::string> errors (n);
-      std::size_t encoded = 0, next_measure = 0, first_open = 0, held_tiles = 0, held_vertices = 0;
-      bool measuring = false, stop = false;
-      // Tiles are taken from the next few not yet started in the order: enough for the threads to find work
-      // while a phase-1 tile waits for the phase-0 tiles around it.
-      const std::size_t window = 2 * static_cast<std::size_t> (threads) + 2;
-      const auto encodedAround = [&] (std::size_t t, bool phase0_only) {
-        for (const std::size_t u : near[t])
-          if ((!phase0_only || tilePhase (grid, u) == 0) && state[u] != State::done)
+
+      /// Whether the tiles around \a t (the phase-0 ones only, if asked) are encoded.
+      bool
+      encodedAround (std::size_t t, bool phase0_only) const
+      {
+        for (const std::size_t u : near_[t])
+          if ((!phase0_only || tilePhase (grid_, u) == 0) && state_[u] != State::done)
             return false;
         return true;
-      };
-      std::mutex mutex;
-      std::condition_variable changed;
-#pragma omp parallel num_threads(threads)
-      {
-        std::unique_lock<std::mutex> lock (mutex);
-        for (;;)
-        {
-          if (stop)
-            break;
-          // Measure the next tile in order once the tiles around it are encoded (one thread at a time).
-          if (measure && !measuring && next_measure < measured.size () && encodedAround (measured[next_measure], false))
-          {
-            const std::size_t t = measured[next_measure];
-            measuring = true;
-            std::vector<TilePatches> spans;
-            for (const std::size_t u : near[t])
-              if (!result.tiles[u].model.patches.empty ())
-                spans.push_back ({result.tiles[u].model.patches.data (), result.tiles[u].model.patches.size (),
-                                  result.tiles[u].model.basis.get ()});
-            lock.unlock ();
-            const auto start = std::chrono::steady_clock::now ();
-            std::string failure;
-            std::unique_ptr<TileErrors> measurement;
-            try
-            {
-              measurement = std::make_unique<TileErrors> (TiledErrorSums::measureTile (source, t, spans));
-              measurement->errors.shrink_to_fit ();
-            }
-            catch (const std::exception& e)
-            {
-              failure = e.what ();
-            }
-            const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-            lock.lock ();
-            result.measurement_seconds += seconds;
-            measuring = false;
-            if (!failure.empty ())
-            {
-              errors[t] = failure;
-              stop = true;
-            }
-            else
-            {
-              pending_points += measurement->errors.size ();
-              pending[t] = std::move (measurement);
-              while (next_add < ascending.size () && pending[ascending[next_add]])
-              {
-                std::unique_ptr<TileErrors> ready = std::move (pending[ascending[next_add++]]);
-                result.sums.add (*ready);
-                pending_points -= ready->errors.size ();
-              }
-              result.peak_pending_errors = std::max (result.peak_pending_errors, pending_points);
-            }
-            for (const std::size_t u : near[t])
-              if (drop_vertices && last_use[u] == next_measure && held[u] > 0)
-              {
-                for (PatchCode& patch : result.tiles[u].model.patches)
-                {
-                  std::vector<int> ().swap (patch.vertices);
-                  std::vector<Eigen::Vector2d> ().swap (patch.vertex_xy);
-                }
-                --held_tiles;
-                held_vertices -= held[u];
-                held[u] = 0;
-              }
-            ++next_measure;
-            changed.notify_all ();
-            continue;
-          }
-          // Else encode the first tile of the next few whose phase-0 neighbours are encoded.
-          std::size_t pick = order.size ();
-          for (std::size_t k = first_open; k < order.size () && k < first_open + window; ++k)
-            if (state[order[k]] == State::open && (tilePhase (grid, order[k]) == 0 || encodedAround (order[k], true)))
-            {
-              pick = k;
-              break;
-            }
-          if (pick < order.size ())
-          {
-            const std::size_t t = order[pick];
-            state[t] = State::busy;
-            while (first_open < order.size () && state[order[first_open]] != State::open)
-              ++first_open;
-            lock.unlock ();
-            TileEncoding tile;
-            std::string failure;
-            try
-            {
-              // What the phase-0 tiles around it cover (their vertex lists stay until it is measured).
-              std::vector<std::size_t> covered;
-              if (tilePhase (grid, t) == 1)
-              {
-                for (const std::size_t u : near[t])
-                  if (tilePhase (grid, u) == 0)
-                    for (const PatchCode& patch : result.tiles[u].model.patches)
-                      for (const int v : patch.vertices)
-                        covered.push_back (static_cast<std::size_t> (v));
-                std::sort (covered.begin (), covered.end ());
-                covered.erase (std::unique (covered.begin (), covered.end ()), covered.end ());
-              }
-              tile = encodeTile (source, t, options, 1, covered);
-            }
-            catch (const std::exception& e)
-            {
-              failure = e.what ();
-            }
-            lock.lock ();
-            if (!failure.empty ())
-            {
-              errors[t] = failure;
-              stop = true;
-            }
-            else if (tilePhase (grid, t) == 0 && tile.reach > 1)
-              result.far_reaching = stop = true;
-            held[t] = listings (tile);
-            if (held[t] > 0)
-            {
-              ++held_tiles;
-              held_vertices += held[t];
-              result.peak_held_tiles = std::max (result.peak_held_tiles, held_tiles);
-              result.peak_held_vertices = std::max (result.peak_held_vertices, held_vertices);
-            }
-            result.tiles[t] = std::move (tile);
-            state[t] = State::done;
-            ++encoded;
-            if (progress)
-              progress (static_cast<double> (encoded) / static_cast<double> (order.size ()));
-            changed.notify_all ();
-            continue;
-          }
-          if (encoded == order.size () && (!measure || next_measure == measured.size ()))
-            break;
-          changed.wait (lock);
-        }
       }
-      for (const std::string& e : errors)
-        if (!e.empty ())
-          throw Error (e);
-    }
+
+      /// Measures the next tile in order if the tiles around it are encoded and no other thread is measuring
+      /// (the lock is released meanwhile); then adds what can be added in tile order and drops the vertex
+      /// lists no tile left to measure needs. Returns whether it measured.
+      bool
+      measureNext (std::unique_lock<std::mutex>& lock)
+      {
+        if (!measure_ || measuring_ || next_measure_ >= measured_.size () || !encodedAround (measured_[next_measure_], false))
+          return false;
+        const std::size_t t = measured_[next_measure_];
+        measuring_ = true;
+        std::vector<TilePatches> spans;
+        for (const std::size_t u : near_[t])
+          if (!result_.tiles[u].model.patches.empty ())
+            spans.push_back ({result_.tiles[u].model.patches.data (), result_.tiles[u].model.patches.size (),
+                              result_.tiles[u].model.basis.get ()});
+        lock.unlock ();
+        const auto start = std::chrono::steady_clock::now ();
+        std::string failure;
+        std::unique_ptr<TileErrors> measurement;
+        try
+        {
+          measurement = std::make_unique<TileErrors> (TiledErrorSums::measureTile (source_, t, spans));
+          measurement->errors.shrink_to_fit ();
+        }
+        catch (const std::exception& e)
+        {
+          failure = e.what ();
+        }
+        const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+        lock.lock ();
+        result_.measurement_seconds += seconds;
+        measuring_ = false;
+        if (!failure.empty ())
+        {
+          errors_[t] = failure;
+          stop_ = true;
+        }
+        else
+          addInOrder (t, std::move (measurement));
+        if (drop_)
+          for (const std::size_t u : near_[t])
+            if (last_use_[u] == next_measure_ && held_[u] > 0)
+              dropVertices (u);
+        ++next_measure_;
+        return true;
+      }
+
+      /// Keeps tile \a t's errors until every lower tile's are added, and adds what it can.
+      void
+      addInOrder (std::size_t t, std::unique_ptr<TileErrors> measurement)
+      {
+        pending_points_ += measurement->errors.size ();
+        pending_[t] = std::move (measurement);
+        while (next_add_ < ascending_.size () && pending_[ascending_[next_add_]])
+        {
+          const std::unique_ptr<TileErrors> ready = std::move (pending_[ascending_[next_add_++]]);
+          result_.sums.add (*ready);
+          pending_points_ -= ready->errors.size ();
+        }
+        result_.peak_pending_errors = std::max (result_.peak_pending_errors, pending_points_);
+      }
+
+      /// Clears tile \a u's vertex lists.
+      void
+      dropVertices (std::size_t u)
+      {
+        for (PatchCode& patch : result_.tiles[u].model.patches)
+        {
+          std::vector<int> ().swap (patch.vertices);
+          std::vector<Eigen::Vector2d> ().swap (patch.vertex_xy);
+        }
+        --held_tiles_;
+        held_vertices_ -= held_[u];
+        held_[u] = 0;
+      }
+
+      /// Encodes the first of the next few tiles not started whose phase-0 neighbours are encoded (the lock
+      /// is released meanwhile). Returns whether it encoded one.
+      bool
+      encodeNext (std::unique_lock<std::mutex>& lock)
+      {
+        // The next few, not just the next: enough for the threads to find work while a phase-1 tile waits for
+        // the phase-0 tiles around it.
+        const std::size_t window = 2 * static_cast<std::size_t> (threads_) + 2;
+        std::size_t pick = order_.size ();
+        for (std::size_t k = first_open_; k < order_.size () && k < first_open_ + window; ++k)
+          if (state_[order_[k]] == State::open && (tilePhase (grid_, order_[k]) == 0 || encodedAround (order_[k], true)))
+          {
+            pick = k;
+            break;
+          }
+        if (pick == order_.size ())
+          return false;
+        const std::size_t t = order_[pick];
+        state_[t] = State::busy;
+        while (first_open_ < order_.size () && state_[order_[first_open_]] != State::open)
+          ++first_open_;
+        lock.unlock ();
+        TileEncoding tile;
+        std::string failure;
+        try
+        {
+          tile = encodeTile (source_, t, options_, 1, tilePhase (grid_, t) == 1 ? coveredAround (t) : std::vector<std::size_t> ());
+        }
+        catch (const std::exception& e)
+        {
+          failure = e.what ();
+        }
+        lock.lock ();
+        if (!failure.empty ())
+        {
+          errors_[t] = failure;
+          stop_ = true;
+        }
+        else if (tilePhase (grid_, t) == 0 && tile.reach > 1)
+          result_.far_reaching = stop_ = true;
+        held_[t] = listings (tile);
+        if (held_[t] > 0)
+        {
+          ++held_tiles_;
+          held_vertices_ += held_[t];
+          result_.peak_held_tiles = std::max (result_.peak_held_tiles, held_tiles_);
+          result_.peak_held_vertices = std::max (result_.peak_held_vertices, held_vertices_);
+        }
+        result_.tiles[t] = std::move (tile);
+        state_[t] = State::done;
+        ++encoded_;
+        if (progress_)
+          progress_ (static_cast<double> (encoded_) / static_cast<double> (order_.size ()));
+        return true;
+      }
+
+      /// What the phase-0 tiles around phase-1 tile \a t cover (their vertex lists stay until \a t is
+      /// measured, and no thread writes them meanwhile).
+      std::vector<std::size_t>
+      coveredAround (std::size_t t) const
+      {
+        std::vector<std::size_t> covered;
+        for (const std::size_t u : near_[t])
+          if (tilePhase (grid_, u) == 0)
+            for (const PatchCode& patch : result_.tiles[u].model.patches)
+              for (const int v : patch.vertices)
+                covered.push_back (static_cast<std::size_t> (v));
+        std::sort (covered.begin (), covered.end ());
+        covered.erase (std::unique (covered.begin (), covered.end ()), covered.end ());
+        return covered;
+      }
+
+      const TileSource& source_;
+      const TileGrid& grid_;
+      const SparseSurfaceEncoderOptions& options_;
+      const int threads_;
+      const bool measure_, drop_;
+      const std::function<void (double)>& progress_;
+      Wavefront& result_;
+      std::vector<std::size_t> measured_, order_, ascending_, last_use_;
+      std::vector<std::vector<std::size_t>> near_;
+      std::vector<std::unique_ptr<TileErrors>> pending_;  ///< errors of tiles measured before a lower tile
+      std::vector<State> state_;
+      std::vector<std::size_t> held_;  ///< vertex listings held per tile
+      std::vector<std::string> errors_;
+      std::size_t encoded_ = 0, next_measure_ = 0, next_add_ = 0, first_open_ = 0;
+      std::size_t held_tiles_ = 0, held_vertices_ = 0, pending_points_ = 0;
+      bool measuring_ = false, stop_ = false;
+      std::mutex mutex_;
+      std::condition_variable changed_;
+    };
   } // namespace
 
   void
@@ -506,8 +563,9 @@ namespace pcl_sparse
     const bool drop = measure_ && statistics_options_.drop_vertices;
     {
       Wavefront wavefront;
-      encodeWavefront (*source_, options_, threads, measure_, drop,
-                       [&] (double fraction) { reportProgress ("tiles", fraction); }, wavefront);
+      WavefrontRun (*source_, options_, threads, measure_, drop, [&] (double fraction) { reportProgress ("tiles", fraction); },
+                    wavefront)
+        .run ();
       if (!wavefront.far_reaching)
       {
         std::vector<TileEncoding> tiles;
