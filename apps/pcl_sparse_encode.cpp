@@ -40,6 +40,23 @@ using namespace pcl_sparse;
 
 namespace
 {
+  /// The process's peak resident set so far in MB (VmHWM of /proc/self/status; 0 where there is none),
+  /// reported by --json at the stage boundaries (bench/encode_bounded.sh).
+  double
+  peakResidentMb ()
+  {
+    std::FILE* file = std::fopen ("/proc/self/status", "r");
+    if (!file)
+      return 0.0;
+    char line[256];
+    double kb = 0.0;
+    while (std::fgets (line, sizeof line, file))
+      if (std::sscanf (line, "VmHWM: %lf", &kb) == 1)
+        break;
+    std::fclose (file);
+    return kb / 1024.0;
+  }
+
   const tools::ToolDescription kTool = {
     "pcl_sparse_encode", "IN [options]",
     {
@@ -133,12 +150,13 @@ main (int argc, char** argv)
     tools::SurfaceInput input;
     if (!bounded)
       input = tools::loadSurfaceInput (path);
-    std::vector<Eigen::Vector3d> input_positions;
-    if (!bounded)
-      input_positions = input.worldPositions ();
-
     TileGridOptions grid_options;
     const bool tiled = tools::chooseTiling (args, bounded ? header_points : input.points (), grid_options);
+    // The whole input's positions, for the untiled statistics and what needs the input (a tiled model is
+    // measured tile by tile, from the tile source).
+    std::vector<Eigen::Vector3d> input_positions;
+    if (!bounded && (!tiled || needs_input))
+      input_positions = input.worldPositions ();
     if (tiled && has_viewpoint)
       throw Error ("option -viewpoint is not supported with tiling yet");
     if (tiled && !args.has ("-tiles"))  // tiles sized for the budget, so many side by side at most
@@ -159,16 +177,27 @@ main (int argc, char** argv)
       source = input.mesh ? std::make_shared<MemoryTileSource> (input.mesh, grid_options)
                           : std::make_shared<MemoryTileSource> (input.scan, grid_options);
     const double load_seconds = timer.toc () / 1000.0;
+    const double peak_after_load = peakResidentMb ();
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     SparseSurfaceModel model;
     TiledModel tiled_model;
     EncoderTimings tiled_timings;
+    ModelStatistics tiled_stats;
+    tools::TiledEncodingReport tiled_report;
+    double peak_after_encode = 0.0;
     if (tiled)
     {
       // Every rank encodes its share of the same tiles; rank 0 merges and writes.
+      // From the tiles, so that both tile sources give the same figures (and file tolerance); the patches'
+      // vertex lists go once measured unless the file or the reconstruction needs them.
+      TiledStatisticsOptions statistics_options;
+      statistics_options.drop_vertices = !write_options.include_vertices && !needs_input;
       timer.tic ();
-      tiled_timings.coding = tools::encodeTilesAcross (group, *source, options, threads, quiet || json, tiled_model);
+      tiled_report =
+        tools::encodeTilesAcross (group, *source, options, threads, quiet || json, statistics_options, tiled_model, tiled_stats);
       tiled_timings.total = timer.toc () / 1000.0;
+      peak_after_encode = peakResidentMb ();
+      tiled_timings.coding = tiled_report.coding;
       if (group.rank () != 0)
         return 0;
     }
@@ -181,6 +210,7 @@ main (int argc, char** argv)
       encoder.setNumberOfThreads (threads);
       encoder.setProgressCallback (makeConsoleProgress (quiet || json));
       encoder.compute (model);
+      peak_after_encode = peakResidentMb ();
     }
 
     timer.tic ();
@@ -188,18 +218,14 @@ main (int argc, char** argv)
     ModelStatistics stats;
     if (tiled)
     {
-      // From the tiles, so that both tile sources give the same figures (and file tolerance); the patches'
-      // vertex lists go once measured unless the file or the reconstruction needs them.
-      TiledStatisticsOptions statistics_options;
-      statistics_options.drop_vertices = !write_options.include_vertices && !needs_input;
-      stats = tiledModelStatistics (*source, tiled_model, statistics_options);
+      stats = tiled_stats;
       model = std::move (tiled_model.model);
       if (needs_input)
         model.statistics (input_positions, &errors);  // the errors per vertex, for -error and -png
     }
     else
       stats = model.statistics (input_positions, &errors);
-    const double statistics_seconds = timer.toc () / 1000.0;
+    const double statistics_seconds = timer.toc () / 1000.0 + tiled_report.statistics;
     if (!tolerance_given)
       write_options.tolerance = derivedFileTolerance (stats);
 
@@ -261,6 +287,13 @@ main (int argc, char** argv)
         .add ("tiles", tiled ? tiled_model.tiles.size () : 0)
         .add ("ranks", group.size ())
         .add ("spilled", bounded)
+        .add ("held_tiles", tiled_report.held_tiles)
+        .add ("held_vertex_listings", tiled_report.held_listings)
+        .add ("pending_errors", tiled_report.pending_errors)
+        .add ("peak_mb", tools::JsonObject ()
+                           .add ("load", peak_after_load)
+                           .add ("encode", peak_after_encode)
+                           .add ("write", peakResidentMb ()))
         .add ("seconds", tools::JsonObject ()
                            .addSeconds ("load", load_seconds)
                            .addSeconds ("patches", t.patches)

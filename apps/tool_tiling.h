@@ -9,6 +9,7 @@
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/tiles/tile_source.h>
+#include <pcl_sparse/tiles/tile_statistics.h>
 #include <pcl_sparse/tiles/tiled_model.h>
 
 #include <cstddef>
@@ -54,19 +55,35 @@ namespace pcl_sparse
     bool
     chooseTiling (const CommandLine& args, std::size_t points, TileGridOptions& options);
 
-    /// \brief The tiled encoding of \a source by the processes of \a group, in the two phases of tilePhase:
-    /// each rank encodes its share of the phase-0 tiles (tilesOfRank) with \a threads threads and every rank
-    /// receives them all (what they cover); then each encodes its share of the phase-1 tiles, and rank 0
-    /// gathers and merges everything. The result is the same for any number of processes and threads.
+    /// What a tiled encoding took.
+    struct TiledEncodingReport
+    {
+      double coding = 0.0;             ///< seconds: the slowest rank's tiles, phase by phase (one process: all of it)
+      double statistics = 0.0;         ///< seconds measuring the model against its input
+      std::size_t held_tiles = 0;      ///< most tiles whose vertex lists rank 0 held at once
+      std::size_t held_listings = 0;   ///< most vertex listings rank 0 held at once
+      std::size_t pending_errors = 0;  ///< most point errors waiting to be added in tile order
+    };
+
+    /// \brief The tiled encoding of \a source by the processes of \a group, and its statistics against the
+    /// input (tiledModelStatistics' figures). One process encodes and measures in a wavefront
+    /// (TiledSurfaceEncoder), so the patches' vertex lists are held for a band of tiles only. Several: in
+    /// the two phases of tilePhase: each rank encodes its share of the phase-0 tiles (tilesOfRank) with
+    /// \a threads threads and every rank receives them all (what they cover); then each encodes its share
+    /// of the phase-1 tiles, and rank 0 gathers, merges and measures everything. The result is the same for
+    /// any number of processes and threads.
     /// \param[in] group      the processes
     /// \param[in] source     the tiled input (the same on every rank)
     /// \param[in] options    the encoder's options
     /// \param[in] threads    OpenMP threads per process (0 = default)
     /// \param[in] quiet      no progress lines
+    /// \param[in] statistics_options whether the vertex lists go once measured
     /// \param[out] tiled     on rank 0: the tiled model (untouched elsewhere)
-    /// \return the seconds of the slowest rank's tiles, phase by phase (on rank 0)
-    double
+    /// \param[out] stats     on rank 0: its statistics
+    /// \return the seconds taken and the vertex lists held (on rank 0)
+    TiledEncodingReport
     encodeTilesAcross (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
-                       int threads, bool quiet, TiledModel& tiled);
+                       int threads, bool quiet, const TiledStatisticsOptions& statistics_options, TiledModel& tiled,
+                       ModelStatistics& stats);
   } // namespace tools
 } // namespace pcl_sparse

@@ -14,6 +14,7 @@
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 #include <pcl_sparse/tiles/memory_tile_source.h>
 #include <pcl_sparse/tiles/tile_encoding.h>
+#include <pcl_sparse/tiles/tile_statistics.h>
 
 #include <pcl/kdtree/kdtree_flann.h>
 
@@ -619,4 +620,93 @@ TEST (TiledEncoding, StrayScanPointsDoNotFailTheEncoding)
   const ModelStatistics stats = tiled.model.statistics (worldPositions (*scan));
   EXPECT_LE (stats.uncovered, 3u);
   EXPECT_GT (tiled.model.patches.size (), 0u);
+}
+
+TEST (TiledEncoding, WavefrontHoldsVertexListsForABandOfTiles)
+{
+  // 103k vertices in 12 x 12 x 2 tiles; fast options (the order and memory are tested, not the model).
+  const TriangleMesh::Ptr mesh = terrain (320);
+  TileGridOptions grid;
+  grid.tiles_along_longest = 12;
+  const auto source = std::make_shared<MemoryTileSource> (mesh, grid);
+  ASSERT_EQ (source->grid ().counts, Eigen::Vector3i (12, 12, 2));  // slabs along y, 2 layers
+  SparseSurfaceEncoderOptions options;
+  options.patches.rho = 0.02;
+  options.coding.max_atoms = 4;
+  options.coding.tolerance = 0.05;
+  options.coding.min_samples = 16;
+  // Measured while encoding, vertex lists dropped once every tile around theirs is measured.
+  TiledSurfaceEncoder wavefront;
+  wavefront.setTileSource (source);
+  wavefront.setOptions (options);
+  wavefront.setNumberOfThreads (2);
+  wavefront.setMeasurement (true);
+  TiledModel measured;
+  wavefront.compute (measured);
+  // Encoded whole (every vertex list held), measured after.
+  TiledSurfaceEncoder whole;
+  whole.setTileSource (source);
+  whole.setOptions (options);
+  whole.setNumberOfThreads (2);
+  TiledModel after;
+  whole.compute (after);
+  const std::size_t all_vertices = whole.getPeakHeldVertices ();
+  const std::size_t all_tiles = whole.getPeakHeldTiles ();
+  const ModelStatistics stats = tiledModelStatistics (*source, after);
+  // The same figures, bit for bit (the same sums in the same order), and the same model.
+  const ModelStatistics& along = wavefront.getStatistics ();
+  EXPECT_EQ (along.rmse, stats.rmse);
+  EXPECT_EQ (along.mean_error_over_diagonal, stats.mean_error_over_diagonal);
+  EXPECT_EQ (along.max_error, stats.max_error);
+  EXPECT_EQ (along.uncovered, stats.uncovered);
+  EXPECT_EQ (along.num_patches, stats.num_patches);
+  EXPECT_EQ (along.compression_ratio, stats.compression_ratio);
+  EXPECT_TRUE (encodeTiledModel (measured, ModelWriteOptions (), 1) == encodeTiledModel (after, ModelWriteOptions (), 1));
+  for (const PatchCode& patch : measured.model.patches)
+    ASSERT_TRUE (patch.vertices.empty () && patch.vertex_xy.empty ());
+  // A band: slabs j - 1 to j + 1 of the tile measured and the phase-0 tiles of slab j + 2 (about 3.5 of
+  // the 12 slabs), plus the few tiles taken ahead; never more than 5.
+  std::cout << "held at once: " << wavefront.getPeakHeldTiles () << " of " << all_tiles << " tiles, "
+            << wavefront.getPeakHeldVertices () << " of " << all_vertices << " vertex listings; errors waiting: "
+            << wavefront.getPeakPendingErrors () << " of " << mesh->vertices.size () << "\n";
+  EXPECT_LE (wavefront.getPeakHeldTiles (), all_tiles * 5 / 12);
+  EXPECT_LT (wavefront.getPeakHeldVertices (), all_vertices * 5 / 12);
+}
+
+TEST (TiledEncoding, FarReachingMeshTilesEncodeAsPhaseByPhase)
+{
+  // Cells of 0.167 in tiles of 0.167 (margin 0.017): a tile's triangles reach two tiles away, so a phase-1
+  // tile may need what a phase-0 tile beyond its neighbours covers (without going phase by phase, the
+  // encoder gave another model here).
+  const TriangleMesh::Ptr mesh = terrain (12);
+  TileGridOptions grid;
+  grid.tiles_along_longest = 12;
+  const MemoryTileSource source (mesh, grid);
+  std::vector<TileEncoding> tiles;
+  std::vector<std::size_t> covered;
+  int farthest = 0;
+  for (int phase = 0; phase < 2; ++phase)
+  {
+    if (phase == 1)
+      covered = coveredPoints (tiles);
+    for (std::size_t t = 0; t < source.grid ().size (); ++t)
+      if (tilePhase (source.grid (), t) == phase && source.corePoints (t) > 0)
+      {
+        tiles.push_back (encodeTile (source, t, SparseSurfaceEncoderOptions (), 1, covered));
+        if (phase == 0)
+          farthest = std::max (farthest, tiles.back ().reach);
+      }
+  }
+  EXPECT_GT (farthest, 1);
+  TiledModel by_phases = mergeTileEncodings (source.grid (), source.totalPoints (), tiles);
+  const ModelStatistics stats = tiledModelStatistics (source, by_phases);
+  TiledSurfaceEncoder encoder;
+  encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
+  encoder.setNumberOfThreads (2);
+  encoder.setMeasurement (true);
+  TiledModel tiled;
+  encoder.compute (tiled);
+  EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (by_phases, ModelWriteOptions (), 1));
+  EXPECT_EQ (encoder.getStatistics ().rmse, stats.rmse);
+  EXPECT_EQ (encoder.getStatistics ().mean_error_over_diagonal, stats.mean_error_over_diagonal);
 }

@@ -19,6 +19,7 @@
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/tiles/tile_source.h>
+#include <pcl_sparse/tiles/tile_statistics.h>
 #include <pcl_sparse/tiles/tiled_model.h>
 
 #include <Eigen/Geometry>
@@ -102,17 +103,65 @@ namespace pcl_sparse
     void setOptions (const SparseSurfaceEncoderOptions& options) { options_ = options; }
     const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
 
-    /// \brief Encodes every tile with core points (encodeTiles: in parallel over the stage's threads),
-    /// phase 0 then phase 1 (tilePhase), and merges them. Throws pcl_sparse::Error for a missing source or a tile that fails.
+    /// \brief Measure the model against its input while encoding (default false), as tiledModelStatistics
+    /// does after it: getStatistics () then has its figures, bit for bit; with \a options.drop_vertices the
+    /// patches' vertex lists go as soon as every tile around theirs is measured, so they are held for a band
+    /// of tiles at a time (see compute), not for the whole model.
+    /// \param[in] measure whether to measure
+    /// \param[in] options what to keep
+    void
+    setMeasurement (bool measure, const TiledStatisticsOptions& options = TiledStatisticsOptions ())
+    {
+      measure_ = measure;
+      statistics_options_ = options;
+    }
+
+    /// \brief Encodes every tile with core points and merges them. Throws pcl_sparse::Error for a missing
+    /// source or a tile that fails (the lowest such tile).
+    ///
+    /// A wavefront: the tiles are measured slab by slab along the grid's axis with the most tiles, each as
+    /// soon as the tiles around it are encoded, and encoded just ahead of that: for each tile in turn, the
+    /// tiles around it not yet encoded, a phase-1 tile (tilePhase) after the phase-0 tiles around it, whose
+    /// patches tell it what they cover (coveredPoints). Up to the stage's threads tiles are encoded side by
+    /// side, one thread each, taken from the next few in that order. So vertex lists are held for about
+    /// three slabs of tiles plus the phase-0 tiles of a fourth, whatever the grid's length. The errors are
+    /// added in tile order, as tiledModelStatistics adds them (a tile measured ahead of a lower one keeps its
+    /// errors, a double a point, until then: none when the slabs run along z). The patches do not depend on
+    /// the order: a phase-1 tile sees the same covered points as after the whole phase 0 (patches list
+    /// points of their tile's neighbours only; a phase-0 tile whose patches reach farther, a mesh with
+    /// triangles longer than the margin, makes the encoder start again phase by phase). So the model is the
+    /// same for any number of threads.
     /// \param[out] model the tiled model
     void compute (TiledModel& model);
 
     /// \brief Seconds each tile took in the last compute, one per tile of the grid (0: not encoded).
     const std::vector<double>& getTileSeconds () const { return tile_seconds_; }
 
+    /// \brief The statistics of the last compute (with setMeasurement (true)).
+    const ModelStatistics& getStatistics () const { return statistics_; }
+
+    /// \brief Seconds the last compute spent measuring (with setMeasurement (true)), over all threads.
+    double getMeasurementSeconds () const { return measurement_seconds_; }
+
+    /// \brief Most tiles whose patches' vertex lists were held at once in the last compute (encoded and not
+    /// yet dropped; every encoded tile without setMeasurement's drop_vertices).
+    std::size_t getPeakHeldTiles () const { return peak_held_tiles_; }
+
+    /// \brief Most vertex listings (entries of PatchCode::vertices, with their (x', y')) held at once.
+    std::size_t getPeakHeldVertices () const { return peak_held_vertices_; }
+
+    /// \brief Most errors (one double a point) of tiles measured ahead of a lower tile held at once, waiting
+    /// to be added in tile order (none when the slabs run along z, the tiles' slowest axis).
+    std::size_t getPeakPendingErrors () const { return peak_pending_errors_; }
+
   private:
     std::shared_ptr<const TileSource> source_;
     SparseSurfaceEncoderOptions options_;
+    bool measure_ = false;
+    TiledStatisticsOptions statistics_options_;
     std::vector<double> tile_seconds_;
+    ModelStatistics statistics_;
+    double measurement_seconds_ = 0.0;
+    std::size_t peak_held_tiles_ = 0, peak_held_vertices_ = 0, peak_pending_errors_ = 0;
   };
 } // namespace pcl_sparse

@@ -9,6 +9,9 @@
 #include <pcl_sparse/tiles/tile_source.h>
 #include <pcl_sparse/tiles/tiled_model.h>
 
+#include <cstddef>
+#include <vector>
+
 namespace pcl_sparse
 {
   /// Options of tiledModelStatistics.
@@ -19,6 +22,66 @@ namespace pcl_sparse
     /// is most of its memory; keep them (false) to write them (--store-vertices) or to reconstruct the
     /// input vertices.
     bool drop_vertices = true;
+  };
+
+  /// \brief The tiles within one step of tile \a t along each axis (\a t included), ascending: those whose
+  /// patches can list a point of \a t's core (a tile's patches list points of its margin box).
+  /// \param[in] grid the grid
+  /// \param[in] t    the tile
+  std::vector<std::size_t>
+  neighbourTiles (const TileGrid& grid, std::size_t t);
+
+  /// Some patches of one tile, and the basis they are coded over (a span of a model's patches).
+  struct TilePatches
+  {
+    const PatchCode* first = nullptr;     ///< the first patch
+    std::size_t count = 0;                ///< number of patches
+    const SurfaceBasis* basis = nullptr;  ///< their basis (null: heights 0)
+  };
+
+  /// The errors of one tile's core points, to be added to TiledErrorSums in tile order.
+  struct TileErrors
+  {
+    std::vector<double> errors;  ///< |v - v^| of its covered core points, by point number
+    std::size_t uncovered = 0;   ///< its core points in no patch
+  };
+
+  /// \brief Running sums of a tiled model's vertex errors, taken tile by tile: what tiledModelStatistics adds
+  /// up, for an encoder that measures each tile as soon as the tiles around it are encoded
+  /// (TiledSurfaceEncoder). Added in ascending tile order, the figures are tiledModelStatistics' bit for bit.
+  class TiledErrorSums
+  {
+  public:
+    /// \brief Adds the errors of tile \a t's core points, each reconstructed as the mean over the patches of
+    /// \a near listing it.
+    /// \param[in] source the tiled input, with point numbers
+    /// \param[in] t      the tile
+    /// \param[in] near   the patches of \a t and of the tiles around it (neighbourTiles), in model order
+    /// \throws pcl_sparse::Error if the tile has points but no point numbers
+    void
+    addTile (const TileSource& source, std::size_t t, const std::vector<TilePatches>& near)
+    {
+      add (measureTile (source, t, near));
+    }
+
+    /// \brief The errors addTile adds, to be added later (add): tiles can be measured in any order, and
+    /// added in tile order.
+    static TileErrors
+    measureTile (const TileSource& source, std::size_t t, const std::vector<TilePatches>& near);
+
+    /// \brief Adds a tile's errors (measureTile).
+    void
+    add (const TileErrors& tile);
+
+    /// \brief The statistics of \a model (the merged model) from the sums.
+    /// \param[in] model        the whole model (patch and coefficient counts, diagonal)
+    /// \param[in] total_points points of the whole input
+    ModelStatistics
+    statistics (const SparseSurfaceModel& model, std::size_t total_points) const;
+
+  private:
+    double squares_ = 0.0, absolute_ = 0.0, largest_ = 0.0;
+    std::size_t covered_ = 0, uncovered_ = 0;
   };
 
   /// \brief Statistics of \a tiled (encoded from \a source) against its input, tile by tile.

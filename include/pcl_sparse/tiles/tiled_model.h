@@ -30,6 +30,9 @@ namespace pcl_sparse
     SparseSurfaceModel model;             ///< its patches (vertices numbered in the whole input)
     Eigen::AlignedBox3d core_bounds;      ///< bounding box of its core points (empty if none)
     double seconds = 0.0;                 ///< wall-clock seconds the encoding took
+    /// Tiles, along any axis, from this tile to the farthest one whose core holds a point its patches list:
+    /// 1 (its neighbours) unless a mesh's triangles are longer than the margin; 0 when not known (decoded).
+    int reach = 0;
   };
 
   /// A tiled model, or the part of one that was loaded (a region: some tiles only).
