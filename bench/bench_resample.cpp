@@ -5,10 +5,10 @@
 // jobs). Multithreaded output is identical (tested), and is not timed here for the same reason.
 // Prints a markdown table (bench/resample.sh writes it to bench/results/resample.md).
 //
-//   bench_resample [-throughput N] [-angles K] MESH...
+//   bench_resample [-throughput N] [-angles K] [-basis paper|dct] [-L N] MESH...
 //   bench_resample -diagnose [-angles K] [-worst N] [-file T A] MESH...   (stray points, normal-angle
 //                  distribution; -file: through a .psm in memory at tolerance T keeping at most A angles)
-//                  [-basis-dct] [-L N]: encoder basis and atoms for -diagnose
+//   -basis, -L: encoder basis and atoms (default: the library's, dct and 12)
 //   bench_resample -cloud CLOUD.pcd MESH                       (quality of any cloud against its mesh)
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
@@ -152,9 +152,9 @@ namespace
                  q.largest_gap, q.nn_cv);
     std::fflush (stdout);
   }
-  /// Encoder options of -diagnose besides the footprint angles (paper defaults unless set).
-  CosineBasisKind diagnose_basis = CosineBasisKind::Paper;
-  int diagnose_atoms = 12;
+  /// Encoder basis and atom bound besides the footprint angles (the library's defaults unless -basis / -L).
+  CosineBasisKind diagnose_basis = SparseSurfaceEncoderOptions ().basis;
+  int diagnose_atoms = SparseSurfaceEncoderOptions ().coding.max_atoms;
 
   SparseSurfaceModel::Ptr
   encodeMesh (const std::shared_ptr<TriangleMesh>& mesh, int angles, double* seconds = nullptr)
@@ -162,7 +162,7 @@ namespace
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (mesh);
     encoder.setNumberOfThreads (1);
-    SparseSurfaceEncoderOptions encoder_options;  // paper defaults, footprint angles as asked
+    SparseSurfaceEncoderOptions encoder_options;  // default options, footprint angles as asked
     encoder_options.coding.footprint_angles = angles;
     encoder_options.basis = diagnose_basis;
     encoder_options.coding.max_atoms = diagnose_atoms;
@@ -309,8 +309,8 @@ main (int argc, char** argv)
     }
     else if (a == "-cloud" && i + 1 < argc)
       cloud_path = argv[++i];
-    else if (a == "-basis-dct")
-      diagnose_basis = CosineBasisKind::Dct;
+    else if (a == "-basis" && i + 1 < argc)
+      diagnose_basis = std::string (argv[++i]) == "paper" ? CosineBasisKind::Paper : CosineBasisKind::Dct;
     else if (a == "-L" && i + 1 < argc)
       diagnose_atoms = std::stoi (argv[++i]);
     else if (a == "-diagnose")
