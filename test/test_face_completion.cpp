@@ -29,24 +29,6 @@ using namespace pcl_sparse;
 
 namespace
 {
-  /// Proper faces (area > 0) that are a triangle of no patch.
-  std::size_t
-  facesInNoPatch (const TriangleMesh& mesh, const std::vector<Patch>& patches)
-  {
-    std::vector<char> in_patch (mesh.triangles.size (), 0);
-    for (const Patch& p : patches)
-      for (int f : p.triangles)
-        in_patch[f] = 1;
-    std::size_t count = 0;
-    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
-    {
-      const Eigen::Vector3i& t = mesh.triangles[f];
-      const double area = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross (mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm ();
-      count += !in_patch[f] && area > 0.0;
-    }
-    return count;
-  }
-
   PatchSamplingResult
   samplePatches (const TriangleMesh& mesh, bool complete_faces)
   {
@@ -129,11 +111,11 @@ TEST (FaceCompletion, EveryFaceInAPatchOnLongThinFaces)
   {
     const PatchSamplingResult without = samplePatches (mesh, false);
     const PatchSamplingResult with = samplePatches (mesh, true);
-    std::cout << name << ": " << facesInNoPatch (mesh, without.patches) << " of " << mesh.triangles.size ()
+    std::cout << name << ": " << facesInNoPatch (mesh, without.patches).size () << " of " << mesh.triangles.size ()
               << " faces in no patch without completion, " << with.num_completed_faces << " completed, "
               << with.uncovered_faces.size () << " left" << std::endl;
-    EXPECT_GT (facesInNoPatch (mesh, without.patches), 0u) << name << ": the mesh does not test completion";
-    EXPECT_EQ (facesInNoPatch (mesh, with.patches), 0u) << name;
+    EXPECT_GT (facesInNoPatch (mesh, without.patches).size (), 0u) << name << ": the mesh does not test completion";
+    EXPECT_EQ (facesInNoPatch (mesh, with.patches).size (), 0u) << name;
     EXPECT_TRUE (with.uncovered_faces.empty ()) << name;
     EXPECT_EQ (with.patches.size (), without.patches.size ()) << name << ": completion adds no patch";
     // Each patch stays a height field over its frame: no triangle flips in projection.
@@ -182,7 +164,7 @@ TEST (FaceCompletion, SharedCadMeshes)
       continue;
     ++found;
     const PatchSamplingResult with = samplePatches (*mesh, true);
-    EXPECT_EQ (facesInNoPatch (*mesh, with.patches), with.uncovered_faces.size ()) << file;
+    EXPECT_EQ (facesInNoPatch (*mesh, with.patches).size (), with.uncovered_faces.size ()) << file;
     const Coverage c = resampleAndMeasure (mesh);
     std::cout << file << ": " << with.num_completed_faces << " faces completed, " << with.uncovered_faces.size ()
               << " left; p99 " << c.p99_spacings << " spacings, within 3 spacings " << c.within3 << ", flipped "

@@ -2,6 +2,8 @@
 
 #include <pcl_sparse/geometry/quadric_fit.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -255,5 +257,24 @@ namespace pcl_sparse
         for (int i = vertex_begin[mesh.triangles[f][k]]; i < vertex_begin[mesh.triangles[f][k] + 1]; ++i)
           patches[vertex_holders[i]].beside_uncovered_face = true;
     return result;
+  }
+
+  std::vector<int>
+  facesInNoPatch (const TriangleMesh& mesh, const std::vector<Patch>& patches)
+  {
+    std::vector<std::uint8_t> in_patch (mesh.triangles.size (), 0);
+    for (const Patch& p : patches)
+      for (int f : p.triangles)
+        in_patch[f] = 1;
+    std::vector<int> faces;
+    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+    {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      const double area =
+          (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross (mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm ();
+      if (!in_patch[f] && area > 0.0)
+        faces.push_back (static_cast<int> (f));
+    }
+    return faces;
   }
 } // namespace pcl_sparse

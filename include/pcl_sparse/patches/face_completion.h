@@ -56,4 +56,9 @@ namespace pcl_sparse
   FaceCompletionResult
   completePatchFaces (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
                       const PatchOptions& options, std::vector<Patch>& patches, const std::vector<std::uint8_t>& must_cover = {});
+
+  /// The proper faces (area > 0) of \a mesh that are a triangle of no patch (Patch::triangles), ascending:
+  /// the faces completion has to place, or could not.
+  std::vector<int>
+  facesInNoPatch (const TriangleMesh& mesh, const std::vector<Patch>& patches);
 } // namespace pcl_sparse
