@@ -250,16 +250,21 @@ namespace pcl_sparse
         throw Error (name + ": bbox diagonal or tolerance out of range");
     }
 
-    /// Reads the grid fields (origin, edge, margin, counts) common to both header layouts.
+    /// Reads the fields both header layouts hold in this order after the number of tiles: input vertices,
+    /// bbox diagonal, tolerance, the grid (origin, edge, margin, counts) and the number of patches.
     void
-    getGrid (ByteReader& in, TiledModelIndex& index)
+    getModelAndGrid (ByteReader& in, TiledModelIndex& index)
     {
+      index.num_input_vertices = in.getU64 ("number of input vertices");
+      index.bbox_diagonal = in.getF64 ("bbox diagonal");
+      index.tolerance = in.getF64 ("tolerance");
       for (int a = 0; a < 3; ++a)
         index.grid.origin[a] = in.getF64 ("grid origin");
       index.grid.edge = in.getF64 ("tile edge");
       index.grid.margin = in.getF64 ("tile margin");
       for (int a = 0; a < 3; ++a)
         index.grid.counts[a] = static_cast<int> (std::min<std::uint32_t> (in.getU32 ("tile counts"), 1u << 30));
+      index.total_patches = in.getU64 ("number of patches");
     }
 
     /// Version 3: parses and checks the fixed header (\a data holds its kHeaderBytes); returns the number of
@@ -277,11 +282,7 @@ namespace pcl_sparse
       const std::uint8_t reserved = in.getU8 ("reserved");
       shared.basis_parameter = in.getU16 ("basis parameter");
       const std::uint32_t entries = in.getU32 ("number of tiles");
-      index.num_input_vertices = in.getU64 ("number of input vertices");
-      index.bbox_diagonal = in.getF64 ("bbox diagonal");
-      index.tolerance = in.getF64 ("tolerance");
-      getGrid (in, index);
-      index.total_patches = in.getU64 ("number of patches");
+      getModelAndGrid (in, index);
       shared_bytes = in.getU32 ("shared section bytes");
       entry_bytes = in.getU32 ("tile index bytes");
       const std::uint32_t crc = in.getU32 ("header checksum");
@@ -367,11 +368,7 @@ namespace pcl_sparse
       index.version = in.getU16 ("version");
       const std::uint16_t flags = in.getU16 ("flags");
       const std::uint32_t entries = in.getU32 ("number of tiles");
-      index.num_input_vertices = in.getU64 ("number of input vertices");
-      index.bbox_diagonal = in.getF64 ("bbox diagonal");
-      index.tolerance = in.getF64 ("tolerance");
-      getGrid (in, index);
-      index.total_patches = in.getU64 ("number of patches");
+      getModelAndGrid (in, index);
       const std::uint32_t crc = in.getU32 ("header checksum");
       if (kVerifyChecksums && crc32 (data, kHeaderBytes2 - 4) != crc)
         throw Error (name + ": tiled model file (version 2): header checksum mismatch (corrupt file)");
