@@ -7,6 +7,7 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/mesh/mesh_report.h>
@@ -199,6 +200,9 @@ namespace
   {
     const ModelFileInfo info = inspectModelFile (path);
     const SparseSurfaceModel model = loadModel (path);
+    // A tiled file's grid, so that users can place regions (pcl_sparse_decode -box) on its tiles.
+    const bool tiled = isTiledModelFile (path);
+    const TileGrid grid = tiled ? readTiledModelIndex (path).grid : TileGrid ();
     const double seconds = timer.toc () / 1000.0;
     const double bits = info.num_input_vertices ? 8.0 * info.file_bytes / info.num_input_vertices : 0.0;
     if (json)
@@ -208,8 +212,8 @@ namespace
         sections.add (section.tag, tools::JsonObject ()
                                      .add ("bytes", static_cast<unsigned long long> (section.stored_bytes))
                                      .add ("raw_bytes", static_cast<unsigned long long> (section.raw_bytes)));
-      tools::JsonObject ()
-        .add ("file", path)
+      tools::JsonObject out;
+      out.add ("file", path)
         .add ("version", info.version)
         .add ("quantised", info.quantised)
         .add ("tolerance", info.tolerance)
@@ -221,9 +225,15 @@ namespace
         .add ("vertices_stored", info.has_vertices)
         .add ("bytes", static_cast<unsigned long long> (info.file_bytes))
         .add ("bits_per_input_vertex", bits)
-        .add ("sections", sections)
-        .addSeconds ("seconds", seconds)
-        .print ();
+        .add ("sections", sections);
+      if (tiled)
+        out.add ("grid", tools::JsonObject ()
+                           .add ("origin", std::vector<double> {grid.origin.x (), grid.origin.y (), grid.origin.z ()})
+                           .add ("edge", grid.edge)
+                           .add ("counts", std::vector<double> {double (grid.counts.x ()), double (grid.counts.y ()),
+                                                                double (grid.counts.z ())})
+                           .add ("tiles_with_patches", info.num_tiles));
+      out.addSeconds ("seconds", seconds).print ();
       return;
     }
     std::printf ("file: %s\n", path.c_str ());
@@ -240,6 +250,10 @@ namespace
     std::printf ("bbox diagonal: %.6g\n", info.bbox_diagonal);
     std::printf ("patch vertices stored: %s\n", info.has_vertices ? "yes" : "no");
     std::printf ("bytes: %llu (%.3f bits per input vertex)\n", static_cast<unsigned long long> (info.file_bytes), bits);
+    if (tiled)
+      std::printf ("tile grid: %d x %d x %d tiles of edge %.9g from (%.9g, %.9g, %.9g), %zu with patches\n", grid.counts.x (),
+                   grid.counts.y (), grid.counts.z (), grid.edge, grid.origin.x (), grid.origin.y (), grid.origin.z (),
+                   info.num_tiles);
     for (const ModelFileSection& section : info.sections)
       std::printf ("section %s: %llu bytes (%llu decompressed)\n", section.tag.c_str (),
                    static_cast<unsigned long long> (section.stored_bytes),

@@ -93,6 +93,15 @@ namespace pcl_sparse
       return addRaw (key, value.str ());
     }
 
+    JsonObject&
+    JsonObject::add (const std::string& key, const std::vector<double>& values)
+    {
+      std::string array;
+      for (double value : values)
+        array += (array.empty () ? "" : ", ") + (std::isfinite (value) ? format ("%.17g", value) : std::string ("null"));
+      return addRaw (key, "[" + array + "]");
+    }
+
     std::string
     JsonObject::str () const
     {

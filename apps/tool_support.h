@@ -39,6 +39,8 @@ namespace pcl_sparse
       JsonObject& add (const std::string& key, bool value);
       JsonObject& add (const std::string& key, double value);
       JsonObject& add (const std::string& key, const JsonObject& value);
+      /// A JSON array of numbers (as add (key, double) writes each).
+      JsonObject& add (const std::string& key, const std::vector<double>& values);
 
       /// Any integer type except bool.
       template <typename Integer>

@@ -171,6 +171,14 @@ TEST_F (TilesTool, RegionDecodeEqualsTheFullDecodeThereAndReadsLittle)
   for (std::size_t i = 0; i < part.size (); ++i)
     ASSERT_EQ (part.worldPosition (i), expected[i]) << "point " << i;
 
+  // pcl_sparse_info gives the grid, so that users can place regions on the tiles.
+  ASSERT_EQ (run ("pcl_sparse_info", model + " --json", out), 0) << out;
+  EXPECT_NE (out.find ("\"counts\": [10, 10, 1]"), std::string::npos) << out;
+  const std::size_t edge_at = out.find ("\"edge\": ");
+  ASSERT_NE (edge_at, std::string::npos) << out;
+  EXPECT_NEAR (std::stod (out.substr (edge_at + 8)), index.grid.edge, 1e-12 * index.grid.edge) << out;
+  EXPECT_NE (out.find ("\"tiles_with_patches\": " + std::to_string (index.entries.size ())), std::string::npos) << out;
+
   EXPECT_NE (run ("pcl_sparse_decode", model + " " + dir_.file ("x.pcd") + " -box " + box, out), 0);
   EXPECT_NE (out.find ("-density"), std::string::npos) << out;
   EXPECT_NE (run ("pcl_sparse_decode", model + " " + dir_.file ("x.pcd") + " -density 10 -box 1,2,3", out), 0);
