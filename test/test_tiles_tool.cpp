@@ -153,7 +153,7 @@ TEST_F (TilesTool, RegionDecodeEqualsTheFullDecodeThereAndReadsLittle)
   // The header and index (~10 bytes a tile), the tiles reaching the box and those reaching the patches that
   // reach it (a patch's points in the box depend on who owns the rest of its footprint; docs/TILES.md,
   // "Regions"). Issue 16's target (1 % of the area in under 5 % of the file) needs tiles much larger than a
-  // patch: bench/bench_tiles.cpp measures it at scale; these 100 tiles of ~600 vertices hold ~430 bytes and
+  // patch: bench/region_read.sh measures it at scale; these 100 tiles of ~600 vertices hold ~430 bytes and
   // a few patches each, so the box and its patches' reach touch about a quarter of them.
   const TiledModelIndex index = readTiledModelIndex (model);
   EXPECT_LT (bytes_read, static_cast<double> (index.index_bytes) + 0.3 * file_bytes) << bytes_read << " of " << file_bytes;
