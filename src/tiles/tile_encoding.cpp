@@ -54,9 +54,18 @@ namespace pcl_sparse
   std::vector<std::size_t>
   coveredPoints (const std::vector<TileEncoding>& tiles)
   {
-    std::vector<std::size_t> points;
+    std::vector<const TileEncoding*> pointers;
     for (const TileEncoding& tile : tiles)
-      for (const PatchCode& patch : tile.model.patches)
+      pointers.push_back (&tile);
+    return coveredPoints (pointers);
+  }
+
+  std::vector<std::size_t>
+  coveredPoints (const std::vector<const TileEncoding*>& tiles)
+  {
+    std::vector<std::size_t> points;
+    for (const TileEncoding* tile : tiles)
+      for (const PatchCode& patch : tile->model.patches)
         for (int v : patch.vertices)
           points.push_back (static_cast<std::size_t> (v));
     std::sort (points.begin (), points.end ());
@@ -406,15 +415,11 @@ namespace pcl_sparse
       std::vector<std::size_t>
       coveredAround (std::size_t t) const
       {
-        std::vector<std::size_t> covered;
+        std::vector<const TileEncoding*> phase0;
         for (const std::size_t u : neighbourTiles (grid_, t))
           if (tilePhase (grid_, u) == 0 && tiles_.has (u))
-            for (const PatchCode& patch : tiles_.tile (u).model.patches)
-              for (const int v : patch.vertices)
-                covered.push_back (static_cast<std::size_t> (v));
-        std::sort (covered.begin (), covered.end ());
-        covered.erase (std::unique (covered.begin (), covered.end ()), covered.end ());
-        return covered;
+            phase0.push_back (&tiles_.tile (u));
+        return coveredPoints (phase0);
       }
 
       const TileSource& source_;

@@ -47,6 +47,11 @@ namespace pcl_sparse
   std::vector<std::size_t>
   coveredPoints (const std::vector<TileEncoding>& tiles);
 
+  /// \brief The input points the patches of \a tiles cover, as above.
+  /// \param[in] tiles encodings (of phase 0), not null
+  std::vector<std::size_t>
+  coveredPoints (const std::vector<const TileEncoding*>& tiles);
+
   /// \brief Encodes tile \a t of \a source (see the file's comment).
   /// \param[in] source       the tiled input
   /// \param[in] t            the tile
