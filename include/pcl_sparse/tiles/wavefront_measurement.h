@@ -33,7 +33,8 @@ namespace pcl_sparse
   /// wavefrontMeasuringOrder, each as soon as the tiles around it are in. The errors are added in ascending
   /// tile order, as tiledModelStatistics adds them, so the figures are its bit for bit whatever order the
   /// tiles come in (a tile measured ahead of a lower one keeps its errors, a double a point, until then).
-  /// Not thread-safe: one thread at a time, or a lock around every call (see next).
+  /// Not thread-safe: one thread at a time, or a lock around every call; a tile can be measured between
+  /// next and finish without the lock (add moves no other tile's patches).
   class WavefrontMeasurement
   {
   public:
