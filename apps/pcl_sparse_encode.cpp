@@ -12,6 +12,7 @@
 #include "tool_processes.h"
 #include "tool_render.h"
 #include "tool_support.h"
+#include "tool_tiled_encoding.h"
 #include "tool_tiling.h"
 
 #include <pcl_sparse/common/color_map.h>

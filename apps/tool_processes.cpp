@@ -124,23 +124,74 @@ namespace pcl_sparse
       return all;
     }
 
-    std::vector<std::size_t>
-    tilesOfRank (const std::vector<std::size_t>& points, int ranks, int rank)
+    std::vector<std::vector<std::uint8_t>>
+    ProcessGroup::exchange (std::vector<std::vector<std::uint8_t>> to_each) const
+    {
+      std::vector<std::vector<std::uint8_t>> from_each (static_cast<std::size_t> (size_));
+      if (to_each.size () != from_each.size ())
+        throw Error ("ProcessGroup::exchange: " + std::to_string (to_each.size ()) + " messages for " + std::to_string (size_) + " ranks");
+      from_each[rank_] = std::move (to_each[rank_]);
+#ifdef PCL_SPARSE_WITH_MPI
+      if (size_ == 1)
+        return from_each;
+      // Sizes first (as 64-bit counts), then the bytes, in pieces of at most 1 GiB (MPI counts are int); pieces
+      // between two ranks arrive in the order sent.
+      std::vector<unsigned long long> sizes (to_each.size ()), incoming (to_each.size ());
+      for (std::size_t r = 0; r < to_each.size (); ++r)
+        sizes[r] = to_each[r].size ();
+      MPI_Alltoall (sizes.data (), 1, MPI_UNSIGNED_LONG_LONG, incoming.data (), 1, MPI_UNSIGNED_LONG_LONG, MPI_COMM_WORLD);
+      constexpr std::size_t piece = std::size_t (1) << 30;
+      std::vector<MPI_Request> requests;
+      for (int r = 0; r < size_; ++r)
+      {
+        if (r == rank_)
+          continue;
+        from_each[r].resize (incoming[r]);
+        for (std::size_t at = 0; at < from_each[r].size (); at += piece)
+        {
+          requests.emplace_back ();
+          MPI_Irecv (from_each[r].data () + at, static_cast<int> (std::min (piece, from_each[r].size () - at)), MPI_BYTE, r, 1,
+                     MPI_COMM_WORLD, &requests.back ());
+        }
+        for (std::size_t at = 0; at < to_each[r].size (); at += piece)
+        {
+          requests.emplace_back ();
+          MPI_Isend (to_each[r].data () + at, static_cast<int> (std::min (piece, to_each[r].size () - at)), MPI_BYTE, r, 1,
+                     MPI_COMM_WORLD, &requests.back ());
+        }
+      }
+      MPI_Waitall (static_cast<int> (requests.size ()), requests.data (), MPI_STATUSES_IGNORE);
+#endif
+      return from_each;
+    }
+
+    std::vector<int>
+    tileRanks (const std::vector<std::size_t>& points, int ranks)
     {
       std::vector<std::size_t> order;
       for (std::size_t t = 0; t < points.size (); ++t)
         if (points[t] > 0)
           order.push_back (t);
       std::stable_sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) { return points[a] > points[b]; });
-      std::vector<std::size_t> load (static_cast<std::size_t> (std::max (ranks, 1)), 0), mine;
+      std::vector<std::size_t> load (static_cast<std::size_t> (std::max (ranks, 1)), 0);
+      std::vector<int> rank_of (points.size (), -1);
       for (std::size_t t : order)
       {
         const std::size_t r = static_cast<std::size_t> (std::min_element (load.begin (), load.end ()) - load.begin ());
         load[r] += points[t];
-        if (static_cast<int> (r) == rank)
-          mine.push_back (t);
+        rank_of[t] = static_cast<int> (r);
       }
-      std::sort (mine.begin (), mine.end ());
+      return rank_of;
+    }
+
+    std::vector<std::size_t>
+    tilesOfRank (const std::vector<std::size_t>& points, int ranks, int rank)
+    {
+      const std::vector<int> rank_of = tileRanks (points, ranks);
+      std::vector<std::size_t> mine;
+      for (std::size_t t = 0; t < rank_of.size (); ++t)
+        if (rank_of[t] == rank)
+          mine.push_back (t);
       return mine;
     }
   } // namespace tools

@@ -38,6 +38,11 @@ namespace pcl_sparse
       /// Every rank receives every rank's bytes, in rank order. Every rank must call it.
       std::vector<std::vector<std::uint8_t>> allGather (const std::vector<std::uint8_t>& mine) const;
 
+      /// Every rank sends \a to_each[r] to rank r (one message a rank, itself included) and receives what every
+      /// rank sent it, in rank order: an exchange between neighbours, with no rank in the middle. Every rank
+      /// must call it.
+      std::vector<std::vector<std::uint8_t>> exchange (std::vector<std::vector<std::uint8_t>> to_each) const;
+
     private:
       int rank_ = 0;
       int size_ = 1;
@@ -51,5 +56,11 @@ namespace pcl_sparse
     /// \param[in] rank    this process
     std::vector<std::size_t>
     tilesOfRank (const std::vector<std::size_t>& points, int ranks, int rank);
+
+    /// \brief The rank of every tile as tilesOfRank shares them out (-1 for tiles with no points).
+    /// \param[in] points  core points per tile
+    /// \param[in] ranks   number of processes
+    std::vector<int>
+    tileRanks (const std::vector<std::size_t>& points, int ranks);
   } // namespace tools
 } // namespace pcl_sparse

@@ -2,15 +2,12 @@
 /// \file tool_tiling.h
 /// How pcl_sparse_encode decides to tile (issue 16): -tiles N forces N tiles along the longest side of
 /// the bounding box; otherwise an input whose untiled encoding would not fit the -memory budget (default
-/// 2G) is cut into tiles sized to fit it. And the tiled encoding across the processes of an mpirun.
+/// 2G) is cut into tiles sized to fit it (the encoding itself: tool_tiled_encoding.h).
 
-#include "tool_processes.h"
 #include "tool_support.h"
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/tiles/tile_source.h>
-#include <pcl_sparse/tiles/tile_statistics.h>
-#include <pcl_sparse/tiles/tiled_model.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -54,36 +51,5 @@ namespace pcl_sparse
     /// \a options set (tiles_along_longest from -tiles, else points_per_tile from the budget).
     bool
     chooseTiling (const CommandLine& args, std::size_t points, TileGridOptions& options);
-
-    /// What a tiled encoding took.
-    struct TiledEncodingReport
-    {
-      double coding = 0.0;             ///< seconds: the slowest rank's tiles, phase by phase (one process: all of it)
-      double statistics = 0.0;         ///< seconds measuring the model against its input
-      std::size_t held_tiles = 0;      ///< most tiles whose vertex lists rank 0 held at once
-      std::size_t held_listings = 0;   ///< most vertex listings rank 0 held at once
-      std::size_t pending_errors = 0;  ///< most point errors waiting to be added in tile order
-    };
-
-    /// \brief The tiled encoding of \a source by the processes of \a group, and its statistics against the
-    /// input (tiledModelStatistics' figures). One process encodes and measures in a wavefront
-    /// (TiledSurfaceEncoder), so the patches' vertex lists are held for a band of tiles only. Several: in
-    /// the two phases of tilePhase: each rank encodes its share of the phase-0 tiles (tilesOfRank) with
-    /// \a threads threads and every rank receives them all (what they cover); then each encodes its share
-    /// of the phase-1 tiles, and rank 0 gathers, merges and measures everything. The result is the same for
-    /// any number of processes and threads.
-    /// \param[in] group      the processes
-    /// \param[in] source     the tiled input (the same on every rank)
-    /// \param[in] options    the encoder's options
-    /// \param[in] threads    OpenMP threads per process (0 = default)
-    /// \param[in] quiet      no progress lines
-    /// \param[in] statistics_options whether the vertex lists go once measured
-    /// \param[out] tiled     on rank 0: the tiled model (untouched elsewhere)
-    /// \param[out] stats     on rank 0: its statistics
-    /// \return the seconds taken and the vertex lists held (on rank 0)
-    TiledEncodingReport
-    encodeTilesAcross (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
-                       int threads, bool quiet, const TiledStatisticsOptions& statistics_options, TiledModel& tiled,
-                       ModelStatistics& stats);
   } // namespace tools
 } // namespace pcl_sparse

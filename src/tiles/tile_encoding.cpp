@@ -2,6 +2,7 @@
 
 #include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/tiles/wavefront_measurement.h>
 
 #include <algorithm>
 #include <atomic>
@@ -53,9 +54,18 @@ namespace pcl_sparse
   std::vector<std::size_t>
   coveredPoints (const std::vector<TileEncoding>& tiles)
   {
-    std::vector<std::size_t> points;
+    std::vector<const TileEncoding*> pointers;
     for (const TileEncoding& tile : tiles)
-      for (const PatchCode& patch : tile.model.patches)
+      pointers.push_back (&tile);
+    return coveredPoints (pointers);
+  }
+
+  std::vector<std::size_t>
+  coveredPoints (const std::vector<const TileEncoding*>& tiles)
+  {
+    std::vector<std::size_t> points;
+    for (const TileEncoding* tile : tiles)
+      for (const PatchCode& patch : tile->model.patches)
         for (int v : patch.vertices)
           points.push_back (static_cast<std::size_t> (v));
     std::sort (points.begin (), points.end ());
@@ -164,6 +174,7 @@ namespace pcl_sparse
     std::vector<TileEncoding> result (tiles.size ());
     std::vector<std::string> errors (tiles.size ());
     std::atomic<std::size_t> done (0);
+    const std::vector<std::size_t> none;
     // Tiles side by side, one thread each, when there are enough of them; else one tile with all threads.
     const bool side_by_side = threads > 1 && count > 1;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if(side_by_side)
@@ -171,7 +182,8 @@ namespace pcl_sparse
     {
       try
       {
-        result[i] = encodeTile (source, tiles[i], options, side_by_side ? 1 : threads, covered);
+        result[i] = encodeTile (source, tiles[i], options, side_by_side ? 1 : threads,
+                                tilePhase (source.grid (), tiles[i]) == 1 ? covered : none);
       }
       catch (const std::exception& e)
       {
@@ -236,26 +248,6 @@ namespace pcl_sparse
 
   namespace
   {
-    /// The order the wavefront measures tiles in: slab by slab along the axis with the most tiles (ties: the
-    /// later axis, z before y before x, so that the order stays closer to the tiles' numbers), ascending
-    /// within a slab. Tiles with core points only.
-    std::vector<std::size_t>
-    measuringOrder (const TileGrid& grid, const std::vector<std::size_t>& core)
-    {
-      int axis = 2;
-      for (int a = 1; a >= 0; --a)
-        if (grid.counts[a] > grid.counts[axis])
-          axis = a;
-      std::vector<std::size_t> order;
-      for (std::size_t t = 0; t < grid.size (); ++t)
-        if (core[t] > 0)
-          order.push_back (t);
-      std::stable_sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
-        return grid.coordinates (a)[axis] < grid.coordinates (b)[axis];
-      });
-      return order;
-    }
-
     /// The order the wavefront encodes tiles in: for each tile of \a measured in turn, the tiles around it
     /// not yet listed, a phase-1 tile after the phase-0 tiles around it.
     std::vector<std::size_t>
@@ -282,64 +274,25 @@ namespace pcl_sparse
       return order;
     }
 
-    /// What a wavefront encoding gives.
-    struct Wavefront
-    {
-      std::vector<TileEncoding> tiles;  ///< by tile number
-      TiledErrorSums sums;              ///< errors of the tiles measured, in ascending order
-      double measurement_seconds = 0.0;
-      std::size_t peak_held_tiles = 0, peak_held_vertices = 0;
-      std::size_t peak_pending_errors = 0;  ///< most errors of measured tiles waiting for a lower tile's
-      bool far_reaching = false;        ///< a phase-0 tile's patches list points beyond its neighbours
-    };
-
-    /// Vertex listings of a tile's patches.
-    std::size_t
-    listings (const TileEncoding& tile)
-    {
-      std::size_t n = 0;
-      for (const PatchCode& patch : tile.model.patches)
-        n += patch.vertices.size ();
-      return n;
-    }
-
     /// Encodes (and measures, with \a measure) every tile with core points in the wavefront order (see
-    /// TiledSurfaceEncoder::compute); stops early, with far_reaching set, if a phase-0 tile's patches list
-    /// points beyond its neighbours. The threads share one lock: each measures the next tile when it can
-    /// (one at a time, in order), else encodes the next tile it can, else waits.
+    /// TiledSurfaceEncoder::compute) into \a tiles (WavefrontMeasurement); stops early, with far_reaching
+    /// set, if a phase-0 tile's patches list points beyond its neighbours. The threads share one lock: each
+    /// measures the next tile when it can (one at a time, in order), else encodes the next tile it can, else
+    /// waits.
     class WavefrontRun
     {
     public:
       WavefrontRun (const TileSource& source, const SparseSurfaceEncoderOptions& options, int threads, bool measure,
-                    bool drop_vertices, const std::function<void (double)>& progress, Wavefront& result)
+                    const std::function<void (double)>& progress, WavefrontMeasurement& tiles)
         : source_ (source), grid_ (source.grid ()), options_ (options), threads_ (threads), measure_ (measure),
-          drop_ (drop_vertices), progress_ (progress), result_ (result)
+          progress_ (progress), tiles_ (tiles)
       {
         const std::size_t n = grid_.size ();
         std::vector<std::size_t> core (n);
         for (std::size_t t = 0; t < n; ++t)
           core[t] = source.corePoints (t);
-        measured_ = measuringOrder (grid_, core);
-        order_ = encodingOrder (grid_, core, measured_);
-        // For each tile, the tiles with core points around it; the last tile measured that needs each tile's
-        // patches (their vertex lists can go after it), as a position in measured_; the tiles in the order
-        // their errors are added (ascending, as tiledModelStatistics adds them: the same bits).
-        near_.resize (n);
-        last_use_.assign (n, 0);
-        for (std::size_t m = 0; m < measured_.size (); ++m)
-          for (const std::size_t u : neighbourTiles (grid_, measured_[m]))
-            if (core[u] > 0)
-            {
-              near_[measured_[m]].push_back (u);
-              last_use_[u] = m;
-            }
-        for (std::size_t t = 0; t < n; ++t)
-          if (core[t] > 0)
-            ascending_.push_back (t);
-        pending_.resize (n);
-        result_.tiles.assign (n, TileEncoding ());
+        order_ = encodingOrder (grid_, core, wavefrontMeasuringOrder (grid_, core));
         state_.assign (n, State::open);
-        held_.assign (n, 0);
         errors_.resize (n);
       }
 
@@ -357,7 +310,7 @@ namespace pcl_sparse
               changed_.notify_all ();
               continue;
             }
-            if (encoded_ == order_.size () && (!measure_ || next_measure_ == measured_.size ()))
+            if (encoded_ == order_.size () && (!measure_ || tiles_.measuredAll ()))
               break;
             changed_.wait (lock);
           }
@@ -367,42 +320,29 @@ namespace pcl_sparse
             throw Error (e);
       }
 
+      /// Whether a phase-0 tile's patches listed points beyond its neighbours (the run stopped).
+      bool farReaching () const { return far_reaching_; }
+
     private:
       enum class State : unsigned char { open, busy, done };
 
-      /// Whether the tiles around \a t (the phase-0 ones only, if asked) are encoded.
-      bool
-      encodedAround (std::size_t t, bool phase0_only) const
-      {
-        for (const std::size_t u : near_[t])
-          if ((!phase0_only || tilePhase (grid_, u) == 0) && state_[u] != State::done)
-            return false;
-        return true;
-      }
-
       /// Measures the next tile in order if the tiles around it are encoded and no other thread is measuring
-      /// (the lock is released meanwhile); then adds what can be added in tile order and drops the vertex
-      /// lists no tile left to measure needs. Returns whether it measured.
+      /// (the lock is released meanwhile). Returns whether it measured.
       bool
       measureNext (std::unique_lock<std::mutex>& lock)
       {
-        if (!measure_ || measuring_ || next_measure_ >= measured_.size () || !encodedAround (measured_[next_measure_], false))
+        std::size_t t = 0;
+        std::vector<TilePatches> near;
+        if (!measure_ || measuring_ || !tiles_.next (t, near))
           return false;
-        const std::size_t t = measured_[next_measure_];
         measuring_ = true;
-        std::vector<TilePatches> spans;
-        for (const std::size_t u : near_[t])
-          if (!result_.tiles[u].model.patches.empty ())
-            spans.push_back ({result_.tiles[u].model.patches.data (), result_.tiles[u].model.patches.size (),
-                              result_.tiles[u].model.basis.get ()});
         lock.unlock ();
         const auto start = std::chrono::steady_clock::now ();
         std::string failure;
         std::unique_ptr<TileErrors> measurement;
         try
         {
-          measurement = std::make_unique<TileErrors> (TiledErrorSums::measureTile (source_, t, spans));
-          measurement->errors.shrink_to_fit ();
+          measurement = std::make_unique<TileErrors> (TiledErrorSums::measureTile (source_, t, near));
         }
         catch (const std::exception& e)
         {
@@ -410,7 +350,6 @@ namespace pcl_sparse
         }
         const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
         lock.lock ();
-        result_.measurement_seconds += seconds;
         measuring_ = false;
         if (!failure.empty ())
         {
@@ -418,42 +357,8 @@ namespace pcl_sparse
           stop_ = true;
         }
         else
-          addInOrder (t, std::move (measurement));
-        if (drop_)
-          for (const std::size_t u : near_[t])
-            if (last_use_[u] == next_measure_ && held_[u] > 0)
-              dropVertices (u);
-        ++next_measure_;
+          tiles_.finish (std::move (measurement), seconds);
         return true;
-      }
-
-      /// Keeps tile \a t's errors until every lower tile's are added, and adds what it can.
-      void
-      addInOrder (std::size_t t, std::unique_ptr<TileErrors> measurement)
-      {
-        pending_points_ += measurement->errors.size ();
-        pending_[t] = std::move (measurement);
-        while (next_add_ < ascending_.size () && pending_[ascending_[next_add_]])
-        {
-          const std::unique_ptr<TileErrors> ready = std::move (pending_[ascending_[next_add_++]]);
-          result_.sums.add (*ready);
-          pending_points_ -= ready->errors.size ();
-        }
-        result_.peak_pending_errors = std::max (result_.peak_pending_errors, pending_points_);
-      }
-
-      /// Clears tile \a u's vertex lists.
-      void
-      dropVertices (std::size_t u)
-      {
-        for (PatchCode& patch : result_.tiles[u].model.patches)
-        {
-          std::vector<int> ().swap (patch.vertices);
-          std::vector<Eigen::Vector2d> ().swap (patch.vertex_xy);
-        }
-        --held_tiles_;
-        held_vertices_ -= held_[u];
-        held_[u] = 0;
       }
 
       /// Encodes the first of the next few tiles not started whose phase-0 neighbours are encoded (the lock
@@ -466,7 +371,7 @@ namespace pcl_sparse
         const std::size_t window = 2 * static_cast<std::size_t> (threads_) + 2;
         std::size_t pick = order_.size ();
         for (std::size_t k = first_open_; k < order_.size () && k < first_open_ + window; ++k)
-          if (state_[order_[k]] == State::open && (tilePhase (grid_, order_[k]) == 0 || encodedAround (order_[k], true)))
+          if (state_[order_[k]] == State::open && (tilePhase (grid_, order_[k]) == 0 || tiles_.hasAround (order_[k], true)))
           {
             pick = k;
             break;
@@ -495,16 +400,9 @@ namespace pcl_sparse
           stop_ = true;
         }
         else if (tilePhase (grid_, t) == 0 && tile.reach > 1)
-          result_.far_reaching = stop_ = true;
-        held_[t] = listings (tile);
-        if (held_[t] > 0)
-        {
-          ++held_tiles_;
-          held_vertices_ += held_[t];
-          result_.peak_held_tiles = std::max (result_.peak_held_tiles, held_tiles_);
-          result_.peak_held_vertices = std::max (result_.peak_held_vertices, held_vertices_);
-        }
-        result_.tiles[t] = std::move (tile);
+          far_reaching_ = stop_ = true;
+        tile.tile = t;
+        tiles_.add (std::move (tile));
         state_[t] = State::done;
         ++encoded_;
         if (progress_)
@@ -517,33 +415,25 @@ namespace pcl_sparse
       std::vector<std::size_t>
       coveredAround (std::size_t t) const
       {
-        std::vector<std::size_t> covered;
-        for (const std::size_t u : near_[t])
-          if (tilePhase (grid_, u) == 0)
-            for (const PatchCode& patch : result_.tiles[u].model.patches)
-              for (const int v : patch.vertices)
-                covered.push_back (static_cast<std::size_t> (v));
-        std::sort (covered.begin (), covered.end ());
-        covered.erase (std::unique (covered.begin (), covered.end ()), covered.end ());
-        return covered;
+        std::vector<const TileEncoding*> phase0;
+        for (const std::size_t u : neighbourTiles (grid_, t))
+          if (tilePhase (grid_, u) == 0 && tiles_.has (u))
+            phase0.push_back (&tiles_.tile (u));
+        return coveredPoints (phase0);
       }
 
       const TileSource& source_;
       const TileGrid& grid_;
       const SparseSurfaceEncoderOptions& options_;
       const int threads_;
-      const bool measure_, drop_;
+      const bool measure_;
       const std::function<void (double)>& progress_;
-      Wavefront& result_;
-      std::vector<std::size_t> measured_, order_, ascending_, last_use_;
-      std::vector<std::vector<std::size_t>> near_;
-      std::vector<std::unique_ptr<TileErrors>> pending_;  ///< errors of tiles measured before a lower tile
+      WavefrontMeasurement& tiles_;
+      std::vector<std::size_t> order_;
       std::vector<State> state_;
-      std::vector<std::size_t> held_;  ///< vertex listings held per tile
       std::vector<std::string> errors_;
-      std::size_t encoded_ = 0, next_measure_ = 0, next_add_ = 0, first_open_ = 0;
-      std::size_t held_tiles_ = 0, held_vertices_ = 0, pending_points_ = 0;
-      bool measuring_ = false, stop_ = false;
+      std::size_t encoded_ = 0, first_open_ = 0;
+      bool measuring_ = false, stop_ = false, far_reaching_ = false;
       std::mutex mutex_;
       std::condition_variable changed_;
     };
@@ -558,39 +448,43 @@ namespace pcl_sparse
     const TileGrid& grid = source_->grid ();
     tile_seconds_.assign (grid.size (), 0.0);
     statistics_ = ModelStatistics ();
-    measurement_seconds_ = 0.0;
     const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
     const bool drop = measure_ && statistics_options_.drop_vertices;
+    auto tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);
+    WavefrontRun run (*source_, options_, threads, measure_, [&] (double fraction) { reportProgress ("tiles", fraction); },
+                      *tiles);
+    run.run ();
+    if (run.farReaching ())
     {
-      Wavefront wavefront;
-      WavefrontRun (*source_, options_, threads, measure_, drop, [&] (double fraction) { reportProgress ("tiles", fraction); },
-                    wavefront)
-        .run ();
-      if (!wavefront.far_reaching)
-      {
-        std::vector<TileEncoding> tiles;
-        for (std::size_t t = 0; t < grid.size (); ++t)
-          if (source_->corePoints (t) > 0)
-          {
-            tile_seconds_[t] = wavefront.tiles[t].seconds;
-            tiles.push_back (std::move (wavefront.tiles[t]));
-          }
-        model = mergeTileEncodings (grid, source_->totalPoints (), std::move (tiles));
-        if (measure_)
-          statistics_ = wavefront.sums.statistics (model.model, source_->totalPoints ());
-        measurement_seconds_ = wavefront.measurement_seconds;
-        peak_held_tiles_ = wavefront.peak_held_tiles;
-        peak_held_vertices_ = wavefront.peak_held_vertices;
-        peak_pending_errors_ = wavefront.peak_pending_errors;
-        return;
-      }
+      // A phase-0 tile's patches list points beyond the tiles around it: phase by phase, every phase-1 tile
+      // knowing what the whole phase 0 covers, and measured after (every vertex list held till then).
+      tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);
+      for (TileEncoding& tile : encodeTilesByPhase (*source_, options_, num_threads_,
+                                                    [&] (double fraction) { reportProgress ("tiles", fraction); }))
+        tiles->add (std::move (tile));
+      if (measure_)
+        tiles->measureReady ();
     }
-    // A phase-0 tile's patches list points beyond the tiles around it: phase by phase, every phase-1 tile
-    // knowing what the whole phase 0 covers, and measured after (every vertex list held till then).
+    for (std::size_t t = 0; t < grid.size (); ++t)
+      tile_seconds_[t] = tiles->tile (t).seconds;
+    model = tiles->takeModel ();
+    if (measure_)
+      statistics_ = tiles->sums ().statistics (model.model, source_->totalPoints ());
+    measurement_seconds_ = tiles->seconds ();
+    peak_held_tiles_ = tiles->peakHeldTiles ();
+    peak_held_vertices_ = tiles->peakHeldVertices ();
+    peak_pending_errors_ = tiles->peakPendingErrors ();
+  }
+
+  std::vector<TileEncoding>
+  encodeTilesByPhase (const TileSource& source, const SparseSurfaceEncoderOptions& options, int num_threads,
+                      const std::function<void (double)>& progress)
+  {
+    const TileGrid& grid = source.grid ();
     std::vector<TileEncoding> tiles;
     std::size_t done = 0, todo = 0;
     for (std::size_t t = 0; t < grid.size (); ++t)
-      todo += source_->corePoints (t) > 0;
+      todo += source.corePoints (t) > 0;
     std::vector<std::size_t> covered;
     for (int phase = 0; phase < 2; ++phase)
     {
@@ -598,29 +492,15 @@ namespace pcl_sparse
         covered = coveredPoints (tiles);
       std::vector<std::size_t> these;
       for (std::size_t t = 0; t < grid.size (); ++t)
-        if (source_->corePoints (t) > 0 && tilePhase (grid, t) == phase)
+        if (source.corePoints (t) > 0 && tilePhase (grid, t) == phase)
           these.push_back (t);
-      for (TileEncoding& tile : encodeTiles (*source_, these, options_, num_threads_, covered, [&] (std::size_t finished) {
-             reportProgress ("tiles", static_cast<double> (done + finished) / static_cast<double> (todo));
+      for (TileEncoding& tile : encodeTiles (source, these, options, num_threads, covered, [&] (std::size_t finished) {
+             if (progress)
+               progress (static_cast<double> (done + finished) / static_cast<double> (todo));
            }))
-      {
-        tile_seconds_[tile.tile] = tile.seconds;
         tiles.push_back (std::move (tile));
-      }
       done += these.size ();
     }
-    peak_held_tiles_ = peak_held_vertices_ = peak_pending_errors_ = 0;
-    for (const TileEncoding& tile : tiles)
-    {
-      peak_held_tiles_ += listings (tile) > 0;
-      peak_held_vertices_ += listings (tile);
-    }
-    model = mergeTileEncodings (grid, source_->totalPoints (), std::move (tiles));
-    if (measure_)
-    {
-      const auto start = std::chrono::steady_clock::now ();
-      statistics_ = tiledModelStatistics (*source_, model, statistics_options_);
-      measurement_seconds_ = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-    }
+    return tiles;
   }
 } // namespace pcl_sparse

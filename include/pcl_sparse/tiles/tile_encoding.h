@@ -47,6 +47,11 @@ namespace pcl_sparse
   std::vector<std::size_t>
   coveredPoints (const std::vector<TileEncoding>& tiles);
 
+  /// \brief The input points the patches of \a tiles cover, as above.
+  /// \param[in] tiles encodings (of phase 0), not null
+  std::vector<std::size_t>
+  coveredPoints (const std::vector<const TileEncoding*>& tiles);
+
   /// \brief Encodes tile \a t of \a source (see the file's comment).
   /// \param[in] source       the tiled input
   /// \param[in] t            the tile
@@ -69,7 +74,8 @@ namespace pcl_sparse
   /// \param[in] tiles        the tiles, in the order of the result
   /// \param[in] options      the encoder's options
   /// \param[in] num_threads  OpenMP threads (0 = default)
-  /// \param[in] covered      as for encodeTile
+  /// \param[in] covered      as for encodeTile, for the phase-1 tiles (tilePhase) of \a tiles; phase-0 tiles
+  ///                         are encoded without (they cover first), so one call can take both
   /// \param[in] progress     called with the number of tiles done (may be empty)
   /// \return one encoding per tile
   /// \throws pcl_sparse::Error of the first tile (in \a tiles' order) that fails
@@ -77,6 +83,18 @@ namespace pcl_sparse
   encodeTiles (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
                int num_threads = 0, const std::vector<std::size_t>& covered = {},
                const std::function<void (std::size_t)>& progress = {});
+
+  /// \brief Every tile with core points, encoded phase by phase (encodeTiles): the phase-1 tiles knowing what
+  /// the whole phase 0 covers. What TiledSurfaceEncoder falls back to when a phase-0 tile's patches list
+  /// points beyond its neighbours (TileEncoding::reach > 1).
+  /// \param[in] source       the tiled input
+  /// \param[in] options      the encoder's options
+  /// \param[in] num_threads  OpenMP threads (0 = default)
+  /// \param[in] progress     called with the fraction of tiles done (may be empty)
+  /// \return one encoding per tile with core points, phase 0 first
+  std::vector<TileEncoding>
+  encodeTilesByPhase (const TileSource& source, const SparseSurfaceEncoderOptions& options, int num_threads = 0,
+                      const std::function<void (double)>& progress = {});
 
   /// \brief The whole model from its tiles' encodings (patches in tile order; whole-input vertex count,
   /// diagonal and attribute ranges).

@@ -1,0 +1,168 @@
+#include <pcl_sparse/tiles/wavefront_measurement.h>
+
+#include <pcl_sparse/tiles/tile_encoding.h>
+
+#include <algorithm>
+#include <chrono>
+
+namespace pcl_sparse
+{
+  int
+  wavefrontAxis (const TileGrid& grid)
+  {
+    int axis = 2;
+    for (int a = 1; a >= 0; --a)
+      if (grid.counts[a] > grid.counts[axis])
+        axis = a;
+    return axis;
+  }
+
+  std::vector<std::size_t>
+  wavefrontMeasuringOrder (const TileGrid& grid, const std::vector<std::size_t>& core)
+  {
+    const int axis = wavefrontAxis (grid);
+    std::vector<std::size_t> order;
+    for (std::size_t t = 0; t < grid.size (); ++t)
+      if (core[t] > 0)
+        order.push_back (t);
+    std::stable_sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
+      return grid.coordinates (a)[axis] < grid.coordinates (b)[axis];
+    });
+    return order;
+  }
+
+  namespace
+  {
+    /// Vertex listings of a tile's patches.
+    std::size_t
+    listings (const TileEncoding& tile)
+    {
+      std::size_t n = 0;
+      for (const PatchCode& patch : tile.model.patches)
+        n += patch.vertices.size ();
+      return n;
+    }
+  } // namespace
+
+  WavefrontMeasurement::WavefrontMeasurement (const TileSource& source, bool drop_vertices)
+    : source_ (source), drop_ (drop_vertices)
+  {
+    const TileGrid& grid = source.grid ();
+    const std::size_t n = grid.size ();
+    std::vector<std::size_t> core (n);
+    for (std::size_t t = 0; t < n; ++t)
+      core[t] = source.corePoints (t);
+    order_ = wavefrontMeasuringOrder (grid, core);
+    // The tiles with core points around each tile; the last tile measured that needs each tile's patches
+    // (their vertex lists can go after it), as a position in order_; the tiles in the order their errors are
+    // added (ascending, as tiledModelStatistics adds them: the same bits).
+    near_.resize (n);
+    last_use_.assign (n, 0);
+    for (std::size_t m = 0; m < order_.size (); ++m)
+      for (const std::size_t u : neighbourTiles (grid, order_[m]))
+        if (core[u] > 0)
+        {
+          near_[order_[m]].push_back (u);
+          last_use_[u] = m;
+        }
+    for (std::size_t t = 0; t < n; ++t)
+      if (core[t] > 0)
+        ascending_.push_back (t);
+    tiles_.resize (n);
+    in_.assign (n, 0);
+    held_.assign (n, 0);
+    pending_.resize (n);
+  }
+
+  void
+  WavefrontMeasurement::add (TileEncoding tile)
+  {
+    const std::size_t t = tile.tile;
+    held_[t] = listings (tile);
+    if (held_[t] > 0)
+    {
+      ++held_tiles_;
+      held_vertices_ += held_[t];
+      peak_held_tiles_ = std::max (peak_held_tiles_, held_tiles_);
+      peak_held_vertices_ = std::max (peak_held_vertices_, held_vertices_);
+    }
+    tiles_[t] = std::move (tile);
+    in_[t] = 1;
+  }
+
+  bool
+  WavefrontMeasurement::hasAround (std::size_t t, bool phase0_only) const
+  {
+    for (const std::size_t u : near_[t])
+      if ((!phase0_only || tilePhase (source_.grid (), u) == 0) && !in_[u])
+        return false;
+    return true;
+  }
+
+  bool
+  WavefrontMeasurement::next (std::size_t& t, std::vector<TilePatches>& near) const
+  {
+    if (next_ >= order_.size () || !hasAround (order_[next_], false))
+      return false;
+    t = order_[next_];
+    near.clear ();
+    for (const std::size_t u : near_[t])
+      if (!tiles_[u].model.patches.empty ())
+        near.push_back ({tiles_[u].model.patches.data (), tiles_[u].model.patches.size (), tiles_[u].model.basis.get ()});
+    return true;
+  }
+
+  void
+  WavefrontMeasurement::finish (std::unique_ptr<TileErrors> errors, double seconds)
+  {
+    const std::size_t t = order_[next_];
+    seconds_ += seconds;
+    errors->errors.shrink_to_fit ();
+    pending_points_ += errors->errors.size ();
+    pending_[t] = std::move (errors);
+    while (next_add_ < ascending_.size () && pending_[ascending_[next_add_]])
+    {
+      const std::unique_ptr<TileErrors> ready = std::move (pending_[ascending_[next_add_++]]);
+      sums_.add (*ready);
+      pending_points_ -= ready->errors.size ();
+    }
+    peak_pending_errors_ = std::max (peak_pending_errors_, pending_points_);
+    if (drop_)
+      for (const std::size_t u : near_[t])
+        if (last_use_[u] == next_ && held_[u] > 0)
+        {
+          for (PatchCode& patch : tiles_[u].model.patches)
+          {
+            std::vector<int> ().swap (patch.vertices);
+            std::vector<Eigen::Vector2d> ().swap (patch.vertex_xy);
+          }
+          --held_tiles_;
+          held_vertices_ -= held_[u];
+          held_[u] = 0;
+        }
+    ++next_;
+  }
+
+  void
+  WavefrontMeasurement::measureReady ()
+  {
+    std::size_t t = 0;
+    std::vector<TilePatches> near;
+    while (next (t, near))
+    {
+      const auto start = std::chrono::steady_clock::now ();
+      auto errors = std::make_unique<TileErrors> (TiledErrorSums::measureTile (source_, t, near));
+      finish (std::move (errors), std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ());
+    }
+  }
+
+  TiledModel
+  WavefrontMeasurement::takeModel ()
+  {
+    std::vector<TileEncoding> tiles;
+    for (std::size_t t = 0; t < tiles_.size (); ++t)
+      if (in_[t])
+        tiles.push_back (std::move (tiles_[t]));
+    return mergeTileEncodings (source_.grid (), source_.totalPoints (), std::move (tiles));
+  }
+} // namespace pcl_sparse
