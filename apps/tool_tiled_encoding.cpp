@@ -354,7 +354,7 @@ namespace pcl_sparse
         seconds.statistics = encoder.getMeasurementSeconds ();
         seconds.held_tiles = encoder.getPeakHeldTiles ();
         seconds.held_listings = encoder.getPeakHeldVertices ();
-        seconds.pending_errors = encoder.getPeakPendingErrors ();
+        seconds.pending_tiles = encoder.getPeakPendingTiles ();
         return seconds;
       }
       // Slab by slab (SlabRun); phase by phase when a phase-0 tile's patches reach beyond its neighbours, as
@@ -378,7 +378,7 @@ namespace pcl_sparse
       seconds.statistics = tiles->seconds ();
       seconds.held_tiles = tiles->peakHeldTiles ();
       seconds.held_listings = tiles->peakHeldVertices ();
-      seconds.pending_errors = tiles->peakPendingErrors ();
+      seconds.pending_tiles = tiles->peakPendingTiles ();
       return seconds;
     }
   } // namespace tools

@@ -23,7 +23,7 @@ namespace pcl_sparse
       double statistics = 0.0;         ///< seconds measuring the model against its input
       std::size_t held_tiles = 0;      ///< most tiles whose vertex lists rank 0 held at once
       std::size_t held_listings = 0;   ///< most vertex listings rank 0 held at once
-      std::size_t pending_errors = 0;  ///< most point errors waiting to be added in tile order
+      std::size_t pending_tiles = 0;   ///< most tiles whose error sums waited to be added in tile order
     };
 
     /// \brief The tiled encoding of \a source by the processes of \a group, and its statistics against the

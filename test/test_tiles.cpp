@@ -667,8 +667,8 @@ TEST (TiledEncoding, WavefrontHoldsVertexListsForABandOfTiles)
   // A band: slabs j - 1 to j + 1 of the tile measured and the phase-0 tiles of slab j + 2 (about 3.5 of
   // the 12 slabs), plus the few tiles taken ahead; never more than 5.
   std::cout << "held at once: " << wavefront.getPeakHeldTiles () << " of " << all_tiles << " tiles, "
-            << wavefront.getPeakHeldVertices () << " of " << all_vertices << " vertex listings; errors waiting: "
-            << wavefront.getPeakPendingErrors () << " of " << mesh->vertices.size () << "\n";
+            << wavefront.getPeakHeldVertices () << " of " << all_vertices << " vertex listings; tiles' error sums waiting: "
+            << wavefront.getPeakPendingTiles () << "\n";
   EXPECT_LE (wavefront.getPeakHeldTiles (), all_tiles * 5 / 12);
   EXPECT_LT (wavefront.getPeakHeldVertices (), all_vertices * 5 / 12);
 }

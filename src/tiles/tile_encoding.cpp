@@ -473,7 +473,7 @@ namespace pcl_sparse
     measurement_seconds_ = tiles->seconds ();
     peak_held_tiles_ = tiles->peakHeldTiles ();
     peak_held_vertices_ = tiles->peakHeldVertices ();
-    peak_pending_errors_ = tiles->peakPendingErrors ();
+    peak_pending_tiles_ = tiles->peakPendingTiles ();
   }
 
   std::vector<TileEncoding>

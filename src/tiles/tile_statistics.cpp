@@ -68,12 +68,17 @@ namespace pcl_sparse
           ++count[v];
         }
       }
-    result.errors.reserve (numbers.size ());
     for (std::size_t v = 0; v < numbers.size (); ++v)
       if (count[v] == 0)
         ++result.uncovered;
       else
-        result.errors.push_back ((Eigen::Vector3d (sum[v] / count[v]) - positions[v]).norm ());
+      {
+        const double e = (Eigen::Vector3d (sum[v] / count[v]) - positions[v]).norm ();
+        result.squares += e * e;
+        result.absolute += e;
+        result.largest = std::max (result.largest, e);
+        ++result.covered;
+      }
     return result;
   }
 
@@ -81,13 +86,10 @@ namespace pcl_sparse
   TiledErrorSums::add (const TileErrors& tile)
   {
     uncovered_ += tile.uncovered;
-    for (const double e : tile.errors)
-    {
-      squares_ += e * e;
-      absolute_ += e;
-      largest_ = std::max (largest_, e);
-    }
-    covered_ += tile.errors.size ();
+    squares_ += tile.squares;
+    absolute_ += tile.absolute;
+    largest_ = std::max (largest_, tile.largest);
+    covered_ += tile.covered;
   }
 
   ModelStatistics

@@ -117,16 +117,15 @@ namespace pcl_sparse
   {
     const std::size_t t = order_[next_];
     seconds_ += seconds;
-    errors->errors.shrink_to_fit ();
-    pending_points_ += errors->errors.size ();
+    ++pending_tiles_;
     pending_[t] = std::move (errors);
+    peak_pending_tiles_ = std::max (peak_pending_tiles_, pending_tiles_);
     while (next_add_ < ascending_.size () && pending_[ascending_[next_add_]])
     {
-      const std::unique_ptr<TileErrors> ready = std::move (pending_[ascending_[next_add_++]]);
-      sums_.add (*ready);
-      pending_points_ -= ready->errors.size ();
+      sums_.add (*pending_[ascending_[next_add_]]);
+      pending_[ascending_[next_add_++]].reset ();
+      --pending_tiles_;
     }
-    peak_pending_errors_ = std::max (peak_pending_errors_, pending_points_);
     if (drop_)
       for (const std::size_t u : near_[t])
         if (last_use_[u] == next_ && held_[u] > 0)

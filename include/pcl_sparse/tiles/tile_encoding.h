@@ -168,9 +168,9 @@ namespace pcl_sparse
     /// \brief Most vertex listings (entries of PatchCode::vertices, with their (x', y')) held at once.
     std::size_t getPeakHeldVertices () const { return peak_held_vertices_; }
 
-    /// \brief Most errors (one double a point) of tiles measured ahead of a lower tile held at once, waiting
-    /// to be added in tile order (none when the slabs run along z, the tiles' slowest axis).
-    std::size_t getPeakPendingErrors () const { return peak_pending_errors_; }
+    /// \brief Most tiles measured ahead of a lower tile at once, their error sums (a few numbers a tile)
+    /// waiting to be added in tile order.
+    std::size_t getPeakPendingTiles () const { return peak_pending_tiles_; }
 
   private:
     std::shared_ptr<const TileSource> source_;
@@ -180,6 +180,6 @@ namespace pcl_sparse
     std::vector<double> tile_seconds_;
     ModelStatistics statistics_;
     double measurement_seconds_ = 0.0;
-    std::size_t peak_held_tiles_ = 0, peak_held_vertices_ = 0, peak_pending_errors_ = 0;
+    std::size_t peak_held_tiles_ = 0, peak_held_vertices_ = 0, peak_pending_tiles_ = 0;
   };
 } // namespace pcl_sparse

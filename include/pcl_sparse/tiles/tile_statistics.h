@@ -39,16 +39,22 @@ namespace pcl_sparse
     const SurfaceBasis* basis = nullptr;  ///< their basis (null: heights 0)
   };
 
-  /// The errors of one tile's core points, to be added to TiledErrorSums in tile order.
+  /// The errors of one tile's core points, summed over them in point-number order, to be added to
+  /// TiledErrorSums in tile order. A few numbers a tile, whatever its size: a tile measured ahead of a lower
+  /// one waits with these, not with an error a point.
   struct TileErrors
   {
-    std::vector<double> errors;  ///< |v - v^| of its covered core points, by point number
+    double squares = 0.0;        ///< sum of |v - v^|^2 over its covered core points
+    double absolute = 0.0;       ///< sum of |v - v^|
+    double largest = 0.0;        ///< largest |v - v^|
+    std::size_t covered = 0;     ///< its core points in some patch
     std::size_t uncovered = 0;   ///< its core points in no patch
   };
 
   /// \brief Running sums of a tiled model's vertex errors, taken tile by tile: what tiledModelStatistics adds
   /// up, for an encoder that measures each tile as soon as the tiles around it are encoded
-  /// (TiledSurfaceEncoder). Added in ascending tile order, the figures are tiledModelStatistics' bit for bit.
+  /// (TiledSurfaceEncoder). Each tile's errors are summed first, then the tiles' sums in ascending tile
+  /// order: so the figures are tiledModelStatistics' bit for bit, whatever order the tiles are measured in.
   class TiledErrorSums
   {
   public:
@@ -89,7 +95,7 @@ namespace pcl_sparse
   /// Each point is reconstructed as reconstructVertices does (the mean over the patches listing it, in model
   /// order) from the patches of its own tile and of the 26 tiles around it (a tile's patches list only points
   /// of its margin box), and its error is taken in its own tile (TileGrid::tileOf), so every point counts
-  /// once. The sums run tile by tile, then over the tile's points in input order: the figures equal
+  /// once. Each tile's points are summed in input order, then the tiles' sums in tile order: the figures equal
   /// SparseSurfaceModel::statistics against the whole input up to rounding, and do not depend on the tile
   /// source (MemoryTileSource or a spilled one give the same bits) or on the number of threads.
   /// \param[in] source     the tiled input, with point numbers (TileInput::point_numbers)

@@ -30,9 +30,9 @@ namespace pcl_sparse
   wavefrontMeasuringOrder (const TileGrid& grid, const std::vector<std::size_t>& core);
 
   /// \brief Holds the tiles of a tiled encoding as they come in (add) and measures them in
-  /// wavefrontMeasuringOrder, each as soon as the tiles around it are in. The errors are added in ascending
-  /// tile order, as tiledModelStatistics adds them, so the figures are its bit for bit whatever order the
-  /// tiles come in (a tile measured ahead of a lower one keeps its errors, a double a point, until then).
+  /// wavefrontMeasuringOrder, each as soon as the tiles around it are in. The tiles' error sums are added in
+  /// ascending tile order, as tiledModelStatistics adds them, so the figures are its bit for bit whatever
+  /// order the tiles come in (a tile measured ahead of a lower one keeps its sums, a few numbers, until then).
   /// Not thread-safe: one thread at a time, or a lock around every call; a tile can be measured between
   /// next and finish without the lock (add moves no other tile's patches).
   class WavefrontMeasurement
@@ -104,8 +104,8 @@ namespace pcl_sparse
     std::size_t peakHeldTiles () const { return peak_held_tiles_; }
     /// \brief Most vertex listings held at once.
     std::size_t peakHeldVertices () const { return peak_held_vertices_; }
-    /// \brief Most errors waiting for a lower tile's at once.
-    std::size_t peakPendingErrors () const { return peak_pending_errors_; }
+    /// \brief Most tiles whose error sums waited for a lower tile's at once.
+    std::size_t peakPendingTiles () const { return peak_pending_tiles_; }
 
   private:
     const TileSource& source_;
@@ -115,11 +115,11 @@ namespace pcl_sparse
     std::vector<TileEncoding> tiles_;
     std::vector<unsigned char> in_;                          ///< whether each tile is in (bytes: read unlocked)
     std::vector<std::size_t> held_;                          ///< vertex listings held per tile
-    std::vector<std::unique_ptr<TileErrors>> pending_;       ///< errors of tiles measured before a lower tile
+    std::vector<std::unique_ptr<TileErrors>> pending_;       ///< sums of tiles measured before a lower tile
     TiledErrorSums sums_;
     double seconds_ = 0.0;
     std::size_t next_ = 0, next_add_ = 0;
-    std::size_t held_tiles_ = 0, held_vertices_ = 0, pending_points_ = 0;
-    std::size_t peak_held_tiles_ = 0, peak_held_vertices_ = 0, peak_pending_errors_ = 0;
+    std::size_t held_tiles_ = 0, held_vertices_ = 0, pending_tiles_ = 0;
+    std::size_t peak_held_tiles_ = 0, peak_held_vertices_ = 0, peak_pending_tiles_ = 0;
   };
 } // namespace pcl_sparse
