@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -79,13 +80,27 @@ namespace pcl_sparse
         return slowest;
       }
 
-      /// The step at which the ranks encode tile \a t, slab by slab along wavefrontAxis: a phase-0 tile of slab
-      /// s at step s, a phase-1 tile at step s + 2, once the phase-0 tiles of the slabs around it (s - 1 to
-      /// s + 1) are encoded and what they cover is known.
+      /// The step at which the ranks encode tile \a t, by groups of \a group slabs along wavefrontAxis: a
+      /// phase-0 tile of group g at step g, a phase-1 tile at step g + 2, once the phase-0 tiles of the slabs
+      /// around its group (those of groups g - 1 to g + 1) are encoded and what they cover is known.
       std::size_t
-      encodingStep (const TileGrid& grid, int axis, std::size_t t)
+      encodingStep (const TileGrid& grid, int axis, int group, std::size_t t)
       {
-        return static_cast<std::size_t> (grid.coordinates (t)[axis] + 2 * tilePhase (grid, t));
+        return static_cast<std::size_t> (grid.coordinates (t)[axis] / group + 2 * tilePhase (grid, t));
+      }
+
+      /// Slabs a step takes: enough that every step gives each rank about two phase-0 tiles, or ranks sit idle
+      /// while one encodes (2 M points in 3 x 3 tiles, a slab a step: 1.41x on 2 ranks); one on large grids,
+      /// where a slab holds many tiles, so that the band held stays narrow.
+      int
+      slabsPerStep (const TileSource& source, int axis, int ranks)
+      {
+        const TileGrid& grid = source.grid ();
+        std::size_t phase0 = 0;
+        for (std::size_t t = 0; t < grid.size (); ++t)
+          phase0 += tilePhase (grid, t) == 0 && source.corePoints (t) > 0;
+        const double per_slab = static_cast<double> (phase0) / grid.counts[axis];
+        return per_slab > 0.0 ? std::max (1, std::min (grid.counts[axis], static_cast<int> (std::ceil (2.0 * ranks / per_slab)))) : 1;
       }
 
       /// What a rank says of its tiles of a step, first in each of its messages.
@@ -104,13 +119,14 @@ namespace pcl_sparse
             threads_ (threads), quiet_ (quiet)
         {
           // Each step's tiles shared out by points: static, the same on every rank.
-          steps_ = static_cast<std::size_t> (grid_.counts[axis_]) + 2;
+          slabs_ = slabsPerStep (source, axis_, group.size ());
+          steps_ = static_cast<std::size_t> ((grid_.counts[axis_] + slabs_ - 1) / slabs_) + 2;
           rank_of_.assign (grid_.size (), -1);
           for (std::size_t s = 0; s < steps_; ++s)
           {
             std::vector<std::size_t> points (grid_.size (), 0);
             for (std::size_t t = 0; t < grid_.size (); ++t)
-              if (encodingStep (grid_, axis_, t) == s)
+              if (encodingStep (grid_, axis_, slabs_, t) == s)
                 points[t] = source.corePoints (t);
             const std::vector<int> ranks = tileRanks (points, group.size ());
             for (std::size_t t = 0; t < grid_.size (); ++t)
@@ -145,7 +161,7 @@ namespace pcl_sparse
             if (!receive (group_.exchange (std::move (messages)), tiles))
               return false;
             for (auto it = covered_.begin (); it != covered_.end ();)  // a phase-0 tile's phase-1 neighbours are done
-              it = encodingStep (grid_, axis_, it->first) + 3 <= step ? covered_.erase (it) : std::next (it);
+              it = encodingStep (grid_, axis_, slabs_, it->first) + 3 <= step ? covered_.erase (it) : std::next (it);
             if (tiles)
             {
               tiles->measureReady ();
@@ -169,7 +185,7 @@ namespace pcl_sparse
           const auto start = std::chrono::steady_clock::now ();
           std::vector<std::size_t> these;
           for (std::size_t t = 0; t < grid_.size (); ++t)
-            if (rank_of_[t] == group_.rank () && encodingStep (grid_, axis_, t) == step)
+            if (rank_of_[t] == group_.rank () && encodingStep (grid_, axis_, slabs_, t) == step)
               these.push_back (t);
           // A phase-0 tile's patches list points of its neighbours' cores only (else the run stops), so one list
           // of what those around this rank's phase-1 tiles cover serves them all.
@@ -292,6 +308,7 @@ namespace pcl_sparse
         const SparseSurfaceEncoderOptions& options_;
         const int threads_;
         const bool quiet_;
+        int slabs_ = 1;  ///< slabs a step (slabsPerStep)
         std::size_t steps_ = 0, total_ = 0, received_ = 0;
         std::vector<int> rank_of_;                                 ///< rank encoding each tile (-1: no core points)
         std::map<std::size_t, std::vector<std::size_t>> covered_;  ///< what phase-0 tiles around this rank's phase-1 tiles cover
