@@ -47,6 +47,17 @@ namespace pcl_sparse
 
     // ---- JsonObject --------------------------------------------------------------------------------
 
+    namespace
+    {
+      /// A double as JSON: 17 significant digits (reads back exactly); null for NaN and infinity, which JSON
+      /// has no words for.
+      std::string
+      jsonNumber (double value)
+      {
+        return std::isfinite (value) ? format ("%.17g", value) : "null";
+      }
+    } // namespace
+
     JsonObject&
     JsonObject::addRaw (const std::string& key, const std::string& json_value)
     {
@@ -77,8 +88,7 @@ namespace pcl_sparse
     JsonObject&
     JsonObject::add (const std::string& key, double value)
     {
-      // JSON has no NaN or infinity.
-      return addRaw (key, std::isfinite (value) ? format ("%.17g", value) : "null");
+      return addRaw (key, jsonNumber (value));
     }
 
     JsonObject&
@@ -98,7 +108,7 @@ namespace pcl_sparse
     {
       std::string array;
       for (double value : values)
-        array += (array.empty () ? "" : ", ") + (std::isfinite (value) ? format ("%.17g", value) : std::string ("null"));
+        array += (array.empty () ? "" : ", ") + jsonNumber (value);
       return addRaw (key, "[" + array + "]");
     }
 

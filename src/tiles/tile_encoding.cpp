@@ -339,10 +339,10 @@ namespace pcl_sparse
         lock.unlock ();
         const auto start = std::chrono::steady_clock::now ();
         std::string failure;
-        std::unique_ptr<TileErrors> measurement;
+        TileErrors measurement;
         try
         {
-          measurement = std::make_unique<TileErrors> (TiledErrorSums::measureTile (source_, t, near));
+          measurement = TiledErrorSums::measureTile (source_, t, near);
         }
         catch (const std::exception& e)
         {
@@ -357,7 +357,7 @@ namespace pcl_sparse
           stop_ = true;
         }
         else
-          tiles_.finish (std::move (measurement), seconds);
+          tiles_.finish (measurement, seconds);
         return true;
       }
 

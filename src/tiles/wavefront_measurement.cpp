@@ -113,12 +113,12 @@ namespace pcl_sparse
   }
 
   void
-  WavefrontMeasurement::finish (std::unique_ptr<TileErrors> errors, double seconds)
+  WavefrontMeasurement::finish (const TileErrors& errors, double seconds)
   {
     const std::size_t t = order_[next_];
     seconds_ += seconds;
     ++pending_tiles_;
-    pending_[t] = std::move (errors);
+    pending_[t] = errors;
     peak_pending_tiles_ = std::max (peak_pending_tiles_, pending_tiles_);
     while (next_add_ < ascending_.size () && pending_[ascending_[next_add_]])
     {
@@ -150,8 +150,8 @@ namespace pcl_sparse
     while (next (t, near))
     {
       const auto start = std::chrono::steady_clock::now ();
-      auto errors = std::make_unique<TileErrors> (TiledErrorSums::measureTile (source_, t, near));
-      finish (std::move (errors), std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ());
+      const TileErrors errors = TiledErrorSums::measureTile (source_, t, near);
+      finish (errors, std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ());
     }
   }
 

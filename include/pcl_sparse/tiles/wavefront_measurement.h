@@ -11,7 +11,7 @@
 #include <pcl_sparse/tiles/tiled_model.h>
 
 #include <cstddef>
-#include <memory>
+#include <optional>
 #include <vector>
 
 namespace pcl_sparse
@@ -78,7 +78,7 @@ namespace pcl_sparse
     /// \param[in] errors  TiledErrorSums::measureTile of the tile
     /// \param[in] seconds the time it took
     void
-    finish (std::unique_ptr<TileErrors> errors, double seconds);
+    finish (const TileErrors& errors, double seconds);
 
     /// \brief Measures every tile it can, in order, on this thread.
     void
@@ -115,7 +115,7 @@ namespace pcl_sparse
     std::vector<TileEncoding> tiles_;
     std::vector<unsigned char> in_;                          ///< whether each tile is in (bytes: read unlocked)
     std::vector<std::size_t> held_;                          ///< vertex listings held per tile
-    std::vector<std::unique_ptr<TileErrors>> pending_;       ///< sums of tiles measured before a lower tile
+    std::vector<std::optional<TileErrors>> pending_;         ///< sums of tiles measured before a lower tile
     TiledErrorSums sums_;
     double seconds_ = 0.0;
     std::size_t next_ = 0, next_add_ = 0;
