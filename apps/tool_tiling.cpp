@@ -95,6 +95,7 @@ namespace pcl_sparse
       // patches encoded so far (their vertex lists hold a few tens of bytes per input point until measured).
       options.points_per_tile = std::max<std::size_t> (
         1000, static_cast<std::size_t> (0.5 * static_cast<double> (budget) / kEncoderBytesPerPoint / 1.5 / kBudgetTilesAtOnce));
+      options.min_tiles = kRegionTiles;
       return true;
     }
   } // namespace tools

@@ -27,6 +27,12 @@ namespace pcl_sparse
     /// (and the model) do not depend on the number of threads.
     constexpr int kBudgetTilesAtOnce = 2;
 
+    /// Tiles a budget-tiled input is cut into at least (TileGridOptions::min_tiles, tiles of 50,000 points
+    /// at the smallest): 20 x 20 on a height field, so that a box of a hundredth of the area decodes from
+    /// a few tiles, under 5 % of the file (bench/region_read.sh). The budget's tiles would be fewer below
+    /// about 100 M points at -memory 2G (9 x 9 at 20 M points: 6.6 % of the file a region on average).
+    constexpr std::size_t kRegionTiles = 400;
+
     /// A byte count with an optional binary suffix: "2G", "512M", "1.5T", "100000" (K, M, G, T = 2^10 ..
     /// 2^40). Throws Error naming \a option for anything else or a value below 1 MiB.
     std::uint64_t
@@ -48,7 +54,8 @@ namespace pcl_sparse
     spillsInput (const CommandLine& args, const std::string& path, bool& mesh, std::size_t& points);
 
     /// How to tile an input of \a points points from -tiles and -memory: false (not tiled), or true and
-    /// \a options set (tiles_along_longest from -tiles, else points_per_tile from the budget).
+    /// \a options set (tiles_along_longest from -tiles, else points_per_tile from the budget and min_tiles
+    /// kRegionTiles).
     bool
     chooseTiling (const CommandLine& args, std::size_t points, TileGridOptions& options);
   } // namespace tools

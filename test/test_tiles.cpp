@@ -162,6 +162,31 @@ namespace
   }
 } // namespace
 
+TEST (TileGrid, MinTilesCutsSmallerTilesDownToMinTilePoints)
+{
+  // A terrain's box: 1000 x 1000 m, 80 m of relief. Its area estimate is 0.5 (1e6 + 1e6 + 2 x 80,000) m^2.
+  const Eigen::AlignedBox3d box (Eigen::Vector3d (0.0, 0.0, -40.0), Eigen::Vector3d (1000.0, 1000.0, 40.0));
+  TileGridOptions options;
+  options.points_per_tile = 250000;  // what -memory 2G gives
+  // Without min_tiles: edge sqrt (1.08e6 x 250,000 / 20 M) = 116 m, 9 x 9 x 1 tiles.
+  EXPECT_EQ (makeTileGrid (box, 20000000, options).counts, Eigen::Vector3i (9, 9, 1));
+  options.min_tiles = 400;
+  // 20 M / 400 = 50,000 points a tile: edge 52 m, 20 x 20 tiles (two layers for the relief).
+  const TileGrid twenty = makeTileGrid (box, 20000000, options);
+  EXPECT_NEAR (twenty.edge, std::sqrt (1.08e6 * 50000.0 / 20e6), 1e-9);
+  EXPECT_EQ (twenty.counts, Eigen::Vector3i (20, 20, 2));
+  // 5 M / 400 is below min_tile_points: tiles of 50,000 points, 10 x 10.
+  EXPECT_EQ (makeTileGrid (box, 5000000, options).counts, Eigen::Vector3i (10, 10, 1));
+  // 200 M / 400 is above the budget's tiles: min_tiles changes nothing.
+  TileGridOptions budget_only;
+  budget_only.points_per_tile = 250000;
+  EXPECT_EQ (makeTileGrid (box, 200000000, options).counts, makeTileGrid (box, 200000000, budget_only).counts);
+  // Inputs that fit one tile stay one tile.
+  EXPECT_EQ (makeTileGrid (box, 40000, options).size (), 1u);
+  options.min_tile_points = 0;
+  EXPECT_THROW (makeTileGrid (box, 20000000, options), Error);
+}
+
 TEST (MemoryTileSource, EveryPointInOneCoreAndItsTileInput)
 {
   const TriangleMesh::Ptr mesh = terrain (40);

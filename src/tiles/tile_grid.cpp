@@ -12,16 +12,19 @@ namespace pcl_sparse
   {
     if (box.isEmpty () || !box.min ().allFinite () || !box.max ().allFinite ())
       throw Error ("makeTileGrid: the input's bounding box is empty or not finite");
-    if (options.points_per_tile == 0 || options.tiles_along_longest < 0 ||
+    if (options.points_per_tile == 0 || options.min_tile_points == 0 || options.tiles_along_longest < 0 ||
         !(options.margin_fraction >= 0.0 && options.margin_fraction <= 0.5))
-      throw Error ("makeTileGrid: points_per_tile must be positive, tiles_along_longest >= 0 and "
+      throw Error ("makeTileGrid: points_per_tile and min_tile_points must be positive, tiles_along_longest >= 0 and "
                    "margin_fraction in [0, 0.5]");
     const Eigen::Vector3d sides = box.sizes ();
     const double longest = std::max (sides.maxCoeff (), 1e-12);
+    std::size_t per_tile = options.points_per_tile;
+    if (options.min_tiles > 0)
+      per_tile = std::min (per_tile, std::max (points / options.min_tiles, options.min_tile_points));
     double edge = longest;
     if (options.tiles_along_longest > 0)
       edge = longest / options.tiles_along_longest;
-    else if (points > options.points_per_tile)
+    else if (points > per_tile)
     {
       // A surface spread through the box: its area is about the sum of the box's three face areas at
       // worst and the largest one for a height field; the mean of the two keeps tiles near their target
@@ -29,7 +32,7 @@ namespace pcl_sparse
       const double largest_face = std::max ({sides.x () * sides.y (), sides.y () * sides.z (), sides.x () * sides.z ()});
       const double all_faces = sides.x () * sides.y () + sides.y () * sides.z () + sides.x () * sides.z ();
       const double area = std::max (0.5 * (largest_face + all_faces), longest * longest * 1e-12);
-      edge = std::sqrt (area * static_cast<double> (options.points_per_tile) / static_cast<double> (points));
+      edge = std::sqrt (area * static_cast<double> (per_tile) / static_cast<double> (points));
       edge = std::min (edge, longest);
     }
     TileGrid grid;

@@ -19,6 +19,13 @@ namespace pcl_sparse
     /// Points a tile should hold, on average over the tiles that hold any (the grid's edge is chosen
     /// from it, treating the input as a surface: points per tile grow with the square of the edge).
     std::size_t points_per_tile = 2000000;
+    /// Cut into at least about this many tiles (by area: 400 is 20 x 20 on a height field), smaller than
+    /// points_per_tile asks, as long as a tile keeps min_tile_points: so that a region (a box of a
+    /// hundredth of the area) is read from a few tiles (0: off, tiles from points_per_tile only).
+    std::size_t min_tiles = 0;
+    /// Fewest points a tile is cut down to for min_tiles: smaller tiles pay their framing and
+    /// compression in bytes (docs/TILES.md, "Measured"); 50,000 points are about 300 patches of a terrain.
+    std::size_t min_tile_points = 50000;
     /// Forces the number of tiles along the longest side of the box (0: from points_per_tile).
     int tiles_along_longest = 0;
     /// Margin around each tile's core box, as a fraction of the tile edge: the points a tile's encoder
@@ -84,7 +91,8 @@ namespace pcl_sparse
   };
 
   /// \brief The grid for \a points points in \a box: cubic tiles whose edge gives about
-  /// options.points_per_tile points per tile (or options.tiles_along_longest along the longest side).
+  /// options.points_per_tile points per tile, or fewer for options.min_tiles (or options.tiles_along_longest
+  /// along the longest side).
   /// The grid is centred on the box; a single tile when everything fits in one.
   /// Throws pcl_sparse::Error for an empty or non-finite box or options out of range.
   TileGrid
