@@ -59,7 +59,8 @@ namespace pcl_sparse
   {
   public:
     /// \brief Adds the errors of tile \a t's core points, each reconstructed as the mean over the patches of
-    /// \a near listing it.
+    /// \a near listing it (PatchCode::vertices), at its local (x', y') in each recomputed from the point:
+    /// PatchCode::vertex_xy is not read, so vertex lists held for the statistics need only the numbers.
     /// \param[in] source the tiled input, with point numbers
     /// \param[in] t      the tile
     /// \param[in] near   the patches of \a t and of the tiles around it (neighbourTiles), in model order
