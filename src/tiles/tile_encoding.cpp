@@ -154,7 +154,7 @@ namespace pcl_sparse
           patch.vertices.clear ();
         if (input.point_numbers.empty () || !keep_xy)
           patch.vertex_xy.clear ();
-        // Held until the statistics (about two listings an input point, 4 bytes each, 20 with (x', y')): no
+        // Held until the statistics (some 2.5 listings an input point, 4 bytes each, 20 with (x', y')): no
         // slack.
         patch.vertices.shrink_to_fit ();
         patch.vertex_xy.shrink_to_fit ();

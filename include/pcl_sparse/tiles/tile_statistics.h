@@ -19,8 +19,9 @@ namespace pcl_sparse
   {
     /// Clear each patch's vertex list (PatchCode::vertices, vertex_xy) once every tile that needs it has
     /// been measured (default true): the model then holds no per-input-point data, which on a large input
-    /// is most of its memory; keep them (false) to write them (--store-vertices) or to reconstruct the
-    /// input vertices.
+    /// is most of its memory, and an encoder that measures as it goes holds the lists without vertex_xy
+    /// till then (encodeTile's keep_xy); keep them (false) to write them (--store-vertices) or to
+    /// reconstruct the input vertices.
     bool drop_vertices = true;
   };
 
