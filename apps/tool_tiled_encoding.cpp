@@ -23,10 +23,10 @@ namespace pcl_sparse
     namespace
     {
       /// Encodes \a tiles (a rank's share of one phase) into a message: a flag (0 tiles, 1 an error), the
-      /// seconds taken, then the tiles' bytes or the error text.
+      /// seconds taken, then the tiles' bytes or the error text. \a keep_xy as for encodeTile.
       std::vector<std::uint8_t>
       encodeShare (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
-                   int threads, const std::vector<std::size_t>& covered, const ProcessGroup& group, bool quiet)
+                   int threads, const std::vector<std::size_t>& covered, bool keep_xy, const ProcessGroup& group, bool quiet)
       {
         const auto start = std::chrono::steady_clock::now ();
         std::vector<TileEncoding> encodings;
@@ -37,7 +37,7 @@ namespace pcl_sparse
           encodings = encodeTiles (source, tiles, options, threads, covered, [&] (std::size_t done) {
             if (report)
               pcl::console::print_info ("\rtiles: %zu / %zu of rank 0 (%d ranks)", done, tiles.size (), group.size ());
-          });
+          }, keep_xy);
           if (report && !tiles.empty ())
             pcl::console::print_info ("\n");
         }
@@ -109,14 +109,15 @@ namespace pcl_sparse
       /// The ranks encode the tiles step by step (encodingStep), each its share of every step's tiles, and
       /// after each step send one message to every rank: what their new phase-0 tiles cover, to the ranks
       /// whose phase-1 tiles lie around them, and to rank 0 the tiles, which it measures as soon as the
-      /// tiles around them are in (WavefrontMeasurement). So every rank holds a few slabs of tiles at most.
+      /// tiles around them are in (WavefrontMeasurement). So every rank holds a few slabs of tiles at most,
+      /// and sends their vertex lists without (x', y') unless \a keep_xy (encodeTile).
       class SlabRun
       {
       public:
         SlabRun (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
-                 int threads, bool quiet)
+                 int threads, bool keep_xy, bool quiet)
           : group_ (group), source_ (source), grid_ (source.grid ()), axis_ (wavefrontAxis (grid_)), options_ (options),
-            threads_ (threads), quiet_ (quiet)
+            threads_ (threads), keep_xy_ (keep_xy), quiet_ (quiet)
         {
           // Each step's tiles shared out by points: static, the same on every rank.
           slabs_ = slabsPerStep (source, axis_, group.size ());
@@ -196,7 +197,7 @@ namespace pcl_sparse
           known.erase (std::unique (known.begin (), known.end ()), known.end ());
           try
           {
-            mine = encodeTiles (source_, these, options_, threads_, known);
+            mine = encodeTiles (source_, these, options_, threads_, known, {}, keep_xy_);
             for (const TileEncoding& tile : mine)
               if (tilePhase (grid_, tile.tile) == 0 && tile.reach > 1)
                 status = StepStatus::far_reaching;
@@ -307,7 +308,7 @@ namespace pcl_sparse
         const int axis_;
         const SparseSurfaceEncoderOptions& options_;
         const int threads_;
-        const bool quiet_;
+        const bool keep_xy_, quiet_;
         int slabs_ = 1;  ///< slabs a step (slabsPerStep)
         std::size_t steps_ = 0, total_ = 0, received_ = 0;
         std::vector<int> rank_of_;                                 ///< rank encoding each tile (-1: no core points)
@@ -320,7 +321,7 @@ namespace pcl_sparse
       /// covers), then of phase 1, gathered on rank 0, which gives them all to \a tiles. Returns the seconds.
       double
       encodeByPhases (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
-                      int threads, bool quiet, WavefrontMeasurement* tiles)
+                      int threads, bool keep_xy, bool quiet, WavefrontMeasurement* tiles)
       {
         const TileGrid& grid = source.grid ();
         std::vector<std::size_t> points (grid.size ());
@@ -328,7 +329,7 @@ namespace pcl_sparse
           points[t] = tilePhase (grid, t) == 0 ? source.corePoints (t) : 0;
         std::vector<TileEncoding> phase0;
         double seconds = decodeShares (group.allGather (encodeShare (source, tilesOfRank (points, group.size (), group.rank ()),
-                                                                     options, threads, {}, group, quiet)),
+                                                                     options, threads, {}, keep_xy, group, quiet)),
                                        phase0);
         const std::vector<std::size_t> covered = coveredPoints (phase0);
         if (!tiles)
@@ -337,7 +338,7 @@ namespace pcl_sparse
           points[t] = tilePhase (grid, t) == 1 ? source.corePoints (t) : 0;
         std::vector<std::vector<std::uint8_t>> phase1 =
           group.gather (encodeShare (source, tilesOfRank (points, group.size (), group.rank ()), options, threads, covered,
-                                     group, quiet));
+                                     keep_xy, group, quiet));
         if (!tiles)
           return seconds;
         seconds += decodeShares (std::move (phase1), phase0);
@@ -379,14 +380,16 @@ namespace pcl_sparse
       std::unique_ptr<WavefrontMeasurement> tiles;
       if (group.rank () == 0)
         tiles = std::make_unique<WavefrontMeasurement> (source, statistics_options.drop_vertices);
-      SlabRun slabs (group, source, options, threads, quiet);
+      // Vertex lists only for the statistics: without (x', y'), which the measurement recomputes.
+      const bool keep_xy = !statistics_options.drop_vertices;
+      SlabRun slabs (group, source, options, threads, keep_xy, quiet);
       if (slabs.run (tiles.get ()))
         seconds.coding = slabs.seconds ();
       else
       {
         if (tiles)
           tiles = std::make_unique<WavefrontMeasurement> (source, statistics_options.drop_vertices);
-        seconds.coding = encodeByPhases (group, source, options, threads, quiet, tiles.get ());
+        seconds.coding = encodeByPhases (group, source, options, threads, keep_xy, quiet, tiles.get ());
       }
       if (!tiles)
         return seconds;

@@ -735,3 +735,66 @@ TEST (TiledEncoding, FarReachingMeshTilesEncodeAsPhaseByPhase)
   EXPECT_EQ (encoder.getStatistics ().rmse, stats.rmse);
   EXPECT_EQ (encoder.getStatistics ().mean_error_over_diagonal, stats.mean_error_over_diagonal);
 }
+
+TEST (TiledEncoding, StatisticsNeedOnlyTheVertexNumbers)
+{
+  // Tiles encoded as the measuring encoder holds them (no (x', y'), sent between ranks as bytes), measured
+  // against the statistics of the same tiles with their stored (x', y') (reconstructVertices). A support
+  // scale != 1: the stored radius includes it, and (x', y') must be recomputed over it.
+  const TriangleMesh::Ptr mesh = terrain (60);
+  TileGridOptions grid;
+  grid.tiles_along_longest = 3;
+  const MemoryTileSource source (mesh, grid);
+  SparseSurfaceEncoderOptions options;
+  options.coding.support_scale = 1.25;
+  std::vector<TileEncoding> with_xy, numbers_only;
+  for (int phase = 0; phase < 2; ++phase)
+  {
+    const std::vector<std::size_t> covered = phase == 1 ? coveredPoints (with_xy) : std::vector<std::size_t> ();
+    std::vector<TileEncoding> these;
+    for (std::size_t t = 0; t < source.grid ().size (); ++t)
+      if (tilePhase (source.grid (), t) == phase && source.corePoints (t) > 0)
+      {
+        with_xy.push_back (encodeTile (source, t, options, 1, covered));
+        these.push_back (encodeTile (source, t, options, 1, covered, false));
+      }
+    const std::vector<std::uint8_t> bytes = encodeTileEncodings (these, source.totalPoints ());
+    decodeTileEncodings (bytes.data (), bytes.size (), "rank", numbers_only);
+  }
+  ASSERT_EQ (numbers_only.size (), with_xy.size ());
+  std::size_t listings = 0;
+  for (std::size_t i = 0; i < with_xy.size (); ++i)
+  {
+    ASSERT_EQ (numbers_only[i].model.patches.size (), with_xy[i].model.patches.size ());
+    for (std::size_t p = 0; p < with_xy[i].model.patches.size (); ++p)
+    {
+      const PatchCode& held = numbers_only[i].model.patches[p];
+      const PatchCode& stored = with_xy[i].model.patches[p];
+      ASSERT_EQ (stored.vertex_xy.size (), stored.vertices.size ());
+      EXPECT_EQ (held.vertices, stored.vertices);
+      EXPECT_TRUE (held.vertex_xy.empty ());
+      listings += held.vertices.size ();
+    }
+  }
+  EXPECT_GT (listings, mesh->vertices.size ());
+  const TiledModel reference_model = mergeTileEncodings (source.grid (), source.totalPoints (), with_xy);
+  const ModelStatistics reference = reference_model.model.statistics (mesh->vertices);
+  TiledModel held = mergeTileEncodings (source.grid (), source.totalPoints (), numbers_only);
+  const ModelStatistics stats = tiledModelStatistics (source, held);
+  EXPECT_EQ (stats.uncovered, reference.uncovered);
+  EXPECT_NEAR (stats.rmse, reference.rmse, 1e-9 * reference.rmse);
+  EXPECT_NEAR (stats.max_error, reference.max_error, 1e-9 * reference.max_error);
+  EXPECT_NEAR (stats.mean_error_over_diagonal, reference.mean_error_over_diagonal, 1e-9 * reference.mean_error_over_diagonal);
+  EXPECT_GT (reference.rmse, 0.0);
+  // The measuring encoder (which holds its tiles so) gives the same figures and the same model.
+  TiledSurfaceEncoder encoder;
+  encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
+  encoder.setOptions (options);
+  encoder.setNumberOfThreads (2);
+  encoder.setMeasurement (true);
+  TiledModel tiled;
+  encoder.compute (tiled);
+  EXPECT_EQ (encoder.getStatistics ().rmse, stats.rmse);
+  EXPECT_EQ (encoder.getStatistics ().max_error, stats.max_error);
+  EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (reference_model, ModelWriteOptions (), 1));
+}

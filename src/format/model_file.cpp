@@ -451,15 +451,7 @@ namespace pcl_sparse
       for (std::size_t p = first; p < first + count; ++p)
       {
         const PatchCode& patch = model.patches[p];
-        out.putVarint (patch.vertices.size ());
-        std::int64_t previous = 0;
-        for (int v : patch.vertices)
-        {
-          if (v < 0 || static_cast<std::uint64_t> (v) >= model.num_input_vertices)
-            throw Error ("encodeModel: vertex index " + std::to_string (v) + " outside num_input_vertices");
-          out.putSignedVarint (v - previous);
-          previous = v;
-        }
+        putVertexNumbers (out, patch.vertices, model.num_input_vertices);
         for (const Eigen::Vector2d& xy : patch.vertex_xy)
           for (int i = 0; i < 2; ++i)
           {
@@ -762,20 +754,9 @@ namespace pcl_sparse
       for (std::size_t p = 0; p < patches.size (); ++p)
       {
         PatchCode& patch = patches[p];
-        // Each vertex needs >= 1 index byte and xy_bytes coordinate bytes: bound before resizing.
-        const std::size_t count =
-          vert.getCount ("vertex count", std::min<std::uint64_t> (num_input_vertices, vert.remaining () / (1 + xy_bytes)));
-        patch.vertices.resize (count);
+        getVertexNumbers (vert, num_input_vertices, xy_bytes, p, patch.vertices);
+        const std::size_t count = patch.vertices.size ();
         patch.vertex_xy.resize (count);
-        std::int64_t previous = 0;
-        for (std::size_t i = 0; i < count; ++i)
-        {
-          const std::int64_t delta = vert.getSignedVarint ("vertex index");
-          if (delta < -previous || delta >= static_cast<std::int64_t> (num_input_vertices) - previous)
-            vert.fail ("patch " + std::to_string (p) + " vertex index outside num_input_vertices");
-          previous += delta;
-          patch.vertices[i] = static_cast<int> (previous);
-        }
         for (std::size_t i = 0; i < count; ++i)
           for (int c = 0; c < 2; ++c)
           {
@@ -788,6 +769,39 @@ namespace pcl_sparse
       vert.expectEnd ();
     }
   } // namespace
+
+  void
+  putVertexNumbers (ByteWriter& out, const std::vector<int>& vertices, std::uint64_t num_input_vertices)
+  {
+    out.putVarint (vertices.size ());
+    std::int64_t previous = 0;
+    for (const int v : vertices)
+    {
+      if (v < 0 || static_cast<std::uint64_t> (v) >= num_input_vertices)
+        throw Error ("encodeModel: vertex index " + std::to_string (v) + " outside num_input_vertices");
+      out.putSignedVarint (v - previous);
+      previous = v;
+    }
+  }
+
+  void
+  getVertexNumbers (ByteReader& in, std::uint64_t num_input_vertices, std::size_t bytes_after, std::size_t patch,
+                    std::vector<int>& vertices)
+  {
+    // Each vertex needs >= 1 index byte and bytes_after more: bound before resizing.
+    const std::size_t count =
+      in.getCount ("vertex count", std::min<std::uint64_t> (num_input_vertices, in.remaining () / (1 + bytes_after)));
+    vertices.resize (count);
+    std::int64_t previous = 0;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const std::int64_t delta = in.getSignedVarint ("vertex index");
+      if (delta < -previous || delta >= static_cast<std::int64_t> (num_input_vertices) - previous)
+        in.fail ("patch " + std::to_string (patch) + " vertex index outside num_input_vertices");
+      previous += delta;
+      vertices[i] = static_cast<int> (previous);
+    }
+  }
 
   std::vector<std::string>
   runSectionTags (std::uint16_t flags)

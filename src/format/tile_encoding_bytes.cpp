@@ -3,6 +3,9 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/model_sections.h>
+
+#include <algorithm>
 
 namespace pcl_sparse
 {
@@ -12,10 +15,15 @@ namespace pcl_sparse
     ByteWriter out;
     out.putVarint (tiles.size ());
     ModelWriteOptions lossless;
-    lossless.include_vertices = true;
     lossless.zstd_level = 1;
     for (const TileEncoding& tile : tiles)
     {
+      // Vertex lists held for the statistics only have no (x', y') (encodeTile): their numbers follow the
+      // model, which is then written without its vertices.
+      const bool numbers_only = std::any_of (tile.model.patches.begin (), tile.model.patches.end (), [] (const PatchCode& p) {
+        return p.vertex_xy.size () != p.vertices.size ();
+      });
+      lossless.include_vertices = !numbers_only;
       out.putU64 (tile.tile);
       out.putU8 (tile.core_bounds.isEmpty () ? 0 : 1);
       for (int a = 0; a < 3; ++a)
@@ -23,6 +31,7 @@ namespace pcl_sparse
       for (int a = 0; a < 3; ++a)
         out.putF64 (tile.core_bounds.isEmpty () ? 0.0 : tile.core_bounds.max ()[a]);
       out.putF64 (tile.seconds);
+      out.putVarint (numbers_only ? 1 : 0);
       if (tile.model.patches.empty ())
       {
         out.putVarint (0);
@@ -30,9 +39,15 @@ namespace pcl_sparse
       }
       SparseSurfaceModel model = tile.model;
       model.num_input_vertices = total_points;
+      if (numbers_only)
+        for (PatchCode& patch : model.patches)
+          std::vector<int> ().swap (patch.vertices);  // encodeModel wants (x', y') with them
       const std::vector<std::uint8_t> bytes = encodeModel (model, lossless);
       out.putVarint (bytes.size ());
       out.putBytes (bytes.data (), bytes.size ());
+      if (numbers_only)
+        for (const PatchCode& patch : tile.model.patches)
+          putVertexNumbers (out, patch.vertices, total_points);
     }
     return std::move (out.bytes ());
   }
@@ -55,9 +70,13 @@ namespace pcl_sparse
       if (has_bounds)
         tile.core_bounds = Eigen::AlignedBox3d (lo, hi);
       tile.seconds = in.getF64 ("seconds");
+      const bool numbers_only = in.getCount ("vertex list kind", 1) == 1;
       const std::uint64_t bytes = in.getCount ("model bytes", size);
       if (bytes > 0)
         tile.model = decodeModel (in.getBytes (bytes, "model"), bytes, name + ": tile " + std::to_string (tile.tile));
+      if (numbers_only)
+        for (std::size_t p = 0; p < tile.model.patches.size (); ++p)
+          getVertexNumbers (in, tile.model.num_input_vertices, 0, p, tile.model.patches[p].vertices);
       tiles.push_back (std::move (tile));
     }
     in.expectEnd ();

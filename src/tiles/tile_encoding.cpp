@@ -75,7 +75,7 @@ namespace pcl_sparse
 
   TileEncoding
   encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads,
-              const std::vector<std::size_t>& covered)
+              const std::vector<std::size_t>& covered, bool keep_xy)
   {
     const auto start = std::chrono::steady_clock::now ();
     const TileGrid& grid = source.grid ();
@@ -151,11 +151,11 @@ namespace pcl_sparse
         for (int& v : patch.vertices)
           v = input.point_numbers.empty () ? v : static_cast<int> (input.point_numbers[static_cast<std::size_t> (v)]);
         if (input.point_numbers.empty ())
-        {
           patch.vertices.clear ();
+        if (input.point_numbers.empty () || !keep_xy)
           patch.vertex_xy.clear ();
-        }
-        // Held until the statistics (a few tens of bytes per input point over the whole model): no slack.
+        // Held until the statistics (some 2.5 listings an input point, 4 bytes each, 20 with (x', y')): no
+        // slack.
         patch.vertices.shrink_to_fit ();
         patch.vertex_xy.shrink_to_fit ();
         owned.push_back (std::move (patch));
@@ -167,7 +167,8 @@ namespace pcl_sparse
 
   std::vector<TileEncoding>
   encodeTiles (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
-               int num_threads, const std::vector<std::size_t>& covered, const std::function<void (std::size_t)>& progress)
+               int num_threads, const std::vector<std::size_t>& covered, const std::function<void (std::size_t)>& progress,
+               bool keep_xy)
   {
     const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
     const long count = static_cast<long> (tiles.size ());
@@ -183,7 +184,7 @@ namespace pcl_sparse
       try
       {
         result[i] = encodeTile (source, tiles[i], options, side_by_side ? 1 : threads,
-                                tilePhase (source.grid (), tiles[i]) == 1 ? covered : none);
+                                tilePhase (source.grid (), tiles[i]) == 1 ? covered : none, keep_xy);
       }
       catch (const std::exception& e)
       {
@@ -283,9 +284,9 @@ namespace pcl_sparse
     {
     public:
       WavefrontRun (const TileSource& source, const SparseSurfaceEncoderOptions& options, int threads, bool measure,
-                    const std::function<void (double)>& progress, WavefrontMeasurement& tiles)
+                    bool keep_xy, const std::function<void (double)>& progress, WavefrontMeasurement& tiles)
         : source_ (source), grid_ (source.grid ()), options_ (options), threads_ (threads), measure_ (measure),
-          progress_ (progress), tiles_ (tiles)
+          keep_xy_ (keep_xy), progress_ (progress), tiles_ (tiles)
       {
         const std::size_t n = grid_.size ();
         std::vector<std::size_t> core (n);
@@ -387,7 +388,8 @@ namespace pcl_sparse
         std::string failure;
         try
         {
-          tile = encodeTile (source_, t, options_, 1, tilePhase (grid_, t) == 1 ? coveredAround (t) : std::vector<std::size_t> ());
+          tile = encodeTile (source_, t, options_, 1, tilePhase (grid_, t) == 1 ? coveredAround (t) : std::vector<std::size_t> (),
+                             keep_xy_);
         }
         catch (const std::exception& e)
         {
@@ -426,7 +428,7 @@ namespace pcl_sparse
       const TileGrid& grid_;
       const SparseSurfaceEncoderOptions& options_;
       const int threads_;
-      const bool measure_;
+      const bool measure_, keep_xy_;
       const std::function<void (double)>& progress_;
       WavefrontMeasurement& tiles_;
       std::vector<std::size_t> order_;
@@ -451,8 +453,8 @@ namespace pcl_sparse
     const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
     const bool drop = measure_ && statistics_options_.drop_vertices;
     auto tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);
-    WavefrontRun run (*source_, options_, threads, measure_, [&] (double fraction) { reportProgress ("tiles", fraction); },
-                      *tiles);
+    WavefrontRun run (*source_, options_, threads, measure_, !drop,
+                      [&] (double fraction) { reportProgress ("tiles", fraction); }, *tiles);
     run.run ();
     if (run.farReaching ())
     {
@@ -460,7 +462,7 @@ namespace pcl_sparse
       // knowing what the whole phase 0 covers, and measured after (every vertex list held till then).
       tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);
       for (TileEncoding& tile : encodeTilesByPhase (*source_, options_, num_threads_,
-                                                    [&] (double fraction) { reportProgress ("tiles", fraction); }))
+                                                    [&] (double fraction) { reportProgress ("tiles", fraction); }, !drop))
         tiles->add (std::move (tile));
       if (measure_)
         tiles->measureReady ();
@@ -478,7 +480,7 @@ namespace pcl_sparse
 
   std::vector<TileEncoding>
   encodeTilesByPhase (const TileSource& source, const SparseSurfaceEncoderOptions& options, int num_threads,
-                      const std::function<void (double)>& progress)
+                      const std::function<void (double)>& progress, bool keep_xy)
   {
     const TileGrid& grid = source.grid ();
     std::vector<TileEncoding> tiles;
@@ -497,7 +499,7 @@ namespace pcl_sparse
       for (TileEncoding& tile : encodeTiles (source, these, options, num_threads, covered, [&] (std::size_t finished) {
              if (progress)
                progress (static_cast<double> (done + finished) / static_cast<double> (todo));
-           }))
+           }, keep_xy))
         tiles.push_back (std::move (tile));
       done += these.size ();
     }

@@ -55,15 +55,16 @@ namespace pcl_sparse
     for (const TilePatches& span : near)
       for (const PatchCode* code = span.first; code != span.first + span.count; ++code)
       {
-        const std::size_t m = std::min (code->vertices.size (), code->vertex_xy.size ());
-        for (std::size_t k = 0; k < m; ++k)
+        for (const int vertex : code->vertices)
         {
-          const auto at = std::lower_bound (numbers.begin (), numbers.end (), static_cast<std::size_t> (code->vertices[k]));
-          if (at == numbers.end () || *at != static_cast<std::size_t> (code->vertices[k]))
+          const auto at = std::lower_bound (numbers.begin (), numbers.end (), static_cast<std::size_t> (vertex));
+          if (at == numbers.end () || *at != static_cast<std::size_t> (vertex))
             continue;
-          const Eigen::Vector2d& xy = code->vertex_xy[k];
-          const double h = span.basis ? span.basis->evaluateCodeValue (code->atoms, code->coefficients, xy.x (), xy.y ()) : 0.0;
           const std::size_t v = static_cast<std::size_t> (at - numbers.begin ());
+          // (x', y') from the point, as the encoder made them (Patch::toLocal over the radius codePatch stores,
+          // support_scale included): the same up to the last bits, so held vertex lists need not keep them.
+          const Eigen::Vector2d xy = code->frame.leftCols<2> ().transpose () * (positions[v] - code->origin) / code->radius;
+          const double h = span.basis ? span.basis->evaluateCodeValue (code->atoms, code->coefficients, xy.x (), xy.y ()) : 0.0;
           sum[v] += code->toWorld (Eigen::Vector3d (xy.x (), xy.y (), h));
           ++count[v];
         }

@@ -5,6 +5,10 @@
 #include <algorithm>
 #include <chrono>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace pcl_sparse
 {
   int
@@ -139,6 +143,11 @@ namespace pcl_sparse
           held_vertices_ -= held_[u];
           held_[u] = 0;
         }
+#if defined(__GLIBC__)
+    // Hand freed pages back (the tile's input, the lists just dropped): glibc keeps them in its arenas, and
+    // the resident set of a long run crept up while the band held stayed the same size.
+    malloc_trim (0);
+#endif
     ++next_;
   }
 

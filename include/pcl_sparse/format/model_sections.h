@@ -38,6 +38,29 @@ namespace pcl_sparse
     std::vector<std::vector<std::vector<std::uint8_t>>> runs;   ///< per run, per tag of runSectionTags (shared.flags)
   };
 
+  class ByteReader;
+  class ByteWriter;
+
+  /// \brief Appends a patch's input vertex numbers as section VERT stores them (its (x', y') follow there):
+  /// the count, then each number's difference from the previous one as a signed varint.
+  /// \param[in,out] out            receives the bytes
+  /// \param[in] vertices           the numbers
+  /// \param[in] num_input_vertices the numbers' bound
+  /// \throws pcl_sparse::Error for a number outside [0, \a num_input_vertices)
+  void
+  putVertexNumbers (ByteWriter& out, const std::vector<int>& vertices, std::uint64_t num_input_vertices);
+
+  /// \brief Reads putVertexNumbers' numbers into \a vertices.
+  /// \param[in,out] in             the bytes
+  /// \param[in] num_input_vertices the numbers' bound
+  /// \param[in] bytes_after        bytes that follow each vertex's number (its (x', y') in VERT): bound the count
+  /// \param[in] patch              the patch's index, for error messages
+  /// \param[out] vertices          the numbers
+  /// \throws pcl_sparse::Error for a count or number out of range or bytes missing
+  void
+  getVertexNumbers (ByteReader& in, std::uint64_t num_input_vertices, std::size_t bytes_after, std::size_t patch,
+                    std::vector<int>& vertices);
+
   /// \brief The per-patch sections of a file with \a flags, in file order: SEED FRAM RADI FOOT ATOM COEF
   /// [VERT] [AATM ACOF].
   std::vector<std::string>

@@ -3,6 +3,8 @@
 /// One encoded tile as bytes, for sending between processes (pcl_sparse_encode under mpirun): the tile's
 /// number, core bounds and seconds, and its model as a lossless version-1 model with its vertices, so the
 /// receiver gets every double bit for bit and the merged model does not depend on where a tile was encoded.
+/// Vertex lists held for the statistics only (no PatchCode::vertex_xy, encodeTile) go as their numbers
+/// alone, after the model, and come back so.
 
 #include <pcl_sparse/tiles/tiled_model.h>
 

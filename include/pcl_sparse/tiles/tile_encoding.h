@@ -60,12 +60,15 @@ namespace pcl_sparse
   /// \param[in] covered      points (numbers in the whole input, ascending) that patches of other tiles
   ///                         already cover (coveredPoints of phase 0 for a phase-1 tile): they seed no
   ///                         patch and need none; empty (default) for phase 0
+  /// \param[in] keep_xy      keep the patches' PatchCode::vertex_xy (default); false where the vertex lists
+  ///                         are held for the statistics only, which recompute (x', y') from the points
+  ///                         (TiledErrorSums::measureTile): 4 bytes a listing instead of 20
   /// \return the tile's patches (none when its core has no point or its input no surface, or when a scan
   ///         tile of fewer than 256 points makes no surface: a few stray points, left in no patch)
   /// \throws pcl_sparse::Error naming the tile when its encoding fails
   TileEncoding
   encodeTile (const TileSource& source, std::size_t t, const SparseSurfaceEncoderOptions& options, int num_threads = 0,
-              const std::vector<std::size_t>& covered = {});
+              const std::vector<std::size_t>& covered = {}, bool keep_xy = true);
 
   /// \brief Encodes several tiles (encodeTile), in parallel over the tiles when \a num_threads allows
   /// (each tile's encoder then runs on one thread: the sampling loop is sequential, so tiles side by side
@@ -77,12 +80,13 @@ namespace pcl_sparse
   /// \param[in] covered      as for encodeTile, for the phase-1 tiles (tilePhase) of \a tiles; phase-0 tiles
   ///                         are encoded without (they cover first), so one call can take both
   /// \param[in] progress     called with the number of tiles done (may be empty)
+  /// \param[in] keep_xy      as for encodeTile
   /// \return one encoding per tile
   /// \throws pcl_sparse::Error of the first tile (in \a tiles' order) that fails
   std::vector<TileEncoding>
   encodeTiles (const TileSource& source, const std::vector<std::size_t>& tiles, const SparseSurfaceEncoderOptions& options,
                int num_threads = 0, const std::vector<std::size_t>& covered = {},
-               const std::function<void (std::size_t)>& progress = {});
+               const std::function<void (std::size_t)>& progress = {}, bool keep_xy = true);
 
   /// \brief Every tile with core points, encoded phase by phase (encodeTiles): the phase-1 tiles knowing what
   /// the whole phase 0 covers. What TiledSurfaceEncoder falls back to when a phase-0 tile's patches list
@@ -91,10 +95,11 @@ namespace pcl_sparse
   /// \param[in] options      the encoder's options
   /// \param[in] num_threads  OpenMP threads (0 = default)
   /// \param[in] progress     called with the fraction of tiles done (may be empty)
+  /// \param[in] keep_xy      as for encodeTile
   /// \return one encoding per tile with core points, phase 0 first
   std::vector<TileEncoding>
   encodeTilesByPhase (const TileSource& source, const SparseSurfaceEncoderOptions& options, int num_threads = 0,
-                      const std::function<void (double)>& progress = {});
+                      const std::function<void (double)>& progress = {}, bool keep_xy = true);
 
   /// \brief The whole model from its tiles' encodings (patches in tile order; whole-input vertex count,
   /// diagonal and attribute ranges).
@@ -124,7 +129,8 @@ namespace pcl_sparse
     /// \brief Measure the model against its input while encoding (default false), as tiledModelStatistics
     /// does after it: getStatistics () then has its figures, bit for bit; with \a options.drop_vertices the
     /// patches' vertex lists go as soon as every tile around theirs is measured, so they are held for a band
-    /// of tiles at a time (see compute), not for the whole model.
+    /// of tiles at a time (see compute), not for the whole model, and without their (x', y') (encodeTile's
+    /// keep_xy).
     /// \param[in] measure whether to measure
     /// \param[in] options what to keep
     void
@@ -165,7 +171,8 @@ namespace pcl_sparse
     /// yet dropped; every encoded tile without setMeasurement's drop_vertices).
     std::size_t getPeakHeldTiles () const { return peak_held_tiles_; }
 
-    /// \brief Most vertex listings (entries of PatchCode::vertices, with their (x', y')) held at once.
+    /// \brief Most vertex listings (entries of PatchCode::vertices; with their (x', y') only without
+    /// setMeasurement's drop_vertices) held at once.
     std::size_t getPeakHeldVertices () const { return peak_held_vertices_; }
 
     /// \brief Most tiles measured ahead of a lower tile at once, their error sums (a few numbers a tile)

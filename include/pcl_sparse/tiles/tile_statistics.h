@@ -19,8 +19,9 @@ namespace pcl_sparse
   {
     /// Clear each patch's vertex list (PatchCode::vertices, vertex_xy) once every tile that needs it has
     /// been measured (default true): the model then holds no per-input-point data, which on a large input
-    /// is most of its memory; keep them (false) to write them (--store-vertices) or to reconstruct the
-    /// input vertices.
+    /// is most of its memory, and an encoder that measures as it goes holds the lists without vertex_xy
+    /// till then (encodeTile's keep_xy); keep them (false) to write them (--store-vertices) or to
+    /// reconstruct the input vertices.
     bool drop_vertices = true;
   };
 
@@ -59,7 +60,8 @@ namespace pcl_sparse
   {
   public:
     /// \brief Adds the errors of tile \a t's core points, each reconstructed as the mean over the patches of
-    /// \a near listing it.
+    /// \a near listing it (PatchCode::vertices), at its local (x', y') in each recomputed from the point:
+    /// PatchCode::vertex_xy is not read, so vertex lists held for the statistics need only the numbers.
     /// \param[in] source the tiled input, with point numbers
     /// \param[in] t      the tile
     /// \param[in] near   the patches of \a t and of the tiles around it (neighbourTiles), in model order
