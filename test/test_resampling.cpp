@@ -3,6 +3,7 @@
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
@@ -466,4 +467,38 @@ TEST (Resampling, RefusesBadSetup)
   resampling.setInputModel (empty);
   resampling.setDensity (1.0);
   EXPECT_THROW (resampling.compute (cloud), Error);
+}
+
+TEST (CloudQuality, NearestFaceIsExactNextToLargeTriangles)
+{
+  // A large floor triangle (centroid 30 units away) under a strip of 32 small triangles facing down, half
+  // a unit above the query. The 16 triangles with the nearest centroids are all small ones; a point on
+  // the floor with the floor's normal was measured against them and counted as flipped (sword, cheese-cgal).
+  TriangleMesh mesh;
+  mesh.vertices = {Eigen::Vector3d (-10, -10, 0), Eigen::Vector3d (90, -10, 0), Eigen::Vector3d (-10, 90, 0)};
+  mesh.triangles.emplace_back (0, 1, 2);
+  for (int i = 0; i < 32; ++i)
+  {
+    const int v = static_cast<int> (mesh.vertices.size ());
+    const double x = -1.6 + 0.1 * i;
+    mesh.vertices.emplace_back (x, -0.05, 0.5);
+    mesh.vertices.emplace_back (x + 0.1, -0.05, 0.5);
+    mesh.vertices.emplace_back (x, 0.05, 0.5);
+    mesh.triangles.emplace_back (v, v + 2, v + 1);  // normal -z
+  }
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  pcl::PointNormal point;
+  point.x = 0.0f;
+  point.y = 0.0f;
+  point.z = 0.01f;
+  point.normal_x = 0.0f;
+  point.normal_y = 0.0f;
+  point.normal_z = 1.0f;
+  cloud.push_back (point);
+  CloudQualityOptions options;
+  options.probes = 100;
+  const CloudQuality quality = evaluateCloudQuality (mesh, cloud, options);
+  EXPECT_EQ (quality.flipped, 0u);
+  EXPECT_NEAR (quality.max_distance, 0.01, 1e-6);
+  EXPECT_LT (quality.mean_normal_angle, 1e-3);
 }

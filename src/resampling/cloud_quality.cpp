@@ -58,22 +58,66 @@ namespace pcl_sparse
       return valid;
     }
 
-    /// Per point, the distance to the nearest of the \a k triangles with the nearest centroids, and the
-    /// angle (degrees) between its normal and that triangle's.
+    /// Points on every triangle, each point of a triangle within \a reach of one of its triangle's (a
+    /// barycentric grid whose cells have edges at most \a reach), and the triangle of each.
+    pcl::PointCloud<pcl::PointXYZ>::Ptr
+    coverTriangles (const TriangleMesh& mesh, double reach, std::vector<int>& owners)
+    {
+      pcl::PointCloud<pcl::PointXYZ>::Ptr points (new pcl::PointCloud<pcl::PointXYZ>);
+      owners.clear ();
+      for (std::size_t f = 0; f < mesh.numTriangles (); ++f)
+      {
+        const Eigen::Vector3i& t = mesh.triangles[f];
+        const Eigen::Vector3d a = mesh.vertices[t[0]], ab = mesh.vertices[t[1]] - a, ac = mesh.vertices[t[2]] - a;
+        const double longest = std::max ({ab.norm (), ac.norm (), (ac - ab).norm ()});
+        // A point of a grid cell is within the cell's longest edge (longest / n) of one of its corners.
+        const int n = std::max (1, static_cast<int> (std::ceil (longest / reach)));
+        for (int i = 0; i <= n; ++i)
+          for (int j = 0; i + j <= n; ++j)
+          {
+            const Eigen::Vector3d q = a + (static_cast<double> (i) / n) * ab + (static_cast<double> (j) / n) * ac;
+            points->push_back (pcl::PointXYZ (static_cast<float> (q.x ()), static_cast<float> (q.y ()), static_cast<float> (q.z ())));
+            owners.push_back (static_cast<int> (f));
+          }
+      }
+      return points;
+    }
+
+    /// Per point, the distance to the nearest triangle and the angle (degrees) between its normal and that
+    /// triangle's. Exact: the triangles of the \a k nearest cover points give a first distance d, then
+    /// every triangle with a cover point within d + reach is measured (the nearest triangle has one). The
+    /// triangles with the \a k nearest centroids alone miss it where large triangles meet small ones or
+    /// at thin parts, and the normal of a wrong face was counted as flipped (sword, cheese-cgal).
     void
     measureSurfaceError (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& points, int k,
                          std::vector<double>& distance, std::vector<double>& angle)
     {
       const std::vector<Eigen::Vector3d> face_normals = computeFaceNormals (mesh);
-      pcl::PointCloud<pcl::PointXYZ>::Ptr centroids (new pcl::PointCloud<pcl::PointXYZ>);
-      centroids->resize (mesh.numTriangles ());
+      // reach: the median longest edge, at least the edge of an average triangle, so that the cover has
+      // a few points per triangle (more only on the triangles far longer than most).
+      std::vector<double> longest (mesh.numTriangles ());
+      double area = 0.0;
       for (std::size_t f = 0; f < mesh.numTriangles (); ++f)
       {
         const Eigen::Vector3i& t = mesh.triangles[f];
-        (*centroids)[f].getVector3fMap () = ((mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0).cast<float> ();
+        const Eigen::Vector3d ab = mesh.vertices[t[1]] - mesh.vertices[t[0]], ac = mesh.vertices[t[2]] - mesh.vertices[t[0]];
+        longest[f] = std::max ({ab.norm (), ac.norm (), (ac - ab).norm ()});
+        area += 0.5 * ab.cross (ac).norm ();
       }
-      pcl::KdTreeFLANN<pcl::PointXYZ> triangle_tree;
-      triangle_tree.setInputCloud (centroids);
+      std::nth_element (longest.begin (), longest.begin () + longest.size () / 2, longest.end ());
+      double reach = std::max (longest[longest.size () / 2], std::sqrt (2.0 * area / static_cast<double> (mesh.numTriangles ())));
+      if (!(reach > 0.0))
+        reach = 1.0;
+      // Float cover points and queries are off by up to about 1e-7 of the coordinates' size.
+      double largest = 0.0;
+      for (const Eigen::Vector3d& v : mesh.vertices)
+        largest = std::max (largest, v.cwiseAbs ().maxCoeff ());
+      const double slack = 1e-6 * largest;
+      std::vector<int> owners;
+      const pcl::PointCloud<pcl::PointXYZ>::Ptr cover = coverTriangles (mesh, reach, owners);
+      pcl::KdTreeFLANN<pcl::PointXYZ> cover_tree;
+      cover_tree.setInputCloud (cover);
+      k = std::max (1, std::min (k, static_cast<int> (cover->size ())));
 
       const std::size_t n = points.size ();
       distance.resize (n);
@@ -86,20 +130,32 @@ namespace pcl_sparse
         const pcl::PointNormal& point = points[i];
         pcl::PointXYZ query;
         query.getVector3fMap () = point.getVector3fMap ();
-        triangle_tree.nearestKSearch (query, k, index, d2);
         const Eigen::Vector3d p = point.getVector3fMap ().cast<double> ();
         double best = std::numeric_limits<double>::infinity ();
-        int best_face = index[0];
-        for (int f : index)
-        {
-          const Eigen::Vector3i& t = mesh.triangles[f];
-          const double d = pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
-          if (d < best)
+        int best_face = owners[0];
+        std::vector<int> faces;
+        auto measure = [&] () {
+          faces.clear ();
+          for (int c : index)
+            faces.push_back (owners[c]);
+          std::sort (faces.begin (), faces.end ());
+          faces.erase (std::unique (faces.begin (), faces.end ()), faces.end ());
+          for (int f : faces)
           {
-            best = d;
-            best_face = f;
+            const Eigen::Vector3i& t = mesh.triangles[f];
+            const double d = pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+            if (d < best || (d == best && f < best_face))
+            {
+              best = d;
+              best_face = f;
+            }
           }
-        }
+        };
+        cover_tree.nearestKSearch (query, k, index, d2);
+        measure ();
+        const double radius = best + reach + slack;
+        cover_tree.radiusSearch (query, radius, index, d2);
+        measure ();
         distance[i] = best;
         const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
         angle[i] = std::acos (std::clamp (normal.dot (face_normals[best_face]), -1.0, 1.0)) * 180.0 / M_PI;

@@ -21,7 +21,8 @@ namespace pcl_sparse
     std::size_t probes = 50000;
     /// A probe is covered if a cloud point lies within this many spacings, spacing = sqrt(area / #points).
     double hole_spacings = 3.0;
-    /// Nearest triangles (by centroid) searched exactly per point for the distance to the surface.
+    /// Nearest points of a cover of the triangles tried first per point for the distance to the surface;
+    /// the search then completes exactly, so the nearest triangle does not depend on it (only the time).
     int nearest_triangles = 16;
     /// Seed of the probes.
     std::uint64_t seed = 1;
