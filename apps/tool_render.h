@@ -68,7 +68,7 @@ namespace pcl_sparse
     RenderedPicture
     renderPicture (const Picture& picture, const PictureOptions& options);
 
-    /// Distance of each point to a triangle mesh (exact, among the 16 triangles of nearest centroid).
+    /// Distance of each point to a triangle mesh (its exact nearest triangle, evaluateCloudQuality).
     std::vector<double>
     distancesToSurface (const std::vector<Eigen::Vector3d>& points, const TriangleMesh& reference);
 
