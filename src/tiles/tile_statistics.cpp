@@ -63,7 +63,7 @@ namespace pcl_sparse
           const std::size_t v = static_cast<std::size_t> (at - numbers.begin ());
           // (x', y') from the point, as the encoder made them (Patch::toLocal over the radius codePatch stores,
           // support_scale included): the same up to the last bits, so held vertex lists need not keep them.
-          const Eigen::Vector2d xy = code->frame.leftCols<2> ().transpose () * (positions[v] - code->origin) / code->radius;
+          const Eigen::Vector2d xy = code->toLocal (positions[v]).head<2> ();
           const double h = span.basis ? span.basis->evaluateCodeValue (code->atoms, code->coefficients, xy.x (), xy.y ()) : 0.0;
           sum[v] += code->toWorld (Eigen::Vector3d (xy.x (), xy.y (), h));
           ++count[v];

@@ -55,6 +55,8 @@ namespace pcl_sparse
     std::vector<SparseCode> attributes;
 
     Eigen::Vector3d toWorld (const Eigen::Vector3d& local) const { return origin + radius * (frame * local); }
+    /// Local point R^T (p - s) / r_P of the world point \a p, as Patch::toLocal (r_P includes the support scale).
+    Eigen::Vector3d toLocal (const Eigen::Vector3d& p) const { return frame.transpose () * (p - origin) / radius; }
   };
 
   /// Figures of a model against its input mesh (docs/METHOD.md step 11).
