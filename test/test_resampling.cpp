@@ -469,6 +469,29 @@ TEST (Resampling, RefusesBadSetup)
   EXPECT_THROW (resampling.compute (cloud), Error);
 }
 
+TEST (Resampling, DensityTooLowForTheModelSaysSo)
+{
+  // The sphere of tangent discs (about 17 units^2) at 1e-6 points per unit^2: no cell keeps a point. The
+  // message names the density rather than claiming the model has no surface.
+  SparseSurfaceResampling<pcl::PointNormal> resampling;
+  resampling.setInputModel (makeSphereModel ());
+  resampling.setDensity (1e-6);
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  try
+  {
+    resampling.compute (cloud);
+    FAIL () << "no error, " << cloud.size () << " points";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("density 0.000001"), std::string::npos) << e.what ();
+  }
+  // A density that gives points still does.
+  resampling.setDensity (10.0);
+  resampling.compute (cloud);
+  EXPECT_GT (cloud.size (), 100u);
+}
+
 TEST (CloudQuality, NearestFaceIsExactNextToLargeTriangles)
 {
   // A large floor triangle (centroid 30 units away) under a strip of 32 small triangles facing down, half

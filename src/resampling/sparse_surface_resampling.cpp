@@ -904,7 +904,8 @@ namespace pcl_sparse
     drawAllCandidates (density, passes, prefill, keep_bytes);
     const double weight = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
     if (!(weight > 0.0))
-      throw Error (name_ + "::compute: the model has no surface area to sample");
+      throw Error (name_ + "::compute: no point falls on the model's surface at density " + std::to_string (density) +
+                   " points per unit area (too low for the model's size: raise the density or ask for a count)");
     // A cell holds one expected point on flat ground, so weights are areas in units of 1 / density.
     estimated_area_ = weight / density;
     density_used_ = density;
