@@ -2,6 +2,7 @@
 // patches and a sphere covered by overlapping caps, both coded over the CosineDictionary by least squares.
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
@@ -524,4 +525,42 @@ TEST (CloudQuality, NearestFaceIsExactNextToLargeTriangles)
   EXPECT_EQ (quality.flipped, 0u);
   EXPECT_NEAR (quality.max_distance, 0.01, 1e-6);
   EXPECT_LT (quality.mean_normal_angle, 1e-3);
+}
+
+TEST (CloudQuality, PointPastAKnifeEdgeMatchesEitherFace)
+{
+  // A 20-degree wedge: two faces meet at the edge x = 0 (along y), their normals 160 degrees apart. A
+  // point just past the edge is equally near both faces (its nearest surface point is the edge), so the
+  // surface normal there is either face's: with either normal it is not flipped, whichever face comes
+  // first in the mesh (the nearest face used to be the one with the lower index). A point above face A
+  // with the opposite of A's normal still is.
+  const double half = 10.0 * M_PI / 180.0;
+  for (bool a_first : {true, false})
+  {
+    TriangleMesh mesh;
+    mesh.vertices = {Eigen::Vector3d (0, -1, 0), Eigen::Vector3d (0, 1, 0),
+                     Eigen::Vector3d (-std::cos (half), 0, std::sin (half)), Eigen::Vector3d (-std::cos (half), 0, -std::sin (half))};
+    const Eigen::Vector3i face_a (0, 1, 2), face_b (0, 3, 1);  // A on top (normal about +z), B below (about -z)
+    mesh.triangles = a_first ? std::vector<Eigen::Vector3i>{face_a, face_b} : std::vector<Eigen::Vector3i>{face_b, face_a};
+    const std::vector<Eigen::Vector3d> normals = computeFaceNormals (mesh);
+    const Eigen::Vector3d normal_a = normals[a_first ? 0 : 1], normal_b = normals[a_first ? 1 : 0];
+    ASSERT_GT (normal_a.z (), 0.9);
+    ASSERT_NEAR (std::acos (normal_a.dot (normal_b)) * 180.0 / M_PI, 160.0, 1e-9);
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    auto add = [&] (const Eigen::Vector3d& position, const Eigen::Vector3d& normal) {
+      pcl::PointNormal point;
+      point.getVector3fMap () = position.cast<float> ();
+      point.getNormalVector3fMap () = normal.cast<float> ();
+      cloud.push_back (point);
+    };
+    const Eigen::Vector3d past_edge (0.001, 0.0, 0.0);
+    add (past_edge, normal_a);
+    add (past_edge, normal_b);
+    add (Eigen::Vector3d (-0.5, 0.0, 0.5 * std::tan (half) + 0.001), -normal_a);  // on A, facing into the wedge
+    CloudQualityOptions options;
+    options.probes = 100;
+    const CloudQuality quality = evaluateCloudQuality (mesh, cloud, options);
+    EXPECT_EQ (quality.flipped, 1u) << (a_first ? "face A first" : "face B first");
+    EXPECT_NEAR (quality.max_distance, 0.001, 1e-5);
+  }
 }

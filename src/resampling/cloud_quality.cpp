@@ -113,6 +113,8 @@ namespace pcl_sparse
       for (const Eigen::Vector3d& v : mesh.vertices)
         largest = std::max (largest, v.cwiseAbs ().maxCoeff ());
       const double slack = 1e-6 * largest;
+      // Two faces' distances to their shared edge differ by rounding only (double arithmetic).
+      const double tie = 1e-12 * largest;
       std::vector<int> owners;
       const pcl::PointCloud<pcl::PointXYZ>::Ptr cover = coverTriangles (mesh, reach, owners);
       pcl::KdTreeFLANN<pcl::PointXYZ> cover_tree;
@@ -157,8 +159,18 @@ namespace pcl_sparse
         cover_tree.radiusSearch (query, radius, index, d2);
         measure ();
         distance[i] = best;
+        // Where the nearest surface point lies on an edge or corner, every face sharing it is nearest (the
+        // distances agree up to rounding) and the surface normal there is any of theirs: a point just past
+        // a knife edge matches the face it came from, not the one its index happened to sort first.
         const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
-        angle[i] = std::acos (std::clamp (normal.dot (face_normals[best_face]), -1.0, 1.0)) * 180.0 / M_PI;
+        double cosine = normal.dot (face_normals[best_face]);
+        for (int f : faces)
+        {
+          const Eigen::Vector3i& t = mesh.triangles[f];
+          if (pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= best + tie)
+            cosine = std::max (cosine, normal.dot (face_normals[f]));
+        }
+        angle[i] = std::acos (std::clamp (cosine, -1.0, 1.0)) * 180.0 / M_PI;
       }
     }
 

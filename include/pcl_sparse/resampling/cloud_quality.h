@@ -36,11 +36,13 @@ namespace pcl_sparse
     double rms_distance = 0.0;   ///< RMS distance of the points to the mesh (world units)
     double mean_distance = 0.0;  ///< mean distance of the points to the mesh
     double max_distance = 0.0;   ///< largest distance of a point to the mesh
-    double mean_normal_angle = 0.0;  ///< mean angle (degrees) between a point's normal and its nearest face's normal
+    double mean_normal_angle = 0.0;  ///< mean angle (degrees) between a point's normal and its nearest face's normal (see flipped)
     double median_normal_angle = 0.0;  ///< median of the same angles
     double p90_normal_angle = 0.0;     ///< 90th percentile of the same angles
     /// Points whose normal is more than 120 degrees from the nearest face normal: pointing to the other side.
-    /// (Not 90: at a sharp 90-degree edge a point may be nearest to the other face.)
+    /// (Not 90: at a sharp 90-degree edge a point may be nearest to the other face.) Where several faces
+    /// are nearest (the nearest surface point is on their shared edge or corner) the closest of their
+    /// normals counts: the surface normal there is any of them.
     std::size_t flipped = 0;
     std::size_t invalid = 0;         ///< points with a non-finite position or normal (ignored above)
     double completeness = 0.0;       ///< fraction of probes with a point within hole_spacings spacings
