@@ -1,7 +1,7 @@
 /// pcl_sparse_encode: encodes a triangle mesh as a sparse surface model and reports the paper's figures
 /// (N_V, M, rho, nnz, RMSE, RMSE / diag, CR) and the seconds per stage.
 ///
-///   pcl_sparse_encode MESH [-rho R] [-f F] [-L N] [-eps E] [-min-samples N] [-recon RECON.ply]
+///   pcl_sparse_encode MESH [-rho R] [-f F] [-L N] [-eps E] [-min-samples N] [-cone DEG] [-recon RECON.ply]
 ///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [--store-vertices]] [-tiles N]
 ///                     [-memory SIZE] [--json] [-q]
 ///
@@ -70,6 +70,7 @@ namespace
       {"-L N", "atoms per patch at most (default 12)"},
       {"-eps E", "relative residual to stop at, in (0, 1) (default 0.01)"},
       {"-min-samples N", "patches with fewer points get extra samples (default 64; authors 128)"},
+      {"-cone DEG", "normal cone of patch growth in degrees, (0, 180] (default 72, the authors' code's; -preset paper 90)"},
       {"-preset P", "default (measured best) or paper (the paper's configuration); options below override"},
       {"-basis paper|dct", "cosine atoms: dct cos(i pi (x+1)/2) cos(j pi (y+1)/2), odd parts too (default);"},
       {"", "paper cos(i pi x) cos(j pi y) (-preset paper)"},
@@ -92,7 +93,7 @@ namespace
       {"-q", "quiet (no progress, only the result and errors)"},
     },
     1,
-    {"-rho", "-f", "-L", "-eps", "-min-samples", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
+    {"-rho", "-f", "-L", "-eps", "-min-samples", "-cone", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
      "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices"}};
 } // namespace
@@ -114,6 +115,9 @@ main (int argc, char** argv)
     args.integer ("-L", options.coding.max_atoms);
     args.number ("-eps", options.coding.tolerance);
     args.integer ("-min-samples", options.coding.min_samples);
+    double cone_degrees = options.patches.cone_angle * 180.0 / M_PI;
+    if (args.number ("-cone", cone_degrees, tools::Range::aboveUpTo (0.0, 180.0)))
+      options.patches.cone_angle = cone_degrees * M_PI / 180.0;
     args.integer ("-seed", options.coding.seed, tools::Range::atLeast (0));
     if (args.has ("--authors-nyquist"))
       options.coding.nyquist_rule = NyquistRule::AuthorsCode;
@@ -277,6 +281,7 @@ main (int argc, char** argv)
         .add ("max_atoms", options.coding.max_atoms)
         .add ("tolerance", options.coding.tolerance)
         .add ("min_samples", options.coding.min_samples)
+        .add ("cone_degrees", options.patches.cone_angle * 180.0 / M_PI)
         .add ("file_tolerance", model_path.empty () ? 0.0 : write_options.tolerance)
         .add ("nnz", stats.num_nonzeros)
         .add ("cr", stats.compression_ratio)

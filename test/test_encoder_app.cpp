@@ -87,7 +87,8 @@ TEST_F (EncodeTool, RefusesBadOptionsWithoutWriting)
   const std::string recon = (dir_ / "bad.ply").string ();
   std::string out;
   for (const std::string& bad : {"-rho 0", "-rho -1", "-rho abc", "-f 1.5", "-f -0.1", "-L 0", "-L 2.5", "-eps 0",
-                                 "-eps 1", "-min-samples -3", "-bogus", "-rho", "-basis foo", "-basis"})
+                                 "-eps 1", "-min-samples -3", "-bogus", "-rho", "-basis foo", "-basis", "-cone 0", "-cone 181",
+                                 "-cone abc"})
   {
     EXPECT_EQ (run (input_ + " -q " + bad + " -recon " + recon, out), 1) << bad;
     EXPECT_FALSE (std::filesystem::exists (recon)) << bad;
@@ -95,6 +96,29 @@ TEST_F (EncodeTool, RefusesBadOptionsWithoutWriting)
   EXPECT_EQ (run ((dir_ / "missing.off").string () + " -q", out), 1);
   EXPECT_EQ (run (input_ + " -q -error " + (dir_ / "e.obj").string (), out), 1);
   EXPECT_EQ (run ("", out), 1);
+}
+
+// -cone: the normal cone of patch growth, recorded in the JSON (degrees). Without the area bound (-rho 1) the
+// cone alone bounds a patch on a sphere: a cone of 30 degrees needs far more patches than one of 90.
+TEST_F (EncodeTool, ConeBoundsThePatches)
+{
+  // The JSON's number after "key": .
+  auto number = [] (const std::string& out, const std::string& key) {
+    const std::size_t at = out.find ("\"" + key + "\": ");
+    return at == std::string::npos ? -1.0 : std::stod (out.substr (at + key.size () + 4));
+  };
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q --json -rho 1 -cone 30", out), 0);
+  const double narrow = number (out, "patches");
+  EXPECT_NEAR (number (out, "cone_degrees"), 30.0, 1e-9);
+  ASSERT_EQ (run (input_ + " -q --json -rho 1 -cone 90", out), 0);
+  const double wide = number (out, "patches");
+  EXPECT_GT (wide, 0.0);
+  EXPECT_GT (narrow, 2.0 * wide) << narrow << " patches against " << wide;
+  ASSERT_EQ (run (input_ + " -q --json", out), 0);
+  EXPECT_NEAR (number (out, "cone_degrees"), 72.0, 1e-9);
+  ASSERT_EQ (run (input_ + " -q --json -preset paper", out), 0);
+  EXPECT_NEAR (number (out, "cone_degrees"), 90.0, 1e-9);
 }
 
 // -basis dct: recorded in the JSON and in the model file (basis kind 2), read back as DctCosineDictionary.
