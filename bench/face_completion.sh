@@ -15,6 +15,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
+cmake --build "$build" --target pcl_sparse_encode pcl_sparse_resample bench_meshes -j2 > /dev/null
 shift || true
 meshes=("$@")
 [ ${#meshes[@]} -gt 0 ] || meshes=(couplingdown.off cheese-cgal.off turbine.off blade.off wingnut.obj rocker-arm.obj

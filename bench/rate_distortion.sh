@@ -19,6 +19,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
+cmake --build "$build" --target pcl_sparse_encode bench_format -j2 > /dev/null
 shift || true
 meshes=("$@")
 [ ${#meshes[@]} -eq 0 ] && meshes=(spot.obj blub.obj bunny-hr-closed.obj koala.obj)

@@ -7,6 +7,7 @@ set -e
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
 build=${1:-$root/build}
+cmake --build "$build" --target pcl_sparse_resample pcl_sparse_render -j2 > /dev/null
 meshes=${PCL_SPARSE_SHARED_MESHES:-$root/../shared/meshes}
 apps="$build/apps"
 work=$(mktemp -d)

@@ -2,13 +2,14 @@
 # Scans against PCL's MLS / NormalEstimationOMP, Draco and OctreePointCloudCompression, in one run
 # (issue 12 point 10) -> bench/results/scans.md and scans.tsv.
 #
-#   bench/scans.sh [BUILD_DIR]      (default: build; needs bench_scans and pcl_sparse_resample built)
+#   bench/scans.sh [BUILD_DIR]      (default: build; bench_scans and pcl_sparse_resample are built there)
 #   Environment: PCL_SPARSE_SHARED_CLOUDS, PCL_SPARSE_SHARED_MESHES (default ../shared/{clouds,meshes})
 #                SCANS_RD="file ..." scans to run the rate-distortion sweep on (default below)
 # Installs draco (Debian) if draco_encoder is missing. About 10-15 minutes on 2 shared cores.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
+cmake --build "$build" --target bench_scans pcl_sparse_resample -j2 > /dev/null
 clouds=${PCL_SPARSE_SHARED_CLOUDS:-$root/../shared/clouds}
 meshes=${PCL_SPARSE_SHARED_MESHES:-$root/../shared/meshes}
 out=$root/bench/results
