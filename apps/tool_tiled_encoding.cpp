@@ -199,7 +199,7 @@ namespace pcl_sparse
           {
             mine = encodeTiles (source_, these, options_, threads_, known, {}, keep_xy_);
             for (const TileEncoding& tile : mine)
-              if (tilePhase (grid_, tile.tile) == 0 && tile.reach > 1)
+              if (reachesBeyondNeighbours (grid_, tile))
                 status = StepStatus::far_reaching;
           }
           catch (const std::exception& e)

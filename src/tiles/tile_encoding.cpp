@@ -401,9 +401,9 @@ namespace pcl_sparse
           errors_[t] = failure;
           stop_ = true;
         }
-        else if (tilePhase (grid_, t) == 0 && tile.reach > 1)
-          far_reaching_ = stop_ = true;
         tile.tile = t;
+        if (reachesBeyondNeighbours (grid_, tile))  // a failed tile has no patches (reach 0)
+          far_reaching_ = stop_ = true;
         tiles_.add (std::move (tile));
         state_[t] = State::done;
         ++encoded_;

@@ -41,6 +41,17 @@ namespace pcl_sparse
     return grid.coordinates (t).sum () % 2;
   }
 
+  /// \brief Whether \a tile is a phase-0 tile whose patches list points beyond its neighbours
+  /// (TileEncoding::reach > 1): then the phase-1 tiles next to it cannot be encoded once only its
+  /// neighbours are done, and the encoding falls back to phase by phase (encodeTilesByPhase).
+  /// \param[in] grid the grid
+  /// \param[in] tile an encoding of a tile of \a grid
+  inline bool
+  reachesBeyondNeighbours (const TileGrid& grid, const TileEncoding& tile)
+  {
+    return tilePhase (grid, tile.tile) == 0 && tile.reach > 1;
+  }
+
   /// \brief The input points (their numbers in the whole input, ascending, distinct) the patches of
   /// \a tiles cover.
   /// \param[in] tiles encodings (of phase 0)
