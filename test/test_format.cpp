@@ -390,6 +390,20 @@ TEST (ModelFile, EncoderRefusesWhatItCannotStore)
   EXPECT_THROW (encodeModel (model, options), Error);
   model.basis.reset ();
   EXPECT_THROW (encodeModel (model), Error);
+  model = test::makeSyntheticModel (3, 4, true);
+  model.patches[1].vertices.back () = static_cast<int> (model.num_input_vertices);
+  ModelWriteOptions with_vertices;
+  with_vertices.include_vertices = true;
+  try
+  {
+    encodeModel (model, with_vertices);
+    ADD_FAILURE () << "a vertex number past the input's vertices was written";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("a patch lists vertex 1000, outside the input's 1000 vertices"), std::string::npos)
+      << e.what ();
+  }
 }
 
 TEST (ModelFile, EveryTruncationIsAnError)

@@ -778,7 +778,8 @@ namespace pcl_sparse
     for (const int v : vertices)
     {
       if (v < 0 || static_cast<std::uint64_t> (v) >= num_input_vertices)
-        throw Error ("encodeModel: vertex index " + std::to_string (v) + " outside num_input_vertices");
+        throw Error ("a patch lists vertex " + std::to_string (v) + ", outside the input's " +
+                     std::to_string (num_input_vertices) + " vertices");
       out.putSignedVarint (v - previous);
       previous = v;
     }
