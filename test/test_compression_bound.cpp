@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include "model_helpers.h"
+
 #include <fstream>
 #include <iostream>
 #include <numeric>
@@ -189,11 +191,7 @@ TEST (CompressionBound, BunnyNpm1kAtEveryRho)
     std::vector<Patch> patches;
     auto model = std::make_shared<SparseSurfaceModel> (encode (mesh, options, 2, &patches));
     const ModelStatistics s = model->statistics (mesh->vertices);
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setInputModel (model);
-    resampling.setPointCount (4 * mesh->vertices.size ());
-    pcl::PointCloud<pcl::PointNormal> cloud;
-    resampling.compute (cloud);
+    const pcl::PointCloud<pcl::PointNormal> cloud = pcl_sparse_test::resampleModel (model, 4 * mesh->vertices.size ());
     const CloudQuality q = evaluateCloudQuality (*mesh, cloud);
     std::cout << "bunny-npm-1k rho " << rho << ": M " << s.num_patches << ", CR " << s.compression_ratio
               << ", RMSE/diag " << s.rmse_over_diagonal << ", within 3 spacings " << q.completeness << ", flipped "

@@ -12,6 +12,7 @@
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include "generated_clouds.h"
+#include "model_helpers.h"
 
 #include <pcl/kdtree/kdtree_flann.h>
 
@@ -50,15 +51,8 @@ namespace
   Coverage
   resampleAndMeasure (const TriangleMesh::ConstPtr& mesh)
   {
-    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-    encoder.setInputMesh (mesh);
-    auto model = std::make_shared<SparseSurfaceModel> ();
-    encoder.compute (*model);
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setInputModel (model);
-    resampling.setPointCount (4 * mesh->numVertices ());
-    pcl::PointCloud<pcl::PointNormal> cloud;
-    resampling.compute (cloud);
+    const pcl::PointCloud<pcl::PointNormal> cloud =
+      pcl_sparse_test::resampleModel (pcl_sparse_test::encodeMesh (mesh), 4 * mesh->numVertices ());
 
     Coverage c;
     c.points = cloud.size ();

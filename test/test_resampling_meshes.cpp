@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "model_helpers.h"
+
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -46,17 +48,10 @@ namespace
   encodeAndResample (const TriangleMesh::ConstPtr& mesh, std::size_t count)
   {
     Result result;
-    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-    encoder.setInputMesh (mesh);
     SparseSurfaceEncoderOptions encoder_options;
     encoder_options.coding.footprint_angles = footprint_angles;
-    encoder.setOptions (encoder_options);
-    result.model = std::make_shared<SparseSurfaceModel> ();
-    encoder.compute (*result.model);
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setInputModel (result.model);
-    resampling.setPointCount (count);
-    resampling.compute (result.cloud);
+    result.model = pcl_sparse_test::encodeMesh (mesh, encoder_options);
+    result.cloud = pcl_sparse_test::resampleModel (result.model, count);
     CloudQualityOptions options;
     options.probes = 20000;
     result.quality = evaluateCloudQuality (*mesh, result.cloud, options);
@@ -160,14 +155,9 @@ namespace
   std::pair<double, double>
   strayAndGap (const TriangleMesh& mesh, const SparseSurfaceModel::ConstPtr& model)
   {
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setInputModel (model);
-    resampling.setPointCount (4 * mesh.numVertices ());
-    pcl::PointCloud<pcl::PointNormal> cloud;
-    resampling.compute (cloud);
     CloudQualityOptions options;
     options.probes = 20000;
-    const CloudQuality q = evaluateCloudQuality (mesh, cloud, options);
+    const CloudQuality q = evaluateCloudQuality (mesh, pcl_sparse_test::resampleModel (model, 4 * mesh.numVertices ()), options);
     return {q.max_distance / q.bbox_diagonal, q.largest_gap * q.spacing / q.bbox_diagonal};
   }
 
@@ -176,13 +166,9 @@ namespace
   {
     for (const int angles : {16, footprint_angles})
     {
-      SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-      encoder.setInputMesh (mesh);
       SparseSurfaceEncoderOptions encoder_options;
       encoder_options.coding.footprint_angles = angles;
-      encoder.setOptions (encoder_options);
-      auto model = std::make_shared<SparseSurfaceModel> ();
-      encoder.compute (*model);
+      const SparseSurfaceModel::Ptr model = pcl_sparse_test::encodeMesh (mesh, encoder_options);
       const std::pair<double, double> d = strayAndGap (*mesh, model);
       std::cout << name << " (" << angles << " angles): largest distance / diag " << d.first << ", largest hole / diag "
                 << d.second << std::endl;
@@ -261,19 +247,11 @@ TEST (ResamplingMeshes, DctNormalsReachTheVertexNormalFloor)
     if (!mesh)
       continue;
     ++found;
-    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-    encoder.setInputMesh (mesh);
     SparseSurfaceEncoderOptions encoder_options;
     encoder_options.coding.footprint_angles = footprint_angles;
     encoder_options.basis = CosineBasisKind::Dct;
-    encoder.setOptions (encoder_options);
-    auto model = std::make_shared<SparseSurfaceModel> ();
-    encoder.compute (*model);
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setInputModel (model);
-    resampling.setPointCount (4 * mesh->numVertices ());
-    pcl::PointCloud<pcl::PointNormal> cloud;
-    resampling.compute (cloud);
+    const pcl::PointCloud<pcl::PointNormal> cloud =
+      pcl_sparse_test::resampleModel (pcl_sparse_test::encodeMesh (mesh, encoder_options), 4 * mesh->numVertices ());
     CloudQualityOptions options;
     options.probes = 1000;
     const CloudQuality q = evaluateCloudQuality (*mesh, cloud, options);
