@@ -136,8 +136,10 @@ namespace pcl_sparse
         double best = std::numeric_limits<double>::infinity ();
         int best_face = owners[0];
         std::vector<int> faces;
+        std::vector<double> face_distances;  // of faces, as measured
         auto measure = [&] () {
           faces.clear ();
+          face_distances.clear ();
           for (int c : index)
             faces.push_back (owners[c]);
           std::sort (faces.begin (), faces.end ());
@@ -146,6 +148,7 @@ namespace pcl_sparse
           {
             const Eigen::Vector3i& t = mesh.triangles[f];
             const double d = pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+            face_distances.push_back (d);
             if (d < best || (d == best && f < best_face))
             {
               best = d;
@@ -164,12 +167,9 @@ namespace pcl_sparse
         // a knife edge matches the face it came from, not the one its index happened to sort first.
         const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
         double cosine = normal.dot (face_normals[best_face]);
-        for (int f : faces)
-        {
-          const Eigen::Vector3i& t = mesh.triangles[f];
-          if (pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= best + tie)
-            cosine = std::max (cosine, normal.dot (face_normals[f]));
-        }
+        for (std::size_t k = 0; k < faces.size (); ++k)
+          if (face_distances[k] <= best + tie)
+            cosine = std::max (cosine, normal.dot (face_normals[faces[k]]));
         angle[i] = std::acos (std::clamp (cosine, -1.0, 1.0)) * 180.0 / M_PI;
       }
     }
