@@ -11,7 +11,7 @@
 #     PCL_SPARSE_JOBS           meshes measured at a time (default: 2)
 #     PCL_SPARSE_DRACO_QP       Draco quantisation bits (default: 6 7 8 10 12 14 16)
 #
-# Per mesh and configuration (default options; -preset paper):
+# Per mesh and configuration (default options; -preset paper; -preset paper -cone 72, the rho sweep only):
 #   pcl_sparse_encode MESH [-preset paper] -rho R --json     M, CR, RMSE/diag for every R of the sweep;
 #     at rho 0.001 also -o FILE (the default file: quantised at the derived tolerance) -> bytes,
 #     bench_format model MESH FILE -> Chamfer / diag (symmetric mean point-to-surface distance, 200k points a side)
@@ -41,6 +41,7 @@ if ! command -v draco_encoder > /dev/null; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends draco >&2
 fi
 
+cmake --build "$build" --target pcl_sparse_encode pcl_sparse_resample bench_format bench_meshes -j2 > /dev/null
 encode=$build/apps/pcl_sparse_encode
 resample=$build/apps/pcl_sparse_resample
 format=$build/bench/bench_format
@@ -74,12 +75,16 @@ one_mesh () {
       "$(echo "$(now) - $t0" | bc -l)"
   done
 
-  for config in default paper; do
-    preset=(); [ $config = paper ] && preset=(-preset paper)
+  for config in default paper paper-cone72; do
+    case $config in
+      default) preset=() ;;
+      paper) preset=(-preset paper) ;;
+      paper-cone72) preset=(-preset paper -cone 72) ;;  # the paper with the authors' normal cone
+    esac
     for rho in "${rhos[@]}"; do
       [ "$vertices" -gt "$sweep_max" ] && [ "$rho" != 0.001 ] && continue
       t0=$(now)
-      if [ "$rho" = 0.001 ]; then
+      if [ "$rho" = 0.001 ] && [ $config != paper-cone72 ]; then
         read -r m cr rmse < <("$encode" "$mesh" "${preset[@]}" -rho "$rho" -o "$work/$base.psm" --json -q |
                              json "['patches']" "['cr']" "['rmse_over_diag']")
         chamfer=$("$format" model "$mesh" "$work/$base.psm" | json "['chamfer']")
@@ -92,6 +97,7 @@ one_mesh () {
       fi
       echo "$config rho $rho: M $m CR $cr RMSE/diag $rmse" >&2
     done
+    [ $config = paper-cone72 ] && continue
     t0=$(now)
     "$resample" "$mesh" "$work/$base.pcd" "${preset[@]}" -n $((4 * vertices)) -q
     read -r p99 pmax complete flipped fraction < <("$quality" "$mesh" "$work/$base.pcd" |
