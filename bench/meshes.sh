@@ -11,7 +11,8 @@
 #     PCL_SPARSE_JOBS           meshes measured at a time (default: 2)
 #     PCL_SPARSE_DRACO_QP       Draco quantisation bits (default: 6 7 8 10 12 14 16)
 #
-# Per mesh and configuration (default options; -preset paper; -preset paper -cone 72, the rho sweep only):
+# Per mesh and configuration (default options; -preset paper; the rho sweep only for -preset paper -cone 72 and
+# -preset paper -min-samples 0):
 #   pcl_sparse_encode MESH [-preset paper] -rho R --json     M, CR, RMSE/diag for every R of the sweep;
 #     at rho 0.001 also -o FILE (the default file: quantised at the derived tolerance) -> bytes,
 #     bench_format model MESH FILE -> Chamfer / diag (symmetric mean point-to-surface distance, 200k points a side)
@@ -75,16 +76,18 @@ one_mesh () {
       "$(echo "$(now) - $t0" | bc -l)"
   done
 
-  for config in default paper paper-cone72; do
+  for config in default paper paper-cone72 paper-nosamples; do
     case $config in
       default) preset=() ;;
       paper) preset=(-preset paper) ;;
       paper-cone72) preset=(-preset paper -cone 72) ;;  # the paper with the authors' normal cone
+      paper-nosamples) preset=(-preset paper -min-samples 0) ;;  # the paper coding the vertices only
     esac
+    sweep_only=false; case $config in paper-*) sweep_only=true ;; esac
     for rho in "${rhos[@]}"; do
       [ "$vertices" -gt "$sweep_max" ] && [ "$rho" != 0.001 ] && continue
       t0=$(now)
-      if [ "$rho" = 0.001 ] && [ $config != paper-cone72 ]; then
+      if [ "$rho" = 0.001 ] && ! $sweep_only; then
         read -r m cr rmse < <("$encode" "$mesh" "${preset[@]}" -rho "$rho" -o "$work/$base.psm" --json -q |
                              json "['patches']" "['cr']" "['rmse_over_diag']")
         chamfer=$("$format" model "$mesh" "$work/$base.psm" | json "['chamfer']")
@@ -97,7 +100,7 @@ one_mesh () {
       fi
       echo "$config rho $rho: M $m CR $cr RMSE/diag $rmse" >&2
     done
-    [ $config = paper-cone72 ] && continue
+    $sweep_only && continue
     t0=$(now)
     "$resample" "$mesh" "$work/$base.pcd" "${preset[@]}" -n $((4 * vertices)) -q
     read -r p99 pmax complete flipped fraction < <("$quality" "$mesh" "$work/$base.pcd" |

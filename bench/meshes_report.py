@@ -22,6 +22,11 @@ AUTHORS = {
     'stanford-bunny': (1483, 0.355, 4.29e-04), 'sword': (1373, 0.513, 1.12e-04), 'turbine': (629, 0.549, 2.58e-04),
     'wingnut': (206, 0.551, 3.57e-04),
 }
+# Variants of the paper preset swept for RMSE only (bench/meshes.sh's configurations): options, what they are.
+VARIANTS = {
+    'paper-cone72': ('-preset paper -cone 72', 'The paper with the authors\' normal cone'),
+    'paper-nosamples': ('-preset paper -min-samples 0', 'The paper coding the vertices only, no extra samples'),
+}
 # CAD meshes (the CGAL models and the other machined parts: sharp edges, flat faces); the rest are smooth.
 CAD = {'anchor-dense', 'blade', 'cheese-cgal', 'couplingdown', 'fandisk', 'fandisk-large', 'rocker-arm', 'turbine',
        'wingnut', 'sword'}
@@ -90,16 +95,18 @@ def main():
                 p99=float(c['p99_spacings']), pmax=float(c['max_spacings']), complete=float(c['completeness3']),
                 flipped=int(c['flipped']), flipped_fraction=float(c['flipped_fraction']))
 
-    # -preset paper -cone 72 (the paper with the authors' normal cone): the RMSE sweep only.
-    cone72 = {}
-    for m in meshes:
-        sweep = [(float(r['cr']), float(r['rmse_over_diag'])) for r in pick(m, 'paper-cone72', 'encode')]
-        authors = AUTHORS.get(m)
-        if not sweep or not authors:
-            continue
-        at_cr, extrapolated = loglog(sweep, authors[1], envelope=True)
-        cone72[m] = dict(at_cr=at_cr, extrapolated=extrapolated, cr_range=(min(p[0] for p in sweep), max(p[0] for p in sweep)),
-                         ratio=at_cr / authors[2] if at_cr else None)
+    # Variants of the paper preset, one option changed each: the RMSE sweep only (what each is, in VARIANTS).
+    variants = {}
+    for config in VARIANTS:
+        for m in meshes:
+            sweep = [(float(r['cr']), float(r['rmse_over_diag'])) for r in pick(m, config, 'encode')]
+            authors = AUTHORS.get(m)
+            if not sweep or not authors:
+                continue
+            at_cr, extrapolated = loglog(sweep, authors[1], envelope=True)
+            variants[(m, config)] = dict(at_cr=at_cr, extrapolated=extrapolated,
+                                         cr_range=(min(p[0] for p in sweep), max(p[0] for p in sweep)),
+                                         ratio=at_cr / authors[2] if at_cr else None)
 
     def targets(config):
         s = [(m, summary[(m, config)]) for m in meshes if (m, config) in summary]
@@ -140,16 +147,16 @@ def main():
                        % (verdict(rmse_ok, n), worst('ratio_rmse')[1], fx(worst('ratio_rmse')[0]),
                           sum(1 for m in meshes if (m, config) in summary and summary[(m, config)]['ratio_rmse'] is None)))
         out.append('')
-    if cone72:
-        ok72 = [m for m, v in cone72.items() if v['ratio'] is not None and v['ratio'] <= 1.05]
-        ok_either = [m for m, v in cone72.items() if (v['ratio'] is not None and v['ratio'] <= 1.05) or
-                     ((m, 'paper') in summary and summary[(m, 'paper')]['ratio_rmse'] is not None and
-                      summary[(m, 'paper')]['ratio_rmse'] <= 1.05)]
-        out.append('The paper with the authors\' normal cone (`-preset paper -cone 72`, table at the end): RMSE/diag at'
-                   ' their CR within 1.05x of theirs on %d of %d meshes with a value (%d with their CR outside our sweep);'
-                   ' the paper preset or this, whichever is better: %d.'
-                   % (len(ok72), sum(1 for v in cone72.values() if v['ratio'] is not None),
-                      sum(1 for v in cone72.values() if v['ratio'] is None), len(ok_either)))
+    for config, (options, what) in VARIANTS.items():
+        measured = {m: v for (m, c), v in variants.items() if c == config}
+        if not measured:
+            continue
+        ok = [m for m, v in measured.items() if v['ratio'] is not None and v['ratio'] <= 1.05]
+        out.append('%s (`%s`, table at the end): RMSE/diag at their CR within 1.05x of theirs on %d of %d meshes with'
+                   ' a value (%d with their CR outside our sweep).'
+                   % (what, options, len(ok), sum(1 for v in measured.values() if v['ratio'] is not None),
+                      sum(1 for v in measured.values() if v['ratio'] is None)))
+    if variants:
         out.append('')
     out += ['How each column is measured:',
             '- M, CR, RMSE/diag: `pcl_sparse_encode MESH [-preset paper] -rho 0.001 --json` (patches, cr, rmse_over_diag).'
@@ -193,22 +200,26 @@ def main():
                 '%.0f%s' % (v['draco_bytes'], '*' if v['draco_out'] else '') if v['draco_bytes'] else '-',
                 '**%.2f**%s' % (v['ratio_draco'], '*' if v['draco_out'] else '') if v['ratio_draco'] else '-'))
         out.append('')
-    if cone72:
-        out += ['## `-preset paper -cone 72`: the paper with the authors\' normal cone', '',
-                'The same rho sweep and interpolation as above; "paper preset" repeats the `-preset paper` table\'s ratio.', '',
-                '| mesh | authors CR | authors RMSE | RMSE at their CR | x theirs | paper preset x theirs |',
-                '|---|---|---|---|---|---|']
+    if variants:
+        out += ['## The paper preset with one option changed: RMSE at the authors\' CR', '',
+                'The same rho sweep and interpolation as above; each column "x theirs". ' +
+                '; '.join('%s: `%s`' % (config, options) for config, (options, what) in VARIANTS.items()) + '.', '',
+                '| mesh | authors CR | authors RMSE | paper preset | ' + ' | '.join(VARIANTS) + ' |',
+                '|---|---|---|---|' + '---|' * len(VARIANTS)]
         for m in meshes:
-            v = cone72.get(m)
-            if not v:
+            if not any((m, config) in variants for config in VARIANTS):
                 continue
             a = AUTHORS[m]
-            star = '*' if v['extrapolated'] else ''
             paper = summary.get((m, 'paper'))
-            out.append('| %s | %s | %.2e | %s | %s | %s |' % (
-                m, a[1], a[2], '%.2e%s' % (v['at_cr'], star) if v['at_cr'] else 'CR %.2f-%.2f' % v['cr_range'],
-                '**%.2f**%s' % (v['ratio'], star) if v['ratio'] else '-',
-                '%.2f%s' % (paper['ratio_rmse'], '*' if paper['at_cr_extrapolated'] else '') if paper and paper['ratio_rmse'] else '-'))
+            cells = []
+            for config in VARIANTS:
+                v = variants.get((m, config))
+                cells.append('-' if not v else ('**%.2f**%s' % (v['ratio'], '*' if v['extrapolated'] else '') if v['ratio']
+                                                else 'CR %.2f-%.2f' % v['cr_range']))
+            out.append('| %s | %s | %.2e | %s | %s |' % (
+                m, a[1], a[2],
+                '%.2f%s' % (paper['ratio_rmse'], '*' if paper['at_cr_extrapolated'] else '') if paper and paper['ratio_rmse'] else '-',
+                ' | '.join(cells)))
         out.append('')
     missing = [m for m in AUTHORS if m not in meshes]
     if missing:
