@@ -167,9 +167,9 @@ namespace pcl_sparse
         // a knife edge matches the face it came from, not the one its index happened to sort first.
         const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
         double cosine = normal.dot (face_normals[best_face]);
-        for (std::size_t k = 0; k < faces.size (); ++k)
-          if (face_distances[k] <= best + tie)
-            cosine = std::max (cosine, normal.dot (face_normals[faces[k]]));
+        for (std::size_t j = 0; j < faces.size (); ++j)
+          if (face_distances[j] <= best + tie)
+            cosine = std::max (cosine, normal.dot (face_normals[faces[j]]));
         angle[i] = std::acos (std::clamp (cosine, -1.0, 1.0)) * 180.0 / M_PI;
       }
     }
