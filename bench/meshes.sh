@@ -13,7 +13,7 @@
 #
 # Per mesh and configuration (default options; -preset paper; the rho sweep only for -preset paper -cone 72 and
 # -preset paper -min-samples 0):
-#   pcl_sparse_encode MESH [-preset paper] -rho R --json     M, CR, RMSE/diag for every R of the sweep;
+#   pcl_sparse_encode MESH [-preset paper] -rho R --json     M, CR, RMSE/diag, mean error/diag for every R of the sweep;
 #     at rho 0.001 also -o FILE (the default file: quantised at the derived tolerance) -> bytes,
 #     bench_format model MESH FILE -> Chamfer / diag (symmetric mean point-to-surface distance, 200k points a side)
 #   pcl_sparse_resample MESH CLOUD.pcd -n 4V [-preset paper]  (the encoder's default rho)
@@ -55,10 +55,10 @@ now () { date +%s.%N; }
 tsv=$out/meshes.tsv
 start=$(now)
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
-printf 'mesh\tvertices\tconfig\tkind\trho_or_qp\tpatches\tcr\trmse_over_diag\tbytes\tchamfer\tp99_spacings\tmax_spacings\tcompleteness3\tflipped\tflipped_fraction\tseconds\n' > "$tsv.tmp"
+printf 'mesh\tvertices\tconfig\tkind\trho_or_qp\tpatches\tcr\trmse_over_diag\tmean_error_over_diag\tbytes\tchamfer\tp99_spacings\tmax_spacings\tcompleteness3\tflipped\tflipped_fraction\tseconds\n' > "$tsv.tmp"
 row () { local IFS=$'\t'; echo "$*" >> "$work/rows_$base.tsv"; }
 one_mesh () {
-  local name=$1 mesh base vertices qp chamfer config preset rho t0 m cr rmse p99 pmax complete flipped fraction
+  local name=$1 mesh base vertices qp chamfer config preset rho t0 m cr rmse mean p99 pmax complete flipped fraction
   mesh=$shared/meshes/$name
   [ -f "$mesh" ] || mesh=$shared/extra-meshes/$name
   base=${name%.*}
@@ -72,7 +72,7 @@ one_mesh () {
     draco_encoder -i "$work/$base.obj" -o "$work/$base.drc" -cl 7 -qp "$qp" > /dev/null
     draco_decoder -i "$work/$base.drc" -o "$work/${base}_draco.ply" > /dev/null
     chamfer=$("$format" mesh "$mesh" "$work/${base}_draco.ply" | json "['chamfer']")
-    row "$base" "$vertices" draco file "$qp" - - - "$(stat -c %s "$work/$base.drc")" "$chamfer" - - - - - \
+    row "$base" "$vertices" draco file "$qp" - - - - "$(stat -c %s "$work/$base.drc")" "$chamfer" - - - - - \
       "$(echo "$(now) - $t0" | bc -l)"
   done
 
@@ -88,15 +88,15 @@ one_mesh () {
       [ "$vertices" -gt "$sweep_max" ] && [ "$rho" != 0.001 ] && continue
       t0=$(now)
       if [ "$rho" = 0.001 ] && ! $sweep_only; then
-        read -r m cr rmse < <("$encode" "$mesh" "${preset[@]}" -rho "$rho" -o "$work/$base.psm" --json -q |
-                             json "['patches']" "['cr']" "['rmse_over_diag']")
+        read -r m cr rmse mean < <("$encode" "$mesh" "${preset[@]}" -rho "$rho" -o "$work/$base.psm" --json -q |
+                                  json "['patches']" "['cr']" "['rmse_over_diag']" "['mean_error_over_diag']")
         chamfer=$("$format" model "$mesh" "$work/$base.psm" | json "['chamfer']")
-        row "$base" "$vertices" $config file "$rho" "$m" "$cr" "$rmse" "$(stat -c %s "$work/$base.psm")" "$chamfer" \
+        row "$base" "$vertices" $config file "$rho" "$m" "$cr" "$rmse" "$mean" "$(stat -c %s "$work/$base.psm")" "$chamfer" \
           - - - - - "$(echo "$(now) - $t0" | bc -l)"
       else
-        read -r m cr rmse < <("$encode" "$mesh" "${preset[@]}" -rho "$rho" --json -q |
-                             json "['patches']" "['cr']" "['rmse_over_diag']")
-        row "$base" "$vertices" $config encode "$rho" "$m" "$cr" "$rmse" - - - - - - - "$(echo "$(now) - $t0" | bc -l)"
+        read -r m cr rmse mean < <("$encode" "$mesh" "${preset[@]}" -rho "$rho" --json -q |
+                                  json "['patches']" "['cr']" "['rmse_over_diag']" "['mean_error_over_diag']")
+        row "$base" "$vertices" $config encode "$rho" "$m" "$cr" "$rmse" "$mean" - - - - - - - "$(echo "$(now) - $t0" | bc -l)"
       fi
       echo "$config rho $rho: M $m CR $cr RMSE/diag $rmse" >&2
     done
@@ -105,7 +105,7 @@ one_mesh () {
     "$resample" "$mesh" "$work/$base.pcd" "${preset[@]}" -n $((4 * vertices)) -q
     read -r p99 pmax complete flipped fraction < <("$quality" "$mesh" "$work/$base.pcd" |
       json "['p99_spacings']" "['max_spacings']" "['completeness3']" "['flipped']" "['flipped_fraction']")
-    row "$base" "$vertices" $config cloud - - - - - - "$p99" "$pmax" "$complete" "$flipped" "$fraction" \
+    row "$base" "$vertices" $config cloud - - - - - - - "$p99" "$pmax" "$complete" "$flipped" "$fraction" \
       "$(echo "$(now) - $t0" | bc -l)"
     echo "$config cloud: p99 $p99 spacings, flipped $flipped" >&2
   done

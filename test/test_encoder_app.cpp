@@ -55,6 +55,14 @@ namespace
     TriangleMesh mesh_;
     std::string input_;
   };
+
+  /// The JSON's number after "key": , or -1 if \a out has no such key.
+  double
+  jsonNumber (const std::string& out, const std::string& key)
+  {
+    const std::size_t at = out.find ("\"" + key + "\": ");
+    return at == std::string::npos ? -1.0 : std::stod (out.substr (at + key.size () + 4));
+  }
 } // namespace
 
 TEST_F (EncodeTool, JsonAndFiles)
@@ -72,6 +80,12 @@ TEST_F (EncodeTool, JsonAndFiles)
   for (std::size_t v = 0; v < r.vertices.size (); ++v)
     EXPECT_NEAR (r.vertices[v].norm (), 1.0, 0.02);
   EXPECT_EQ (loadTriangleMesh (error).vertices.size (), mesh_.vertices.size ());
+  // The mean error (the figure the authors' code prints) lies between 0 and the RMSE, and near it on a sphere,
+  // whose vertices are all alike.
+  const double rmse = jsonNumber (out, "rmse_over_diag"), mean = jsonNumber (out, "mean_error_over_diag");
+  EXPECT_GT (mean, 0.0);
+  EXPECT_LE (mean, rmse);
+  EXPECT_GT (mean, 0.5 * rmse);
 }
 
 TEST_F (EncodeTool, TableRow)
@@ -102,23 +116,18 @@ TEST_F (EncodeTool, RefusesBadOptionsWithoutWriting)
 // cone alone bounds a patch on a sphere: a cone of 30 degrees needs far more patches than one of 90.
 TEST_F (EncodeTool, ConeBoundsThePatches)
 {
-  // The JSON's number after "key": .
-  auto number = [] (const std::string& out, const std::string& key) {
-    const std::size_t at = out.find ("\"" + key + "\": ");
-    return at == std::string::npos ? -1.0 : std::stod (out.substr (at + key.size () + 4));
-  };
   std::string out;
   ASSERT_EQ (run (input_ + " -q --json -rho 1 -cone 30", out), 0);
-  const double narrow = number (out, "patches");
-  EXPECT_NEAR (number (out, "cone_degrees"), 30.0, 1e-9);
+  const double narrow = jsonNumber (out, "patches");
+  EXPECT_NEAR (jsonNumber (out, "cone_degrees"), 30.0, 1e-9);
   ASSERT_EQ (run (input_ + " -q --json -rho 1 -cone 90", out), 0);
-  const double wide = number (out, "patches");
+  const double wide = jsonNumber (out, "patches");
   EXPECT_GT (wide, 0.0);
   EXPECT_GT (narrow, 2.0 * wide) << narrow << " patches against " << wide;
   ASSERT_EQ (run (input_ + " -q --json", out), 0);
-  EXPECT_NEAR (number (out, "cone_degrees"), 72.0, 1e-9);
+  EXPECT_NEAR (jsonNumber (out, "cone_degrees"), 72.0, 1e-9);
   ASSERT_EQ (run (input_ + " -q --json -preset paper", out), 0);
-  EXPECT_NEAR (number (out, "cone_degrees"), 90.0, 1e-9);
+  EXPECT_NEAR (jsonNumber (out, "cone_degrees"), 90.0, 1e-9);
 }
 
 // -basis dct: recorded in the JSON and in the model file (basis kind 2), read back as DctCosineDictionary.
