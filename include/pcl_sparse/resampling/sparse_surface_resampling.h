@@ -27,8 +27,9 @@
 /// for PCL's MLS upsampling) and, with setPointCount, exactly the requested count: the total is split over
 /// the patches by owned area (largest remainder). At high density, cells well inside or outside a
 /// patch's owned part are classified by blocks (a quadtree over cell corners) instead of one by one.
-/// Places where a code leaves its plausible range (|h| > 1 or a slope beyond 75 degrees: oscillating
-/// codes of tiny patches) are left to the overlapping patches (PatchOwnershipOptions).
+/// Places where a code leaves its plausible range (|h| > 1, or steeper than 50 degrees from its frame: an
+/// oscillating code of a tiny patch, or a patch reaching over an edge) are left to the overlapping patches
+/// (PatchOwnershipOptions).
 ///
 /// Deterministic: every random number is a hash of (seed, patch, cell, draw), patches run in parallel and
 /// their points are concatenated in patch order, so the cloud is the same for any thread count.
