@@ -2,7 +2,7 @@
 /// curvature (docs/METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
 ///
 ///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-box XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]
-///                     [-seed S] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}] [-stream auto|on|off]
+///                     [-seed S] [-max-slope DEG] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}] [-stream auto|on|off]
 ///                     [-block N] [--json] [-q]
 ///
 /// -box decodes a region: of a tiled model (pcl_sparse_encode -tiles) only the tiles whose patches reach
@@ -50,6 +50,8 @@ namespace
       {"-box X0,Y0,Z0,X1,Y1,Z1", "only the points inside this box (needs -density); of a tiled model only the"},
       {"", "tiles reaching into it are read"},
       {"-seed S", "seed of the sampling (default 42)"},
+      {"-max-slope DEG", "a patch samples only where its code is within DEG degrees of its frame normal;"},
+      {"", "steeper places are left to overlapping patches (default: 50; 90: no bound)"},
       {"-threads T", "OpenMP threads (default: all; the output does not depend on it)"},
       {"-recon MESH RECON", "reconstruct MESH's vertices from the model (needs a model written with"},
       {"", "--store-vertices) and write MESH with them to RECON"},
@@ -59,7 +61,7 @@ namespace
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-n", "-density", "-seed", "-threads", "-box", {"-recon", 2}, "-stream", "-block"}, {"--json", "-q"}};
+    2, {"-n", "-density", "-seed", "-max-slope", "-threads", "-box", {"-recon", 2}, "-stream", "-block"}, {"--json", "-q"}};
 
   /// The points of a tiled model at a density, decoded over the processes of \a group: each rank takes a
   /// run of tiles (about the same number of patches each), reads them and every tile whose patches reach into them (ownership
@@ -188,8 +190,9 @@ main (int argc, char** argv)
     const bool has_density = args.number ("-density", density, tools::Range::above (0.0));
     if (has_n && has_density)
       throw Error ("options -n and -density exclude each other");
-    std::uint64_t seed = 42;
-    args.integer ("-seed", seed, tools::Range::atLeast (0));
+    SparseSurfaceResamplingOptions resampling_options;
+    args.integer ("-seed", resampling_options.seed, tools::Range::atLeast (0));
+    args.number ("-max-slope", resampling_options.ownership.max_slope_angle, tools::Range::aboveUpTo (0.0, 90.0));
     int threads = 0;
     args.integer ("-threads", threads, tools::Range::atLeast (0));
     const bool stream = tools::chooseStreaming (args, out_path, true, false);
@@ -210,9 +213,7 @@ main (int argc, char** argv)
       pcl::console::TicToc timer;
       timer.tic ();
       SparseSurfaceResampling<pcl::PointNormal> resampling;
-      SparseSurfaceResamplingOptions options;
-      options.seed = seed;
-      resampling.setOptions (options);
+      resampling.setOptions (resampling_options);
       resampling.setDensity (density);
       resampling.setNumberOfThreads (threads);
       tools::LocalCloud local;
@@ -281,9 +282,7 @@ main (int argc, char** argv)
 
     timer.tic ();
     SparseSurfaceResampling<pcl::PointNormal> resampling;
-    SparseSurfaceResamplingOptions options;
-    options.seed = seed;
-    resampling.setOptions (options);
+    resampling.setOptions (resampling_options);
     if (has_density)
       resampling.setDensity (density);
     else

@@ -2,7 +2,7 @@
 /// normals and curvature, at any density (docs/METHOD.md step 12).
 ///
 ///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-preset default|paper]
-///                       [-basis dct|paper] [-seed S]
+///                       [-basis dct|paper] [-seed S] [-max-slope DEG]
 ///                       [-threads T] [-ascii] [-stream auto|on|off] [-block N] [-q] [--json]
 
 #include "tool_input.h"

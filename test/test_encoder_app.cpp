@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <iostream>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 
@@ -177,4 +179,32 @@ TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
             << d_quantised << ", bytes " << std::filesystem::file_size (lossless) << " -> "
             << std::filesystem::file_size (quantised) << std::endl;
   EXPECT_LE (d_quantised, 1.1 * d_lossless);
+}
+
+// -max-slope of pcl_sparse_resample and pcl_sparse_decode reaches the resampling: 50 (the default) writes the
+// default's bytes, 5 degrees (far below the slopes inside the sphere's patches) moves places to other patches.
+TEST_F (EncodeTool, ResampleAndDecodePassTheSlopeBound)
+{
+  const std::string bin = std::string (PCL_SPARSE_BINARY_DIR) + "/apps/";
+  const std::string model = (dir_ / "sphere.psm").string ();
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q -o " + model, out), 0);
+  auto bytes = [] (const std::filesystem::path& path) {
+    std::ifstream in (path, std::ios::binary);
+    return std::string (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
+  };
+  for (const std::string command : {bin + "pcl_sparse_resample " + input_, bin + "pcl_sparse_decode " + model})
+  {
+    std::string clouds[3];
+    const char* bounds[3] = {"", " -max-slope 50", " -max-slope 5"};
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::filesystem::path cloud = dir_ / ("slope" + std::to_string (k) + ".pcd");
+      ASSERT_EQ (pcl_sparse_test::runShell (command + " " + cloud.string () + " -n 3000 -q" + bounds[k], out), 0) << command;
+      clouds[k] = bytes (cloud);
+      ASSERT_FALSE (clouds[k].empty ());
+    }
+    EXPECT_EQ (clouds[1], clouds[0]) << command;
+    EXPECT_NE (clouds[2], clouds[0]) << command;
+  }
 }

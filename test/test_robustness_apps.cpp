@@ -319,6 +319,7 @@ namespace
       // pcl_sparse_decode
       {"decode_n_zero", "decode", {"PSM", "OUT.d.pcd", "-n", "0"}},
       {"decode_n_huge", "decode", {"PSM", "OUT.d.pcd", "-n", "1e15"}},
+      {"decode_max_slope_zero", "decode", {"PSM", "OUT.d.pcd", "-max-slope", "0"}},
       {"decode_mesh_as_model", "decode", {"IN", "OUT.d.pcd"}},
       {"decode_garbage_model", "decode", {"GARBAGE.psm", "OUT.d.pcd"}},
       {"decode_unknown_flag", "decode", {"PSM", "OUT.d.pcd", "--bogus"}},
