@@ -2,8 +2,8 @@
 /// curvature (docs/METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
 ///
 ///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-box XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]
-///                     [-seed S] [-max-slope DEG] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}] [-stream auto|on|off]
-///                     [-block N] [--json] [-q]
+///                     [-seed S] [-max-slope DEG] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}]
+///                     [-stream auto|on|off] [-block N] [--json] [-q]
 ///
 /// -box decodes a region: of a tiled model (pcl_sparse_encode -tiles) only the tiles whose patches reach
 /// into the box are read, and the points are exactly those the whole model gives inside the box.
@@ -61,7 +61,8 @@ namespace
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-n", "-density", "-seed", "-max-slope", "-threads", "-box", {"-recon", 2}, "-stream", "-block"}, {"--json", "-q"}};
+    2, {"-n", "-density", "-seed", "-max-slope", "-threads", "-box", {"-recon", 2}, "-stream", "-block"},
+    {"--json", "-q"}};
 
   /// The points of a tiled model at a density, decoded over the processes of \a group: each rank takes a
   /// run of tiles (about the same number of patches each), reads them and every tile whose patches reach into them (ownership

@@ -61,8 +61,8 @@ namespace
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
     },
-    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-max-slope", "-threads", "-angles", "-basis", "-viewpoint", "-preset",
-     "-png", "-size", "-view", "-stream", "-block"},
+    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-max-slope", "-threads", "-angles", "-basis",
+     "-viewpoint", "-preset", "-png", "-size", "-view", "-stream", "-block"},
     {"-ascii", "-q", "--json"}};
 
   struct Settings

@@ -200,7 +200,8 @@ TEST_F (EncodeTool, ResampleAndDecodePassTheSlopeBound)
     for (int k = 0; k < 3; ++k)
     {
       const std::filesystem::path cloud = dir_ / ("slope" + std::to_string (k) + ".pcd");
-      ASSERT_EQ (pcl_sparse_test::runShell (command + " " + cloud.string () + " -n 3000 -q" + bounds[k], out), 0) << command;
+      const std::string arguments = " " + cloud.string () + " -n 3000 -q" + bounds[k];
+      ASSERT_EQ (pcl_sparse_test::runShell (command + arguments, out), 0) << command;
       clouds[k] = bytes (cloud);
       ASSERT_FALSE (clouds[k].empty ());
     }

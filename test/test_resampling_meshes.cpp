@@ -298,10 +298,11 @@ TEST (ResamplingMeshes, SlopeBoundLeavesEdgesToTheFrontalPatch)
   };
   EXPECT_EQ (SparseSurfaceResamplingOptions ().ownership.max_slope_angle, 50.0);
   const CloudQuality bounded = measure (50.0), loose = measure (75.0);
-  std::cout << "cheese-cgal, " << model->numPatches () << " patches: RMS/diag " << bounded.rms_distance / bounded.bbox_diagonal
-            << " (75 degrees: " << loose.rms_distance / loose.bbox_diagonal << "), mean angle " << bounded.mean_normal_angle
-            << " (" << loose.mean_normal_angle << "), completeness " << bounded.completeness << " (" << loose.completeness
-            << "), flipped " << bounded.flipped << " (" << loose.flipped << ")" << std::endl;
+  std::cout << "cheese-cgal, " << model->numPatches () << " patches, 50 (75) degrees: RMS/diag "
+            << bounded.rms_distance / bounded.bbox_diagonal << " (" << loose.rms_distance / loose.bbox_diagonal
+            << "), mean angle " << bounded.mean_normal_angle << " (" << loose.mean_normal_angle << "), completeness "
+            << bounded.completeness << " (" << loose.completeness << "), flipped " << bounded.flipped << " ("
+            << loose.flipped << ")" << std::endl;
   EXPECT_LT (bounded.rms_distance, 0.8 * loose.rms_distance);
   EXPECT_LT (bounded.mean_normal_angle, 0.9 * loose.mean_normal_angle);
   EXPECT_LT (bounded.flipped, loose.flipped);
