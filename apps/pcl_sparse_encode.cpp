@@ -82,7 +82,7 @@ namespace
       {"-error ERR.ply", "write the reconstruction coloured by vertex error, blue (0) to red (max)"},
       {"-o MODEL.psm", "write the model file (docs/FORMAT.md)"},
       {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default: 3 x the model's"},
-      {"", "mean error, which adds 0-5 % to its Chamfer distance; 0 = lossless)"},
+      {"", "mean error, which adds 1-7 % to its Chamfer distance; 0 = lossless)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
       {"-tiles N", "tile the input: N tiles along the longest side of its bounding box, each encoded apart"},
       {"", "(docs/TILES.md); -o then writes a tiled model, which -box decodes region by region"},
