@@ -95,8 +95,9 @@ TEST (ScanPipeline, NoisySphereCloudIsSmoothedNotCoded)
     outward += p.getNormalVector3fMap ().dot (p.getVector3fMap ()) > 0.0f;
   std::cout << "  mean |r - 1|: scan " << input_error << ", resampled " << output_error << "; outward normals "
             << outward << " of " << out.size () << std::endl;
-  // Measured 0.39x since patches grow on the PCA normals and code to their own noise (0.54x before).
-  EXPECT_LT (output_error, 0.5 * input_error);
+  // Measured 0.39x since patches grow on the PCA normals and code to their own noise (0.54x before); 0.42x
+  // while scans drew extra samples on their triangles (SparseCodingOptions::triangle_samples).
+  EXPECT_LT (output_error, 0.41 * input_error);
   // Consistently oriented, outward on a closed surface.
   EXPECT_GE (outward, out.size () - out.size () / 1000);
 }

@@ -28,7 +28,9 @@ namespace pcl_sparse
     /// patch of many vertices and long thin faces fits its vertices and oscillates between them: blade
     /// resampled with 1082 flipped normals of 32924 and 17.7 degrees mean normal error, 10 and 2.0 with
     /// 0.5 (kitten-53k's cloud 10 % closer to the mesh, its vertex RMSE 8 % higher: the samples lie on
-    /// the flat triangles). 0 = the paper's (EncoderPreset::Paper); default 0.5.
+    /// the flat triangles). 0 = the paper's (EncoderPreset::Paper); default 0.5. Meshes only: a scan's
+    /// triangles join noisy points, and samples on them doubled the resampled points' distance to the
+    /// truth on simulated scans (bench/results/scans.md), so SparseSurfaceEncoder uses 0 for scans.
     double triangle_samples = 0.5;
     int footprint_angles = 64;                    ///< K, angles of the stored footprint (16 overshoots open borders
                                                   ///< and sharp edges: bench/results/resample_quality.md)

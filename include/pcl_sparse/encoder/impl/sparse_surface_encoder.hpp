@@ -35,7 +35,12 @@ namespace pcl_sparse
     if (this->surfaceIsScan () && options.scan_noise_floor && options.coding.noise_level == 0.0)
       options.coding.noise_level = this->cloud_surface_->noise;
     if (this->surfaceIsScan ())
+    {
       options.coding.clip_footprints_at_holes = true;
+      // A scan's triangles join noisy points: samples on them are that noise interpolated, and the code
+      // follows it (the simulated plane scan of bench/scans.sh resampled 2x farther from the truth).
+      options.coding.triangle_samples = 0.0;
+    }
     options.patches = patchOptionsFor (options.patches, this->surfaceIsScan ());
     const VertexAttributes attributes = surfaceAttributes ();
     encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,
