@@ -270,8 +270,8 @@ TEST (ResamplingMeshes, DctNormalsReachTheVertexNormalFloor)
 // steeply: over an edge, or oscillating between few vertices. With the default 50 degrees those places go to
 // the overlapping patch that sees them frontally: measured against the mesh (default options, 4 points per
 // vertex), the cloud's RMS distance is 0.76 of what 75 degrees gave, the mean normal error 0.79 of it, flipped
-// normals 97 instead of 139, and the probes within 3 spacings 99.22 % instead of 99.30 % (bench/results/max_slope.md
-// has all 25 meshes).
+// normals 97 instead of 139, and the probes within 3 spacings 99.22 % instead of 99.30 %
+// (bench/results/max_slope.md has all 25 meshes).
 TEST (ResamplingMeshes, SlopeBoundLeavesEdgesToTheFrontalPatch)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes/cheese-cgal.off";
