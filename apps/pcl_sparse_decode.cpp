@@ -50,8 +50,7 @@ namespace
       {"-box X0,Y0,Z0,X1,Y1,Z1", "only the points inside this box (needs -density); of a tiled model only the"},
       {"", "tiles reaching into it are read"},
       {"-seed S", "seed of the sampling (default 42)"},
-      {"-max-slope DEG", "a patch samples only where its code is within DEG degrees of its frame normal;"},
-      {"", "steeper places are left to overlapping patches (default: 50; 90: no bound)"},
+      tools::maxSlopeHelpLine (),
       {"-threads T", "OpenMP threads (default: all; the output does not depend on it)"},
       {"-recon MESH RECON", "reconstruct MESH's vertices from the model (needs a model written with"},
       {"", "--store-vertices) and write MESH with them to RECON"},
@@ -193,7 +192,7 @@ main (int argc, char** argv)
       throw Error ("options -n and -density exclude each other");
     SparseSurfaceResamplingOptions resampling_options;
     args.integer ("-seed", resampling_options.seed, tools::Range::atLeast (0));
-    args.number ("-max-slope", resampling_options.ownership.max_slope_angle, tools::Range::aboveUpTo (0.0, 90.0));
+    tools::readMaxSlope (args, resampling_options);
     int threads = 0;
     args.integer ("-threads", threads, tools::Range::atLeast (0));
     const bool stream = tools::chooseStreaming (args, out_path, true, false);

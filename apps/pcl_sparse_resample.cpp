@@ -49,8 +49,7 @@ namespace
       {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
       {"", "when plausible, else consistently oriented, outward on closed surfaces)"},
       {"-seed S", "seed of the sampling (default: 42)"},
-      {"-max-slope DEG", "a patch samples only where its code is within DEG degrees of its frame normal;"},
-      {"", "steeper places are left to overlapping patches (default: 50; 90: no bound)"},
+      tools::maxSlopeHelpLine (),
       {"-threads T", "threads (default: all; the cloud does not depend on it)"},
       {"-ascii", "write ascii instead of binary"},
       {"-stream M", "auto (default): write the cloud block by block as it is made, memory set by"},
@@ -119,7 +118,7 @@ namespace
     if (args.has ("-basis"))
       s.encoder.basis = cosineBasisKindFromName (args.value ("-basis"));
     args.integer ("-seed", s.resampling.seed, Range::atLeast (0));
-    args.number ("-max-slope", s.resampling.ownership.max_slope_angle, Range::aboveUpTo (0.0, 90.0));
+    tools::readMaxSlope (args, s.resampling);
     args.integer ("-threads", s.threads, Range::closed (1, 1024));
     s.has_viewpoint = tools::parseViewpoint (args, s.viewpoint);
     s.binary = !args.has ("-ascii");

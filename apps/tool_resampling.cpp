@@ -117,6 +117,19 @@ namespace pcl_sparse
       return mode != "off" && possible;
     }
 
+    HelpLine
+    maxSlopeHelpLine ()
+    {
+      return {"-max-slope DEG", format ("patches sample only where their code is within DEG degrees of their normal "
+                                        "(default %g; 90: no bound)", PatchOwnershipOptions ().max_slope_angle)};
+    }
+
+    void
+    readMaxSlope (const CommandLine& args, SparseSurfaceResamplingOptions& options)
+    {
+      args.number ("-max-slope", options.ownership.max_slope_angle, Range::aboveUpTo (0.0, 90.0));
+    }
+
     void
     setStreamBlock (const CommandLine& args, SparseSurfaceResamplingBase& resampling)
     {

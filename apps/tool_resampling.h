@@ -46,6 +46,17 @@ namespace pcl_sparse
     bool
     chooseStreaming (const CommandLine& args, const std::string& output, bool binary, bool png);
 
+    /// The help line of the -max-slope DEG option of the resampling tools.
+    HelpLine
+    maxSlopeHelpLine ();
+
+    /// The -max-slope DEG option of the resampling tools: a patch samples only where its code is within DEG
+    /// degrees of its frame normal (PatchOwnershipOptions::max_slope_angle; 90: no bound). Sets it on
+    /// \a options when given.
+    /// \throws Error naming the option for a value outside (0, 90]
+    void
+    readMaxSlope (const CommandLine& args, SparseSurfaceResamplingOptions& options);
+
     /// The -block N option of the resampling tools: N points per streamed block (default 2^21), and 64 N
     /// bytes of candidates kept from the weight pass (ResamplingStreamOptions); a streamed run takes
     /// about 200 N bytes besides the model. Sets them on \a resampling.
