@@ -117,9 +117,7 @@ main (int argc, char** argv)
     args.integer ("-L", options.coding.max_atoms);
     args.number ("-eps", options.coding.tolerance);
     args.integer ("-min-samples", options.coding.min_samples);
-    double cone_degrees = options.patches.cone_angle * 180.0 / M_PI;
-    if (args.number ("-cone", cone_degrees, tools::Range::aboveUpTo (0.0, 180.0)))
-      options.patches.cone_angle = cone_degrees * M_PI / 180.0;
+    args.angle ("-cone", options.patches.cone_angle);
     args.integer ("-seed", options.coding.seed, tools::Range::atLeast (0));
     if (args.has ("--authors-nyquist"))
       options.coding.nyquist_rule = NyquistRule::AuthorsCode;

@@ -83,15 +83,12 @@ main (int argc, char** argv)
       options.cover_unreferenced_vertices = false;
       options.complete_faces = false;
     }
-    double delta_degrees = options.delta * 180.0 / M_PI, cone_degrees = options.cone_angle * 180.0 / M_PI;
     args.number ("-rho", options.rho);
-    args.number ("-delta", delta_degrees);
-    args.number ("-cone", cone_degrees);
+    args.angle ("-delta", options.delta);
+    args.angle ("-cone", options.cone_angle);
     args.number ("-eta", options.eta);
     args.number ("-sigma", options.sigma);
     args.integer ("-min-size", options.min_patch_size);
-    options.delta = delta_degrees * M_PI / 180.0;
-    options.cone_angle = cone_degrees * M_PI / 180.0;
     Eigen::Vector3d viewpoint;
     const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
     try

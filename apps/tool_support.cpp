@@ -220,6 +220,16 @@ namespace pcl_sparse
       return true;
     }
 
+    bool
+    CommandLine::angle (const std::string& name, double& radians, const Range& degrees) const
+    {
+      double x = 0.0;
+      if (!number (name, x, degrees))
+        return false;
+      radians = x * M_PI / 180.0;
+      return true;
+    }
+
     void
     CommandLine::checkInteger (const std::string& name, double x, double lowest, double limit) const
     {

@@ -118,6 +118,10 @@ namespace pcl_sparse
       /// absent. Throws Error naming the option when the value is malformed or out of range.
       bool number (const std::string& name, double& value, const Range& range = Range ()) const;
 
+      /// Reads option \a name, an angle in degrees within \a degrees, into \a radians (radians untouched
+      /// when absent). Throws as number.
+      bool angle (const std::string& name, double& radians, const Range& degrees = Range::aboveUpTo (0.0, 180.0)) const;
+
       /// As number, and the value must be a whole number that \a Integer holds.
       template <typename Integer>
       bool
