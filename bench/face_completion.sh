@@ -22,7 +22,7 @@ meshes=("$@")
                                   sword.obj kitten-53k.obj spot.obj armadillo-43k.obj)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-field () { python3 -c "import json,sys; d=json.loads(sys.stdin.read()); print(' '.join(str(d[k]) for k in sys.argv[1:]))" "$@"; }
+field () { python3 "$root/bench/json_fields.py" "$@"; }
 printf 'mesh\tV\tM\tCR\tRMSE/diag\tp99\tmax\t<=3\tflipped\tmean dist/diag\tmean angle\n'
 for name in "${meshes[@]}"; do
   mesh=$root/../shared/meshes/$name

@@ -14,7 +14,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 out="$here/results/file_tolerance.md"
 fractions="0.1 1 3 5 10"
-json() { python3 -c "import json,sys; print(json.load(sys.stdin)['$1'])"; }
+json () { python3 "$here/json_fields.py" "$@"; }
 {
   echo "# The default file tolerance: bytes and Chamfer distance against the tolerance"
   echo

@@ -27,8 +27,8 @@ for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,p
   for bound in "${bounds[@]}"; do
     "$build/apps/pcl_sparse_resample" "$mesh" "$work/$name.pcd" -n $((4 * vertices)) -max-slope "$bound" -q
     "$build/bench/bench_meshes" "$mesh" "$work/$name.pcd" |
-      python3 -c "import json,sys; d=json.load(sys.stdin); print('\t'.join(['$name', '$bound'] + [str(d[k]) for k in
-                  ('p99_spacings', 'max_spacings', 'flipped', 'mean_normal_angle', 'mean_distance_over_diag')]))" >> "$tsv"
+      python3 "$here/json_fields.py" --tab p99_spacings max_spacings flipped mean_normal_angle mean_distance_over_diag |
+      sed "s/^/$name\t$bound\t/" >> "$tsv"
   done
   echo "$name done" >&2
 done

@@ -49,7 +49,7 @@ format=$build/bench/bench_format
 quality=$build/bench/bench_meshes
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-json () { python3 -c "import json,sys; d=json.loads(sys.stdin.read()); print(' '.join(str(eval('d'+k)) for k in sys.argv[1:]))" "$@"; }
+json () { python3 "$root/bench/json_fields.py" "$@"; }
 now () { date +%s.%N; }
 
 tsv=$out/meshes.tsv
@@ -71,7 +71,7 @@ one_mesh () {
     t0=$(now)
     draco_encoder -i "$work/$base.obj" -o "$work/$base.drc" -cl 7 -qp "$qp" > /dev/null
     draco_decoder -i "$work/$base.drc" -o "$work/${base}_draco.ply" > /dev/null
-    chamfer=$("$format" mesh "$mesh" "$work/${base}_draco.ply" | json "['chamfer']")
+    chamfer=$("$format" mesh "$mesh" "$work/${base}_draco.ply" | json chamfer)
     row "$base" "$vertices" draco file "$qp" - - - - "$(stat -c %s "$work/$base.drc")" "$chamfer" - - - - - \
       "$(echo "$(now) - $t0" | bc -l)"
   done
@@ -89,13 +89,13 @@ one_mesh () {
       t0=$(now)
       if [ "$rho" = 0.001 ] && ! $sweep_only; then
         read -r m cr rmse mean < <("$encode" "$mesh" "${preset[@]}" -rho "$rho" -o "$work/$base.psm" --json -q |
-                                  json "['patches']" "['cr']" "['rmse_over_diag']" "['mean_error_over_diag']")
-        chamfer=$("$format" model "$mesh" "$work/$base.psm" | json "['chamfer']")
+                                  json patches cr rmse_over_diag mean_error_over_diag)
+        chamfer=$("$format" model "$mesh" "$work/$base.psm" | json chamfer)
         row "$base" "$vertices" $config file "$rho" "$m" "$cr" "$rmse" "$mean" "$(stat -c %s "$work/$base.psm")" "$chamfer" \
           - - - - - "$(echo "$(now) - $t0" | bc -l)"
       else
         read -r m cr rmse mean < <("$encode" "$mesh" "${preset[@]}" -rho "$rho" --json -q |
-                                  json "['patches']" "['cr']" "['rmse_over_diag']" "['mean_error_over_diag']")
+                                  json patches cr rmse_over_diag mean_error_over_diag)
         row "$base" "$vertices" $config encode "$rho" "$m" "$cr" "$rmse" "$mean" - - - - - - - "$(echo "$(now) - $t0" | bc -l)"
       fi
       echo "$config rho $rho: M $m CR $cr RMSE/diag $rmse" >&2
@@ -104,7 +104,7 @@ one_mesh () {
     t0=$(now)
     "$resample" "$mesh" "$work/$base.pcd" "${preset[@]}" -n $((4 * vertices)) -q
     read -r p99 pmax complete flipped fraction < <("$quality" "$mesh" "$work/$base.pcd" |
-      json "['p99_spacings']" "['max_spacings']" "['completeness3']" "['flipped']" "['flipped_fraction']")
+      json p99_spacings max_spacings completeness3 flipped flipped_fraction)
     row "$base" "$vertices" $config cloud - - - - - - - "$p99" "$pmax" "$complete" "$flipped" "$fraction" \
       "$(echo "$(now) - $t0" | bc -l)"
     echo "$config cloud: p99 $p99 spacings, flipped $flipped" >&2
@@ -114,7 +114,7 @@ one_mesh () {
 # Two meshes at a time (most steps are single-threaded); rows are joined in mesh order, so the file does not
 # depend on the schedule.
 export -f one_mesh row json now
-export shared work format encode resample quality sweep_max
+export root shared work format encode resample quality sweep_max
 export rhos_list="${rhos[*]}" qps_list="${qps[*]}"
 printf '%s\n' "${meshes[@]}" | xargs -P "${PCL_SPARSE_JOBS:-2}" -I{} bash -c 'set -euo pipefail; read -r -a rhos <<< "$rhos_list"; read -r -a qps <<< "$qps_list"; one_mesh {}' || true
 for name in "${meshes[@]}"; do

@@ -46,7 +46,7 @@ measure=$build/bench/bench_format
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 now () { date +%s.%N; }
-json () { python3 -c "import json,sys; d=json.loads(sys.stdin.read()); print(eval('d'+sys.argv[1]))" "$1"; }
+json () { python3 "$root/bench/json_fields.py" "$@"; }
 
 tsv=$out/rate_distortion.tsv
 printf 'mesh\tvertices\tmethod\tbasis\tparameter\tbytes\tbits_per_vertex\tchamfer\thausdorff\tencode_s\tdecode_s\n' > "$tsv.tmp"
@@ -63,15 +63,15 @@ for name in "${meshes[@]}"; do
     bytes=$(stat -c %s "$work/$base.drc")
     result=$("$measure" mesh "$mesh" "$work/${base}_draco.ply")
     printf '%s\t%s\tdraco\t-\tqp %s\t%s\t%.3f\t%s\t%s\t%.3f\t%.3f\n' "$base" "$vertices" $qp "$bytes" \
-      "$(echo "$bytes * 8 / $vertices" | bc -l)" "$(echo "$result" | json "['chamfer']")" \
-      "$(echo "$result" | json "['hausdorff']")" "$(echo "$t1 - $t0" | bc -l)" "$(echo "$t2 - $t1" | bc -l)" >> "$tsv.tmp"
+      "$(echo "$bytes * 8 / $vertices" | bc -l)" "$(echo "$result" | json chamfer)" \
+      "$(echo "$result" | json hausdorff)" "$(echo "$t1 - $t0" | bc -l)" "$(echo "$t2 - $t1" | bc -l)" >> "$tsv.tmp"
     echo "draco qp $qp: $bytes bytes" >&2
   done
 
   for basis in "${bases[@]}"; do
     for rho in "${rhos[@]}"; do
       report=$("$encode" "$mesh" -basis $basis -rho $rho -o "$work/$base.psm" --json -q)
-      encode_seconds=$(echo "$report" | json "['seconds']['encode']")
+      encode_seconds=$(echo "$report" | json seconds.encode)
       for tolerance in "${tolerances[@]}"; do
         if [ "$tolerance" = 0 ]; then
           file=$work/$base.psm; save_seconds=0
@@ -82,9 +82,9 @@ for name in "${meshes[@]}"; do
         bytes=$(stat -c %s "$file")
         result=$("$measure" model "$mesh" "$file")
         printf '%s\t%s\tpsm\t%s\trho %s t %s\t%s\t%.3f\t%s\t%s\t%.3f\t%.3f\n' "$base" "$vertices" $basis $rho $tolerance "$bytes" \
-          "$(echo "$bytes * 8 / $vertices" | bc -l)" "$(echo "$result" | json "['chamfer']")" \
-          "$(echo "$result" | json "['hausdorff']")" "$(echo "$encode_seconds + $save_seconds" | bc -l)" \
-          "$(echo "$result" | json "['decode_seconds']")" >> "$tsv.tmp"
+          "$(echo "$bytes * 8 / $vertices" | bc -l)" "$(echo "$result" | json chamfer)" \
+          "$(echo "$result" | json hausdorff)" "$(echo "$encode_seconds + $save_seconds" | bc -l)" \
+          "$(echo "$result" | json decode_seconds)" >> "$tsv.tmp"
         echo "psm $basis rho $rho t $tolerance: $bytes bytes" >&2
       done
     done

@@ -58,7 +58,7 @@ for entry in "${scans[@]}"; do
   /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$tool" "$file" "$work/out.pcd" --json -q -threads 2 $tool_options > "$work/json"
   read -r wall user sys rss < "$work/time"
   printf 'TOOL\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$wall" "$(echo "$user + $sys" | bc -l)" "$rss" \
-    "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(d["encode_seconds"], d["resample_seconds"], d["load_seconds"], sep="\t")' "$work/json")" \
+    "$(python3 "$root/bench/json_fields.py" --tab encode_seconds resample_seconds load_seconds < "$work/json")" \
     "$(cut -d' ' -f1 /proc/loadavg)" >> "$tsv.tmp"
   for rd in "${rd_scans[@]}"; do
     if [ "$rd" = "$name" ]; then
