@@ -12,6 +12,8 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <utility>
+#include <vector>
 
 namespace pcl_sparse
 {
@@ -135,26 +137,30 @@ namespace pcl_sparse
         const Eigen::Vector3d p = point.getVector3fMap ().cast<double> ();
         double best = std::numeric_limits<double>::infinity ();
         int best_face = owners[0];
-        std::vector<int> faces;
-        std::vector<double> face_distances;  // of faces, as measured
-        auto measure = [&] () {
-          faces.clear ();
-          face_distances.clear ();
+        std::vector<std::pair<int, double>> measured;  // faces and their distances, sorted by face
+        std::vector<int> candidates;
+        auto measure = [&] () {  // the faces of the cover points in index that are not measured yet
+          candidates.clear ();
           for (int c : index)
-            faces.push_back (owners[c]);
-          std::sort (faces.begin (), faces.end ());
-          faces.erase (std::unique (faces.begin (), faces.end ()), faces.end ());
-          for (int f : faces)
+            candidates.push_back (owners[c]);
+          std::sort (candidates.begin (), candidates.end ());
+          candidates.erase (std::unique (candidates.begin (), candidates.end ()), candidates.end ());
+          const std::size_t old = measured.size ();
+          for (int f : candidates)
           {
+            const auto known = std::lower_bound (measured.begin (), measured.begin () + old, std::make_pair (f, -1.0));
+            if (known != measured.begin () + old && known->first == f)
+              continue;
             const Eigen::Vector3i& t = mesh.triangles[f];
             const double d = pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
-            face_distances.push_back (d);
+            measured.emplace_back (f, d);
             if (d < best || (d == best && f < best_face))
             {
               best = d;
               best_face = f;
             }
           }
+          std::inplace_merge (measured.begin (), measured.begin () + old, measured.end ());
         };
         cover_tree.nearestKSearch (query, k, index, d2);
         measure ();
@@ -167,9 +173,9 @@ namespace pcl_sparse
         // a knife edge matches the face it came from, not the one its index happened to sort first.
         const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
         double cosine = normal.dot (face_normals[best_face]);
-        for (std::size_t j = 0; j < faces.size (); ++j)
-          if (face_distances[j] <= best + tie)
-            cosine = std::max (cosine, normal.dot (face_normals[faces[j]]));
+        for (const auto& [f, d] : measured)
+          if (d <= best + tie)
+            cosine = std::max (cosine, normal.dot (face_normals[f]));
         angle[i] = std::acos (std::clamp (cosine, -1.0, 1.0)) * 180.0 / M_PI;
       }
     }
