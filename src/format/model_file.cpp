@@ -187,7 +187,7 @@ namespace pcl_sparse
     }
 
     void
-    validateModel (const SparseSurfaceModel& model, int basis_size)
+    validateModel (const SparseSurfaceModel& model, int basis_size, bool with_vertices)
     {
       if (model.patches.size () > kMaxPatches)
         throw Error ("encodeModel: too many patches");
@@ -229,7 +229,7 @@ namespace pcl_sparse
         for (float e : patch.footprint.extent)
           if (!std::isfinite (e) || e < 0.0f)
             throw Error ("encodeModel: " + name + " footprint extent is negative or not finite");
-        if (patch.vertices.size () != patch.vertex_xy.size ())
+        if (with_vertices && patch.vertices.size () != patch.vertex_xy.size ())
           throw Error ("encodeModel: " + name + " vertices and vertex_xy differ in size");
         if (!model.hasAttributes () && !patch.attributes.empty ())
           throw Error ("encodeModel: " + name + " has attribute codes but the model has no attribute channels");
@@ -824,7 +824,7 @@ namespace pcl_sparse
   {
     const CosineAtoms& cosine = cosineBasis (model);
     const int frequencies = cosine.frequencies ();
-    validateModel (model, frequencies * frequencies);
+    validateModel (model, frequencies * frequencies, options.include_vertices);
     if (!std::isfinite (options.tolerance) || options.tolerance < 0.0)
       throw Error ("encodeModel: tolerance must be >= 0");
     if (options.max_footprint_angles < 0)

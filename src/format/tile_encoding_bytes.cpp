@@ -37,12 +37,12 @@ namespace pcl_sparse
         out.putVarint (0);
         continue;
       }
-      SparseSurfaceModel model = tile.model;
-      model.num_input_vertices = total_points;
-      if (numbers_only)
-        for (PatchCode& patch : model.patches)
-          std::vector<int> ().swap (patch.vertices);  // encodeModel wants (x', y') with them
-      const std::vector<std::uint8_t> bytes = encodeModel (model, lossless);
+      // The header's count bounds the vertex numbers the receiver reads.
+      if (tile.model.num_input_vertices != total_points)
+        throw Error ("encodeTileEncodings: tile " + std::to_string (tile.tile) + " counts " +
+                     std::to_string (tile.model.num_input_vertices) + " input points, not the whole input's " +
+                     std::to_string (total_points) + " (encodeTile)");
+      const std::vector<std::uint8_t> bytes = encodeModel (tile.model, lossless);
       out.putVarint (bytes.size ());
       out.putBytes (bytes.data (), bytes.size ());
       if (numbers_only)

@@ -161,6 +161,7 @@ namespace pcl_sparse
         owned.push_back (std::move (patch));
       }
     result.model.patches = std::move (owned);
+    result.model.num_input_vertices = source.totalPoints ();  // the vertex numbers are the whole input's
     result.seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
     return result;
   }

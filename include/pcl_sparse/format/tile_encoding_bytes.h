@@ -19,6 +19,8 @@ namespace pcl_sparse
   /// \param[in] tiles          the encodings
   /// \param[in] total_points   points of the whole input (the models' vertex numbers are below it)
   /// \return the bytes
+  /// \throws pcl_sparse::Error for a tile with patches whose model's num_input_vertices is not
+  ///         \a total_points (encodeTile sets it so), or a model encodeModel refuses
   std::vector<std::uint8_t>
   encodeTileEncodings (const std::vector<TileEncoding>& tiles, std::size_t total_points);
 

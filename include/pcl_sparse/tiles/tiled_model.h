@@ -27,7 +27,8 @@ namespace pcl_sparse
   struct TileEncoding
   {
     std::size_t tile = 0;                 ///< tile number
-    SparseSurfaceModel model;             ///< its patches (vertices numbered in the whole input)
+    SparseSurfaceModel model;             ///< its patches (vertices numbered in the whole input, which
+                                          ///< num_input_vertices counts)
     Eigen::AlignedBox3d core_bounds;      ///< bounding box of its core points (empty if none)
     double seconds = 0.0;                 ///< wall-clock seconds the encoding took
     /// Tiles, along any axis, from this tile to the farthest one whose core holds a point its patches list:
