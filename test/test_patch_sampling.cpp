@@ -2,6 +2,7 @@
 // generated meshes with known answers, and on the shared real meshes.
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -124,6 +125,43 @@ TEST (PatchSampling, GrowthVisitsByGeodesicDistanceAndStopsAtAFold)
     last = std::max (last, d);
   }
   EXPECT_GT (patch.size (), 50u);
+}
+
+TEST (PatchSampling, PairwiseConeBoundsTheSpreadOfNormals)
+{
+  // A half cylinder of radius 1 over |x| < 0.98: its normals turn by 2 asin (0.98) = 157 degrees. From the
+  // seed on its ridge, with no area bound, every triangle is within the paper's 90-degree cone of the seed's
+  // normal, so without the pairwise cone (the paper, EncoderPreset::Paper) the patch takes nearly the whole
+  // surface; with it (our default) no two of its triangles differ by 90 degrees or more.
+  const TriangleMesh cylinder =
+      makeHeightFieldGrid (60, 10, 0.98, 0.5, [] (double x, double) { return std::sqrt (1.0 - x * x); });
+  const MeshTopology topology = buildMeshTopology (cylinder);
+  const PatchGrowthGeometry geometry = computePatchGrowthGeometry (cylinder, topology);
+  int seed = -1;
+  for (std::size_t v = 0; v < cylinder.vertices.size (); ++v)
+    if (cylinder.vertices[v].head<2> ().norm () < 1e-9)
+      seed = static_cast<int> (v);
+  ASSERT_GE (seed, 0);
+  const auto normalSpreadDegrees = [&] (const Patch& patch) {
+    double min_cos = 1.0;
+    for (int a : patch.triangles)
+      for (int b : patch.triangles)
+        min_cos = std::min (min_cos, geometry.face_normals[a].dot (geometry.face_normals[b]));
+    return std::acos (std::clamp (min_cos, -1.0, 1.0)) * 180.0 / M_PI;
+  };
+  PatchOptions options;
+  options.cone_angle = M_PI / 2.0;
+  options.eta = 1e9;  // the flatness bound never stops growth
+  Patch pairwise, paper;
+  PatchGrower (cylinder, topology, geometry, options).grow (seed, pairwise);
+  options.pairwise_cone = false;
+  PatchGrower (cylinder, topology, geometry, options).grow (seed, paper);
+  EXPECT_LT (normalSpreadDegrees (pairwise), 90.0);
+  EXPECT_GT (normalSpreadDegrees (pairwise), 80.0);
+  EXPECT_GT (normalSpreadDegrees (paper), 140.0);
+  EXPECT_GT (paper.size (), pairwise.size ());
+  EXPECT_FALSE (encoderPresetOptions (EncoderPreset::Paper).patches.pairwise_cone);
+  EXPECT_TRUE (SparseSurfaceEncoderOptions ().patches.pairwise_cone);
 }
 
 TEST (PatchSampling, InvariantsOnGeneratedMeshes)

@@ -290,6 +290,7 @@ namespace pcl_sparse
     {
       options.basis = CosineBasisKind::Paper;
       options.patches.cone_angle = M_PI / 2.0;
+      options.patches.pairwise_cone = false;
       options.patches.complete_faces = false;
       options.coding.triangle_samples = 0.0;
       options.coding.clip_footprints_at_border = false;

@@ -76,8 +76,9 @@ namespace pcl_sparse
   };
 
   /// Named option sets: Default (the struct's defaults, what measures best) and Paper (the paper's
-  /// configuration: its cosine atoms, its normal cone of pi / 2, no face completion, no extra samples per
-  /// triangle, footprints not clipped at their border and no bound on the compression ratio; every other default already is the paper's value).
+  /// configuration: its cosine atoms, its normal cone of pi / 2 around the seed's normal only (no pairwise
+  /// cone), no face completion, no extra samples per triangle, footprints not clipped at their border and no
+  /// bound on the compression ratio; every other default already is the paper's value).
   enum class EncoderPreset
   {
     Default,
