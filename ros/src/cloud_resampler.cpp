@@ -66,12 +66,12 @@ namespace pcl_sparse_ros
     /// the model codes attributes).
     template <typename PointOutT>
     void
-    resampleAs (const pcl_sparse::SparseSurfaceModel::ConstPtr& model, const PointBudget& budget,
+    resampleAs (const pcl_sparse::SparseSurfaceModel::ConstPtr& model, const ResamplingSettings& settings,
                 std::size_t default_count, int threads, sensor_msgs::PointCloud2& output)
     {
       pcl_sparse::SparseSurfaceResampling<PointOutT> resampling;
       resampling.setInputModel (model);
-      budget.apply (resampling, default_count);
+      settings.apply (resampling, default_count);
       resampling.setNumberOfThreads (threads);
       pcl::PointCloud<PointOutT> cloud;
       resampling.compute (cloud);
@@ -79,23 +79,23 @@ namespace pcl_sparse_ros
     }
 
     void
-    resample (const pcl_sparse::SparseSurfaceModel::ConstPtr& model, const PointBudget& budget,
+    resample (const pcl_sparse::SparseSurfaceModel::ConstPtr& model, const ResamplingSettings& settings,
               std::size_t default_count, int threads, OutputLayout layout, sensor_msgs::PointCloud2& output)
     {
       switch (layout)
       {
-        case OutputLayout::Normal: return resampleAs<pcl::PointNormal> (model, budget, default_count, threads, output);
+        case OutputLayout::Normal: return resampleAs<pcl::PointNormal> (model, settings, default_count, threads, output);
         case OutputLayout::XYZRGBNormal:
-          return resampleAs<pcl::PointXYZRGBNormal> (model, budget, default_count, threads, output);
+          return resampleAs<pcl::PointXYZRGBNormal> (model, settings, default_count, threads, output);
         case OutputLayout::XYZINormal:
-          return resampleAs<pcl::PointXYZINormal> (model, budget, default_count, threads, output);
+          return resampleAs<pcl::PointXYZINormal> (model, settings, default_count, threads, output);
       }
     }
   } // namespace
 
   ResampleResult
-  resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings, const PointBudget& budget,
-                 bool want_cloud, bool want_model)
+  resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings,
+                 const ResamplingSettings& resampling, bool want_cloud, bool want_model)
   {
     ResampleResult result;
     result.layout = cloudLayoutOf (input);
@@ -106,7 +106,7 @@ namespace pcl_sparse_ros
     if (want_cloud)
     {
       start = Clock::now ();
-      resample (model, budget, result.input_points, settings.threads, result.layout.output, result.cloud);
+      resample (model, resampling, result.input_points, settings.threads, result.layout.output, result.cloud);
       result.cloud.header = input.header;
       result.resample_seconds = secondsSince (start);
     }
@@ -138,7 +138,7 @@ namespace pcl_sparse_ros
   {
     ros::NodeHandle nh = private_nh;
     settings_ = readEncoderSettings (nh);
-    budget_ = readPointBudget (nh);
+    resampling_ = readResamplingSettings (nh);
     if (settings_.has_viewpoint && !settings_.viewpoint_applied)
       ROS_WARN ("[%s] ~viewpoint (%g, %g, %g) is read but not used: this encoder has no viewpoint option yet "
                 "(it comes with point-cloud input)", name_.c_str (), settings_.viewpoint.x (), settings_.viewpoint.y (),
@@ -148,7 +148,7 @@ namespace pcl_sparse_ros
     // Queue of one: a frame that arrives while the previous one is being encoded replaces the waiting one.
     sub_ = nh.subscribe ("input", 1, &CloudResampler::onCloud, this);
     ROS_INFO ("[%s] resampling %s -> %s (%s), model on %s; preset %s, rho %g, %s, model tolerance %g",
-              name_.c_str (), sub_.getTopic ().c_str (), cloud_pub_.getTopic ().c_str (), budget_.describe ().c_str (),
+              name_.c_str (), sub_.getTopic ().c_str (), cloud_pub_.getTopic ().c_str (), resampling_.describe ().c_str (),
               model_pub_.getTopic ().c_str (), settings_.preset.c_str (), settings_.options.patches.rho,
               settings_.has_viewpoint ? "viewpoint given" : "no viewpoint", settings_.model_tolerance);
   }
@@ -163,7 +163,7 @@ namespace pcl_sparse_ros
     ResampleResult result;
     try
     {
-      result = resampleCloud (*input, settings_, budget_, want_cloud, want_model);
+      result = resampleCloud (*input, settings_, resampling_, want_cloud, want_model);
     }
     catch (const pcl_sparse::Error& e)
     {

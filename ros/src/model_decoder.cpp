@@ -12,7 +12,8 @@
 namespace pcl_sparse_ros
 {
   sensor_msgs::PointCloud2
-  decodeModelMessage (const std_msgs::UInt8MultiArray& model, const PointBudget& budget, int threads)
+  decodeModelMessage (const std_msgs::UInt8MultiArray& model, const ResamplingSettings& resampling_settings,
+                      int threads)
   {
     const auto decoded = std::make_shared<const pcl_sparse::SparseSurfaceModel> (
       pcl_sparse::decodeModel (model.data.data () + model.layout.data_offset,
@@ -20,7 +21,7 @@ namespace pcl_sparse_ros
                                "~model message"));
     pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (decoded);
-    budget.apply (resampling, decoded->num_input_vertices);
+    resampling_settings.apply (resampling, decoded->num_input_vertices);
     resampling.setNumberOfThreads (threads);
     pcl::PointCloud<pcl::PointNormal> cloud;
     resampling.compute (cloud);
@@ -32,13 +33,13 @@ namespace pcl_sparse_ros
   ModelDecoder::ModelDecoder (const ros::NodeHandle& private_nh) : name_ (private_nh.getNamespace ())
   {
     ros::NodeHandle nh = private_nh;
-    budget_ = readPointBudget (nh);
+    resampling_ = readResamplingSettings (nh);
     threads_ = readThreads (nh);
     nh.param<std::string> ("frame_id", frame_id_, "map");
     cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2> ("output", 1);
     sub_ = nh.subscribe ("model", 1, &ModelDecoder::onModel, this);
     ROS_INFO ("[%s] decoding %s -> %s (%s, frame '%s')", name_.c_str (), sub_.getTopic ().c_str (),
-              cloud_pub_.getTopic ().c_str (), budget_.describe ().c_str (), frame_id_.c_str ());
+              cloud_pub_.getTopic ().c_str (), resampling_.describe ().c_str (), frame_id_.c_str ());
   }
 
   void
@@ -49,7 +50,7 @@ namespace pcl_sparse_ros
     sensor_msgs::PointCloud2 cloud;
     try
     {
-      cloud = decodeModelMessage (*model, budget_, threads_);
+      cloud = decodeModelMessage (*model, resampling_, threads_);
     }
     catch (const pcl_sparse::Error& e)
     {

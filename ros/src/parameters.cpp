@@ -113,6 +113,36 @@ namespace pcl_sparse_ros
     return budget;
   }
 
+  void
+  ResamplingSettings::apply (pcl_sparse::SparseSurfaceResamplingBase& resampling, std::size_t default_count) const
+  {
+    resampling.setOptions (options);
+    budget.apply (resampling, default_count);
+  }
+
+  std::string
+  ResamplingSettings::describe () const
+  {
+    std::ostringstream text;
+    text << budget.describe () << ", max slope " << options.ownership.max_slope_angle;
+    return text.str ();
+  }
+
+  ResamplingSettings
+  readResamplingSettings (const ros::NodeHandle& private_nh)
+  {
+    ResamplingSettings settings;
+    settings.budget = readPointBudget (private_nh);
+    double degrees = 0.0;
+    if (readNumber (private_nh, "max_slope", degrees))
+    {
+      if (!(degrees > 0.0 && degrees <= 90.0))
+        throw pcl_sparse::Error ("parameter ~max_slope must be an angle in degrees in (0, 90]");
+      settings.options.ownership.max_slope_angle = degrees;
+    }
+    return settings;
+  }
+
   pcl_sparse::SparseSurfaceEncoderOptions
   presetOptions (const std::string& preset)
   {

@@ -38,10 +38,11 @@ namespace pcl_sparse_ros
   /// \brief The node's work on one message, without ROS transport: encode \a input, then resample into
   /// result.cloud if \a want_cloud and write result.model if \a want_model. Throws pcl_sparse::Error when
   /// the cloud has no x y z, the encoder refuses it, or the budget is out of range.
-  /// \param[in] budget resampled point count; Kind::Default = the number of finite input points
+  /// \param[in] resampling point count (PointBudget::Kind::Default = the number of finite input points) and
+  ///                       resampling options
   ResampleResult
-  resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings, const PointBudget& budget,
-                 bool want_cloud, bool want_model);
+  resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings,
+                 const ResamplingSettings& resampling, bool want_cloud, bool want_model);
 
   /// The .psm bytes as a std_msgs/UInt8MultiArray (one dimension labelled "psm").
   std_msgs::UInt8MultiArray
@@ -63,7 +64,7 @@ namespace pcl_sparse_ros
 
     std::string name_;  ///< the private namespace, e.g. /resample: in every log line
     EncoderSettings settings_;
-    PointBudget budget_;
+    ResamplingSettings resampling_;
     ros::Publisher cloud_pub_;
     ros::Publisher model_pub_;
     ros::Subscriber sub_;

@@ -15,12 +15,13 @@
 
 namespace pcl_sparse_ros
 {
-  /// \brief Decodes the .psm bytes of \a model and resamples them (budget Kind::Default = the model's
+  /// \brief Decodes the .psm bytes of \a model and resamples them (PointBudget::Kind::Default = the model's
   /// number of input points). The header is left empty. Throws pcl_sparse::Error for malformed bytes.
   sensor_msgs::PointCloud2
-  decodeModelMessage (const std_msgs::UInt8MultiArray& model, const PointBudget& budget, int threads);
+  decodeModelMessage (const std_msgs::UInt8MultiArray& model, const ResamplingSettings& resampling, int threads);
 
-  /// \brief The ROS side: parameters (~points / ~density / ~spacing, ~frame_id, ~threads), ~model, ~output.
+  /// \brief The ROS side: parameters (~points / ~density / ~spacing, ~max_slope, ~frame_id, ~threads), ~model,
+  /// ~output.
   class ModelDecoder
   {
   public:
@@ -32,7 +33,7 @@ namespace pcl_sparse_ros
 
     std::string name_;
     std::string frame_id_;
-    PointBudget budget_;
+    ResamplingSettings resampling_;
     int threads_ = 0;
     ros::Publisher cloud_pub_;
     ros::Subscriber sub_;

@@ -34,6 +34,25 @@ namespace pcl_sparse_ros
   PointBudget
   readPointBudget (const ros::NodeHandle& private_nh);
 
+  /// How the nodes resample: the point budget and the library's resampling options.
+  struct ResamplingSettings
+  {
+    PointBudget budget;
+    /// The library's defaults, with ~max_slope (degrees, in (0, 90]) as ownership.max_slope_angle: a patch
+    /// leaves places it sees more steeply to the patch that sees them frontally (pcl_sparse_resample
+    /// -max-slope).
+    pcl_sparse::SparseSurfaceResamplingOptions options;
+
+    /// Sets the options and the budget on \a resampling (\a default_count for PointBudget::Kind::Default).
+    void apply (pcl_sparse::SparseSurfaceResamplingBase& resampling, std::size_t default_count) const;
+    /// The budget's description and the slope bound: "points 5000, max slope 50".
+    std::string describe () const;
+  };
+
+  /// Reads ~points, ~density, ~spacing and ~max_slope from \a private_nh.
+  ResamplingSettings
+  readResamplingSettings (const ros::NodeHandle& private_nh);
+
   /// What the resample node passes to the encoder and the model writer.
   struct EncoderSettings
   {
