@@ -1,8 +1,9 @@
 /// bench_encode: the paper-style table (N_V, M, rho, nnz, RMSE, RMSE / diag, CR, seconds) of the sparse
 /// surface encoder for meshes at several rho, as Markdown on stdout.
 ///
-///   bench_encode [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-authors-nyquist] [-basis paper|dct] [-cone DEG]
-///                [-threads N] [-repeat K] [-header 0|1] MESH...
+///   bench_encode [-preset paper|default] [-rho R1,R2,...] [-f F] [-L N] [-min-samples N] [-authors-nyquist]
+///                [-basis paper|dct] [-cone DEG] [-threads N] [-repeat K] [-header 0|1] MESH...
+/// Options start from the paper's configuration (EncoderPreset::Paper) unless -preset default comes first.
 ///   bench_encode -evaluate [dct] (throughput of evaluateCode / evaluateCodeValue of the cosine basis, one thread)
 ///
 /// Seconds are the encoder's wall clock (patches + coding; load and statistics excluded), best of K runs;
@@ -79,12 +80,14 @@ main (int argc, char** argv)
   std::vector<double> rhos = {0.005, 0.001, 0.0002};
   int threads = 0, repeat = 1;
   bool header = true;
-  SparseSurfaceEncoderOptions base;
+  SparseSurfaceEncoderOptions base = encoderPresetOptions (EncoderPreset::Paper);
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
-    if (arg == "-rho" && i + 1 < argc)
+    if (arg == "-preset" && i + 1 < argc)
+      base = encoderPresetOptions (encoderPresetFromName (argv[++i]));
+    else if (arg == "-rho" && i + 1 < argc)
     {
       rhos.clear ();
       std::stringstream list (argv[++i]);
