@@ -76,13 +76,7 @@ main (int argc, char** argv)
 
     PatchOptions options = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default"))).patches;
     if (args.has ("--authors"))
-    {
-      options.cone_angle = M_PI / 2.5;
-      options.pairwise_cone = false;
-      options.cover_all_vertices = false;
-      options.cover_unreferenced_vertices = false;
-      options.complete_faces = false;
-    }
+      options = authorsCodePatchOptions (options);
     args.number ("-rho", options.rho);
     args.angle ("-delta", options.delta);
     args.angle ("-cone", options.cone_angle);

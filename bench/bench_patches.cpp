@@ -48,13 +48,7 @@ main (int argc, char** argv)
   pcl::console::parse_argument (argc, argv, "-header", header);
   const bool authors = pcl::console::find_switch (argc, argv, "-authors");
   if (authors)
-  {
-    options.cone_angle = M_PI / 2.5;
-    options.pairwise_cone = false;
-    options.cover_all_vertices = false;
-    options.cover_unreferenced_vertices = false;
-    options.complete_faces = false;
-  }
+    options = authorsCodePatchOptions (options);
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i)
   {

@@ -225,9 +225,12 @@ TEST (PatchSampling, CoveragePassCoversCreaseOnlyMeshes)
     EXPECT_NEAR (p.frame.col (2).dot (normals[p.seed_face]), 1.0, 1e-9);
   }
 
-  // The authors' behaviour (no coverage pass) leaves them all uncovered.
-  PatchOptions authors;
-  authors.cover_all_vertices = false;
+  // The authors' code (no coverage pass) leaves them all uncovered.
+  const PatchOptions authors = authorsCodePatchOptions ();
+  EXPECT_FALSE (authors.cover_all_vertices);
+  EXPECT_FALSE (authors.pairwise_cone);
+  EXPECT_NEAR (authors.cone_angle, M_PI / 2.5, 1e-15);
+  EXPECT_EQ (authorsCodePatchOptions (PatchOptions ()).rho, PatchOptions ().rho);
   sampling.setOptions (authors);
   sampling.compute (patches);
   EXPECT_EQ (patches.size (), 0u);

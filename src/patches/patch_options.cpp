@@ -29,4 +29,15 @@ namespace pcl_sparse
     if (min_patch_size < 1)
       fail ("min_patch_size", min_patch_size, "min_patch_size >= 1");
   }
+
+  PatchOptions
+  authorsCodePatchOptions (PatchOptions base)
+  {
+    base.cone_angle = M_PI / 2.5;
+    base.pairwise_cone = false;
+    base.cover_all_vertices = false;
+    base.cover_unreferenced_vertices = false;
+    base.complete_faces = false;
+    return base;
+  }
 } // namespace pcl_sparse

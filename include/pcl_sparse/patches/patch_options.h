@@ -86,4 +86,12 @@ namespace pcl_sparse
     /// \throws pcl_sparse::Error naming the first out-of-range field
     void validate () const;
   };
+
+  /// The patch conditions of the authors' code (gproshan) as far as they are options: the 72-degree cone,
+  /// no pairwise cone, no coverage pass (vertices no patch takes stay uncovered, unreferenced ones too) and
+  /// no face completion; every other field as \a base. Its area accounting (one triangle per accepted
+  /// vertex, docs/METHOD.md step 5) is not reproduced.
+  /// \param[in] base the other conditions (rho, delta, eta, ...)
+  PatchOptions
+  authorsCodePatchOptions (PatchOptions base = PatchOptions ());
 } // namespace pcl_sparse
