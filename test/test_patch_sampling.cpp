@@ -230,7 +230,11 @@ TEST (PatchSampling, CoveragePassCoversCreaseOnlyMeshes)
   EXPECT_FALSE (authors.cover_all_vertices);
   EXPECT_FALSE (authors.pairwise_cone);
   EXPECT_NEAR (authors.cone_angle, M_PI / 2.5, 1e-15);
-  EXPECT_EQ (authorsCodePatchOptions (PatchOptions ()).rho, PatchOptions ().rho);
+  PatchOptions base;  // every other field is the caller's
+  base.rho = 0.003;
+  base.delta = M_PI / 5.0;
+  EXPECT_EQ (authorsCodePatchOptions (base).rho, 0.003);
+  EXPECT_EQ (authorsCodePatchOptions (base).delta, M_PI / 5.0);
   sampling.setOptions (authors);
   sampling.compute (patches);
   EXPECT_EQ (patches.size (), 0u);
