@@ -18,7 +18,11 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace pcl_sparse;
 
@@ -468,6 +472,99 @@ TEST (Resampling, RefusesBadSetup)
   resampling.setInputModel (empty);
   resampling.setDensity (1.0);
   EXPECT_THROW (resampling.compute (cloud), Error);
+}
+
+namespace
+{
+  /// The message compute (cloud), then the streamed compute, throw with \a options on the plane model;
+  /// empty if compute gives its 100 points.
+  std::string
+  refusal (const SparseSurfaceResamplingOptions& options, bool streamed = false)
+  {
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (makePlaneModel ());
+    resampling.setPointCount (100);
+    resampling.setOptions (options);
+    try
+    {
+      std::size_t points = 0;
+      if (streamed)
+        resampling.compute ([&] (const ResampledBlock<pcl::PointNormal>& block) { points += block.cloud.size (); });
+      else
+      {
+        pcl::PointCloud<pcl::PointNormal> cloud;
+        resampling.compute (cloud);
+        points = cloud.size ();
+      }
+      return points == 100 ? "" : std::to_string (points) + " points";
+    }
+    catch (const Error& e)
+    {
+      return e.what ();
+    }
+  }
+} // namespace
+
+TEST (Resampling, RefusesOptionsOutOfRange)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN ();
+  const double inf = std::numeric_limits<double>::infinity ();
+  using Set = std::function<void (SparseSurfaceResamplingOptions&)>;
+  // Each bad value is refused by compute with a message naming the field.
+  const std::vector<std::pair<std::string, std::vector<Set>>> bad = {
+    {"jitter", {[] (auto& o) { o.jitter = -0.01; }, [] (auto& o) { o.jitter = 1.01; }, [&] (auto& o) { o.jitter = nan; }}},
+    {"max_area_weight",
+     {[] (auto& o) { o.max_area_weight = 0.99; }, [&] (auto& o) { o.max_area_weight = nan; },
+      [&] (auto& o) { o.max_area_weight = inf; }}},
+    {"area_pass_cells", {[] (auto& o) { o.area_pass_cells = 0; }, [] (auto& o) { o.area_pass_cells = -1; }}},
+    {"height_tolerance",
+     {[] (auto& o) { o.ownership.height_tolerance = -0.01; }, [&] (auto& o) { o.ownership.height_tolerance = nan; },
+      [&] (auto& o) { o.ownership.height_tolerance = inf; }}},
+    {"min_normal_cosine",
+     {[] (auto& o) { o.ownership.min_normal_cosine = -1.01; }, [] (auto& o) { o.ownership.min_normal_cosine = 1.01; },
+      [&] (auto& o) { o.ownership.min_normal_cosine = nan; }}},
+    {"max_height",
+     {[] (auto& o) { o.ownership.max_height = 0.0; }, [] (auto& o) { o.ownership.max_height = -1.0; },
+      [&] (auto& o) { o.ownership.max_height = nan; }, [&] (auto& o) { o.ownership.max_height = inf; }}},
+    {"max_slope_angle",
+     {[] (auto& o) { o.ownership.max_slope_angle = 0.0; }, [] (auto& o) { o.ownership.max_slope_angle = -10.0; },
+      [] (auto& o) { o.ownership.max_slope_angle = std::nextafter (90.0, 91.0); },
+      [] (auto& o) { o.ownership.max_slope_angle = 91.0; }, [&] (auto& o) { o.ownership.max_slope_angle = nan; }}},
+  };
+  for (const auto& [field, sets] : bad)
+    for (std::size_t k = 0; k < sets.size (); ++k)
+    {
+      SparseSurfaceResamplingOptions options;
+      sets[k] (options);
+      EXPECT_THROW (options.validate (), Error) << field << " #" << k;
+      for (bool streamed : {false, true})
+      {
+        const std::string message = refusal (options, streamed);
+        EXPECT_NE (message.find (field + " = "), std::string::npos) << field << " #" << k << ": " << message;
+        EXPECT_NE (message.find ("out of range"), std::string::npos) << field << " #" << k << ": " << message;
+      }
+    }
+  // The boundary values are accepted, and the defaults (every tool and node starts from them).
+  const std::vector<Set> good = {
+    [] (auto&) {},
+    [] (auto& o) { o.jitter = 0.0; },
+    [] (auto& o) { o.jitter = 1.0; },
+    [] (auto& o) { o.max_area_weight = 1.0; },
+    [] (auto& o) { o.area_pass_cells = 1; },
+    [] (auto& o) { o.ownership.height_tolerance = 0.0; },
+    [] (auto& o) { o.ownership.min_normal_cosine = -1.0; },
+    [] (auto& o) { o.ownership.min_normal_cosine = 1.0; },
+    [] (auto& o) { o.ownership.max_height = 1e-3; },
+    [] (auto& o) { o.ownership.max_slope_angle = 90.0; },
+    [] (auto& o) { o.ownership.max_slope_angle = 1e-3; },
+  };
+  for (std::size_t k = 0; k < good.size (); ++k)
+  {
+    SparseSurfaceResamplingOptions options;
+    good[k] (options);
+    EXPECT_NO_THROW (options.validate ()) << "#" << k;
+    EXPECT_EQ (refusal (options), "") << "#" << k;
+  }
 }
 
 TEST (Resampling, DensityTooLowForTheModelSaysSo)

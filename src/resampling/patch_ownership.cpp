@@ -1,5 +1,7 @@
 #include <pcl_sparse/resampling/patch_ownership.h>
 
+#include <pcl_sparse/common/error.h>
+
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
@@ -8,12 +10,31 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace pcl_sparse
 {
+  void
+  PatchOwnershipOptions::validate () const
+  {
+    auto fail = [] (const std::string& field, double value, const std::string& range) {
+      throw Error ("PatchOwnershipOptions: " + field + " = " + std::to_string (value) + " is out of range (" + range +
+                   ")");
+    };
+    if (!(height_tolerance >= 0.0) || !std::isfinite (height_tolerance))
+      fail ("height_tolerance", height_tolerance, "height_tolerance >= 0, finite");
+    if (!(min_normal_cosine >= -1.0 && min_normal_cosine <= 1.0))
+      fail ("min_normal_cosine", min_normal_cosine, "-1 <= min_normal_cosine <= 1");
+    if (!(max_height > 0.0) || !std::isfinite (max_height))
+      fail ("max_height", max_height, "max_height > 0, finite");
+    if (!(max_slope_angle > 0.0 && max_slope_angle <= 90.0))
+      fail ("max_slope_angle", max_slope_angle, "0 < max_slope_angle <= 90 degrees");
+  }
+
   PatchOwnership::PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options, int threads)
     : evaluator_ (evaluator), options_ (options)
   {
+    options.validate ();
     threads = threads > 0 ? threads : omp_get_max_threads ();
     const double slope = std::tan (std::min (options.max_slope_angle, 90.0) * M_PI / 180.0);
     max_slope_squared_ = options.max_slope_angle >= 90.0 ? std::numeric_limits<double>::infinity () : slope * slope;

@@ -502,6 +502,22 @@ namespace pcl_sparse
   };
 
   void
+  SparseSurfaceResamplingOptions::validate () const
+  {
+    auto fail = [] (const std::string& field, double value, const std::string& range) {
+      throw Error ("SparseSurfaceResamplingOptions: " + field + " = " + std::to_string (value) +
+                   " is out of range (" + range + ")");
+    };
+    if (!(jitter >= 0.0 && jitter <= 1.0))
+      fail ("jitter", jitter, "0 <= jitter <= 1");
+    if (!(max_area_weight >= 1.0) || !std::isfinite (max_area_weight))
+      fail ("max_area_weight", max_area_weight, "max_area_weight >= 1, finite");
+    if (area_pass_cells < 1)
+      fail ("area_pass_cells", area_pass_cells, "area_pass_cells >= 1");
+    ownership.validate ();
+  }
+
+  void
   SparseSurfaceResamplingBase::setInputModel (const SparseSurfaceModel::ConstPtr& model)
   {
     // The tables of the previous model are dropped even for the same pointer: it may have changed.
@@ -572,10 +588,7 @@ namespace pcl_sparse
       throw Error (name_ + "::compute: the model has no patches");
     if (mode_ == Mode::None)
       throw Error (name_ + "::compute: no density given (setPointCount, setDensity or setSpacing)");
-    if (!(options_.jitter >= 0.0 && options_.jitter <= 1.0))
-      throw Error (name_ + "::compute: jitter must be in [0, 1]");
-    if (!(options_.max_area_weight >= 1.0))
-      throw Error (name_ + "::compute: max_area_weight must be at least 1");
+    options_.validate ();
     for (const PatchCode& code : model_->patches)
       if (!(code.radius > 0.0) || !std::isfinite (code.radius))
         throw Error (name_ + "::compute: a patch has a non-positive radius");

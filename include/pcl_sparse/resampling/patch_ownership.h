@@ -26,13 +26,15 @@ namespace pcl_sparse
   struct PatchOwnershipOptions
   {
     /// Largest distance from a patch's surface, in local units of that patch (fraction of r_P), at which
-    /// a place still counts as lying on it.
+    /// a place still counts as lying on it. >= 0, finite.
     double height_tolerance = 0.1;
     /// Smallest cosine between a contender's frame normal N_Q and the sampling patch's frame normal N_P.
+    /// In [-1, 1] (-1: any orientation).
     double min_normal_cosine = 0.0;
     /// Places where a patch's code leaves the slab |h| <= max_height (local units) are extrapolation of a
     /// badly conditioned code, not surface: no patch samples or claims them there. Patches fit the unit
     /// disk and their normals stay within 90 degrees of N, so true heights stay well inside |h| <= 1.
+    /// > 0, finite.
     double max_height = 1.0;
     /// Likewise places where the code's normal leaves the cone of this half-angle (degrees) around N. A
     /// height field seen that obliquely is either extrapolating (tiny patches on thin features oscillate)
@@ -41,8 +43,14 @@ namespace pcl_sparse
     /// meshes the clouds' mean normal error falls on 22 (3 unchanged) and their distance to the mesh on
     /// 23 (wingnut +0.1 %, fandisk unchanged; cheese-cgal 2.1e-3 -> 1.5e-3 of the diagonal), flipped
     /// normals 249 -> 199, every 99th-percentile hole still within 3 spacings; 45 gains little more and
-    /// widens koala's largest hole from 1.5 to 4.9 spacings (bench/results/max_slope.md). 90: no bound.
+    /// widens koala's largest hole from 1.5 to 4.9 spacings (bench/results/max_slope.md). In (0, 90];
+    /// 90: no bound.
     double max_slope_angle = 50.0;
+
+    /// Checks the ranges: height_tolerance >= 0, min_normal_cosine in [-1, 1], max_height > 0 (all
+    /// finite), max_slope_angle in (0, 90] degrees.
+    /// \throws pcl_sparse::Error naming the first out-of-range field
+    void validate () const;
   };
 
   /// Whether a height sample is a place of its patch's surface (height and slope bounds).
@@ -66,6 +74,7 @@ namespace pcl_sparse
     /// \param[in] options    surface and validity tolerances
     /// \param[in] threads    OpenMP threads for building the tables (0: OpenMP's default); the tables do not
     ///                       depend on it
+    /// \throws pcl_sparse::Error if \a options are out of range (PatchOwnershipOptions::validate)
     PatchOwnership (const PatchEvaluator& evaluator, const PatchOwnershipOptions& options = PatchOwnershipOptions (),
                     int threads = 0);
 

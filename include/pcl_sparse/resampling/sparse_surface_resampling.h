@@ -85,16 +85,22 @@ namespace pcl_sparse
     /// How far a candidate moves from its cell centre, as a fraction of the cell (1 = fully jittered
     /// sampling, 0 = a regular grid per patch). Nearest-neighbour CV grows with it (on the shared meshes
     /// about 0.22-0.26 at 0.4, 0.23-0.31 at 0.6, 0.28-0.35 at 0.8); below ~0.3 the rotated grids of the
-    /// patches start to show.
+    /// patches start to show. In [0, 1].
     double jitter = 0.4;
     /// Cap on the area element sqrt(1 + |grad h|^2) used as a place's weight (10: slopes up to 84 degrees
-    /// count fully), so a patch whose code oscillates steeply cannot absorb the point budget.
+    /// count fully), so a patch whose code oscillates steeply cannot absorb the point budget. >= 1 (1:
+    /// every place weighs the same), finite.
     double max_area_weight = 10.0;
     /// Largest number of cells per patch in the area pass that sizes the cells when a total count is
-    /// requested (a quarter of the final pass's cells when that is fewer).
+    /// requested (a quarter of the final pass's cells when that is fewer). >= 1.
     int area_pass_cells = 64;
-    /// Ownership of overlapping places.
+    /// Ownership of overlapping places (its own ranges, PatchOwnershipOptions::validate).
     PatchOwnershipOptions ownership;
+
+    /// Checks the ranges: jitter in [0, 1], max_area_weight >= 1 and finite, area_pass_cells >= 1, and
+    /// ownership's (PatchOwnershipOptions::validate). Any seed is valid.
+    /// \throws pcl_sparse::Error naming the first out-of-range field
+    void validate () const;
   };
 
   /// Options of the streamed compute (SparseSurfaceResampling::compute with a callback). They bound its
@@ -157,7 +163,7 @@ namespace pcl_sparse
     void setPatchNumbers (const std::vector<std::size_t>& numbers) { patch_numbers_ = numbers; }
     const std::vector<std::size_t>& getPatchNumbers () const { return patch_numbers_; }
 
-    /// \brief Options (seed, jitter, ownership).
+    /// \brief Options (seed, jitter, ownership); compute checks them (SparseSurfaceResamplingOptions::validate).
     void setOptions (const SparseSurfaceResamplingOptions& options) { options_ = options; ownership_.reset (); }
     const SparseSurfaceResamplingOptions& getOptions () const { return options_; }
 
@@ -182,8 +188,9 @@ namespace pcl_sparse
 
     /// \brief Checks the input and options, then resamples into \a output (replaced; one row,
     /// is_dense = true), and with \a with_attributes each point's attribute channels (getPointAttributes).
-    /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, or the density
-    /// would give more than max_points points.
+    /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, the options are out
+    /// of range (SparseSurfaceResamplingOptions::validate), or the density would give more than max_points
+    /// points.
     void resample (PointCloud& output, bool with_attributes = false);
 
     /// \brief The streamed form of resample: the same points, handed to \a callback block by block in
@@ -260,8 +267,9 @@ namespace pcl_sparse
     using PointCloudOut = pcl::PointCloud<PointOutT>;
 
     /// \brief Resamples the model into \a output (replaced; organised as one row, is_dense = true).
-    /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, or the density
-    /// would give more than max_points points.
+    /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, the options are out
+    /// of range (SparseSurfaceResamplingOptions::validate), or the density would give more than max_points
+    /// points.
     /// \param[out] output the resampled cloud
     void compute (PointCloudOut& output);
 
