@@ -9,6 +9,29 @@
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// \a coefficient in whole steps of \a step (> 0).
+    std::int64_t
+    coefficientSteps (double coefficient, double step)
+    {
+      const double steps = std::round (coefficient / step);
+      if (!(std::abs (steps) < 9.0e15))
+        throw Error ("encodeModel: coefficient too large for the tolerance");
+      return static_cast<std::int64_t> (steps);
+    }
+
+    /// Bits of a count of at most \a max.
+    int
+    bitsFor (int max)
+    {
+      int bits = 1;
+      while ((1 << bits) - 1 < max)
+        ++bits;
+      return bits;
+    }
+  } // namespace
+
   int
   shellRank (int atom, int n)
   {
@@ -93,11 +116,9 @@ namespace pcl_sparse
         decoded.push_back (coefficients[k]);
         continue;
       }
-      const double steps = std::round (coefficients[k] / step);
-      if (!(std::abs (steps) < 9.0e15))
-        throw Error ("encodeModel: coefficient too large for the tolerance");
-      out.putSignedVarint (static_cast<std::int64_t> (steps));
-      decoded.push_back (steps * step);
+      const std::int64_t steps = coefficientSteps (coefficients[k], step);
+      out.putSignedVarint (steps);
+      decoded.push_back (static_cast<double> (steps) * step);
     }
     return decoded;
   }
@@ -109,6 +130,83 @@ namespace pcl_sparse
     for (std::size_t i = 0; i < count; ++i)
     {
       const double c = step == 0.0 ? in.getF64 ("coefficient") : static_cast<double> (in.getSignedVarint ("coefficient")) * step;
+      if (!std::isfinite (c))
+        in.fail ("coefficient is not finite");
+      coefficients[i] = c;
+    }
+  }
+
+  SparseCodeContexts::SparseCodeContexts (int frequencies)
+    : frequencies_ (frequencies), count_ (bitsFor (frequencies * frequencies)),
+      present_ (static_cast<std::size_t> (frequencies) * frequencies),
+      coefficient_ (std::min (coefficient_contexts, frequencies * frequencies))
+  {
+  }
+
+  std::vector<std::size_t>
+  SparseCodeContexts::putAtoms (RangeEncoder& out, const std::vector<int>& atoms)
+  {
+    std::vector<std::size_t> order (atoms.size ());
+    std::iota (order.begin (), order.end (), 0);
+    std::vector<int> ranks (atoms.size ());
+    for (std::size_t k = 0; k < atoms.size (); ++k)
+      ranks[k] = shellRank (atoms[k], frequencies_);
+    std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) { return ranks[a] < ranks[b]; });
+    count_.put (out, static_cast<std::uint32_t> (atoms.size ()));
+    int rank = 0;
+    for (std::size_t k : order)
+    {
+      for (; rank < ranks[k]; ++rank)
+        out.put (present_[rank], false);
+      out.put (present_[rank++], true);
+    }
+    return order;
+  }
+
+  void
+  SparseCodeContexts::getAtoms (RangeDecoder& in, const std::string& code, std::vector<int>& atoms)
+  {
+    const int basis_size = frequencies_ * frequencies_;
+    const std::uint32_t n = count_.get (in);
+    if (n > static_cast<std::uint32_t> (basis_size))
+      in.fail (code + " has " + std::to_string (n) + " atoms, the basis " + std::to_string (basis_size));
+    atoms.clear ();
+    for (int rank = 0; atoms.size () < n; ++rank)
+    {
+      // n <= basis_size ranks remain to be found: stop at the basis' end.
+      if (rank >= basis_size)
+        in.fail (code + " runs past the basis' last atom");
+      if (in.get (present_[rank]))
+        atoms.push_back (atomOfShellRank (rank, frequencies_));
+    }
+  }
+
+  std::vector<double>
+  SparseCodeContexts::putCoefficients (RangeEncoder& out, const std::vector<int>& atoms,
+                                       const std::vector<double>& coefficients, const std::vector<std::size_t>& order,
+                                       double step)
+  {
+    std::vector<double> decoded;
+    decoded.reserve (order.size ());
+    for (std::size_t k : order)
+    {
+      const std::int64_t steps = coefficientSteps (coefficients[k], step);
+      const int rank = shellRank (atoms[k], frequencies_);
+      coefficient_[std::min<std::size_t> (rank, coefficient_.size () - 1)].put (out, steps);
+      decoded.push_back (static_cast<double> (steps) * step);
+    }
+    return decoded;
+  }
+
+  void
+  SparseCodeContexts::getCoefficients (RangeDecoder& in, const std::vector<int>& atoms, double step,
+                                       std::vector<double>& coefficients)
+  {
+    coefficients.resize (atoms.size ());
+    for (std::size_t i = 0; i < atoms.size (); ++i)
+    {
+      const int rank = shellRank (atoms[i], frequencies_);
+      const double c = static_cast<double> (coefficient_[std::min<std::size_t> (rank, coefficient_.size () - 1)].get (in)) * step;
       if (!std::isfinite (c))
         in.fail ("coefficient is not finite");
       coefficients[i] = c;

@@ -7,8 +7,11 @@
 /// Lossless: varint count, varint atom indices in selection order; f64 coefficients in that order.
 /// Quantised: varint count, varint deltas of the sorted shell ranks (shellRank); svarint coefficients in
 /// steps, in rank order (the code is the same sum).
+/// Range-coded (quantised files written since the flag was added): the same values through
+/// SparseCodeContexts' adaptive models.
 
 #include <pcl_sparse/format/byte_stream.h>
+#include <pcl_sparse/format/range_coder.h>
 
 #include <cstddef>
 #include <string>
@@ -46,4 +49,45 @@ namespace pcl_sparse
   /// \brief Reads \a count coefficients written by putCodeCoefficients with \a step; refuses non-finite ones.
   void
   getCodeCoefficients (ByteReader& in, std::size_t count, double step, std::vector<double>& coefficients);
+
+  /// \brief The adaptive models of one stream of range-coded sparse codes (docs/FORMAT.md, "Range-coded
+  /// fields"). A code's atoms: their count (a bit tree), then one bit per shell rank from 0 up to its last
+  /// atom, each rank with its own probability (low ranks are in most codes, high ones in few). Its
+  /// coefficients, in rank order, in steps: a SignedIntegerModel per rank, ranks from 31 up sharing one
+  /// (low frequencies carry larger coefficients). Writer and reader must see the same codes in the same order.
+  class SparseCodeContexts
+  {
+  public:
+    /// Ranks from this one up share their coefficients' model.
+    static constexpr int coefficient_contexts = 32;
+
+    /// \param[in] frequencies  n of the basis (n^2 atoms)
+    explicit SparseCodeContexts (int frequencies);
+
+    /// Codes \a atoms (distinct, < n^2); returns the order they were coded in: by shell rank.
+    std::vector<std::size_t>
+    putAtoms (RangeEncoder& out, const std::vector<int>& atoms);
+
+    /// Decodes a code's atoms, in shell-rank order. Refuses (RangeDecoder::fail, naming \a code) a count
+    /// above n^2.
+    void
+    getAtoms (RangeDecoder& in, const std::string& code, std::vector<int>& atoms);
+
+    /// Codes \a coefficients in \a order (putAtoms' order) as multiples of \a step (> 0); \a atoms gives
+    /// their ranks. Returns the values the reader gets back, in \a order. Throws pcl_sparse::Error for a
+    /// coefficient too large for the step.
+    std::vector<double>
+    putCoefficients (RangeEncoder& out, const std::vector<int>& atoms, const std::vector<double>& coefficients,
+                     const std::vector<std::size_t>& order, double step);
+
+    /// Decodes the coefficients of \a atoms (as getAtoms gave them) with \a step.
+    void
+    getCoefficients (RangeDecoder& in, const std::vector<int>& atoms, double step, std::vector<double>& coefficients);
+
+  private:
+    int frequencies_;
+    BitTreeModel count_;
+    std::vector<AdaptiveBit> present_;                ///< per shell rank
+    std::vector<SignedIntegerModel> coefficient_;     ///< per shell rank below coefficient_contexts, then shared
+  };
 } // namespace pcl_sparse
