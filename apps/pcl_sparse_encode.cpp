@@ -2,7 +2,7 @@
 /// (N_V, M, rho, nnz, RMSE, RMSE / diag, CR) and the seconds per stage.
 ///
 ///   pcl_sparse_encode MESH [-rho R] [-f F] [-L N] [-eps E] [-min-samples N] [-cone DEG] [-recon RECON.ply]
-///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [--store-vertices]] [-tiles N]
+///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [--store-vertices] [--varint-layout]] [-tiles N]
 ///                     [-memory SIZE] [--json] [-q]
 ///
 /// Under `mpirun -n K` (tools built with MPI) the tiles are shared out over the K processes and rank 0
@@ -84,6 +84,8 @@ namespace
       {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default: 3 x the model's"},
       {"", "mean error, which adds 1-7 % to its Chamfer distance; 0 = lossless)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
+      {"--varint-layout", "quantised model file: zstd over varints instead of range-coded fields (6-14 % larger;"},
+      {"", "readable by pcl_sparse builds from before the range coder)"},
       {"-tiles N", "tile the input: N tiles along the longest side of its bounding box, each encoded apart"},
       {"", "(docs/TILES.md); -o then writes a tiled model, which -box decodes region by region"},
       {"-memory SIZE", "tile by itself when the untiled encoding would need more (default 2G; K, M, G, T);"},
@@ -97,7 +99,7 @@ namespace
     1,
     {"-rho", "-f", "-L", "-eps", "-min-samples", "-cone", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
      "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory"},
-    {"--json", "-q", "--authors-nyquist", "--store-vertices"}};
+    {"--json", "-q", "--authors-nyquist", "--store-vertices", "--varint-layout"}};
 } // namespace
 
 int
@@ -131,8 +133,9 @@ main (int argc, char** argv)
     ModelWriteOptions write_options;
     const bool tolerance_given = args.number ("-tolerance", write_options.tolerance, tools::Range::closed (0.0, 0.1));
     write_options.include_vertices = args.has ("--store-vertices");
-    if (model_path.empty () && (tolerance_given || write_options.include_vertices))
-      throw Error ("options -tolerance and --store-vertices need -o MODEL.psm");
+    write_options.range_coding = !args.has ("--varint-layout");
+    if (model_path.empty () && (tolerance_given || write_options.include_vertices || !write_options.range_coding))
+      throw Error ("options -tolerance, --store-vertices and --varint-layout need -o MODEL.psm");
     options.validate ();
     Eigen::Vector3d viewpoint;
     const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);

@@ -216,6 +216,7 @@ namespace
       out.add ("file", path)
         .add ("version", info.version)
         .add ("quantised", info.quantised)
+        .add ("range_coded", info.range_coded)
         .add ("tolerance", info.tolerance)
         .add ("basis", info.basis)
         .add ("patches", info.num_patches)
@@ -239,7 +240,8 @@ namespace
     std::printf ("file: %s\n", path.c_str ());
     std::printf ("format version: %u\n", info.version);
     if (info.quantised)
-      std::printf ("mode: quantised, surface tolerance %g of the bbox diagonal\n", info.tolerance);
+      std::printf ("mode: quantised%s, surface tolerance %g of the bbox diagonal\n",
+                   info.range_coded ? " (range-coded fields)" : "", info.tolerance);
     else
       std::printf ("mode: lossless\n");
     std::printf ("basis: %s\n", info.basis.c_str ());

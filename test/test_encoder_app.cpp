@@ -181,6 +181,26 @@ TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
   EXPECT_LE (d_quantised, 1.1 * d_lossless);
 }
 
+TEST_F (EncodeTool, VarintLayoutWritesTheSameModelLarger)
+{
+  const std::string coded = (dir_ / "coded.psm").string (), varints = (dir_ / "varints.psm").string ();
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q -o " + coded, out), 0);
+  ASSERT_EQ (run (input_ + " -q --varint-layout -o " + varints, out), 0);
+  EXPECT_TRUE (inspectModelFile (coded).range_coded);
+  EXPECT_FALSE (inspectModelFile (varints).range_coded);
+  EXPECT_LT (std::filesystem::file_size (coded), std::filesystem::file_size (varints));
+  const SparseSurfaceModel a = loadModel (coded), b = loadModel (varints);
+  ASSERT_EQ (a.patches.size (), b.patches.size ());
+  for (std::size_t p = 0; p < a.patches.size (); ++p)
+  {
+    EXPECT_EQ (a.patches[p].atoms, b.patches[p].atoms);
+    EXPECT_EQ (a.patches[p].coefficients, b.patches[p].coefficients);
+    EXPECT_EQ (a.patches[p].frame, b.patches[p].frame);
+  }
+  EXPECT_EQ (run (input_ + " -q --varint-layout", out), 1);  // no file to lay out
+}
+
 // -max-slope of pcl_sparse_resample and pcl_sparse_decode reaches the resampling: 50 (the default) writes the
 // default's bytes, 5 degrees (far below the slopes inside the sphere's patches) moves places to other patches.
 TEST_F (EncodeTool, ResampleAndDecodePassTheSlopeBound)

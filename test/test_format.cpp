@@ -8,6 +8,7 @@
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 using namespace pcl_sparse;
 
@@ -350,6 +352,74 @@ TEST (ModelFile, QuantisedRoundTripWithinTolerance)
   }
 }
 
+TEST (ModelFile, RangeCodedAndVarintLayoutsDecodeToTheSameModel)
+{
+  // The range coder changes how the quantised values are stored, not the values: both layouts decode to
+  // bit-identical models, vertices and attributes included, and files of both layouts load.
+  auto model = test::makeSyntheticModel (120, 4, true);
+  test::addSyntheticAttributes (model, 4);
+  ModelWriteOptions options;
+  options.tolerance = 1e-4;
+  options.include_vertices = true;
+  const auto range_coded = encodeModel (model, options);
+  options.range_coding = false;
+  const auto varints = encodeModel (model, options);
+  EXPECT_TRUE (inspectModel (range_coded.data (), range_coded.size (), "a").range_coded);
+  EXPECT_FALSE (inspectModel (varints.data (), varints.size (), "b").range_coded);
+  const auto a = decodeModel (range_coded.data (), range_coded.size ());
+  const auto b = decodeModel (varints.data (), varints.size ());
+  expectBitIdentical (a, b, true);
+  expectSameAttributes (a, b);
+  EXPECT_GT (largestSurfaceDisplacement (model, a), 0.0);
+  // A lossless file has nothing to range-code: the option does not change it.
+  EXPECT_EQ (encodeModel (model, ModelWriteOptions ()), encodeModel (model, [] {
+               ModelWriteOptions o;
+               o.range_coding = false;
+               return o;
+             }()));
+}
+
+TEST (ModelFile, DamagedRangeCodedSectionsAreErrorsNotCrashes)
+{
+  // The checksums catch damage in a file; here every bit of the range-coded payloads is flipped behind
+  // them (as a forger or the fuzzer would), and each one must decode to a model or throw pcl_sparse::Error
+  // (under ASan + UBSan in test_format_sanitized). Tags: SEED FRAM RADI FOOT ATOM COEF VERT AATM ACOF.
+  auto model = test::makeSyntheticModel (6, 5, true);
+  test::addSyntheticAttributes (model, 5);
+  ModelWriteOptions options;
+  options.tolerance = 1e-3;
+  options.include_vertices = true;
+  const ModelSections sections = encodeModelSections (model, options, {{0, model.patches.size ()}});
+  const std::vector<std::string> tags = runSectionTags (sections.shared.flags);
+  std::size_t errors = 0, decoded = 0;
+  for (std::size_t s = 0; s < tags.size (); ++s)
+  {
+    if (tags[s] == "SEED" || tags[s] == "RADI" || tags[s] == "VERT")
+      continue;  // not range-coded
+    for (std::size_t bit = 0; bit < 8 * sections.runs[0][s].size (); ++bit)
+    {
+      std::vector<std::vector<std::uint8_t>> run = sections.runs[0];
+      run[s][bit / 8] ^= static_cast<std::uint8_t> (1u << (bit % 8));
+      std::vector<std::pair<const std::uint8_t*, std::size_t>> payloads;
+      for (const auto& payload : run)
+        payloads.emplace_back (payload.data (), payload.size ());
+      try
+      {
+        decodeModelSections (sections.shared, model.patches.size (), payloads, "forged");
+        ++decoded;
+      }
+      catch (const Error& e)
+      {
+        ++errors;
+        // names a section: this one, or the one a damaged atom set or count misleads (COEF after ATOM)
+        EXPECT_EQ (std::string (e.what ()).rfind ("forged: section ", 0), 0u) << e.what ();
+      }
+    }
+  }
+  EXPECT_GT (errors, 100u);
+  std::cout << "  flipped bits: " << errors << " refused, " << decoded << " decoded to another model" << std::endl;
+}
+
 TEST (ModelFile, QuantisedKeepsVertices)
 {
   const auto model = test::makeSyntheticModel (20, 3, true);
@@ -480,10 +550,21 @@ TEST (ModelFile, ForgedHeadersGiveClearErrors)
   resealHeader (bytes);
   expectErrorContaining (bytes, "sections, expected");
 
-  bytes = good;  // a huge declared decompressed size in the first section, checksum forged
+  // A huge declared decompressed size in the first zstd section, checksum forged. Sections zstd does not
+  // shrink are stored, as all of this small file's are: a larger model has zstd sections.
+  bytes = encodeModel (test::makeSyntheticModel (200, 5, false, 4), ModelWriteOptions ());
+  std::size_t zstd_section = 52;
+  while (zstd_section + 32 <= bytes.size () && bytes[zstd_section + 4] != 1)
+    zstd_section += 32 + bytes[zstd_section + 8] + 256 * bytes[zstd_section + 9] + 65536 * bytes[zstd_section + 10];
+  ASSERT_LT (zstd_section + 32, bytes.size ()) << "no zstd section";
+  putU64At (bytes, zstd_section + 16, std::uint64_t (1) << 40);
+  resealSectionHeader (bytes, zstd_section);
+  expectErrorContaining (bytes, "can justify");
+  bytes = good;  // the same on SEED, stored: its random doubles do not shrink
+  ASSERT_EQ (bytes[52 + 4], 0);
   putU64At (bytes, 52 + 16, std::uint64_t (1) << 40);
   resealSectionHeader (bytes, 52);
-  expectErrorContaining (bytes, "can justify");
+  expectErrorContaining (bytes, "different raw and stored sizes");
 
   bytes = good;  // a huge stored size
   putU64At (bytes, 52 + 8, std::uint64_t (1) << 62);
@@ -494,6 +575,16 @@ TEST (ModelFile, ForgedHeadersGiveClearErrors)
   bytes[52] = 'X';
   resealSectionHeader (bytes, 52);
   expectErrorContaining (bytes, "expected 'SEED'");
+
+  bytes = good;
+  bytes[10] |= 8;  // the range-coded flag on a lossless file
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "range-coded flag needs the quantised flag");
+
+  bytes = good;
+  bytes[10] |= 16;  // a flag of a later format
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "unknown header flags");
 
   bytes = good;
   bytes[40 + 7] = 0x7F;  // tolerance becomes a huge number on a lossless file

@@ -129,10 +129,43 @@ namespace pcl_sparse
       in.expectEnd ();
       return table;
     }
+
+    /// "patch 3 channel r", for error messages.
+    std::string
+    codeName (std::size_t patch, const AttributeChannelInfo& channel)
+    {
+      return "patch " + std::to_string (patch) + " channel " + attributeChannelName (channel.channel);
+    }
+
+    /// AATM and ACOF range-coded (quantised files with the range-coded flag): every byte of both sections.
+    void
+    decodeRangeCodedAttributes (const ChannelTable& table, ByteReader& atoms, ByteReader& coefficients,
+                                SparseSurfaceModel& model)
+    {
+      const std::size_t atom_bytes = atoms.remaining (), coefficient_bytes = coefficients.remaining ();
+      RangeDecoder coded_atoms (atoms.getBytes (atom_bytes, "range-coded bytes"), atom_bytes, atoms.what ());
+      RangeDecoder coded_coefficients (coefficients.getBytes (coefficient_bytes, "range-coded bytes"), coefficient_bytes,
+                                       coefficients.what ());
+      std::vector<SparseCodeContexts> contexts (table.channels.size (), SparseCodeContexts (table.frequencies));
+      for (std::size_t p = 0; p < model.patches.size (); ++p)
+      {
+        std::vector<SparseCode>& codes = model.patches[p].attributes;
+        codes.resize (table.channels.size ());
+        for (std::size_t c = 0; c < codes.size (); ++c)
+        {
+          contexts[c].getAtoms (coded_atoms, codeName (p, table.channels[c]), codes[c].atoms);
+          contexts[c].getCoefficients (coded_coefficients, codes[c].atoms,
+                                       coefficientStep (table.budgets[c], 1.0, codes[c].atoms.size ()),
+                                       codes[c].coefficients);
+        }
+      }
+      coded_atoms.expectEnd ();
+      coded_coefficients.expectEnd ();
+    }
   } // namespace
 
   AttributeSectionBytes
-  encodeAttributeSections (const SparseSurfaceModel& model, double tolerance)
+  encodeAttributeSections (const SparseSurfaceModel& model, double tolerance, bool range_coded)
   {
     const CosineAtoms& basis = attributeBasis (model);
     const int n = basis.frequencies ();
@@ -152,15 +185,27 @@ namespace pcl_sparse
       if (quantised)
         channels.putF64 (budgets.back ());
     }
+    range_coded = range_coded && quantised;
+    RangeEncoder coded_atoms, coded_coefficients;
+    std::vector<SparseCodeContexts> contexts (model.attribute_channels.size (), SparseCodeContexts (n));
     for (const PatchCode& patch : model.patches)
       for (std::size_t c = 0; c < patch.attributes.size (); ++c)
       {
         const SparseCode& code = patch.attributes[c];
-        const std::vector<std::size_t> order = putCodeAtoms (atoms, code.atoms, quantised, n);
         // A value moves by at most n_atoms step / 2 (cosine atoms are bounded by 1): the channel's budget.
+        if (range_coded)
+        {
+          const std::vector<std::size_t> order = contexts[c].putAtoms (coded_atoms, code.atoms);
+          contexts[c].putCoefficients (coded_coefficients, code.atoms, code.coefficients, order,
+                                       coefficientStep (budgets[c], 1.0, order.size ()));
+          continue;
+        }
+        const std::vector<std::size_t> order = putCodeAtoms (atoms, code.atoms, quantised, n);
         putCodeCoefficients (coefficients, code.coefficients, order,
                              quantised ? coefficientStep (budgets[c], 1.0, order.size ()) : 0.0);
       }
+    if (range_coded)
+      return {std::move (channels.bytes ()), coded_atoms.finish (), coded_coefficients.finish ()};
     return {std::move (channels.bytes ()), std::move (atoms.bytes ()), std::move (coefficients.bytes ())};
   }
 
@@ -172,25 +217,28 @@ namespace pcl_sparse
 
   void
   decodeAttributeSections (ByteReader& channels, ByteReader& atoms, ByteReader& coefficients, bool quantised,
-                           SparseSurfaceModel& model)
+                           bool range_coded, SparseSurfaceModel& model)
   {
     const ChannelTable table = readChannelTable (channels, quantised);
     const std::size_t m = model.patches.size (), count = table.channels.size ();
+    model.attribute_channels = table.channels;
+    model.attribute_basis = makeCosineBasis (table.kind, table.frequencies);
+    if (range_coded)
+    {
+      decodeRangeCodedAttributes (table, atoms, coefficients, model);
+      return;
+    }
     // Every code takes at least its count byte in AATM: checked before the codes are allocated.
     if (atoms.remaining () < m * count)
       atoms.fail ("holds " + std::to_string (atoms.remaining ()) + " bytes, " + std::to_string (m) + " patches x " +
                   std::to_string (count) + " channels need at least " + std::to_string (m * count));
-    model.attribute_channels = table.channels;
-    model.attribute_basis = makeCosineBasis (table.kind, table.frequencies);
     for (std::size_t p = 0; p < m; ++p)
     {
       std::vector<SparseCode>& codes = model.patches[p].attributes;
       codes.resize (count);
       for (std::size_t c = 0; c < count; ++c)
       {
-        getCodeAtoms (atoms, quantised, table.frequencies,
-                      "patch " + std::to_string (p) + " channel " + attributeChannelName (table.channels[c].channel),
-                      codes[c].atoms);
+        getCodeAtoms (atoms, quantised, table.frequencies, codeName (p, table.channels[c]), codes[c].atoms);
         const std::size_t k = codes[c].atoms.size ();
         getCodeCoefficients (coefficients, k, quantised ? coefficientStep (table.budgets[c], 1.0, k) : 0.0,
                              codes[c].coefficients);

@@ -8,6 +8,7 @@
 #include <pcl_sparse/format/crc32.h>
 #include <pcl_sparse/format/frame_quantization.h>
 #include <pcl_sparse/format/model_sections.h>
+#include <pcl_sparse/format/range_coder.h>
 #include <pcl_sparse/format/sparse_code_stream.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/format/zstd_codec.h>
@@ -21,6 +22,7 @@
 #include <iterator>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 namespace pcl_sparse
 {
@@ -34,6 +36,7 @@ namespace pcl_sparse
     constexpr std::uint16_t kFlagQuantised = 1;
     constexpr std::uint16_t kFlagVertices = 2;
     constexpr std::uint16_t kFlagAttributes = 4;
+    constexpr std::uint16_t kFlagRangeCoded = 8;  ///< quantised files: FRAM FOOT ATOM COEF AATM ACOF range-coded
     constexpr std::uint8_t kBasisCosine = 1;     ///< CosineDictionary: cos(i pi x) cos(j pi y)
     constexpr std::uint8_t kBasisDctCosine = 2;  ///< DctCosineDictionary: cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2)
     constexpr std::uint8_t kCodecStored = 0;
@@ -321,10 +324,9 @@ namespace pcl_sparse
     }
 
     /// Footprint: fewer angles, every stride-th extent (docs/FORMAT.md: no measurable change on spot),
-    /// as deltas of extent levels on q.extent_bits bits.
-    void
-    putQuantisedFootprint (ByteWriter& foot, const PatchFootprint& footprint, const QuantisationParameters& q,
-                           int max_footprint_angles)
+    /// as circular deltas of extent levels on q.extent_bits bits.
+    std::vector<unsigned>
+    footprintLevelDeltas (const PatchFootprint& footprint, const QuantisationParameters& q, int max_footprint_angles)
     {
       const unsigned extent_mask = (1u << q.extent_bits) - 1u;
       std::size_t stride = 1;
@@ -332,16 +334,49 @@ namespace pcl_sparse
       while (max_footprint_angles > 0 && k_in / stride > static_cast<std::size_t> (max_footprint_angles) &&
              k_in % (2 * stride) == 0)
         stride *= 2;
-      foot.putVarint (k_in / stride);
+      std::vector<unsigned> deltas;
       unsigned previous = 0;
       for (std::size_t k = 0; k < k_in; k += stride)
       {
         const float e = footprint.extent[k];
         const unsigned level =
           std::min (extent_mask, static_cast<unsigned> (std::lround (static_cast<double> (e) / q.extentStep ())));
-        foot.putU8 (static_cast<std::uint8_t> ((level - previous) & extent_mask));
+        deltas.push_back ((level - previous) & extent_mask);
         previous = level;
       }
+      return deltas;
+    }
+
+    /// The adaptive models of the range-coded per-patch fields of a run (docs/FORMAT.md, "Range-coded
+    /// fields"); the writer and the reader build the same ones and code the same values in the same order.
+    struct PatchFieldContexts
+    {
+      PatchFieldContexts (int extent_bits, int frequencies)
+        : first_level (extent_bits), level_delta (extent_bits), code (frequencies) {}
+
+      BitTreeModel angles{13};              ///< footprint angles K (<= kMaxFootprintAngles)
+      BitTreeModel first_level;             ///< the first extent's level
+      BitTreeModel level_delta;             ///< the next levels' circular deltas
+      BitTreeModel frame_header{3};         ///< dropped component and reflection
+      SignedIntegerModel frame_component[3];  ///< the quaternion's other three components, by position
+      SparseCodeContexts code;              ///< ATOM and COEF
+    };
+
+    /// Footprint of a quantised patch: K, then K level deltas.
+    void
+    putQuantisedFootprint (ByteWriter& foot, const std::vector<unsigned>& deltas)
+    {
+      foot.putVarint (deltas.size ());
+      for (unsigned d : deltas)
+        foot.putU8 (static_cast<std::uint8_t> (d));
+    }
+
+    void
+    putQuantisedFootprint (RangeEncoder& foot, PatchFieldContexts& contexts, const std::vector<unsigned>& deltas)
+    {
+      contexts.angles.put (foot, static_cast<std::uint32_t> (deltas.size ()));
+      for (std::size_t k = 0; k < deltas.size (); ++k)
+        (k == 0 ? contexts.first_level : contexts.level_delta).put (foot, deltas[k]);
     }
 
     /// Atoms sorted by shell rank (the deltas are small and the code is the same sum), then their
@@ -358,16 +393,45 @@ namespace pcl_sparse
       decoded.coefficients = putCodeCoefficients (coef, patch.coefficients, order, step);
     }
 
-    /// The frame as a quantised quaternion, its step from the decoded patch (as the decoder derives it).
     void
-    putQuantisedFrame (ByteWriter& frame, const Eigen::Matrix3d& rotation, const PatchCode& decoded,
-                       const QuantisationParameters& q)
+    putQuantisedCode (RangeEncoder& atom, RangeEncoder& coef, SparseCodeContexts& contexts, const PatchCode& patch,
+                      const QuantisationParameters& q, PatchCode& decoded)
     {
-      const double frame_step = frameStep (q.frame_budget, decoded.radius, decodedReach (decoded, q));
-      const QuantisedFrame code = quantiseFrame (rotation, frame_step);
-      frame.putU8 (static_cast<std::uint8_t> (code.largest | (code.reflected ? 4 : 0)));
+      const std::vector<std::size_t> order = contexts.putAtoms (atom, patch.atoms);
+      for (std::size_t k : order)
+        decoded.atoms.push_back (patch.atoms[k]);
+      const double step = coefficientStep (q.coefficient_budget, decoded.radius, order.size ());
+      decoded.coefficients = contexts.putCoefficients (coef, patch.atoms, patch.coefficients, order, step);
+    }
+
+    /// The frame as a quantised quaternion, its step from the decoded patch (as the decoder derives it).
+    QuantisedFrame
+    quantisedFrame (const Eigen::Matrix3d& rotation, const PatchCode& decoded, const QuantisationParameters& q)
+    {
+      return quantiseFrame (rotation, frameStep (q.frame_budget, decoded.radius, decodedReach (decoded, q)));
+    }
+
+    /// Frame header: bits 0-1 the dropped component, bit 2 reflected.
+    std::uint8_t
+    frameHeader (const QuantisedFrame& code)
+    {
+      return static_cast<std::uint8_t> (code.largest | (code.reflected ? 4 : 0));
+    }
+
+    void
+    putQuantisedFrame (ByteWriter& frame, const QuantisedFrame& code)
+    {
+      frame.putU8 (frameHeader (code));
       for (std::int64_t v : code.q)
         frame.putSignedVarint (v);
+    }
+
+    void
+    putQuantisedFrame (RangeEncoder& frame, PatchFieldContexts& contexts, const QuantisedFrame& code)
+    {
+      contexts.frame_header.put (frame, frameHeader (code));
+      for (int i = 0; i < 3; ++i)
+        contexts.frame_component[i].put (frame, code.q[i]);
     }
 
     /// Section QUAN.
@@ -423,7 +487,9 @@ namespace pcl_sparse
       // Decode as we go, so that the steps derived from decoded values match the decoder's.
       std::vector<std::vector<std::uint64_t>> seeds (3, std::vector<std::uint64_t> (count));
       std::vector<std::uint64_t> radii (count);
-      ByteWriter frame, foot, atom, coef;
+      ByteWriter frame, foot, atom, coef;  // the varint layout
+      RangeEncoder coded_frame, coded_foot, coded_atom, coded_coef;
+      PatchFieldContexts contexts (q.extent_bits, frequencies);
       for (std::size_t k = 0; k < count; ++k)
       {
         const PatchCode& patch = model.patches[first + k];
@@ -432,14 +498,27 @@ namespace pcl_sparse
         PatchCode decoded;
         radii[k] = quantiseRadius (patch.radius, q);
         decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[k]) * q.log_radius_step);
-        putQuantisedFootprint (foot, patch.footprint, q, options.max_footprint_angles);
-        putQuantisedCode (atom, coef, patch, q, frequencies, decoded);
-        putQuantisedFrame (frame, patch.frame, decoded, q);
+        const std::vector<unsigned> deltas = footprintLevelDeltas (patch.footprint, q, options.max_footprint_angles);
+        if (options.range_coding)
+        {
+          putQuantisedFootprint (coded_foot, contexts, deltas);
+          putQuantisedCode (coded_atom, coded_coef, contexts.code, patch, q, decoded);
+          putQuantisedFrame (coded_frame, contexts, quantisedFrame (patch.frame, decoded, q));
+        }
+        else
+        {
+          putQuantisedFootprint (foot, deltas);
+          putQuantisedCode (atom, coef, patch, q, frequencies, decoded);
+          putQuantisedFrame (frame, quantisedFrame (patch.frame, decoded, q));
+        }
       }
       ByteWriter seed, radius;
       for (int i = 0; i < 3; ++i)
         putPlanes (seed, seeds[i], q.seed_bytes);
       putPlanes (radius, radii, q.radius_bytes);
+      if (options.range_coding)
+        return {std::move (seed.bytes ()), coded_frame.finish (), std::move (radius.bytes ()),
+                coded_foot.finish (),      coded_atom.finish (),  coded_coef.finish ()};
       return {std::move (seed.bytes ()), std::move (frame.bytes ()), std::move (radius.bytes ()),
               std::move (foot.bytes ()), std::move (atom.bytes ()),  std::move (coef.bytes ())};
     }
@@ -500,8 +579,10 @@ namespace pcl_sparse
     checkHeaderValues (std::uint16_t flags, std::uint8_t basis_kind, std::uint16_t basis_parameter, std::uint64_t num_patches,
                        std::uint64_t num_input_vertices, double bbox_diagonal, double tolerance, const std::string& what)
     {
-      if ((flags & ~(kFlagQuantised | kFlagVertices | kFlagAttributes)) != 0)
-        throw Error (what + ": unknown header flags");
+      if ((flags & ~(kFlagQuantised | kFlagVertices | kFlagAttributes | kFlagRangeCoded)) != 0)
+        throw Error (what + ": unknown header flags (written by a newer pcl_sparse?)");
+      if ((flags & kFlagRangeCoded) && !(flags & kFlagQuantised))
+        throw Error (what + ": the range-coded flag needs the quantised flag");
       if (basis_kind != kBasisCosine && basis_kind != kBasisDctCosine)
         throw Error (what + ": unknown basis kind " + std::to_string (basis_kind));
       if (basis_parameter < 1 || basis_parameter > CosineDictionary::max_frequencies)
@@ -635,11 +716,12 @@ namespace pcl_sparse
 
     // ---- decoding, one patch field at a time ------------------------------------------------------
 
-    /// Fixed-size sections must hold exactly \a m entries, and every patch takes at least one byte in
-    /// each variable-size section: checked before allocating patches.
+    /// Fixed-size sections must hold exactly \a m entries, and in the varint layout every patch takes at
+    /// least one byte in each variable-size section: checked before allocating patches (range-coded patches
+    /// can take less, but SEED's exact size already bounds m).
     void
     checkSectionSizes (const ByteReader& seed, const ByteReader& frame, const ByteReader& radius, const ByteReader& foot,
-                       const ByteReader& atom, std::size_t m, bool quantised, const QuantisationParameters& q)
+                       const ByteReader& atom, std::size_t m, bool quantised, bool range_coded, const QuantisationParameters& q)
     {
       const std::size_t seed_entry = quantised ? 3 * static_cast<std::size_t> (q.seed_bytes) : 24;
       const std::size_t radius_entry = quantised ? static_cast<std::size_t> (q.radius_bytes) : 8;
@@ -649,7 +731,7 @@ namespace pcl_sparse
       if (radius.remaining () != m * radius_entry)
         radius.fail ("holds " + std::to_string (radius.remaining ()) + " bytes, " + std::to_string (m) + " patches need " +
                      std::to_string (m * radius_entry));
-      if (frame.remaining () < m * (quantised ? 4 : 72) || foot.remaining () < m || atom.remaining () < m)
+      if (!range_coded && (frame.remaining () < m * (quantised ? 4 : 72) || foot.remaining () < m || atom.remaining () < m))
         frame.fail ("too short for " + std::to_string (m) + " patches");
     }
 
@@ -678,6 +760,35 @@ namespace pcl_sparse
         radius.fail ("patch " + std::to_string (p) + " radius is not a positive finite number");
     }
 
+    /// The extent of a quantised footprint \a level; \a in names a non-finite one.
+    template <typename Reader>
+    float
+    extentOfLevel (const Reader& in, unsigned level, const QuantisationParameters& q, std::size_t p)
+    {
+      const auto extent = static_cast<float> (level * q.extentStep ());
+      if (!std::isfinite (extent))
+        in.fail ("patch " + std::to_string (p) + " extent is not finite");
+      return extent;
+    }
+
+    void
+    readFootprint (RangeDecoder& foot, PatchFieldContexts& contexts, const QuantisationParameters& q, std::size_t p,
+                   PatchFootprint& footprint)
+    {
+      const std::uint32_t k = contexts.angles.get (foot);
+      if (k > kMaxFootprintAngles)
+        foot.fail ("patch " + std::to_string (p) + " has " + std::to_string (k) + " footprint angles, more than " +
+                   std::to_string (kMaxFootprintAngles));
+      footprint.extent.resize (k);
+      const unsigned extent_mask = (1u << q.extent_bits) - 1u;
+      unsigned level = 0;
+      for (std::size_t i = 0; i < k; ++i)
+      {
+        level = (level + (i == 0 ? contexts.first_level : contexts.level_delta).get (foot)) & extent_mask;
+        footprint.extent[i] = extentOfLevel (foot, level, q, p);
+      }
+    }
+
     void
     readFootprint (ByteReader& foot, bool quantised, const QuantisationParameters& q, std::size_t p,
                    PatchFootprint& footprint)
@@ -694,9 +805,7 @@ namespace pcl_sparse
           if (delta > extent_mask)
             foot.fail ("extent delta out of range");
           level = (level + delta) & extent_mask;
-          footprint.extent[i] = static_cast<float> (level * q.extentStep ());
-          if (!std::isfinite (footprint.extent[i]))
-            foot.fail ("patch " + std::to_string (p) + " extent is not finite");
+          footprint.extent[i] = extentOfLevel (foot, level, q, p);
         }
         else
         {
@@ -717,6 +826,31 @@ namespace pcl_sparse
                            patch.coefficients);
     }
 
+    /// Sets \a patch's frame from its quantised \a code (its radius and sparse code already read: the
+    /// step depends on them); \a in names a code that is not a unit quaternion.
+    template <typename Reader>
+    void
+    setQuantisedFrame (const Reader& in, const QuantisedFrame& code, const QuantisationParameters& q, std::size_t p,
+                       PatchCode& patch)
+    {
+      const double frame_step = frameStep (q.frame_budget, patch.radius, decodedReach (patch, q));
+      if (!std::isfinite (frame_step) || !dequantiseFrame (code, frame_step, patch.frame))
+        in.fail ("patch " + std::to_string (p) + " frame is not a unit quaternion");
+    }
+
+    void
+    readFrame (RangeDecoder& frame, PatchFieldContexts& contexts, const QuantisationParameters& q, std::size_t p,
+               PatchCode& patch)
+    {
+      QuantisedFrame code;
+      const std::uint32_t header = contexts.frame_header.get (frame);
+      code.largest = static_cast<int> (header & 3);
+      code.reflected = header & 4;
+      for (int i = 0; i < 3; ++i)
+        code.q[i] = contexts.frame_component[i].get (frame);
+      setQuantisedFrame (frame, code, q, p, patch);
+    }
+
     /// Frame of patch \a p (its radius and code already read: a quantised frame's step depends on them).
     void
     readFrame (ByteReader& frame, bool quantised, const QuantisationParameters& q, std::size_t p, PatchCode& patch)
@@ -731,9 +865,7 @@ namespace pcl_sparse
         code.reflected = header & 4;
         for (std::int64_t& v : code.q)
           v = frame.getSignedVarint ("frame component");
-        const double frame_step = frameStep (q.frame_budget, patch.radius, decodedReach (patch, q));
-        if (!std::isfinite (frame_step) || !dequantiseFrame (code, frame_step, patch.frame))
-          frame.fail ("patch " + std::to_string (p) + " frame is not a unit quaternion");
+        setQuantisedFrame (frame, code, q, p, patch);
       }
       else
       {
@@ -845,8 +977,9 @@ namespace pcl_sparse
     ModelSections out;
     SharedModelFields& shared = out.shared;
     const bool attributes = model.hasAttributes ();
+    const bool range_coded = quantised && options.range_coding;
     shared.flags = static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0) |
-                                               (attributes ? kFlagAttributes : 0));
+                                               (attributes ? kFlagAttributes : 0) | (range_coded ? kFlagRangeCoded : 0));
     shared.basis_kind = cosine.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine;
     shared.basis_parameter = static_cast<std::uint16_t> (frequencies);
     shared.num_input_vertices = model.num_input_vertices;
@@ -870,8 +1003,8 @@ namespace pcl_sparse
       if (attributes)
       {
         AttributeSectionBytes bytes = first == 0 && count == model.patches.size ()
-                                        ? encodeAttributeSections (model, attribute_tolerance)
-                                        : encodeAttributeSections (subModel (model, first, count), attribute_tolerance);
+                                        ? encodeAttributeSections (model, attribute_tolerance, range_coded)
+                                        : encodeAttributeSections (subModel (model, first, count), attribute_tolerance, range_coded);
         sections.push_back (std::move (bytes.atoms));
         sections.push_back (std::move (bytes.coefficients));
         if (shared.channels.empty ())
@@ -880,7 +1013,7 @@ namespace pcl_sparse
       out.runs.push_back (std::move (sections));
     }
     if (attributes && shared.channels.empty ())
-      shared.channels = encodeAttributeSections (subModel (model, 0, 0), attribute_tolerance).channels;
+      shared.channels = encodeAttributeSections (subModel (model, 0, 0), attribute_tolerance, range_coded).channels;
     return out;
   }
 
@@ -922,9 +1055,10 @@ namespace pcl_sparse
       if (section.codec == kCodecZstd)
       {
         payload = compressBytes (section.raw.data (), section.raw.size (), options.zstd_level);
-        if (section.raw.size () > kMaxExpansion * payload.size () + kExpansionSlack)
+        // Stored where zstd does not help (range-coded sections), or where the reader would refuse the ratio.
+        if (payload.size () >= section.raw.size () || section.raw.size () > kMaxExpansion * payload.size () + kExpansionSlack)
         {
-          section.codec = kCodecStored;  // the reader would refuse this ratio: store it as it is
+          section.codec = kCodecStored;
           payload = section.raw;
         }
       }
@@ -988,8 +1122,24 @@ namespace pcl_sparse
     ByteReader foot = open ();
     ByteReader atom = open ();
     ByteReader coef = open ();
-    checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, q);
+    const bool range_coded = shared.flags & kFlagRangeCoded;
+    checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, q);
     model.patches.resize (m);
+    // Range-coded: one decoder per section over all its bytes (the ByteReaders are then at their end).
+    auto decoder = [] (ByteReader& in) {
+      const std::size_t size = in.remaining ();
+      return RangeDecoder (in.getBytes (size, "range-coded bytes"), size, in.what ());
+    };
+    std::optional<RangeDecoder> coded_frame, coded_foot, coded_atom, coded_coef;
+    std::optional<PatchFieldContexts> contexts;
+    if (range_coded)
+    {
+      coded_frame.emplace (decoder (frame));
+      coded_foot.emplace (decoder (foot));
+      coded_atom.emplace (decoder (atom));
+      coded_coef.emplace (decoder (coef));
+      contexts.emplace (q.extent_bits, shared.basis_parameter);
+    }
 
     std::vector<std::vector<std::uint64_t>> seeds;
     std::vector<std::uint64_t> radii;
@@ -1003,10 +1153,27 @@ namespace pcl_sparse
     {
       PatchCode& patch = model.patches[p];
       readPlacement (seed, radius, quantised, q, seeds, radii, p, patch);
+      if (range_coded)
+      {
+        readFootprint (*coded_foot, *contexts, q, p, patch.footprint);
+        contexts->code.getAtoms (*coded_atom, "patch " + std::to_string (p), patch.atoms);
+        contexts->code.getCoefficients (*coded_coef, patch.atoms,
+                                        coefficientStep (q.coefficient_budget, patch.radius, patch.atoms.size ()),
+                                        patch.coefficients);
+        readFrame (*coded_frame, *contexts, q, p, patch);
+        continue;
+      }
       readFootprint (foot, quantised, q, p, patch.footprint);
       getCodeAtoms (atom, quantised, shared.basis_parameter, "patch " + std::to_string (p), patch.atoms);
       readCoefficients (coef, quantised, q, patch);
       readFrame (frame, quantised, q, p, patch);
+    }
+    if (range_coded)
+    {
+      coded_frame->expectEnd ();
+      coded_foot->expectEnd ();
+      coded_atom->expectEnd ();
+      coded_coef->expectEnd ();
     }
     seed.expectEnd ();
     frame.expectEnd ();
@@ -1025,7 +1192,7 @@ namespace pcl_sparse
       ByteReader channels (shared.channels.data (), shared.channels.size (), name + ": section ACHN");
       ByteReader attribute_atoms = open ();
       ByteReader attribute_coefs = open ();
-      decodeAttributeSections (channels, attribute_atoms, attribute_coefs, quantised, model);
+      decodeAttributeSections (channels, attribute_atoms, attribute_coefs, quantised, range_coded, model);
     }
     return model;
   }
@@ -1072,6 +1239,7 @@ namespace pcl_sparse
     ModelFileInfo info;
     info.version = container.header.version;
     info.quantised = container.header.flags & kFlagQuantised;
+    info.range_coded = container.header.flags & kFlagRangeCoded;
     info.has_vertices = container.header.flags & kFlagVertices;
     if (container.header.flags & kFlagAttributes)
     {

@@ -34,7 +34,8 @@ namespace pcl_sparse
     constexpr std::size_t kEntryBytes2 = 88;
     constexpr std::uint8_t kCodecStored = 0;
     constexpr std::uint8_t kCodecZstd = 1;
-    constexpr std::uint16_t kKnownFlags = 7;        ///< as version 1: quantised, vertices, attributes
+    constexpr std::uint16_t kKnownFlags = 15;       ///< as version 1: quantised, vertices, attributes, range-coded
+    constexpr std::uint16_t kFlagRangeCoded = 8;
     constexpr double kReachSteps = 64.0;            ///< reach boxes are stored in steps of edge / 64
     // As version 1's sections: a tile may decompress to at most 64 x its stored bytes + 4 KiB.
     constexpr std::uint64_t kMaxExpansion = 64;
@@ -777,6 +778,7 @@ namespace pcl_sparse
     info.bbox_diagonal = index.bbox_diagonal;
     info.tolerance = index.tolerance;
     info.quantised = index.tolerance > 0.0;
+    info.range_coded = index.shared.flags & kFlagRangeCoded;
     info.file_bytes = size;
     const std::size_t count = index.entries.size ();
     info.num_tiles = count;

@@ -1,6 +1,6 @@
-/// Writes the seed corpus for fuzz_model_file: small valid .psm files in every mode (lossless,
-/// quantised, with and without vertices, with and without colour / intensity, empty, a single patch), and the
-/// same models as tiled files (version 3, three tiles when there are patches). Usage: make_seed_corpus DIR
+/// Writes the seed corpus for fuzz_model_file: small valid .psm files in every mode (lossless, quantised in
+/// both layouts (range-coded, varints), with and without vertices, with and without colour / intensity, empty,
+/// a single patch), and the same models as tiled files (version 3, three tiles when there are patches). Usage: make_seed_corpus DIR
 
 #include "../test_format_models.h"
 
@@ -27,8 +27,12 @@ main (int argc, char** argv)
       for (bool vertices : {false, true})
         for (int level : {0, 19})
           for (bool attributes : {false, true})
+            for (bool range_coding : {true, false})
       {
+        if (!range_coding && tolerance == 0.0)
+          continue;  // lossless files have no range-coded fields
         pcl_sparse::ModelWriteOptions options;
+        options.range_coding = range_coding;
         options.zstd_level = level;
         options.tolerance = tolerance;
         options.include_vertices = vertices;

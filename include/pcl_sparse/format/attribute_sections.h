@@ -27,15 +27,18 @@ namespace pcl_sparse
   /// one code per channel, atoms outside the basis or repeated, non-finite values.
   /// \param[in] model a model with attribute channels
   /// \param[in] tolerance 0, or > 0 (fraction of each channel's range)
+  /// \param[in] range_coded quantised only: AATM and ACOF range-coded, each channel with its own models
+  ///            (SparseCodeContexts), instead of varints
   AttributeSectionBytes
-  encodeAttributeSections (const SparseSurfaceModel& model, double tolerance);
+  encodeAttributeSections (const SparseSurfaceModel& model, double tolerance, bool range_coded);
 
   /// \brief Decodes the three sections into \a model (attribute_channels, attribute_basis and every patch's
   /// attributes; model.patches already sized). Every count is checked against the bytes left before
-  /// anything is allocated; failures throw pcl_sparse::Error through the readers (naming the section).
+  /// anything is allocated (range-coded: the patch count, bounded by the caller); failures throw
+  /// pcl_sparse::Error through the readers (naming the section).
   void
   decodeAttributeSections (ByteReader& channels, ByteReader& atoms, ByteReader& coefficients, bool quantised,
-                           SparseSurfaceModel& model);
+                           bool range_coded, SparseSurfaceModel& model);
 
   /// \brief The channels section alone (for inspectModel): the channels with their ranges.
   std::vector<AttributeChannelInfo>

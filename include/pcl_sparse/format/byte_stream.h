@@ -99,6 +99,8 @@ namespace pcl_sparse
     /// Throws pcl_sparse::Error "<what>: <message>".
     /// \param[in] message  the problem
     [[noreturn]] void fail (const std::string& message) const;
+    /// What the range is called in error messages.
+    const std::string& what () const { return what_; }
 
   private:
     void need (std::size_t n, const char* field) const;

@@ -67,6 +67,11 @@ namespace pcl_sparse
     /// fraction of its channel's range (AttributeChannelInfo; 255 for colour, so 1/2 grey level by default).
     /// Lossless files store the attribute codes bit for bit.
     double attribute_tolerance = 0.5 / 255.0;
+    /// Quantised mode: code the per-patch fields FRAM FOOT ATOM COEF (and AATM ACOF) with an adaptive range
+    /// coder, each field with its own probabilities (docs/FORMAT.md, "Range-coded fields"), instead of zstd
+    /// over varints: 6-13 % smaller files on the shared meshes (bench/results/format_entropy.md). false
+    /// writes the varint layout, which pcl_sparse builds from before the range coder can read.
+    bool range_coding = true;
     /// zstd level (1..22); 19 compresses well and still writes a 1 MB model in well under a second.
     /// 0 stores every section uncompressed (for inspection and the fuzzer's seed corpus).
     int zstd_level = 19;
@@ -85,6 +90,7 @@ namespace pcl_sparse
   {
     std::uint16_t version = 0;              ///< format version
     bool quantised = false;                 ///< written with a tolerance > 0
+    bool range_coded = false;               ///< quantised, with range-coded per-patch fields (ModelWriteOptions::range_coding)
     bool has_vertices = false;              ///< holds the patches' input vertices and their (x', y')
     std::vector<std::string> attributes;    ///< attribute channels ("r", "g", "b", "a", "intensity"); empty: none
     std::string basis;                      ///< "cosine nxn" (the paper's atoms) or "dct cosine nxn"
