@@ -8,7 +8,7 @@ namespace pcl_sparse
   PatchOptions::validate () const
   {
     auto fail = [] (const std::string& field, double value, const std::string& range) {
-      throw Error ("PatchOptions: " + field + " = " + std::to_string (value) + " is out of range (" + range + ")");
+      throwOutOfRange ("PatchOptions", field, value, range);
     };
     if (!(delta > 0.0 && delta <= M_PI))
       fail ("delta", delta, "0 < delta <= pi");

@@ -18,8 +18,7 @@ namespace pcl_sparse
   PatchOwnershipOptions::validate () const
   {
     auto fail = [] (const std::string& field, double value, const std::string& range) {
-      throw Error ("PatchOwnershipOptions: " + field + " = " + std::to_string (value) + " is out of range (" + range +
-                   ")");
+      throwOutOfRange ("PatchOwnershipOptions", field, value, range);
     };
     if (!(height_tolerance >= 0.0) || !std::isfinite (height_tolerance))
       fail ("height_tolerance", height_tolerance, "height_tolerance >= 0, finite");

@@ -505,8 +505,7 @@ namespace pcl_sparse
   SparseSurfaceResamplingOptions::validate () const
   {
     auto fail = [] (const std::string& field, double value, const std::string& range) {
-      throw Error ("SparseSurfaceResamplingOptions: " + field + " = " + std::to_string (value) +
-                   " is out of range (" + range + ")");
+      throwOutOfRange ("SparseSurfaceResamplingOptions", field, value, range);
     };
     if (!(jitter >= 0.0 && jitter <= 1.0))
       fail ("jitter", jitter, "0 <= jitter <= 1");

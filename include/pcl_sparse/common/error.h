@@ -15,4 +15,11 @@ namespace pcl_sparse
   public:
     explicit Error (const std::string& message) : std::runtime_error (message) {}
   };
+
+  /// Throws the options structs' validate () error: "<options>: <field> = <value> is out of range (<range>)".
+  [[noreturn]] inline void
+  throwOutOfRange (const std::string& options, const std::string& field, double value, const std::string& range)
+  {
+    throw Error (options + ": " + field + " = " + std::to_string (value) + " is out of range (" + range + ")");
+  }
 } // namespace pcl_sparse
