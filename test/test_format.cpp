@@ -174,6 +174,18 @@ namespace
       bytes[at + i] = static_cast<std::uint8_t> (v >> (8 * i));
   }
 
+  /// A synthetic model with vertices and colour / intensity, and options that write all of it at \a tolerance.
+  std::pair<SparseSurfaceModel, ModelWriteOptions>
+  modelWithEverything (std::size_t patches, unsigned seed, double tolerance)
+  {
+    auto model = test::makeSyntheticModel (patches, seed, true);
+    test::addSyntheticAttributes (model, seed);
+    ModelWriteOptions options;
+    options.tolerance = tolerance;
+    options.include_vertices = true;
+    return {std::move (model), options};
+  }
+
   /// Recomputes the header CRC, as a forger would, so that the field checks themselves are tested.
   void
   resealHeader (std::vector<std::uint8_t>& bytes)
@@ -356,11 +368,8 @@ TEST (ModelFile, RangeCodedAndVarintLayoutsDecodeToTheSameModel)
 {
   // The range coder changes how the quantised values are stored, not the values: both layouts decode to
   // bit-identical models, vertices and attributes included, and files of both layouts load.
-  auto model = test::makeSyntheticModel (120, 4, true);
-  test::addSyntheticAttributes (model, 4);
-  ModelWriteOptions options;
-  options.tolerance = 1e-4;
-  options.include_vertices = true;
+  const auto [model, written] = modelWithEverything (120, 4, 1e-4);
+  ModelWriteOptions options = written;
   const auto range_coded = encodeModel (model, options);
   options.range_coding = false;
   const auto varints = encodeModel (model, options);
@@ -384,11 +393,7 @@ TEST (ModelFile, DamagedRangeCodedSectionsAreErrorsNotCrashes)
   // The checksums catch damage in a file; here every bit of the range-coded payloads is flipped behind
   // them (as a forger or the fuzzer would), and each one must decode to a model or throw pcl_sparse::Error
   // (under ASan + UBSan in test_format_sanitized). Tags: SEED FRAM RADI FOOT ATOM COEF VERT AATM ACOF.
-  auto model = test::makeSyntheticModel (6, 5, true);
-  test::addSyntheticAttributes (model, 5);
-  ModelWriteOptions options;
-  options.tolerance = 1e-3;
-  options.include_vertices = true;
+  const auto [model, options] = modelWithEverything (6, 5, 1e-3);
   const ModelSections sections = encodeModelSections (model, options, {{0, model.patches.size ()}});
   const std::vector<std::string> tags = runSectionTags (sections.shared.flags);
   std::size_t errors = 0, decoded = 0;
