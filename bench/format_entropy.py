@@ -95,6 +95,68 @@ def floors(data):
     return patches, parts['ATOM'][0], atom_bits / 8.0, parts['COEF'][0], coef_bits / 8.0
 
 
+class AdaptiveCost:
+    """Bits the file's range coder spends (docs/FORMAT.md, "Range-coded fields"), without coding: a probability
+    per key in 1/4096 adapting by 1/16, signed integers as zero, sign, unary exponent, one modelled bit below
+    the leading one, the rest at one bit each."""
+
+    def __init__(self):
+        self.p0 = defaultdict(lambda: 2048)
+        self.bits = 0.0
+
+    def bit(self, key, bit):
+        p = self.p0[key]
+        self.bits -= math.log2(1.0 - p / 4096.0 if bit else p / 4096.0)
+        self.p0[key] = p - (p >> 4) if bit else p + ((4096 - p) >> 4)
+
+    def signed(self, key, value):
+        self.bit((key, 'nonzero'), value != 0)
+        if value == 0:
+            return
+        self.bit((key, 'negative'), value < 0)
+        magnitude = abs(value)
+        e = magnitude.bit_length() - 1
+        for i in range(e):
+            self.bit((key, 'exponent', i), True)
+        self.bit((key, 'exponent', e), False)
+        if e >= 1:
+            self.bit((key, 'below', e), (magnitude >> (e - 1)) & 1)
+            self.bits += e - 1
+
+
+def morton_seed_bytes(data):
+    """Bytes of SEED if the patches were in Morton order of their seeds and each seed were coded as its
+    difference from the previous one (signed integers, one model set per axis): what a canonical patch order
+    would save. The file's order carries about log2(M) bits a patch that the model does not need."""
+    patches = struct.unpack_from('<I', data, 16)[0]
+    parts = sections(data)
+    seed_bytes = parts['QUAN'][1][32]  # after seed_min (3 f64) and the seed step (f64)
+    planes = parts['SEED'][1]
+    axes = []
+    for axis in range(3):
+        values = [0] * patches
+        for b in range(seed_bytes):
+            plane = planes[(axis * seed_bytes + b) * patches:(axis * seed_bytes + b + 1) * patches]
+            for i in range(patches):
+                values[i] |= plane[i] << (8 * b)
+        axes.append(values)
+    seeds = list(zip(*axes))
+
+    def morton(seed):
+        code = 0
+        for b in range(32):
+            for axis in range(3):
+                code |= ((seed[axis] >> b) & 1) << (3 * b + axis)
+        return code
+
+    cost, previous = AdaptiveCost(), (0, 0, 0)
+    for seed in sorted(seeds, key=morton):
+        for axis in range(3):
+            cost.signed(axis, seed[axis] - previous[axis])
+        previous = seed
+    return parts['SEED'][0], cost.bits / 8.0
+
+
 def main():
     args = sys.argv[1:]
     build = os.path.abspath(args[0]) if args else os.path.join(ROOT, 'build')
@@ -108,10 +170,12 @@ def main():
         'coder): the same model in both. "varint" columns: the varint file; "range" columns: the default file. Floors:',
         'the varint file\'s ATOM and COEF at the entropy of a static model, atom sets as one bit per atom rank with',
         'its own probability, coefficients with their atom\'s rank as context (the script says how); "varint file at',
-        'the floors" = the varint file with both sections at their floor (FRAM and FOOT as stored).',
+        'the floors" = the varint file with both sections at their floor (FRAM and FOOT as stored). "SEED in Morton',
+        'order": the seeds delta-coded with the range coder\'s integer coding, patches sorted by the Morton code of',
+        'their seeds (not implemented: the encoder\'s patch order would have to become canonical).',
         '',
-        '| mesh | patches | varint file | range file | saved | ATOM varint / range / floor | COEF varint / range / floor | FRAM varint / range | FOOT varint / range | varint file at the floors |',
-        '|---|---|---|---|---|---|---|---|---|---|',
+        '| mesh | patches | varint file | range file | saved | ATOM varint / range / floor | COEF varint / range / floor | FRAM varint / range | FOOT varint / range | varint file at the floors | SEED / in Morton order | range file with it |',
+        '|---|---|---|---|---|---|---|---|---|---|---|---|',
     ]
     with tempfile.TemporaryDirectory() as work:
         for name in meshes:
@@ -125,10 +189,12 @@ def main():
             patches, atom, atom_floor, coef, coef_floor = floors(data)
             total = len(data)
             floor_total = total - atom - coef + atom_floor + coef_floor
-            lines.append('| %s | %d | %d | %d | %.1f %% | %d / %d / %.0f | %d / %d / %.0f | %d / %d | %d / %d | %.0f |' % (
+            seed, morton_seed = morton_seed_bytes(coded)
+            lines.append('| %s | %d | %d | %d | %.1f %% | %d / %d / %.0f | %d / %d / %.0f | %d / %d | %d / %d | %.0f | %d / %.0f | %.1f %% smaller |' % (
                 os.path.splitext(name)[0], patches, total, len(coded), 100.0 * (1.0 - len(coded) / total),
                 atom, coded_sizes['ATOM'], atom_floor, coef, coded_sizes['COEF'], coef_floor,
-                stored['FRAM'], coded_sizes['FRAM'], stored['FOOT'], coded_sizes['FOOT'], floor_total))
+                stored['FRAM'], coded_sizes['FRAM'], stored['FOOT'], coded_sizes['FOOT'], floor_total,
+                seed, morton_seed, 100.0 * (seed - morton_seed) / len(coded)))
             print(lines[-1], file=sys.stderr, flush=True)
     write_result('format_entropy.md', lines)
 
