@@ -84,7 +84,7 @@ namespace
       {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default: 3 x the model's"},
       {"", "mean error, which adds 1-7 % to its Chamfer distance; 0 = lossless)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
-      {"--varint-layout", "quantised model file: zstd over varints instead of range-coded fields (6-14 % larger;"},
+      {"--varint-layout", "quantised model file: zstd over varints instead of range-coded fields (10-16 % larger;"},
       {"", "readable by pcl_sparse builds from before the range coder)"},
       {"-tiles N", "tile the input: N tiles along the longest side of its bounding box, each encoded apart"},
       {"", "(docs/TILES.md); -o then writes a tiled model, which -box decodes region by region"},

@@ -69,7 +69,7 @@ namespace pcl_sparse
     double attribute_tolerance = 0.5 / 255.0;
     /// Quantised mode: code the per-patch fields FRAM FOOT ATOM COEF (and AATM ACOF) with an adaptive range
     /// coder, each field with its own probabilities (docs/FORMAT.md, "Range-coded fields"), instead of zstd
-    /// over varints: 6-13 % smaller files on the shared meshes (bench/results/format_entropy.md). false
+    /// over varints: 9-14 % smaller files on the shared meshes (bench/results/format_entropy.md). false
     /// writes the varint layout, which pcl_sparse builds from before the range coder can read.
     bool range_coding = true;
     /// zstd level (1..22); 19 compresses well and still writes a 1 MB model in well under a second.
