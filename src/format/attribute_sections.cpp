@@ -142,10 +142,8 @@ namespace pcl_sparse
     decodeRangeCodedAttributes (const ChannelTable& table, ByteReader& atoms, ByteReader& coefficients,
                                 SparseSurfaceModel& model)
     {
-      const std::size_t atom_bytes = atoms.remaining (), coefficient_bytes = coefficients.remaining ();
-      RangeDecoder coded_atoms (atoms.getBytes (atom_bytes, "range-coded bytes"), atom_bytes, atoms.what ());
-      RangeDecoder coded_coefficients (coefficients.getBytes (coefficient_bytes, "range-coded bytes"), coefficient_bytes,
-                                       coefficients.what ());
+      RangeDecoder coded_atoms = rangeDecoderOverRest (atoms);
+      RangeDecoder coded_coefficients = rangeDecoderOverRest (coefficients);
       std::vector<SparseCodeContexts> contexts (table.channels.size (), SparseCodeContexts (table.frequencies));
       for (std::size_t p = 0; p < model.patches.size (); ++p)
       {

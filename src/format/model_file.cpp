@@ -1126,18 +1126,14 @@ namespace pcl_sparse
     checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, q);
     model.patches.resize (m);
     // Range-coded: one decoder per section over all its bytes (the ByteReaders are then at their end).
-    auto decoder = [] (ByteReader& in) {
-      const std::size_t size = in.remaining ();
-      return RangeDecoder (in.getBytes (size, "range-coded bytes"), size, in.what ());
-    };
     std::optional<RangeDecoder> coded_frame, coded_foot, coded_atom, coded_coef;
     std::optional<PatchFieldContexts> contexts;
     if (range_coded)
     {
-      coded_frame.emplace (decoder (frame));
-      coded_foot.emplace (decoder (foot));
-      coded_atom.emplace (decoder (atom));
-      coded_coef.emplace (decoder (coef));
+      coded_frame.emplace (rangeDecoderOverRest (frame));
+      coded_foot.emplace (rangeDecoderOverRest (foot));
+      coded_atom.emplace (rangeDecoderOverRest (atom));
+      coded_coef.emplace (rangeDecoderOverRest (coef));
       contexts.emplace (q.extent_bits, shared.basis_parameter);
     }
 

@@ -37,11 +37,7 @@ namespace pcl_sparse
     else
       range_ = bound;
     adapt (model, bit);
-    while (range_ < kTop)
-    {
-      range_ <<= 8;
-      shiftLow ();
-    }
+    normalise ();
   }
 
   void
@@ -51,6 +47,12 @@ namespace pcl_sparse
     range_ >>= 1;
     if (bit)
       low_ += range_;
+    normalise ();
+  }
+
+  void
+  RangeEncoder::normalise ()
+  {
     while (range_ < kTop)
     {
       range_ <<= 8;

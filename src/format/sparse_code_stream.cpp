@@ -52,20 +52,37 @@ namespace pcl_sparse
   }
 
   std::vector<std::size_t>
-  putCodeAtoms (ByteWriter& out, const std::vector<int>& atoms, bool quantised, int frequencies)
+  shellRankOrder (const std::vector<int>& atoms, int frequencies)
   {
+    std::vector<int> ranks (atoms.size ());
+    for (std::size_t k = 0; k < atoms.size (); ++k)
+      ranks[k] = shellRank (atoms[k], frequencies);
     std::vector<std::size_t> order (atoms.size ());
     std::iota (order.begin (), order.end (), 0);
-    out.putVarint (order.size ());
+    std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) { return ranks[a] < ranks[b]; });
+    return order;
+  }
+
+  RangeDecoder
+  rangeDecoderOverRest (ByteReader& in)
+  {
+    const std::size_t size = in.remaining ();
+    return RangeDecoder (in.getBytes (size, "range-coded bytes"), size, in.what ());
+  }
+
+  std::vector<std::size_t>
+  putCodeAtoms (ByteWriter& out, const std::vector<int>& atoms, bool quantised, int frequencies)
+  {
+    out.putVarint (atoms.size ());
     if (!quantised)
     {
       for (int a : atoms)
         out.putVarint (static_cast<std::uint64_t> (a));
+      std::vector<std::size_t> order (atoms.size ());
+      std::iota (order.begin (), order.end (), 0);
       return order;
     }
-    std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) {
-      return shellRank (atoms[a], frequencies) < shellRank (atoms[b], frequencies);
-    });
+    const std::vector<std::size_t> order = shellRankOrder (atoms, frequencies);
     int previous_rank = -1;
     for (std::size_t k : order)
     {
@@ -146,17 +163,12 @@ namespace pcl_sparse
   std::vector<std::size_t>
   SparseCodeContexts::putAtoms (RangeEncoder& out, const std::vector<int>& atoms)
   {
-    std::vector<std::size_t> order (atoms.size ());
-    std::iota (order.begin (), order.end (), 0);
-    std::vector<int> ranks (atoms.size ());
-    for (std::size_t k = 0; k < atoms.size (); ++k)
-      ranks[k] = shellRank (atoms[k], frequencies_);
-    std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) { return ranks[a] < ranks[b]; });
+    const std::vector<std::size_t> order = shellRankOrder (atoms, frequencies_);
     count_.put (out, static_cast<std::uint32_t> (atoms.size ()));
     int rank = 0;
     for (std::size_t k : order)
     {
-      for (; rank < ranks[k]; ++rank)
+      for (const int next = shellRank (atoms[k], frequencies_); rank < next; ++rank)
         out.put (present_[rank], false);
       out.put (present_[rank++], true);
     }

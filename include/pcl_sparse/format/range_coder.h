@@ -35,6 +35,8 @@ namespace pcl_sparse
     std::vector<std::uint8_t> finish ();
 
   private:
+    /// Shifts bytes out while the range is below 2^24.
+    void normalise ();
     void shiftLow ();
 
     std::uint64_t low_ = 0;
@@ -87,8 +89,6 @@ namespace pcl_sparse
   public:
     /// \param[in] bits  width of the numbers (1..16)
     explicit BitTreeModel (int bits);
-    /// Width of the numbers.
-    int bits () const { return bits_; }
     /// Largest number it codes.
     std::uint32_t max () const { return (1u << bits_) - 1u; }
 

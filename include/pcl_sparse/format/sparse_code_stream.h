@@ -29,6 +29,15 @@ namespace pcl_sparse
   int
   atomOfShellRank (int rank, int frequencies);
 
+  /// \brief Positions of \a atoms sorted by shell rank: the order quantised files store a code in.
+  std::vector<std::size_t>
+  shellRankOrder (const std::vector<int>& atoms, int frequencies);
+
+  /// \brief A range decoder over every byte \a in has left, named as \a in (\a in is then at its end): a
+  /// range-coded section.
+  RangeDecoder
+  rangeDecoderOverRest (ByteReader& in);
+
   /// \brief Writes the atoms of a code; returns the order they were written in (positions in \a atoms):
   /// selection order lossless, shell-rank order quantised.
   std::vector<std::size_t>
