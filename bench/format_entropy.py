@@ -157,11 +157,20 @@ def morton_seed_bytes(data):
     return parts['SEED'][0], cost.bits / 8.0
 
 
+def load_ms(info, path):
+    """Best of 5 `pcl_sparse_info --json` seconds (reading, checking and decoding the file), in ms."""
+    import json
+    runs = [json.loads(subprocess.run([info, path, '--json'], capture_output=True, check=True, text=True).stdout)
+            for _ in range(5)]
+    return 1000.0 * min(run['seconds'] for run in runs)
+
+
 def main():
     args = sys.argv[1:]
     build = os.path.abspath(args[0]) if args else os.path.join(ROOT, 'build')
     meshes = args[1:] or DEFAULT_MESHES
     encode = os.path.join(build, 'apps', 'pcl_sparse_encode')
+    info = os.path.join(build, 'apps', 'pcl_sparse_info')
     lines = [
         '# The range coder against the varint layout and the entropy floors',
         '',
@@ -172,29 +181,32 @@ def main():
         'its own probability, coefficients with their atom\'s rank as context (the script says how); "varint file at',
         'the floors" = the varint file with both sections at their floor (FRAM and FOOT as stored). "SEED in Morton',
         'order": the seeds delta-coded with the range coder\'s integer coding, patches sorted by the Morton code of',
-        'their seeds (not implemented: the encoder\'s patch order would have to become canonical).',
+        'their seeds (not implemented: the encoder\'s patch order would have to become canonical). "load ms": best',
+        'of 5 `pcl_sparse_info --json` runs (reading, checking and decoding the file), the price of the range coder.',
         '',
-        '| mesh | patches | varint file | range file | saved | ATOM varint / range / floor | COEF varint / range / floor | FRAM varint / range | FOOT varint / range | varint file at the floors | SEED / in Morton order | range file with it |',
-        '|---|---|---|---|---|---|---|---|---|---|---|---|',
+        '| mesh | patches | varint file | range file | saved | ATOM varint / range / floor | COEF varint / range / floor | FRAM varint / range | FOOT varint / range | varint file at the floors | SEED / in Morton order | range file with it | load ms varint / range |',
+        '|---|---|---|---|---|---|---|---|---|---|---|---|---|',
     ]
     with tempfile.TemporaryDirectory() as work:
         for name in meshes:
             path = os.path.join(work, 'model.psm')
             subprocess.run([encode, mesh_path(name), '-q', '-o', path, '--varint-layout'], capture_output=True, check=True)
             data = open(path, 'rb').read()
+            varint_ms = load_ms(info, path)
             subprocess.run([encode, mesh_path(name), '-q', '-o', path], capture_output=True, check=True)
             coded = open(path, 'rb').read()
+            coded_ms = load_ms(info, path)
             stored = {tag: size for tag, (size, _) in sections(data).items()}
             coded_sizes = {tag: size for tag, (size, _) in sections(coded).items()}
             patches, atom, atom_floor, coef, coef_floor = floors(data)
             total = len(data)
             floor_total = total - atom - coef + atom_floor + coef_floor
             seed, morton_seed = morton_seed_bytes(coded)
-            lines.append('| %s | %d | %d | %d | %.1f %% | %d / %d / %.0f | %d / %d / %.0f | %d / %d | %d / %d | %.0f | %d / %.0f | %.1f %% smaller |' % (
+            lines.append('| %s | %d | %d | %d | %.1f %% | %d / %d / %.0f | %d / %d / %.0f | %d / %d | %d / %d | %.0f | %d / %.0f | %.1f %% smaller | %.1f / %.1f |' % (
                 os.path.splitext(name)[0], patches, total, len(coded), 100.0 * (1.0 - len(coded) / total),
                 atom, coded_sizes['ATOM'], atom_floor, coef, coded_sizes['COEF'], coef_floor,
                 stored['FRAM'], coded_sizes['FRAM'], stored['FOOT'], coded_sizes['FOOT'], floor_total,
-                seed, morton_seed, 100.0 * (seed - morton_seed) / len(coded)))
+                seed, morton_seed, 100.0 * (seed - morton_seed) / len(coded), varint_ms, coded_ms))
             print(lines[-1], file=sys.stderr, flush=True)
     write_result('format_entropy.md', lines)
 
