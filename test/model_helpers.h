@@ -21,12 +21,14 @@ namespace pcl_sparse_test
     return model;
   }
 
-  /// \a count points resampled from \a model with the default resampling options.
+  /// \a count points resampled from \a model with \a options (default: the default resampling options).
   inline pcl::PointCloud<pcl::PointNormal>
-  resampleModel (const pcl_sparse::SparseSurfaceModel::ConstPtr& model, std::size_t count)
+  resampleModel (const pcl_sparse::SparseSurfaceModel::ConstPtr& model, std::size_t count,
+                 const pcl_sparse::SparseSurfaceResamplingOptions& options = pcl_sparse::SparseSurfaceResamplingOptions ())
   {
     pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
+    resampling.setOptions (options);
     resampling.setPointCount (count);
     pcl::PointCloud<pcl::PointNormal> cloud;
     resampling.compute (cloud);

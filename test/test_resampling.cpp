@@ -530,6 +530,9 @@ TEST (Resampling, RefusesOptionsOutOfRange)
      {[] (auto& o) { o.ownership.max_slope_angle = 0.0; }, [] (auto& o) { o.ownership.max_slope_angle = -10.0; },
       [] (auto& o) { o.ownership.max_slope_angle = std::nextafter (90.0, 91.0); },
       [] (auto& o) { o.ownership.max_slope_angle = 91.0; }, [&] (auto& o) { o.ownership.max_slope_angle = nan; }}},
+    {"opposite_clearance",
+     {[] (auto& o) { o.ownership.opposite_clearance = -0.01; }, [&] (auto& o) { o.ownership.opposite_clearance = nan; },
+      [&] (auto& o) { o.ownership.opposite_clearance = inf; }}},
   };
   for (const auto& [field, sets] : bad)
     for (std::size_t k = 0; k < sets.size (); ++k)
@@ -557,6 +560,7 @@ TEST (Resampling, RefusesOptionsOutOfRange)
     [] (auto& o) { o.ownership.max_height = 1e-3; },
     [] (auto& o) { o.ownership.max_slope_angle = 90.0; },
     [] (auto& o) { o.ownership.max_slope_angle = 1e-3; },
+    [] (auto& o) { o.ownership.opposite_clearance = 0.0; },
   };
   for (std::size_t k = 0; k < good.size (); ++k)
   {

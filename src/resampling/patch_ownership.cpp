@@ -14,6 +14,39 @@
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// Appends \a index to the lists of the angular sectors of \a self's plane that \a other's ball (world
+    /// radius \a reach around its seed) can reach: the ball projects to a disk in the plane.
+    void
+    addToSectors (const PatchCode& self, const PatchCode& other, double reach, std::uint32_t index,
+                  std::vector<std::uint32_t>* sector_lists)
+    {
+      const int sectors = PatchOwnership::sectors;
+      const Eigen::Vector3d centre = self.frame.transpose () * (other.origin - self.origin) / self.radius;
+      const double distance = centre.head<2> ().norm (), disk = reach / self.radius;
+      if (distance <= disk * 1.0001)
+      {
+        for (int s = 0; s < sectors; ++s)
+          sector_lists[s].push_back (index);
+        return;
+      }
+      // Angular interval of the disk seen from the seed, as fractions of a turn.
+      const double middle = std::atan2 (centre.y (), centre.x ()) * (0.5 / M_PI);
+      const double half = std::asin (std::min (1.0, disk / distance)) * (0.5 / M_PI) + 1e-6;
+      for (int s = 0; s < sectors; ++s)
+      {
+        // Sector s spans [s, s + 1) / sectors; compare on the circle.
+        const double sector_middle = (s + 0.5) / sectors;
+        double gap = std::abs (sector_middle - middle);
+        gap -= std::floor (gap);
+        gap = std::min (gap, 1.0 - gap);
+        if (gap <= half + 0.5 / sectors)
+          sector_lists[s].push_back (index);
+      }
+    }
+  } // namespace
+
   void
   PatchOwnershipOptions::validate () const
   {
@@ -26,6 +59,8 @@ namespace pcl_sparse
       fail ("min_normal_cosine", min_normal_cosine, "-1 <= min_normal_cosine <= 1");
     if (!(max_height > 0.0) || !std::isfinite (max_height))
       fail ("max_height", max_height, "max_height > 0, finite");
+    if (!(opposite_clearance >= 0.0) || !std::isfinite (opposite_clearance))
+      fail ("opposite_clearance", opposite_clearance, "opposite_clearance >= 0, finite");
     if (!(max_slope_angle > 0.0 && max_slope_angle <= 90.0))
       fail ("max_slope_angle", max_slope_angle, "0 < max_slope_angle <= 90 degrees");
   }
@@ -45,7 +80,7 @@ namespace pcl_sparse
 
     // World radius of a ball around each seed holding the whole patch: the footprint's largest extent
     // and the largest height seen on a coarse grid over it, with a margin for what the grid misses.
-    std::vector<double> reach (m, 0.0);
+    std::vector<double> reach (m, 0.0), height_bound (m, 0.0);
     std::vector<char> tame (m, 0);
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
@@ -69,6 +104,10 @@ namespace pcl_sparse
       // contenders (a full evaluation) is skipped for it.
       tame[p] = h_max <= 0.5 * options.max_height && slope_max <= 0.25 * max_slope_squared_;
       // Places above max_height are never the patch's (see beats), which also bounds the reach.
+      // Atoms are bounded by 1, so the coefficients' magnitudes bound the heights everywhere.
+      height_bound[p] = 0.0;
+      for (double c : model.patches[p].coefficients)
+        height_bound[p] += std::abs (c);
       h_max = std::min (h_max * 1.5 + 0.05, options.max_height);
       reach[p] = model.patches[p].radius * std::sqrt (e * e + h_max * h_max) * 1.01;
     }
@@ -101,46 +140,39 @@ namespace pcl_sparse
     }
     // Contenders of each patch, and per angular sector of its plane those whose ball can reach the
     // sector (the ball projects to a disk in the plane), nearest seed first so owners are found early.
-    // Patches with an opposite normal never beat (see beats), so they are left out here already.
+    // Patches with an opposite normal never beat (see beats), so they are left out here already; those
+    // facing away by more than 120 degrees go to the clearance lists (see nearSurface) unless it is 0.
     bin_begin_.assign (m * sectors + 1, 0);
-    std::vector<std::vector<std::uint32_t>> bins (m * sectors);
+    opposite_begin_.assign (m * sectors + 1, 0);
+    std::vector<std::vector<std::uint32_t>> bins (m * sectors), opposite_bins (m * sectors);
+    const double opposite_cosine = -0.5;
+    auto contender = [&] (int q) {
+      const PatchCode& code = model.patches[q];
+      const double inverse = 1.0 / code.radius;
+      return Contender{code.origin, code.frame.col (0) * inverse, code.frame.col (1) * inverse,
+                       code.frame.col (2) * inverse, evaluator.maxExtent (q), height_bound[q], static_cast<std::size_t> (q),
+                       tame[q] != 0};
+    };
     for (std::size_t p = 0; p < m; ++p)
     {
       const PatchCode& self = model.patches[p];
       std::vector<std::pair<double, int>> sorted;
       for (int q : lists[p])
-        if (model.patches[q].frame.col (2).dot (self.frame.col (2)) >= options_.min_normal_cosine)
-          sorted.emplace_back ((model.patches[q].origin - self.origin).squaredNorm (), q);
+        sorted.emplace_back ((model.patches[q].origin - self.origin).squaredNorm (), q);
       std::sort (sorted.begin (), sorted.end ());
       for (const auto& entry : sorted)
       {
         const int q = entry.second;
-        const PatchCode& code = model.patches[q];
-        const double inverse = 1.0 / code.radius;
-        const std::uint32_t index = static_cast<std::uint32_t> (contenders_.size ());
-        contenders_.push_back ({code.origin, code.frame.col (0) * inverse, code.frame.col (1) * inverse,
-                                code.frame.col (2) * inverse, evaluator.maxExtent (q), static_cast<std::size_t> (q),
-                                tame[q] != 0});
-        const Eigen::Vector3d centre = self.frame.transpose () * (code.origin - self.origin) / self.radius;
-        const double distance = centre.head<2> ().norm (), disk = reach[q] / self.radius;
-        if (distance <= disk * 1.0001)
+        const double cosine = model.patches[q].frame.col (2).dot (self.frame.col (2));
+        if (cosine >= options_.min_normal_cosine)
         {
-          for (int s = 0; s < sectors; ++s)
-            bins[p * sectors + s].push_back (index);
-          continue;
+          addToSectors (self, model.patches[q], reach[q], static_cast<std::uint32_t> (contenders_.size ()), &bins[p * sectors]);
+          contenders_.push_back (contender (q));
         }
-        // Angular interval of the disk seen from the seed, as fractions of a turn.
-        const double middle = std::atan2 (centre.y (), centre.x ()) * (0.5 / M_PI);
-        const double half = std::asin (std::min (1.0, disk / distance)) * (0.5 / M_PI) + 1e-6;
-        for (int s = 0; s < sectors; ++s)
+        else if (cosine < opposite_cosine && options_.opposite_clearance > 0.0)
         {
-          // Sector s spans [s, s + 1) / sectors; compare on the circle.
-          const double sector_middle = (s + 0.5) / sectors;
-          double gap = std::abs (sector_middle - middle);
-          gap -= std::floor (gap);
-          gap = std::min (gap, 1.0 - gap);
-          if (gap <= half + 0.5 / sectors)
-            bins[p * sectors + s].push_back (index);
+          addToSectors (self, model.patches[q], reach[q], static_cast<std::uint32_t> (opposites_.size ()), &opposite_bins[p * sectors]);
+          opposites_.push_back (contender (q));
         }
       }
       contender_begin_[p + 1] = contenders_.size ();
@@ -149,7 +181,26 @@ namespace pcl_sparse
     {
       bin_contenders_.insert (bin_contenders_.end (), bins[b].begin (), bins[b].end ());
       bin_begin_[b + 1] = bin_contenders_.size ();
+      opposite_contenders_.insert (opposite_contenders_.end (), opposite_bins[b].begin (), opposite_bins[b].end ());
+      opposite_begin_[b + 1] = opposite_contenders_.size ();
     }
+  }
+
+  bool
+  PatchOwnership::nearSurface (const Contender& other, const Eigen::Vector3d& q) const
+  {
+    const Eigen::Vector3d d = q - other.origin;
+    // Cheap bound first: the two sides of a thin part are usually farther apart than the heights of a code.
+    const double z = other.n.dot (d);
+    if (std::abs (z) > std::min (other.height_bound, options_.max_height) + options_.opposite_clearance)
+      return false;
+    const double x = other.t1.dot (d), y = other.t2.dot (d);
+    if (evaluator_.centrality (other.patch, x, y) > 1.0)
+      return false;
+    const double h = evaluator_.height (other.patch, x, y);
+    if (!(std::abs (h) <= options_.max_height && std::abs (z - h) <= options_.opposite_clearance))
+      return false;
+    return other.tame || isValidPlace (evaluator_.sample (other.patch, x, y, false), options_, max_slope_squared_);
   }
 
   bool

@@ -11,6 +11,11 @@
 /// sheet do not steal each other's places, and only where Q's code is valid (isValidPlace). Patches
 /// sample their own surface, so two patches see a seam place at slightly different positions (their
 /// coding errors); the seams are consistent up to that error.
+///
+/// Where a patch P meets a patch Q facing the other way (N_Q . N_P < -1/2: a knife edge or a thin part),
+/// a place of P that lies in Q's footprint within opposite_clearance of Q's surface is nobody's: within
+/// the coding error of both sides, the other side's surface may be the nearer one, and the point's normal
+/// would then be more than 120 degrees off the surface's there (a flipped normal).
 
 #include <pcl_sparse/resampling/patch_evaluator.h>
 
@@ -46,9 +51,15 @@ namespace pcl_sparse
     /// widens koala's largest hole from 1.5 to 4.9 spacings (bench/results/max_slope.md). In (0, 90];
     /// 90: no bound.
     double max_slope_angle = 50.0;
+    /// Clearance (local units of Q, fraction of r_Q) a place keeps from the surface of a patch Q facing
+    /// away (see the file comment); closer places are left unsampled. With default options, 0.03 takes
+    /// sword's flipped points from 63 to 0 (its knife edges are 20 degrees), cheese-cgal's from 97 to 59 and
+    /// blade's from 20 to 10, and widens sword's 99th-percentile hole from 0.77 to 0.92 spacings; 0.06 takes
+    /// few more flips away and widens it to 1.67 (bench/results/flips.md). >= 0, finite (0: no clearance).
+    double opposite_clearance = 0.03;
 
-    /// Checks the ranges: height_tolerance >= 0, min_normal_cosine in [-1, 1], max_height > 0 (all
-    /// finite), max_slope_angle in (0, 90] degrees.
+    /// Checks the ranges: height_tolerance >= 0, min_normal_cosine in [-1, 1], max_height > 0,
+    /// opposite_clearance >= 0 (all finite), max_slope_angle in (0, 90] degrees.
     /// \throws pcl_sparse::Error naming the first out-of-range field
     void validate () const;
   };
@@ -87,11 +98,14 @@ namespace pcl_sparse
     /// \param[in] centrality  centrality of q in p (PatchEvaluator::centrality), <= 1
     /// \param[in] turn        angle of q in p as a fraction of a turn
     /// \return true unless a contender (see the file comment) holds q more centrally, or as centrally
-    ///         with a lower index
+    ///         with a lower index, or q lies too near the surface of a patch facing away
     bool
     owns (std::size_t p, const Eigen::Vector3d& q, double centrality, double turn) const
     {
       const std::size_t bin = p * sectors + std::min<std::size_t> (sectors - 1, static_cast<std::size_t> (turn * sectors));
+      for (std::size_t k = opposite_begin_[bin]; k < opposite_begin_[bin + 1]; ++k)
+        if (nearSurface (opposites_[opposite_contenders_[k]], q))
+          return false;
       for (std::size_t k = bin_begin_[bin]; k < bin_begin_[bin + 1]; ++k)
       {
         const Contender& other = contenders_[bin_contenders_[k]];
@@ -123,12 +137,17 @@ namespace pcl_sparse
     {
       Eigen::Vector3d origin, t1, t2, n;  ///< s; T1 / r, T2 / r, N / r
       double max_extent;
+      double height_bound;  ///< bound on |h| anywhere: the sum of its coefficients' magnitudes (local units)
       std::size_t patch;
       bool tame;  ///< its code stays well inside the validity bounds: no need to test them
     };
 
     bool
     beats (const Contender& other, std::size_t p, const Eigen::Vector3d& d, double x, double y, double centrality) const;
+    /// Whether the place \a q lies in a facing-away patch's footprint within opposite_clearance of its
+    /// surface, where its code is valid.
+    bool
+    nearSurface (const Contender& other, const Eigen::Vector3d& q) const;
 
     const PatchEvaluator& evaluator_;
     PatchOwnershipOptions options_;
@@ -137,5 +156,10 @@ namespace pcl_sparse
     std::vector<std::size_t> contender_begin_;  ///< #patches + 1 offsets into contenders_
     std::vector<std::uint32_t> bin_contenders_;  ///< per (patch, sector): indices into contenders_, nearest seed first
     std::vector<std::size_t> bin_begin_;         ///< #patches * sectors + 1 offsets into bin_contenders_
+    /// Likewise the patches facing away (N_Q . N_P < -1/2) whose surface a patch's places keep clear of:
+    /// per (patch, sector) indices into opposites_, nearest seed first, and the offsets into that list.
+    std::vector<Contender> opposites_;
+    std::vector<std::uint32_t> opposite_contenders_;
+    std::vector<std::size_t> opposite_begin_;
   };
 } // namespace pcl_sparse
