@@ -141,11 +141,11 @@ namespace pcl_sparse
     // Contenders of each patch, and per angular sector of its plane those whose ball can reach the
     // sector (the ball projects to a disk in the plane), nearest seed first so owners are found early.
     // Patches with an opposite normal never beat (see beats), so they are left out here already; those
-    // facing away by more than 120 degrees go to the clearance lists (see nearSurface) unless it is 0.
+    // facing away by more than opposite_angle go to the clearance lists (see nearSurface) unless it is 0.
     bin_begin_.assign (m * sectors + 1, 0);
     opposite_begin_.assign (m * sectors + 1, 0);
     std::vector<std::vector<std::uint32_t>> bins (m * sectors), opposite_bins (m * sectors);
-    const double opposite_cosine = -0.5;
+    const double opposite_cosine = std::cos (PatchOwnership::opposite_angle * M_PI / 180.0);
     auto contender = [&] (int q) {
       const PatchCode& code = model.patches[q];
       const double inverse = 1.0 / code.radius;

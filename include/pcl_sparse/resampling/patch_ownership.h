@@ -12,10 +12,11 @@
 /// sample their own surface, so two patches see a seam place at slightly different positions (their
 /// coding errors); the seams are consistent up to that error.
 ///
-/// Where a patch P meets a patch Q facing the other way (N_Q . N_P < -1/2: a knife edge or a thin part),
-/// a place of P that lies in Q's footprint within opposite_clearance of Q's surface is nobody's: within
-/// the coding error of both sides, the other side's surface may be the nearer one, and the point's normal
-/// would then be more than 120 degrees off the surface's there (a flipped normal).
+/// Where a patch P meets a patch Q facing away from it (frame normals more than opposite_angle = 95 degrees
+/// apart: a knife edge or a thin part), a place of P that lies in Q's footprint within opposite_clearance of
+/// Q's surface is nobody's: within the coding error of both sides, the other side's surface may be the
+/// nearer one, and the point's normal would then be more than 120 degrees off the surface's there (a
+/// flipped normal).
 
 #include <pcl_sparse/resampling/patch_evaluator.h>
 
@@ -53,7 +54,7 @@ namespace pcl_sparse
     double max_slope_angle = 50.0;
     /// Clearance (local units of Q, fraction of r_Q) a place keeps from the surface of a patch Q facing
     /// away (see the file comment); closer places are left unsampled. With default options, 0.03 takes
-    /// sword's flipped points from 63 to 0 (its knife edges are 20 degrees), cheese-cgal's from 97 to 59 and
+    /// sword's flipped points from 63 to 0 (its knife edges are 20 degrees), cheese-cgal's from 97 to 55 and
     /// blade's from 20 to 10, and widens sword's 99th-percentile hole from 0.77 to 0.92 spacings; 0.06 takes
     /// few more flips away and widens it to 1.67 (bench/results/flips.md). >= 0, finite (0: no clearance).
     double opposite_clearance = 0.03;
@@ -91,6 +92,11 @@ namespace pcl_sparse
 
     /// Angular sectors of a patch's local plane; each keeps only the contenders that can reach it.
     static constexpr int sectors = 16;
+    /// Frame normals further apart than this (degrees) face away from each other (opposite_clearance). A
+    /// code's normal may turn max_slope_angle from its frame's, so frames 95 degrees apart can already give
+    /// points 120 degrees off the other side (wingnut, bunny-hr-closed: 1-2 flipped at 120, none at 95);
+    /// right angles, such as a cube's edges, are left alone.
+    static constexpr double opposite_angle = 95.0;
 
     /// Whether a patch owns a place of its surface.
     /// \param[in] p           patch index
@@ -156,7 +162,7 @@ namespace pcl_sparse
     std::vector<std::size_t> contender_begin_;  ///< #patches + 1 offsets into contenders_
     std::vector<std::uint32_t> bin_contenders_;  ///< per (patch, sector): indices into contenders_, nearest seed first
     std::vector<std::size_t> bin_begin_;         ///< #patches * sectors + 1 offsets into bin_contenders_
-    /// Likewise the patches facing away (N_Q . N_P < -1/2) whose surface a patch's places keep clear of:
+    /// Likewise the patches facing away (more than opposite_angle) whose surface a patch's places keep clear of:
     /// per (patch, sector) indices into opposites_, nearest seed first, and the offsets into that list.
     std::vector<Contender> opposites_;
     std::vector<std::uint32_t> opposite_contenders_;
