@@ -418,6 +418,17 @@ namespace pcl_sparse
       return static_cast<std::uint8_t> (code.largest | (code.reflected ? 4 : 0));
     }
 
+    /// A quantised frame with the dropped component and reflection of \a header (frameHeader, <= 7) and
+    /// no components yet.
+    QuantisedFrame
+    frameOfHeader (std::uint32_t header)
+    {
+      QuantisedFrame code;
+      code.largest = static_cast<int> (header & 3);
+      code.reflected = header & 4;
+      return code;
+    }
+
     void
     putQuantisedFrame (ByteWriter& frame, const QuantisedFrame& code)
     {
@@ -842,10 +853,7 @@ namespace pcl_sparse
     readFrame (RangeDecoder& frame, PatchFieldContexts& contexts, const QuantisationParameters& q, std::size_t p,
                PatchCode& patch)
     {
-      QuantisedFrame code;
-      const std::uint32_t header = contexts.frame_header.get (frame);
-      code.largest = static_cast<int> (header & 3);
-      code.reflected = header & 4;
+      QuantisedFrame code = frameOfHeader (contexts.frame_header.get (frame));
       for (int i = 0; i < 3; ++i)
         code.q[i] = contexts.frame_component[i].get (frame);
       setQuantisedFrame (frame, code, q, p, patch);
@@ -857,12 +865,10 @@ namespace pcl_sparse
     {
       if (quantised)
       {
-        QuantisedFrame code;
         const std::uint8_t header = frame.getU8 ("frame header");
         if (header > 7)
           frame.fail ("frame header out of range");
-        code.largest = header & 3;
-        code.reflected = header & 4;
+        QuantisedFrame code = frameOfHeader (header);
         for (std::int64_t& v : code.q)
           v = frame.getSignedVarint ("frame component");
         setQuantisedFrame (frame, code, q, p, patch);
@@ -877,6 +883,44 @@ namespace pcl_sparse
           frame.fail ("patch " + std::to_string (p) + " frame is not orthonormal");
       }
     }
+
+    /// The range-coded sections FRAM, FOOT, ATOM and COEF of a model: one decoder per section over all its
+    /// bytes, and the probability models they share, read patch by patch.
+    class RangeCodedPatchSections
+    {
+    public:
+      RangeCodedPatchSections (ByteReader& frame, ByteReader& foot, ByteReader& atom, ByteReader& coef, int extent_bits,
+                               int basis_parameter)
+        : frame_ (rangeDecoderOverRest (frame)), foot_ (rangeDecoderOverRest (foot)), atom_ (rangeDecoderOverRest (atom)),
+          coef_ (rangeDecoderOverRest (coef)), contexts_ (extent_bits, basis_parameter)
+      {}
+
+      /// The footprint, code and frame of patch \a p (its seed and radius already read).
+      void
+      readPatch (const QuantisationParameters& q, std::size_t p, PatchCode& patch)
+      {
+        readFootprint (foot_, contexts_, q, p, patch.footprint);
+        contexts_.code.getAtoms (atom_, "patch " + std::to_string (p), patch.atoms);
+        contexts_.code.getCoefficients (coef_, patch.atoms,
+                                        coefficientStep (q.coefficient_budget, patch.radius, patch.atoms.size ()),
+                                        patch.coefficients);
+        readFrame (frame_, contexts_, q, p, patch);
+      }
+
+      /// Throws unless every section was read to its end.
+      void
+      expectEnd () const
+      {
+        frame_.expectEnd ();
+        foot_.expectEnd ();
+        atom_.expectEnd ();
+        coef_.expectEnd ();
+      }
+
+    private:
+      RangeDecoder frame_, foot_, atom_, coef_;
+      PatchFieldContexts contexts_;
+    };
 
     /// Section VERT: every patch's input vertices and their local (x', y').
     void
@@ -1126,16 +1170,9 @@ namespace pcl_sparse
     checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, q);
     model.patches.resize (m);
     // Range-coded: one decoder per section over all its bytes (the ByteReaders are then at their end).
-    std::optional<RangeDecoder> coded_frame, coded_foot, coded_atom, coded_coef;
-    std::optional<PatchFieldContexts> contexts;
+    std::optional<RangeCodedPatchSections> coded;
     if (range_coded)
-    {
-      coded_frame.emplace (rangeDecoderOverRest (frame));
-      coded_foot.emplace (rangeDecoderOverRest (foot));
-      coded_atom.emplace (rangeDecoderOverRest (atom));
-      coded_coef.emplace (rangeDecoderOverRest (coef));
-      contexts.emplace (q.extent_bits, shared.basis_parameter);
-    }
+      coded.emplace (frame, foot, atom, coef, q.extent_bits, shared.basis_parameter);
 
     std::vector<std::vector<std::uint64_t>> seeds;
     std::vector<std::uint64_t> radii;
@@ -1149,14 +1186,9 @@ namespace pcl_sparse
     {
       PatchCode& patch = model.patches[p];
       readPlacement (seed, radius, quantised, q, seeds, radii, p, patch);
-      if (range_coded)
+      if (coded)
       {
-        readFootprint (*coded_foot, *contexts, q, p, patch.footprint);
-        contexts->code.getAtoms (*coded_atom, "patch " + std::to_string (p), patch.atoms);
-        contexts->code.getCoefficients (*coded_coef, patch.atoms,
-                                        coefficientStep (q.coefficient_budget, patch.radius, patch.atoms.size ()),
-                                        patch.coefficients);
-        readFrame (*coded_frame, *contexts, q, p, patch);
+        coded->readPatch (q, p, patch);
         continue;
       }
       readFootprint (foot, quantised, q, p, patch.footprint);
@@ -1164,13 +1196,8 @@ namespace pcl_sparse
       readCoefficients (coef, quantised, q, patch);
       readFrame (frame, quantised, q, p, patch);
     }
-    if (range_coded)
-    {
-      coded_frame->expectEnd ();
-      coded_foot->expectEnd ();
-      coded_atom->expectEnd ();
-      coded_coef->expectEnd ();
-    }
+    if (coded)
+      coded->expectEnd ();
     seed.expectEnd ();
     frame.expectEnd ();
     radius.expectEnd ();
