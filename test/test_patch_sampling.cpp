@@ -10,6 +10,9 @@
 #include <pcl_sparse/patches/non_manifold_split.h>
 #include <pcl_sparse/patches/patch_checks.h>
 #include <pcl_sparse/patches/patch_growth.h>
+#include <pcl_sparse/resampling/cloud_quality.h>
+
+#include "model_helpers.h"
 
 #include <gtest/gtest.h>
 
@@ -614,4 +617,29 @@ TEST (PatchSamplingShared, SpotPatchCountFallsAsRhoGrows)
   }
   EXPECT_GT (counts[0], counts[1]);
   EXPECT_GT (counts[1], counts[2]);
+}
+
+TEST (PatchSamplingShared, VertexSetsDoNotFold)
+{
+  // nefertiti-35k.obj: 13 patches of the default encoder held all three corners of a face facing away from
+  // their frame normal (growth accepted a vertex for its other faces, or face completion added corners,
+  // and the face between them folded back over the seed's plane); one resampled point sat on such a
+  // fold, more than 120 degrees from its nearest face. With the pairwise cone, growth and completion now
+  // refuse a vertex that would close a face facing away from the seed normal.
+  const std::string path = sharedMesh ("../extra-meshes/nefertiti-35k.obj");
+  if (!std::filesystem::exists (path))
+    GTEST_SKIP () << path << " not found (../shared absent)";
+  const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
+  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+  sampling.setInputMesh (mesh);
+  sampling.setOptions (SparseSurfaceEncoderOptions ().patches);
+  std::vector<Patch> patches;
+  sampling.compute (patches);
+  expectValidPartition (*mesh, patches, sampling.getOptions (), "nefertiti-35k");  // no fold among them
+
+  const pcl::PointCloud<pcl::PointNormal> cloud =
+    pcl_sparse_test::resampleModel (pcl_sparse_test::encodeMesh (mesh), 4 * mesh->numVertices ());
+  CloudQualityOptions quality;
+  quality.probes = 1000;
+  EXPECT_EQ (evaluateCloudQuality (*mesh, cloud, quality).flipped, 0u);
 }

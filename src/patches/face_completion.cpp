@@ -103,6 +103,44 @@ namespace pcl_sparse
     }
 
     /// Offsets and lists of the patches holding each vertex (\a faces false) or face (true), ascending.
+    /// Whether adding face \a f's corners to a patch (which holds the vertices \a holds says) would put all
+    /// corners of another face facing away from its seed normal \a ns in it: its vertices would fold over
+    /// the seed's plane, as growth refuses (PatchGrower::completesFoldedFace).
+    template <typename Holds>
+    bool
+    completesFoldedFace (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                         const Eigen::Vector3d& ns, int f, const Holds& holds)
+    {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      auto heldAfter = [&] (int v) { return v == t[0] || v == t[1] || v == t[2] || holds (v); };
+      for (int k = 0; k < 3; ++k)
+      {
+        if (holds (t[k]))
+          continue;
+        for (int g : topology.facesOf (t[k]))
+        {
+          const Eigen::Vector3i& u = mesh.triangles[g];
+          if (g != f && geometry.face_areas[g] > 0.0 && geometry.face_normals[g].dot (ns) < 0.0 && heldAfter (u[0]) &&
+              heldAfter (u[1]) && heldAfter (u[2]))
+            return true;
+        }
+      }
+      return false;
+    }
+
+    /// Faces left in no patch: the patches at their corners (as grown) keep their footprints' full reach,
+    /// which is what covers such a face (PatchCode footprint, clip_footprints_at_border).
+    void
+    markPatchesBesideUncoveredFaces (const TriangleMesh& mesh, const std::vector<int>& uncovered,
+                                     const std::vector<int>& vertex_begin, const std::vector<int>& vertex_holders,
+                                     std::vector<Patch>& patches)
+    {
+      for (int f : uncovered)
+        for (int k = 0; k < 3; ++k)
+          for (int i = vertex_begin[mesh.triangles[f][k]]; i < vertex_begin[mesh.triangles[f][k] + 1]; ++i)
+            patches[vertex_holders[i]].beside_uncovered_face = true;
+    }
+
     void
     invertMembership (const std::vector<Patch>& patches, std::size_t size, bool faces, std::vector<int>& offsets,
                       std::vector<int>& lists)
@@ -226,10 +264,13 @@ namespace pcl_sparse
         if (std::any_of (plane.faces.begin (), plane.faces.end (),
                          [&] (const ProjectedFace& other) { return interiorsOverlap (q, other); }))
           continue;  // it would fold over the patch's own triangles: no longer a height field
+        // As growth with the pairwise cone: no two patch triangles further apart than the cone, no fold.
         if (options.pairwise_cone &&
-            std::any_of (patches[p].triangles.begin (), patches[p].triangles.end (),
-                         [&] (int g) { return !(geometry.face_normals[f].dot (geometry.face_normals[g]) > cos_cone); }))
-          continue;  // as growth: no two patch triangles further apart than the cone
+            (std::any_of (patches[p].triangles.begin (), patches[p].triangles.end (),
+                          [&] (int g) { return !(geometry.face_normals[f].dot (geometry.face_normals[g]) > cos_cone); }) ||
+             completesFoldedFace (mesh, topology, geometry, seedNormalOf (patches[p], geometry), f,
+                                  [&] (int v) { return holdsVertex (p, v); })))
+          continue;
         plane.faces.push_back (q);
         Patch& patch = patches[p];
         patch.triangles.push_back (f);
@@ -250,12 +291,7 @@ namespace pcl_sparse
       if (!done)
         result.uncovered.push_back (f);
     }
-    // Faces left in no patch: the patches at their corners keep their footprints' full reach, which is
-    // what covers such a face (PatchCode footprint, clip_footprints_at_border).
-    for (int f : result.uncovered)
-      for (int k = 0; k < 3; ++k)
-        for (int i = vertex_begin[mesh.triangles[f][k]]; i < vertex_begin[mesh.triangles[f][k] + 1]; ++i)
-          patches[vertex_holders[i]].beside_uncovered_face = true;
+    markPatchesBesideUncoveredFaces (mesh, result.uncovered, vertex_begin, vertex_holders, patches);
     return result;
   }
 

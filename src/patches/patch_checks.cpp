@@ -141,6 +141,20 @@ namespace pcl_sparse
         !reachedBySmoothSteps (std::vector<int> (patch.triangles.begin (), patch.triangles.begin () + grown),
                                patch.seed_face, topology_, geometry_, cos_delta))
       return "face-grown patch: a triangle is not reached from the seed face by smooth steps";
+    if (options_.pairwise_cone && patch.seed_face < 0)
+    {
+      // Vertex-grown: no face with its three corners among the patch's vertices faces away from n_s.
+      for (int v : patch.vertices)
+        for (int f : topology_.facesOf (v))
+        {
+          const Eigen::Vector3i& t = mesh_.triangles[f];
+          bool all = true;
+          for (int k = 0; k < 3; ++k)
+            all = all && std::binary_search (sorted.begin (), sorted.end (), t[k]);
+          if (all && geometry_.face_areas[f] > 0.0 && geometry_.face_normals[f].dot (ns) < 0.0)
+            return "the vertices fold: face " + std::to_string (f) + " has its corners in the patch and faces away";
+        }
+    }
     if (options_.pairwise_cone)
     {
       // Only a pair with a triangle further than half the cone from n_s can fail.

@@ -165,12 +165,16 @@ namespace pcl_sparse
     // pass the cone and are smooth at an accepted corner other than u.
     completed_.clear ();
     candidates_.clear ();
+    folds_ = false;
     const auto& areas = geometry_.face_areas;
     for (int f : topology_.facesOf (u))
     {
       const double c = coneCosine (f, ns);
       if (c < 0.0)
+      {
+        folds_ = folds_ || (pairwise_cone_ && completesFoldedFace (f, u, ns));
         continue;
+      }
       const Eigen::Vector3i& t = mesh_.triangles[f];
       bool complete = true, smooth = false;
       for (int k = 0; k < 3; ++k)
@@ -200,6 +204,18 @@ namespace pcl_sparse
       else if (smooth)
         candidates_.emplace_back (f, c);
     }
+  }
+
+  bool
+  PatchGrower::completesFoldedFace (int f, int u, const Eigen::Vector3d& ns) const
+  {
+    if (!(geometry_.face_areas[f] > 0.0) || !(geometry_.face_normals[f].dot (ns) < 0.0))
+      return false;
+    const Eigen::Vector3i& t = mesh_.triangles[f];
+    for (int k = 0; k < 3; ++k)
+      if (t[k] != u && !walk_.isAccepted (t[k]))
+        return false;
+    return true;
   }
 
   bool
@@ -249,7 +265,7 @@ namespace pcl_sparse
       double new_area = 0.0, new_projected = 0.0;
       collectFaces (u, ns, new_area, new_projected);
       const double area_after = area + new_area, projected_after = projected + new_projected;
-      if (!isJustified (area_after, projected_after, patch.vertices.size ()))
+      if (folds_ || !isJustified (area_after, projected_after, patch.vertices.size ()))
       {
         if (pairwise_cone_)  // undo the provisional normals of this vertex's completed faces
           for (int f : completed_)

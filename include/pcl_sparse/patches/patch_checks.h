@@ -36,7 +36,8 @@ namespace pcl_sparse
     /// - every triangle has its three corners in the patch, positive area, positive signed area projected
     ///   on the frame's tangent plane and on the seed's, angle(n_t, n_s) < cone_angle, and
     ///   angle(n_t, n_w) < delta for some corner w;
-    /// - any two triangles differ by less than cone_angle (when options.pairwise_cone);
+    /// - any two triangles differ by less than cone_angle, and no face with its three corners among a
+    ///   vertex-grown patch's vertices faces away from n_s (when options.pairwise_cone);
     /// - A_p / A <= rho or A_p / A_p^proj <= eta.
     ///
     /// Triangles added by face completion (Patch::completed_triangles) are not held to smooth variation

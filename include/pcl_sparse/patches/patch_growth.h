@@ -142,7 +142,12 @@ namespace pcl_sparse
     std::vector<std::uint8_t> state_;  // face growth: vertex membership
     std::vector<int> touched_;
     std::vector<std::pair<double, int>> heap_;  // face growth queue
+    /// Whether \a u would complete face \a f (its other corners accepted) facing away from the seed normal
+    /// \a ns: with \a u, the patch's vertices would fold over the seed's plane.
+    bool completesFoldedFace (int f, int u, const Eigen::Vector3d& ns) const;
+
     std::vector<int> completed_;  // faces completed by the vertex being tested
+    bool folds_ = false;          // the vertex being tested completes a folded face (pairwise cone only)
     std::vector<std::pair<int, double>> candidates_;  // its justifying faces (face, n_t . n_s; -1: complete)
     std::vector<Eigen::Vector3d> patch_normals_;  // normals of the patch triangles so far
     std::vector<Eigen::Vector3d> wide_normals_;   // those further than half the cone from n_s

@@ -24,7 +24,9 @@ namespace pcl_sparse
     double cone_angle = M_PI / 2.5;
     /// Also require angle(n_t, n_m) < cone_angle between any two patch triangles (ours). With the cone
     /// around n_s alone two triangles may differ by up to twice the cone angle: 180 degrees for the
-    /// paper's pi / 2. Neither the paper nor the authors' code checks it. Default true; false in
+    /// paper's pi / 2. Neither the paper nor the authors' code checks it. With it, growth and face
+    /// completion also refuse a vertex that would put all three corners of a face facing away from n_s in
+    /// the patch (its vertices would fold over the seed's plane). Default true; false in
     /// EncoderPreset::Paper.
     bool pairwise_cone = true;
     /// Flatness bound eta on A_p / A_p^proj (patch area over its area projected on the seed's tangent
