@@ -140,7 +140,7 @@ TEST (FaceCompletion, PresetPaperKeepsTheMethod)
 TEST (FaceCompletion, SharedCadMeshes)
 {
   // Before this issue's changes (default options, bench/results/meshes.md): p99 6.55 / 4.38 / 3.06 spacings
-  // and 60 / 229 / 495 flipped normals. Now (measured here): p99 2.89 / 2.84 / 0.82, flipped 0 / 59 / 10:
+  // and 60 / 229 / 495 flipped normals. Now (measured here): p99 2.89 / 2.88 / 0.82, flipped 0 / 54 / 10:
   // the holes are gone; the flips are not all (issue 13 asks for none). couplingdown and cheese-cgal are held
   // at CR 1 by their frames (1829 patches of 8629 vertices leave cheese-cgal about one atom per patch), and
   // their remaining faces in no patch lie outside the cone of every patch holding a corner.
