@@ -11,10 +11,8 @@
 #include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
-#include "generated_clouds.h"
 #include "model_helpers.h"
-
-#include <pcl/kdtree/kdtree_flann.h>
+#include "probe_gaps.h"
 
 #include <gtest/gtest.h>
 
@@ -56,26 +54,10 @@ namespace
 
     Coverage c;
     c.points = cloud.size ();
-    double area = 0.0;
-    const std::vector<Eigen::Vector3d> probes = pcl_sparse_test::sampleSurface (*mesh, 20000, 1, area);
-    const double spacing = std::sqrt (area / static_cast<double> (cloud.size ()));
-    pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
-    for (const auto& p : cloud)
-      xyz->push_back (pcl::PointXYZ (p.x, p.y, p.z));
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-    tree.setInputCloud (xyz);
-    std::vector<double> gaps;
-    std::vector<int> index (1);
-    std::vector<float> squared (1);
-    for (const Eigen::Vector3d& q : probes)
-    {
-      tree.nearestKSearch (pcl::PointXYZ (q.x (), q.y (), q.z ()), 1, index, squared);
-      gaps.push_back ((q - xyz->points[index[0]].getVector3fMap ().cast<double> ()).norm () / spacing);
-    }
+    const std::vector<double> gaps = pcl_sparse_test::probeGapsInSpacings (*mesh, cloud);
     c.within3 = static_cast<double> (std::count_if (gaps.begin (), gaps.end (), [] (double g) { return g <= 3.0; })) /
                 gaps.size ();
-    std::sort (gaps.begin (), gaps.end ());
-    c.p99_spacings = gaps[static_cast<std::size_t> (std::ceil (0.99 * gaps.size ())) - 1];
+    c.p99_spacings = pcl_sparse_test::percentile99 (gaps);
     CloudQualityOptions options;
     options.probes = 1000;
     c.flipped = evaluateCloudQuality (*mesh, cloud, options).flipped;
