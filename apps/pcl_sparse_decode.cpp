@@ -2,7 +2,7 @@
 /// curvature (docs/METHOD.md step 12); optionally reconstructs the input vertices of a mesh.
 ///
 ///   pcl_sparse_decode MODEL.psm OUT.{pcd,ply} [-n N | -density D] [-box XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX]
-///                     [-seed S] [-max-slope DEG] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}]
+///                     [-seed S] [-max-slope DEG] [-clearance C] [-threads T] [-recon MESH RECON.{ply,obj,off,stl}]
 ///                     [-stream auto|on|off] [-block N] [--json] [-q]
 ///
 /// -box decodes a region: of a tiled model (pcl_sparse_encode -tiles) only the tiles whose patches reach
@@ -51,6 +51,7 @@ namespace
       {"", "tiles reaching into it are read"},
       {"-seed S", "seed of the sampling (default 42)"},
       tools::maxSlopeHelpLine (),
+      tools::clearanceHelpLine (),
       {"-threads T", "OpenMP threads (default: all; the output does not depend on it)"},
       {"-recon MESH RECON", "reconstruct MESH's vertices from the model (needs a model written with"},
       {"", "--store-vertices) and write MESH with them to RECON"},
@@ -60,7 +61,7 @@ namespace
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
-    2, {"-n", "-density", "-seed", "-max-slope", "-threads", "-box", {"-recon", 2}, "-stream", "-block"},
+    2, {"-n", "-density", "-seed", "-max-slope", "-clearance", "-threads", "-box", {"-recon", 2}, "-stream", "-block"},
     {"--json", "-q"}};
 
   /// The points of a tiled model at a density, decoded over the processes of \a group: each rank takes a
@@ -192,7 +193,7 @@ main (int argc, char** argv)
       throw Error ("options -n and -density exclude each other");
     SparseSurfaceResamplingOptions resampling_options;
     args.integer ("-seed", resampling_options.seed, tools::Range::atLeast (0));
-    tools::readMaxSlope (args, resampling_options);
+    tools::readOwnershipOptions (args, resampling_options);
     int threads = 0;
     args.integer ("-threads", threads, tools::Range::atLeast (0));
     const bool stream = tools::chooseStreaming (args, out_path, true, false);

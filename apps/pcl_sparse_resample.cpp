@@ -2,7 +2,7 @@
 /// normals and curvature, at any density (docs/METHOD.md step 12).
 ///
 ///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-preset default|paper]
-///                       [-basis dct|paper] [-seed S] [-max-slope DEG]
+///                       [-basis dct|paper] [-seed S] [-max-slope DEG] [-clearance C]
 ///                       [-threads T] [-ascii] [-stream auto|on|off] [-block N] [-q] [--json]
 
 #include "tool_input.h"
@@ -50,6 +50,7 @@ namespace
       {"", "when plausible, else consistently oriented, outward on closed surfaces)"},
       {"-seed S", "seed of the sampling (default: 42)"},
       tools::maxSlopeHelpLine (),
+      tools::clearanceHelpLine (),
       {"-threads T", "threads (default: all; the cloud does not depend on it)"},
       {"-ascii", "write ascii instead of binary"},
       {"-stream M", "auto (default): write the cloud block by block as it is made, memory set by"},
@@ -60,7 +61,7 @@ namespace
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
     },
-    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-max-slope", "-threads", "-angles", "-basis",
+    1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-max-slope", "-clearance", "-threads", "-angles", "-basis",
      "-viewpoint", "-preset", "-png", "-size", "-view", "-stream", "-block"},
     {"-ascii", "-q", "--json"}};
 
@@ -118,7 +119,7 @@ namespace
     if (args.has ("-basis"))
       s.encoder.basis = cosineBasisKindFromName (args.value ("-basis"));
     args.integer ("-seed", s.resampling.seed, Range::atLeast (0));
-    tools::readMaxSlope (args, s.resampling);
+    tools::readOwnershipOptions (args, s.resampling);
     args.integer ("-threads", s.threads, Range::closed (1, 1024));
     s.has_viewpoint = tools::parseViewpoint (args, s.viewpoint);
     s.binary = !args.has ("-ascii");

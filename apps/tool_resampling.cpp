@@ -124,10 +124,18 @@ namespace pcl_sparse
                                         "(default %g; 90: no bound)", PatchOwnershipOptions ().max_slope_angle)};
     }
 
+    HelpLine
+    clearanceHelpLine ()
+    {
+      return {"-clearance C", format ("knife edges: places within C patch radii of the other side stay "
+                                      "unsampled (default %g; 0: none)", PatchOwnershipOptions ().opposite_clearance)};
+    }
+
     void
-    readMaxSlope (const CommandLine& args, SparseSurfaceResamplingOptions& options)
+    readOwnershipOptions (const CommandLine& args, SparseSurfaceResamplingOptions& options)
     {
       args.number ("-max-slope", options.ownership.max_slope_angle, Range::aboveUpTo (0.0, 90.0));
+      args.number ("-clearance", options.ownership.opposite_clearance, Range::atLeast (0.0));
     }
 
     void

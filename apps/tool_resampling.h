@@ -50,12 +50,18 @@ namespace pcl_sparse
     HelpLine
     maxSlopeHelpLine ();
 
-    /// The -max-slope DEG option of the resampling tools: a patch samples only where its code is within DEG
-    /// degrees of its frame normal (PatchOwnershipOptions::max_slope_angle; 90: no bound). Sets it on
-    /// \a options when given.
-    /// \throws Error naming the option for a value outside (0, 90]
+    /// The help line of the -clearance C option of the resampling tools.
+    HelpLine
+    clearanceHelpLine ();
+
+    /// The ownership options of the resampling tools, set on \a options when given:
+    /// - -max-slope DEG: a patch samples only where its code is within DEG degrees of its frame normal
+    ///   (PatchOwnershipOptions::max_slope_angle; 90: no bound);
+    /// - -clearance C: places within C local units of the surface of a patch facing away are left
+    ///   unsampled (PatchOwnershipOptions::opposite_clearance; 0: none).
+    /// \throws Error naming the option for a slope outside (0, 90] or a negative clearance
     void
-    readMaxSlope (const CommandLine& args, SparseSurfaceResamplingOptions& options);
+    readOwnershipOptions (const CommandLine& args, SparseSurfaceResamplingOptions& options);
 
     /// The -block N option of the resampling tools: N points per streamed block (default 2^21), and 64 N
     /// bytes of candidates kept from the weight pass (ResamplingStreamOptions); a streamed run takes

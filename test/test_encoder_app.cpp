@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "knife_mesh.h"
 #include "test_file_helpers.h"
 
 #include <cstdio>
@@ -201,31 +202,42 @@ TEST_F (EncodeTool, VarintLayoutWritesTheSameModelLarger)
   EXPECT_EQ (run (input_ + " -q --varint-layout", out), 1);  // no file to lay out
 }
 
-// -max-slope of pcl_sparse_resample and pcl_sparse_decode reaches the resampling: 50 (the default) writes the
-// default's bytes, 5 degrees (far below the slopes inside the sphere's patches) moves places to other patches.
-TEST_F (EncodeTool, ResampleAndDecodePassTheSlopeBound)
+// -max-slope and -clearance of pcl_sparse_resample and pcl_sparse_decode reach the resampling: the defaults
+// (50 degrees, 0.03) write the default's bytes. On the sphere, 5 degrees (far below the slopes inside its
+// patches) moves places to other patches; on a 20-degree knife, a clearance of 0 keeps the places at its
+// edge that the default leaves unsampled.
+TEST_F (EncodeTool, ResampleAndDecodePassTheOwnershipOptions)
 {
   const std::string bin = std::string (PCL_SPARSE_BINARY_DIR) + "/apps/";
-  const std::string model = (dir_ / "sphere.psm").string ();
-  std::string out;
-  ASSERT_EQ (run (input_ + " -q -o " + model, out), 0);
+  const std::string knife = (dir_ / "knife.off").string ();
+  saveTriangleMesh (knife, pcl_sparse_test::makeKnife (24, 20.0));
   auto bytes = [] (const std::filesystem::path& path) {
     std::ifstream in (path, std::ios::binary);
     return std::string (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
   };
-  for (const std::string command : {bin + "pcl_sparse_resample " + input_, bin + "pcl_sparse_decode " + model})
+  struct Case
   {
-    std::string clouds[3];
-    const char* bounds[3] = {"", " -max-slope 50", " -max-slope 5"};
-    for (int k = 0; k < 3; ++k)
+    std::string mesh, same, changed;
+  };
+  for (const Case& c : {Case{input_, " -max-slope 50", " -max-slope 5"}, Case{knife, " -clearance 0.03", " -clearance 0"}})
+  {
+    const std::string model = c.mesh + ".psm";
+    std::string out;
+    ASSERT_EQ (run (c.mesh + " -q -o " + model, out), 0);
+    for (const std::string command : {bin + "pcl_sparse_resample " + c.mesh, bin + "pcl_sparse_decode " + model})
     {
-      const std::filesystem::path cloud = dir_ / ("slope" + std::to_string (k) + ".pcd");
-      const std::string arguments = " " + cloud.string () + " -n 3000 -q" + bounds[k];
-      ASSERT_EQ (pcl_sparse_test::runShell (command + arguments, out), 0) << command;
-      clouds[k] = bytes (cloud);
-      ASSERT_FALSE (clouds[k].empty ());
+      std::string clouds[3];
+      const std::string options[3] = {"", c.same, c.changed};
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::filesystem::path cloud = dir_ / ("ownership" + std::to_string (k) + ".pcd");
+        const std::string arguments = " " + cloud.string () + " -n 3000 -q" + options[k];
+        ASSERT_EQ (pcl_sparse_test::runShell (command + arguments, out), 0) << command;
+        clouds[k] = bytes (cloud);
+        ASSERT_FALSE (clouds[k].empty ());
+      }
+      EXPECT_EQ (clouds[1], clouds[0]) << command << c.same;
+      EXPECT_NE (clouds[2], clouds[0]) << command << c.changed;
     }
-    EXPECT_EQ (clouds[1], clouds[0]) << command;
-    EXPECT_NE (clouds[2], clouds[0]) << command;
   }
 }
