@@ -124,7 +124,8 @@ namespace pcl_sparse_ros
   ResamplingSettings::describe () const
   {
     std::ostringstream text;
-    text << budget.describe () << ", max slope " << options.ownership.max_slope_angle;
+    text << budget.describe () << ", max slope " << options.ownership.max_slope_angle << ", clearance "
+         << options.ownership.opposite_clearance;
     return text.str ();
   }
 
@@ -139,6 +140,13 @@ namespace pcl_sparse_ros
       if (!(degrees > 0.0 && degrees <= 90.0))
         throw pcl_sparse::Error ("parameter ~max_slope must be an angle in degrees in (0, 90]");
       settings.options.ownership.max_slope_angle = degrees;
+    }
+    double clearance = 0.0;
+    if (readNumber (private_nh, "clearance", clearance))
+    {
+      if (!(clearance >= 0.0) || !std::isfinite (clearance))
+        throw pcl_sparse::Error ("parameter ~clearance must be a finite number >= 0 (patch radii)");
+      settings.options.ownership.opposite_clearance = clearance;
     }
     return settings;
   }

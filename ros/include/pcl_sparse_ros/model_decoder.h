@@ -20,7 +20,7 @@ namespace pcl_sparse_ros
   sensor_msgs::PointCloud2
   decodeModelMessage (const std_msgs::UInt8MultiArray& model, const ResamplingSettings& resampling, int threads);
 
-  /// \brief The ROS side: parameters (~points / ~density / ~spacing, ~max_slope, ~frame_id, ~threads), ~model,
+  /// \brief The ROS side: parameters (~points / ~density / ~spacing, ~max_slope, ~clearance, ~frame_id, ~threads), ~model,
   /// ~output.
   class ModelDecoder
   {

@@ -40,16 +40,17 @@ namespace pcl_sparse_ros
     PointBudget budget;
     /// The library's defaults, with ~max_slope (degrees, in (0, 90]) as ownership.max_slope_angle: a patch
     /// leaves places it sees more steeply to the patch that sees them frontally (pcl_sparse_resample
-    /// -max-slope).
+    /// -max-slope); and ~clearance (>= 0) as ownership.opposite_clearance: places that close to the other
+    /// side of a knife edge stay unsampled (-clearance).
     pcl_sparse::SparseSurfaceResamplingOptions options;
 
     /// Sets the options and the budget on \a resampling (\a default_count for PointBudget::Kind::Default).
     void apply (pcl_sparse::SparseSurfaceResamplingBase& resampling, std::size_t default_count) const;
-    /// The budget's description and the slope bound: "points 5000, max slope 50".
+    /// The budget's description, the slope bound and the clearance: "points 5000, max slope 50, clearance 0.03".
     std::string describe () const;
   };
 
-  /// Reads ~points, ~density, ~spacing and ~max_slope from \a private_nh.
+  /// Reads ~points, ~density, ~spacing, ~max_slope and ~clearance from \a private_nh.
   ResamplingSettings
   readResamplingSettings (const ros::NodeHandle& private_nh);
 
