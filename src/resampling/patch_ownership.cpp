@@ -103,11 +103,10 @@ namespace pcl_sparse
       // A code well inside both bounds on the grid is taken as valid everywhere: the validity test of
       // contenders (a full evaluation) is skipped for it.
       tame[p] = h_max <= 0.5 * options.max_height && slope_max <= 0.25 * max_slope_squared_;
-      // Places above max_height are never the patch's (see beats), which also bounds the reach.
       // Atoms are bounded by 1, so the coefficients' magnitudes bound the heights everywhere.
-      height_bound[p] = 0.0;
       for (double c : model.patches[p].coefficients)
         height_bound[p] += std::abs (c);
+      // Places above max_height are never the patch's (see beats), which also bounds the reach.
       h_max = std::min (h_max * 1.5 + 0.05, options.max_height);
       reach[p] = model.patches[p].radius * std::sqrt (e * e + h_max * h_max) * 1.01;
     }
