@@ -194,10 +194,14 @@ namespace pcl_sparse
     if (std::abs (z) > std::min (other.height_bound, options_.max_height) + options_.opposite_clearance)
       return false;
     const double x = other.t1.dot (d), y = other.t2.dot (d);
-    if (evaluator_.centrality (other.patch, x, y) > 1.0)
-      return false;
+    return evaluator_.centrality (other.patch, x, y) <= 1.0 && liesOnSurface (other, x, y, z, options_.opposite_clearance);
+  }
+
+  bool
+  PatchOwnership::liesOnSurface (const Contender& other, double x, double y, double z, double tolerance) const
+  {
     const double h = evaluator_.height (other.patch, x, y);
-    if (!(std::abs (h) <= options_.max_height && std::abs (z - h) <= options_.opposite_clearance))
+    if (!(std::abs (h) <= options_.max_height && std::abs (z - h) <= tolerance))
       return false;
     return other.tame || isValidPlace (evaluator_.sample (other.patch, x, y, false), options_, max_slope_squared_);
   }
@@ -209,10 +213,7 @@ namespace pcl_sparse
     const double c = evaluator_.centrality (other.patch, x, y);
     if (c > 1.0 || c > centrality || (c == centrality && other.patch > p))
       return false;
-    const double z = other.n.dot (d), h = evaluator_.height (other.patch, x, y);
-    if (!(std::abs (h) <= options_.max_height && std::abs (z - h) <= options_.height_tolerance))
-      return false;
-    return other.tame || isValidPlace (evaluator_.sample (other.patch, x, y, false), options_, max_slope_squared_);
+    return liesOnSurface (other, x, y, other.n.dot (d), options_.height_tolerance);
   }
 
   std::vector<int>

@@ -154,6 +154,10 @@ namespace pcl_sparse
     /// surface, where its code is valid.
     bool
     nearSurface (const Contender& other, const Eigen::Vector3d& q) const;
+    /// Whether the place at local (x, y, z) of \a other (z in its local units) lies within \a tolerance of
+    /// its surface, where its code is a valid place (|h| <= max_height, slope bound).
+    bool
+    liesOnSurface (const Contender& other, double x, double y, double z, double tolerance) const;
 
     const PatchEvaluator& evaluator_;
     PatchOwnershipOptions options_;
