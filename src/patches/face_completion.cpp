@@ -102,32 +102,6 @@ namespace pcl_sparse
       return patch.seed_face >= 0 ? geometry.face_normals[patch.seed_face] : geometry.vertex_normals[patch.seed];
     }
 
-    /// Offsets and lists of the patches holding each vertex (\a faces false) or face (true), ascending.
-    /// Whether adding face \a f's corners to a patch (which holds the vertices \a holds says) would put all
-    /// corners of another face facing away from its seed normal \a ns in it: its vertices would fold over
-    /// the seed's plane, as growth refuses (PatchGrower::completesFoldedFace).
-    template <typename Holds>
-    bool
-    completesFoldedFace (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
-                         const Eigen::Vector3d& ns, int f, const Holds& holds)
-    {
-      const Eigen::Vector3i& t = mesh.triangles[f];
-      auto heldAfter = [&] (int v) { return v == t[0] || v == t[1] || v == t[2] || holds (v); };
-      for (int k = 0; k < 3; ++k)
-      {
-        if (holds (t[k]))
-          continue;
-        for (int g : topology.facesOf (t[k]))
-        {
-          const Eigen::Vector3i& u = mesh.triangles[g];
-          if (g != f && geometry.face_areas[g] > 0.0 && geometry.face_normals[g].dot (ns) < 0.0 && heldAfter (u[0]) &&
-              heldAfter (u[1]) && heldAfter (u[2]))
-            return true;
-        }
-      }
-      return false;
-    }
-
     /// Faces left in no patch: the patches at their corners (as grown) keep their footprints' full reach,
     /// which is what covers such a face (PatchCode footprint, clip_footprints_at_border).
     void
@@ -141,6 +115,7 @@ namespace pcl_sparse
             patches[vertex_holders[i]].beside_uncovered_face = true;
     }
 
+    /// Offsets and lists of the patches holding each vertex (\a faces false) or face (true), ascending.
     void
     invertMembership (const std::vector<Patch>& patches, std::size_t size, bool faces, std::vector<int>& offsets,
                       std::vector<int>& lists)
@@ -268,8 +243,8 @@ namespace pcl_sparse
         if (options.pairwise_cone &&
             (std::any_of (patches[p].triangles.begin (), patches[p].triangles.end (),
                           [&] (int g) { return !(geometry.face_normals[f].dot (geometry.face_normals[g]) > cos_cone); }) ||
-             completesFoldedFace (mesh, topology, geometry, seedNormalOf (patches[p], geometry), f,
-                                  [&] (int v) { return holdsVertex (p, v); })))
+             addingFaceFolds (mesh, topology, geometry, seedNormalOf (patches[p], geometry), f,
+                              [&] (int v) { return holdsVertex (p, v); })))
           continue;
         plane.faces.push_back (q);
         Patch& patch = patches[p];

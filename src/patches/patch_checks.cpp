@@ -141,9 +141,9 @@ namespace pcl_sparse
         !reachedBySmoothSteps (std::vector<int> (patch.triangles.begin (), patch.triangles.begin () + grown),
                                patch.seed_face, topology_, geometry_, cos_delta))
       return "face-grown patch: a triangle is not reached from the seed face by smooth steps";
-    if (options_.pairwise_cone && patch.seed_face < 0)
+    if (options_.pairwise_cone)
     {
-      // Vertex-grown: no face with its three corners among the patch's vertices faces away from n_s.
+      // No face with its three corners among the patch's vertices faces away from n_s.
       for (int v : patch.vertices)
         for (int f : topology_.facesOf (v))
         {

@@ -377,7 +377,9 @@ namespace pcl_sparse
           const int h = topology_.face_neighbors[g][k];
           ok = h >= 0 && face_state_[h] == Accepted && normals[g].dot (normals[h]) > cos_delta_;
         }
-        ok = ok && (!pairwise_cone_ || pairwiseConeHolds (g, c));
+        ok = ok && (!pairwise_cone_ || (pairwiseConeHolds (g, c) &&
+                                        !addingFaceFolds (mesh_, topology_, geometry_, ns, g,
+                                                          [&] (int v) { return state_[v] == Accepted; })));
       }
       if (!ok)
       {

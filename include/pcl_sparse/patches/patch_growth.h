@@ -65,6 +65,39 @@ namespace pcl_sparse
   computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology,
                               const std::vector<Eigen::Vector3d>& point_normals = {});
 
+  /// Whether adding face \a f's corners to a patch (which holds the vertices \a holds says) would put all
+  /// corners of another face facing away from the patch's seed normal \a ns in it: the patch's vertices
+  /// would fold over the seed's plane (a thin ridge), and its code would run between the two sides. Growth
+  /// from a face and face completion refuse such a face with the pairwise cone (PatchOptions), as vertex
+  /// growth refuses such a vertex.
+  /// \param[in] mesh      the mesh
+  /// \param[in] topology  its topology
+  /// \param[in] geometry  computePatchGrowthGeometry (mesh, topology)
+  /// \param[in] ns        the normal the patch grew around (seed vertex's, or seed face's)
+  /// \param[in] f         the face that would join
+  /// \param[in] holds     callable, holds (v) is whether the patch holds vertex v before \a f joins
+  template <typename Holds>
+  bool
+  addingFaceFolds (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                   const Eigen::Vector3d& ns, int f, const Holds& holds)
+  {
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    auto heldAfter = [&] (int v) { return v == t[0] || v == t[1] || v == t[2] || holds (v); };
+    for (int k = 0; k < 3; ++k)
+    {
+      if (holds (t[k]))
+        continue;
+      for (int g : topology.facesOf (t[k]))
+      {
+        const Eigen::Vector3i& u = mesh.triangles[g];
+        if (g != f && geometry.face_areas[g] > 0.0 && geometry.face_normals[g].dot (ns) < 0.0 && heldAfter (u[0]) &&
+            heldAfter (u[1]) && heldAfter (u[2]))
+          return true;
+      }
+    }
+    return false;
+  }
+
   /// Grows patches on one mesh. Scratch arrays (the walk's included) are sized once for the mesh and only
   /// the entries a growth touched are reset, so one growth costs O(R log R) for R visited vertices, independent of the mesh
   /// size. Not thread-safe: one object per thread.
