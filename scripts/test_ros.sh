@@ -158,12 +158,14 @@ rostopic list > /dev/null 2>&1 || { fail "roscore did not come up on $ROS_MASTER
 echo "ros: roscore on $ROS_MASTER_URI"
 
 nodelet=/usr/lib/nodelet/nodelet  # run directly: rosrun would search the source tree (ROS.md)
-# The decoders resample with a slope bound of 30 degrees, not the default 50: the library's decoding with
-# -max-slope 30 is their reference point for point, so the parameter is checked to reach the resampling.
-scan_points=4000 mesh_points=5000 roundtrip_points=2000 decode_slope=30
+# The decoders resample with a slope bound of 30 degrees, not the default 50, and a knife-edge clearance of
+# 0.1, not 0.03: the library's decoding with -max-slope 30 -clearance 0.1 is their reference point for
+# point, so both parameters are checked to reach the resampling (fandisk's 5000 points differ with either
+# default).
+scan_points=4000 mesh_points=5000 roundtrip_points=2000 decode_slope=30 decode_clearance=0.1
 start resample.log "$bin/pcl_sparse_resample_node" __name:=test_resample "~input:=/scan" _points:=$scan_points
 start decode.log "$bin/pcl_sparse_decode_node" __name:=test_decode _frame_id:=mesh _points:=$mesh_points \
-  _max_slope:=$decode_slope
+  _max_slope:=$decode_slope _clearance:=$decode_clearance
 start roundtrip.log "$bin/pcl_sparse_decode_node" __name:=test_roundtrip "~model:=/test_resample/model" \
   _frame_id:=mesh _points:=$roundtrip_points
 start manager.log "$nodelet" manager __name:=test_manager
@@ -171,7 +173,7 @@ manager_pid=${pids[-1]}
 start resample_nodelet.log "$nodelet" load pcl_sparse/ResampleNodelet test_manager __name:=test_resample_nodelet \
   "~input:=/scan" _points:=$scan_points
 start decode_nodelet.log "$nodelet" load pcl_sparse/DecodeNodelet test_manager __name:=test_decode_nodelet \
-  _frame_id:=mesh _points:=$mesh_points _max_slope:=$decode_slope
+  _frame_id:=mesh _points:=$mesh_points _max_slope:=$decode_slope _clearance:=$decode_clearance
 
 # Bad parameters: the node exits 1 naming the parameter; a nodelet logs it and leaves its manager running.
 for bad in "_points:=0" "_points:=10 _spacing:=0.01" "_preset:=fast" "_viewpoint:=1,2" "_max_slope:=95" "_clearance:=-1"; do
@@ -207,7 +209,7 @@ data="$tmp/data"
 mkdir -p "$data"
 "$bin/pcl_sparse_encode" "$shared/meshes/fandisk.off" -o "$data/fandisk.psm" -tolerance 1e-4 -q > /dev/null
 "$bin/pcl_sparse_decode" "$data/fandisk.psm" "$data/fandisk_reference.pcd" -n $mesh_points \
-  -max-slope $decode_slope -q > /dev/null
+  -max-slope $decode_slope -clearance $decode_clearance -q > /dev/null
 "$bin/pcl_sparse_resample" "$shared/meshes/fandisk.off" "$data/fandisk_cloud.pcd" -n 20000 -q > /dev/null
 scans=()
 for s in lamppost.pcd milk_color.pcd fast_gicp_251370668.pcd bun000.ply office1.pcd; do
