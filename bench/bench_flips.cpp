@@ -3,8 +3,12 @@
 // (evaluateCloudQuality: over 120 degrees from its nearest face's normal), tells the patch that emitted it
 // and what is special there, then counts the points per cause.
 //
-//   bench_flips MESH [-n COUNT] [-v]
+//   bench_flips MESH [-n COUNT] [-v] [-far] [-patch P]
 //
+// It also prints how many points lie farther than 1/4, 1/2, 1 and 2 spacings from the mesh and the share of
+// the mean distance those beyond 1/2 spacing make. -far lists the points farther than a spacing (patch,
+// local x, y, centrality, distance to the patch's nearest own vertex); -patch P prints patch P: its coding
+// figures, vertices (local coordinates and the code's height there), projected triangles and footprint.
 // -v prints every flipped point: patch, radius and vertex count, local (x, y), centrality c, height h, the
 // slope angle of the code, the distance to the nearest face (exact, every face) in spacings, the distance to
 // the nearest face on the point's side (normal within 90 degrees of the point's), the point's angle to
@@ -36,6 +40,78 @@
 
 using namespace pcl_sparse;
 
+namespace
+{
+  /// Local distance (fraction of r_P) from \a local to the patch's nearest own vertex.
+  double
+  vertexGap (const PatchCode& code, const Eigen::Vector3d& local)
+  {
+    double gap = 1e300;
+    for (const Eigen::Vector2d& v : code.vertex_xy)
+      gap = std::min (gap, (v - local.head<2> ()).norm ());
+    return gap;
+  }
+
+  /// -patch P: the patch's coding figures, its vertices (local x', y', z' and the code's height there), its
+  /// triangles projected and its footprint's extents.
+  void
+  printPatch (const TriangleMesh& mesh, const SparseSurfaceModel& model, const PatchCodingInfo& info,
+              const PatchEvaluator& evaluator, int p)
+  {
+    const PatchCode& code = model.patches[p];
+    std::printf ("patch %d: N (%.3f %.3f %.3f) r %.4g, %zu atoms, %d samples, spacing %.3f, %d atoms allowed, "
+                 "relative residual %.4f, residual after each atom",
+                 p, code.frame (0, 2), code.frame (1, 2), code.frame (2, 2), code.radius, code.atoms.size (),
+                 info.num_samples, info.spacing, info.allowed_atoms, info.relative_residual);
+    for (double r : info.residual_norms)
+      std::printf (" %.4f", r);
+    std::printf ("\n");
+    for (int v : code.vertices)
+    {
+      const Eigen::Vector3d l = code.toLocal (mesh.vertices[v]);
+      std::printf ("  vertex %d local (%.3f %.3f %.4f) code %.4f\n", v, l.x (), l.y (), l.z (),
+                   evaluator.sample (p, l.x (), l.y (), false).value);
+    }
+    const std::set<int> own (code.vertices.begin (), code.vertices.end ());
+    for (const Eigen::Vector3i& t : mesh.triangles)
+      if (own.count (t[0]) && own.count (t[1]) && own.count (t[2]))
+      {
+        std::printf ("  triangle");
+        for (int j = 0; j < 3; ++j)
+        {
+          const Eigen::Vector3d l = code.toLocal (mesh.vertices[t[j]]);
+          std::printf (" (%.3f %.3f)", l.x (), l.y ());
+        }
+        std::printf ("\n");
+      }
+    std::printf ("  footprint extents:");
+    for (float e : code.footprint.extent)
+      std::printf (" %.2f", e);
+    std::printf ("\n");
+  }
+
+  /// How many points lie farther than 1/4, 1/2, 1 and 2 spacings from the mesh, and the share of the mean
+  /// distance that the points farther than 1/2 spacing make.
+  void
+  printDistanceShares (const CloudQuality& quality)
+  {
+    const double limits[4] = {0.25, 0.5, 1.0, 2.0};
+    std::size_t over[4] = {0, 0, 0, 0};
+    double sum = 0.0, sum_over_half = 0.0;
+    for (double d : quality.point_distances)
+    {
+      sum += d;
+      for (int j = 0; j < 4; ++j)
+        over[j] += d > limits[j] * quality.spacing;
+      if (d > 0.5 * quality.spacing)
+        sum_over_half += d;
+    }
+    std::printf ("  points farther than 1/4, 1/2, 1, 2 spacings: %zu %zu %zu %zu; share of the mean distance from "
+                 "those over 1/2: %.3f\n",
+                 over[0], over[1], over[2], over[3], sum > 0.0 ? sum_over_half / sum : 0.0);
+  }
+} // namespace
+
 int
 main (int argc, char** argv)
 {
@@ -46,6 +122,8 @@ main (int argc, char** argv)
   }
   std::size_t count = 0;
   bool verbose = false;
+  int dump_patch = -1;
+  bool far = false;
   for (int i = 2; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -53,6 +131,10 @@ main (int argc, char** argv)
       count = std::stoul (argv[++i]);
     else if (a == "-v")
       verbose = true;
+    else if (a == "-patch" && i + 1 < argc)
+      dump_patch = std::stoi (argv[++i]);
+    else if (a == "-far")
+      far = true;
   }
   auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (argv[1]));
   SparseSurfaceEncoder<pcl::PointXYZ> encoder;
@@ -76,6 +158,28 @@ main (int argc, char** argv)
                model->numPatches (), cloud.size (), quality.spacing, quality.flipped,
                quality.mean_distance / quality.bbox_diagonal);
 
+  if (dump_patch >= 0 && static_cast<std::size_t> (dump_patch) < model->numPatches ())
+    printPatch (*mesh, *model, encoder.getCodingInfo ()[dump_patch], evaluator, dump_patch);
+  printDistanceShares (quality);
+  if (far)
+  {
+    std::map<int, int> far_patches;
+    for (std::size_t i = 0; i < cloud.size (); ++i)
+      if (quality.point_distances[i] > quality.spacing)
+      {
+        const int p = owner[i];
+        ++far_patches[p];
+        const PatchCode& code = model->patches[p];
+        const Eigen::Vector3d local = code.toLocal (cloud[i].getVector3fMap ().cast<double> ());
+        std::printf ("  far pt %zu patch %d verts %zu: d %.2f s, xy (%.3f %.3f) c %.3f, vertex gap %.3f\n", i, p,
+                     code.vertices.size (), quality.point_distances[i] / quality.spacing, local.x (), local.y (),
+                     evaluator.centrality (p, local.x (), local.y ()), vertexGap (code, local));
+      }
+    std::printf ("  %zu patches emit far points:", far_patches.size ());
+    for (const auto& [p, k] : far_patches)
+      std::printf (" %d:%d", p, k);
+    std::printf ("\n");
+  }
   std::map<std::string, int> causes;
   std::map<int, int> per_patch;
   for (std::size_t i = 0; i < cloud.size (); ++i)
@@ -120,9 +224,7 @@ main (int argc, char** argv)
     const std::set<int> own (code.vertices.begin (), code.vertices.end ());
     const Eigen::Vector3i& t = mesh->triangles[face];
     const bool own_face = own.count (t[0]) && own.count (t[1]) && own.count (t[2]);
-    double nearest_vertex = 1e300;
-    for (const Eigen::Vector2d& v : code.vertex_xy)
-      nearest_vertex = std::min (nearest_vertex, (v - local.head<2> ()).norm ());
+    const double nearest_vertex = vertexGap (code, local);
     const double s = quality.spacing;
     std::string cause;
     if (exact_angle <= 120.0)
