@@ -3,18 +3,23 @@
 // (evaluateCloudQuality: over 120 degrees from its nearest face's normal), tells the patch that emitted it
 // and what is special there, then counts the points per cause.
 //
-//   bench_flips MESH [-n COUNT] [-v] [-far] [-patch P]
+//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-v] [-far] [-patch P]
 //
-// It also prints how many points lie farther than 1/4, 1/2, 1 and 2 spacings from the mesh and the share of
-// the mean distance those beyond 1/2 spacing make. -far lists the points farther than a spacing (patch,
-// local x, y, centrality, distance to the patch's nearest own vertex); -patch P prints patch P: its coding
-// figures, vertices (local coordinates and the code's height there), projected triangles and footprint.
+// -seed S and -clearance C resample with that seed and knife-edge clearance (defaults: the library's, as
+// pcl_sparse_resample). Every run also prints how many points lie farther than 1/4, 1/2, 1 and 2 spacings
+// from the mesh and the share of the mean distance those beyond 1/2 spacing make. -far lists the points
+// farther than a spacing (patch, local x, y, centrality, distance to the patch's nearest own vertex);
+// -patch P prints patch P: its coding figures, vertices (local coordinates and the code's height there),
+// projected triangles and footprint.
 // -v prints every flipped point: patch, radius and vertex count, local (x, y), centrality c, height h, the
 // slope angle of the code, the distance to the nearest face (exact, every face) in spacings, the distance to
 // the nearest face on the point's side (normal within 90 degrees of the point's), the point's angle to
 // both faces and the angle between the two faces, the angle between the patch's frame normal N and the
 // nearest face, whether that face's corners are the patch's own vertices, and the local distance
-// (fraction of r_P) to the patch's nearest own vertex.
+// (fraction of r_P) to the patch's nearest own vertex; then every other patch that holds the nearest face
+// or whose footprint nearly holds the point (centrality <= 1.5): the angle between the two frames, the
+// point's centrality and its height above that patch's code in that patch's local units (the knife-edge
+// clearance drops points within 0.03 of a facing-away patch's code), and the code's slope there.
 // Causes, first that applies:
 //   tie        a face on the point's side within 3 mean point distances: the point lies on its side of a
 //              knife edge or thin part within the coding error, and the other side is nearer by a hair
@@ -124,6 +129,7 @@ main (int argc, char** argv)
   bool verbose = false;
   int dump_patch = -1;
   bool far = false;
+  SparseSurfaceResamplingOptions resampling_options;
   for (int i = 2; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -133,6 +139,10 @@ main (int argc, char** argv)
       verbose = true;
     else if (a == "-patch" && i + 1 < argc)
       dump_patch = std::stoi (argv[++i]);
+    else if (a == "-seed" && i + 1 < argc)
+      resampling_options.seed = std::stoull (argv[++i]);
+    else if (a == "-clearance" && i + 1 < argc)
+      resampling_options.ownership.opposite_clearance = std::stod (argv[++i]);
     else if (a == "-far")
       far = true;
   }
@@ -145,6 +155,7 @@ main (int argc, char** argv)
   SparseSurfaceResampling<pcl::PointNormal> resampling;
   resampling.setInputModel (model);
   resampling.setPointCount (count > 0 ? count : 4 * mesh->vertices.size ());
+  resampling.setOptions (resampling_options);
   pcl::PointCloud<pcl::PointNormal> cloud;
   resampling.compute (cloud);
   const std::vector<int>& owner = resampling.getPointPatches ();
@@ -245,6 +256,24 @@ main (int argc, char** argv)
                    "angle %.1f (side face %.1f, faces %.1f), N-face %.1f, own %d, vertex gap %.3f | %s\n",
                    i, p, code.radius, code.vertices.size (), local.x (), local.y (), c, h.value, slope, best / s,
                    best_agree / s, exact_angle, agree_angle, faces_angle, frame_angle, own_face ? 1 : 0, nearest_vertex, cause.c_str ());
+    if (verbose)
+      for (std::size_t o = 0; o < model->numPatches (); ++o)
+      {
+        if (static_cast<int> (o) == p)
+          continue;
+        const PatchCode& other = model->patches[o];
+        const Eigen::Vector3d l = other.toLocal (q);
+        const double co = evaluator.centrality (o, l.x (), l.y ());
+        const std::set<int> held (other.vertices.begin (), other.vertices.end ());
+        const bool holds_face = held.count (t[0]) && held.count (t[1]) && held.count (t[2]);
+        if (!(co <= 1.5) && !holds_face)
+          continue;
+        const HeightSample ho = evaluator.sample (o, l.x (), l.y (), false);
+        std::printf ("      %spatch %zu: frames %.1f degrees apart, c %.3f, z - h %.4f, slope %.1f\n", holds_face ? "holds the nearest face, " : "", o,
+                     std::acos (std::clamp (other.frame.col (2).dot (code.frame.col (2)), -1.0, 1.0)) * 180.0 / M_PI,
+                     co, l.z () - ho.value,
+                     std::atan (ho.gradient.norm ()) * 180.0 / M_PI);
+      }
   }
   for (const auto& [cause, k] : causes)
     std::printf ("  %4d  %s\n", k, cause.c_str ());
