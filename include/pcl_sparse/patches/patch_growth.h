@@ -126,9 +126,10 @@ namespace pcl_sparse
     /// normal is more than delta from every incident face, strips of faces between two creases. Grows
     /// over faces from \a seed_face (a face of \a seed), by increasing centroid distance along manifold
     /// edges: a face g joins if it is adjacent to a joined face h with angle(n_g, n_h) < delta, and the
-    /// cone (against n_{seed_face}), no-flip and area conditions hold as in grow (). Stops at the first
-    /// refused face when stop_at_first_refusal. Patch vertices are the corners of the joined faces (seed
-    /// first), patch triangles the joined faces.
+    /// cone (against n_{seed_face}), no-flip and area conditions hold as in grow () (with the pairwise
+    /// cone also: every two patch triangles within the cone, and no fold, addingFaceFolds). Stops at the
+    /// first refused face when stop_at_first_refusal. Patch vertices are the corners of the joined faces
+    /// (seed first), patch triangles the joined faces.
     /// \param[in]  seed       the uncovered vertex the patch is for
     /// \param[in]  seed_face  a face incident to \a seed
     /// \param[out] patch      receives seed, seed_face, origin, vertices and triangles, as grow ()
