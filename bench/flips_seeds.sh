@@ -1,0 +1,25 @@
+#!/bin/bash
+# Flipped normals at several resampling seeds: every shared mesh, default options, 4 points per vertex,
+# resampled with each seed in turn (bench_flips MESH -seed S; a cloud is one random draw, each patch's
+# points keyed by the seed and its index). Prints a markdown table, one row per mesh, one column per seed.
+#   bench/flips_seeds.sh [BUILD_DIR] [SEED ...]   (default: build; 42 1 2 3 4 5)
+# The table of bench/results/flips.md, "Other resampling seeds", came from this (about 3 minutes on 2 CPUs).
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(dirname "$here")
+build=$(cd "${1:-$root/build}" && pwd)
+shift || true
+seeds=("$@")
+[ ${#seeds[@]} -gt 0 ] || seeds=(42 1 2 3 4 5)
+shared=${PCL_SPARSE_SHARED:-$root/../shared}
+cmake --build "$build" --target bench_flips -j2 > /dev/null
+printf '| mesh |'; printf ' %s |' "${seeds[@]}"; printf '\n|---|'; printf -- '---|%.0s' "${seeds[@]}"; printf '\n'
+for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
+  [ -f "$mesh" ] || continue
+  printf '| %s |' "$(basename "${mesh%.*}")"
+  for seed in "${seeds[@]}"; do
+    flipped=$("$build/bench/bench_flips" "$mesh" -seed "$seed" | head -1 | sed -n 's/.*flipped \([0-9]*\).*/\1/p')
+    printf ' %s |' "$flipped"
+  done
+  printf '\n'
+done
