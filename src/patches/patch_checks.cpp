@@ -154,9 +154,6 @@ namespace pcl_sparse
           if (all && geometry_.face_areas[f] > 0.0 && geometry_.face_normals[f].dot (ns) < 0.0)
             return "the vertices fold: face " + std::to_string (f) + " has its corners in the patch and faces away";
         }
-    }
-    if (options_.pairwise_cone)
-    {
       // Only a pair with a triangle further than half the cone from n_s can fail.
       const double cos_half = std::cos (0.5 * options_.cone_angle);
       for (int f : patch.triangles)
