@@ -546,6 +546,28 @@ TEST (TiledFile, ReadsTheVersion2Layout)
   EXPECT_LT (region.tiles.size (), tiled.tiles.size ());
   EXPECT_GT (region.tiles.size (), 0u);
   EXPECT_LT (bytes_read, bytes.size ());
+
+  // Version 2 keeps the basis in its tiles: a region no tile reaches takes it from the first tile, so the
+  // empty model can be saved again; a file of no tile has no basis to give and is refused.
+  const Eigen::AlignedBox3d nowhere (Eigen::Vector3d::Constant (50.0), Eigen::Vector3d::Constant (51.0));
+  const TiledModel empty_region = loadTiledModelRegion (path, nowhere);
+  EXPECT_TRUE (empty_region.tiles.empty ());
+  ASSERT_TRUE (empty_region.model.basis);
+  EXPECT_EQ (empty_region.model.basis->size (), merged.basis->size ());
+  EXPECT_NO_THROW (encodeModel (empty_region.model, options));
+  TiledModel no_tile = tiled;
+  no_tile.tiles.clear ();
+  no_tile.model.patches.clear ();
+  const std::vector<std::uint8_t> empty = version2File (no_tile, options);
+  try
+  {
+    decodeModel (empty.data (), empty.size (), "empty.psm");
+    ADD_FAILURE () << "a version-2 file of no tile was read";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("without a tile, hence without a basis"), std::string::npos) << e.what ();
+  }
 }
 
 TEST (TiledEncoding, SeamsLikeTheInside)

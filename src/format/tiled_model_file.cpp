@@ -475,6 +475,20 @@ namespace pcl_sparse
         tiled.model.attribute_channels = shared.attribute_channels;
         tiled.model.attribute_basis = shared.attribute_basis;
       }
+      else if (!tiled.model.basis)
+      {
+        // Version 2 keeps the basis in its tiles only: a region no tile reaches takes it from the first tile,
+        // and a file of no tile has none to give (the fuzzer's round trip found such a model, which could
+        // not be saved again).
+        if (index.entries.empty ())
+          throw Error (name + ": tiled model file (version 2) without a tile, hence without a basis");
+        std::vector<std::uint8_t> storage;
+        const TileIndexEntry& e = index.entries.front ();
+        const SparseSurfaceModel first = decodeModel (read (e, storage), e.size, name + ": tile " + std::to_string (e.tile));
+        tiled.model.basis = first.basis;
+        tiled.model.attribute_channels = first.attribute_channels;
+        tiled.model.attribute_basis = first.attribute_basis;
+      }
       return tiled;
     }
 
