@@ -213,6 +213,17 @@ TEST (IoBadInput, FaceIndexOutOfRange)
   for (std::int32_t i : {0, -5, 2})
     put (ply, i);
   expectFileRefused (dir, "negative.ply", ply, "out of range");
+  // An ascii value beyond its integer type (found by bench/fuzz.sh inputs: cast to an index, it was
+  // undefined behaviour); a float list of huge values that is not an index list loads.
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+  const std::string body = "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 22222222222222222222222\n";
+  expectFileRefused (dir, "huge.ply", header + body, "out of the range of its integer type");
+  expectFileRefused (dir, "bigcount.ply", header + "end_header\n0 0 0\n1 0 0\n0 1 0\n300 0 1 2\n",
+                     "out of the range of its integer type");
+  const std::string path = dir.file ("weights.ply");
+  std::ofstream (path) << header << "property list uchar float weights\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 2 1e300 -1e300\n";
+  EXPECT_EQ (pcl_sparse::loadTriangleMesh (path).triangles.size (), 1u);
 }
 
 TEST (IoBadInput, MalformedRecords)

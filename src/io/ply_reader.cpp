@@ -82,6 +82,31 @@ namespace pcl_sparse
         return type != PlyType::Float32 && type != PlyType::Float64;
       }
 
+      /// Whether \a v lies in the range of the integer type \a type (floating-point types hold any value).
+      bool
+      fitsType (double v, PlyType type)
+      {
+        switch (type)
+        {
+          case PlyType::Int8:
+            return v >= -128.0 && v <= 127.0;
+          case PlyType::UInt8:
+            return v >= 0.0 && v <= 255.0;
+          case PlyType::Int16:
+            return v >= -32768.0 && v <= 32767.0;
+          case PlyType::UInt16:
+            return v >= 0.0 && v <= 65535.0;
+          case PlyType::Int32:
+            return v >= -2147483648.0 && v <= 2147483647.0;
+          case PlyType::UInt32:
+            return v >= 0.0 && v <= 4294967295.0;
+          case PlyType::Float32:
+          case PlyType::Float64:
+            return true;
+        }
+        return false;
+      }
+
       struct PlyProperty
       {
         std::string name;
@@ -594,6 +619,8 @@ namespace pcl_sparse
               throw Error (atLine (path_, cursor.line, "bad PLY value " + cursor.tokenForMessage ()));
             if (isInteger (type) && v != std::floor (v))
               throw Error (atLine (path_, cursor.line, "non-integer value for an integer PLY property"));
+            if (!fitsType (v, type))  // ascii holds any number; a binary file cannot
+              throw Error (atLine (path_, cursor.line, "PLY value out of the range of its integer type"));
             return v;
           };
           for (long long r = 0; r < element.count; ++r)
@@ -617,7 +644,11 @@ namespace pcl_sparse
               const std::size_t count = static_cast<std::size_t> (count_value);
               polygon.resize (count);
               for (std::size_t k = 0; k < count; ++k)
-                polygon[k] = static_cast<long long> (value (r, property.type));
+              {
+                const double entry = value (r, property.type);
+                // Only index lists are integers (checked in range); other lists are read and dropped.
+                polygon[k] = pi == target.indices ? static_cast<long long> (entry) : 0;
+              }
               if (target.is_face && pi == target.indices)
                 addPolygon (polygon, r, mesh);
               else if (target.is_grid && pi == target.indices)
