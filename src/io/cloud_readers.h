@@ -69,7 +69,9 @@ namespace pcl_sparse
       Eigen::Quaternionf sensor_orientation = Eigen::Quaternionf::Identity ();
     };
 
-    /// Reads \a path with pcl::PCDReader after our checks; throws pcl_sparse::Error on any bad file.
+    /// Reads \a path after our header check: DATA binary ourselves at the header's layout, ascii and
+    /// binary_compressed with pcl::PCDReader unless it would take the data's first line for a header line;
+    /// throws pcl_sparse::Error on any bad file.
     void
     readPcdBlob (const std::string& path, PcdBlob& blob);
 

@@ -5,7 +5,9 @@
 ///
 /// Why not pcl::io::loadPCDFile into a typed cloud (measured with PCL 1.13 on ../shared/clouds): it reads
 /// x y z stored as double (TYPE F, SIZE 8) as all zeros, trusts the counts of a lying header, and crashes
-/// on some garbage files; our PCD header check runs first and the fields are read at their own precision.
+/// on some garbage files (and on binary data whose first bytes spell a header keyword such as POINTS, which
+/// it parses as a header line); our PCD header check runs first, DATA binary is read by us at the checked
+/// layout, and the fields are read at their own precision.
 
 #include <pcl_sparse/io/scan_cleaning.h>
 #include <pcl_sparse/io/scan_cloud.h>
