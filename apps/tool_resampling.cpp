@@ -127,8 +127,10 @@ namespace pcl_sparse
     HelpLine
     clearanceHelpLine ()
     {
-      return {"-clearance C", format ("knife edges: places within C patch radii of the other side stay "
-                                      "unsampled (default %g; 0: none)", PatchOwnershipOptions ().opposite_clearance)};
+      const PatchOwnershipOptions defaults;
+      return {"-clearance C", format ("knife edges: no point within C patch radii under the other side, max(C, %g) "
+                                      "over it (default %g; 0: none)",
+                                      defaults.opposite_outside_clearance, defaults.opposite_clearance)};
     }
 
     void

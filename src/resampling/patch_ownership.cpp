@@ -61,6 +61,8 @@ namespace pcl_sparse
       fail ("max_height", max_height, "max_height > 0, finite");
     if (!(opposite_clearance >= 0.0) || !std::isfinite (opposite_clearance))
       fail ("opposite_clearance", opposite_clearance, "opposite_clearance >= 0, finite");
+    if (!(opposite_outside_clearance >= 0.0) || !std::isfinite (opposite_outside_clearance))
+      fail ("opposite_outside_clearance", opposite_outside_clearance, "opposite_outside_clearance >= 0, finite");
     if (!(max_slope_angle > 0.0 && max_slope_angle <= 90.0))
       fail ("max_slope_angle", max_slope_angle, "0 < max_slope_angle <= 90 degrees");
   }
@@ -191,17 +193,19 @@ namespace pcl_sparse
     const Eigen::Vector3d d = q - other.origin;
     // Cheap bound first: the two sides of a thin part are usually farther apart than the heights of a code.
     const double z = other.n.dot (d);
-    if (std::abs (z) > std::min (other.height_bound, options_.max_height) + options_.opposite_clearance)
+    const double outside = std::max (options_.opposite_clearance, options_.opposite_outside_clearance);
+    if (std::abs (z) > std::min (other.height_bound, options_.max_height) + outside)
       return false;
     const double x = other.t1.dot (d), y = other.t2.dot (d);
-    return evaluator_.centrality (other.patch, x, y) <= 1.0 && liesOnSurface (other, x, y, z, options_.opposite_clearance);
+    return evaluator_.centrality (other.patch, x, y) <= 1.0 &&
+           liesOnSurface (other, x, y, z, options_.opposite_clearance, outside);
   }
 
   bool
-  PatchOwnership::liesOnSurface (const Contender& other, double x, double y, double z, double tolerance) const
+  PatchOwnership::liesOnSurface (const Contender& other, double x, double y, double z, double below, double above) const
   {
     const double h = evaluator_.height (other.patch, x, y);
-    if (!(std::abs (h) <= options_.max_height && std::abs (z - h) <= tolerance))
+    if (!(std::abs (h) <= options_.max_height && z - h >= -below && z - h <= above))
       return false;
     return other.tame || isValidPlace (evaluator_.sample (other.patch, x, y, false), options_, max_slope_squared_);
   }
@@ -213,7 +217,7 @@ namespace pcl_sparse
     const double c = evaluator_.centrality (other.patch, x, y);
     if (c > 1.0 || c > centrality || (c == centrality && other.patch > p))
       return false;
-    return liesOnSurface (other, x, y, other.n.dot (d), options_.height_tolerance);
+    return liesOnSurface (other, x, y, other.n.dot (d), options_.height_tolerance, options_.height_tolerance);
   }
 
   std::vector<int>
