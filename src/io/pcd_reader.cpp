@@ -7,10 +7,12 @@
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <locale>
 #include <map>
 #include <set>
@@ -166,29 +168,43 @@ namespace pcl_sparse
       bool
       pclReadsDataAsHeader (const std::string& path, std::size_t data_offset)
       {
-        std::FILE* file = std::fopen (path.c_str (), "rb");
-        if (!file)
-          throw Error (path + ": cannot open the file");
-        std::string data (4096, '\0');
-        std::fseek (file, static_cast<long> (data_offset), SEEK_SET);
-        data.resize (std::fread (&data[0], 1, data.size (), file));
-        std::fclose (file);
+        std::ifstream in (path, std::ios::binary);
+        in.seekg (static_cast<std::streamoff> (data_offset));
         static const char* const keywords[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT", "WIDTH",
                                                "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
-        for (std::size_t position = 0; position < data.size ();)
+        const auto isKeyword = [] (const std::string& token) {
+          return std::any_of (std::begin (keywords), std::end (keywords), [&] (const char* keyword) {
+            return token.compare (0, std::strlen (keyword), keyword) == 0;
+          });
+        };
+        // The first word of each line, as PCL's stream extraction sees it; lines without one and comments
+        // are skipped (PCL goes on past empty lines and comments; we also past blank ones, to be safe).
+        std::string token;
+        bool comment = false;
+        for (char c; in.get (c);)
         {
-          const std::size_t nl = std::min (data.find ('\n', position), data.size ());
-          std::istringstream line (data.substr (position, nl - position));
-          position = nl + 1;
-          std::string token;
-          if (!(line >> token) || token[0] == '#')
-            continue;  // PCL skips empty lines and comments and reads on
-          for (const char* keyword : keywords)
-            if (token.compare (0, std::strlen (keyword), keyword) == 0)
-              return true;
-          return false;
+          if (c == '\n')
+          {
+            token.clear ();
+            comment = false;
+          }
+          else if (comment)
+            continue;
+          else if (std::isspace (static_cast<unsigned char> (c)))
+          {
+            if (!token.empty ())
+              return isKeyword (token);
+          }
+          else
+          {
+            token += c;
+            if (token[0] == '#')
+              comment = true;
+            else if (token.size () == 9)  // longer than every keyword: decided
+              return isKeyword (token);
+          }
         }
-        return false;
+        return isKeyword (token) && !comment;
       }
 
       /// The points of a DATA binary file, read at the layout our header check found (PCL's reader would

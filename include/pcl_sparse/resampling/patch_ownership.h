@@ -14,9 +14,9 @@
 ///
 /// Where a patch P meets a patch Q facing away from it (frame normals more than opposite_angle = 95 degrees
 /// apart: a knife edge or a thin part), a place of P that lies in Q's footprint within opposite_clearance
-/// under Q's surface or opposite_outside_clearance over it is nobody's: within the coding error of both sides, the other side's surface may be the
-/// nearer one, and the point's normal would then be more than 120 degrees off the surface's there (a
-/// flipped normal).
+/// under Q's surface or opposite_outside_clearance over it is nobody's: within the coding error of both
+/// sides, the other side's surface may be the nearer one, and the point's normal would then be more than
+/// 120 degrees off the surface's there (a flipped normal).
 
 #include <pcl_sparse/resampling/patch_evaluator.h>
 
