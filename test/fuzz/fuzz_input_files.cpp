@@ -1,8 +1,9 @@
 /// libFuzzer target for the mesh and scan readers (.obj .off .ply .stl .pcd .xyz): the first byte picks the
-/// format (byte % 6) and a loader option (byte / 6 odd or even), the rest is the file. Any input must either load or throw
-/// pcl_sparse::Error; sanitizers (ASan, UBSan) turn anything else into a finding. A loaded mesh must index
-/// only its own vertices, a loaded scan must number every point. Built by bench/fuzz.sh (target inputs;
-/// clang, -fsanitize=fuzzer,address,undefined); seed corpus from make_input_corpus.py.
+/// format (byte % 6) and a loader option (byte / 6 odd or even), the rest is the file. Any input must
+/// either load or throw pcl_sparse::Error; sanitizers (ASan, UBSan) turn anything else into a finding. A
+/// loaded mesh must index only its own vertices, a loaded scan must number every point. Built by
+/// bench/fuzz.sh (target inputs; clang, -fsanitize=fuzzer,address,undefined); seed corpus from
+/// make_input_corpus.py.
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/mesh_io.h>
