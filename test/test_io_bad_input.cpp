@@ -415,6 +415,8 @@ TEST (IoBadInput, PcdDataThatLooksLikeAHeaderLine)
   const std::string ascii_path = dir.file ("ascii.pcd");
   writeBytes (ascii_path, header + "DATA ascii\n\n# a comment\nPOINTS 9\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n");
   expectScanRefused (ascii_path, "its data starts like a header line");
+  writeBytes (ascii_path, header + "DATA ascii\nFIELDS\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n");  // a keyword alone on its line
+  expectScanRefused (ascii_path, "its data starts like a header line");
   writeBytes (ascii_path, header + "DATA ascii\n\n# a comment\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n");
   ASSERT_NO_THROW (loadScanCloud (ascii_path, scan, keep_all));
   EXPECT_EQ (scan.positions.size (), 4u);

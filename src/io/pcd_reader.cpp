@@ -185,6 +185,8 @@ namespace pcl_sparse
         {
           if (c == '\n')
           {
+            if (!token.empty () && !comment)
+              return isKeyword (token);
             token.clear ();
             comment = false;
           }
