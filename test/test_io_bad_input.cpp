@@ -268,6 +268,15 @@ TEST (IoBadInput, MalformedRecords)
                      "floating-point");
   expectFileRefused (dir, "type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n",
                      "bad PLY property");
+  // Found by bench/fuzz.sh inputs: a second vertex element left the first one's colour columns empty beside
+  // the second one's points (the scan loader read past them).
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  expectFileRefused (dir, "two_vertex.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 0\n" + xyz + "property uchar red\nelement vertex 1\n" + xyz +
+                       "end_header\n0 0 0\n",
+                     "a second PLY element 'vertex'");
+  expectFileRefused (dir, "two_z.ply", "ply\nformat ascii 1.0\nelement vertex 1\n" + xyz + "property float z\nend_header\n0 0 0 0\n",
+                     "a second PLY property 'z'");
   expectFileRefused (dir, "noface.stl", "solid s\nvertex 0 0 0\nendsolid s\n", "outside a facet");
 }
 

@@ -236,6 +236,10 @@ namespace pcl_sparse
             }
             if (count < 0)
               throw Error (atLine (path, line, "bad PLY element line"));
+            // A second element or property of one name would hold columns of another size than the first.
+            for (const PlyElement& earlier : layout.elements)
+              if (earlier.name == words[1])
+                throw Error (atLine (path, line, "a second PLY element '" + words[1] + "'"));
             element.name = words[1];
             element.count = count;
             layout.elements.push_back (element);
@@ -257,6 +261,9 @@ namespace pcl_sparse
             if (!ok)
               throw Error (atLine (path, line, "bad PLY property line"));
             property.name = words.back ();
+            for (const PlyProperty& earlier : layout.elements.back ().properties)
+              if (earlier.name == property.name)
+                throw Error (atLine (path, line, "a second PLY property '" + property.name + "' in one element"));
             layout.elements.back ().properties.push_back (property);
           }
           else
