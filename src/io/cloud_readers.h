@@ -40,13 +40,7 @@ namespace pcl_sparse
       pcl::console::VERBOSITY_LEVEL level_;
     };
 
-    /// Checks a PCD header before PCL's reader sees the file: pcl::PCDReader (PCL 1.13) crashes on some
-    /// garbage files and trusts the counts, so the header must be complete and consistent, x y z must be
-    /// fields, and binary data must be as long as the counts say.
-    void
-    validatePcdHeader (const std::string& path);
-
-    /// A PCD header, as validatePcdHeader checks it and PCL's reader would lay out the points.
+    /// A PCD header, as readPcdHeader checks it and PCL's reader would lay out the points.
     struct PcdHeader
     {
       pcl::PCLPointCloud2 layout;  ///< fields (offset, datatype, count), point_step, row_step, width, height; no data
@@ -56,11 +50,13 @@ namespace pcl_sparse
       Eigen::Quaternionf sensor_orientation = Eigen::Quaternionf::Identity ();  ///< VIEWPOINT orientation
     };
 
-    /// validatePcdHeader, returning the header it checked.
+    /// Checks a PCD header before the data is read: pcl::PCDReader (PCL 1.13) crashes on some garbage files
+    /// and trusts the counts, so the header must be complete and consistent, x y z must be fields, and
+    /// binary data must be as long as the counts say. Returns the header it checked.
     PcdHeader
     readPcdHeader (const std::string& path);
 
-    /// A PCD file as PCL's reader gives it, after checkReadableFile and validatePcdHeader: the raw blob (any
+    /// A PCD file as PCL's reader gives it, after checkReadableFile and readPcdHeader: the raw blob (any
     /// field types) and the VIEWPOINT pose.
     struct PcdBlob
     {

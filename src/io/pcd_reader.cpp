@@ -153,12 +153,6 @@ namespace pcl_sparse
       return result;
     }
 
-    void
-    validatePcdHeader (const std::string& path)
-    {
-      readPcdHeader (path);
-    }
-
     namespace
     {
       /// Whether PCL's reader would take the first lines after the DATA line for header lines. Its header
