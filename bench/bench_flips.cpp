@@ -39,7 +39,6 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -55,6 +54,15 @@ namespace
     for (const Eigen::Vector2d& v : code.vertex_xy)
       gap = std::min (gap, (v - local.head<2> ()).norm ());
     return gap;
+  }
+
+  /// Whether every corner of triangle \a t is one of the patch's vertices.
+  bool
+  holdsTriangle (const PatchCode& code, const Eigen::Vector3i& t)
+  {
+    return std::all_of (t.data (), t.data () + 3, [&] (int v) {
+      return std::find (code.vertices.begin (), code.vertices.end (), v) != code.vertices.end ();
+    });
   }
 
   /// -patch P: the patch's coding figures, its vertices (local x', y', z' and the code's height there), its
@@ -77,9 +85,8 @@ namespace
       std::printf ("  vertex %d local (%.3f %.3f %.4f) code %.4f\n", v, l.x (), l.y (), l.z (),
                    evaluator.sample (p, l.x (), l.y (), false).value);
     }
-    const std::set<int> own (code.vertices.begin (), code.vertices.end ());
     for (const Eigen::Vector3i& t : mesh.triangles)
-      if (own.count (t[0]) && own.count (t[1]) && own.count (t[2]))
+      if (holdsTriangle (code, t))
       {
         std::printf ("  triangle");
         for (int j = 0; j < 3; ++j)
@@ -232,9 +239,8 @@ main (int argc, char** argv)
       std::acos (std::clamp (face_normals[face].dot (face_normals[agree_face]), -1.0, 1.0)) * 180.0 / M_PI;
     const double frame_angle =
       std::acos (std::clamp (code.frame.col (2).dot (face_normals[face]), -1.0, 1.0)) * 180.0 / M_PI;
-    const std::set<int> own (code.vertices.begin (), code.vertices.end ());
     const Eigen::Vector3i& t = mesh->triangles[face];
-    const bool own_face = own.count (t[0]) && own.count (t[1]) && own.count (t[2]);
+    const bool own_face = holdsTriangle (code, t);
     const double nearest_vertex = vertexGap (code, local);
     const double s = quality.spacing;
     std::string cause;
@@ -264,8 +270,7 @@ main (int argc, char** argv)
         const PatchCode& other = model->patches[o];
         const Eigen::Vector3d l = other.toLocal (q);
         const double co = evaluator.centrality (o, l.x (), l.y ());
-        const std::set<int> held (other.vertices.begin (), other.vertices.end ());
-        const bool holds_face = held.count (t[0]) && held.count (t[1]) && held.count (t[2]);
+        const bool holds_face = holdsTriangle (other, t);
         if (!(co <= 1.5) && !holds_face)
           continue;
         const HeightSample ho = evaluator.sample (o, l.x (), l.y (), false);
