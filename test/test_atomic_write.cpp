@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -19,13 +20,16 @@ namespace
     return std::string (std::istreambuf_iterator<char> (in), std::istreambuf_iterator<char> ());
   }
 
+  /// An empty folder for the running test, made once per test.
   fs::path
-  scratchDirectory ()
+  freshScratchDirectory ()
   {
     // One folder per test: ctest runs the tests of this file in parallel, and FailureLeavesNoFile checks
-    // that no temporary file is left in its folder, which must not see the other test's temporary file.
+    // that no temporary file is left in its folder, which must not see the other test's temporary file
+    // (nor one left by an earlier run).
     const fs::path dir =
       fs::path (PCL_SPARSE_BINARY_DIR) / "atomic_write" / ::testing::UnitTest::GetInstance ()->current_test_info ()->name ();
+    fs::remove_all (dir);
     fs::create_directories (dir);
     return dir;
   }
@@ -33,7 +37,7 @@ namespace
 
 TEST (AtomicWrite, BytesAreWrittenExactlyAndReplaceTheFile)
 {
-  const fs::path path = scratchDirectory () / "bytes.bin";
+  const fs::path path = freshScratchDirectory () / "bytes.bin";
   const std::string first ("a\0b\nc", 5);
   pcl_sparse::writeBytesAtomically (path.string (), first.data (), first.size ());
   EXPECT_EQ (readFile (path), first);
@@ -46,15 +50,43 @@ TEST (AtomicWrite, BytesAreWrittenExactlyAndReplaceTheFile)
 
 TEST (AtomicWrite, FailureLeavesNoFile)
 {
-  const fs::path path = scratchDirectory () / "no_such_folder" / "bytes.bin";
+  const fs::path dir = freshScratchDirectory ();
+  const fs::path path = dir / "no_such_folder" / "bytes.bin";
   EXPECT_THROW (pcl_sparse::writeBytesAtomically (path.string (), "xy", 2), pcl_sparse::Error);
   EXPECT_FALSE (fs::exists (path));
-  // A failing writer leaves the target untouched.
-  const fs::path kept = scratchDirectory () / "kept.bin";
+  // A writer that fails or throws half-way, after writing part of its temporary file, leaves the target
+  // untouched and no temporary behind.
+  const fs::path kept = dir / "kept.bin";
   pcl_sparse::writeBytesAtomically (kept.string (), "old", 3);
-  EXPECT_THROW (pcl_sparse::writeFileAtomically (kept.string (), [] (const std::string&) { return false; }),
+  std::string temporary;
+  auto writeHalf = [&temporary] (const std::string& path) {
+    temporary = path;
+    std::ofstream (path, std::ios::binary) << "ne";
+    return fs::exists (path);
+  };
+  EXPECT_THROW (pcl_sparse::writeFileAtomically (kept.string (), [&] (const std::string& path) {
+                  writeHalf (path);
+                  return false;
+                }),
                 pcl_sparse::Error);
+  ASSERT_FALSE (temporary.empty ());
+  EXPECT_FALSE (fs::exists (temporary)) << temporary;
   EXPECT_EQ (readFile (kept), "old");
-  for (const auto& entry : fs::directory_iterator (scratchDirectory ()))
+  temporary.clear ();
+  EXPECT_THROW (pcl_sparse::writeFileAtomically (kept.string (), [&] (const std::string& path) -> bool {
+                  if (writeHalf (path))
+                    throw std::runtime_error ("disk full");
+                  return true;
+                }),
+                std::runtime_error);
+  ASSERT_FALSE (temporary.empty ());
+  EXPECT_FALSE (fs::exists (temporary)) << temporary;
+  EXPECT_EQ (readFile (kept), "old");
+  int entries = 0;
+  for (const auto& entry : fs::directory_iterator (dir))
+  {
+    ++entries;
     EXPECT_EQ (entry.path ().string ().find (".tmp"), std::string::npos) << entry.path ();
+  }
+  EXPECT_EQ (entries, 1);  // kept.bin alone
 }
