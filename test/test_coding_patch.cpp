@@ -57,14 +57,15 @@ namespace
 
 TEST (PatchSamples, SpacingOfRegularGrid)
 {
-  // 10 x 10 cells on [-1, 1]^2: edges 0.2 (axis) and 0.2 sqrt 2 (diagonals); radius 2 halves them.
+  // 10 x 10 cells on [-1, 1]^2: edges 0.2 (axis) and 0.2 sqrt 2 (diagonals); radius 2 halves them. mu is
+  // the median over the vertices of their mean ring-edge length: 60 of the 121 vertices have axis edges
+  // only (0.2), and the median one, the 61st, is a corner with two axis edges and a diagonal.
   const TriangleMesh mesh = makePlaneGrid (10, 1.0);
   const MeshTopology topology = buildMeshTopology (mesh);
   const Patch patch = wholeMeshPatch (mesh, 2.0);
   const double mu = patchSampleSpacing (patch, mesh, topology);
   EXPECT_DOUBLE_EQ (patchSampleSpacing (patch, meanRingEdgeLengths (mesh, topology)), mu);
-  EXPECT_GT (mu, 0.1 * 0.99);
-  EXPECT_LT (mu, 0.1 * std::sqrt (2.0) * 1.01);
+  EXPECT_NEAR (mu, (0.2 + 0.2 + 0.2 * std::sqrt (2.0)) / 3.0 / 2.0, 1e-12);
 }
 
 TEST (PatchSamples, ExtraSamplesLieOnTheSurfaceAndAreDeterministic)
