@@ -263,6 +263,20 @@ TEST (TileMembership, MarginBoxesAndOwnerExactly)
     probes.push_back (grid.coreBox (t).min ());
     probes.push_back (grid.coreBox (t).center ());
   }
+  // The owner itself, against the core boxes: each tile owns its centre and its min corner (a place on a
+  // border between core boxes goes to the higher index), each place inside the grid lies in its owner's
+  // core box, and a place outside goes to the tile of its clamped coordinates.
+  const Eigen::AlignedBox3d whole (grid.origin, grid.origin + span);
+  for (std::size_t t = 0; t < grid.size (); ++t)
+  {
+    EXPECT_EQ (grid.tileOf (grid.coreBox (t).center ()), t);
+    EXPECT_EQ (grid.tileOf (grid.coreBox (t).min ()), t);
+  }
+  for (const Eigen::Vector3d& p : probes)
+  {
+    const Eigen::Vector3d clamped = p.cwiseMax (whole.min ()).cwiseMin (whole.max ());
+    EXPECT_TRUE (grid.coreBox (grid.tileOf (p)).contains (clamped)) << p.transpose ();
+  }
   std::vector<std::size_t> tiles;
   std::size_t shared = 0;
   for (const Eigen::Vector3d& p : probes)
