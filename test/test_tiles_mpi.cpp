@@ -145,6 +145,7 @@ TEST_F (TilesMpi, RanksHoldABandOfTiles)
   const std::string alone = figures (out);
   const std::string two = mpirun (2) + encode;
   ASSERT_EQ (runCommand (two + " -o " + dir_.file ("two.psm"), out), 0) << out;
+  EXPECT_NE (out.find ("\"ranks\": 2"), std::string::npos) << out;  // two encoders of one world, not two alone
   EXPECT_TRUE (pcl_sparse_test::readBytes (dir_.file ("two.psm")) == pcl_sparse_test::readBytes (dir_.file ("alone.psm")));
   EXPECT_EQ (figures (out), alone);
   const int tiles = std::stoi (jsonValue (out, "tiles"));
@@ -159,6 +160,7 @@ TEST_F (TilesMpi, RanksHoldABandOfTiles)
   ASSERT_EQ (runCommand (encode + " -o " + dir_.file ("far_alone.psm"), out), 0) << out;
   const std::string far_alone = figures (out);
   ASSERT_EQ (runCommand (two + " -o " + dir_.file ("far_two.psm"), out), 0) << out;
+  EXPECT_NE (out.find ("\"ranks\": 2"), std::string::npos) << out;
   EXPECT_TRUE (pcl_sparse_test::readBytes (dir_.file ("far_two.psm")) == pcl_sparse_test::readBytes (dir_.file ("far_alone.psm")));
   EXPECT_EQ (figures (out), far_alone);
   EXPECT_EQ (jsonValue (out, "held_tiles"), jsonValue (out, "tiles")) << out;
