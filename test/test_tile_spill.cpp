@@ -425,6 +425,14 @@ TEST (ScanStreamReader, BinaryPlyBothEndiansAndAscii)
     EXPECT_EQ (all.positions, worldPositions (whole));
     EXPECT_EQ (all.colors, whole.colors);
     EXPECT_EQ (all.intensities, whole.intensities);
+    // The values written, not only agreement with loadScanCloud (which shares the PLY record decoder).
+    ASSERT_EQ (all.positions.size (), 5u);
+    for (int i = 0; i < 5; ++i)
+    {
+      EXPECT_EQ (all.positions[i], Eigen::Vector3d (1000.125 + i, 0.5 * i, 2.0)) << i;
+      EXPECT_EQ (all.colors[i], 0xff000000u | (10u * i) << 16 | 20u << 8 | 30u) << i;
+      EXPECT_EQ (all.intensities[i], static_cast<float> (i)) << i;
+    }
   }
 }
 
