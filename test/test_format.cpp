@@ -410,8 +410,10 @@ TEST (ModelFile, DamagedRangeCodedSectionsAreErrorsNotCrashes)
         payloads.emplace_back (payload.data (), payload.size ());
       try
       {
-        decodeModelSections (sections.shared, model.patches.size (), payloads, "forged");
+        const SparseSurfaceModel forged = decodeModelSections (sections.shared, model.patches.size (), payloads, "forged");
         ++decoded;
+        // What decodes is a valid model: the writer refuses NaN, repeated or out-of-range atoms.
+        EXPECT_NO_THROW (encodeModel (forged)) << tags[s] << " bit " << bit;
       }
       catch (const Error& e)
       {
@@ -421,7 +423,7 @@ TEST (ModelFile, DamagedRangeCodedSectionsAreErrorsNotCrashes)
       }
     }
   }
-  EXPECT_GT (errors, 100u);
+  EXPECT_GT (errors, 10 * decoded);  // measured 4147 refused, 285 decoded
   std::cout << "  flipped bits: " << errors << " refused, " << decoded << " decoded to another model" << std::endl;
 }
 
