@@ -8,6 +8,8 @@
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
 #include <gtest/gtest.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
 
 #include "test_file_helpers.h"
 
@@ -446,6 +448,17 @@ TEST (IoCloud, PointNormalCloudRoundTripsThroughPcdAndPly)
         EXPECT_EQ (loaded[i].x, cloud[i].x);
         EXPECT_EQ (loaded[i].y, cloud[i].y);
         EXPECT_EQ (loaded[i].z, cloud[i].z);
+      }
+      // The normals and curvature too, read back by PCL's own readers.
+      pcl::PointCloud<pcl::PointNormal> with_normals;
+      ASSERT_EQ (std::string (name) == "c.pcd" ? pcl::io::loadPCDFile (path, with_normals)
+                                               : pcl::io::loadPLYFile (path, with_normals),
+                 0);
+      ASSERT_EQ (with_normals.size (), cloud.size ());
+      for (std::size_t i = 0; i < cloud.size (); ++i)
+      {
+        EXPECT_EQ (with_normals[i].getNormalVector3fMap (), cloud[i].getNormalVector3fMap ()) << i;
+        EXPECT_EQ (with_normals[i].curvature, cloud[i].curvature) << i;
       }
     }
   EXPECT_THROW (savePointNormalCloud (dir.file ("c.txt"), cloud), Error);
