@@ -38,6 +38,7 @@ namespace
     std::vector<float> attributes;
     std::size_t blocks = 0;
     std::size_t largest_block = 0;
+    std::vector<std::size_t> totals;  ///< ResampledBlock::total of each block
   };
 
   /// Runs the streamed compute of \a resampling, checking the blocks' order and announced total.
@@ -51,12 +52,16 @@ namespace
       EXPECT_EQ (block.cloud.size (), block.patches.size ());
       EXPECT_EQ (block.cloud.width, block.cloud.size ());
       EXPECT_LE (block.first + block.cloud.size (), block.total);
+      out.totals.push_back (block.total);
       out.cloud.insert (out.cloud.end (), block.cloud.begin (), block.cloud.end ());
       out.patches.insert (out.patches.end (), block.patches.begin (), block.patches.end ());
       out.attributes.insert (out.attributes.end (), block.attributes.begin (), block.attributes.end ());
       ++out.blocks;
       out.largest_block = std::max (out.largest_block, block.cloud.size ());
     });
+    // Every block announces the final count, which a streaming writer puts in its header before the points.
+    for (const std::size_t total : out.totals)
+      EXPECT_EQ (total, out.cloud.size ());
     return out;
   }
 
