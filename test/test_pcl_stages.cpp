@@ -119,13 +119,19 @@ TYPED_TEST (StagesOnEveryPointType, CloudAndPolygonsGiveTheMeshModel)
     patch.attributes.clear ();
   EXPECT_EQ (modelBytes (model), modelBytes (expected));
 
-  // The other stages take the same input.
+  // The other stages take the same input and give what they give on the mesh itself (float-exact).
   HarrisKeypoint3DMesh<TypeParam> harris;
   harris.setInputCloud (cloudOf<TypeParam> (*mesh));
   harris.setInputPolygons (polygonsOf (*mesh));
   pcl::PointCloud<pcl::PointXYZI> keypoints;
   harris.compute (keypoints);
   EXPECT_EQ (keypoints.size (), static_cast<std::size_t> (std::lround (0.01 * mesh->numVertices ())));
+  HarrisKeypoint3DMesh<pcl::PointXYZ> mesh_harris;
+  mesh_harris.setInputMesh (mesh);
+  pcl::PointCloud<pcl::PointXYZI> mesh_keypoints;
+  mesh_harris.compute (mesh_keypoints);
+  EXPECT_EQ (harris.getResponses (), mesh_harris.getResponses ());
+  EXPECT_EQ (harris.getKeypointsIndices ()->indices, mesh_harris.getKeypointsIndices ()->indices);
 
   MeshNormalEstimation<TypeParam> normals;
   normals.setInputCloud (cloudOf<TypeParam> (*mesh));
@@ -134,6 +140,15 @@ TYPED_TEST (StagesOnEveryPointType, CloudAndPolygonsGiveTheMeshModel)
   normals.compute (with_normals);
   ASSERT_EQ (with_normals.size (), mesh->numVertices ());
   EXPECT_GT (with_normals[0].getNormalVector3fMap ().dot (with_normals[0].getVector3fMap ().normalized ()), 0.5f);
+  MeshNormalEstimation<pcl::PointXYZ> mesh_normals;
+  mesh_normals.setInputMesh (mesh);
+  pcl::PointCloud<pcl::PointNormal> expected_normals;
+  mesh_normals.compute (expected_normals);
+  for (std::size_t i = 0; i < mesh->numVertices (); ++i)
+  {
+    ASSERT_EQ (with_normals[i].getVector3fMap (), expected_normals[i].getVector3fMap ()) << i;
+    ASSERT_EQ (with_normals[i].getNormalVector3fMap (), expected_normals[i].getNormalVector3fMap ()) << i;
+  }
 
   FeatureAwarePatchSampling<TypeParam> sampling;
   sampling.setInputCloud (cloudOf<TypeParam> (*mesh));
@@ -141,6 +156,13 @@ TYPED_TEST (StagesOnEveryPointType, CloudAndPolygonsGiveTheMeshModel)
   std::vector<Patch> patches;
   sampling.compute (patches);
   EXPECT_EQ (patches.size (), model.numPatches ());
+  FeatureAwarePatchSampling<pcl::PointXYZ> mesh_sampling;
+  mesh_sampling.setInputMesh (mesh);
+  std::vector<Patch> expected_patches;
+  mesh_sampling.compute (expected_patches);
+  ASSERT_EQ (patches.size (), expected_patches.size ());
+  for (std::size_t p = 0; p < patches.size (); ++p)
+    ASSERT_EQ (patches[p].vertices, expected_patches[p].vertices) << p;
 }
 
 TEST (PclStages, QuadsAreFannedIntoTriangles)
