@@ -1,3 +1,4 @@
+#include <pcl_sparse/geometry/sharp_edges.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_cleaning.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -336,6 +337,7 @@ namespace
     std::size_t faces = 0;
     std::string closed_manifold;  // "yes" / "no"
     std::string genus;            // empty when not given
+    std::size_t sharp_edges = 0;  // edges whose faces meet at more than 60 degrees
     double bbox_diagonal = 0.0;
   };
 
@@ -388,6 +390,7 @@ namespace
       row.faces = std::stoul (cells[column ("F")]);
       row.closed_manifold = cells[column ("closed manifold")];
       row.genus = cells[column ("genus")];
+      row.sharp_edges = std::stoul (cells[column ("edges > 60°")]);
       row.bbox_diagonal = std::stod (cells[column ("bbox diagonal")]);
       rows.push_back (row);
     }
@@ -420,6 +423,9 @@ TEST (MeshReportSharedMeshes, AgreeWithTheReadmeTable)
       EXPECT_EQ (r.genus, std::stoi (row.genus));
     // The table gives 4 significant digits.
     EXPECT_NEAR (r.bbox_diagonal, row.bbox_diagonal, 6e-4 * row.bbox_diagonal);
+    EXPECT_EQ (findSharpEdges (mesh, buildMeshTopology (mesh), 60.0).size (), row.sharp_edges);
+    if (row.closed_manifold == "yes")
+      EXPECT_TRUE (r.manifold);
     EXPECT_EQ (r.nonmanifold_edges, 0u);
     EXPECT_EQ (r.components, 1u);
   }
@@ -446,7 +452,9 @@ TEST (MeshReportSharedMeshes, KnownTopology)
 
   const MeshReport bunny = report ("stanford-bunny.obj");
   EXPECT_EQ (bunny.unreferenced_vertices, 1113u);
-  EXPECT_GT (bunny.boundary_loops, 0u);
+  EXPECT_EQ (bunny.boundary_loops, 5u);  // the scan's holes in the base
+  EXPECT_EQ (bunny.boundary_edges, 223u);
+  EXPECT_EQ (bunny.euler_characteristic, -3);
 }
 
 TEST (MeshReportSharedMeshes, LinearTimeOn200kVertices)
