@@ -86,13 +86,19 @@ TEST_F (RenderTool, WritesTheSameBytesForAnyRunAndThreadCount)
 TEST_F (RenderTool, ColorModes)
 {
   const std::string in = dir_.file ("sphere.off");
+  std::vector<std::string> pictures;
   for (const std::string& mode : std::vector<std::string>{"plain", "normal", "height", "patch", "error -ref " + in})
   {
     const ToolRun r = run (dir_, tool ("render") + " " + in + " " + dir_.file ("m.png") + " -size 200x150 -view iso -q -color " + mode);
     EXPECT_EQ (r.code, 0) << mode << ": " << r.err;
     EXPECT_TRUE (fs::exists (dir_.file ("m.png"))) << mode;
+    pictures.push_back (readBytes (dir_.file ("m.png")));
     fs::remove (dir_.file ("m.png"));
   }
+  // Each mode colours the same view differently: an ignored -color would give two equal pictures.
+  for (std::size_t a = 0; a < pictures.size (); ++a)
+    for (std::size_t b = a + 1; b < pictures.size (); ++b)
+      EXPECT_NE (pictures[a], pictures[b]) << "modes " << a << " and " << b;
 }
 
 TEST_F (RenderTool, BadInputOrOptionGivesOneLineAndNoFile)
