@@ -828,6 +828,13 @@ TEST (CloudSurfaceSharedScans, RealScansGiveSensibleSurfaces)
       EXPECT_LT (down, scan.size () / 50);
     }
     if (c.orientation == NormalOrientation::Viewpoint)
-      EXPECT_LT (facingAway (scan, s, s.viewpoint), scan.size () / 1000);
+    {
+      // The file's sensor (VIEWPOINT), in the scan's local frame: not the surface's own viewpoint, so a
+      // wrong frame shift or sensor would show.
+      const Eigen::Vector3d sensor = scan.sensor_origin - scan.origin;
+      ASSERT_TRUE (s.has_viewpoint);
+      EXPECT_TRUE (s.viewpoint.isApprox (sensor, 1e-12) || (s.viewpoint - sensor).norm () < 1e-9) << s.viewpoint.transpose ();
+      EXPECT_LT (facingAway (scan, s, sensor), scan.size () / 1000);
+    }
   }
 }
