@@ -14,6 +14,8 @@
 #include "test_file_helpers.h"
 
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -35,13 +37,25 @@ namespace
     return pcl_sparse_test::runCommand (tools + "/" + tool + " " + arguments, out);
   }
 
-  /// Largest resident set of the children waited for so far, in KB.
-  long
-  childrenPeakKb ()
+  /// Runs a tool in a child of its own and returns its exit code; \a peak_kb receives the largest resident
+  /// set of that child and its descendants alone (not of every child this process ever waited for, as
+  /// getrusage (RUSAGE_CHILDREN) gives), and \a out its stdout and stderr.
+  int
+  runMeasured (const std::string& tool, const std::string& arguments, const std::string& log, long& peak_kb, std::string& out)
   {
+    const std::string command = tools + "/" + tool + " " + arguments + " > " + log + " 2>&1";
+    const pid_t pid = ::fork ();
+    if (pid == 0)
+    {
+      ::execl ("/bin/sh", "sh", "-c", command.c_str (), static_cast<char*> (nullptr));
+      ::_exit (127);
+    }
+    int status = 0;
     rusage usage {};
-    getrusage (RUSAGE_CHILDREN, &usage);
-    return usage.ru_maxrss;
+    ::wait4 (pid, &status, 0, &usage);
+    peak_kb = usage.ru_maxrss;
+    out = pcl_sparse_test::readBytes (log);
+    return WIFEXITED (status) ? WEXITSTATUS (status) : -1;
   }
 
   /// A terrain with (cells + 1)^2 vertices, written to \a path.
@@ -68,14 +82,17 @@ namespace
 
 TEST_F (TilesTool, MemoryBudgetTilesAndBoundsThePeak)
 {
-  // Each test runs in a process of its own (gtest_discover_tests), so the children's peak starts here.
   const std::string mesh = dir_.file ("terrain.off");
   writeTerrain (mesh, 300);
   std::string out;
-  ASSERT_EQ (run ("pcl_sparse_encode", mesh + " -q -memory 24M -o " + dir_.file ("tiled.psm"), out), 0) << out;
-  const long tiled_peak = childrenPeakKb ();
-  ASSERT_EQ (run ("pcl_sparse_encode", mesh + " -q -o " + dir_.file ("whole.psm"), out), 0) << out;
-  const long whole_peak = childrenPeakKb ();
+  long tiled_peak = 0, whole_peak = 0;
+  ASSERT_EQ (runMeasured ("pcl_sparse_encode", mesh + " -q -memory 24M -o " + dir_.file ("tiled.psm"), dir_.file ("tiled.log"),
+                          tiled_peak, out),
+             0)
+    << out;
+  ASSERT_EQ (runMeasured ("pcl_sparse_encode", mesh + " -q -o " + dir_.file ("whole.psm"), dir_.file ("whole.log"), whole_peak, out),
+             0)
+    << out;
   EXPECT_TRUE (isTiledModelFile (dir_.file ("tiled.psm")));
   EXPECT_FALSE (isTiledModelFile (dir_.file ("whole.psm")));
   // The input stays in memory (90k vertices); the encoder's working set is a tile's.
@@ -115,7 +132,6 @@ TEST_F (TilesTool, SpilledPathWritesTheInMemoryPathsFile)
 
 TEST_F (TilesTool, SpilledPathPeakBelowTheInMemoryPath)
 {
-  // Each test runs in a process of its own (gtest_discover_tests), so the children's peak starts here.
   const std::string cloud = dir_.file ("terrain.pcd");
   pcl_sparse_test::TerrainOptions terrain;
   terrain.points = 150000;
@@ -123,10 +139,15 @@ TEST_F (TilesTool, SpilledPathPeakBelowTheInMemoryPath)
   std::string out;
   // Fast options: the memory, not the model, is measured; 64 tiles of ~2.3k points.
   const std::string options = " -q -tiles 8 -rho 0.01 -L 4 -eps 0.05 -min-samples 16";
-  ASSERT_EQ (run ("pcl_sparse_encode", cloud + options + " -memory 1M -o " + dir_.file ("spilled.psm"), out), 0) << out;
-  const long spilled_peak = childrenPeakKb ();
-  ASSERT_EQ (run ("pcl_sparse_encode", cloud + options + " -o " + dir_.file ("memory.psm"), out), 0) << out;
-  const long memory_peak = childrenPeakKb ();
+  long spilled_peak = 0, memory_peak = 0;
+  ASSERT_EQ (runMeasured ("pcl_sparse_encode", cloud + options + " -memory 1M -o " + dir_.file ("spilled.psm"),
+                          dir_.file ("spilled.log"), spilled_peak, out),
+             0)
+    << out;
+  ASSERT_EQ (runMeasured ("pcl_sparse_encode", cloud + options + " -o " + dir_.file ("memory.psm"), dir_.file ("memory.log"),
+                          memory_peak, out),
+             0)
+    << out;
   EXPECT_TRUE (pcl_sparse_test::readBytes (dir_.file ("spilled.psm")) == pcl_sparse_test::readBytes (dir_.file ("memory.psm")));
   // Without the input in memory (about 57 bytes a point loaded, 4 for the cut); both paths hold the patches'
   // vertex lists for a band of tiles only (docs/TILES.md, "Bounded memory"), and at this size the spill's
