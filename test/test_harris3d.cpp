@@ -281,6 +281,7 @@ TEST (Harris3D, TooFewNeighboursGiveNoResponseAndBadInputIsRefused)
   pcl::PointCloud<pcl::PointXYZI> keypoints;
   harris.compute (keypoints);
   EXPECT_TRUE (keypoints.empty ());
+  ASSERT_EQ (harris.getResponses ().size (), 4u);
   for (double r : harris.getResponses ())
     EXPECT_TRUE (std::isnan (r));
 

@@ -209,8 +209,12 @@ TEST (PngFile, SignatureAndAtomicWrite)
   ASSERT_GE (png.size (), 8u);
   EXPECT_TRUE (std::equal (signature, signature + 8, png.begin ()));
   pcl_sparse_test::TempDir dir ("render");
+  // IHDR: width 3, height 2 (big-endian), bit depth 8, colour type 2 (RGB).
+  ASSERT_GE (png.size (), 26u);
+  EXPECT_EQ (std::vector<std::uint8_t> (png.begin () + 12, png.begin () + 26),
+             (std::vector<std::uint8_t>{'I', 'H', 'D', 'R', 0, 0, 0, 3, 0, 0, 0, 2, 8, 2}));
   savePng (dir.file ("a.png"), image);
-  EXPECT_EQ (pcl_sparse_test::readBytes (dir.file ("a.png")).size (), png.size ());
+  EXPECT_EQ (pcl_sparse_test::readBytes (dir.file ("a.png")), std::string (png.begin (), png.end ()));
   EXPECT_THROW (savePng (dir.file ("missing/a.png"), image), Error);
   EXPECT_THROW (encodePng (RgbImage ()), Error);
 }
