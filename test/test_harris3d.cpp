@@ -319,6 +319,9 @@ TEST (Harris3D, FandiskTopKeypointsLieOnSharpEdges)
   ASSERT_EQ (mesh->numVertices (), 6475u);
   const MeshTopology topo = buildMeshTopology (*mesh);
   const std::vector<bool> near = verticesNearSharpEdges (*mesh, topo, 60.0, 2);
+  // Nearly half of fandisk's vertices lie that near a sharp edge, so a bound must be well above chance.
+  const double chance = static_cast<double> (std::count (near.begin (), near.end (), true)) / near.size ();
+  EXPECT_NEAR (chance, 0.476, 0.001);
 
   for (int rings : {0, 2})
   {
@@ -333,7 +336,7 @@ TEST (Harris3D, FandiskTopKeypointsLieOnSharpEdges)
     for (int v : indices)
       on_edges += near[v];
     const double fraction = static_cast<double> (on_edges) / static_cast<double> (indices.size ());
-    EXPECT_GE (fraction, 0.8) << "rings " << rings;
+    EXPECT_GE (fraction, 0.95) << "rings " << rings;  // measured 63 / 65 and 65 / 65
     std::cout << "fandisk (rings " << rings << "): " << on_edges << " / " << indices.size () << " keypoints within 2 rings of a sharp edge\n";
   }
 }
