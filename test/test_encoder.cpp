@@ -1,3 +1,4 @@
+#include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/coding/dct_cosine_dictionary.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
@@ -50,7 +51,9 @@ TEST (SparseSurfaceEncoder, PlaneIsExact)
 {
   const ModelStatistics stats = encodeStatistics (makePlaneGrid (30, 1.0));
   EXPECT_LT (stats.rmse_over_diagonal, 1e-12);
-  EXPECT_GE (stats.num_patches, 1u);
+  // A flat patch grows over the whole square (its area bound never binds: A_p / A_p^proj = 1), with no atom.
+  EXPECT_EQ (stats.num_patches, 1u);
+  EXPECT_EQ (stats.num_nonzeros, 0u);
 }
 
 TEST (SparseSurfaceEncoder, SphereCylinderParaboloid)
@@ -114,19 +117,22 @@ TEST (SparseSurfaceEncoder, DctBasisOnEvenCaps)
   EXPECT_LT (bowl_dct.rmse_over_diagonal, 2e-4);
 }
 
-TEST (SparseSurfaceEncoder, DctBasisSameModelForAnyThreadCount)
+// The default options (Dct atoms) are SameModelForAnyThreadCount's; this is the paper preset's basis,
+// normal cone and patches.
+TEST (SparseSurfaceEncoder, PaperPresetSameModelForAnyThreadCount)
 {
   const TriangleMesh mesh = makeTorus (48, 24, 1.0, 0.35);
-  SparseSurfaceEncoderOptions dct;
-  dct.basis = CosineBasisKind::Dct;
-  const SparseSurfaceModel a = encode (mesh, dct, 1);
-  const SparseSurfaceModel b = encode (mesh, dct, 2);
+  const SparseSurfaceEncoderOptions paper = encoderPresetOptions (EncoderPreset::Paper);
+  const SparseSurfaceModel a = encode (mesh, paper, 1);
+  const SparseSurfaceModel b = encode (mesh, paper, 2);
+  EXPECT_NE (dynamic_cast<const CosineDictionary*> (a.basis.get ()), nullptr);
   ASSERT_EQ (a.patches.size (), b.patches.size ());
   ASSERT_GT (a.patches.size (), 64u);
   for (std::size_t p = 0; p < a.patches.size (); ++p)
   {
     EXPECT_EQ (a.patches[p].atoms, b.patches[p].atoms);
     EXPECT_EQ (a.patches[p].coefficients, b.patches[p].coefficients);
+    EXPECT_EQ (a.patches[p].vertices, b.patches[p].vertices);
     EXPECT_EQ (a.patches[p].footprint.extent, b.patches[p].footprint.extent);
   }
 }
