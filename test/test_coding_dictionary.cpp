@@ -93,16 +93,18 @@ TEST (CosineDictionary, CodeDerivativesMatchFiniteDifferences)
     EXPECT_NEAR (s.value, direct, 1e-12);
     EXPECT_NEAR (dictionary.evaluateCodeValue (atoms, coefficients, x, y), direct, 1e-12);
 
+    // Central differences err by about h^2 (11 pi)^2 / 6 = 2e-8 relative to the derivative they estimate
+    // (atoms up to frequency 11), rounding by about 1e-11: 1e-6 of the magnitude leaves a margin of 50.
     const double h = 1e-5;
     auto f = [&] (double a, double b) { return dictionary.evaluateCode (atoms, coefficients, a, b); };
     const double scale = 1.0 + s.gradient.norm ();
-    EXPECT_NEAR (s.gradient.x (), (f (x + h, y).value - f (x - h, y).value) / (2 * h), 1e-6 * scale * 100);
-    EXPECT_NEAR (s.gradient.y (), (f (x, y + h).value - f (x, y - h).value) / (2 * h), 1e-6 * scale * 100);
+    EXPECT_NEAR (s.gradient.x (), (f (x + h, y).value - f (x - h, y).value) / (2 * h), 1e-6 * scale);
+    EXPECT_NEAR (s.gradient.y (), (f (x, y + h).value - f (x, y - h).value) / (2 * h), 1e-6 * scale);
     const double hscale = 1.0 + s.hessian.norm ();
-    EXPECT_NEAR (s.hessian (0, 0), (f (x + h, y).gradient.x () - f (x - h, y).gradient.x ()) / (2 * h), 1e-5 * hscale * 100);
-    EXPECT_NEAR (s.hessian (0, 1), (f (x, y + h).gradient.x () - f (x, y - h).gradient.x ()) / (2 * h), 1e-5 * hscale * 100);
-    EXPECT_NEAR (s.hessian (1, 0), (f (x + h, y).gradient.y () - f (x - h, y).gradient.y ()) / (2 * h), 1e-5 * hscale * 100);
-    EXPECT_NEAR (s.hessian (1, 1), (f (x, y + h).gradient.y () - f (x, y - h).gradient.y ()) / (2 * h), 1e-5 * hscale * 100);
+    EXPECT_NEAR (s.hessian (0, 0), (f (x + h, y).gradient.x () - f (x - h, y).gradient.x ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (0, 1), (f (x, y + h).gradient.x () - f (x, y - h).gradient.x ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (1, 0), (f (x + h, y).gradient.y () - f (x - h, y).gradient.y ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (1, 1), (f (x, y + h).gradient.y () - f (x, y - h).gradient.y ()) / (2 * h), 1e-6 * hscale);
   }
 }
 
@@ -238,16 +240,18 @@ TEST (DctCosineDictionary, CodeDerivativesMatchFiniteDifferences)
     EXPECT_NEAR (s.value, direct, 1e-12);
     EXPECT_NEAR (dictionary.evaluateCodeValue (atoms, coefficients, x, y), direct, 1e-12);
 
+    // Central differences err by about h^2 (11 pi)^2 / 6 = 2e-8 relative to the derivative they estimate
+    // (atoms up to frequency 11), rounding by about 1e-11: 1e-6 of the magnitude leaves a margin of 50.
     const double h = 1e-5;
     auto f = [&] (double a, double b) { return dictionary.evaluateCode (atoms, coefficients, a, b); };
     const double scale = 1.0 + s.gradient.norm ();
-    EXPECT_NEAR (s.gradient.x (), (f (x + h, y).value - f (x - h, y).value) / (2 * h), 1e-4 * scale);
-    EXPECT_NEAR (s.gradient.y (), (f (x, y + h).value - f (x, y - h).value) / (2 * h), 1e-4 * scale);
+    EXPECT_NEAR (s.gradient.x (), (f (x + h, y).value - f (x - h, y).value) / (2 * h), 1e-6 * scale);
+    EXPECT_NEAR (s.gradient.y (), (f (x, y + h).value - f (x, y - h).value) / (2 * h), 1e-6 * scale);
     const double hscale = 1.0 + s.hessian.norm ();
-    EXPECT_NEAR (s.hessian (0, 0), (f (x + h, y).gradient.x () - f (x - h, y).gradient.x ()) / (2 * h), 1e-3 * hscale);
-    EXPECT_NEAR (s.hessian (0, 1), (f (x, y + h).gradient.x () - f (x, y - h).gradient.x ()) / (2 * h), 1e-3 * hscale);
-    EXPECT_NEAR (s.hessian (1, 0), (f (x + h, y).gradient.y () - f (x - h, y).gradient.y ()) / (2 * h), 1e-3 * hscale);
-    EXPECT_NEAR (s.hessian (1, 1), (f (x, y + h).gradient.y () - f (x, y - h).gradient.y ()) / (2 * h), 1e-3 * hscale);
+    EXPECT_NEAR (s.hessian (0, 0), (f (x + h, y).gradient.x () - f (x - h, y).gradient.x ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (0, 1), (f (x, y + h).gradient.x () - f (x, y - h).gradient.x ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (1, 0), (f (x + h, y).gradient.y () - f (x - h, y).gradient.y ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (1, 1), (f (x, y + h).gradient.y () - f (x, y - h).gradient.y ()) / (2 * h), 1e-6 * hscale);
     // Analytic gradient of the atoms' chain rule, not just consistency: single atom (3, 0).
     const HeightSample one = dictionary.evaluateCode ({dictionary.atomIndex (3, 0)}, {1.0}, x, y);
     EXPECT_NEAR (one.gradient.x (), -1.5 * M_PI * std::sin (1.5 * M_PI * (x + 1.0)), 1e-12);
