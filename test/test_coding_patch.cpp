@@ -173,6 +173,17 @@ TEST (PatchCoder, CodesAParaboloidPatch)
   EXPECT_LE (info.relative_residual, options.tolerance);
   EXPECT_EQ (code.vertices.size (), 81u);
   EXPECT_EQ (code.vertex_xy.size (), 81u);
+  ASSERT_GE (code.atoms.size (), 2u);  // a saddle: the constant alone does not fit it
+  // The code itself, evaluated at each vertex's place and mapped to the world, lands on the vertex: the
+  // heights are 0.3 at most and the tolerance 1 % of their norm (measured 1.3e-3).
+  double worst = 0.0;
+  for (std::size_t i = 0; i < code.vertices.size (); ++i)
+  {
+    const Eigen::Vector2d& xy = code.vertex_xy[i];
+    const double h = dictionary.evaluateCodeValue (code.atoms, code.coefficients, xy.x (), xy.y ());
+    worst = std::max (worst, (code.toWorld (Eigen::Vector3d (xy.x (), xy.y (), h)) - mesh.vertices[code.vertices[i]]).norm ());
+  }
+  EXPECT_LT (worst, 3e-3);
   // Cap: mu ~ 0.25 / 1.5 (mean of 0.25 and 0.35 edges), so with f = 0.5 no atom above max(i, j) ~ 23;
   // every selected atom satisfies it.
   for (int a : code.atoms)
