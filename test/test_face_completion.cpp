@@ -122,17 +122,18 @@ TEST (FaceCompletion, PresetPaperKeepsTheMethod)
 TEST (FaceCompletion, SharedCadMeshes)
 {
   // Before this issue's changes (default options, bench/results/meshes.md): p99 6.55 / 4.38 / 3.06 spacings
-  // and 60 / 229 / 495 flipped normals. Now (measured here): p99 2.89 / 2.88 / 0.82, flipped 0 / 54 / 10:
+  // and 60 / 229 / 495 flipped normals. Now (measured here): p99 2.89 / 2.84 / 0.82, flipped 0 / 33 / 8:
   // the holes are gone; the flips are not all (issue 13 asks for none). couplingdown and cheese-cgal are held
   // at CR 1 by their frames (1829 patches of 8629 vertices leave cheese-cgal about one atom per patch), and
   // their remaining faces in no patch lie outside the cone of every patch holding a corner.
   struct Case
   {
     std::string file;
+    double max_p99;  ///< spacings: 3 (issue 13), or about 1.5 x the measured value where that is far below
     std::size_t max_flipped;
   };
   int found = 0;
-  for (const Case& entry : {Case{"couplingdown.off", 5}, Case{"cheese-cgal.off", 80}, Case{"blade.off", 20}})
+  for (const Case& entry : {Case{"couplingdown.off", 3.0, 2}, Case{"cheese-cgal.off", 3.0, 45}, Case{"blade.off", 1.2, 12}})
   {
     const std::string& file = entry.file;
     const TriangleMesh::ConstPtr mesh = sharedMesh (file);
@@ -145,7 +146,7 @@ TEST (FaceCompletion, SharedCadMeshes)
     std::cout << file << ": " << with.num_completed_faces << " faces completed, " << with.uncovered_faces.size ()
               << " left; p99 " << c.p99_spacings << " spacings, within 3 spacings " << c.within3 << ", flipped "
               << c.flipped << " of " << c.points << std::endl;
-    EXPECT_LE (c.p99_spacings, 3.0) << file;
+    EXPECT_LE (c.p99_spacings, entry.max_p99) << file;
     EXPECT_LE (c.flipped, entry.max_flipped) << file;
   }
   if (found == 0)
