@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -71,7 +72,9 @@ namespace
 
 TEST (RangeCoder, AdaptiveBitsRoundTripCloseToTheirEntropy)
 {
-  for (unsigned one_in : {2u, 16u, 200u})
+  // Measured over the entropy of the ones actually drawn: 1.026, 1.083, 1.128.
+  const std::pair<unsigned, double> cases[] = {{2u, 1.05}, {16u, 1.12}, {200u, 1.18}};
+  for (const auto& [one_in, bound] : cases)
   {
     const std::vector<bool> bits = rareBits (20000, one_in, one_in);
     RangeEncoder out;
@@ -86,11 +89,11 @@ TEST (RangeCoder, AdaptiveBitsRoundTripCloseToTheirEntropy)
       ASSERT_EQ (in.get (same), bits[i]) << "bit " << i;
     in.expectEnd ();
 
-    const double p = 1.0 / one_in;
+    const double p = static_cast<double> (std::count (bits.begin (), bits.end (), true)) / bits.size ();
     const double entropy_bytes = bits.size () * -(p * std::log2 (p) + (1 - p) * std::log2 (1 - p)) / 8.0;
-    // Adapting by 1/16 of the way costs 1-25 % over the entropy (more for rarer bits), far below the one
-    // bit per value of any byte-aligned coding of single bits.
-    EXPECT_LE (bytes.size (), 1.25 * entropy_bytes + 4) << "1 in " << one_in;
+    // Adapting by 1/16 of the way costs a few to 18 % over the entropy (more for rarer bits), far below the
+    // one bit per value of any byte-aligned coding of single bits.
+    EXPECT_LE (bytes.size (), bound * entropy_bytes + 4) << "1 in " << one_in;
     EXPECT_GE (bytes.size (), entropy_bytes * 0.95) << "1 in " << one_in;
   }
 }
