@@ -798,5 +798,8 @@ TEST (TiledModelFile, EmptyModelKeepsItsBasisAndChannels)
   ASSERT_TRUE (loaded.basis);
   EXPECT_EQ (loaded.basis->size (), model.basis->size ());
   EXPECT_EQ (loaded.attribute_channels.size (), model.attribute_channels.size ());
+  expectSameAttributes (model, loaded);  // channel ids, ranges and the attribute basis
+  EXPECT_EQ (loaded.bbox_diagonal, model.bbox_diagonal);
+  EXPECT_EQ (loaded.num_input_vertices, model.num_input_vertices);
   EXPECT_NO_THROW (encodeModel (loaded, options));
 }

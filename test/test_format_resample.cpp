@@ -71,7 +71,8 @@ TEST (FormatResample, QuantisedFileResamplesWithinTolerance)
   }
   // float32 cloud coordinates add ~1e-6 relative rounding
   EXPECT_LE (worst, bound + 1e-5);
-  EXPECT_GT (worst, 0.0);
+  // It uses the budget (measured 0.59 of it): a writer quantising far finer than asked would not.
+  EXPECT_GT (worst, 0.1 * bound);
 }
 
 TEST (FormatResample, RangeCodingShrinksARealModelAndChangesNoPoint)

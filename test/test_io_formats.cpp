@@ -411,6 +411,12 @@ TEST (IoPolygonMesh, LoadPolygonMesh)
   loadPolygonMesh (dir.file ("m.ply"), polygon_mesh);
   EXPECT_EQ (polygon_mesh.cloud.width, mesh.numVertices ());
   EXPECT_EQ (polygon_mesh.polygons.size (), mesh.numTriangles ());
+  // The values too (the PLY stores float32 coordinates).
+  const TriangleMesh back = fromPolygonMesh (polygon_mesh);
+  ASSERT_EQ (back.numVertices (), mesh.numVertices ());
+  for (std::size_t v = 0; v < mesh.numVertices (); ++v)
+    EXPECT_EQ (back.vertices[v], mesh.vertices[v].cast<float> ().cast<double> ()) << v;
+  EXPECT_EQ (back.triangles, mesh.triangles);
   EXPECT_THROW (loadPolygonMesh (dir.file ("missing.ply"), polygon_mesh), Error);
 }
 
