@@ -104,7 +104,8 @@ TEST (PatchSampling, FlatPlaneIsOnePatchAroundTheCentre)
 
 TEST (PatchSampling, GrowthVisitsByGeodesicDistanceAndStopsAtAFold)
 {
-  // Two flat 10 x 10 half planes folded at x = 0 by 90 degrees: growth from the flat side never crosses.
+  // A flat half plane and one rising at 45 degrees (z = x for x > 0), folded at x = 0: growth from the flat
+  // side never crosses (eta; with eta off the patch does cross: 110 vertices).
   TriangleMesh fold = makeHeightFieldGrid (20, 10, 1.0, 1.0, [] (double x, double) { return x > 0.0 ? x : 0.0; });
   const MeshTopology topology = buildMeshTopology (fold);
   const PatchGrowthGeometry geometry = computePatchGrowthGeometry (fold, topology);
@@ -124,7 +125,7 @@ TEST (PatchSampling, GrowthVisitsByGeodesicDistanceAndStopsAtAFold)
   {
     EXPECT_LE (fold.vertices[v].x (), 1e-12) << "crossed the 45 degree fold";
     const double d = (fold.vertices[v] - fold.vertices[seed]).norm ();
-    EXPECT_GE (d, last - 0.2);  // roughly increasing (Dijkstra order, edge paths)
+    EXPECT_GE (d, last - 0.1);  // roughly increasing (Dijkstra order along edge paths; measured drop 0.061)
     last = std::max (last, d);
   }
   EXPECT_GT (patch.size (), 50u);
