@@ -25,6 +25,8 @@
 #include <filesystem>
 #include <limits>
 #include <random>
+#include <sstream>
+#include <string>
 #include <sys/stat.h>
 
 using namespace pcl_sparse;
