@@ -530,7 +530,11 @@ TEST (TiledFile, ReadsTheVersion2Layout)
     const SparseSurfaceModel expected = decodeModel (tile.data (), tile.size ());
     for (const PatchCode& patch : expected.patches)
     {
-      EXPECT_TRUE (merged.patches[next].origin == patch.origin && merged.patches[next].coefficients == patch.coefficients);
+      const PatchCode& got = merged.patches[next];
+      EXPECT_TRUE (got.origin == patch.origin && got.frame == patch.frame && got.radius == patch.radius &&
+                   got.atoms == patch.atoms && got.coefficients == patch.coefficients &&
+                   got.footprint.extent == patch.footprint.extent)
+        << "patch " << next;
       ++next;
     }
   }
@@ -545,7 +549,21 @@ TEST (TiledFile, ReadsTheVersion2Layout)
   const TiledModel region = loadTiledModelRegion (path, box, &bytes_read);
   EXPECT_LT (region.tiles.size (), tiled.tiles.size ());
   EXPECT_GT (region.tiles.size (), 0u);
+  // Exactly the header, index and the tiles it returns; every tile whose reach meets the box among them.
+  std::uint64_t needed = index.index_bytes;
+  for (const TileIndexEntry& e : index.entries)
+  {
+    const bool returned = std::any_of (region.tiles.begin (), region.tiles.end (), [&] (const TileRange& r) { return r.tile == e.tile; });
+    needed += returned ? e.size : 0;
+    EXPECT_TRUE (returned || !e.reach.intersects (box)) << "tile " << e.tile;
+  }
+  EXPECT_EQ (bytes_read, needed);
   EXPECT_LT (bytes_read, bytes.size ());
+  // And the region resamples to the whole file's points there.
+  const double density = static_cast<double> (mesh->vertices.size ()) / 4.0 * 4.0;
+  const std::vector<Eigen::Vector3f> whole_points = inside (resample (merged, density), box);
+  ASSERT_GT (whole_points.size (), 20u);
+  EXPECT_TRUE (whole_points == inside (resample (region.model, density, region.patchNumbers ()), box));
 
   // Version 2 keeps the basis in its tiles: a region no tile reaches takes it from the first tile, so the
   // empty model can be saved again; a file of no tile has no basis to give and is refused.
