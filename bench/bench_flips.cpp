@@ -3,14 +3,14 @@
 // (evaluateCloudQuality: over 120 degrees from its nearest face's normal), tells the patch that emitted it
 // and what is special there, then counts the points per cause.
 //
-//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-v] [-far] [-patch P]
+//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-v] [-far] [-patch P] [-o CLOUD.pcd]
 //
 // -seed S and -clearance C resample with that seed and knife-edge clearance (defaults: the library's, as
 // pcl_sparse_resample). Every run also prints how many points lie farther than 1/4, 1/2, 1 and 2 spacings
 // from the mesh and the share of the mean distance those beyond 1/2 spacing make. -far lists the points
 // farther than a spacing (patch, local x, y, centrality, distance to the patch's nearest own vertex);
 // -patch P prints patch P: its coding figures, vertices (local coordinates and the code's height there),
-// projected triangles and footprint.
+// projected triangles and footprint. -o writes the cloud (for bench_meshes: its 99th-percentile holes).
 // -v prints every flipped point: patch, radius and vertex count, local (x, y), centrality c, height h, the
 // slope angle of the code, the distance to the nearest face (exact, every face) in spacings, the distance to
 // the nearest face on the point's side (normal within 90 degrees of the point's), the point's angle to
@@ -28,6 +28,7 @@
 //   the others are farther: the code normal points away from a surface facing N (the code oscillates), or
 //   the point lies on a surface facing away from N (the patch reaches across a thin part)
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
@@ -136,6 +137,7 @@ main (int argc, char** argv)
   bool verbose = false;
   int dump_patch = -1;
   bool far = false;
+  std::string cloud_path;  // -o: the cloud, for bench_meshes (p99 holes)
   SparseSurfaceResamplingOptions resampling_options;
   for (int i = 2; i < argc; ++i)
   {
@@ -150,6 +152,8 @@ main (int argc, char** argv)
       resampling_options.seed = std::stoull (argv[++i]);
     else if (a == "-clearance" && i + 1 < argc)
       resampling_options.ownership.opposite_clearance = std::stod (argv[++i]);
+    else if (a == "-o" && i + 1 < argc)
+      cloud_path = argv[++i];
     else if (a == "-far")
       far = true;
   }
@@ -166,6 +170,8 @@ main (int argc, char** argv)
   pcl::PointCloud<pcl::PointNormal> cloud;
   resampling.compute (cloud);
   const std::vector<int>& owner = resampling.getPointPatches ();
+  if (!cloud_path.empty ())
+    savePointNormalCloud (cloud_path, cloud);
 
   CloudQualityOptions qo;
   qo.keep_per_point = true;
