@@ -269,7 +269,8 @@ TEST (TiledEncoding, PatchesOwnedBySeedTileAndEveryVertexCovered)
   SparseSurfaceModel whole;
   untiled.compute (whole);
   const ModelStatistics whole_stats = whole.statistics (mesh->vertices);
-  EXPECT_LT (stats.rmse, 1.5 * whole_stats.rmse);
+  // Measured: RMSE 0.97x the untiled model's, with 1.25x its patches.
+  EXPECT_LT (stats.rmse, 1.1 * whole_stats.rmse);
   EXPECT_LT (stats.num_patches, 1.3 * whole_stats.num_patches);
 }
 
