@@ -831,6 +831,8 @@ TEST (SpilledTileSource, ProgressOfEachPass)
   options.progress = [&] (const std::string& stage, double fraction) { calls[stage].push_back (fraction); };
   const SpilledTileSource source (dir.file ("terrain.pcd"), options);
   ASSERT_EQ (calls.size (), 3u);
+  for (const char* stage : {"spill: reading", "spill: binning", "spill: counting"})
+    EXPECT_EQ (calls.count (stage), 1u) << stage;
   for (const auto& [stage, fractions] : calls)
   {
     SCOPED_TRACE (stage);
@@ -850,14 +852,23 @@ TEST (SpilledTileSource, LoadTileFromSeveralThreads)
   const SpilledTileSource source (dir.file ("terrain.pcd"), tilesAlong (4));
   const int tiles = static_cast<int> (source.grid ().size ());
   std::vector<std::vector<std::size_t>> sequential (tiles), parallel (tiles);
+  std::vector<std::vector<Eigen::Vector3d>> sequential_points (tiles), parallel_points (tiles);
   for (int t = 0; t < tiles; ++t)
     if (const TileInput input = source.loadTile (static_cast<std::size_t> (t)); input.scan)
+    {
       sequential[t] = input.scan->indices;
+      sequential_points[t] = worldPositions (*input.scan);
+    }
 #pragma omp parallel for num_threads(4) schedule(dynamic)
   for (int t = 0; t < tiles; ++t)
     if (const TileInput input = source.loadTile (static_cast<std::size_t> (t)); input.scan)
+    {
       parallel[t] = input.scan->indices;
+      parallel_points[t] = worldPositions (*input.scan);
+    }
+  EXPECT_GT (std::count_if (sequential.begin (), sequential.end (), [] (const auto& v) { return !v.empty (); }), 8);
   EXPECT_EQ (parallel, sequential);
+  EXPECT_EQ (parallel_points, sequential_points);
 }
 
 namespace
