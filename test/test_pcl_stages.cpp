@@ -265,7 +265,9 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   SparseSurfaceEncoder<pcl::PointXYZ> out_of_range;
   out_of_range.setInputCloud (cloudOf<pcl::PointXYZ> (mesh));
   out_of_range.setInputPolygons (bad);
-  EXPECT_NE (errorOf ([&] { out_of_range.compute (model); }).find ("out of range"), std::string::npos);
+  const std::string out_of_range_error = errorOf ([&] { out_of_range.compute (model); });
+  EXPECT_EQ (out_of_range_error.rfind ("[SparseSurfaceEncoder::compute] ", 0), 0u) << out_of_range_error;
+  EXPECT_NE (out_of_range_error.find ("out of range"), std::string::npos) << out_of_range_error;
 
   auto nan_cloud = cloudOf<pcl::PointXYZ> (mesh);
   (*nan_cloud)[mesh.triangles[0][1]].y = NAN;
@@ -281,7 +283,9 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
   sampling.setIndices (twice);
   std::vector<Patch> patches;
-  EXPECT_NE (errorOf ([&] { sampling.compute (patches); }).find ("listed twice"), std::string::npos);
+  const std::string twice_error = errorOf ([&] { sampling.compute (patches); });
+  EXPECT_EQ (twice_error.rfind ("[FeatureAwarePatchSampling::compute] ", 0), 0u) << twice_error;
+  EXPECT_NE (twice_error.find ("listed twice"), std::string::npos) << twice_error;
 
   MeshNormalEstimation<pcl::PointXYZ> ne;
   ne.setInputMesh (std::make_shared<TriangleMesh> (mesh));
@@ -331,6 +335,7 @@ TEST (PclStages, ResamplingFillsEveryOutputPointType)
     EXPECT_EQ (rgb_normal[i].getVector3fMap (), reference[i].getVector3fMap ());
     EXPECT_EQ (rgb_normal[i].getNormalVector3fMap (), reference[i].getNormalVector3fMap ());
     EXPECT_EQ (rgb_normal[i].curvature, reference[i].curvature);
+    EXPECT_EQ (intensity_normal[i].getVector3fMap (), reference[i].getVector3fMap ());
     EXPECT_EQ (intensity_normal[i].getNormalVector3fMap (), reference[i].getNormalVector3fMap ());
     EXPECT_NEAR (reference[i].getVector3fMap ().norm (), 1.0f, 0.03f);  // 642 vertices; dct measured 0.024
   }
