@@ -3,6 +3,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/io/scan_conversion.h>
 #include <pcl_sparse/keypoints/harris_keypoint3d_mesh.h>
 #include <pcl_sparse/normals/mesh_normal_estimation.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -241,6 +242,64 @@ TEST (PclStages, IndicesCropTheEncoderAndSelectForNormalsAndKeypoints)
     EXPECT_GE (mesh.vertices[v].z (), 0.0);
   for (int v : *upper)
     EXPECT_TRUE (harris.getResponses ()[v] == full[v] || (std::isnan (full[v]) && std::isnan (harris.getResponses ()[v])));
+}
+
+namespace
+{
+  /// A wavy n x n grid of points about 0.1 apart at height z (a scan without polygons).
+  pcl::PointCloud<pcl::PointXYZ>::Ptr
+  wavyGridCloud (int n, float z)
+  {
+    auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        cloud->push_back (pcl::PointXYZ (0.1f * i + 0.003f * (j % 3), 0.1f * j, z + 0.01f * std::sin (0.3f * i)));
+    return cloud;
+  }
+} // namespace
+
+// The last input set wins: a stage used for a scan, then a cloud, works on the cloud (it kept the scan,
+// sized its output by the cloud and wrote past it), and indices are taken as points of the scan.
+TEST (PclStages, ScanThenCloudAndIndicesOfAScan)
+{
+  auto scan = std::make_shared<ScanCloud> ();
+  toScanCloud (*wavyGridCloud (60, 1.0f), *scan);  // none at the sensor origin (0, 0, 0), which cleaning drops
+  ASSERT_EQ (scan->size (), 3600u);
+  const auto small = wavyGridCloud (10, 5.0f);
+
+  MeshNormalEstimation<pcl::PointXYZ> ne;
+  ne.setInputScan (scan);
+  ne.setInputCloud (small);
+  pcl::PointCloud<pcl::PointNormal> normals;
+  ne.compute (normals);
+  ASSERT_EQ (normals.size (), small->size ());
+  for (std::size_t i = 0; i < small->size (); ++i)
+    EXPECT_EQ (normals[i].getVector3fMap (), (*small)[i].getVector3fMap ()) << i;
+
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
+  harris.setInputScan (scan);
+  harris.setInputCloud (small);
+  pcl::PointCloud<pcl::PointXYZI> keypoints;
+  harris.compute (keypoints);
+  EXPECT_EQ (harris.getResponses ().size (), small->size ());
+
+  // Indices with a scan: SelectPoints picks its points; CropSurface is refused with the reason.
+  MeshNormalEstimation<pcl::PointXYZ> selected;
+  selected.setInputScan (scan);
+  selected.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{0, 7, 3599}));
+  pcl::PointCloud<pcl::PointNormal> three;
+  selected.compute (three);
+  ASSERT_EQ (three.size (), 3u);
+  EXPECT_NEAR ((three[1].getVector3fMap () - (scan->origin + scan->positions[7]).cast<float> ()).norm (), 0.0f, 1e-5f);
+  EXPECT_GT (std::abs (three[2].normal_z), 0.9f);  // the grid is nearly flat
+  selected.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{3600}));
+  EXPECT_THROW (selected.compute (three), Error);
+
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputScan (scan);
+  encoder.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{0, 1, 2}));
+  SparseSurfaceModel model;
+  EXPECT_NE (errorOf ([&] { encoder.compute (model); }).find ("crop the scan itself"), std::string::npos);
 }
 
 TEST (PclStages, OneErrorPolicyNamingTheClass)

@@ -21,6 +21,8 @@
 ///     in the indices (output i belongs to point indices[i], as in PCL's features).
 ///   - IndexUse::SelectPoints (normals, keypoints): the points to compute an output for, while
 ///     neighbourhoods use the whole surface (PCL's search surface).
+/// With setInputScan, indices select the scan's points (its surface's vertices) for SelectPoints; a crop
+/// (CropSurface) is refused: crop the scan itself.
 
 #include <pcl_sparse/cloud/cloud_surface.h>
 #include <pcl_sparse/common/point_types.h>
@@ -59,13 +61,16 @@ namespace pcl_sparse
     using Polygons = std::vector<pcl::Vertices>;
     using PolygonsConstPtr = std::shared_ptr<const Polygons>;
 
-    /// \brief The input cloud: the surface's vertices (with setInputPolygons). Replaces a mesh set before.
+    /// \brief The input cloud: the surface's vertices (with setInputPolygons). Replaces a mesh or scan set
+    /// before.
     /// \param[in] cloud the points; non-finite points may not be used by a polygon
     void
     setInputCloud (const PointCloudInConstPtr& cloud) override
     {
       pcl::PCLBase<PointInT>::setInputCloud (cloud);
       mesh_.reset ();
+      scan_.reset ();
+      topology_.reset ();
     }
 
     /// \brief The faces over the input cloud's points, as pcl::PolygonMesh holds them.

@@ -43,6 +43,11 @@ namespace pcl_sparse
     }
     else if (scan_ || (this->input_ && !polygons_))
     {
+      // A scan given as such is already the part to work on: crop it before (indices select points of a
+      // cloud or vertices of a mesh).
+      if (scan_ && use_indices)
+        fail ("setIndices crops a cloud (setInputCloud) or a mesh (setInputMesh), not a scan (setInputScan): "
+              "crop the scan itself");
       initScanSurface ();
       if (surface_->triangles.empty ())
         fail ("the scan gives no surface: none of its " + std::to_string (surface_->vertices.size ()) +
@@ -64,7 +69,8 @@ namespace pcl_sparse
     }
     if (has_indices && !use_indices)
     {
-      const std::size_t num_points = surfaceIsScan () ? this->input_->size () : surface_->vertices.size ();
+      // The points of the input cloud, or the vertices of the surface (a mesh's, or a scan's points).
+      const std::size_t num_points = surfaceIsScan () && this->input_ ? this->input_->size () : surface_->vertices.size ();
       for (const auto v : *this->indices_)
         if (v < 0 || static_cast<std::size_t> (v) >= num_points)
           fail ("setIndices: index " + std::to_string (v) + " out of range (" + std::to_string (num_points) + " points)");
