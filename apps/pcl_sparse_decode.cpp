@@ -172,7 +172,7 @@ int
 main (int argc, char** argv)
 {
   const tools::ProcessGroup group (argc, argv);
-  return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
+  return group.finish (tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
     args.expectPositional (2, "MODEL.psm and OUT.{pcd,ply}");
@@ -356,5 +356,5 @@ main (int argc, char** argv)
                    model->numPatches (), model->numNonZeros (), points, load_seconds, resample_seconds,
                    write_seconds);
     return 0;
-  });
+  }));
 }

@@ -106,7 +106,7 @@ int
 main (int argc, char** argv)
 {
   const tools::ProcessGroup group (argc, argv);
-  return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
+  return group.finish (tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
     args.expectPositional (1, "exactly one input");
@@ -335,5 +335,5 @@ main (int argc, char** argv)
                    load_seconds, t.patches, t.coding, statistics_seconds, write_seconds, t.total);
     }
     return 0;
-  });
+  }));
 }

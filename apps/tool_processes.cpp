@@ -51,6 +51,16 @@ namespace pcl_sparse
 #endif
     }
 
+    int
+    ProcessGroup::finish (int code) const
+    {
+#ifdef PCL_SPARSE_WITH_MPI
+      if (code != 0 && size_ > 1)
+        MPI_Abort (MPI_COMM_WORLD, code);
+#endif
+      return code;
+    }
+
     std::string
     ProcessGroup::library ()
     {

@@ -21,6 +21,11 @@ namespace pcl_sparse
       ProcessGroup (int& argc, char**& argv);
       /// Leaves them (MPI_Finalize).
       ~ProcessGroup ();
+
+      /// The tool's exit: \a code as is when alone or on success; on failure among several processes, every
+      /// rank is stopped (MPI_Abort), since the others would otherwise wait for this one in their next
+      /// exchange forever.
+      int finish (int code) const;
       ProcessGroup (const ProcessGroup&) = delete;
       ProcessGroup& operator= (const ProcessGroup&) = delete;
 

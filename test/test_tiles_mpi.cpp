@@ -165,3 +165,24 @@ TEST_F (TilesMpi, RanksHoldABandOfTiles)
   EXPECT_EQ (figures (out), far_alone);
   EXPECT_EQ (jsonValue (out, "held_tiles"), jsonValue (out, "tiles")) << out;
 }
+
+TEST_F (TilesMpi, OneRankFailingStopsThemAll)
+{
+  // A rank that fails on its own (here: no place for its spill files) stops the whole run with an error;
+  // the others waited for it in their next exchange forever before (found by a review).
+  const std::string cloud = dir_.file ("terrain.pcd");
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.points = 20000;
+  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  const std::string spill = dir_.file ("spill");
+  std::filesystem::create_directories (spill);
+  const std::string encode = tools + "/pcl_sparse_encode " + cloud + " -tiles 3 -memory 1M -q -o " + dir_.file ("failed.psm");
+  std::string out;
+  const int code = runCommand (kMpiEnvironment + "timeout 120 " + mpiexec_ + " --oversubscribe -n 1 env TMPDIR=" + spill + " " +
+                                 encode + " : -n 1 env TMPDIR=/proc " + encode,
+                               out);
+  EXPECT_NE (code, 0) << out;
+  EXPECT_NE (code, 124) << "mpirun hung: " << out;
+  EXPECT_NE (out.find ("cannot make a temporary directory"), std::string::npos) << out;
+  EXPECT_FALSE (std::filesystem::exists (dir_.file ("failed.psm")));
+}
