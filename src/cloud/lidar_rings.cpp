@@ -51,10 +51,13 @@ namespace pcl_sparse
       return widest <= 0.25 * smallest_step;
     }
 
-    /// Median azimuth step between consecutive points of a ring (zero steps ignored); 0 if none.
+    /// Median azimuth step between consecutive points of a ring; 0 if none. Steps under a twentieth of the
+    /// mean step are left out: repeated points, and the two returns of one pulse in a dual-return frame,
+    /// whose azimuths differ by float rounding (a median of those made a grid of billions of columns).
     double
     azimuthStep (const std::vector<double>& azimuth, const std::vector<int>& by_elevation, const std::vector<Ring>& rings)
     {
+      const double mean_step = 2.0 * M_PI * static_cast<double> (rings.size ()) / static_cast<double> (by_elevation.size ());
       std::vector<double> steps, ring_azimuths;
       for (const auto& ring : rings)
       {
@@ -63,7 +66,7 @@ namespace pcl_sparse
           ring_azimuths.push_back (azimuth[by_elevation[s]]);
         std::sort (ring_azimuths.begin (), ring_azimuths.end ());
         for (std::size_t a = 1; a < ring_azimuths.size (); ++a)
-          if (ring_azimuths[a] > ring_azimuths[a - 1])
+          if (ring_azimuths[a] - ring_azimuths[a - 1] > 0.05 * mean_step)
             steps.push_back (ring_azimuths[a] - ring_azimuths[a - 1]);
       }
       if (steps.empty ())
@@ -117,8 +120,13 @@ namespace pcl_sparse
       c += std::cos (phase), s += std::sin (phase);
     }
     const double shift = std::atan2 (s, c) / (2.0 * M_PI);
+    // A ring grid far larger than the points (a frame covering a narrow wedge with a fine step) is no
+    // range image to build a surface on; nor may its size overflow.
+    const double columns = std::ceil (2.0 * M_PI / step) + 3.0;
+    if (!(columns * static_cast<double> (rings.size ()) <= 8.0 * static_cast<double> (n) + 4096.0))
+      return false;
     ScanGrid result;
-    result.width = static_cast<int> (std::ceil (2.0 * M_PI / step)) + 3;
+    result.width = static_cast<int> (columns);
     result.height = static_cast<int> (rings.size ());
     result.cells.assign (static_cast<std::size_t> (result.width) * result.height, -1);
     // Rows from the highest ring down, like an image. Along a ring, by azimuth, each point takes its column
