@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <map>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 using namespace pcl_sparse;
 
@@ -178,6 +180,29 @@ TEST (SparseSurfaceEncoder, SameModelForAnyThreadCount)
     EXPECT_EQ (a.patches[p].coefficients, b.patches[p].coefficients);
     EXPECT_EQ (a.patches[p].vertices, b.patches[p].vertices);
     EXPECT_EQ (a.patches[p].footprint.extent, b.patches[p].footprint.extent);
+  }
+}
+
+// A progress callback may throw to cancel, also while the patches are coded in parallel (it ended the
+// program in std::terminate before).
+TEST (SparseSurfaceEncoder, ProgressCallbackMayThrowToCancel)
+{
+  for (int threads : {1, 2})
+  {
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+    encoder.setInputMesh (std::make_shared<TriangleMesh> (makeTorus (48, 24, 1.0, 0.35)));
+    encoder.setNumberOfThreads (threads);
+    bool coding_seen = false;
+    encoder.setProgressCallback ([&] (const std::string& stage, double fraction) {
+      if (stage == "coding" && fraction > 0.0 && fraction < 1.0)
+      {
+        coding_seen = true;
+        throw std::runtime_error ("cancelled");
+      }
+    });
+    SparseSurfaceModel model;
+    EXPECT_THROW (encoder.compute (model), std::runtime_error) << threads << " threads";
+    EXPECT_TRUE (coding_seen);
   }
 }
 

@@ -20,6 +20,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -444,6 +445,37 @@ TEST (Resampling, HighDensityBlocksDeterministicUniform)
   const double cv = coefficientOfVariation (nearestDistances (one));
   std::cout << "sphere at 200k points: nearest-neighbour CV " << cv << std::endl;
   EXPECT_LT (cv, 0.25);
+}
+
+// A progress callback may throw to cancel: the exception reaches the caller from inside the parallel loops
+// (it ended the program in std::terminate before), for a count, a density and a stream.
+TEST (Resampling, ProgressCallbackMayThrowToCancel)
+{
+  const auto model = makeSphereModel ();
+  for (int mode = 0; mode < 3; ++mode)
+    for (int threads : {1, 2})
+    {
+      SCOPED_TRACE ("mode " + std::to_string (mode) + ", threads " + std::to_string (threads));
+      SparseSurfaceResampling<pcl::PointNormal> resampling;
+      resampling.setInputModel (model);
+      resampling.setNumberOfThreads (threads);
+      if (mode == 1)
+        resampling.setDensity (20000.0 / (4.0 * M_PI));
+      else
+        resampling.setPointCount (20000);
+      int calls = 0;
+      resampling.setProgressCallback ([&] (const std::string&, double fraction) {
+        ++calls;
+        if (fraction > 0.0 && fraction < 1.0)
+          throw std::runtime_error ("cancelled");
+      });
+      pcl::PointCloud<pcl::PointNormal> cloud;
+      if (mode == 2)
+        EXPECT_THROW (resampling.compute ([] (const ResampledBlock<pcl::PointNormal>&) {}), std::runtime_error);
+      else
+        EXPECT_THROW (resampling.compute (cloud), std::runtime_error);
+      EXPECT_GT (calls, 0);
+    }
 }
 
 TEST (Resampling, SmallCountsAreExact)

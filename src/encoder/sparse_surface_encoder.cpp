@@ -2,6 +2,7 @@
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/coding/patch_samples.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/encoder/impl/sparse_surface_encoder.hpp>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -70,23 +71,25 @@ namespace pcl_sparse
       std::vector<PatchCode> codes (patches.size ());
       info.resize (patches.size ());
       std::atomic<long> done (0);
+      ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 16) num_threads(context.threads) if(num_patches > 64)
       for (long p = 0; p < num_patches; ++p)
-      {
-        if (max_atoms && previous && (*max_atoms)[p] >= static_cast<int> ((*previous)[p].atoms.size ()))
-          codes[p] = (*previous)[p];
-        else
-        {
-          SparseCodingOptions coding = context.coding;
-          if (max_atoms)
-            coding.max_atoms = (*max_atoms)[p];
-          codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), context.mesh, context.ring_lengths,
-                                context.basis, coding, &info[p], context.attributes);
-        }
-        const long finished = ++done;
-        if (context.progress && omp_get_thread_num () == 0 && finished % 64 == 0)
-          context.progress ("coding", static_cast<double> (finished) / num_patches);
-      }
+        failure.run ([&] {
+          if (max_atoms && previous && (*max_atoms)[p] >= static_cast<int> ((*previous)[p].atoms.size ()))
+            codes[p] = (*previous)[p];
+          else
+          {
+            SparseCodingOptions coding = context.coding;
+            if (max_atoms)
+              coding.max_atoms = (*max_atoms)[p];
+            codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), context.mesh, context.ring_lengths,
+                                  context.basis, coding, &info[p], context.attributes);
+          }
+          const long finished = ++done;
+          if (context.progress && omp_get_thread_num () == 0 && finished % 64 == 0)
+            context.progress ("coding", static_cast<double> (finished) / num_patches);
+        });
+      failure.rethrow ();
       if (context.progress)
         context.progress ("coding", 1.0);
       return codes;

@@ -1,6 +1,7 @@
 #include <pcl_sparse/resampling/impl/sparse_surface_resampling.hpp>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
 
 #include <omp.h>
@@ -617,19 +618,21 @@ namespace pcl_sparse
     const double guess = static_cast<double> (count_) / (0.5 * footprint_area);
     std::vector<double> areas (m, 0.0);
     const double cells_per_axis = std::sqrt (std::max (1, options_.area_pass_cells));
+    ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 8) num_threads(threadsToUse ())
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
-    {
-      const std::size_t p = static_cast<std::size_t> (pi);
-      const double e = evaluator_->maxExtent (p);
-      const double final_cell = 1.0 / (model.patches[p].radius * std::sqrt (guess));
-      const PatchGrid grid = makeGrid (e, std::min (e, std::max (2.0 * e / cells_per_axis, 2.0 * final_cell)));
-      std::vector<Candidate> candidates;
-      Points evaluated;
-      const double r = model.patches[p].radius;
-      areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, patchNumber (p), 0), candidates, evaluated, false) * grid.cell *
-                 grid.cell * r * r;
-    }
+      failure.run ([&] {
+        const std::size_t p = static_cast<std::size_t> (pi);
+        const double e = evaluator_->maxExtent (p);
+        const double final_cell = 1.0 / (model.patches[p].radius * std::sqrt (guess));
+        const PatchGrid grid = makeGrid (e, std::min (e, std::max (2.0 * e / cells_per_axis, 2.0 * final_cell)));
+        std::vector<Candidate> candidates;
+        Points evaluated;
+        const double r = model.patches[p].radius;
+        areas[p] = sampler.drawCandidates (p, grid, patchKey (options_.seed, patchNumber (p), 0), candidates, evaluated, false) *
+                   grid.cell * grid.cell * r * r;
+      });
+    failure.rethrow ();
     const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
     if (!(area > 0.0))
       throw Error (name_ + "::compute: the model has no surface area to sample");
@@ -671,51 +674,45 @@ namespace pcl_sparse
     {
       done = 0;
       kept_bytes = 0;
-      std::exception_ptr failure;
+      ParallelFailure failure;
 #pragma omp parallel num_threads(threads)
       {
 #pragma omp single nowait
         if (prefill && attempt == 0)
-          try
-          {
+          failure.run ([&] {
             prefill->clear ();
             prefill->resize (count_);
-          }
-          catch (...)
-          {
-            failure = std::current_exception ();
-          }
+          });
 #pragma omp for schedule(dynamic, 4)
         for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
-        {
-          const std::size_t p = static_cast<std::size_t> (pi);
-          const double r = model_->patches[p].radius;
-          passes.grids[p] = makeGrid (evaluator_->maxExtent (p), 1.0 / (r * std::sqrt (density)));
-          // Which patches keep their candidates depends on the threads' timing, the points do not: a
-          // patch not kept only sums its weights now, and draws the same candidates from the same hashes
-          // in its block.
-          // A patch whose grid alone could take a quarter of the budget is not even drawn for keeping.
-          const std::size_t cells = static_cast<std::size_t> (passes.grids[p].n) * passes.grids[p].n;
-          const bool store = kept_bytes.load () < keep_bytes && cells <= keep_bytes / 4 / sizeof (Candidate);
-          passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 1),
-                                                            passes.candidates[p], passes.evaluated[p], store,
-                                                            &passes.sizes[p]);
-          const std::size_t bytes = passes.candidates[p].capacity () * sizeof (Candidate) +
-                                    passes.evaluated[p].capacity () * sizeof (pcl::PointNormal);
-          passes.kept[p] = store && kept_bytes.fetch_add (bytes) + bytes <= keep_bytes;
-          if (store && !passes.kept[p])
-          {
-            kept_bytes -= bytes;
-            std::vector<Candidate> ().swap (passes.candidates[p]);
-            Points ().swap (passes.evaluated[p]);
-          }
-          const std::size_t finished = ++done;
-          if (progress_ && omp_get_thread_num () == 0)
-            progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
-        }
+          failure.run ([&] {
+            const std::size_t p = static_cast<std::size_t> (pi);
+            const double r = model_->patches[p].radius;
+            passes.grids[p] = makeGrid (evaluator_->maxExtent (p), 1.0 / (r * std::sqrt (density)));
+            // Which patches keep their candidates depends on the threads' timing, the points do not: a
+            // patch not kept only sums its weights now, and draws the same candidates from the same hashes
+            // in its block.
+            // A patch whose grid alone could take a quarter of the budget is not even drawn for keeping.
+            const std::size_t cells = static_cast<std::size_t> (passes.grids[p].n) * passes.grids[p].n;
+            const bool store = kept_bytes.load () < keep_bytes && cells <= keep_bytes / 4 / sizeof (Candidate);
+            passes.weights[p] = passes.sampler.drawCandidates (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 1),
+                                                              passes.candidates[p], passes.evaluated[p], store,
+                                                              &passes.sizes[p]);
+            const std::size_t bytes = passes.candidates[p].capacity () * sizeof (Candidate) +
+                                      passes.evaluated[p].capacity () * sizeof (pcl::PointNormal);
+            passes.kept[p] = store && kept_bytes.fetch_add (bytes) + bytes <= keep_bytes;
+            if (store && !passes.kept[p])
+            {
+              kept_bytes -= bytes;
+              std::vector<Candidate> ().swap (passes.candidates[p]);
+              Points ().swap (passes.evaluated[p]);
+            }
+            const std::size_t finished = ++done;
+            if (progress_ && omp_get_thread_num () == 0)
+              progress_ ("resample", 0.5 * static_cast<double> (finished) / static_cast<double> (m));
+          });
       }
-      if (failure)
-        std::rethrow_exception (failure);
+      failure.rethrow ();
       if (mode_ != Mode::Count)
         break;
       const double expected = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
@@ -767,25 +764,27 @@ namespace pcl_sparse
     const std::size_t channels = with_attributes_ ? model_->attribute_channels.size () : 0;
     point_attributes_.assign (offsets[m] * channels, 0.0f);
     std::atomic<std::size_t> done (0);
+    ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threadsToUse ())
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
-    {
-      const std::size_t p = static_cast<std::size_t> (pi);
-      if (counts[p] > 0)
-      {
-        const std::uint64_t key = patchKey (options_.seed, patchNumber (p), 3);
-        PatchSampler::Cursor cursor = PatchSampler::startSelection (key, passes.candidates[p], counts[p]);
-        passes.sampler.selectPoints (p, passes.grids[p], key, passes.candidates[p], passes.evaluated[p], cursor, counts[p],
-                                     output.data () + offsets[p],
-                                     channels > 0 ? point_attributes_.data () + offsets[p] * channels : nullptr);
-      }
-      std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
-      std::vector<Candidate> ().swap (passes.candidates[p]);
-      Points ().swap (passes.evaluated[p]);
-      const std::size_t finished = ++done;
-      if (progress_ && omp_get_thread_num () == 0)
-        progress_ ("resample", 0.5 + 0.5 * static_cast<double> (finished) / static_cast<double> (m));
-    }
+      failure.run ([&] {
+        const std::size_t p = static_cast<std::size_t> (pi);
+        if (counts[p] > 0)
+        {
+          const std::uint64_t key = patchKey (options_.seed, patchNumber (p), 3);
+          PatchSampler::Cursor cursor = PatchSampler::startSelection (key, passes.candidates[p], counts[p]);
+          passes.sampler.selectPoints (p, passes.grids[p], key, passes.candidates[p], passes.evaluated[p], cursor, counts[p],
+                                       output.data () + offsets[p],
+                                       channels > 0 ? point_attributes_.data () + offsets[p] * channels : nullptr);
+        }
+        std::fill (point_patches_.begin () + offsets[p], point_patches_.begin () + offsets[p + 1], static_cast<int> (p));
+        std::vector<Candidate> ().swap (passes.candidates[p]);
+        Points ().swap (passes.evaluated[p]);
+        const std::size_t finished = ++done;
+        if (progress_ && omp_get_thread_num () == 0)
+          progress_ ("resample", 0.5 + 0.5 * static_cast<double> (finished) / static_cast<double> (m));
+      });
+    failure.rethrow ();
     output.width = static_cast<std::uint32_t> (output.size ());
     output.height = 1;
     output.is_dense = true;
@@ -815,18 +814,20 @@ namespace pcl_sparse
       block.cloud.resize (end - begin);
       block.patches.resize (end - begin);
       block.attributes.resize ((end - begin) * channels);
+      ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threadsToUse ())
       for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (plan.spans.size ()); ++k)
-      {
-        BlockPlan::Span& span = plan.spans[static_cast<std::size_t> (k)];
-        const std::size_t p = span.patch, first = span.out, size = span.limit - span.cursor.emitted;
-        passes.sampler.selectPoints (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 3), passes.candidates[p],
-                                     passes.evaluated[p], span.cursor, span.limit, block.cloud.data () + first,
-                                     channels > 0 ? block.attributes.data () + first * channels : nullptr);
-        std::fill (block.patches.begin () + first, block.patches.begin () + first + size, static_cast<int> (p));
-        if (span.closes)
-          plan.cursors[p] = span.cursor;
-      }
+        failure.run ([&] {
+          BlockPlan::Span& span = plan.spans[static_cast<std::size_t> (k)];
+          const std::size_t p = span.patch, first = span.out, size = span.limit - span.cursor.emitted;
+          passes.sampler.selectPoints (p, passes.grids[p], patchKey (options_.seed, patchNumber (p), 3), passes.candidates[p],
+                                       passes.evaluated[p], span.cursor, span.limit, block.cloud.data () + first,
+                                       channels > 0 ? block.attributes.data () + first * channels : nullptr);
+          std::fill (block.patches.begin () + first, block.patches.begin () + first + size, static_cast<int> (p));
+          if (span.closes)
+            plan.cursors[p] = span.cursor;
+        });
+      failure.rethrow ();
       // A patch finished in this block frees its candidates; one cut by the block's end keeps them.
       for (const auto& range : plan.patches)
       {
@@ -874,28 +875,30 @@ namespace pcl_sparse
     }
     // Each patch: its candidates unless kept from the weight pass, then the cursor at each span's start
     // (skipping is cheap: no evaluation), in parallel over the patches.
+    ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threadsToUse ())
     for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (plan.patches.size ()); ++k)
-    {
-      const auto [s0, s1] = plan.patches[static_cast<std::size_t> (k)];
-      const std::size_t q = plan.spans[s0].patch;
-      if (!passes.kept[q])
-      {
-        passes.sampler.drawCandidates (q, passes.grids[q], patchKey (options_.seed, patchNumber (q), 1), passes.candidates[q],
-                                       passes.evaluated[q], true, nullptr, passes.sizes[q]);
-        passes.kept[q] = 1;
-      }
-      PatchSampler::Cursor cursor = offsets[q] >= begin
-                                      ? PatchSampler::startSelection (patchKey (options_.seed, patchNumber (q), 3), passes.candidates[q],
-                                                                      offsets[q + 1] - offsets[q])
-                                      : plan.cursors[q];
-      for (std::size_t span = s0; span < s1; ++span)
-      {
-        if (span > s0)
-          PatchSampler::skip (cursor, passes.candidates[q], plan.spans[span - 1].limit);
-        plan.spans[span].cursor = cursor;
-      }
-    }
+      failure.run ([&] {
+        const auto [s0, s1] = plan.patches[static_cast<std::size_t> (k)];
+        const std::size_t q = plan.spans[s0].patch;
+        if (!passes.kept[q])
+        {
+          passes.sampler.drawCandidates (q, passes.grids[q], patchKey (options_.seed, patchNumber (q), 1), passes.candidates[q],
+                                         passes.evaluated[q], true, nullptr, passes.sizes[q]);
+          passes.kept[q] = 1;
+        }
+        PatchSampler::Cursor cursor = offsets[q] >= begin
+                                        ? PatchSampler::startSelection (patchKey (options_.seed, patchNumber (q), 3), passes.candidates[q],
+                                                                        offsets[q + 1] - offsets[q])
+                                        : plan.cursors[q];
+        for (std::size_t span = s0; span < s1; ++span)
+        {
+          if (span > s0)
+            PatchSampler::skip (cursor, passes.candidates[q], plan.spans[span - 1].limit);
+          plan.spans[span].cursor = cursor;
+        }
+      });
+    failure.rethrow ();
   }
 
   void

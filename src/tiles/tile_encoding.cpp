@@ -2,6 +2,7 @@
 
 #include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/tiles/wavefront_measurement.h>
 
 #include <algorithm>
@@ -179,9 +180,12 @@ namespace pcl_sparse
     const std::vector<std::size_t> none;
     // Tiles side by side, one thread each, when there are enough of them; else one tile with all threads.
     const bool side_by_side = threads > 1 && count > 1;
+    ParallelFailure cancelled;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if(side_by_side)
     for (long i = 0; i < count; ++i)
     {
+      if (cancelled.failed ())
+        continue;
       try
       {
         result[i] = encodeTile (source, tiles[i], options, side_by_side ? 1 : threads,
@@ -193,11 +197,12 @@ namespace pcl_sparse
       }
       const std::size_t finished = ++done;
       if (progress && omp_get_thread_num () == 0)
-        progress (finished);
+        cancelled.run ([&] { progress (finished); });  // a callback that throws to cancel
     }
     for (const std::string& e : errors)
       if (!e.empty ())
         throw Error (e);
+    cancelled.rethrow ();
     return result;
   }
 
