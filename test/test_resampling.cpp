@@ -504,6 +504,36 @@ TEST (Resampling, RefusesBadSetup)
   resampling.setInputModel (empty);
   resampling.setDensity (1.0);
   EXPECT_THROW (resampling.compute (cloud), Error);
+
+  // A model built in memory with a patch that is no surface is refused, naming it (a NaN seed aborted in
+  // the kd-tree; an atom outside the basis wrote past the evaluator's tables; a NaN frame gave NaN points).
+  const std::vector<std::pair<std::string, std::function<void (PatchCode&)>>> broken = {
+    {"patch 3 origin is not finite", [] (PatchCode& c) { c.origin.x () = std::nan (""); }},
+    {"patch 3 frame is not finite", [] (PatchCode& c) { c.frame (1, 2) = std::nan (""); }},
+    {"patch 3 frame is not orthonormal", [] (PatchCode& c) { c.frame (0, 0) = 2.0; }},
+    {"patch 3 radius is not positive", [] (PatchCode& c) { c.radius = -1.0; }},
+    {"patch 3 has atom index 200 outside the basis", [] (PatchCode& c) { c.atoms = {200}, c.coefficients = {0.1}; }},
+    {"patch 3 repeats atom 5", [] (PatchCode& c) { c.atoms = {5, 5}, c.coefficients = {0.1, 0.2}; }},
+    {"patch 3 coefficient is not finite", [] (PatchCode& c) { c.atoms = {5}, c.coefficients = {INFINITY}; }},
+    {"patch 3 footprint extent is negative", [] (PatchCode& c) { c.footprint.extent[2] = -0.5f; }},
+    {"beyond the range of float coordinates", [] (PatchCode& c) { c.origin.z () = 1e35; }},
+  };
+  for (const auto& [message, breakIt] : broken)
+  {
+    auto model = makePlaneModel ();
+    breakIt (model->patches[3]);
+    resampling.setInputModel (model);
+    resampling.setPointCount (100);
+    try
+    {
+      resampling.compute (cloud);
+      ADD_FAILURE () << "accepted: " << message;
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find (message), std::string::npos) << e.what ();
+    }
+  }
 }
 
 namespace

@@ -190,48 +190,20 @@ namespace pcl_sparse
     }
 
     void
-    validateModel (const SparseSurfaceModel& model, int basis_size, bool with_vertices)
+    validateModel (const SparseSurfaceModel& model, bool with_vertices)
     {
       if (model.patches.size () > kMaxPatches)
         throw Error ("encodeModel: too many patches");
       requireFinite (model.bbox_diagonal, "bbox_diagonal");
       if (model.bbox_diagonal < 0.0)
         throw Error ("encodeModel: bbox_diagonal is negative");
+      model.checkPatches ("encodeModel: ");
       for (std::size_t p = 0; p < model.patches.size (); ++p)
       {
         const PatchCode& patch = model.patches[p];
         const std::string name = "patch " + std::to_string (p);
-        for (int i = 0; i < 3; ++i)
-          requireFinite (patch.origin[i], name + " origin");
-        for (int i = 0; i < 9; ++i)
-          requireFinite (patch.frame (i), name + " frame");
-        const double off = (patch.frame.transpose () * patch.frame - Eigen::Matrix3d::Identity ()).cwiseAbs ().maxCoeff ();
-        if (!(off <= 1e-6))
-          throw Error ("encodeModel: " + name + " frame is not orthonormal");
-        requireFinite (patch.radius, name + " radius");
-        if (!(patch.radius > 0.0))
-          throw Error ("encodeModel: " + name + " radius is not positive");
-        if (patch.atoms.size () != patch.coefficients.size ())
-          throw Error ("encodeModel: " + name + " has " + std::to_string (patch.atoms.size ()) + " atoms but " +
-                       std::to_string (patch.coefficients.size ()) + " coefficients");
-        if (patch.atoms.size () > static_cast<std::size_t> (basis_size))
-          throw Error ("encodeModel: " + name + " has more atoms than the basis");
-        std::vector<bool> used (basis_size, false);
-        for (int a : patch.atoms)
-        {
-          if (a < 0 || a >= basis_size)
-            throw Error ("encodeModel: " + name + " has atom index " + std::to_string (a) + " outside the basis");
-          if (used[a])
-            throw Error ("encodeModel: " + name + " repeats atom " + std::to_string (a));
-          used[a] = true;
-        }
-        for (double c : patch.coefficients)
-          requireFinite (c, name + " coefficient");
         if (patch.footprint.extent.size () > kMaxFootprintAngles)
           throw Error ("encodeModel: " + name + " footprint has too many angles");
-        for (float e : patch.footprint.extent)
-          if (!std::isfinite (e) || e < 0.0f)
-            throw Error ("encodeModel: " + name + " footprint extent is negative or not finite");
         if (with_vertices && patch.vertices.size () != patch.vertex_xy.size ())
           throw Error ("encodeModel: " + name + " vertices and vertex_xy differ in size");
         if (!model.hasAttributes () && !patch.attributes.empty ())
@@ -1000,7 +972,7 @@ namespace pcl_sparse
   {
     const CosineAtoms& cosine = cosineBasis (model);
     const int frequencies = cosine.frequencies ();
-    validateModel (model, frequencies * frequencies, options.include_vertices);
+    validateModel (model, options.include_vertices);
     if (!std::isfinite (options.tolerance) || options.tolerance < 0.0)
       throw Error ("encodeModel: tolerance must be >= 0");
     if (options.max_footprint_angles < 0)

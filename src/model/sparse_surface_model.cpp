@@ -1,10 +1,12 @@
 #include <pcl_sparse/model/sparse_surface_model.h>
 
+#include <pcl_sparse/common/error.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace pcl_sparse
 {
@@ -165,5 +167,50 @@ namespace pcl_sparse
   {
     for (PatchCode& patch : patches)
       patch.origin += offset;
+  }
+
+  void
+  SparseSurfaceModel::checkPatches (const std::string& who) const
+  {
+    const int basis_size = basis ? basis->size () : 0;
+    auto requireFinite = [&] (double v, const std::string& what) {
+      if (!std::isfinite (v))
+        throw Error (who + what + " is not finite");
+    };
+    std::vector<bool> used (static_cast<std::size_t> (basis_size), false);
+    for (std::size_t p = 0; p < patches.size (); ++p)
+    {
+      const PatchCode& patch = patches[p];
+      const std::string name = "patch " + std::to_string (p);
+      for (int i = 0; i < 3; ++i)
+        requireFinite (patch.origin[i], name + " origin");
+      for (int i = 0; i < 9; ++i)
+        requireFinite (patch.frame (i), name + " frame");
+      const double off = (patch.frame.transpose () * patch.frame - Eigen::Matrix3d::Identity ()).cwiseAbs ().maxCoeff ();
+      if (!(off <= 1e-6))
+        throw Error (who + name + " frame is not orthonormal");
+      requireFinite (patch.radius, name + " radius");
+      if (!(patch.radius > 0.0))
+        throw Error (who + name + " radius is not positive");
+      if (patch.atoms.size () != patch.coefficients.size ())
+        throw Error (who + name + " has " + std::to_string (patch.atoms.size ()) + " atoms but " +
+                     std::to_string (patch.coefficients.size ()) + " coefficients");
+      if (patch.atoms.size () > static_cast<std::size_t> (basis_size))
+        throw Error (who + name + " has more atoms than the basis");
+      std::fill (used.begin (), used.end (), false);
+      for (int a : patch.atoms)
+      {
+        if (a < 0 || a >= basis_size)
+          throw Error (who + name + " has atom index " + std::to_string (a) + " outside the basis");
+        if (used[a])
+          throw Error (who + name + " repeats atom " + std::to_string (a));
+        used[a] = true;
+      }
+      for (double c : patch.coefficients)
+        requireFinite (c, name + " coefficient");
+      for (float e : patch.footprint.extent)
+        if (!std::isfinite (e) || e < 0.0f)
+          throw Error (who + name + " footprint extent is negative or not finite");
+    }
   }
 } // namespace pcl_sparse

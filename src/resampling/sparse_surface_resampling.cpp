@@ -65,9 +65,14 @@ namespace pcl_sparse
     PatchGrid
     makeGrid (double max_extent, double cell)
     {
+      // Cells are numbered row * n + col in 32 bits and hashed at 2 cell + 1: n stays below 2^15. Only a
+      // patch owning a sliver of its square at a density near max_points gets there.
+      const double n = std::ceil (2.0 * max_extent / cell);
+      if (!(n < 32768.0))
+        throw Error ("SparseSurfaceResampling::compute: the density asks for more than 2^30 cells in one patch: lower it");
       PatchGrid grid;
       grid.cell = cell;
-      grid.n = std::max (1, static_cast<int> (std::ceil (2.0 * max_extent / cell)));
+      grid.n = std::max (1, static_cast<int> (n));
       grid.start = -0.5 * grid.n * cell;
       return grid;
     }
@@ -589,9 +594,12 @@ namespace pcl_sparse
     if (mode_ == Mode::None)
       throw Error (name_ + "::compute: no density given (setPointCount, setDensity or setSpacing)");
     options_.validate ();
+    // A model from a file was checked by its reader; one built in memory is checked here (a NaN seed
+    // aborted in the kd-tree, an atom outside the basis wrote past the evaluator's tables).
+    model_->checkPatches (name_ + "::compute: ");
     for (const PatchCode& code : model_->patches)
-      if (!(code.radius > 0.0) || !std::isfinite (code.radius))
-        throw Error (name_ + "::compute: a patch has a non-positive radius");
+      if (!(code.origin.cwiseAbs ().maxCoeff () < 1e30 && code.radius < 1e30))
+        throw Error (name_ + "::compute: a patch lies beyond the range of float coordinates (1e30)");
     if (!patch_numbers_.empty () && patch_numbers_.size () != model_->patches.size ())
       throw Error (name_ + "::compute: " + std::to_string (patch_numbers_.size ()) + " patch numbers for " +
                    std::to_string (model_->patches.size ()) + " patches");

@@ -109,6 +109,13 @@ namespace pcl_sparse
     /// \param[in] offset world translation
     void translate (const Eigen::Vector3d& offset);
 
+    /// \brief Checks that every patch is a surface the model can evaluate: finite seed, orthonormal frame,
+    /// finite positive radius, as many coefficients (finite) as atoms, atoms distinct and in the basis,
+    /// footprint extents finite and >= 0. The file writer and resampling call it on models built in memory.
+    /// \param[in] who  the start of the error message (e.g. "encodeModel: ")
+    /// \throws pcl_sparse::Error naming the first patch and field that is not
+    void checkPatches (const std::string& who) const;
+
     /// CR = (13 M + nnz) / (3 N_V) (docs/METHOD.md step 11: 9 frame + 3 seed + 1 radius values per patch; counts
     /// values, not bytes). 0 when num_input_vertices is 0.
     double compressionRatio () const;
