@@ -658,3 +658,27 @@ TEST (PatchSamplingShared, VertexSetsDoNotFold)
   quality.probes = 1000;
   EXPECT_EQ (evaluateCloudQuality (*mesh, cloud, quality).flipped, 0u);
 }
+
+// A stray triangle beside a large flat grid: the sampling loop cannot cover it (a patch needs
+// min_patch_size vertices), so it used to grow a patch from every other candidate looking for it, O(V^2)
+// (found by a review: 50 s on a 40k-vertex grid). It now ends once the grid is covered; the coverage pass
+// covers the triangle.
+TEST (PatchSampling, StrayTriangleDoesNotKeepTheLoopGoing)
+{
+  TriangleMesh mesh = makePlaneGrid (60, 1.0);
+  const int base = static_cast<int> (mesh.vertices.size ());
+  mesh.vertices.push_back (Eigen::Vector3d (5.0, 5.0, 0.0));
+  mesh.vertices.push_back (Eigen::Vector3d (5.1, 5.0, 0.0));
+  mesh.vertices.push_back (Eigen::Vector3d (5.0, 5.1, 0.0));
+  mesh.triangles.push_back (Eigen::Vector3i (base, base + 1, base + 2));
+  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+  sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  std::vector<Patch> patches;
+  sampling.compute (patches);
+  EXPECT_LE (sampling.getNumGrownSeeds (), 3u);  // the grid's one flat patch, not one per candidate
+  std::vector<int> covered (mesh.vertices.size (), 0);
+  for (const Patch& patch : patches)
+    for (int v : patch.vertices)
+      covered[v] = 1;
+  EXPECT_EQ (std::count (covered.begin (), covered.end (), 0), 0);
+}

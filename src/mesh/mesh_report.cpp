@@ -1,6 +1,7 @@
 #include <pcl_sparse/mesh/mesh_report.h>
 
 #include <pcl_sparse/mesh/bounding_box.h>
+#include <pcl_sparse/mesh/mesh_components.h>
 
 #include <Eigen/Geometry>
 
@@ -13,34 +14,6 @@ namespace pcl_sparse
 {
   namespace
   {
-    /// Union-find with path halving; joins attach the larger root under the smaller one, so the root
-    /// of a set is its smallest element (deterministic, and it does not depend on the join order).
-    class DisjointSets
-    {
-    public:
-      explicit DisjointSets (std::size_t n) : parent_ (n) { std::iota (parent_.begin (), parent_.end (), 0); }
-
-      int
-      find (int x)
-      {
-        while (parent_[x] != x)
-          x = parent_[x] = parent_[parent_[x]];
-        return x;
-      }
-
-      void
-      join (int a, int b)
-      {
-        a = find (a);
-        b = find (b);
-        if (a != b)
-          parent_[std::max (a, b)] = std::min (a, b);
-      }
-
-    private:
-      std::vector<int> parent_;
-    };
-
     bool
     hasRepeatedIndex (const Eigen::Vector3i& t)
     {
