@@ -48,7 +48,7 @@ namespace pcl_sparse
     struct Candidate
     {
       float x, y, weight;
-      std::int32_t cell;
+      std::uint32_t cell;  ///< row * n + col
       std::int32_t evaluated;  ///< index of its already evaluated point, or -1
     };
 
@@ -65,11 +65,11 @@ namespace pcl_sparse
     PatchGrid
     makeGrid (double max_extent, double cell)
     {
-      // Cells are numbered row * n + col in 32 bits and hashed at 2 cell + 1: n stays below 2^15. Only a
-      // patch owning a sliver of its square at a density near max_points gets there.
-      const double n = std::ceil (2.0 * max_extent / cell);
-      if (!(n < 32768.0))
-        throw Error ("SparseSurfaceResampling::compute: the density asks for more than 2^30 cells in one patch: lower it");
+      // Cells are numbered row * n + col in 32 bits: n stays below 2^16. Only a patch owning a sliver of its
+      // square at a density near max_points gets there.
+      const double n = max_extent > 0.0 ? std::ceil (2.0 * max_extent / cell) : 1.0;  // a footprint of no extent: one cell
+      if (!(n < 65536.0))
+        throw Error ("SparseSurfaceResampling::compute: the density asks for more than 2^32 cells in one patch: lower it");
       PatchGrid grid;
       grid.cell = cell;
       grid.n = std::max (1, static_cast<int> (n));
@@ -253,12 +253,12 @@ namespace pcl_sparse
             for (int k = 0; k < n; ++k)
             {
               const int col = (row % 2 == 0) ? k : n - 1 - k;
-              const std::int32_t cell = row * n + col;
+              const std::uint32_t cell = static_cast<std::uint32_t> (row) * static_cast<std::uint32_t> (n) + static_cast<std::uint32_t> (col);
               const float state = classified ? cells[static_cast<std::size_t> (row - row0) * n + col] : -1.0f;
               if (state == 0.0f)
                 continue;
-              const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * cell) - 0.5)) * grid.cell;
-              const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * cell + 1) - 0.5)) * grid.cell;
+              const double x = grid.start + (col + 0.5 + jitter_ * (uniform (key, 2 * static_cast<std::uint64_t> (cell)) - 0.5)) * grid.cell;
+              const double y = grid.start + (row + 0.5 + jitter_ * (uniform (key, 2 * static_cast<std::uint64_t> (cell) + 1) - 0.5)) * grid.cell;
               std::int32_t index = -1;
               double w = state;
               if (state < 0.0f)
@@ -417,7 +417,8 @@ namespace pcl_sparse
         bool found = false;
         if (draw > 0)
         {
-          const int row = c.cell / grid.n, col = c.cell % grid.n;
+          const int row = static_cast<int> (c.cell / static_cast<std::uint32_t> (grid.n));
+          const int col = static_cast<int> (c.cell % static_cast<std::uint32_t> (grid.n));
           for (int attempt = 0; attempt < 8 && !found; ++attempt)
           {
             const std::uint64_t index = 2 * (cells * (8 * static_cast<std::uint64_t> (draw) + attempt) + c.cell);
