@@ -195,7 +195,7 @@ main (int argc, char** argv)
     args.integer ("-seed", resampling_options.seed, tools::Range::atLeast (0));
     tools::readOwnershipOptions (args, resampling_options);
     int threads = 0;
-    args.integer ("-threads", threads, tools::Range::atLeast (0));
+    args.integer ("-threads", threads, tools::Range::closed (0, 1024));
     const bool stream = tools::chooseStreaming (args, out_path, true, false);
 
     const bool has_box = args.has ("-box");

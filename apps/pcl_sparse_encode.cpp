@@ -69,7 +69,7 @@ namespace
       {"--authors-nyquist", "the authors' cap lambda >= f mu instead of the paper's lambda / 2 > f mu"},
       {"-L N", "atoms per patch at most (default 12)"},
       {"-eps E", "relative residual to stop at, in (0, 1) (default 0.01)"},
-      {"-min-samples N", "patches with fewer points get extra samples (default 64; authors 128)"},
+      {"-min-samples N", "patches with fewer points get extra samples (default 64; authors 128; at most 100000)"},
       {"-preset P", "default (measured best) or paper (the paper's configuration); the other options"},
       {"", "override it"},
       {"-basis paper|dct", "cosine atoms: dct cos(i pi (x+1)/2) cos(j pi (y+1)/2), odd parts too (default);"},
@@ -126,7 +126,7 @@ main (int argc, char** argv)
     if (args.has ("-basis"))
       options.basis = cosineBasisKindFromName (args.value ("-basis"));
     int threads = 0;
-    args.integer ("-threads", threads, tools::Range::atLeast (0));
+    args.integer ("-threads", threads, tools::Range::closed (0, 1024));
     const std::string recon_path = args.value ("-recon");
     const std::string error_path = args.value ("-error");
     const std::string model_path = args.value ("-o");

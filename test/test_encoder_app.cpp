@@ -128,7 +128,7 @@ TEST_F (EncodeTool, RefusesBadOptionsWithoutWriting)
   std::string out;
   for (const std::string& bad : {"-rho 0", "-rho -1", "-rho abc", "-f 1.5", "-f -0.1", "-L 0", "-L 2.5", "-eps 0",
                                  "-eps 1", "-min-samples -3", "-bogus", "-rho", "-basis foo", "-basis", "-cone 0", "-cone 181",
-                                 "-cone abc"})
+                                 "-cone abc", "-min-samples 100001", "-threads 100000", "-threads -1"})
   {
     EXPECT_EQ (run (input_ + " -q " + bad + " -recon " + recon, out), 1) << bad;
     EXPECT_FALSE (std::filesystem::exists (recon)) << bad;

@@ -242,7 +242,9 @@ namespace pcl_sparse
     require (coding.max_atoms >= 1, "L (atoms per patch) must be >= 1, got " + std::to_string (coding.max_atoms));
     require (coding.tolerance > 0.0 && coding.tolerance < 1.0,
              "eps must be in (0, 1), got " + std::to_string (coding.tolerance));
-    require (coding.min_samples >= 0, "min samples must be >= 0, got " + std::to_string (coding.min_samples));
+    // Each patch codes a samples x atoms matrix: 10^5 samples of 144 atoms are 115 MB a thread.
+    require (coding.min_samples >= 0 && coding.min_samples <= 100000,
+             "min samples must be in [0, 100000], got " + std::to_string (coding.min_samples));
     require (coding.triangle_samples >= 0.0 && std::isfinite (coding.triangle_samples),
              "triangle samples must be >= 0, got " + std::to_string (coding.triangle_samples));
     require (coding.footprint_angles >= 3,
