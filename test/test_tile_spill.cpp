@@ -239,6 +239,27 @@ namespace
   }
 } // namespace
 
+TEST (TileGrid, NoMoreTilesThanPoints)
+{
+  // A compact input cut into 500 tiles along its longest side would have 500^3: refused, saying so (it ran
+  // out of memory building them, found by a review); a flat one gets 500^2 when it has the points.
+  TileGridOptions options;
+  options.tiles_along_longest = 500;
+  const Eigen::AlignedBox3d cube (Eigen::Vector3d::Zero (), Eigen::Vector3d::Ones ());
+  try
+  {
+    makeTileGrid (cube, 14400, options);
+    ADD_FAILURE () << "125000000 tiles for 14400 points were made";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("125000000 tiles for 14400 points"), std::string::npos) << e.what ();
+  }
+  const Eigen::AlignedBox3d flat (Eigen::Vector3d::Zero (), Eigen::Vector3d (1.0, 1.0, 0.001));
+  EXPECT_EQ (makeTileGrid (flat, 300000, options).size (), 250000u);
+  EXPECT_THROW (makeTileGrid (flat, 200000, options), Error);
+}
+
 TEST (TileMembership, MarginBoxesAndOwnerExactly)
 {
   TileGrid grid = makeTileGrid (Eigen::AlignedBox3d (Eigen::Vector3d (-1.3, 0.2, 5.0), Eigen::Vector3d (4.1, 3.0, 5.7)),

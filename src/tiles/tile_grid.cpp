@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace pcl_sparse
 {
@@ -35,6 +36,14 @@ namespace pcl_sparse
       edge = std::sqrt (area * static_cast<double> (per_tile) / static_cast<double> (points));
       edge = std::min (edge, longest);
     }
+    // More tiles than points only costs memory (about 600 bytes a tile): a compact input cut into N tiles
+    // along its longest side has up to N^3 of them.
+    double total = 1.0;
+    for (int axis = 0; axis < 3; ++axis)
+      total *= std::max (1.0, std::ceil (sides[axis] / edge * (1.0 - 1e-12)));
+    if (total > std::max (4096.0, static_cast<double> (points)))
+      throw Error ("makeTileGrid: " + std::to_string (static_cast<long long> (total)) + " tiles for " + std::to_string (points) +
+                   " points: ask for fewer tiles along the longest side");
     TileGrid grid;
     grid.edge = edge;
     for (int axis = 0; axis < 3; ++axis)

@@ -94,7 +94,8 @@ namespace pcl_sparse
   /// options.points_per_tile points per tile, or fewer for options.min_tiles (or options.tiles_along_longest
   /// along the longest side).
   /// The grid is centred on the box; a single tile when everything fits in one.
-  /// Throws pcl_sparse::Error for an empty or non-finite box or options out of range.
+  /// Throws pcl_sparse::Error for an empty or non-finite box, options out of range, or more tiles than
+  /// max(4096, points).
   TileGrid
   makeTileGrid (const Eigen::AlignedBox3d& box, std::size_t points, const TileGridOptions& options = TileGridOptions ());
 } // namespace pcl_sparse
