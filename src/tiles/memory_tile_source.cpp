@@ -91,6 +91,9 @@ namespace pcl_sparse
       tile->width = static_cast<std::uint32_t> (tile->size ());
       tile->height = 1;
       tile->report.input_points = tile->report.kept = tile->size ();
+      // In the tile's own frame, as a spilled tile is (tile_source.h): the encoding depends on the frame
+      // in its last bits, and the file must not depend on -memory (found by a review).
+      centreScan (*tile);
       input.scan = tile;
       return input;
     }
