@@ -27,6 +27,10 @@ namespace pcl_sparse
     /// perpendicular to it, the sign is the estimation error's, so a usable such point takes the sign of its
     /// decided neighbours (sum of their normals) instead, spreading in passes (each pass reads only the
     /// previous one's decisions: the result does not depend on the order); unreached ones keep direction's.
+    /// A pass looks only at the grazing points next to the previous pass's decisions (through reverse
+    /// neighbour lists), so the spreading costs O(their neighbourhoods) in all: passes over every grazing
+    /// point cost O(passes x points), quadratic on ground seen at a grazing angle from a low sensor (found by
+    /// a review: 4.7 s more for 400k points).
     /// \a decided: #P zeros, left zero.
     template <typename Direction>
     void
@@ -34,7 +38,7 @@ namespace pcl_sparse
                  const std::vector<std::uint8_t>& usable, std::vector<std::uint8_t>& decided,
                  std::vector<Eigen::Vector3d>& normals)
     {
-      std::vector<int> grazing, now, later;
+      std::vector<int> grazing;
       for (const int i : points)
       {
         const Eigen::Vector3d d = direction (i);
@@ -46,30 +50,56 @@ namespace pcl_sparse
         else if (usable[i] && hasNormal (normals, i))
           grazing.push_back (i);
       }
-      while (!grazing.empty ())
+      if (!grazing.empty ())
       {
-        now.clear ();
-        later.clear ();
+        // listed_by[j]: the grazing points whose neighbourhood lists j (CSR over the points).
+        std::vector<std::size_t> offsets (hoods.size () + 1, 0);
         for (const int i : grazing)
-        {
-          Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
           for (const int j : hoods.of (i))
-            if (decided[j] && usable[j])
-              sum += normals[j];
-          if (sum.squaredNorm () > 0.0)
+            ++offsets[static_cast<std::size_t> (j) + 1];
+        std::partial_sum (offsets.begin (), offsets.end (), offsets.begin ());
+        std::vector<int> listed_by (offsets.back ());
+        std::vector<std::size_t> fill (offsets.begin (), offsets.end () - 1);
+        for (const int i : grazing)
+          for (const int j : hoods.of (i))
+            listed_by[fill[j]++] = i;
+        std::vector<std::uint8_t> waiting (hoods.size (), 0);
+        for (const int i : grazing)
+          waiting[i] = 1;
+        // The first pass looks at every grazing point; later ones at those next to new decisions.
+        std::vector<int> candidates = grazing, now;
+        while (!candidates.empty ())
+        {
+          now.clear ();
+          for (const int i : candidates)
           {
-            if (normals[i].dot (sum) < 0.0)
-              normals[i] = -normals[i];
-            now.push_back (i);
+            Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
+            for (const int j : hoods.of (i))
+              if (decided[j] && usable[j])
+                sum += normals[j];
+            if (sum.squaredNorm () > 0.0)
+            {
+              if (normals[i].dot (sum) < 0.0)
+                normals[i] = -normals[i];
+              now.push_back (i);
+            }
           }
-          else
-            later.push_back (i);
+          for (const int i : now)
+          {
+            decided[i] = 1;
+            waiting[i] = 0;
+          }
+          candidates.clear ();
+          for (const int i : now)
+            for (std::size_t k = offsets[i]; k < offsets[i + 1]; ++k)
+              if (waiting[listed_by[k]] == 1)
+              {
+                waiting[listed_by[k]] = 2;  // listed once per pass
+                candidates.push_back (listed_by[k]);
+              }
+          for (const int i : candidates)
+            waiting[i] = 1;
         }
-        if (now.empty ())
-          break;
-        for (const int i : now)
-          decided[i] = 1;
-        grazing.swap (later);
       }
       for (const int i : points)
         decided[i] = 0;
