@@ -15,6 +15,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -654,6 +655,34 @@ TEST (Resampling, DensityTooLowForTheModelSaysSo)
   resampling.setDensity (10.0);
   resampling.compute (cloud);
   EXPECT_GT (cloud.size (), 100u);
+}
+
+// A sliver 10000 median edges long among small triangles: the cover of each triangle that finds nearest faces
+// grew with the square of its length (5e7 points here; found by a review), now with its area and
+// length. The distance to the sliver's far end stays exact.
+TEST (CloudQuality, LongSliverIsCoveredAlongItsLength)
+{
+  TriangleMesh mesh = makePlaneGrid (40, 0.2);
+  const int v = static_cast<int> (mesh.vertices.size ());
+  mesh.vertices.emplace_back (0.3, 0.0, 0.0);
+  mesh.vertices.emplace_back (150.3, 0.0, 0.0);
+  mesh.vertices.emplace_back (0.3, 0.001, 0.0);
+  mesh.triangles.emplace_back (v, v + 1, v + 2);
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  pcl::PointNormal point;
+  point.x = 150.0f;
+  point.y = 0.0f;
+  point.z = 0.25f;  // above the sliver near its far end
+  point.normal_x = point.normal_y = 0.0f;
+  point.normal_z = 1.0f;
+  cloud.push_back (point);
+  CloudQualityOptions options;
+  options.probes = 1000;
+  const auto start = std::chrono::steady_clock::now ();
+  const CloudQuality q = evaluateCloudQuality (mesh, cloud, options);
+  const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+  EXPECT_NEAR (q.max_distance, 0.25, 1e-6);
+  EXPECT_LT (seconds, 1.5);  // about 0.01 s now
 }
 
 TEST (CloudQuality, NearestFaceIsExactNextToLargeTriangles)

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -60,27 +61,46 @@ namespace pcl_sparse
       return valid;
     }
 
-    /// Points on every triangle, each point of a triangle within \a reach of one of its triangle's (a
-    /// barycentric grid whose cells have edges at most \a reach), and the triangle of each.
+    /// Points on every triangle, each point of a triangle within \a reach of one of its triangle's, and the
+    /// triangle of each: rows parallel to the longest edge, \a reach apart from it up to the opposite corner,
+    /// each row sampled \a reach apart between the two other edges (a point lies within reach / 2 of a row
+    /// and reach / 2 along it). About area / reach^2 + longest / reach points: a barycentric grid of
+    /// (longest / reach)^2 / 2 points took 455 MB for one sliver 5000 reaches long (found by a review).
     pcl::PointCloud<pcl::PointXYZ>::Ptr
     coverTriangles (const TriangleMesh& mesh, double reach, std::vector<int>& owners)
     {
       pcl::PointCloud<pcl::PointXYZ>::Ptr points (new pcl::PointCloud<pcl::PointXYZ>);
       owners.clear ();
+      auto add = [&] (const Eigen::Vector3d& q, std::size_t f) {
+        points->push_back (pcl::PointXYZ (static_cast<float> (q.x ()), static_cast<float> (q.y ()), static_cast<float> (q.z ())));
+        owners.push_back (static_cast<int> (f));
+      };
       for (std::size_t f = 0; f < mesh.numTriangles (); ++f)
       {
         const Eigen::Vector3i& t = mesh.triangles[f];
-        const Eigen::Vector3d a = mesh.vertices[t[0]], ab = mesh.vertices[t[1]] - a, ac = mesh.vertices[t[2]] - a;
-        const double longest = std::max ({ab.norm (), ac.norm (), (ac - ab).norm ()});
-        // A point of a grid cell is within the cell's longest edge (longest / n) of one of its corners.
-        const int n = std::max (1, static_cast<int> (std::ceil (longest / reach)));
-        for (int i = 0; i <= n; ++i)
-          for (int j = 0; i + j <= n; ++j)
-          {
-            const Eigen::Vector3d q = a + (static_cast<double> (i) / n) * ab + (static_cast<double> (j) / n) * ac;
-            points->push_back (pcl::PointXYZ (static_cast<float> (q.x ()), static_cast<float> (q.y ()), static_cast<float> (q.z ())));
-            owners.push_back (static_cast<int> (f));
-          }
+        // Corners: a, b the longest edge, c the opposite corner.
+        std::array<Eigen::Vector3d, 3> corner = {mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
+        int opposite = 2;
+        double longest = (corner[1] - corner[0]).norm ();
+        for (int k = 0; k < 2; ++k)
+        {
+          const double edge = (corner[(k + 2) % 3] - corner[k + 1]).norm ();
+          if (edge > longest)
+            longest = edge, opposite = k;
+        }
+        const Eigen::Vector3d &a = corner[(opposite + 1) % 3], &b = corner[(opposite + 2) % 3], &c = corner[opposite];
+        const Eigen::Vector3d ab = b - a;
+        const double height = longest > 0.0 ? ab.cross (c - a).norm () / longest : 0.0;
+        const int rows = std::max (1, static_cast<int> (std::ceil (height / reach)));
+        for (int i = 0; i <= rows; ++i)
+        {
+          // The row at fraction s of the way to c runs from a + s (c - a) to b + s (c - b).
+          const double s = static_cast<double> (i) / rows;
+          const Eigen::Vector3d from = a + s * (c - a), to = b + s * (c - b);
+          const int steps = std::max (1, static_cast<int> (std::ceil ((to - from).norm () / reach)));
+          for (int j = 0; j <= steps; ++j)
+            add (from + (static_cast<double> (j) / steps) * (to - from), f);
+        }
       }
       return points;
     }
