@@ -11,13 +11,13 @@ namespace pcl_sparse
   {
     const std::size_t n = neighborhoods.size ();
     // Reverse lists (who lists j), ascending because they are filled in order of i.
-    std::vector<int> reverse_offsets (n + 1, 0);
+    std::vector<std::size_t> reverse_offsets (n + 1, 0);
     for (const int j : neighborhoods.neighbors)
       ++reverse_offsets[j + 1];
     for (std::size_t j = 0; j < n; ++j)
       reverse_offsets[j + 1] += reverse_offsets[j];
     std::vector<int> reverse (neighborhoods.neighbors.size ());
-    std::vector<int> fill (reverse_offsets.begin (), reverse_offsets.end () - 1);
+    std::vector<std::size_t> fill (reverse_offsets.begin (), reverse_offsets.end () - 1);
     for (std::size_t i = 0; i < n; ++i)
       for (const int j : neighborhoods.of (i))
         reverse[fill[j]++] = static_cast<int> (i);
@@ -39,10 +39,10 @@ namespace pcl_sparse
     out.spacing = neighborhoods.spacing;
     out.offsets.assign (n + 1, 0);
     for (std::size_t i = 0; i < n; ++i)
-      out.offsets[i + 1] = out.offsets[i] + static_cast<int> (merged[i].size ());
+      out.offsets[i + 1] = out.offsets[i] + merged[i].size ();
     out.neighbors.resize (out.offsets[n]);
     for (std::size_t i = 0; i < n; ++i)
-      std::copy (merged[i].begin (), merged[i].end (), out.neighbors.begin () + out.offsets[i]);
+      std::copy (merged[i].begin (), merged[i].end (), out.neighbors.begin () + static_cast<std::ptrdiff_t> (out.offsets[i]));
     return out;
   }
   void
@@ -52,10 +52,10 @@ namespace pcl_sparse
     const std::size_t n = counts.size ();
     neighborhoods.offsets.assign (n + 1, 0);
     for (std::size_t i = 0; i < n; ++i)
-      neighborhoods.offsets[i + 1] = neighborhoods.offsets[i] + counts[i];
-    neighborhoods.neighbors.resize (static_cast<std::size_t> (neighborhoods.offsets[n]));
+      neighborhoods.offsets[i + 1] = neighborhoods.offsets[i] + static_cast<std::size_t> (counts[i]);
+    neighborhoods.neighbors.resize (neighborhoods.offsets[n]);
     for (std::size_t i = 0; i < n; ++i)
       std::copy_n (slots.begin () + static_cast<std::ptrdiff_t> (i * stride), counts[i],
-                   neighborhoods.neighbors.begin () + neighborhoods.offsets[i]);
+                   neighborhoods.neighbors.begin () + static_cast<std::ptrdiff_t> (neighborhoods.offsets[i]));
   }
 } // namespace pcl_sparse

@@ -18,7 +18,7 @@ namespace pcl_sparse
   ///             the point has no neighbour
   struct PointNeighborhoods
   {
-    std::vector<int> offsets{0};
+    std::vector<std::size_t> offsets{0};  ///< 64-bit: a few million points of k = 64 lists pass 2^31 entries
     std::vector<int> neighbors;
     std::vector<double> spacing;
 
