@@ -842,3 +842,32 @@ TEST (TiledEncoding, StatisticsNeedOnlyTheVertexNumbers)
   EXPECT_EQ (encoder.getStatistics ().max_error, stats.max_error);
   EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (reference_model, ModelWriteOptions (), 1));
 }
+
+// Patches list their input points by 32-bit number: an input of 2^31 points or more is refused up front,
+// naming the count (the numbers wrapped to negative ones, found by a review).
+TEST (TiledEncoding, RefusesMorePointsThanAModelNumbers)
+{
+  class HugeSource : public TileSource
+  {
+  public:
+    const TileGrid& grid () const override { return grid_; }
+    std::size_t totalPoints () const override { return std::size_t (1) << 31; }
+    std::size_t corePoints (std::size_t) const override { return std::size_t (1) << 31; }
+    TileInput loadTile (std::size_t) const override { throw Error ("not to be loaded"); }
+
+  private:
+    TileGrid grid_;
+  };
+  TiledSurfaceEncoder encoder;
+  encoder.setTileSource (std::make_shared<HugeSource> ());
+  TiledModel tiled;
+  try
+  {
+    encoder.compute (tiled);
+    ADD_FAILURE () << "2^31 points were accepted";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("2147483648 points"), std::string::npos) << e.what ();
+  }
+}

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -453,6 +454,9 @@ namespace pcl_sparse
     if (!source_)
       fail ("no input: setTileSource");
     options_.validate ();
+    // Patches list their input points by 32-bit number (PatchCode::vertices).
+    if (source_->totalPoints () > static_cast<std::size_t> (std::numeric_limits<int>::max ()))
+      fail ("the input has " + std::to_string (source_->totalPoints ()) + " points; a model numbers at most 2^31 - 1");
     const TileGrid& grid = source_->grid ();
     tile_seconds_.assign (grid.size (), 0.0);
     statistics_ = ModelStatistics ();
