@@ -185,4 +185,6 @@ TEST_F (TilesMpi, OneRankFailingStopsThemAll)
   EXPECT_NE (code, 124) << "mpirun hung: " << out;
   EXPECT_NE (out.find ("cannot make a temporary directory"), std::string::npos) << out;
   EXPECT_FALSE (std::filesystem::exists (dir_.file ("failed.psm")));
+  // The rank stopped by the abort (SIGTERM) removed its spill folder.
+  EXPECT_TRUE (std::filesystem::is_empty (spill)) << std::filesystem::directory_iterator (spill)->path ();
 }

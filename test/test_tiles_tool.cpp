@@ -218,3 +218,44 @@ TEST_F (TilesTool, RegionDecodeEqualsTheFullDecodeThereAndReadsLittle)
   EXPECT_NE (run ("pcl_sparse_decode", model + " " + dir_.file ("x.pcd") + " -density 10 -box 1,2,3", out), 0);
   EXPECT_NE (out.find ("-box"), std::string::npos) << out;
 }
+
+// Ctrl-C (or mpirun stopping the ranks after one failed) ends the encoder where no destructor runs: its
+// spill folder, up to a copy of the input, stayed in $TMPDIR (found by a review). It is removed now.
+TEST_F (TilesTool, InterruptedSpillLeavesNoFiles)
+{
+  const std::string cloud = dir_.file ("terrain.pcd");
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.points = 300000;
+  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  const std::string spill = dir_.file ("tmp");
+  std::filesystem::create_directories (spill);
+  const std::string tool = tools + "/pcl_sparse_encode", out = dir_.file ("interrupted.psm");
+  const pid_t pid = ::fork ();
+  if (pid == 0)
+  {
+    ::setenv ("TMPDIR", spill.c_str (), 1);
+    ::execl (tool.c_str (), tool.c_str (), cloud.c_str (), "-memory", "1M", "-q", "-o", out.c_str (), static_cast<char*> (nullptr));
+    ::_exit (127);
+  }
+  auto spilling = [&] {
+    for (const auto& entry : std::filesystem::directory_iterator (spill))
+      if (entry.path ().filename ().string ().rfind ("pcl_sparse_spill_", 0) == 0)
+        return true;
+    return false;
+  };
+  bool seen = false;
+  for (int wait = 0; wait < 2000 && !seen; ++wait)
+  {
+    seen = spilling ();
+    if (!seen)
+      ::usleep (10000);
+  }
+  ::usleep (20000);  // past the instant between making the folder and registering it
+  ::kill (pid, SIGINT);
+  int status = 0;
+  ::waitpid (pid, &status, 0);
+  ASSERT_TRUE (seen) << "the encoder never made its spill folder";
+  EXPECT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGINT) << "status " << status;
+  EXPECT_FALSE (spilling ()) << "the spill folder stayed";
+  EXPECT_FALSE (std::filesystem::exists (out));
+}

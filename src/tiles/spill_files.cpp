@@ -1,5 +1,7 @@
 #include "spill_files.h"
 
+#include "spill_cleanup.h"
+
 #include <cmath>
 #include <filesystem>
 #include <system_error>
@@ -25,10 +27,12 @@ namespace pcl_sparse
         throw Error (base + ": cannot make a temporary directory for the tiles' spill files (" +
                      std::strerror (errno) + ")");
       path_ = pattern;
+      registerSpillDirectory (path_);
     }
 
     SpillDirectory::~SpillDirectory ()
     {
+      unregisterSpillDirectory (path_);
       std::error_code ignored;
       std::filesystem::remove_all (path_, ignored);
     }

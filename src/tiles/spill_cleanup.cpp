@@ -1,0 +1,119 @@
+#include "spill_cleanup.h"
+
+#include <array>
+#include <atomic>
+#include <csignal>
+#include <cstring>
+#include <mutex>
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+namespace pcl_sparse
+{
+  namespace tiles_detail
+  {
+    namespace
+    {
+      constexpr std::size_t kSlots = 16;       // directories alive at once (one per spilled source)
+      constexpr std::size_t kPathBytes = 4096;
+      constexpr std::array<int, 3> kSignals = {SIGINT, SIGTERM, SIGHUP};
+
+      struct Slot
+      {
+        std::atomic<bool> used{false};
+        char path[kPathBytes];
+      };
+      std::array<Slot, kSlots> slots;
+      std::mutex registry;                        // registration only; the handler reads `used`
+      std::size_t registered = 0;
+      struct sigaction previous[kSignals.size ()];
+
+      /// Unlinks the files of one directory, then the directory (async-signal-safe calls only).
+      void
+      removeDirectory (const char* path)
+      {
+        const int fd = ::open (path, O_RDONLY | O_DIRECTORY);
+        if (fd >= 0)
+        {
+          alignas (8) char buffer[4096];
+          for (;;)
+          {
+            const long bytes = ::syscall (SYS_getdents64, fd, buffer, sizeof (buffer));
+            if (bytes <= 0)
+              break;
+            for (long at = 0; at < bytes;)
+            {
+              const auto* entry = reinterpret_cast<const struct dirent64*> (buffer + at);
+              if (std::strcmp (entry->d_name, ".") != 0 && std::strcmp (entry->d_name, "..") != 0)
+                ::unlinkat (fd, entry->d_name, 0);
+              at += entry->d_reclen;
+            }
+          }
+          ::close (fd);
+        }
+        ::rmdir (path);
+      }
+
+      void
+      onSignal (int signal)
+      {
+        for (Slot& slot : slots)
+          if (slot.used.load ())
+            removeDirectory (slot.path);
+        for (std::size_t k = 0; k < kSignals.size (); ++k)
+          if (kSignals[k] == signal)
+          {
+            ::sigaction (signal, &previous[k], nullptr);
+            if (previous[k].sa_handler != SIG_DFL && previous[k].sa_handler != SIG_IGN &&
+                !(previous[k].sa_flags & SA_SIGINFO))
+            {
+              previous[k].sa_handler (signal);
+              return;
+            }
+          }
+        ::raise (signal);
+      }
+    } // namespace
+
+    void
+    registerSpillDirectory (const std::string& path)
+    {
+      if (path.size () >= kPathBytes)
+        return;  // left to the destructor
+      const std::lock_guard<std::mutex> lock (registry);
+      for (Slot& slot : slots)
+        if (!slot.used.load ())
+        {
+          std::memcpy (slot.path, path.c_str (), path.size () + 1);
+          slot.used.store (true);
+          if (registered++ == 0)
+          {
+            struct sigaction action {};
+            action.sa_handler = onSignal;
+            sigemptyset (&action.sa_mask);
+            for (std::size_t k = 0; k < kSignals.size (); ++k)
+              ::sigaction (kSignals[k], &action, &previous[k]);
+          }
+          return;
+        }
+    }
+
+    void
+    unregisterSpillDirectory (const std::string& path)
+    {
+      const std::lock_guard<std::mutex> lock (registry);
+      for (Slot& slot : slots)
+        if (slot.used.load () && path == slot.path)
+        {
+          slot.used.store (false);
+          if (--registered == 0)
+            for (std::size_t k = 0; k < kSignals.size (); ++k)
+              ::sigaction (kSignals[k], &previous[k], nullptr);
+          return;
+        }
+    }
+  } // namespace tiles_detail
+} // namespace pcl_sparse
