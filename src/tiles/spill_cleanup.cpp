@@ -63,17 +63,10 @@ namespace pcl_sparse
         for (Slot& slot : slots)
           if (slot.used.load ())
             removeDirectory (slot.path);
+        // The handler that was there before (the default: the process ends by this signal) takes it.
         for (std::size_t k = 0; k < kSignals.size (); ++k)
           if (kSignals[k] == signal)
-          {
             ::sigaction (signal, &previous[k], nullptr);
-            if (previous[k].sa_handler != SIG_DFL && previous[k].sa_handler != SIG_IGN &&
-                !(previous[k].sa_flags & SA_SIGINFO))
-            {
-              previous[k].sa_handler (signal);
-              return;
-            }
-          }
         ::raise (signal);
       }
     } // namespace
@@ -95,7 +88,11 @@ namespace pcl_sparse
             action.sa_handler = onSignal;
             sigemptyset (&action.sa_mask);
             for (std::size_t k = 0; k < kSignals.size (); ++k)
+            {
               ::sigaction (kSignals[k], &action, &previous[k]);
+              if (previous[k].sa_handler == SIG_IGN)  // an ignored signal (nohup) stays ignored: the run goes on
+                ::sigaction (kSignals[k], &previous[k], nullptr);
+            }
           }
           return;
         }
