@@ -163,7 +163,7 @@ namespace pcl_sparse
       for (int x = 0; x < grid.width; ++x)
       {
         const int i = grid.at (x, y);
-        if (i < 0)
+        if (i < 0 || x == grid.wrap_column)  // a repeated point has its own cell
           continue;
         const std::ptrdiff_t e = static_cast<std::ptrdiff_t> (y) * grid.width + x;
         double sx = meanSpacing (edges.horizontal_state, edges.horizontal_spacing, x > 0 ? e - 1 : -1, e);

@@ -75,6 +75,27 @@ namespace pcl_sparse
       std::nth_element (steps.begin (), middle, steps.end ());
       return *middle;
     }
+
+    /// A full turn ends one column before it starts again: the first used column, repeated after the last
+    /// used one, closes the grid behind the sensor, where a crack of one column was never triangulated
+    /// (found by a review). Only when the two are exactly a turn apart: a sweep short of a full turn stays
+    /// open, and so does one whose first and last columns hold the same azimuth (repeating the second
+    /// column there would give its vertical edges three triangles).
+    void
+    closeTheTurn (ScanGrid& grid, double step)
+    {
+      int first = grid.width, last = -1;
+      for (int y = 0; y < grid.height; ++y)
+        for (int x = 0; x < grid.width; ++x)
+          if (grid.at (x, y) >= 0)
+            first = std::min (first, x), last = std::max (last, x);
+      const long source = last + 1 - std::lround (2.0 * M_PI / step);
+      if (last < 0 || source != first || last + 1 >= grid.width)
+        return;
+      for (int y = 0; y < grid.height; ++y)
+        grid.cells[static_cast<std::size_t> (y) * grid.width + last + 1] = grid.at (static_cast<int> (source), y);
+      grid.wrap_column = last + 1;
+    }
   } // namespace
 
   bool
@@ -154,6 +175,7 @@ namespace pcl_sparse
     }
     if (placed < 0.9 * candidates)
       return false;
+    closeTheTurn (result, step);
     unplaced = candidates - placed;
     grid = std::move (result);
     return true;

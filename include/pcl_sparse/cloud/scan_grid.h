@@ -17,6 +17,9 @@ namespace pcl_sparse
     int width = 0;
     int height = 0;
     std::vector<int> cells;
+    /// A column repeating another's points, or -1: a lidar frame's full turn closed behind the sensor (the
+    /// first column again after the last). Edges and triangles use it; loops over the points skip it.
+    int wrap_column = -1;
 
     int at (int x, int y) const { return cells[static_cast<std::size_t> (y) * width + x]; }
   };
