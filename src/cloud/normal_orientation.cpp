@@ -26,7 +26,8 @@ namespace pcl_sparse
     /// Flips the normals of \a points toward direction (i); where a normal is within 10 degrees of
     /// perpendicular to it, the sign is the estimation error's, so a usable such point takes the sign of its
     /// decided neighbours (sum of their normals) instead, spreading in passes (each pass reads only the
-    /// previous one's decisions: the result does not depend on the order); unreached ones keep direction's.
+    /// previous one's decisions: the result does not depend on the order); where none reaches, the first
+    /// unreached point keeps direction's sign and spreads it the same way.
     /// A pass looks only at the grazing points next to the previous pass's decisions (through reverse
     /// neighbour lists), so the spreading costs O(their neighbourhoods) in all: passes over every grazing
     /// point cost O(passes x points), quadratic on ground seen at a grazing angle from a low sensor (found by
@@ -66,10 +67,33 @@ namespace pcl_sparse
         std::vector<std::uint8_t> waiting (hoods.size (), 0);
         for (const int i : grazing)
           waiting[i] = 1;
-        // The first pass looks at every grazing point; later ones at those next to new decisions.
+        // The first pass looks at every grazing point; later ones at those next to new decisions. Grazing
+        // points no decision reaches (a viewpoint in the plane of the surface leaves every point grazing)
+        // are made consistent among themselves: the first of them keeps its sign and spreads it, so
+        // neighbouring normals agree instead of keeping their estimation's random signs (found by a review).
         std::vector<int> candidates = grazing, now;
-        while (!candidates.empty ())
+        std::size_t next_seed = 0;
+        while (!candidates.empty () || next_seed < grazing.size ())
         {
+          if (candidates.empty ())
+          {
+            while (next_seed < grazing.size () && !waiting[grazing[next_seed]])
+              ++next_seed;
+            if (next_seed == grazing.size ())
+              break;
+            const int seed = grazing[next_seed];
+            decided[seed] = 1;
+            waiting[seed] = 0;
+            for (std::size_t k = offsets[seed]; k < offsets[seed + 1]; ++k)
+              if (waiting[listed_by[k]] == 1)
+              {
+                waiting[listed_by[k]] = 2;
+                candidates.push_back (listed_by[k]);
+              }
+            for (const int i : candidates)
+              waiting[i] = 1;
+            continue;
+          }
           now.clear ();
           for (const int i : candidates)
           {
