@@ -1,5 +1,7 @@
 #include <pcl_sparse/cloud/normal_orientation.h>
 
+#include <pcl_sparse/mesh/mesh_components.h>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
@@ -53,25 +55,25 @@ namespace pcl_sparse
       }
       if (!grazing.empty ())
       {
-        // listed_by[j]: the grazing points whose neighbourhood lists j (CSR over the points).
-        std::vector<std::size_t> offsets (hoods.size () + 1, 0);
-        for (const int i : grazing)
-          for (const int j : hoods.of (i))
-            ++offsets[static_cast<std::size_t> (j) + 1];
-        std::partial_sum (offsets.begin (), offsets.end (), offsets.begin ());
-        std::vector<int> listed_by (offsets.back ());
-        std::vector<std::size_t> fill (offsets.begin (), offsets.end () - 1);
-        for (const int i : grazing)
-          for (const int j : hoods.of (i))
-            listed_by[fill[j]++] = i;
+        // listed_by.of (j): the grazing points whose neighbourhood lists j.
+        const PointNeighborhoods listed_by = reverseNeighborhoods (hoods, grazing);
         std::vector<std::uint8_t> waiting (hoods.size (), 0);
         for (const int i : grazing)
           waiting[i] = 1;
+        std::vector<int> candidates = grazing, now;
+        // The waiting grazing points that list i become candidates of the next pass, once each.
+        auto listersOf = [&] (int i) {
+          for (const int k : listed_by.of (i))
+            if (waiting[k] == 1)
+            {
+              waiting[k] = 2;
+              candidates.push_back (k);
+            }
+        };
         // The first pass looks at every grazing point; later ones at those next to new decisions. Grazing
         // points no decision reaches (a viewpoint in the plane of the surface leaves every point grazing)
         // are made consistent among themselves: the first of them keeps its sign and spreads it, so
         // neighbouring normals agree instead of keeping their estimation's random signs (found by a review).
-        std::vector<int> candidates = grazing, now;
         std::size_t next_seed = 0;
         while (!candidates.empty () || next_seed < grazing.size ())
         {
@@ -84,12 +86,7 @@ namespace pcl_sparse
             const int seed = grazing[next_seed];
             decided[seed] = 1;
             waiting[seed] = 0;
-            for (std::size_t k = offsets[seed]; k < offsets[seed + 1]; ++k)
-              if (waiting[listed_by[k]] == 1)
-              {
-                waiting[listed_by[k]] = 2;
-                candidates.push_back (listed_by[k]);
-              }
+            listersOf (seed);
             for (const int i : candidates)
               waiting[i] = 1;
             continue;
@@ -115,27 +112,13 @@ namespace pcl_sparse
           }
           candidates.clear ();
           for (const int i : now)
-            for (std::size_t k = offsets[i]; k < offsets[i + 1]; ++k)
-              if (waiting[listed_by[k]] == 1)
-              {
-                waiting[listed_by[k]] = 2;  // listed once per pass
-                candidates.push_back (listed_by[k]);
-              }
+            listersOf (i);
           for (const int i : candidates)
             waiting[i] = 1;
         }
       }
       for (const int i : points)
         decided[i] = 0;
-    }
-
-    /// Union-find with path halving, for Kruskal.
-    int
-    findRoot (std::vector<int>& up, int v)
-    {
-      while (up[v] != v)
-        v = up[v] = up[up[v]];
-      return v;
     }
 
     /// The minimum spanning forest (Kruskal: edges by weight, ties by their corners, so it is unique) as
@@ -158,15 +141,13 @@ namespace pcl_sparse
             if (j > static_cast<int> (i) && usable[j] && hasNormal (normals, j))
               edges.push_back ({1.0 - std::abs (normals[i].dot (normals[j])), static_cast<int> (i), j});
       std::sort (edges.begin (), edges.end ());
-      std::vector<int> up (n);
-      std::iota (up.begin (), up.end (), 0);
+      DisjointSets trees (n);  // which edges Kruskal keeps does not depend on how the sets are joined
       std::vector<std::pair<int, int>> directed;
       for (const Edge& e : edges)
       {
-        const int ra = findRoot (up, e.a), rb = findRoot (up, e.b);
-        if (ra == rb)
+        if (trees.find (e.a) == trees.find (e.b))
           continue;
-        up[ra] = rb;
+        trees.join (e.a, e.b);
         directed.emplace_back (e.a, e.b);
         directed.emplace_back (e.b, e.a);
       }

@@ -3,24 +3,36 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <numeric>
 
 namespace pcl_sparse
 {
   PointNeighborhoods
+  reverseNeighborhoods (const PointNeighborhoods& neighborhoods, const std::vector<int>& sources)
+  {
+    const std::size_t n = neighborhoods.size ();
+    PointNeighborhoods reverse;
+    reverse.offsets.assign (n + 1, 0);
+    for (const int i : sources)
+      for (const int j : neighborhoods.of (i))
+        ++reverse.offsets[static_cast<std::size_t> (j) + 1];
+    std::partial_sum (reverse.offsets.begin (), reverse.offsets.end (), reverse.offsets.begin ());
+    reverse.neighbors.resize (reverse.offsets.back ());
+    std::vector<std::size_t> fill (reverse.offsets.begin (), reverse.offsets.end () - 1);
+    for (const int i : sources)
+      for (const int j : neighborhoods.of (i))
+        reverse.neighbors[fill[j]++] = i;
+    return reverse;
+  }
+
+  PointNeighborhoods
   symmetricNeighborhoods (const PointNeighborhoods& neighborhoods, int num_threads)
   {
     const std::size_t n = neighborhoods.size ();
-    // Reverse lists (who lists j), ascending because they are filled in order of i.
-    std::vector<std::size_t> reverse_offsets (n + 1, 0);
-    for (const int j : neighborhoods.neighbors)
-      ++reverse_offsets[j + 1];
-    for (std::size_t j = 0; j < n; ++j)
-      reverse_offsets[j + 1] += reverse_offsets[j];
-    std::vector<int> reverse (neighborhoods.neighbors.size ());
-    std::vector<std::size_t> fill (reverse_offsets.begin (), reverse_offsets.end () - 1);
-    for (std::size_t i = 0; i < n; ++i)
-      for (const int j : neighborhoods.of (i))
-        reverse[fill[j]++] = static_cast<int> (i);
+    // Reverse lists (who lists j), ascending because the sources are.
+    std::vector<int> all (n);
+    std::iota (all.begin (), all.end (), 0);
+    const PointNeighborhoods reverse = reverseNeighborhoods (neighborhoods, all);
 
     // Each point's own list merged with its reverse list: sizes first, then the lists.
     std::vector<std::vector<int>> merged (n);
@@ -29,9 +41,9 @@ namespace pcl_sparse
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
     {
       std::vector<int>& list = merged[i];
-      const IndexRange own = neighborhoods.of (i);
+      const IndexRange own = neighborhoods.of (i), listed_by = reverse.of (i);
       list.assign (own.begin (), own.end ());
-      list.insert (list.end (), reverse.begin () + reverse_offsets[i], reverse.begin () + reverse_offsets[i + 1]);
+      list.insert (list.end (), listed_by.begin (), listed_by.end ());
       std::sort (list.begin (), list.end ());
       list.erase (std::unique (list.begin (), list.end ()), list.end ());
     }

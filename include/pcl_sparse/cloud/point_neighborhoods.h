@@ -41,6 +41,11 @@ namespace pcl_sparse
   packNeighborSlots (const std::vector<int>& slots, std::size_t stride, const std::vector<int>& counts,
                      PointNeighborhoods& neighborhoods);
 
+  /// The reverse lists of \a neighborhoods over the points \a sources: point j's list holds the sources
+  /// whose lists hold j, in the order of \a sources (spacing left empty).
+  PointNeighborhoods
+  reverseNeighborhoods (const PointNeighborhoods& neighborhoods, const std::vector<int>& sources);
+
   /// The neighbour lists made symmetric: j lists i whenever i lists j, each list ascending (a kNN graph is
   /// not symmetric, and the local triangulation and the spanning tree need both ends to see an edge).
   /// Spacing is copied.
