@@ -125,15 +125,6 @@ namespace pcl_sparse
       std::size_t bound_vertices;
     };
 
-    /// CR over \a vertices input vertices.
-    double
-    compressionRatioOver (const std::vector<PatchCode>& codes, std::size_t vertices)
-    {
-      std::size_t nnz = 0;
-      for (const PatchCode& code : codes)
-        nnz += code.atoms.size ();
-      return vertices == 0 ? 0.0 : (13.0 * codes.size () + nnz) / (3.0 * vertices);
-    }
 
     /// One candidate of enforceCompressionBound: patches, their codes trimmed to the bound, and its error.
     struct BoundCandidate
@@ -174,7 +165,7 @@ namespace pcl_sparse
       }
       SparseSurfaceModel model = shape;
       model.patches = candidate.codes;
-      candidate.cr = compressionRatioOver (model.patches, bound_vertices);
+      candidate.cr = compressionRatio (model.numPatches (), model.numNonZeros (), bound_vertices);
       if (seed_vertices.empty ())
         candidate.rmse = model.statistics (context.mesh.vertices).rmse;
       else
@@ -403,7 +394,7 @@ namespace pcl_sparse
                              : static_cast<std::size_t> (std::count_if (seed_vertices.begin (), seed_vertices.end (),
                                                                           [] (std::uint8_t flag) { return flag != 0; }));
     if (options.max_compression_ratio > 0.0 &&
-        compressionRatioOver (model.patches, bound_vertices) > options.max_compression_ratio)
+        compressionRatio (model.numPatches (), model.numNonZeros (), bound_vertices) > options.max_compression_ratio)
     {
       const auto bound_start = std::chrono::steady_clock::now ();
       BoundInputs inputs{topology, options, sampling.responses, sampling.keypoints, point_normals, seed_vertices, num_threads,

@@ -72,9 +72,15 @@ namespace pcl_sparse
   double
   SparseSurfaceModel::compressionRatio () const
   {
-    if (num_input_vertices == 0)
+    return pcl_sparse::compressionRatio (patches.size (), numNonZeros (), num_input_vertices);
+  }
+
+  double
+  compressionRatio (std::size_t num_patches, std::size_t num_nonzeros, std::size_t num_vertices)
+  {
+    if (num_vertices == 0)
       return 0.0;
-    return (13.0 * patches.size () + numNonZeros ()) / (3.0 * num_input_vertices);
+    return (13.0 * num_patches + num_nonzeros) / (3.0 * num_vertices);
   }
 
   std::vector<Eigen::Vector3d>

@@ -74,6 +74,10 @@ namespace pcl_sparse
   };
 
   /// The whole model.
+  /// CR = (13 M + nnz) / (3 N_V) (docs/METHOD.md step 11); 0 when \a num_vertices is 0.
+  double
+  compressionRatio (std::size_t num_patches, std::size_t num_nonzeros, std::size_t num_vertices);
+
   class SparseSurfaceModel
   {
   public:
