@@ -15,6 +15,7 @@
 
 #include "robustness_cases.h"
 
+#include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -125,4 +126,36 @@ TEST (ScaleInvariance, Fandisk)
   if (!std::filesystem::exists (path))
     GTEST_SKIP () << path << " is absent";
   expectSameModel (loadTriangleMesh (path), "fandisk");
+}
+
+/// Beyond the scales the pipeline computes in, a mesh is refused with the reason instead of coded badly:
+/// fandisk scaled by 1e100 or 1e-150 gave 5x its patches and no atom, without a word. Near the limits the
+/// exact (power-of-two) scales still give the same model.
+TEST (ScaleInvariance, ScalesOutsideTheRangeAreRefused)
+{
+  const TriangleMesh mesh = featureMesh ();
+  for (const double scale : {1e31, 1e100, 1e200, 1e-31, 1e-150, 1e-200})
+  {
+    SCOPED_TRACE ("scaled by " + std::to_string (scale));
+    try
+    {
+      encode (robustness::scaled (mesh, scale));
+      ADD_FAILURE () << "accepted";
+    }
+    catch (const pcl_sparse::Error& e)
+    {
+      const std::string what = e.what ();
+      EXPECT_NE (what.find (scale > 1.0 ? "beyond the 1e30" : "under 1e-30"), std::string::npos) << what;
+      EXPECT_NE (what.find ("rescale the input"), std::string::npos) << what;
+    }
+  }
+  const Encoded reference = encode (mesh);
+  for (const double scale : {std::ldexp (1.0, 95), std::ldexp (1.0, -95)})  // 4e28, 2.5e-29
+  {
+    SCOPED_TRACE ("scaled by " + std::to_string (scale));
+    const Encoded e = encode (robustness::scaled (mesh, scale));
+    EXPECT_EQ (e.stats.num_patches, reference.stats.num_patches);
+    EXPECT_EQ (e.stats.num_nonzeros, reference.stats.num_nonzeros);
+    EXPECT_NEAR (e.stats.rmse_over_diagonal, reference.stats.rmse_over_diagonal, 1e-12 * reference.stats.rmse_over_diagonal);
+  }
 }

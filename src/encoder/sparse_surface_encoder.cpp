@@ -19,6 +19,7 @@
 #include <limits>
 #include <numeric>
 #include <set>
+#include <sstream>
 
 namespace pcl_sparse
 {
@@ -308,6 +309,23 @@ namespace pcl_sparse
         return true;
     }
     return false;
+  }
+
+  std::string
+  coordinateRangeProblem (const TriangleMesh& mesh, const Eigen::Vector3d& origin)
+  {
+    const Eigen::AlignedBox3d box = finiteBoundingBox (mesh.vertices);
+    if (box.isEmpty ())
+      return "";
+    std::ostringstream why;
+    why.precision (3);
+    const double largest = std::max ((box.min () + origin).cwiseAbs ().maxCoeff (), (box.max () + origin).cwiseAbs ().maxCoeff ());
+    const double diagonal = box.diagonal ().stableNorm ();
+    if (!(largest <= 1e30))
+      why << "coordinates reach " << largest << ", beyond the 1e30 that resampled (float) clouds hold: rescale the input";
+    else if (diagonal < 1e-30)
+      why << "bounding-box diagonal is " << diagonal << ", under 1e-30, where squared lengths underflow: rescale the input";
+    return why.str ();
   }
 
   SparseSurfaceEncoderOptions

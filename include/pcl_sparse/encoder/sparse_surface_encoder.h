@@ -120,6 +120,15 @@ namespace pcl_sparse
   bool
   hasSurfaceArea (const TriangleMesh& mesh);
 
+  /// \brief Why \a mesh (placed at \a origin) is outside the scales the encoder handles, or an empty string.
+  /// Coordinates beyond 1e30 are refused, as the resampling refuses models there (float clouds), and so
+  /// is a bounding-box diagonal under 1e-30: squared lengths of such meshes over- or underflow in double
+  /// (fandisk scaled by 1e100 or 1e-150 gave 5x its patches and no atom, without a word).
+  /// \param[in] mesh the mesh (its finite vertices count)
+  /// \param[in] origin where its local frame lies (a scan's surface is centred)
+  std::string
+  coordinateRangeProblem (const TriangleMesh& mesh, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero ());
+
   /// \brief The whole encoding of a mesh (the stage's mathematics): patches, then every patch coded.
   /// \param[in] mesh the mesh, with at least one face of non-zero area
   /// \param[in] topology buildMeshTopology (mesh)

@@ -16,6 +16,9 @@ namespace pcl_sparse
   {
     encoding_ = SurfaceEncoding ();
     this->initCompute ();
+    const std::string out_of_range = coordinateRangeProblem (*this->surface_, this->surface_origin_);
+    if (!out_of_range.empty ())
+      this->fail ("the " + std::string (this->surfaceIsScan () ? "scan's" : "mesh's") + " " + out_of_range);
     // Every face degenerate: no surface to code (rho bounds A_p / A with A = 0, normals are arbitrary).
     if (!hasSurfaceArea (*this->surface_))
       this->fail ("the mesh has no area: all " + std::to_string (this->surface_->triangles.size ()) +
