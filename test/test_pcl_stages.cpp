@@ -399,3 +399,138 @@ TEST (PclStages, ResamplingFillsEveryOutputPointType)
     EXPECT_NEAR (reference[i].getVector3fMap ().norm (), 1.0f, 0.03f);  // 642 vertices; dct measured 0.024
   }
 }
+
+// A mesh made from an organized cloud keeps its NaN points, used by no polygon. Each got a one-vertex patch
+// with a NaN origin, and the model could be neither saved nor resampled (found by a review).
+TEST (PclStages, UnreferencedNaNPointsAreLeftOut)
+{
+  const TriangleMesh mesh = floatExactMesh ();
+  auto cloud = cloudOf<pcl::PointXYZ> (mesh);
+  for (int k = 0; k < 3; ++k)
+    cloud->push_back (pcl::PointXYZ (NAN, NAN, NAN));
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputCloud (cloud);
+  encoder.setInputPolygons (polygonsOf (mesh));
+  auto model = std::make_shared<SparseSurfaceModel> ();
+  encoder.compute (*model);
+  for (const PatchCode& patch : model->patches)
+    ASSERT_TRUE (patch.origin.allFinite ());
+  std::vector<Eigen::Vector3d> vertices = mesh.vertices;
+  vertices.resize (cloud->size (), Eigen::Vector3d::Zero ());
+  EXPECT_EQ (model->statistics (vertices).uncovered, 3u);
+  EXPECT_FALSE (encodeModel (*model).empty ());
+  SparseSurfaceResampling<pcl::PointNormal> resampling;
+  resampling.setInputModel (model);
+  resampling.setPointCount (2000);
+  pcl::PointCloud<pcl::PointNormal> out;
+  resampling.compute (out);
+  EXPECT_EQ (out.size (), 2000u);
+}
+
+// As PCL's features and keypoints: the input's frame and stamp on the output, and an organized input's
+// width x height on its normals (they came back as one row with an empty frame; found by a review).
+TEST (PclStages, OutputsKeepTheInputsHeaderAndGrid)
+{
+  const TriangleMesh grid = makeHeightFieldGrid (11, 8, 1.0, 1.0, [] (double x, double y) { return 0.1 * x * y; });
+  auto cloud = cloudOf<pcl::PointXYZ> (grid);
+  cloud->width = 12;
+  cloud->height = 9;
+  ASSERT_EQ (cloud->size (), 108u) << "the grid's vertices are its 12 x 9 points";
+  cloud->header.frame_id = "camera";
+  cloud->header.stamp = 12345;
+  MeshNormalEstimation<pcl::PointXYZ> ne;
+  ne.setInputCloud (cloud);
+  ne.setInputPolygons (polygonsOf (grid));
+  pcl::PointCloud<pcl::Normal> normals;
+  ne.compute (normals);
+  EXPECT_EQ (normals.header.frame_id, "camera");
+  EXPECT_EQ (normals.header.stamp, 12345u);
+  EXPECT_EQ (normals.width, 12u);
+  EXPECT_EQ (normals.height, 9u);
+  ne.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{0, 5, 7}));
+  ne.compute (normals);
+  EXPECT_EQ (normals.width, 3u);  // a selection is a list, as in PCL
+  EXPECT_EQ (normals.height, 1u);
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
+  harris.setInputCloud (cloud);
+  harris.setInputPolygons (polygonsOf (grid));
+  pcl::PointCloud<pcl::PointXYZI> keypoints;
+  harris.compute (keypoints);
+  EXPECT_EQ (keypoints.header.frame_id, "camera");
+  EXPECT_EQ (harris.getKeypointsIndices ()->header.frame_id, "camera");
+}
+
+// Misuse found by a review, each refused with the reason instead of crashing, reading out of bounds or
+// giving a model nothing can save.
+TEST (PclStages, MisuseIsRefusedWithTheReason)
+{
+  const TriangleMesh mesh = floatExactMesh ();
+  SparseSurfaceEncoder<pcl::PointXYZRGB> encoder;
+  auto cloud = cloudOf<pcl::PointXYZRGB> (mesh);
+  for (auto& p : *cloud)
+    p.r = p.g = p.b = static_cast<std::uint8_t> (128.0f + 100.0f * p.z);
+  encoder.setInputCloud (cloud);
+  encoder.setInputPolygons (polygonsOf (mesh));
+  auto model = std::make_shared<SparseSurfaceModel> ();
+  encoder.compute (*model);
+  ASSERT_FALSE (model->attribute_channels.empty ());
+
+  // An attribute atom outside the basis was read past the evaluator's tables when resampling.
+  SparseSurfaceResampling<pcl::PointXYZRGB> resampling;
+  resampling.setInputModel (model);
+  resampling.setPointCount (500);
+  pcl::PointCloud<pcl::PointXYZRGB> out;
+  resampling.compute (out);
+  ASSERT_EQ (out.size (), 500u);
+  SparseCode& code = model->patches[0].attributes[0];
+  code.atoms.push_back (model->attribute_basis->size ());
+  code.coefficients.push_back (1.0);
+  EXPECT_NE (errorOf ([&] { resampling.compute (out); }).find ("attribute atom 144 outside the basis"), std::string::npos);
+  EXPECT_TRUE (out.empty ()) << "a failed compute leaves no stale result";
+
+  // Options that gave a model the file format cannot hold.
+  SparseSurfaceEncoderOptions options;
+  options.coding.footprint_angles = 5000;
+  EXPECT_NE (errorOf ([&] { options.validate (); }).find ("footprint angles must be in [3, 4096]"), std::string::npos);
+  options = SparseSurfaceEncoderOptions ();
+  options.coding.triangle_samples = 1e9;
+  EXPECT_NE (errorOf ([&] { options.validate (); }).find ("triangle samples must be in [0, 16]"), std::string::npos);
+  options = SparseSurfaceEncoderOptions ();
+  options.dictionary_frequencies = 64;
+  options.coding.min_samples = 100000;
+  EXPECT_NE (errorOf ([&] { options.validate (); }).find ("min samples x atoms"), std::string::npos);
+
+  // Thread counts out of range are refused by the setter, naming it.
+  EXPECT_NE (errorOf ([&] { encoder.setNumberOfThreads (-1); }).find ("[SparseSurfaceEncoder::setNumberOfThreads]"),
+             std::string::npos);
+  EXPECT_NE (errorOf ([&] { encoder.setNumberOfThreads (100000); }).find ("in [0, 1024]"), std::string::npos);
+
+  // Empty crop indices are named as such.
+  SparseSurfaceEncoder<pcl::PointXYZ> cropped;
+  cropped.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  cropped.setIndices (std::make_shared<pcl::Indices> ());
+  SparseSurfaceModel none;
+  EXPECT_NE (errorOf ([&] { cropped.compute (none); }).find ("setIndices: the indices are empty"), std::string::npos);
+}
+
+// A tiny clustering radius made the grid's int cells overflow (undefined behaviour); the cells are 64-bit
+// from the box's corner now, and a radius below every distance keeps every maximum, as no clustering does.
+TEST (PclStages, HarrisClusteringAtATinyRadius)
+{
+  const auto mesh = std::make_shared<TriangleMesh> (floatExactMesh ());
+  auto keypointsWith = [&] (double fraction) {
+    HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
+    harris.setInputMesh (mesh);
+    Harris3DOptions options;
+    options.selection = Harris3DSelection::Clustering;
+    options.cluster_fraction = fraction;
+    harris.setOptions (options);
+    pcl::PointCloud<pcl::PointXYZI> keypoints;
+    harris.compute (keypoints);
+    return harris.getKeypointsIndices ()->indices;
+  };
+  const auto none = keypointsWith (0.0);
+  ASSERT_GT (none.size (), 8u);
+  EXPECT_EQ (keypointsWith (1e-12), none);
+  EXPECT_LT (keypointsWith (0.5).size (), none.size ());
+}

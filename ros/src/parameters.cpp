@@ -209,8 +209,8 @@ namespace pcl_sparse_ros
   {
     int threads = 0;
     private_nh.param ("threads", threads, 0);
-    if (threads < 0)
-      throw pcl_sparse::Error ("parameter ~threads must be >= 0 (0 = all cores)");
+    if (threads < 0 || threads > 1024)
+      throw pcl_sparse::Error ("parameter ~threads must be in [0, 1024] (0 = all cores)");
     return threads;
   }
 } // namespace pcl_sparse_ros

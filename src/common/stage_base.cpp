@@ -3,12 +3,22 @@
 
 #include <omp.h>
 
+#include <string>
+
 namespace pcl_sparse
 {
   void
   StageBase::fail (const std::string& message) const
   {
     throw Error ("[" + name_ + "::compute] " + message);
+  }
+
+  void
+  StageBase::setNumberOfThreads (int threads)
+  {
+    if (threads < 0 || threads > 1024)
+      throw Error ("[" + name_ + "::setNumberOfThreads] the thread count must be in [0, 1024], got " + std::to_string (threads));
+    num_threads_ = threads;
   }
 
   int

@@ -266,13 +266,18 @@ namespace pcl_sparse
     require (coding.max_atoms >= 1, "L (atoms per patch) must be >= 1, got " + std::to_string (coding.max_atoms));
     require (coding.tolerance > 0.0 && coding.tolerance < 1.0,
              "eps must be in (0, 1), got " + std::to_string (coding.tolerance));
-    // Each patch codes a samples x atoms matrix: 10^5 samples of 144 atoms are 115 MB a thread.
+    // Each patch codes a samples x atoms matrix: 10^5 samples of 144 atoms are 115 MB a thread; with
+    // 64 frequencies (4096 atoms) that many would be 3.3 GB, so the product is bounded too (1 GB).
     require (coding.min_samples >= 0 && coding.min_samples <= 100000,
              "min samples must be in [0, 100000], got " + std::to_string (coding.min_samples));
-    require (coding.triangle_samples >= 0.0 && std::isfinite (coding.triangle_samples),
-             "triangle samples must be >= 0, got " + std::to_string (coding.triangle_samples));
-    require (coding.footprint_angles >= 3,
-             "footprint angles must be >= 3, got " + std::to_string (coding.footprint_angles));
+    require (static_cast<double> (coding.min_samples) * dictionary_frequencies * dictionary_frequencies <= (1 << 27),
+             "min samples x atoms (dictionary frequencies^2) must be at most 2^27, got " +
+               std::to_string (coding.min_samples) + " x " + std::to_string (dictionary_frequencies * dictionary_frequencies));
+    require (coding.triangle_samples >= 0.0 && coding.triangle_samples <= 16.0,
+             "triangle samples must be in [0, 16], got " + std::to_string (coding.triangle_samples));
+    // The file format holds at most 4096 angles: a model with more could be neither saved nor sent.
+    require (coding.footprint_angles >= 3 && coding.footprint_angles <= 4096,
+             "footprint angles must be in [3, 4096], got " + std::to_string (coding.footprint_angles));
     require (coding.support_scale >= 1.0 && std::isfinite (coding.support_scale),
              "support scale must be >= 1, got " + std::to_string (coding.support_scale));
     require (coding.noise_level >= 0.0 && std::isfinite (coding.noise_level),

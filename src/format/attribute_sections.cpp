@@ -43,44 +43,6 @@ namespace pcl_sparse
       return *cosine;
     }
 
-    void
-    validateAttributes (const SparseSurfaceModel& model, int basis_size)
-    {
-      std::vector<bool> seen (num_attribute_channels, false);
-      for (const AttributeChannelInfo& info : model.attribute_channels)
-      {
-        const int id = static_cast<int> (info.channel);
-        if (id < 0 || id >= num_attribute_channels || seen[id])
-          throw Error ("encodeModel: attribute channel " + std::to_string (id) + " unknown or repeated");
-        seen[id] = true;
-        if (!std::isfinite (info.lower) || !std::isfinite (info.upper) || info.lower > info.upper)
-          throw Error ("encodeModel: attribute channel range is not finite or empty");
-      }
-      for (std::size_t p = 0; p < model.patches.size (); ++p)
-      {
-        const std::vector<SparseCode>& codes = model.patches[p].attributes;
-        const std::string name = "patch " + std::to_string (p);
-        if (codes.size () != model.attribute_channels.size ())
-          throw Error ("encodeModel: " + name + " has " + std::to_string (codes.size ()) + " attribute codes for " +
-                       std::to_string (model.attribute_channels.size ()) + " channels");
-        for (const SparseCode& code : codes)
-        {
-          if (code.atoms.size () != code.coefficients.size () || code.atoms.size () > static_cast<std::size_t> (basis_size))
-            throw Error ("encodeModel: " + name + " attribute code has mismatched or too many atoms");
-          std::vector<bool> used (basis_size, false);
-          for (int a : code.atoms)
-          {
-            if (a < 0 || a >= basis_size || used[a])
-              throw Error ("encodeModel: " + name + " attribute atom " + std::to_string (a) + " outside the basis or repeated");
-            used[a] = true;
-          }
-          for (double c : code.coefficients)
-            if (!std::isfinite (c))
-              throw Error ("encodeModel: " + name + " attribute coefficient is not finite");
-        }
-      }
-    }
-
     double
     readFiniteF64 (ByteReader& in, const char* field)
     {
@@ -166,8 +128,7 @@ namespace pcl_sparse
   encodeAttributeSections (const SparseSurfaceModel& model, double tolerance, bool range_coded)
   {
     const CosineAtoms& basis = attributeBasis (model);
-    const int n = basis.frequencies ();
-    validateAttributes (model, basis.size ());
+    const int n = basis.frequencies ();  // the codes were checked by SparseSurfaceModel::checkPatches
     const bool quantised = tolerance > 0.0;
     ByteWriter channels, atoms, coefficients;
     channels.putU8 (basis.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine);

@@ -206,8 +206,6 @@ namespace pcl_sparse
           throw Error ("encodeModel: " + name + " footprint has too many angles");
         if (with_vertices && patch.vertices.size () != patch.vertex_xy.size ())
           throw Error ("encodeModel: " + name + " vertices and vertex_xy differ in size");
-        if (!model.hasAttributes () && !patch.attributes.empty ())
-          throw Error ("encodeModel: " + name + " has attribute codes but the model has no attribute channels");
       }
     }
 

@@ -284,14 +284,17 @@ namespace pcl_sparse
     const double radius = options.cluster_fraction * boundingBoxDiagonal (mesh);
     if (!(radius > 0.0))
       return maxima;
-    auto cellOf = [radius] (const Eigen::Vector3d& p) {
-      return Eigen::Vector3i (static_cast<int> (std::floor (p.x () / radius)), static_cast<int> (std::floor (p.y () / radius)),
-                              static_cast<int> (std::floor (p.z () / radius)));
+    // Cells counted from the box's corner in 64 bits, capped at 2^40: a tiny fraction made int cells
+    // overflow (undefined behaviour). Cells 2^21 apart share a key, which only adds candidates to check.
+    using Cell = Eigen::Matrix<std::int64_t, 3, 1>;
+    const Eigen::Vector3d low = finiteBoundingBox (mesh.vertices).min ();
+    auto cellOf = [radius, &low] (const Eigen::Vector3d& p) {
+      const Eigen::Vector3d c = ((p - low) / radius).array ().floor ().min (0x1p40).max (0.0);
+      return Cell (static_cast<std::int64_t> (c.x ()), static_cast<std::int64_t> (c.y ()), static_cast<std::int64_t> (c.z ()));
     };
-    auto key = [] (const Eigen::Vector3i& c) {
-      return (static_cast<std::uint64_t> (static_cast<std::uint32_t> (c.x ()) & 0x1fffffu) << 42) |
-             (static_cast<std::uint64_t> (static_cast<std::uint32_t> (c.y ()) & 0x1fffffu) << 21) |
-             static_cast<std::uint64_t> (static_cast<std::uint32_t> (c.z ()) & 0x1fffffu);
+    auto key = [] (const Cell& c) {
+      return (static_cast<std::uint64_t> (c.x () & 0x1fffff) << 42) | (static_cast<std::uint64_t> (c.y () & 0x1fffff) << 21) |
+             static_cast<std::uint64_t> (c.z () & 0x1fffff);
     };
     std::unordered_map<std::uint64_t, std::vector<int>> grid;
     std::vector<int> kept;
@@ -299,13 +302,15 @@ namespace pcl_sparse
     for (int v : maxima)
     {
       const Eigen::Vector3d& p = mesh.vertices[v];
-      const Eigen::Vector3i c = cellOf (p);
+      if (!p.allFinite ())
+        continue;
+      const Cell c = cellOf (p);
       bool near = false;
       for (int dx = -1; dx <= 1 && !near; ++dx)
         for (int dy = -1; dy <= 1 && !near; ++dy)
           for (int dz = -1; dz <= 1 && !near; ++dz)
           {
-            const auto it = grid.find (key (c + Eigen::Vector3i (dx, dy, dz)));
+            const auto it = grid.find (key (c + Cell (dx, dy, dz)));
             if (it == grid.end ())
               continue;
             for (int u : it->second)

@@ -218,5 +218,55 @@ namespace pcl_sparse
         if (!std::isfinite (e) || e < 0.0f)
           throw Error (who + name + " footprint extent is negative or not finite");
     }
+    checkAttributeCodes (who);
+  }
+
+  void
+  SparseSurfaceModel::checkAttributeCodes (const std::string& who) const
+  {
+    if (!hasAttributes ())
+    {
+      for (std::size_t p = 0; p < patches.size (); ++p)
+        if (!patches[p].attributes.empty ())
+          throw Error (who + "patch " + std::to_string (p) + " has attribute codes but the model has no attribute channels");
+      return;
+    }
+    if (!attribute_basis)
+      throw Error (who + "the model has attribute channels but no attribute basis");
+    const int basis_size = attribute_basis->size ();
+    std::vector<bool> seen (num_attribute_channels, false);
+    for (const AttributeChannelInfo& info : attribute_channels)
+    {
+      const int id = static_cast<int> (info.channel);
+      if (id < 0 || id >= num_attribute_channels || seen[id])
+        throw Error (who + "attribute channel " + std::to_string (id) + " unknown or repeated");
+      seen[id] = true;
+      if (!std::isfinite (info.lower) || !std::isfinite (info.upper) || info.lower > info.upper)
+        throw Error (who + "attribute channel range is not finite or empty");
+    }
+    std::vector<bool> used (static_cast<std::size_t> (basis_size), false);
+    for (std::size_t p = 0; p < patches.size (); ++p)
+    {
+      const std::vector<SparseCode>& codes = patches[p].attributes;
+      const std::string name = "patch " + std::to_string (p);
+      if (codes.size () != attribute_channels.size ())
+        throw Error (who + name + " has " + std::to_string (codes.size ()) + " attribute codes for " +
+                     std::to_string (attribute_channels.size ()) + " channels");
+      for (const SparseCode& code : codes)
+      {
+        if (code.atoms.size () != code.coefficients.size () || code.atoms.size () > static_cast<std::size_t> (basis_size))
+          throw Error (who + name + " attribute code has mismatched or too many atoms");
+        std::fill (used.begin (), used.end (), false);
+        for (int a : code.atoms)
+        {
+          if (a < 0 || a >= basis_size || used[a])
+            throw Error (who + name + " attribute atom " + std::to_string (a) + " outside the basis or repeated");
+          used[a] = true;
+        }
+        for (double c : code.coefficients)
+          if (!std::isfinite (c))
+            throw Error (who + name + " attribute coefficient is not finite");
+      }
+    }
   }
 } // namespace pcl_sparse

@@ -426,7 +426,11 @@ namespace pcl_sparse
       if (!referenced[v] && growth.originalOf (v) == v && (seedable.empty () || seedable[v]))
       {
         result.unreferenced.push_back (v);
-        if (options.cover_unreferenced_vertices)
+        // A NaN point no face uses (the holes of a mesh made from an organized cloud) has nothing to code:
+        // a patch there had a NaN origin, and the model could be neither saved nor resampled.
+        if (options.cover_unreferenced_vertices && !mesh.vertices[v].allFinite ())
+          result.uncovered.push_back (v);
+        else if (options.cover_unreferenced_vertices)
         {
           grower.grow (v, patch);
           coverage.keep (patch);

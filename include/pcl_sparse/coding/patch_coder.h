@@ -30,10 +30,10 @@ namespace pcl_sparse
     /// 0.5 (kitten-53k's cloud 10 % closer to the mesh, its vertex RMSE 8 % higher: the samples lie on
     /// the flat triangles). 0 = the paper's (EncoderPreset::Paper); default 0.5. Meshes only: a scan's
     /// triangles join noisy points, and samples on them doubled the resampled points' distance to the
-    /// truth on simulated scans (bench/results/scans.md), so SparseSurfaceEncoder uses 0 for scans.
+    /// truth on simulated scans (bench/results/scans.md), so SparseSurfaceEncoder uses 0 for scans. At most 16.
     double triangle_samples = 0.5;
-    int footprint_angles = 64;                    ///< K, angles of the stored footprint (16 overshoots open borders
-                                                  ///< and sharp edges: bench/results/resample_quality.md)
+    int footprint_angles = 64;                    ///< K in [3, 4096], angles of the stored footprint (16 overshoots
+                                                  ///< open borders and sharp edges: bench/results/resample_quality.md)
     std::uint64_t seed = 42;                      ///< global seed of the extra samples (per patch: mixSeed)
     /// Basis support over patch radius: local coordinates are p' = R^T (p - s) / (support_scale r_P), so the
     /// patch fills the disk of radius 1 / support_scale inside the basis square [-1, 1]^2 and the stored

@@ -22,8 +22,9 @@ namespace pcl_sparse
     virtual ~StageBase () = default;
 
     /// \brief OpenMP threads for compute (0, the default, lets OpenMP decide). Outputs never depend on it.
-    /// \param[in] threads number of threads, >= 0
-    void setNumberOfThreads (int threads) { num_threads_ = threads; }
+    /// \param[in] threads number of threads in [0, 1024]
+    /// \throws pcl_sparse::Error for a count outside [0, 1024] (100000 threads crashed the OpenMP runtime)
+    void setNumberOfThreads (int threads);
     /// \brief The thread count set (0: OpenMP's default).
     int getNumberOfThreads () const { return num_threads_; }
 

@@ -115,10 +115,19 @@ namespace pcl_sparse
 
     /// \brief Checks that every patch is a surface the model can evaluate: finite seed, orthonormal frame,
     /// finite positive radius, as many coefficients (finite) as atoms, atoms distinct and in the basis,
-    /// footprint extents finite and >= 0. The file writer and resampling call it on models built in memory.
+    /// footprint extents finite and >= 0; and the attribute codes (checkAttributeCodes). The file writer and
+    /// resampling call it on models built in memory.
     /// \param[in] who  the start of the error message (e.g. "encodeModel: ")
     /// \throws pcl_sparse::Error naming the first patch and field that is not
     void checkPatches (const std::string& who) const;
+
+    /// \brief Checks the attribute codes: none without attribute channels; else an attribute basis, known
+    /// and distinct channels with finite ranges (lower <= upper), and per patch one code per channel with
+    /// as many finite coefficients as atoms, atoms distinct and in the attribute basis (an atom outside it
+    /// was read past the evaluator's tables when resampling).
+    /// \param[in] who  the start of the error message
+    /// \throws pcl_sparse::Error naming the first patch and field that is not
+    void checkAttributeCodes (const std::string& who) const;
 
     /// CR = (13 M + nnz) / (3 N_V) (docs/METHOD.md step 11: 9 frame + 3 seed + 1 radius values per patch; counts
     /// values, not bytes). 0 when num_input_vertices is 0.

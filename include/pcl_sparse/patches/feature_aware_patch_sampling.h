@@ -24,7 +24,8 @@
 /// variation measured between adjacent faces (PatchGrower::growFromFace) and keeps the variant covering
 /// most uncovered vertices. A vertex without a proper face gets a one-vertex patch with a guarded frame
 /// (radius = its mean edge length). Unreferenced vertices get one-vertex patches when
-/// PatchOptions::cover_unreferenced_vertices, else they are reported by getUncoveredVertices.
+/// PatchOptions::cover_unreferenced_vertices, else they are reported by getUncoveredVertices; NaN
+/// vertices no face uses (the holes of a mesh made from an organized cloud) always are.
 /// Non-manifold edges and vertices are cut first (non_manifold_split.h), so no patch crosses them.
 ///
 /// Cost: one growth costs O(R log R) for the R vertices it visits, never O(#V); frames are fitted in

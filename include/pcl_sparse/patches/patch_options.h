@@ -57,8 +57,8 @@ namespace pcl_sparse
     /// plane; no patch is added. false: the paper's patches (EncoderPreset::Paper).
     bool complete_faces = true;
     /// Unreferenced vertices (in no face) have no surface. true: each gets a one-vertex patch so that
-    /// literally every vertex has an estimate; false: they are left out and reported by
-    /// FeatureAwarePatchSampling::getUncoveredVertices.
+    /// literally every finite vertex has an estimate (NaN ones are left out either way); false: they are
+    /// left out and reported by FeatureAwarePatchSampling::getUncoveredVertices.
     bool cover_unreferenced_vertices = true;
     /// Harris 3D neighbourhoods of the default candidate order: 0 (default) = the paper's adaptive rings
     /// (radius 1 % of the bbox diagonal) on a mesh and 2 rings (the paper's fixed option) on a scan, where

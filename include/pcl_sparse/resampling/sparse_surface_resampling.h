@@ -266,7 +266,7 @@ namespace pcl_sparse
     using ConstPtr = std::shared_ptr<const SparseSurfaceResampling<PointOutT>>;
     using PointCloudOut = pcl::PointCloud<PointOutT>;
 
-    /// \brief Resamples the model into \a output (replaced; organised as one row, is_dense = true).
+    /// \brief Resamples the model into \a output (replaced; organised as one row, is_dense = true; empty if it throws).
     /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, the options are out
     /// of range (SparseSurfaceResamplingOptions::validate), or the density would give more than max_points
     /// points.

@@ -62,7 +62,8 @@ namespace pcl_sparse
     using PolygonsConstPtr = std::shared_ptr<const Polygons>;
 
     /// \brief The input cloud: the surface's vertices (with setInputPolygons). Replaces a mesh or scan set
-    /// before.
+    /// before. Polygons set before stay, as indices do in PCL: to encode a new cloud as a scan after a
+    /// mesh, call setInputPolygons (nullptr) (else the old faces are laid over the new points).
     /// \param[in] cloud the points; non-finite points may not be used by a polygon
     void
     setInputCloud (const PointCloudInConstPtr& cloud) override

@@ -20,6 +20,9 @@ namespace pcl_sparse
     this->initCompute ();
     validateHarris3DOptions (options_);
     detectKeypoints (output);
+    // As PCL's keypoints: the input's frame and stamp (a mesh input has none).
+    if (this->input_)
+      output.header = keypoints_indices_->header = this->input_->header;
     this->deinitCompute ();
   }
 

@@ -51,6 +51,17 @@ namespace pcl_sparse
     output.width = static_cast<std::uint32_t> (output.size ());
     output.height = 1;
     output.is_dense = dense;
+    // As PCL's features: the input's header (frame and stamp), and an organized input's width x height
+    // when each input point has its row (code reading normals.at (x, y) threw on a 1-row cloud).
+    if (this->input_)
+    {
+      output.header = this->input_->header;
+      if (!this->selected_ && this->input_->height > 1 && output.size () == this->input_->size ())
+      {
+        output.width = this->input_->width;
+        output.height = this->input_->height;
+      }
+    }
   }
 
   template <typename PointInT>

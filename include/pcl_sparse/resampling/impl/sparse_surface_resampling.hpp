@@ -17,15 +17,25 @@ namespace pcl_sparse
   {
     // Attributes are evaluated only for output types with fields for them (PointNormal has none).
     constexpr bool attributes = pcl::traits::has_color_v<PointOutT> || pcl::traits::has_intensity_v<PointOutT>;
-    if constexpr (std::is_same_v<PointOutT, pcl::PointNormal>)
-      resample (output);
-    else
+    // Replaced, and left empty when compute throws (it kept the last result, or a part of the new one).
+    output.clear ();
+    try
     {
-      PointCloud full;
-      resample (full, attributes);
-      pcl::copyPointCloud (full, output);
-      if constexpr (attributes)
-        writePointAttributes (getInputModel ()->attribute_channels, getPointAttributes (), output);
+      if constexpr (std::is_same_v<PointOutT, pcl::PointNormal>)
+        resample (output);
+      else
+      {
+        PointCloud full;
+        resample (full, attributes);
+        pcl::copyPointCloud (full, output);
+        if constexpr (attributes)
+          writePointAttributes (getInputModel ()->attribute_channels, getPointAttributes (), output);
+      }
+    }
+    catch (...)
+    {
+      output.clear ();
+      throw;
     }
   }
 

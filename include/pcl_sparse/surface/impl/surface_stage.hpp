@@ -25,6 +25,8 @@ namespace pcl_sparse
     const std::string where = "[" + getClassName () + "::compute] ";
     const bool has_indices = this->use_indices_ && this->indices_;
     const bool use_indices = has_indices && index_use_ == IndexUse::CropSurface;
+    if (use_indices && this->indices_->empty ())
+      fail ("setIndices: the indices are empty, so the crop holds no surface");
     if (mesh_)
     {
       for (const Eigen::Vector3i& t : mesh_->triangles)
