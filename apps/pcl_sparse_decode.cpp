@@ -185,6 +185,7 @@ main (int argc, char** argv)
       throw Error ("output '" + out_path + "' must end in .pcd or .ply");
     if (!recon_out.empty () && !isMeshFileExtension (recon_out))
       throw Error ("option -recon: '" + recon_out + "' has no mesh extension (.obj .off .ply .stl)");
+    tools::checkOutputPaths ({model_path, recon_mesh}, {out_path, recon_out});
     std::size_t n = 0;
     double density = 0.0;
     const bool has_n = args.integer ("-n", n, tools::Range::closed (1, SparseSurfaceResampling<pcl::PointNormal>::max_points));

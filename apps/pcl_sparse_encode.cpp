@@ -143,6 +143,9 @@ main (int argc, char** argv)
       throw Error ("option -recon: '" + recon_path + "' has no mesh extension (.obj .off .ply .stl)");
     if (!error_path.empty () && !tools::hasExtension (error_path, ".ply"))
       throw Error ("option -error: '" + error_path + "' must end in .ply");
+    if (!model_path.empty () && !tools::hasExtension (model_path, ".psm"))
+      throw Error ("option -o: '" + model_path + "' must end in .psm");
+    tools::checkOutputPaths ({path}, {model_path, recon_path, error_path, args.value ("-png")});
 
     pcl::console::TicToc timer;
     timer.tic ();

@@ -103,6 +103,7 @@ main (int argc, char** argv)
     const std::string responses_path = args.value ("-responses");
     if (args.has ("-responses") && !tools::hasExtension (responses_path, ".ply"))
       throw Error (responses_path + ": -responses output must end in .ply");
+    tools::checkOutputPaths ({input}, {output, responses_path, args.value ("-png")});
 
     Harris3DOptions options;
     const bool has_rings = args.integer ("-rings", options.rings, tools::Range::closed (1, 1000));

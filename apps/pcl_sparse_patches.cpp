@@ -73,6 +73,7 @@ main (int argc, char** argv)
     const std::string& output = args.positional ()[1];
     if (!tools::hasExtension (output, ".ply"))
       throw Error (output + ": the output must be a .ply file");
+    tools::checkOutputPaths ({input}, {output, args.value ("-png")});
 
     PatchOptions options = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default"))).patches;
     if (args.has ("--authors"))

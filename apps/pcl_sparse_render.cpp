@@ -204,6 +204,7 @@ main (int argc, char** argv)
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
     if (!tools::hasExtension (output, ".png"))
       throw Error (output + ": the output must be a .png file");
+    tools::checkOutputPaths ({input}, {output});
     if (!tools::hasExtension (input, ".psm") && !tools::isSurfaceInputExtension (input))
       throw Error (input + ": unknown input extension (a mesh .obj .off .ply .stl, a cloud .pcd .xyz .ply or a model .psm)");
     const tools::PictureOptions options = tools::parsePictureOptions (args);

@@ -91,6 +91,7 @@ namespace
     s.output = args.positional ()[1];
     if (!tools::hasExtension (s.output, ".pcd") && !tools::hasExtension (s.output, ".ply"))
       throw Error (s.output + ": the output must be .pcd or .ply");
+    tools::checkOutputPaths ({s.input}, {s.output, args.value ("-png")});
     if (!tools::hasExtension (s.input, ".psm") && !tools::isSurfaceInputExtension (s.input))
       throw Error (s.input + ": unknown input extension (a mesh .obj .off .ply .stl, a cloud .pcd .xyz .ply or a model .psm)");
 

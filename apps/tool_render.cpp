@@ -46,9 +46,16 @@ namespace pcl_sparse
       if (args.has ("-size"))
       {
         const std::string size = args.value ("-size");
+        // Digits only, at most 5 of them: sscanf's %d wrapped 4294967297 to 1 (undefined) and took " 8x+5".
+        auto pixels = [] (const std::string& digits, int& out) {
+          if (digits.empty () || digits.size () > 5 || !std::all_of (digits.begin (), digits.end (), [] (char c) { return c >= '0' && c <= '9'; }))
+            return false;
+          out = std::stoi (digits);
+          return out >= 1 && out <= 16384;
+        };
+        const std::size_t x = size.find ('x');
         int w = 0, h = 0;
-        char tail = 0;
-        if (std::sscanf (size.c_str (), "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+        if (x == std::string::npos || !pixels (size.substr (0, x), w) || !pixels (size.substr (x + 1), h))
           throw Error ("option -size: '" + size + "' is not WxH with 1 .. 16384 pixels each (e.g. 800x600)");
         options.width = w;
         options.height = h;
@@ -172,8 +179,10 @@ namespace pcl_sparse
         const std::string path = args.value ("-png");
         const RenderedPicture rendered = renderPicture (picture, parsePictureOptions (args));
         savePng (path, rendered.image);
-        pcl::console::print_info ("Wrote %s: %dx%d, %zu pixels covered\n", path.c_str (), rendered.image.width,
-                                  rendered.image.height, rendered.covered);
+        // Not with --json (stdout holds the JSON object alone) or -q.
+        if (!args.has ("--json") && !args.has ("-q"))
+          pcl::console::print_info ("Wrote %s: %dx%d, %zu pixels covered\n", path.c_str (), rendered.image.width,
+                                    rendered.image.height, rendered.covered);
       }
     } // namespace
 

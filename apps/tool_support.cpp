@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 
 namespace pcl_sparse
 {
@@ -158,6 +159,8 @@ namespace pcl_sparse
             throw Error ("option " + arg + (option->values == 1 ? std::string (" needs a value")
                                                                 : " needs " + std::to_string (option->values) +
                                                                     " values"));
+          if (has (arg))  // the first value won, silently: "-o a.psm -o b.psm" never wrote b.psm
+            throw Error ("option " + arg + " given twice");
           given_.emplace_back (arg, std::vector<std::string> (argv + i + 1, argv + i + 1 + option->values));
           i += option->values;
           continue;
@@ -268,6 +271,45 @@ namespace pcl_sparse
       return text;
     }
 
+    namespace
+    {
+      /// Whether two paths name one file: the same file when both exist, else the same normalised path.
+      bool
+      sameFile (const std::string& a, const std::string& b)
+      {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        if (fs::exists (a, ec) && fs::exists (b, ec))
+          return fs::equivalent (a, b, ec);
+        const fs::path pa = fs::weakly_canonical (a, ec), pb = fs::weakly_canonical (b, ec);
+        return ec ? fs::path (a).lexically_normal () == fs::path (b).lexically_normal () : pa == pb;
+      }
+    } // namespace
+
+    void
+    checkOutputPaths (const std::vector<std::string>& inputs, const std::vector<std::string>& outputs)
+    {
+      namespace fs = std::filesystem;
+      for (std::size_t k = 0; k < outputs.size (); ++k)
+      {
+        const std::string& out = outputs[k];
+        if (out.empty ())
+          continue;
+        std::error_code ec;
+        if (fs::is_directory (out, ec))
+          throw Error ("output '" + out + "' is a folder");
+        const fs::path folder = fs::path (out).parent_path ();
+        if (!folder.empty () && !fs::is_directory (folder, ec))
+          throw Error ("output '" + out + "': the folder '" + folder.string () + "' does not exist");
+        for (const std::string& in : inputs)
+          if (!in.empty () && sameFile (in, out))
+            throw Error ("output '" + out + "' is the input '" + in + "': refusing to overwrite it");
+        for (std::size_t j = 0; j < k; ++j)
+          if (!outputs[j].empty () && sameFile (outputs[j], out))
+            throw Error ("two outputs are the same file '" + out + "'");
+      }
+    }
+
     int
     runTool (int argc, char** argv, const ToolDescription& tool, const std::function<int (const CommandLine&)>& body)
     {
@@ -284,7 +326,11 @@ namespace pcl_sparse
       }
       try
       {
-        return body (CommandLine (argc, argv, tool.options, tool.switches));
+        const int status = body (CommandLine (argc, argv, tool.options, tool.switches));
+        // A report or JSON object lost to a full disk or a closed pipe is a failure (it exited 0).
+        if (std::fflush (stdout) != 0 || std::ferror (stdout))
+          throw Error ("cannot write to standard output");
+        return status;
       }
       catch (const Error& e)
       {

@@ -164,6 +164,13 @@ namespace pcl_sparse
       std::vector<std::string> switches;   ///< options without values (-h and --help are implicit)
     };
 
+    /// Refuses, before any work, outputs that would overwrite an input or another output (the same file,
+    /// also through another spelling or a link: "-o c.obj" over the input c.obj replaced the mesh), that are
+    /// a folder, or whose folder does not exist (found only after an encode of hours). Empty paths are
+    /// skipped (options not given).
+    void
+    checkOutputPaths (const std::vector<std::string>& inputs, const std::vector<std::string>& outputs);
+
     /// Prints "Syntax is: PROGRAM SYNTAX" on stderr (one error line when the tool is called wrongly) and
     /// the aligned help lines on stdout, as PCL's tools do.
     void

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -35,11 +36,11 @@ namespace pcl_sparse
         {
           const bool report = !quiet && group.rank () == 0;
           encodings = encodeTiles (source, tiles, options, threads, covered, [&] (std::size_t done) {
-            if (report)
-              pcl::console::print_info ("\rtiles: %zu / %zu of rank 0 (%d ranks)", done, tiles.size (), group.size ());
+            if (report)  // progress goes to stderr, as the single-process progress does
+              std::fprintf (stderr, "\rtiles: %zu / %zu of rank 0 (%d ranks)", done, tiles.size (), group.size ()), std::fflush (stderr);
           }, keep_xy);
           if (report && !tiles.empty ())
-            pcl::console::print_info ("\n");
+            std::fputc ('\n', stderr);
         }
         catch (const std::exception& e)
         {
@@ -167,8 +168,8 @@ namespace pcl_sparse
             {
               tiles->measureReady ();
               if (!quiet_)
-                pcl::console::print_info ("\rtiles: %zu / %zu (%d ranks)%s", received_, total_, group_.size (),
-                                          step + 1 == steps_ ? "\n" : "");
+                std::fprintf (stderr, "\rtiles: %zu / %zu (%d ranks)%s", received_, total_, group_.size (),
+                              step + 1 == steps_ ? "\n" : ""), std::fflush (stderr);
             }
           }
           return true;

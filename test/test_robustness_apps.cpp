@@ -13,6 +13,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -377,6 +378,13 @@ namespace
       {"patches_negative_min_size", "patches", {"IN", "OUT.p.ply", "-min-size", "-1"}},
       {"patches_unknown_flag", "patches", {"IN", "OUT.p.ply", "--bogus"}},
       {"patches_wrong_output_extension", "patches", {"IN", "OUT.p.pcd"}},
+      // an option given twice (the first value won: "-o a.psm -o b.psm" never wrote b.psm)
+      {"encode_output_twice", "encode", {"IN", "-o", "OUT.a.psm", "-o", "OUT.b.psm"}},
+      {"encode_output_not_psm", "encode", {"IN", "-o", "OUT.m.ply"}},
+      // pcl_sparse_render: sscanf wrapped 4294967297 to 1
+      {"render_size_overflow", "render", {"IN", "OUT.x.png", "-size", "4294967297x5"}},
+      {"render_size_signed", "render", {"IN", "OUT.x.png", "-size", "8x+5"}},
+      {"render_view_huge", "render", {"IN", "OUT.x.png", "-view", "1e200,0,0"}, Expect::Success},
       // pcl_sparse_info
       {"info_unknown_flag", "info", {"IN", "--bogus"}},
       {"info_no_arguments", "info", {}},
@@ -440,4 +448,62 @@ namespace
 
   INSTANTIATE_TEST_SUITE_P (Options, RobustnessOptions, ::testing::ValuesIn (optionCases ()),
                             [] (const ::testing::TestParamInfo<OptionCase>& info) { return info.param.label; });
+
+  /// Outputs that name an input, another output or a folder that does not exist are refused before any
+  /// work, and the input is left as it was (found by a review: "encode c.obj -recon c.obj" replaced the
+  /// mesh, "decode m.psm c.ply -recon c.obj c.ply" wrote both outputs to one file).
+  TEST (RobustnessAppsPaths, OutputsNeverOverwriteInputs)
+  {
+    if (!appsBuilt ())
+      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
+    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_paths";
+    fs::remove_all (dir);
+    fs::create_directories (dir);
+    const std::string obj = (dir / "c.obj").string (), ply = (dir / "c.ply").string (), psm = (dir / "c.psm").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    saveTriangleMesh (ply, baseMesh ());
+    ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "-q"}, dir).exit_code, 0);
+    const std::string obj_bytes = readText (obj), ply_bytes = readText (ply), psm_bytes = readText (psm);
+    fs::create_symlink ("c.obj", dir / "link.obj");
+    const std::string same_obj = (dir / "." / "c.obj").string ();
+    const std::vector<std::pair<std::string, std::vector<std::string>>> runs = {
+      {"encode", {obj, "-recon", obj}},
+      {"encode", {(dir / "link.obj").string (), "-recon", same_obj}},
+      {"encode", {obj, "-recon", (dir / "r.ply").string (), "-error", (dir / "r.ply").string ()}},
+      {"resample", {ply, ply, "-n", "100"}},
+      {"decode", {psm, (dir / "o.pcd").string (), "-recon", obj, obj}},
+      {"decode", {psm, (dir / "x.ply").string (), "-recon", obj, (dir / "x.ply").string ()}},
+      {"decode", {psm, (dir / "no_such_folder" / "o.pcd").string ()}},
+      {"patches", {ply, ply}},
+      {"keypoints", {ply, ply}},
+    };
+    for (const auto& [app, args] : runs)
+    {
+      std::vector<std::string> quiet (args);
+      quiet.push_back ("-q");
+      const RunResult r = runApp (app, quiet, dir);
+      EXPECT_EQ (r.exit_code, 1) << r.command;
+      EXPECT_EQ (nonEmptyLines (r.err), 1) << r.command << "\n" << r.err;
+      EXPECT_TRUE (r.err.find ("refusing to overwrite") != std::string::npos || r.err.find ("same file") != std::string::npos ||
+                   r.err.find ("does not exist") != std::string::npos) << r.command << "\n" << r.err;
+    }
+    EXPECT_TRUE (readText (obj) == obj_bytes) << "the input mesh changed";
+    EXPECT_TRUE (readText (ply) == ply_bytes) << "the input PLY changed";
+    EXPECT_TRUE (readText (psm) == psm_bytes) << "the input model changed";
+    for (const char* left : {"o.pcd", "x.ply", "r.ply"})
+      EXPECT_FALSE (fs::exists (dir / left)) << left;
+
+    // A FIFO is no model (opening it blocked decode forever), and a report lost to a full disk fails.
+    const fs::path fifo = dir / "fifo.psm";
+    ASSERT_EQ (::mkfifo (fifo.c_str (), 0600), 0);
+    const RunResult r = runApp ("decode", {fifo.string (), (dir / "o.pcd").string (), "-q"}, dir);
+    EXPECT_EQ (r.exit_code, 1) << r.err;
+    EXPECT_NE (r.err.find ("not a regular file"), std::string::npos) << r.err;
+    if (fs::exists ("/dev/full"))
+    {
+      const int status = std::system ((quote (appPath ("info")) + " " + quote (obj) + " --json > /dev/full 2> /dev/null").c_str ());
+      EXPECT_TRUE (WIFEXITED (status) && WEXITSTATUS (status) == 1) << status;
+    }
+    fs::remove_all (dir);
+  }
 } // namespace

@@ -753,6 +753,10 @@ namespace pcl_sparse
   bool
   isTiledModelFile (const std::string& path)
   {
+    // Not a regular file: not a model (opening a FIFO blocked pcl_sparse_decode forever); the loaders say why.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file (path, ec))
+      return false;
     std::ifstream probe (path, std::ios::binary);
     std::uint8_t head[10] = {};
     return probe.read (reinterpret_cast<char*> (head), sizeof head) && isTiledModelData (head, sizeof head);

@@ -35,9 +35,11 @@ namespace pcl_sparse
         throw Error ("view '" + name + "': expected front, side, top, iso or x,y,z");
       v[n++] = x;
     }
-    if (n != 3 || v.norm () == 0.0)
+    // stableNorm: norm () overflowed at 1e200 (a blank picture) and underflowed at 1e-200 (refused as zero).
+    const double length = v.stableNorm ();
+    if (n != 3 || length == 0.0)
       throw Error ("view '" + name + "': expected front, side, top, iso or a non-zero x,y,z");
-    return v.normalized ();
+    return v / length;
   }
 
   RenderCamera
