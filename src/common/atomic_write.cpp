@@ -1,5 +1,6 @@
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/signal_cleanup.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -14,6 +15,7 @@ namespace pcl_sparse
     // Same directory as the target, so rename() stays within one file system; the pid keeps
     // concurrent writers from sharing a temporary.
     const std::string temporary = path + ".tmp" + std::to_string (::getpid ());
+    const detail::RemovedOnSignal on_signal (temporary, detail::RemovedKind::File);  // Ctrl-C left it behind
     bool ok = false;
     try
     {

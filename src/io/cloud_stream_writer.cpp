@@ -1,6 +1,7 @@
 #include <pcl_sparse/io/cloud_stream_writer.h>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/signal_cleanup.h>
 
 #include "mesh_readers.h"
 #include "point_normal_records.h"
@@ -12,6 +13,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <fcntl.h>
 #include <limits>
 #include <mutex>
@@ -60,6 +62,7 @@ namespace pcl_sparse
   struct PointNormalStreamWriter::Impl
   {
     std::string path, temporary;
+    std::unique_ptr<detail::RemovedOnSignal> on_signal;  // the temporary, tens of GB, stayed after Ctrl-C
     std::size_t total = 0, count = 0;
     bool binary = true, doubles = false;
     Eigen::Vector3d offset = Eigen::Vector3d::Zero ();
@@ -191,6 +194,7 @@ namespace pcl_sparse
     w.fd = ::open (w.temporary.c_str (), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
     if (w.fd < 0)
       w.fail (std::strerror (errno));
+    w.on_signal = std::make_unique<detail::RemovedOnSignal> (w.temporary, detail::RemovedKind::File);
     const std::string error = writeAll (w.fd, header);
     w.written_bytes = header.size ();
     if (!error.empty ())
@@ -285,6 +289,7 @@ namespace pcl_sparse
     if (std::rename (w.temporary.c_str (), w.path.c_str ()) != 0)
       w.fail (std::strerror (errno));
     w.finished = true;
+    w.on_signal.reset ();
   }
 
   std::size_t

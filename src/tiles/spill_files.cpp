@@ -1,6 +1,6 @@
 #include "spill_files.h"
 
-#include "spill_cleanup.h"
+#include <pcl_sparse/common/signal_cleanup.h>
 
 #include <cmath>
 #include <filesystem>
@@ -27,12 +27,12 @@ namespace pcl_sparse
         throw Error (base + ": cannot make a temporary directory for the tiles' spill files (" +
                      std::strerror (errno) + ")");
       path_ = pattern;
-      registerSpillDirectory (path_);
+      detail::registerRemovalOnSignal (path_, detail::RemovedKind::Folder);
     }
 
     SpillDirectory::~SpillDirectory ()
     {
-      unregisterSpillDirectory (path_);
+      detail::unregisterRemovalOnSignal (path_);
       std::error_code ignored;
       std::filesystem::remove_all (path_, ignored);
     }

@@ -1,4 +1,4 @@
-#include "spill_cleanup.h"
+#include <pcl_sparse/common/signal_cleanup.h>
 
 #include <array>
 #include <atomic>
@@ -13,17 +13,18 @@
 
 namespace pcl_sparse
 {
-  namespace tiles_detail
+  namespace detail
   {
     namespace
     {
-      constexpr std::size_t kSlots = 16;       // directories alive at once (one per spilled source)
+      constexpr std::size_t kSlots = 32;       // paths registered at once
       constexpr std::size_t kPathBytes = 4096;
       constexpr std::array<int, 3> kSignals = {SIGINT, SIGTERM, SIGHUP};
 
       struct Slot
       {
         std::atomic<bool> used{false};
+        bool folder = false;
         char path[kPathBytes];
       };
       std::array<Slot, kSlots> slots;
@@ -62,7 +63,12 @@ namespace pcl_sparse
       {
         for (Slot& slot : slots)
           if (slot.used.load ())
-            removeDirectory (slot.path);
+          {
+            if (slot.folder)
+              removeDirectory (slot.path);
+            else
+              ::unlink (slot.path);
+          }
         // The handler that was there before (the default: the process ends by this signal) takes it.
         for (std::size_t k = 0; k < kSignals.size (); ++k)
           if (kSignals[k] == signal)
@@ -72,15 +78,16 @@ namespace pcl_sparse
     } // namespace
 
     void
-    registerSpillDirectory (const std::string& path)
+    registerRemovalOnSignal (const std::string& path, RemovedKind kind)
     {
       if (path.size () >= kPathBytes)
-        return;  // left to the destructor
+        return;  // left to the owner
       const std::lock_guard<std::mutex> lock (registry);
       for (Slot& slot : slots)
         if (!slot.used.load ())
         {
           std::memcpy (slot.path, path.c_str (), path.size () + 1);
+          slot.folder = kind == RemovedKind::Folder;
           slot.used.store (true);
           if (registered++ == 0)
           {
@@ -99,7 +106,7 @@ namespace pcl_sparse
     }
 
     void
-    unregisterSpillDirectory (const std::string& path)
+    unregisterRemovalOnSignal (const std::string& path)
     {
       const std::lock_guard<std::mutex> lock (registry);
       for (Slot& slot : slots)
@@ -112,5 +119,5 @@ namespace pcl_sparse
           return;
         }
     }
-  } // namespace tiles_detail
+  } // namespace detail
 } // namespace pcl_sparse
