@@ -70,7 +70,15 @@ namespace
   {
     writeFileAtomically (path, [&] (const std::string& temporary) {
       if (tools::hasExtension (path, ".pcd"))
-        return pcl::io::savePCDFileBinary (temporary, keypoints) == 0;
+      {
+        // PCL writes an empty cloud's header, and says "Input point cloud has no data!" on a run that succeeded.
+        const pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel ();
+        if (keypoints.empty ())
+          pcl::console::setVerbosityLevel (pcl::console::L_ALWAYS);
+        const bool written = pcl::io::savePCDFileBinary (temporary, keypoints) == 0;
+        pcl::console::setVerbosityLevel (level);
+        return written;
+      }
       // PCL refuses to write an empty cloud; an empty keypoint set is a valid answer, written by hand.
       if (keypoints.empty ())
       {

@@ -83,7 +83,7 @@ namespace pcl_sparse
           throw Error ("option -viewpoint: expected X,Y,Z (three numbers), got '" + args.value ("-viewpoint") + "'");
         viewpoint[k++] = value;
       }
-      if (k != 3)
+      if (k != 3 || args.value ("-viewpoint").back () == ',')  // getline drops an empty last part: "1,2,3,"
         throw Error ("option -viewpoint: expected X,Y,Z (three numbers), got '" + args.value ("-viewpoint") + "'");
       return true;
     }

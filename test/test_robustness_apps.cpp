@@ -387,6 +387,8 @@ namespace
       {"render_size_overflow", "render", {"IN", "OUT.x.png", "-size", "4294967297x5"}},
       {"render_size_signed", "render", {"IN", "OUT.x.png", "-size", "8x+5"}},
       {"render_view_huge", "render", {"IN", "OUT.x.png", "-view", "1e200,0,0"}, Expect::Success},
+      {"render_view_trailing_comma", "render", {"IN", "OUT.x.png", "-view", "1,2,3,"}},
+      {"patches_viewpoint_trailing_comma", "patches", {"IN", "OUT.p.ply", "-viewpoint", "1,2,3,"}},
       // pcl_sparse_info
       {"info_unknown_flag", "info", {"IN", "--bogus"}},
       {"info_no_arguments", "info", {}},

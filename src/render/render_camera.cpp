@@ -37,7 +37,7 @@ namespace pcl_sparse
     }
     // stableNorm: norm () overflowed at 1e200 (a blank picture) and underflowed at 1e-200 (refused as zero).
     const double length = v.stableNorm ();
-    if (n != 3 || length == 0.0)
+    if (n != 3 || length == 0.0 || name.back () == ',')  // getline drops an empty last part: "1,2,3,"
       throw Error ("view '" + name + "': expected front, side, top, iso or a non-zero x,y,z");
     return v / length;
   }
