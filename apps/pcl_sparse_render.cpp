@@ -69,7 +69,10 @@ namespace
     SparseSurfaceResampling<pcl::PointNormal> resampling;
     if (count == 0)
       count = std::max<std::size_t> (4 * model->num_input_vertices, static_cast<std::size_t> (picture.width) * picture.height);
-    resampling.setPointCount (std::min (count, SparseSurfaceResampling<pcl::PointNormal>::max_points));
+    count = std::min (count, SparseSurfaceResampling<pcl::PointNormal>::max_points);
+    // The cloud, then its points, normals and patches again for the picture: about 170 bytes a point.
+    tools::checkFitsInMemory (170.0 * static_cast<double> (count), "a picture of " + std::to_string (count) + " points (-size, -n)");
+    resampling.setPointCount (count);
     const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
     Scene scene;
     for (const pcl::PointNormal& p : local.cloud)

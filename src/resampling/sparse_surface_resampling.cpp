@@ -5,6 +5,7 @@
 #include <pcl_sparse/resampling/patch_geometry.h>
 
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -936,13 +937,32 @@ namespace pcl_sparse
   }
 
   void
+  SparseSurfaceResamplingBase::checkCloudFitsInMemory (double points) const
+  {
+    const double bytes_per_point = 90.0;  // decode -n 2M / 8M -stream off: 190 / 723 MB peak
+    const double physical = static_cast<double> (::sysconf (_SC_PHYS_PAGES)) * static_cast<double> (::sysconf (_SC_PAGE_SIZE));
+    if (physical > 0.0 && points * bytes_per_point > physical)
+    {
+      std::ostringstream message;
+      message.precision (3);
+      message << name_ << "::compute: " << points << " points held in memory need about " << points * bytes_per_point / 1e9
+              << " GB, more than this machine's " << physical / 1e9 << " GB: lower the count or density, or resample in blocks";
+      throw Error (message.str ());
+    }
+  }
+
+  void
   SparseSurfaceResamplingBase::computeResampling (PointCloud& output)
   {
     prepareTables ();
     Passes passes (*evaluator_, *ownership_, options_, model_->numPatches ());
     // With a count, the cloud's size is known: its construction overlaps the candidate pass.
     const bool prefill = mode_ == Mode::Count;
+    if (prefill)
+      checkCloudFitsInMemory (static_cast<double> (count_));
     weighPatches (passes, prefill ? &output : nullptr, std::numeric_limits<std::size_t>::max ());
+    if (!prefill)
+      checkCloudFitsInMemory (std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0));
     selectAllPoints (pointsPerPatch (passes.weights), passes, output, prefill);
     if (progress_)
       progress_ ("resample", 1.0);

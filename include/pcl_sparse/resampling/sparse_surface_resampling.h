@@ -218,6 +218,9 @@ namespace pcl_sparse
     double densityForCount () const;
     /// Throws if \a density could give more than max_points points.
     void checkDensityBound (double density) const;
+    /// Throws if a cloud of \a points held in memory would not fit in this machine's memory (about 90 bytes a
+    /// point, measured): a clear error instead of an OOM kill or std::bad_alloc after minutes of work.
+    void checkCloudFitsInMemory (double points) const;
     /// Candidate pass at \a density (redone once if a count is asked and the area is off by > 2 %).
     /// With \a prefill, one thread first constructs that cloud with count_ points (a few page faults per
     /// point, serial) while the others start on the patches.
@@ -268,8 +271,9 @@ namespace pcl_sparse
 
     /// \brief Resamples the model into \a output (replaced; organised as one row, is_dense = true; empty if it throws).
     /// Throws pcl_sparse::Error if no model, no basis, no patches, no density was set, the options are out
-    /// of range (SparseSurfaceResamplingOptions::validate), or the density would give more than max_points
-    /// points.
+    /// of range (SparseSurfaceResamplingOptions::validate), the density would give more than max_points
+    /// points, or the cloud would not fit in this machine's memory (resample in blocks then: compute
+    /// with a BlockCallback).
     /// \param[out] output the resampled cloud
     void compute (PointCloudOut& output);
 
