@@ -7,7 +7,6 @@
 #     both nodelets, and runs ros/test/ros_check.py: the .psm bytes of a shared mesh through the decode
 #     node and nodelet, real scans from ../shared/clouds (and a cloud sampled from a mesh) through the
 #     resample node and nodelet and the model round trip, then the demo launch file.
-# Until the encoder takes clouds without polygons, the scan checks print SKIP with the nodes' reason.
 # Stops everything it started by process id. Last line: "ros: N passed, F failed, S skipped"; exit 1 on
 # any failure. scripts/test.sh runs it after ctest (PCL_SPARSE_SKIP_ROS=1 leaves it out).
 #   PCL_SPARSE_SHARED   the shared data (default: ../shared next to the repository)
@@ -176,7 +175,8 @@ start decode_nodelet.log "$nodelet" load pcl_sparse/DecodeNodelet test_manager _
   _frame_id:=mesh _points:=$mesh_points _max_slope:=$decode_slope _clearance:=$decode_clearance
 
 # Bad parameters: the node exits 1 naming the parameter; a nodelet logs it and leaves its manager running.
-for bad in "_points:=0" "_points:=10 _spacing:=0.01" "_preset:=fast" "_viewpoint:=1,2" "_max_slope:=95" "_clearance:=-1"; do
+for bad in "_points:=0" "_points:=10 _spacing:=0.01" "_preset:=fast" "_preset:=5" "_threads:=abc" "_threads:=2.7" \
+           "_viewpoint:=1,2" "_max_slope:=95" "_clearance:=-1"; do
   # shellcheck disable=SC2086
   if out=$(timeout 20 "$bin/pcl_sparse_resample_node" __name:=test_bad_parameter $bad 2>&1); then status=0; else status=$?; fi
   rosparam delete /test_bad_parameter > /dev/null 2>&1 || true
@@ -231,7 +231,8 @@ check=(/usr/bin/python3 "$root/ros/test/ros_check.py" --bin "$bin")
   2>&1 | tee "$tmp/check.log" || true
 check_result "$tmp/check.log"
 
-# The demo launch file, on the same roscore (its nodes have names of their own).
-start demo.log roslaunch pcl_sparse resample_demo.launch file:="$shared/clouds/lamppost.pcd" points:=2000 rate:=1
+# The demo launch file, on the same roscore (its nodes have names of their own). rate:=0: the file is
+# published once, latched, before the check listens (the resampler keeps it for the subscriber that comes).
+start demo.log roslaunch pcl_sparse resample_demo.launch file:="$shared/clouds/lamppost.pcd" points:=2000 rate:=0
 "${check[@]}" --demo --timeout 60 2>&1 | tee "$tmp/demo.log" || true
 check_result "$tmp/demo.log"

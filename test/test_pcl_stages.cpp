@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <string>
 
@@ -533,4 +534,26 @@ TEST (PclStages, HarrisClusteringAtATinyRadius)
   ASSERT_GT (none.size (), 8u);
   EXPECT_EQ (keypointsWith (1e-12), none);
   EXPECT_LT (keypointsWith (0.5).size (), none.size ());
+}
+
+// A cloud read with the wrong byte order (a big-endian PointCloud2 taken as little-endian) holds values up to
+// 3e38: the encoder's range check came after the scan's kd-tree, which aborted in FLANN (found by a review
+// of the ROS node). It is refused with the reason now.
+TEST (PclStages, CloudInTheWrongByteOrderIsRefused)
+{
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  auto swapped = [] (float v) {
+    std::uint32_t bits = 0;
+    std::memcpy (&bits, &v, 4);
+    bits = __builtin_bswap32 (bits);
+    std::memcpy (&v, &bits, 4);
+    return v;
+  };
+  for (int i = 0; i < 3000; ++i)
+    cloud->push_back (pcl::PointXYZ (swapped (0.01f * static_cast<float> (i % 60)), swapped (0.01f * static_cast<float> (i / 60)),
+                                     swapped (0.0f)));
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputCloud (cloud);
+  SparseSurfaceModel model;
+  EXPECT_NE (errorOf ([&] { encoder.compute (model); }).find ("beyond the 1e30 that float clouds hold"), std::string::npos);
 }

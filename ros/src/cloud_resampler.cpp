@@ -24,6 +24,14 @@ namespace pcl_sparse_ros
       return std::chrono::duration<double> (Clock::now () - start).count ();
     }
 
+    /// Progress callback: Ctrl-C waited for the whole encoding (28 s for a million points).
+    void
+    stopWhenShuttingDown (const std::string&, double)
+    {
+      if (!ros::ok ())
+        throw pcl_sparse::Error ("stopped: the node is shutting down");
+    }
+
     /// Encodes the message as a cloud of PointInT: setInputCloud alone, organized or not, NaN kept
     /// (the encoder decides what to do with them, as PCL stages do).
     template <typename PointInT>
@@ -38,6 +46,7 @@ namespace pcl_sparse_ros
       pcl_sparse::SparseSurfaceEncoder<PointInT> encoder;
       encoder.setOptions (settings.options);
       encoder.setNumberOfThreads (settings.threads);
+      encoder.setProgressCallback (stopWhenShuttingDown);
       encoder.setInputCloud (cloud);
       if (settings.has_viewpoint)
         encoder.setViewPoint (static_cast<float> (settings.viewpoint.x ()), static_cast<float> (settings.viewpoint.y ()),
@@ -73,6 +82,7 @@ namespace pcl_sparse_ros
       resampling.setInputModel (model);
       settings.apply (resampling, default_count);
       resampling.setNumberOfThreads (threads);
+      resampling.setProgressCallback (stopWhenShuttingDown);
       pcl::PointCloud<PointOutT> cloud;
       resampling.compute (cloud);
       pcl::toROSMsg (cloud, output);
@@ -143,8 +153,12 @@ namespace pcl_sparse_ros
       ROS_WARN ("[%s] ~viewpoint (%g, %g, %g) is read but not used: this encoder has no viewpoint option yet "
                 "(it comes with point-cloud input)", name_.c_str (), settings_.viewpoint.x (), settings_.viewpoint.y (),
                 settings_.viewpoint.z ());
-    cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2> ("output", 1);
-    model_pub_ = nh.advertise<std_msgs::UInt8MultiArray> ("model", 1);
+    // Latched, and a subscriber that comes gets the last input encoded for it (serveLastInput).
+    const ros::SubscriberStatusCallback on_subscriber = [this] (const ros::SingleSubscriberPublisher&) { serveLastInput (); };
+    cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2> ("output", 1, on_subscriber, ros::SubscriberStatusCallback (),
+                                                         ros::VoidConstPtr (), true);
+    model_pub_ = nh.advertise<std_msgs::UInt8MultiArray> ("model", 1, on_subscriber, ros::SubscriberStatusCallback (),
+                                                          ros::VoidConstPtr (), true);
     // Queue of one: a frame that arrives while the previous one is being encoded replaces the waiting one.
     sub_ = nh.subscribe ("input", 1, &CloudResampler::onCloud, this);
     ROS_INFO ("[%s] resampling %s -> %s (%s), model on %s; preset %s, rho %g, %s, model tolerance %g",
@@ -156,19 +170,31 @@ namespace pcl_sparse_ros
   void
   CloudResampler::onCloud (const sensor_msgs::PointCloud2ConstPtr& input)
   {
-    const bool want_cloud = cloud_pub_.getNumSubscribers () > 0;
-    const bool want_model = model_pub_.getNumSubscribers () > 0;
-    if (!want_cloud && !want_model)
-      return;  // nobody listens: no work (as pcl_ros's lazy nodelets)
+    last_input_ = input;
+    cloud_served_ = model_served_ = false;
+    serveLastInput ();
+  }
+
+  void
+  CloudResampler::serveLastInput ()
+  {
+    const bool want_cloud = !cloud_served_ && cloud_pub_.getNumSubscribers () > 0;
+    const bool want_model = !model_served_ && model_pub_.getNumSubscribers () > 0;
+    if (!last_input_ || (!want_cloud && !want_model))
+      return;  // nobody listens: no work (as pcl_ros's lazy nodelets), the input kept for who comes
+    const sensor_msgs::PointCloud2ConstPtr input = last_input_;
+    cloud_served_ = cloud_served_ || want_cloud;  // an input that fails is not tried again
+    model_served_ = model_served_ || want_model;
     ResampleResult result;
     try
     {
       result = resampleCloud (*input, settings_, resampling_, want_cloud, want_model);
     }
-    catch (const pcl_sparse::Error& e)
+    catch (const std::exception& e)  // not only the library's errors: std::bad_alloc ended the node (and a manager)
     {
-      errorThrottled ("cannot encode the cloud (frame '" + input->header.frame_id + "', " + describeCloud (*input) +
-                      "): " + e.what () + "; nothing published");
+      if (ros::ok ())
+        errorThrottled ("cannot encode the cloud (frame '" + input->header.frame_id + "', " + describeCloud (*input) +
+                        "): " + e.what () + "; nothing published");
       return;
     }
     ROS_DEBUG ("[%s] %s: %zu points -> %zu patches in %.3f s, resampled in %.3f s, %zu model bytes in %.3f s",

@@ -22,6 +22,10 @@ namespace pcl_sparse_ros
     pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (decoded);
     resampling_settings.apply (resampling, decoded->num_input_vertices);
+    resampling.setProgressCallback ([] (const std::string&, double) {
+      if (!ros::ok ())
+        throw pcl_sparse::Error ("stopped: the node is shutting down");
+    });
     resampling.setNumberOfThreads (threads);
     pcl::PointCloud<pcl::PointNormal> cloud;
     resampling.compute (cloud);
@@ -35,8 +39,10 @@ namespace pcl_sparse_ros
     ros::NodeHandle nh = private_nh;
     resampling_ = readResamplingSettings (nh);
     threads_ = readThreads (nh);
-    nh.param<std::string> ("frame_id", frame_id_, "map");
-    cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2> ("output", 1);
+    frame_id_ = readString (nh, "frame_id", "map");
+    const ros::SubscriberStatusCallback on_subscriber = [this] (const ros::SingleSubscriberPublisher&) { serveLastModel (); };
+    cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2> ("output", 1, on_subscriber, ros::SubscriberStatusCallback (),
+                                                         ros::VoidConstPtr (), true);
     sub_ = nh.subscribe ("model", 1, &ModelDecoder::onModel, this);
     ROS_INFO ("[%s] decoding %s -> %s (%s, frame '%s')", name_.c_str (), sub_.getTopic ().c_str (),
               cloud_pub_.getTopic ().c_str (), resampling_.describe ().c_str (), frame_id_.c_str ());
@@ -45,17 +51,28 @@ namespace pcl_sparse_ros
   void
   ModelDecoder::onModel (const std_msgs::UInt8MultiArrayConstPtr& model)
   {
-    if (cloud_pub_.getNumSubscribers () == 0)
+    last_model_ = model;
+    served_ = false;
+    serveLastModel ();
+  }
+
+  void
+  ModelDecoder::serveLastModel ()
+  {
+    if (served_ || !last_model_ || cloud_pub_.getNumSubscribers () == 0)
       return;
+    served_ = true;
+    const std_msgs::UInt8MultiArrayConstPtr model = last_model_;
     sensor_msgs::PointCloud2 cloud;
     try
     {
       cloud = decodeModelMessage (*model, resampling_, threads_);
     }
-    catch (const pcl_sparse::Error& e)
+    catch (const std::exception& e)  // not only the library's errors: std::bad_alloc ended the node (and a manager)
     {
       // Every bad message is reported: models come rarely, and each one is somebody's mistake.
-      ROS_ERROR ("[%s] cannot decode %zu bytes: %s; nothing published", name_.c_str (), model->data.size (), e.what ());
+      if (ros::ok ())
+        ROS_ERROR ("[%s] cannot decode %zu bytes: %s; nothing published", name_.c_str (), model->data.size (), e.what ());
       return;
     }
     cloud.header.frame_id = frame_id_;

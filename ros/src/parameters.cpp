@@ -174,7 +174,7 @@ namespace pcl_sparse_ros
   readEncoderSettings (const ros::NodeHandle& private_nh)
   {
     EncoderSettings settings;
-    private_nh.param<std::string> ("preset", settings.preset, "default");
+    settings.preset = readString (private_nh, "preset", "default");
     settings.options = presetOptions (settings.preset);
     double rho = 0.0;
     if (readNumber (private_nh, "rho", rho))
@@ -207,10 +207,19 @@ namespace pcl_sparse_ros
   int
   readThreads (const ros::NodeHandle& private_nh)
   {
-    int threads = 0;
-    private_nh.param ("threads", threads, 0);
-    if (threads < 0 || threads > 1024)
-      throw pcl_sparse::Error ("parameter ~threads must be in [0, 1024] (0 = all cores)");
-    return threads;
+    double threads = 0.0;
+    // roscpp's param () took "abc" as 0 and rounded 2.7 to 3 without a word.
+    if (readNumber (private_nh, "threads", threads) && !(threads >= 0.0 && threads <= 1024.0 && threads == std::floor (threads)))
+      throw pcl_sparse::Error ("parameter ~threads must be a whole number in [0, 1024] (0 = all cores)");
+    return static_cast<int> (threads);
+  }
+
+  std::string
+  readString (const ros::NodeHandle& private_nh, const std::string& name, const std::string& fallback)
+  {
+    std::string value = fallback;
+    if (private_nh.hasParam (name) && !private_nh.getParam (name, value))
+      throw pcl_sparse::Error ("parameter ~" + name + " must be a string");
+    return value;
   }
 } // namespace pcl_sparse_ros

@@ -13,11 +13,11 @@ publishes inputs and checks what comes back:
            asked, the fields (x y z normal curvature, + rgb / intensity as the input), finite values,
            unit normals, the input's frame_id and stamp, points inside the input's bounding box; the
            model (~model) must be .psm bytes and decode (decode node) into the same region.
-           Until the encoder takes clouds without polygons, the nodes report "... has no polygons ..."
-           on /rosout and publish nothing: those checks print SKIP with the node's reason (expected to
-           fail until cloud input lands) and become real checks as soon as it does.
-  demo     (--demo) the launch file's nodes are up and its resample node answers (or reports the same
-           reason).
+  malformed  clouds PCL's conversion would misread (more points declared than sent, big-endian, x y z
+           as doubles) are refused by both resamplers with the reason on /rosout; the scans after them
+           show that the node and the nodelet's manager live on.
+  demo     (--demo) the launch file's nodes are up, and a cloud it publishes once, before anyone listens,
+           reaches /resample/output and /decode/output.
 
 Prints PASS / FAIL / SKIP lines and a last line "RESULT passed=P failed=F skipped=S"; exits 1 if any
 check failed.
@@ -36,7 +36,7 @@ import time
 import rosgraph
 import rospy
 from rosgraph_msgs.msg import Log
-from sensor_msgs.msg import PointCloud2
+from sensor_msgs.msg import PointCloud2, PointField
 from std_msgs.msg import MultiArrayDimension, UInt8MultiArray
 
 PSM_MAGIC = b"\x89PSM\r\n\x1a\n"
@@ -287,6 +287,49 @@ class Checker:
                 problems.append("no cloud after the malformed model")
             self.results.check(name, problems, error.msg[len(node) + 3:][:100] + "..." if error else "")
 
+    # ---- malformed clouds: refused with the reason, and the node (and the nodelet's manager) lives on ------
+    def check_malformed(self):
+        resamplers = {node: Topic(node + "/output", PointCloud2) for node in self.args.resamplers}
+        for topic in resamplers.values():
+            if not topic.connected(10):
+                self.results.check("malformed clouds: connect " + topic.name, ["no connection"])
+                return
+        publisher = rospy.Publisher(self.args.topic, PointCloud2, queue_size=1)
+        if not wait_until(lambda: publisher.get_num_connections() >= len(resamplers), 10):
+            self.results.check("malformed clouds: publish on " + self.args.topic, ["the resamplers did not connect"])
+            return
+
+        def cloud(datatype, size, points, declared=None, bigendian=False):
+            fields = [PointField(name=n, offset=i * size, datatype=datatype, count=1) for i, n in enumerate("xyz")]
+            fmt = "<%d%s" % (3 * points, "f" if size == 4 else "d")
+            values = [v for i in range(points) for v in (i % 60 * 0.01, i // 60 * 0.01, 0.0)]
+            data = struct.pack(fmt, *values)
+            if bigendian:  # the same values, each byte-swapped
+                data = b"".join(data[k:k + size][::-1] for k in range(0, len(data), size))
+            width = declared or points
+            return PointCloud2(height=1, width=width, fields=fields, is_bigendian=bigendian, point_step=3 * size,
+                               row_step=3 * size * width, data=data, is_dense=True)
+
+        # The first crashed the node and, through it, a nodelet manager with every nodelet in it; the second
+        # aborted in the kd-tree; the third was called "no usable point".
+        cases = [("more points declared than sent", cloud(7, 4, 3000, declared=3000000), "less than row_step x height"),
+                 ("big-endian", cloud(7, 4, 3000, bigendian=True), "big-endian"),
+                 ("x y z as FLOAT64", cloud(8, 8, 3000), "must be one FLOAT32 each")]
+        for label, message, reason in cases:
+            start = time.time()
+            self.rosout.clear()
+            message.header.frame_id = "malformed"
+            message.header.stamp = rospy.Time.now()
+            publisher.publish(message)
+            for node in resamplers:
+                error = wait_until(lambda: self.node_error(node, "cannot encode"), 20)
+                problems = [] if error and reason in error.msg else \
+                    ["expected a ROS_ERROR naming '%s', got %s" % (reason, repr(error.msg) if error else "none")]
+                self.results.check("%s refuses a malformed cloud (%s)" % (node, label), problems,
+                                   error.msg[len(node) + 3:][:90] + "..." if error else "")
+            time.sleep(max(0.0, 10.5 - (time.time() - start)))  # past the nodes' 10 s error throttle
+        publisher.unregister()
+
     # ---- scans: real clouds through the resample node and nodelet --------------------------------------
     def check_scans(self):
         resamplers = {node: Topic(node + "/output", PointCloud2) for node in self.args.resamplers}
@@ -380,14 +423,16 @@ class Checker:
         up = wait_until(running, 30)
         self.results.check("launch resample_demo.launch: nodes up", [] if up else ["not all of %s registered" % expected],
                            " ".join(expected))
-        output = Topic("/resample/output", PointCloud2)
-        output.connected(10)
-        wait_until(lambda: output.first() is not None or self.node_error("/resample"), self.args.timeout)
-        error = self.node_error("/resample")
-        cloud = output.first()
-        self.results.check("launch resample_demo.launch: /resample/output",
-                           [error.msg if error else "no cloud"] if cloud is None else [],
-                           "%d points" % (cloud.width * cloud.height) if cloud else "")
+        # The file is published once (rate:=0) before these subscribers come: the clouds reach them all the same.
+        for node in ("/resample", "/decode"):
+            output = Topic(node + "/output", PointCloud2)
+            output.connected(10)
+            wait_until(lambda: output.first() is not None or self.node_error(node), self.args.timeout)
+            error = self.node_error(node)
+            cloud = output.first()
+            self.results.check("launch resample_demo.launch (a cloud published once): %s/output" % node,
+                               [error.msg if error else "no cloud"] if cloud is None else [],
+                               "%d points" % (cloud.width * cloud.height) if cloud else "")
 
 
 def main():
@@ -418,6 +463,7 @@ def main():
         if args.decoders:
             checker.check_decode()
         if args.resamplers:
+            checker.check_malformed()
             checker.check_scans()
     finally:
         checker.stop_all()

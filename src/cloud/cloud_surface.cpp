@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace pcl_sparse
@@ -60,6 +61,16 @@ namespace pcl_sparse
         count += (finite[i] = scan.positions[i].allFinite () ? 1 : 0);
       if (count == 0)
         throw Error ("buildCloudSurface: the scan has no finite point (all " + std::to_string (n) + " are NaN/Inf)");
+      // As the encoder refuses (coordinateRangeProblem), but before the kd-tree: a cloud read with the wrong
+      // byte order reached 1e38 and aborted in FLANN's tree (found by a review of the ROS node).
+      for (std::size_t i = 0; i < n; ++i)
+        if (finite[i] && !((scan.positions[i] + scan.origin).cwiseAbs ().maxCoeff () <= 1e30))
+        {
+          std::ostringstream where;
+          where << (scan.positions[i] + scan.origin).transpose ();
+          throw Error ("buildCloudSurface: point " + std::to_string (i) + " lies at (" + where.str () +
+                       "), beyond the 1e30 that float clouds hold (a wrong byte order?)");
+        }
       return finite;
     }
 

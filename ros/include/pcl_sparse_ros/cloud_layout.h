@@ -35,10 +35,18 @@ namespace pcl_sparse_ros
     OutputLayout output = OutputLayout::Normal;
   };
 
+  /// \brief Refuses a message PCL's conversion would read past or misread (it checks nothing: a cloud
+  /// declaring more points than its data holds crashed the node, and with it a nodelet manager): a
+  /// big-endian cloud, row_step below width x point_step, data shorter than row_step x height, a field of
+  /// an unknown datatype or past point_step. Throws pcl_sparse::Error saying which.
+  void
+  checkCloudMessage (const sensor_msgs::PointCloud2& cloud);
+
   /// \brief The layout of \a cloud: normals when it has all three normal fields, colour for `rgb` or
-  /// `rgba`, intensity for `intensity` (colour wins over intensity; with normals, intensity is not an
-  /// encoder input but still selects the output type). Throws pcl_sparse::Error when x, y or z is missing.
-  /// \param[in] cloud the message (its data is not read)
+  /// `rgba`, intensity for a FLOAT32 `intensity` (colour wins over intensity; with normals, intensity is
+  /// not an encoder input, so the output has none either). Throws pcl_sparse::Error when x, y or z is
+  /// missing or not one FLOAT32, or the message fails checkCloudMessage.
+  /// \param[in] cloud the message (its sizes are checked, its values not read)
   CloudLayout
   cloudLayoutOf (const sensor_msgs::PointCloud2& cloud);
 

@@ -3,11 +3,12 @@
 /// What pcl_sparse_resample_node and pcl_sparse/ResampleNodelet do: each sensor_msgs/PointCloud2 on
 /// ~input is encoded into a sparse surface model (SparseSurfaceEncoder<T> with setInputCloud alone, T
 /// chosen from the message's fields), the model is resampled and published on ~output with the input's
-/// header, and its .psm bytes on ~model (std_msgs/UInt8MultiArray).
+/// header, and its .psm bytes on ~model (std_msgs/UInt8MultiArray). Both are latched. A cloud nobody
+/// listens to is kept (the last one) and encoded when a subscriber comes: a cloud published once and
+/// latched was dropped before anyone listened, and nothing ever came out.
 ///
-/// Until the encoder takes point clouds without polygons, compute throws pcl_sparse::Error ("... has no
-/// polygons ..."): the message is dropped with a throttled ROS_ERROR naming the reason, nothing is
-/// published. The node needs no change when cloud input lands.
+/// A cloud the encoder refuses (or a malformed message: cloud_layout.h) is dropped with a throttled
+/// ROS_ERROR naming the reason; nothing is published. Shutting down (Ctrl-C) stops an encoding under way.
 
 #include <pcl_sparse_ros/cloud_layout.h>
 #include <pcl_sparse_ros/parameters.h>
@@ -59,6 +60,8 @@ namespace pcl_sparse_ros
 
   private:
     void onCloud (const sensor_msgs::PointCloud2ConstPtr& input);
+    /// Encodes the last input for the outputs that have subscribers and have not had it yet.
+    void serveLastInput ();
     /// ROS_ERROR at most every 10 s per instance (each message that fails would otherwise log).
     void errorThrottled (const std::string& message);
 
@@ -68,6 +71,8 @@ namespace pcl_sparse_ros
     ros::Publisher cloud_pub_;
     ros::Publisher model_pub_;
     ros::Subscriber sub_;
+    sensor_msgs::PointCloud2ConstPtr last_input_;
+    bool cloud_served_ = false, model_served_ = false;  ///< the last input's output and model published
     ros::WallTime last_error_;
     std::size_t suppressed_errors_ = 0;
   };

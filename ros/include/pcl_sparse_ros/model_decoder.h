@@ -2,8 +2,9 @@
 /// \file model_decoder.h
 /// What pcl_sparse_decode_node and pcl_sparse/DecodeNodelet do: the .psm bytes on ~model
 /// (std_msgs/UInt8MultiArray, as the resample node publishes them) are decoded and resampled into a
-/// PointCloud2 (x y z normal_x normal_y normal_z curvature) on ~output. The bytes carry no header: the
-/// cloud gets frame_id ~frame_id and the time it was decoded as its stamp.
+/// PointCloud2 (x y z normal_x normal_y normal_z curvature) on ~output, latched. The bytes carry no
+/// header: the cloud gets frame_id ~frame_id and the time it was decoded as its stamp. A model nobody
+/// listens to is kept (the last one) and decoded when a subscriber comes.
 
 #include <pcl_sparse_ros/parameters.h>
 
@@ -30,6 +31,8 @@ namespace pcl_sparse_ros
 
   private:
     void onModel (const std_msgs::UInt8MultiArrayConstPtr& model);
+    /// Decodes the last model if ~output has a subscriber and has not had it yet.
+    void serveLastModel ();
 
     std::string name_;
     std::string frame_id_;
@@ -37,5 +40,7 @@ namespace pcl_sparse_ros
     int threads_ = 0;
     ros::Publisher cloud_pub_;
     ros::Subscriber sub_;
+    std_msgs::UInt8MultiArrayConstPtr last_model_;
+    bool served_ = false;
   };
 } // namespace pcl_sparse_ros

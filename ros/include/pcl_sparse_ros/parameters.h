@@ -80,7 +80,12 @@ namespace pcl_sparse_ros
   bool
   applyViewpoint (const Eigen::Vector3d& viewpoint, pcl_sparse::SparseSurfaceEncoderOptions& options);
 
-  /// Reads ~threads (0 = all).
+  /// Reads ~threads (0 = all): a whole number in [0, 1024].
   int
   readThreads (const ros::NodeHandle& private_nh);
+
+  /// Reads the string parameter ~\a name, \a fallback when it is not set. Throws pcl_sparse::Error when it
+  /// is set to something else (roscpp's param () silently took the fallback: _preset:=5 ran the default).
+  std::string
+  readString (const ros::NodeHandle& private_nh, const std::string& name, const std::string& fallback);
 } // namespace pcl_sparse_ros
