@@ -20,4 +20,17 @@ namespace pcl_sparse
     const Eigen::AlignedBox3d box = finiteBoundingBox (points);
     return box.isEmpty () ? 0.0 : (box.max () - box.min ()).norm ();
   }
+
+  double
+  surfaceBoundingBoxDiagonal (const TriangleMesh& mesh)
+  {
+    Eigen::AlignedBox3d box;  // empty
+    const long n = static_cast<long> (mesh.vertices.size ());
+    for (const Eigen::Vector3i& t : mesh.triangles)
+      if (t.minCoeff () >= 0 && t.maxCoeff () < n)
+        for (int k = 0; k < 3; ++k)
+          if (mesh.vertices[t[k]].allFinite ())
+            box.extend (mesh.vertices[t[k]]);
+    return box.isEmpty () ? 0.0 : (box.max () - box.min ()).norm ();
+  }
 } // namespace pcl_sparse

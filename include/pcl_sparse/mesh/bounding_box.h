@@ -28,4 +28,9 @@ namespace pcl_sparse
   {
     return boundingBoxDiagonal (mesh.vertices);
   }
+
+  /// Bounding-box diagonal of the finite vertices some face uses (faces with an index out of range are
+  /// skipped); 0 when there is none. A scan's surface: its stray points are in no triangle.
+  double
+  surfaceBoundingBoxDiagonal (const TriangleMesh& mesh);
 } // namespace pcl_sparse
