@@ -203,6 +203,8 @@ main (int argc, char** argv)
     const Eigen::AlignedBox3d box = has_box ? parseBox (args.value ("-box")) : Eigen::AlignedBox3d ();
     if (has_box && !has_density)
       throw Error ("option -box needs -density D (points per unit area: -n counts the whole model's points)");
+    if (has_box && args.value ("-stream") == "on")  // it quietly did not stream
+      throw Error ("option -stream on: -box keeps the points inside the box, written whole (use -stream auto)");
     if (has_box && !recon_mesh.empty ())
       throw Error ("options -box and -recon exclude each other");
 

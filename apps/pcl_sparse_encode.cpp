@@ -114,7 +114,7 @@ main (int argc, char** argv)
     const std::string& path = args.positional ().front ();
 
     SparseSurfaceEncoderOptions options = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default")));
-    args.number ("-rho", options.patches.rho);
+    args.number ("-rho", options.patches.rho, tools::Range::aboveUpTo (0.0, 1.0));  // A_p / A: 1 bounds nothing
     args.number ("-f", options.coding.nyquist_factor);
     args.integer ("-L", options.coding.max_atoms);
     args.number ("-eps", options.coding.tolerance);

@@ -78,7 +78,7 @@ main (int argc, char** argv)
     PatchOptions options = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default"))).patches;
     if (args.has ("--authors"))
       options = authorsCodePatchOptions (options);
-    args.number ("-rho", options.rho);
+    args.number ("-rho", options.rho, tools::Range::aboveUpTo (0.0, 1.0));
     args.angle ("-delta", options.delta);
     args.angle ("-cone", options.cone_angle);
     args.number ("-eta", options.eta);

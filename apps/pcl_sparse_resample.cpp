@@ -121,7 +121,7 @@ namespace
       s.encoder.basis = cosineBasisKindFromName (args.value ("-basis"));
     args.integer ("-seed", s.resampling.seed, Range::atLeast (0));
     tools::readOwnershipOptions (args, s.resampling);
-    args.integer ("-threads", s.threads, Range::closed (1, 1024));
+    args.integer ("-threads", s.threads, Range::closed (0, 1024));  // 0 = OpenMP's default, as the other tools
     s.has_viewpoint = tools::parseViewpoint (args, s.viewpoint);
     s.binary = !args.has ("-ascii");
     s.quiet = args.has ("-q");
@@ -152,6 +152,10 @@ main (int argc, char** argv)
     timer.tic ();
     if (tools::hasExtension (s.input, ".psm"))
     {
+      // A model is resampled as it was encoded: encoder options would be ignored without a word.
+      for (const char* option : {"-rho", "-f", "-angles", "-basis", "-preset", "-viewpoint"})
+        if (args.has (option))
+          throw Error (std::string ("option ") + option + " encodes a mesh or cloud; " + s.input + " is already a model");
       *model = loadModel (s.input);
       load_seconds = timer.toc () / 1000.0;
       input_vertices = model->num_input_vertices;

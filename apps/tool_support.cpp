@@ -217,8 +217,10 @@ namespace pcl_sparse
       char* end = nullptr;
       errno = 0;
       const double x = std::strtod (text.c_str (), &end);
-      if (text.empty () || end != text.c_str () + text.size () || errno == ERANGE || !std::isfinite (x))
+      if (text.empty () || end != text.c_str () + text.size () || !std::isfinite (x))
         throw Error ("option " + name + ": '" + text + "' is not a number");
+      if (errno == ERANGE)  // 1e-320 was "not a number"
+        throw Error ("option " + name + ": " + text + " is beyond what a double holds");
       if (!range.contains (x))
         throw Error ("option " + name + ": " + text + " is not in " + range.str ());
       value = x;

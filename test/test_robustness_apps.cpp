@@ -315,8 +315,8 @@ namespace
       // pcl_sparse_encode
       {"encode_negative_rho", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "-0.01"}},
       {"encode_zero_rho", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "0"}},
-      // rho > 1 bounds nothing more than rho = 1 (the encoder accepts it, the resampler refuses it).
-      {"encode_rho_above_one", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "2"}, Expect::Either},
+      // rho > 1 bounds nothing more than rho = 1: refused by every tool.
+      {"encode_rho_above_one", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "2"}},
       {"encode_f_above_one", "encode", {"IN", "-o", "OUT.m.psm", "-f", "1.5"}},
       {"encode_negative_f", "encode", {"IN", "-o", "OUT.m.psm", "-f", "-0.5"}},
       {"encode_zero_atoms", "encode", {"IN", "-o", "OUT.m.psm", "-L", "0"}},
@@ -384,6 +384,11 @@ namespace
       {"encode_output_twice", "encode", {"IN", "-o", "OUT.a.psm", "-o", "OUT.b.psm"}},
       {"encode_output_not_psm", "encode", {"IN", "-o", "OUT.m.ply"}},
       // pcl_sparse_render: sscanf wrapped 4294967297 to 1
+      {"encode_rho_denormal", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "1e-320"}},
+      {"patches_zero_rho", "patches", {"IN", "OUT.p.ply", "-rho", "0"}},
+      {"resample_model_with_encoder_option", "resample", {"PSM", "OUT.r.pcd", "-rho", "0.01"}},
+      {"resample_threads_zero", "resample", {"IN", "OUT.r.pcd", "-threads", "0"}, Expect::Success},
+      {"decode_box_stream_on", "decode", {"PSM", "OUT.d.pcd", "-density", "100", "-box", "-1,-1,-1,1,1,1", "-stream", "on"}},
       {"render_size_overflow", "render", {"IN", "OUT.x.png", "-size", "4294967297x5"}},
       {"render_size_signed", "render", {"IN", "OUT.x.png", "-size", "8x+5"}},
       {"render_view_huge", "render", {"IN", "OUT.x.png", "-view", "1e200,0,0"}, Expect::Success},
