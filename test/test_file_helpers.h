@@ -2,6 +2,7 @@
 // Small file helpers shared by the tests that write their own input files.
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -10,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -85,5 +87,45 @@ namespace pcl_sparse_test
   runCommand (const std::string& command, std::string& out)
   {
     return runShell (command + " 2>&1", out);
+  }
+
+  /// What interruptOnceReady saw.
+  struct InterruptedRun
+  {
+    bool ready = false;  ///< \a ready held before the program ended or the 20 s ran out
+    int status = 0;      ///< waitpid's status
+  };
+
+  /// Starts \a argv (program path first) with \a environment added (NAME=VALUE entries), waits until
+  /// \a ready () holds (at most 20 s), lets \a settle_us more pass (past the instant between making a
+  /// file and registering it for removal), sends SIGINT and waits for the program's end.
+  template <typename Ready>
+  InterruptedRun
+  interruptOnceReady (const std::vector<std::string>& argv, Ready ready, const std::vector<std::string>& environment = {},
+                      int settle_us = 20000)
+  {
+    const pid_t pid = ::fork ();
+    if (pid == 0)
+    {
+      for (const std::string& entry : environment)
+        ::putenv (const_cast<char*> (entry.c_str ()));
+      std::vector<char*> args;
+      for (const std::string& a : argv)
+        args.push_back (const_cast<char*> (a.c_str ()));
+      args.push_back (nullptr);
+      ::execv (args[0], args.data ());
+      ::_exit (127);
+    }
+    InterruptedRun run;
+    for (int wait = 0; wait < 2000 && !run.ready; ++wait)
+    {
+      run.ready = ready ();
+      if (!run.ready)
+        ::usleep (10000);
+    }
+    ::usleep (settle_us);
+    ::kill (pid, SIGINT);
+    ::waitpid (pid, &run.status, 0);
+    return run;
   }
 } // namespace pcl_sparse_test

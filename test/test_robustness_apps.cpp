@@ -3,6 +3,7 @@
 /// crashes (signal), never hangs (timeout), and never leaves an output file behind when it fails.
 
 #include "robustness_cases.h"
+#include "test_file_helpers.h"
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
@@ -528,27 +529,12 @@ namespace
     const std::string obj = (dir / "c.obj").string (), psm = (dir / "c.psm").string ();
     saveTriangleMesh (obj, baseMesh ());
     ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "-q"}, dir).exit_code, 0);
-    const std::string tool = appPath ("decode"), out = (dir / "out" / "big.ply").string ();
-    const pid_t pid = ::fork ();
-    if (pid == 0)
-    {
-      ::execl (tool.c_str (), tool.c_str (), psm.c_str (), out.c_str (), "-n", "200000000", "-q", static_cast<char*> (nullptr));
-      ::_exit (127);
-    }
     auto temporaries = [&] { return filesIn (dir / "out").size (); };
-    bool seen = false;
-    for (int wait = 0; wait < 2000 && !seen; ++wait)
-    {
-      seen = temporaries () > 0;
-      if (!seen)
-        ::usleep (10000);
-    }
-    ::usleep (50000);  // past the instant between making the file and registering it
-    ::kill (pid, SIGINT);
-    int status = 0;
-    ::waitpid (pid, &status, 0);
-    ASSERT_TRUE (seen) << "the decoder never made its temporary";
-    EXPECT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGINT) << "status " << status;
+    const pcl_sparse_test::InterruptedRun run = pcl_sparse_test::interruptOnceReady (
+      {appPath ("decode"), psm, (dir / "out" / "big.ply").string (), "-n", "200000000", "-q"}, [&] { return temporaries () > 0; },
+      {}, 50000);
+    ASSERT_TRUE (run.ready) << "the decoder never made its temporary";
+    EXPECT_TRUE (WIFSIGNALED (run.status) && WTERMSIG (run.status) == SIGINT) << "status " << run.status;
     EXPECT_EQ (temporaries (), 0u) << "left: " << (filesIn (dir / "out").empty () ? "" : filesIn (dir / "out")[0]);
     fs::remove_all (dir);
   }

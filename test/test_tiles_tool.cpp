@@ -229,33 +229,17 @@ TEST_F (TilesTool, InterruptedSpillLeavesNoFiles)
   pcl_sparse_test::writeTerrainPcd (cloud, terrain);
   const std::string spill = dir_.file ("tmp");
   std::filesystem::create_directories (spill);
-  const std::string tool = tools + "/pcl_sparse_encode", out = dir_.file ("interrupted.psm");
-  const pid_t pid = ::fork ();
-  if (pid == 0)
-  {
-    ::setenv ("TMPDIR", spill.c_str (), 1);
-    ::execl (tool.c_str (), tool.c_str (), cloud.c_str (), "-memory", "1M", "-q", "-o", out.c_str (), static_cast<char*> (nullptr));
-    ::_exit (127);
-  }
+  const std::string out = dir_.file ("interrupted.psm");
   auto spilling = [&] {
     for (const auto& entry : std::filesystem::directory_iterator (spill))
       if (entry.path ().filename ().string ().rfind ("pcl_sparse_spill_", 0) == 0)
         return true;
     return false;
   };
-  bool seen = false;
-  for (int wait = 0; wait < 2000 && !seen; ++wait)
-  {
-    seen = spilling ();
-    if (!seen)
-      ::usleep (10000);
-  }
-  ::usleep (20000);  // past the instant between making the folder and registering it
-  ::kill (pid, SIGINT);
-  int status = 0;
-  ::waitpid (pid, &status, 0);
-  ASSERT_TRUE (seen) << "the encoder never made its spill folder";
-  EXPECT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGINT) << "status " << status;
+  const pcl_sparse_test::InterruptedRun run = pcl_sparse_test::interruptOnceReady (
+    {tools + "/pcl_sparse_encode", cloud, "-memory", "1M", "-q", "-o", out}, spilling, {"TMPDIR=" + spill});
+  ASSERT_TRUE (run.ready) << "the encoder never made its spill folder";
+  EXPECT_TRUE (WIFSIGNALED (run.status) && WTERMSIG (run.status) == SIGINT) << "status " << run.status;
   EXPECT_FALSE (spilling ()) << "the spill folder stayed";
   EXPECT_FALSE (std::filesystem::exists (out));
 }
