@@ -581,3 +581,27 @@ TEST (PclStages, StrayPointDoesNotSetTheScansScale)
   stray->push_back (pcl::PointXYZ (1000.0f, 0.0f, 0.0f));
   EXPECT_DOUBLE_EQ (encode (stray).bbox_diagonal, clean.bbox_diagonal);
 }
+
+// A triangle soup (faces sharing no vertex, as PCL's VTK OBJ reader makes of a file with per-corner
+// normals) gave one patch per face without an atom; it is refused, saying how to weld it.
+TEST (PclStages, TriangleSoupIsRefusedWithTheRemedy)
+{
+  const TriangleMesh mesh = floatExactMesh ();
+  TriangleMesh soup;
+  for (const Eigen::Vector3i& t : mesh.triangles)
+  {
+    const int base = static_cast<int> (soup.vertices.size ());
+    for (int k = 0; k < 3; ++k)
+      soup.vertices.push_back (mesh.vertices[t[k]]);
+    soup.triangles.push_back (Eigen::Vector3i (base, base + 1, base + 2));
+  }
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputCloud (cloudOf<pcl::PointXYZ> (soup));
+  encoder.setInputPolygons (polygonsOf (soup));
+  SparseSurfaceModel model;
+  EXPECT_NE (errorOf ([&] { encoder.compute (model); }).find ("share no vertex (a triangle soup"), std::string::npos);
+  encoder.setInputCloud (cloudOf<pcl::PointXYZ> (mesh));  // the same faces welded
+  encoder.setInputPolygons (polygonsOf (mesh));
+  encoder.compute (model);
+  EXPECT_GT (model.numNonZeros (), 0u);
+}

@@ -24,6 +24,12 @@ namespace pcl_sparse
     if (!hasSurfaceArea (*this->surface_))
       this->fail ("the mesh has no area: all " + std::to_string (this->surface_->triangles.size ()) +
                   " faces are degenerate");
+    // Faces that share no vertex: no patch grows past its face (spot.obj through PCL's VTK reader, which
+    // splits vertices with per-corner normals, gave 23062 patches without an atom, CR 1.44).
+    if (isTriangleSoup (*this->surface_topology_, this->surface_->triangles.size ()))
+      this->fail ("the " + std::to_string (this->surface_->triangles.size ()) +
+                  " faces share no vertex (a triangle soup, as PCL's VTK OBJ reader makes of a file with per-corner "
+                  "normals): weld coincident vertices first, e.g. pcl_sparse::loadPolygonMesh");
     options_.validate ();
     computeModel (model);
     this->deinitCompute ();
