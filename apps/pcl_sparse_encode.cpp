@@ -89,7 +89,8 @@ namespace
       {"-tiles N", "tile the input: N tiles along the longest side of its bounding box, each encoded apart"},
       {"", "(docs/TILES.md); -o then writes a tiled model, which -box decodes region by region"},
       {"-memory SIZE", "tile by itself when the untiled encoding would need more (default 2G; K, M, G, T);"},
-      {"", "a PCD / binary PLY whose header says so is spilled into tiles on disk, never loaded whole"},
+      {"", "an ascii / binary PCD or binary PLY whose header says so is spilled into tiles on disk, never"},
+      {"", "loaded whole (a binary_compressed PCD is loaded whole, with a warning)"},
       {"", "(then -recon, -error and -png are refused)"},
       {"", "under mpirun -n K the tiles are shared out over the K processes (same model file)"},
       tools::pngHelpLine (),
@@ -211,6 +212,11 @@ main (int argc, char** argv)
       tiled_timings.coding = tiled_report.coding;
       if (group.rank () != 0)
         return 0;
+      // Tiles too small to make a surface are left empty: with all of them so, "success" with no patch (or
+      // "encodeModel: the model has no basis" with -o), where the untiled encoding coded the input.
+      if (tiled_model.model.patches.empty ())
+        throw Error (path + ": no tile made a surface, all are too small to code (uncovered points: " +
+                     std::to_string (tiled_stats.uncovered) + "): use fewer tiles (-tiles) or none");
     }
     else
     {

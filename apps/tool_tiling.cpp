@@ -5,6 +5,7 @@
 #include <pcl_sparse/io/scan_stream.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -41,6 +42,20 @@ namespace pcl_sparse
       return parseByteSize ("-memory", args.value ("-memory", "2G"));
     }
 
+    namespace
+    {
+      /// A file over the budget that cannot be read piece by piece (a binary_compressed PCD, for one)
+      /// was loaded whole without a word, whatever -memory said (found by a review).
+      void
+      warnIfLoadedWholeOverBudget (const std::string& path, bool loaded_whole, std::size_t points, double budget)
+      {
+        if (loaded_whole)
+          std::fprintf (stderr, "%s: %zu points need about %.0f MB, more than -memory's %.0f MB, but its format (a "
+                        "binary_compressed PCD, for one) is not read piece by piece: loaded whole. A binary or ascii "
+                        "PCD, or a binary PLY, would be spilled into tiles\n", path.c_str (), points, static_cast<double> (points) * kEncoderBytesPerPoint / 1e6, budget / 1e6);
+      }
+    } // namespace
+
     bool
     spillsInput (const CommandLine& args, const std::string& path, bool& mesh, std::size_t& points)
     {
@@ -61,7 +76,9 @@ namespace pcl_sparse
           const MeshStreamReader reader (path);
           mesh = true;
           points = reader.numVertices ();
-          return reader.isStreamed () && static_cast<double> (points) * kEncoderBytesPerPoint > budget;
+          const bool over = static_cast<double> (points) * kEncoderBytesPerPoint > budget;
+          warnIfLoadedWholeOverBudget (path, !args.has ("-q") && over && !reader.isStreamed (), points, budget);
+          return reader.isStreamed () && over;
         }
         catch (const Error&)
         {
@@ -73,7 +90,9 @@ namespace pcl_sparse
       {
         const ScanStreamReader reader (path);
         points = reader.size ();
-        return reader.isStreamed () && static_cast<double> (points) * kEncoderBytesPerPoint > budget;
+        const bool over = static_cast<double> (points) * kEncoderBytesPerPoint > budget;
+        warnIfLoadedWholeOverBudget (path, !args.has ("-q") && over && !reader.isStreamed (), points, budget);
+        return reader.isStreamed () && over;
       }
       catch (const Error&)
       {

@@ -243,3 +243,18 @@ TEST_F (TilesTool, InterruptedSpillLeavesNoFiles)
   EXPECT_FALSE (spilling ()) << "the spill folder stayed";
   EXPECT_FALSE (std::filesystem::exists (out));
 }
+
+// Tiles too small to make a surface are left empty; when all were, the encoding "succeeded" with no patch,
+// or ended in "encodeModel: the model has no basis" with -o (found by a review). Untiled, the same five
+// points are coded.
+TEST_F (TilesTool, NoTileWithASurfaceIsAnError)
+{
+  const std::string cloud = dir_.file ("five.xyz");
+  pcl_sparse_test::writeBytes (cloud, "0 0 0\n1 0 0\n0 1 0\n1 1 0.1\n0.5 0.5 0.05\n");
+  std::string out;
+  EXPECT_EQ (pcl_sparse_test::runCommand (tools + "/pcl_sparse_encode " + cloud + " -q", out), 0) << out;
+  EXPECT_EQ (pcl_sparse_test::runCommand (tools + "/pcl_sparse_encode " + cloud + " -q -tiles 3 -o " + dir_.file ("t.psm"), out), 1)
+    << out;
+  EXPECT_NE (out.find ("no tile made a surface"), std::string::npos) << out;
+  EXPECT_FALSE (std::filesystem::exists (dir_.file ("t.psm")));
+}
