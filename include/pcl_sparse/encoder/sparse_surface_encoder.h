@@ -5,7 +5,7 @@
 ///   pcl_sparse::SparseSurfaceEncoder<pcl::PointXYZ> encoder;
 ///   encoder.setInputCloud (cloud);                 // the mesh's vertices, and
 ///   encoder.setInputPolygons (polygons);           // its faces (or setInputMesh (TriangleMesh::ConstPtr))
-///   encoder.setOptions (options);                  // SparseSurfaceEncoderOptions, paper defaults
+///   encoder.setOptions (options);                  // SparseSurfaceEncoderOptions (defaults: see it)
 ///   pcl_sparse::SparseSurfaceModel model;
 ///   encoder.compute (model);
 ///   const pcl_sparse::ModelStatistics stats = model.statistics (pcl_sparse::cloudPositions (*cloud));
@@ -32,9 +32,11 @@
 
 namespace pcl_sparse
 {
-  /// Every parameter of the pipeline. Defaults are the paper's (delta = pi/6, cone pi/2, eta = 1.01,
-  /// rho = 0.001, sigma = 0.8, f = 0.5, L = 12, eps = 0.01, m_min = 64, 144 cosine atoms) except the basis:
-  /// the half-period cosines (Dct) measure better on meshes and scans alike (README, issue 13);
+  /// Every parameter of the pipeline. Defaults are the paper's numbers (delta = pi/6, eta = 1.01,
+  /// rho = 0.001, sigma = 0.8, f = 0.5, L = 12, eps = 0.01, m_min = 64, 144 cosine atoms) where they
+  /// measured best, and otherwise what did (README, issue 13): the half-period cosines (Dct), the authors'
+  /// 72-degree cone instead of the paper's 90, our pairwise cone, face completion, extra samples per
+  /// triangle, footprints clipped at their border and the compression bound (CR <= 1).
   /// encoderPresetOptions (EncoderPreset::Paper) gives the paper's configuration.
   struct SparseSurfaceEncoderOptions
   {
@@ -183,7 +185,7 @@ namespace pcl_sparse
 
     SparseSurfaceEncoder () : SurfaceStage<PointInT> ("SparseSurfaceEncoder", IndexUse::CropSurface) {}
 
-    /// \brief Every parameter of the pipeline (paper defaults).
+    /// \brief Every parameter of the pipeline (defaults: SparseSurfaceEncoderOptions).
     void setOptions (const SparseSurfaceEncoderOptions& options) { options_ = options; }
     const SparseSurfaceEncoderOptions& getOptions () const { return options_; }
 

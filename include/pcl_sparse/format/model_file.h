@@ -99,7 +99,7 @@ namespace pcl_sparse
     double bbox_diagonal = 0.0;             ///< of the encoded mesh
     double tolerance = 0.0;                 ///< as written (fraction of bbox_diagonal)
     std::uint64_t file_bytes = 0;           ///< total size
-    std::size_t num_tiles = 0;              ///< tiles of a tiled file (version 2, tiled_model_file.h); 0 otherwise
+    std::size_t num_tiles = 0;              ///< tiles of a tiled file (version 2 or 3, tiled_model_file.h); 0 otherwise
     std::vector<ModelFileSection> sections; ///< in file order
   };
 
@@ -113,7 +113,7 @@ namespace pcl_sparse
   std::vector<std::uint8_t>
   encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options = ModelWriteOptions ());
 
-  /// Decodes the bytes of a .psm file; a tiled file (version 2, tiled_model_file.h) gives its tiles' patches
+  /// Decodes the bytes of a .psm file; a tiled file (version 2 or 3, tiled_model_file.h) gives its tiles' patches
   /// merged into one model.
   /// \param[in] data  first byte
   /// \param[in] size  number of bytes
