@@ -124,6 +124,7 @@ namespace pcl_sparse
 
   /// \brief Whether \a num_faces > 1 faces share no vertex (every vertex in at most one face).
   /// \param[in] topology the faces' topology
+  /// \param[in] num_faces the number of faces
   bool
   isTriangleSoup (const MeshTopology& topology, std::size_t num_faces);
 
