@@ -320,8 +320,8 @@ main (int argc, char** argv)
                            .addSeconds ("encode", t.total)
                            .addSeconds ("statistics", statistics_seconds)
                            .addSeconds ("write", write_seconds));
-      if (input.scan)
-        tools::addInputJson (object, input, encoder.getCloudSurface ().get ());
+      if (const ScanCleaningReport* cleaning = tools::cleaningReportOf (input, source.get ()))
+        tools::addInputJson (object, cleaning, encoder.getCloudSurface ().get ());
       object.print ();
     }
     else
@@ -338,8 +338,7 @@ main (int argc, char** argv)
                      tiled_model.grid.counts.z (), tiled_model.grid.edge, group.size (), group.size () > 1 ? "es" : "");
       if (bounded)
         std::printf ("input spilled into tiles on disk (%zu points in the file, more than -memory holds)\n", header_points);
-      if (input.scan)
-        tools::printScanSummary (input, encoder.getCloudSurface ().get ());
+      tools::printScanSummary (tools::cleaningReportOf (input, source.get ()), encoder.getCloudSurface ().get ());
       std::printf ("seconds: load %.3f, patches %.3f, coding %.3f, statistics %.3f, write %.3f (encode %.3f)\n",
                    load_seconds, t.patches, t.coding, statistics_seconds, write_seconds, t.total);
     }

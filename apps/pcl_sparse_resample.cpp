@@ -181,7 +181,7 @@ main (int argc, char** argv)
       encoder.compute (*model);
       encode_seconds = timer.toc () / 1000.0;
       surface = encoder.getCloudSurface ();
-      tools::printScanSummary (input, surface.get ());
+      tools::printScanSummary (tools::cleaningReportOf (input, nullptr), surface.get ());
       pcl::console::print_info ("Encoded into %zu patches, %zu coefficients in %.3f s\n", model->numPatches (),
                                 model->numNonZeros (), encode_seconds);
     }
@@ -254,7 +254,7 @@ main (int argc, char** argv)
         .addSeconds ("save_seconds", save_seconds)
         .addSeconds ("seconds", seconds);
       if (input.mesh || input.scan)
-        tools::addInputJson (json, input, surface.get ());
+        tools::addInputJson (json, tools::cleaningReportOf (input, nullptr), surface.get ());
       json.print ();
     }
     return 0;

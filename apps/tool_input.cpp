@@ -2,6 +2,7 @@
 
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/io/scan_io.h>
+#include <pcl_sparse/tiles/spilled_tile_source.h>
 
 #include <pcl/console/print.h>
 
@@ -88,13 +89,22 @@ namespace pcl_sparse
       return true;
     }
 
-    void
-    addInputJson (JsonObject& json, const SurfaceInput& input, const CloudSurface* surface)
+    const ScanCleaningReport*
+    cleaningReportOf (const SurfaceInput& input, const TileSource* spilled)
     {
-      json.add ("input_kind", input.kind ());
-      if (!input.scan)
+      if (input.scan)
+        return &input.scan->report;
+      const auto* spilled_scan = dynamic_cast<const SpilledTileSource*> (spilled);
+      return spilled_scan ? &spilled_scan->cleaningReport () : nullptr;
+    }
+
+    void
+    addInputJson (JsonObject& json, const ScanCleaningReport* cleaning, const CloudSurface* surface)
+    {
+      json.add ("input_kind", cleaning ? "scan" : "mesh");
+      if (!cleaning)
         return;
-      const ScanCleaningReport& report = input.scan->report;
+      const ScanCleaningReport& report = *cleaning;
       json.add ("input_points", report.input_points)
         .add ("finite_points", report.finitePoints ())
         .add ("dropped_non_finite", report.non_finite)
@@ -110,11 +120,11 @@ namespace pcl_sparse
     }
 
     void
-    printScanSummary (const SurfaceInput& input, const CloudSurface* surface)
+    printScanSummary (const ScanCleaningReport* cleaning, const CloudSurface* surface)
     {
-      if (!input.scan)
+      if (!cleaning)
         return;
-      const ScanCleaningReport& report = input.scan->report;
+      const ScanCleaningReport& report = *cleaning;
       pcl::console::print_info ("Scan: %zu points, %zu kept (dropped: %zu non-finite, %zu at the sensor origin, %zu duplicates)",
                                 report.input_points, report.kept, report.non_finite, report.at_sensor_origin,
                                 report.duplicates_merged);

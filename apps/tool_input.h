@@ -8,6 +8,7 @@
 #include <pcl_sparse/cloud/cloud_surface.h>
 #include <pcl_sparse/io/scan_cloud.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/tiles/tile_source.h>
 
 #include <Eigen/Core>
 
@@ -72,13 +73,19 @@ namespace pcl_sparse
     bool
     parseViewpoint (const CommandLine& args, Eigen::Vector3d& viewpoint);
 
-    /// Adds the scan's figures to \a json (input kind; for a scan: input_points, finite_points, the dropped
-    /// counts by cause, kept points, and from \a surface the outliers, isolated points and noise).
-    void
-    addInputJson (JsonObject& json, const SurfaceInput& input, const CloudSurface* surface);
+    /// What cleaning did to the input's scan: the loaded scan's report, or \a spilled's when the scan was
+    /// spilled into tiles instead of loaded (its JSON and summary lacked the counts); null for a mesh.
+    const ScanCleaningReport*
+    cleaningReportOf (const SurfaceInput& input, const TileSource* spilled);
 
-    /// One line on the console describing a scan and its surface (nothing for a mesh).
+    /// Adds the input's figures to \a json (input kind; for a scan, \a report non-null: input_points,
+    /// finite_points, the dropped counts by cause, kept points, and from \a surface the outliers, isolated
+    /// points and noise).
     void
-    printScanSummary (const SurfaceInput& input, const CloudSurface* surface);
+    addInputJson (JsonObject& json, const ScanCleaningReport* report, const CloudSurface* surface);
+
+    /// One line on the console describing a scan (\a report non-null) and its surface (nothing for a mesh).
+    void
+    printScanSummary (const ScanCleaningReport* report, const CloudSurface* surface);
   } // namespace tools
 } // namespace pcl_sparse
