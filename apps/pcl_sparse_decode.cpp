@@ -222,7 +222,16 @@ main (int argc, char** argv)
       resampling.setNumberOfThreads (threads);
       tools::LocalCloud local;
       std::size_t patches = 0;
-      const std::uint64_t bytes_read = decodeAcross (group, model_path, resampling, local, patches);
+      std::uint64_t bytes_read = 0;
+      try
+      {
+        bytes_read = decodeAcross (group, model_path, resampling, local, patches);
+      }
+      catch (const Error& e)
+      {
+        // The library's advice, to resample in blocks, is for one process: the ranks' clouds are gathered whole.
+        throw Error (std::string (e.what ()) + " (under mpirun every rank holds its clouds whole: run one process to stream)");
+      }
       if (group.rank () != 0)
         return 0;
       const double resample_seconds = timer.toc () / 1000.0;
