@@ -147,6 +147,18 @@ TEST_F (RenderTool, OtherToolsDrawWithPng)
   }
   for (const char* png : {"patches", "keypoints", "resample", "encode"})
     EXPECT_TRUE (fs::exists (dir_.file (std::string (png) + ".png"))) << png;
+  // With --json, stdout is the JSON object alone (it began with "Wrote encode.png: ..."; found by a review),
+  // and -q keeps the picture's line off it too.
+  for (const std::string& mode : {std::string (" --json"), std::string (" -q")})
+    for (const std::string& app : {std::string ("encode ") + in, "patches " + in + " " + dir_.file ("p2.ply")})
+    {
+      const ToolRun r = run (dir_, tool (app.substr (0, app.find (' '))) + app.substr (app.find (' ')) + mode + " -png " +
+                                     dir_.file ("quiet.png") + " -size 80x60");
+      EXPECT_EQ (r.code, 0) << app << mode << "\n" << r.err;
+      EXPECT_EQ (r.out.find ("Wrote"), std::string::npos) << app << mode << "\n" << r.out;
+      if (mode == " --json")
+        EXPECT_TRUE (!r.out.empty () && r.out.front () == '{' && lines (r.out) == 1) << app << "\n" << r.out;
+    }
   // A bad picture option is refused before the tool writes anything.
   for (const std::string& bad_option : {" -png " + dir_.file ("x.gif"), " -png " + dir_.file ("x.png") + " -size 0x10",
                                         " -png " + dir_.file ("x.png") + " -view sideways"})

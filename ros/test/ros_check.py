@@ -15,7 +15,8 @@ publishes inputs and checks what comes back:
            model (~model) must be .psm bytes and decode (decode node) into the same region.
   malformed  clouds PCL's conversion would misread (more points declared than sent, big-endian, x y z
            as doubles) are refused by both resamplers with the reason on /rosout; the scans after them
-           show that the node and the nodelet's manager live on.
+           show that the node and the nodelet's manager live on. Clouds whose intensity cannot be coded
+           (beside normals, or UINT16) come out without an intensity field.
   demo     (--demo) the launch file's nodes are up, and a cloud it publishes once, before anyone listens,
            reaches /resample/output and /decode/output.
 
@@ -328,6 +329,41 @@ class Checker:
                 self.results.check("%s refuses a malformed cloud (%s)" % (node, label), problems,
                                    error.msg[len(node) + 3:][:90] + "..." if error else "")
             time.sleep(max(0.0, 10.5 - (time.time() - start)))  # past the nodes' 10 s error throttle
+
+        # Intensity goes out only when it went in: with normals the encoder's input type has none, and a
+        # UINT16 one is not read; both came out as a field of zeros.
+        def grid_cloud(extra_fields, frame):
+            names = ["x", "y", "z"] + [n for n, _ in extra_fields]
+            types = [7, 7, 7] + [t for _, t in extra_fields]
+            sizes = {7: 4, 4: 2}
+            offsets, step = [], 0
+            for t in types:
+                offsets.append(step)
+                step += sizes[t]
+            data = bytearray()
+            for i in range(3000):
+                values = {"x": i % 60 * 0.01, "y": i // 60 * 0.01, "z": 0.02 * math.sin(i % 60 * 0.2),
+                          "normal_x": 0.0, "normal_y": 0.0, "normal_z": 1.0, "intensity": float(i % 100)}
+                for n, t in zip(names, types):
+                    data += struct.pack("<f", values[n]) if t == 7 else struct.pack("<H", int(values[n]))
+            fields = [PointField(name=n, offset=o, datatype=t, count=1) for n, o, t in zip(names, offsets, types)]
+            message = PointCloud2(height=1, width=3000, fields=fields, is_bigendian=False, point_step=step,
+                                  row_step=step * 3000, data=bytes(data), is_dense=True)
+            message.header.frame_id = frame
+            message.header.stamp = rospy.Time.now()
+            return message
+
+        cases = [("normals and intensity", [("normal_x", 7), ("normal_y", 7), ("normal_z", 7), ("intensity", 7)]),
+                 ("intensity as UINT16", [("intensity", 4)])]
+        for k, (label, extra) in enumerate(cases):
+            frame = "intensity_case_%d" % k
+            publisher.publish(grid_cloud(extra, frame))
+            for node, topic in resamplers.items():
+                cloud = wait_until(lambda: topic.first(lambda m: m.header.frame_id == frame), 60)
+                names = [f.name for f in cloud.fields] if cloud else []
+                problems = ["no cloud"] if cloud is None else \
+                    (["an intensity field went out (%s)" % " ".join(names)] if "intensity" in names else [])
+                self.results.check("%s: no intensity out of a cloud with %s" % (node, label), problems, " ".join(names))
         publisher.unregister()
 
     # ---- scans: real clouds through the resample node and nodelet --------------------------------------
