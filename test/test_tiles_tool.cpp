@@ -261,3 +261,27 @@ TEST_F (TilesTool, NoTileWithASurfaceIsAnError)
   EXPECT_NE (out.find ("no tile made a surface"), std::string::npos) << out;
   EXPECT_FALSE (std::filesystem::exists (dir_.file ("t.psm")));
 }
+
+// A binary_compressed PCD (PCL's usual format) cannot be read piece by piece: over -memory it is loaded
+// whole, and says so (it was silent; found by a review). The same points as a binary PCD spill.
+TEST_F (TilesTool, CompressedPcdOverTheBudgetIsLoadedWholeWithAWarning)
+{
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  std::uint32_t noise = 12345;  // a little noise, so that the compressed file is big enough to be looked at
+  for (int i = 0; i < 20000; ++i)
+  {
+    noise = noise * 1664525u + 1013904223u;
+    cloud.push_back (pcl::PointXYZ (1.0f + 0.01f * static_cast<float> (i % 200), 0.01f * static_cast<float> (i / 200),
+                                    0.05f * std::sin (0.03f * static_cast<float> (i % 200)) + 2e-5f * static_cast<float> (noise >> 24)));
+  }
+  const std::string compressed = dir_.file ("compressed.pcd"), binary = dir_.file ("binary.pcd");
+  ASSERT_EQ (pcl::io::savePCDFileBinaryCompressed (compressed, cloud), 0);
+  ASSERT_EQ (pcl::io::savePCDFileBinary (binary, cloud), 0);
+  std::string out;
+  ASSERT_EQ (run ("pcl_sparse_encode", compressed + " -tiles 2 -memory 1M --json", out), 0) << out;
+  EXPECT_NE (out.find ("is not read piece by piece: loaded whole"), std::string::npos) << out;
+  EXPECT_NE (out.find ("\"spilled\": false"), std::string::npos) << out;
+  ASSERT_EQ (run ("pcl_sparse_encode", binary + " -tiles 2 -memory 1M --json", out), 0) << out;
+  EXPECT_EQ (out.find ("loaded whole"), std::string::npos) << out;
+  EXPECT_NE (out.find ("\"spilled\": true"), std::string::npos) << out;
+}
