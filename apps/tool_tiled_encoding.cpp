@@ -350,6 +350,15 @@ namespace pcl_sparse
       }
     } // namespace
 
+    namespace
+    {
+      /// encodeTilesAcross's work on several ranks with \a options as they are (no bound decided).
+      TiledEncodingReport
+      encodeAcrossRanks (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
+                         int threads, bool quiet, const TiledStatisticsOptions& statistics_options, TiledModel& tiled,
+                         ModelStatistics& stats);
+    } // namespace
+
     TiledEncodingReport
     encodeTilesAcross (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
                        int threads, bool quiet, const TiledStatisticsOptions& statistics_options, TiledModel& tiled,
@@ -376,31 +385,54 @@ namespace pcl_sparse
         seconds.pending_tiles = encoder.getPeakPendingTiles ();
         return seconds;
       }
-      // Slab by slab (SlabRun); phase by phase when a phase-0 tile's patches reach beyond its neighbours, as
-      // TiledSurfaceEncoder does.
-      std::unique_ptr<WavefrontMeasurement> tiles;
-      if (group.rank () == 0)
-        tiles = std::make_unique<WavefrontMeasurement> (source, statistics_options.drop_vertices);
-      // Vertex lists only for the statistics: without (x', y'), which the measurement recomputes.
-      const bool keep_xy = !statistics_options.drop_vertices;
-      SlabRun slabs (group, source, options, threads, keep_xy, quiet);
-      if (slabs.run (tiles.get ()))
-        seconds.coding = slabs.seconds ();
-      else
+      // The compression bound for the whole model, as TiledSurfaceEncoder::compute does: unbounded first,
+      // bounded tile by tile only if the whole exceeds it (rank 0 decides, every rank learns it).
+      SparseSurfaceEncoderOptions unbounded = options;
+      unbounded.max_compression_ratio = 0.0;
+      seconds = encodeAcrossRanks (group, source, unbounded, threads, quiet, statistics_options, tiled, stats);
+      const bool over = group.rank () == 0 && tiledEncodingOverTheBound (tiled, source.totalPoints (), options);
+      if (group.allGather ({static_cast<std::uint8_t> (over ? 1 : 0)})[0][0] != 0)
       {
-        if (tiles)
-          tiles = std::make_unique<WavefrontMeasurement> (source, statistics_options.drop_vertices);
-        seconds.coding = encodeByPhases (group, source, options, threads, keep_xy, quiet, tiles.get ());
+        tiled = TiledModel ();
+        seconds = encodeAcrossRanks (group, source, options, threads, quiet, statistics_options, tiled, stats);
       }
-      if (!tiles)
-        return seconds;
-      tiled = tiles->takeModel ();
-      stats = tiles->sums ().statistics (tiled.model, source.totalPoints ());
-      seconds.statistics = tiles->seconds ();
-      seconds.held_tiles = tiles->peakHeldTiles ();
-      seconds.held_listings = tiles->peakHeldVertices ();
-      seconds.pending_tiles = tiles->peakPendingTiles ();
       return seconds;
     }
+
+    namespace
+    {
+      TiledEncodingReport
+      encodeAcrossRanks (const ProcessGroup& group, const TileSource& source, const SparseSurfaceEncoderOptions& options,
+                         int threads, bool quiet, const TiledStatisticsOptions& statistics_options, TiledModel& tiled,
+                         ModelStatistics& stats)
+      {
+        TiledEncodingReport seconds;
+        // Slab by slab (SlabRun); phase by phase when a phase-0 tile's patches reach beyond its neighbours, as
+        // TiledSurfaceEncoder does.
+        std::unique_ptr<WavefrontMeasurement> tiles;
+        if (group.rank () == 0)
+          tiles = std::make_unique<WavefrontMeasurement> (source, statistics_options.drop_vertices);
+        // Vertex lists only for the statistics: without (x', y'), which the measurement recomputes.
+        const bool keep_xy = !statistics_options.drop_vertices;
+        SlabRun slabs (group, source, options, threads, keep_xy, quiet);
+        if (slabs.run (tiles.get ()))
+          seconds.coding = slabs.seconds ();
+        else
+        {
+          if (tiles)
+            tiles = std::make_unique<WavefrontMeasurement> (source, statistics_options.drop_vertices);
+          seconds.coding = encodeByPhases (group, source, options, threads, keep_xy, quiet, tiles.get ());
+        }
+        if (!tiles)
+          return seconds;
+        tiled = tiles->takeModel ();
+        stats = tiles->sums ().statistics (tiled.model, source.totalPoints ());
+        seconds.statistics = tiles->seconds ();
+        seconds.held_tiles = tiles->peakHeldTiles ();
+        seconds.held_listings = tiles->peakHeldVertices ();
+        seconds.pending_tiles = tiles->peakPendingTiles ();
+        return seconds;
+      }
+    } // namespace
   } // namespace tools
 } // namespace pcl_sparse

@@ -8,7 +8,9 @@
 #include <pcl_sparse/format/tile_encoding_bytes.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/format/zstd_codec.h>
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
@@ -870,4 +872,46 @@ TEST (TiledEncoding, RefusesMorePointsThanAModelNumbers)
   {
     EXPECT_NE (std::string (e.what ()).find ("2147483648 points"), std::string::npos) << e.what ();
   }
+}
+
+// The compression bound holds for the whole model, not tile by tile: bounded each over its own points, a
+// tile of a lidar frame's sparse far field (more surface than its share of the points) coded an atom a
+// patch, and the frame in 2 x 2 tiles was 1.5x less accurate than untiled. Unbounded first, the tiles
+// are as accurate as the whole; a model over the bound is still brought under it (cheese-cgal, below).
+TEST (TiledEncoding, CompressionBoundHoldsForTheWholeModel)
+{
+  const std::string scan_path = std::string (PCL_SPARSE_SHARED_CLOUDS) + "/fast_gicp_251370668.pcd";
+  const std::string mesh_path = std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes/cheese-cgal.off";
+  if (!std::filesystem::exists (scan_path) || !std::filesystem::exists (mesh_path))
+    GTEST_SKIP () << scan_path << " or " << mesh_path << " is absent";
+  auto scan = std::make_shared<ScanCloud> ();
+  loadScanCloud (scan_path, *scan);
+  SparseSurfaceEncoder<pcl::PointXYZ> whole;
+  whole.setInputScan (scan);
+  SparseSurfaceModel model;
+  whole.compute (model);
+  std::vector<Eigen::Vector3d> positions;
+  for (std::size_t i = 0; i < scan->size (); ++i)
+    positions.push_back (scan->worldPosition (i));
+  const ModelStatistics untiled = model.statistics (positions);
+
+  auto tiledStatistics = [] (const std::shared_ptr<const TileSource>& source) {
+    TiledSurfaceEncoder encoder;
+    encoder.setTileSource (source);
+    encoder.setMeasurement (true);
+    TiledModel tiled;
+    encoder.compute (tiled);
+    return encoder.getStatistics ();
+  };
+  TileGridOptions grid;
+  grid.tiles_along_longest = 2;
+  const ModelStatistics tiled = tiledStatistics (std::make_shared<MemoryTileSource> (scan, grid));
+  std::cout << "fast_gicp RMSE/diag untiled " << untiled.rmse_over_diagonal << ", 2 tiles " << tiled.rmse_over_diagonal
+            << " (CR " << tiled.compression_ratio << ")" << std::endl;
+  EXPECT_LT (tiled.rmse_over_diagonal, 1.1 * untiled.rmse_over_diagonal);  // measured 1.27e-4 against 1.79e-4; 2.15e-4 before
+  EXPECT_LE (tiled.compression_ratio, 1.0);
+
+  auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (mesh_path));
+  const ModelStatistics cheese = tiledStatistics (std::make_shared<MemoryTileSource> (mesh, grid));
+  EXPECT_LE (cheese.compression_ratio, 1.0);  // unbounded it is over 1: the tiles were encoded again, bounded
 }

@@ -72,6 +72,7 @@ namespace pcl_sparse
       std::vector<PatchCode> codes (patches.size ());
       info.resize (patches.size ());
       std::atomic<long> done (0);
+      long next_report = 64;  // thread 0's alone: it reports once 64 more patches are done, whoever did them
       ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 16) num_threads(context.threads) if(num_patches > 64)
       for (long p = 0; p < num_patches; ++p)
@@ -87,8 +88,12 @@ namespace pcl_sparse
                                   context.basis, coding, &info[p], context.attributes);
           }
           const long finished = ++done;
-          if (context.progress && omp_get_thread_num () == 0 && finished % 64 == 0)
+          // (finished % 64 == 0 on thread 0 missed every report when the other threads took those counts.)
+          if (context.progress && omp_get_thread_num () == 0 && finished >= next_report)
+          {
+            next_report = finished + 64;
             context.progress ("coding", static_cast<double> (finished) / num_patches);
+          }
         });
       failure.rethrow ();
       if (context.progress)

@@ -491,13 +491,30 @@ namespace pcl_sparse
     // Patches list their input points by 32-bit number (PatchCode::vertices).
     if (source_->totalPoints () > static_cast<std::size_t> (std::numeric_limits<int>::max ()))
       fail ("the input has " + std::to_string (source_->totalPoints ()) + " points; a model numbers at most 2^31 - 1");
+    SparseSurfaceEncoderOptions unbounded = options_;
+    unbounded.max_compression_ratio = 0.0;
+    encodeAll (unbounded, model);
+    if (tiledEncodingOverTheBound (model, source_->totalPoints (), options_))
+      encodeAll (options_, model);
+  }
+
+  bool
+  tiledEncodingOverTheBound (const TiledModel& tiled, std::size_t total_points, const SparseSurfaceEncoderOptions& options)
+  {
+    return options.max_compression_ratio > 0.0 &&
+           compressionRatio (tiled.model.numPatches (), tiled.model.numNonZeros (), total_points) > options.max_compression_ratio;
+  }
+
+  void
+  TiledSurfaceEncoder::encodeAll (const SparseSurfaceEncoderOptions& options, TiledModel& model)
+  {
     const TileGrid& grid = source_->grid ();
     tile_seconds_.assign (grid.size (), 0.0);
     statistics_ = ModelStatistics ();
     const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
     const bool drop = measure_ && statistics_options_.drop_vertices;
     auto tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);
-    WavefrontRun run (*source_, options_, threads, measure_, !drop,
+    WavefrontRun run (*source_, options, threads, measure_, !drop,
                       [&] (double fraction) { reportProgress ("tiles", fraction); }, *tiles);
     run.run ();
     if (run.farReaching ())
@@ -505,7 +522,7 @@ namespace pcl_sparse
       // A phase-0 tile's patches list points beyond the tiles around it: phase by phase, every phase-1 tile
       // knowing what the whole phase 0 covers, and measured after (every vertex list held till then).
       tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);
-      for (TileEncoding& tile : encodeTilesByPhase (*source_, options_, num_threads_,
+      for (TileEncoding& tile : encodeTilesByPhase (*source_, options, num_threads_,
                                                     [&] (double fraction) { reportProgress ("tiles", fraction); }, !drop))
         tiles->add (std::move (tile));
       if (measure_)

@@ -122,6 +122,11 @@ namespace pcl_sparse
   TiledModel
   mergeTileEncodings (const TileGrid& grid, std::size_t total_points, std::vector<TileEncoding> tiles);
 
+  /// \brief Whether the merged model \a tiled of \a total_points input points exceeds \a options'
+  /// compression bound (0: none): then its tiles are encoded again, each bounded over its core points.
+  bool
+  tiledEncodingOverTheBound (const TiledModel& tiled, std::size_t total_points, const SparseSurfaceEncoderOptions& options);
+
   /// \brief Tiled encoding as a stage: setTileSource, setOptions, compute (TiledModel&).
   class TiledSurfaceEncoder : public StageBase
   {
@@ -166,6 +171,11 @@ namespace pcl_sparse
     /// points of their tile's neighbours only; a phase-0 tile whose patches reach farther, a mesh with
     /// triangles longer than the margin, makes the encoder start again phase by phase). So the model is the
     /// same for any number of threads.
+    ///
+    /// The compression bound (SparseSurfaceEncoderOptions::max_compression_ratio) holds for the whole model:
+    /// the tiles are encoded unbounded first, and again, each bounded over its own core points, only if the
+    /// whole exceeds it (tiledEncodingOverTheBound). Bounded from the start, a sparse tile of a scan (more
+    /// surface than its share of the points) coded an atom a patch (docs/TILES.md).
     /// \param[out] model the tiled model
     void compute (TiledModel& model);
 
@@ -191,6 +201,9 @@ namespace pcl_sparse
     std::size_t getPeakPendingTiles () const { return peak_pending_tiles_; }
 
   private:
+    /// One encoding of every tile with \a options (compute's wavefront, or phase by phase).
+    void encodeAll (const SparseSurfaceEncoderOptions& options, TiledModel& model);
+
     std::shared_ptr<const TileSource> source_;
     SparseSurfaceEncoderOptions options_;
     bool measure_ = false;
