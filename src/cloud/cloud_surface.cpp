@@ -13,6 +13,7 @@
 #include <pcl_sparse/cloud/tangent_triangulation.h>
 #include <pcl_sparse/cloud/triangle_winding.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/mesh/bounding_box.h>
 
 #include <algorithm>
 #include <cmath>
@@ -63,33 +64,30 @@ namespace pcl_sparse
         throw Error ("buildCloudSurface: the scan has no finite point (all " + std::to_string (n) + " are NaN/Inf)");
       // As the encoder refuses (coordinateRangeProblem), but before the kd-tree: a cloud read with the wrong
       // byte order reached 1e38 and aborted in FLANN's tree (found by a review of the ROS node).
-      for (std::size_t i = 0; i < n; ++i)
-        if (finite[i] && !((scan.positions[i] + scan.origin).cwiseAbs ().maxCoeff () <= 1e30))
-        {
-          std::ostringstream where;
-          where << (scan.positions[i] + scan.origin).transpose ();
-          throw Error ("buildCloudSurface: point " + std::to_string (i) + " lies at (" + where.str () +
-                       "), beyond the 1e30 that float clouds hold (a wrong byte order?)");
-        }
+      const double largest = largestCoordinate (scan.positions, scan.origin);
+      if (!(largest <= max_coordinate))
+      {
+        std::ostringstream message;
+        message.precision (3);
+        message << "buildCloudSurface: the scan's coordinates reach " << largest
+                << ", beyond the 1e30 that float clouds hold (a wrong byte order?)";
+        throw Error (message.str ());
+      }
       return finite;
     }
 
     /// A sensor position is plausible within 100 bounding-box diagonals of the points.
     bool
-    plausibleViewpoint (const ScanCloud& scan, const std::vector<std::uint8_t>& finite, const Eigen::Vector3d& v)
+    plausibleViewpoint (const ScanCloud& scan, const Eigen::Vector3d& v)
     {
-      Eigen::Vector3d low = Eigen::Vector3d::Constant (HUGE_VAL), high = -low;
-      for (std::size_t i = 0; i < scan.size (); ++i)
-        if (finite[i])
-          low = low.cwiseMin (scan.positions[i]), high = high.cwiseMax (scan.positions[i]);
-      const double outside = (low - v).cwiseMax (v - high).cwiseMax (0.0).norm ();
-      return v.allFinite () && outside <= 100.0 * (high - low).norm ();
+      const Eigen::AlignedBox3d box = finiteBoundingBox (scan.positions);
+      const double outside = (box.min () - v).cwiseMax (v - box.max ()).cwiseMax (0.0).norm ();
+      return v.allFinite () && outside <= 100.0 * box.diagonal ().norm ();
     }
 
     /// Resolves the orientation mode and the viewpoints (local frame) from the options and the scan.
     NormalOrientation
-    planOrientation (const ScanCloud& scan, const CloudSurfaceOptions& options, const std::vector<std::uint8_t>& finite,
-                     Work& work)
+    planOrientation (const ScanCloud& scan, const CloudSurfaceOptions& options, Work& work)
     {
       if (!options.point_viewpoints.empty ())
         for (const auto& v : options.point_viewpoints)
@@ -97,7 +95,7 @@ namespace pcl_sparse
       else if (options.has_viewpoint)
         work.viewpoints.points.push_back (options.viewpoint - scan.origin);
       const Eigen::Vector3d sensor = scan.sensor_origin - scan.origin;
-      const bool sensor_ok = scan.has_sensor_pose && plausibleViewpoint (scan, finite, sensor);
+      const bool sensor_ok = scan.has_sensor_pose && plausibleViewpoint (scan, sensor);
       NormalOrientation mode = options.orientation;
       if (mode == NormalOrientation::Auto)
       {
@@ -344,7 +342,7 @@ namespace pcl_sparse
     CloudSurface surface;
     surface.mesh.vertices = scan.positions;
     Work work;
-    surface.orientation = planOrientation (scan, options, finite, work);
+    surface.orientation = planOrientation (scan, options, work);
     findLidarRings (scan, options, finite, work, surface);
     if (surface.orientation == NormalOrientation::Viewpoint)
       work.shadow = ShadowRule (&work.viewpoints, options.shadow_angle_degrees);

@@ -340,9 +340,9 @@ namespace pcl_sparse
       return "";
     std::ostringstream why;
     why.precision (3);
-    const double largest = std::max ((box.min () + origin).cwiseAbs ().maxCoeff (), (box.max () + origin).cwiseAbs ().maxCoeff ());
+    const double largest = largestCoordinate (mesh.vertices, origin);
     const double diagonal = box.diagonal ().stableNorm ();
-    if (!(largest <= 1e30))
+    if (!(largest <= max_coordinate))
       why << "coordinates reach " << largest << ", beyond the 1e30 that resampled (float) clouds hold: rescale the input";
     else if (diagonal < 1e-30)
       why << "bounding-box diagonal is " << diagonal << ", under 1e-30, where squared lengths underflow: rescale the input";

@@ -1,5 +1,6 @@
 #include <pcl_sparse/mesh/bounding_box.h>
 
+#include <algorithm>
 #include <limits>
 
 namespace pcl_sparse
@@ -19,6 +20,15 @@ namespace pcl_sparse
   {
     const Eigen::AlignedBox3d box = finiteBoundingBox (points);
     return box.isEmpty () ? 0.0 : (box.max () - box.min ()).norm ();
+  }
+
+  double
+  largestCoordinate (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin)
+  {
+    const Eigen::AlignedBox3d box = finiteBoundingBox (points);
+    if (box.isEmpty ())
+      return 0.0;
+    return std::max ((box.min () + origin).cwiseAbs ().maxCoeff (), (box.max () + origin).cwiseAbs ().maxCoeff ());
   }
 
   double

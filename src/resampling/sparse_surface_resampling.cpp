@@ -2,6 +2,7 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/parallel_failure.h>
+#include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
 
 #include <omp.h>
@@ -600,7 +601,7 @@ namespace pcl_sparse
     // aborted in the kd-tree, an atom outside the basis wrote past the evaluator's tables).
     model_->checkPatches (name_ + "::compute: ");
     for (const PatchCode& code : model_->patches)
-      if (!(code.origin.cwiseAbs ().maxCoeff () < 1e30 && code.radius < 1e30))
+      if (!(code.origin.cwiseAbs ().maxCoeff () < max_coordinate && code.radius < max_coordinate))
         throw Error (name_ + "::compute: a patch lies beyond the range of float coordinates (1e30)");
     if (!patch_numbers_.empty () && patch_numbers_.size () != model_->patches.size ())
       throw Error (name_ + "::compute: " + std::to_string (patch_numbers_.size ()) + " patch numbers for " +

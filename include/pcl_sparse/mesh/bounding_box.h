@@ -17,6 +17,15 @@ namespace pcl_sparse
   Eigen::AlignedBox3d
   finiteBoundingBox (const std::vector<Eigen::Vector3d>& points);
 
+  /// Coordinates the library refuses beyond (as input to encode, as a model to resample): resampled clouds
+  /// are float (up to 3.4e38), and squared lengths overflow far sooner in the pipeline.
+  constexpr double max_coordinate = 1e30;
+
+  /// \brief The largest |coordinate| of the finite \a points moved by \a origin (a scan's local frame to
+  /// the world); 0 when none is finite. Compared with max_coordinate by the encoder and buildCloudSurface.
+  double
+  largestCoordinate (const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero ());
+
   /// Length of the diagonal of the axis-aligned bounding box of \a points (#points by 3). Non-finite
   /// points are ignored; 0 when no point is finite.
   double
