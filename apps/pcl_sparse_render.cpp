@@ -11,6 +11,7 @@
 
 #include <pcl_sparse/common/color_map.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/memory_limit.h>
 
 #include <Eigen/Geometry>
 #include <pcl_sparse/format/model_file.h>
@@ -71,7 +72,7 @@ namespace
       count = std::max<std::size_t> (4 * model->num_input_vertices, static_cast<std::size_t> (picture.width) * picture.height);
     count = std::min (count, SparseSurfaceResampling<pcl::PointNormal>::max_points);
     // The cloud, then its points, normals and patches again for the picture: about 170 bytes a point.
-    tools::checkFitsInMemory (170.0 * static_cast<double> (count), "a picture of " + std::to_string (count) + " points (-size, -n)");
+    checkFitsInMemory (170.0 * static_cast<double> (count), "the " + std::to_string (count) + " points of the picture (-size, -n)");
     resampling.setPointCount (count);
     const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
     Scene scene;

@@ -12,8 +12,6 @@
 #include <exception>
 #include <filesystem>
 
-#include <unistd.h>
-
 namespace pcl_sparse
 {
   namespace tools
@@ -312,15 +310,6 @@ namespace pcl_sparse
           if (!outputs[j].empty () && sameFile (outputs[j], out))
             throw Error ("two outputs are the same file '" + out + "'");
       }
-    }
-
-    void
-    checkFitsInMemory (double bytes, const std::string& what)
-    {
-      const double physical = static_cast<double> (::sysconf (_SC_PHYS_PAGES)) * static_cast<double> (::sysconf (_SC_PAGE_SIZE));
-      if (physical > 0.0 && bytes > physical)
-        throw Error (what + " needs about " + format ("%.3g", bytes / 1e9) + " GB, more than this machine's " +
-                     format ("%.3g", physical / 1e9) + " GB");
     }
 
     int

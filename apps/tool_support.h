@@ -171,11 +171,6 @@ namespace pcl_sparse
     void
     checkOutputPaths (const std::vector<std::string>& inputs, const std::vector<std::string>& outputs);
 
-    /// Refuses work that would need more than this machine's memory (\a bytes, estimated), naming \a what:
-    /// a clear error instead of an OOM kill (render -size 16384x16384 held 268 M points, about 43 GB).
-    void
-    checkFitsInMemory (double bytes, const std::string& what);
-
     /// Prints "Syntax is: PROGRAM SYNTAX" on stderr (one error line when the tool is called wrongly) and
     /// the aligned help lines on stdout, as PCL's tools do.
     void

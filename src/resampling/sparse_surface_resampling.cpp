@@ -1,12 +1,12 @@
 #include <pcl_sparse/resampling/impl/sparse_surface_resampling.hpp>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/memory_limit.h>
 #include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
 
 #include <omp.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -941,15 +941,10 @@ namespace pcl_sparse
   SparseSurfaceResamplingBase::checkCloudFitsInMemory (double points) const
   {
     const double bytes_per_point = 90.0;  // decode -n 2M / 8M -stream off: 190 / 723 MB peak
-    const double physical = static_cast<double> (::sysconf (_SC_PHYS_PAGES)) * static_cast<double> (::sysconf (_SC_PAGE_SIZE));
-    if (physical > 0.0 && points * bytes_per_point > physical)
-    {
-      std::ostringstream message;
-      message.precision (3);
-      message << name_ << "::compute: " << points << " points held in memory need about " << points * bytes_per_point / 1e9
-              << " GB, more than this machine's " << physical / 1e9 << " GB: lower the count or density, or resample in blocks";
-      throw Error (message.str ());
-    }
+    std::ostringstream what;
+    what.precision (3);
+    what << name_ << "::compute: " << points << " points held in memory";
+    checkFitsInMemory (points * bytes_per_point, what.str (), "lower the count or density, or resample in blocks");
   }
 
   void
