@@ -1,4 +1,5 @@
 #include <pcl_sparse_ros/cloud_resampler.h>
+#include <pcl_sparse_ros/shutdown.h>
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
@@ -22,14 +23,6 @@ namespace pcl_sparse_ros
     secondsSince (Clock::time_point start)
     {
       return std::chrono::duration<double> (Clock::now () - start).count ();
-    }
-
-    /// Progress callback: Ctrl-C waited for the whole encoding (28 s for a million points).
-    void
-    stopWhenShuttingDown (const std::string&, double)
-    {
-      if (!ros::ok ())
-        throw pcl_sparse::Error ("stopped: the node is shutting down");
     }
 
     /// Encodes the message as a cloud of PointInT: setInputCloud alone, organized or not, NaN kept

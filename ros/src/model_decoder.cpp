@@ -1,4 +1,5 @@
 #include <pcl_sparse_ros/model_decoder.h>
+#include <pcl_sparse_ros/shutdown.h>
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
@@ -22,10 +23,7 @@ namespace pcl_sparse_ros
     pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (decoded);
     resampling_settings.apply (resampling, decoded->num_input_vertices);
-    resampling.setProgressCallback ([] (const std::string&, double) {
-      if (!ros::ok ())
-        throw pcl_sparse::Error ("stopped: the node is shutting down");
-    });
+    resampling.setProgressCallback (stopWhenShuttingDown);
     resampling.setNumberOfThreads (threads);
     pcl::PointCloud<pcl::PointNormal> cloud;
     resampling.compute (cloud);
