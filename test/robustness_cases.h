@@ -66,6 +66,21 @@ namespace pcl_sparse
       return mesh;
     }
 
+    /// \a mesh as a triangle soup: every face with its own three vertices (all positions duplicated).
+    inline TriangleMesh
+    triangleSoup (const TriangleMesh& mesh)
+    {
+      TriangleMesh soup;
+      for (const Eigen::Vector3i& t : mesh.triangles)
+      {
+        const int first = static_cast<int> (soup.vertices.size ());
+        for (int k = 0; k < 3; ++k)
+          soup.vertices.push_back (mesh.vertices[t[k]]);
+        soup.triangles.push_back (Eigen::Vector3i (first, first + 1, first + 2));
+      }
+      return soup;
+    }
+
     /// A small closed mesh with some curvature: the base of most cases (162 vertices, 320 faces).
     inline TriangleMesh
     baseMesh ()
@@ -111,18 +126,7 @@ namespace pcl_sparse
       cases.push_back ({"index_zero", objText (base) + "f 0 1 2\n", Expect::Failure});
       cases.push_back ({"index_negative_beyond", objText (base) + "f -1 -2 -100000\n", Expect::Failure});
       cases.push_back ({"index_huge", objText (base) + "f 1 2 99999999999999999999\n", Expect::Failure});
-      {
-        // Triangle soup: every face has its own three vertices (all positions duplicated).
-        TriangleMesh soup;
-        for (const Eigen::Vector3i& t : base.triangles)
-        {
-          const int first = static_cast<int> (soup.vertices.size ());
-          for (int k = 0; k < 3; ++k)
-            soup.vertices.push_back (base.vertices[t[k]]);
-          soup.triangles.push_back (Eigen::Vector3i (first, first + 1, first + 2));
-        }
-        cases.push_back ({"triangle_soup", objText (soup), Expect::Either});
-      }
+      cases.push_back ({"triangle_soup", objText (triangleSoup (base)), Expect::Either});
       {
         // Every vertex listed twice; faces use the first copy or the second alternately.
         TriangleMesh m = base;

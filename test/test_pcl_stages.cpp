@@ -1,5 +1,7 @@
 // The stages as PCL classes (issue 11): every instantiated point type, PCL's input (cloud + polygons) against
 // the library's mesh, setIndices, the error policy, and the output point types of resampling.
+#include "robustness_cases.h"
+
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
@@ -587,14 +589,7 @@ TEST (PclStages, StrayPointDoesNotSetTheScansScale)
 TEST (PclStages, TriangleSoupIsRefusedWithTheRemedy)
 {
   const TriangleMesh mesh = floatExactMesh ();
-  TriangleMesh soup;
-  for (const Eigen::Vector3i& t : mesh.triangles)
-  {
-    const int base = static_cast<int> (soup.vertices.size ());
-    for (int k = 0; k < 3; ++k)
-      soup.vertices.push_back (mesh.vertices[t[k]]);
-    soup.triangles.push_back (Eigen::Vector3i (base, base + 1, base + 2));
-  }
+  const TriangleMesh soup = robustness::triangleSoup (mesh);
   SparseSurfaceEncoder<pcl::PointXYZ> encoder;
   encoder.setInputCloud (cloudOf<pcl::PointXYZ> (soup));
   encoder.setInputPolygons (polygonsOf (soup));
