@@ -12,6 +12,11 @@ namespace pcl_sparse
 {
   namespace
   {
+    /// Heights (local units, fractions of r_P) whose RMS is below this are round-off of a flat patch, not
+    /// shape: a relative tolerance alone spent up to L atoms fitting them (a tilted plane, the flat faces
+    /// of a rotated CAD part). Double round-off in R^T (p - s) / r_P is about 1e-16.
+    constexpr double kRoundOffHeight = 1e-12;
+
     /// OMP's relative tolerance: eps, or looser where the noise level is reached first (a residual RMS of
     /// noise_level / r_P in local units, or the patch's own noise if larger), at most 1 (the empty code:
     /// the patch's plane).
@@ -19,6 +24,8 @@ namespace pcl_sparse
     stoppingTolerance (const Eigen::VectorXd& signal, const Patch& patch, const SparseCodingOptions& options)
     {
       const double norm = signal.norm ();
+      if (norm > 0.0 && norm <= kRoundOffHeight * std::sqrt (static_cast<double> (signal.size ())))
+        return 1.0;  // the empty code: the patch's plane
       if (!(options.noise_level > 0.0) || !(norm > 0.0) || !(patch.radius > 0.0))
         return options.tolerance;
       double noise = options.noise_level / patch.radius;
