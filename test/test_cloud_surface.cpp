@@ -312,6 +312,30 @@ TEST (CloudSurface, NoisyPlaneNoiseNormalsAndTriangles)
   EXPECT_GT (area, 0.95 * side * side);  // random sampling leaves a few gaps wider than 3 spacings
 }
 
+/// The kNN surface does not depend on the scan's scale anywhere in the range the encoder takes (1e-30 to
+/// 1e30): the float kd-tree's squared distances overflowed past 1.8e19 (a plane of spacing 2^70 gave "no
+/// neighbours close enough") and underflowed under 1e-19 (at 2^-90 every point was every point's duplicate).
+TEST (CloudSurface, KnnSurfaceIsScaleInvariant)
+{
+  std::mt19937 rng (7);
+  const std::vector<Eigen::Vector3d> unit = noisyPlane (2000, 1.0, 0.002, rng);
+  const CloudSurface reference = buildCloudSurface (makeScan (unit));
+  ASSERT_GT (reference.mesh.triangles.size (), 3000u);
+  for (const int exponent : {-90, -70, 70, 90})
+  {
+    SCOPED_TRACE ("scaled by 2^" + std::to_string (exponent));
+    const double scale = std::ldexp (1.0, exponent);
+    std::vector<Eigen::Vector3d> scaled = unit;
+    for (auto& p : scaled)
+      p *= scale;
+    const CloudSurface s = buildCloudSurface (makeScan (scaled));
+    EXPECT_EQ (s.mesh.triangles, reference.mesh.triangles);
+    EXPECT_EQ (s.isolated, reference.isolated);
+    EXPECT_DOUBLE_EQ (s.spacing / scale, reference.spacing);
+    EXPECT_DOUBLE_EQ (s.noise / scale, reference.noise);
+  }
+}
+
 TEST (CloudSurface, OutliersAreCountedAndLeftOut)
 {
   std::mt19937 rng (7);

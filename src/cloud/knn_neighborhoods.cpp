@@ -6,7 +6,10 @@
 
 #include <omp.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace pcl_sparse
@@ -40,12 +43,28 @@ namespace pcl_sparse
     graph.neighbors.assign (n * k, -1);
     graph.distances.assign (n * k, -1.0);
 
+    // The tree works in float on squared distances, which overflow past 1.8e19 and underflow under 1e-19
+    // (a grid of spacing 1e20 found no neighbour, one of 1e-30 took every point for a duplicate): it gets
+    // the points scaled by a power of two, to an extent in [1, 2). A power of two scales every float
+    // exactly, so the tree ranks as it did on the unscaled points wherever those fit; neighbours are ranked
+    // and measured on the double positions below. (The loaders centre far-off scans: localFrameOrigin.)
+    Eigen::AlignedBox3d box;
+    for (std::size_t i = 0; i < n; ++i)
+      if (searched[i] && positions[i].allFinite ())
+        box.extend (positions[i]);
+    double scale = 1.0;
+    if (!box.isEmpty ())
+    {
+      const double extent = (box.max () - box.min ()).maxCoeff ();
+      if (extent > 0.0 && std::isfinite (extent))
+        scale = std::ldexp (1.0, -std::ilogb (extent));
+    }
     auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
     std::vector<int> original;  // cloud index -> point index
     for (std::size_t i = 0; i < n; ++i)
       if (searched[i])
       {
-        const Eigen::Vector3f p = positions[i].cast<float> ();
+        const Eigen::Vector3f p = (positions[i] * scale).cast<float> ();
         cloud->push_back (pcl::PointXYZ (p.x (), p.y (), p.z ()));
         original.push_back (static_cast<int> (i));
       }
