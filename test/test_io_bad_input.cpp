@@ -8,6 +8,9 @@
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
 #include <gtest/gtest.h>
 
 #include "test_file_helpers.h"
@@ -429,6 +432,54 @@ TEST (IoBadInput, PcdDataThatLooksLikeAHeaderLine)
   writeBytes (ascii_path, header + "DATA ascii\n\n# a comment\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n");
   ASSERT_NO_THROW (loadScanCloud (ascii_path, scan, keep_all));
   EXPECT_EQ (scan.positions.size (), 4u);
+}
+
+TEST (IoBadInput, BinaryCompressedSizesMustHoldThePoints)
+{
+  // The two sizes that open binary_compressed data: PCL's reader resizes the cloud to the stored
+  // uncompressed size and copies WIDTH x HEIGHT points into it. Sizes of 0 (LZF "decompresses" nothing to 0
+  // bytes, as stored) crashed every tool in memcpy; a header announcing more points than were compressed
+  // read and wrote past the buffers (valgrind) before a later check refused the cloud.
+  TempDir dir;
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  for (int i = 0; i < 100; ++i)
+    cloud.push_back (pcl::PointXYZ (0.01f * static_cast<float> (i % 10), 0.01f * static_cast<float> (i / 10), 0.0f));
+  const std::string good = dir.file ("good.pcd");
+  ASSERT_EQ (pcl::io::savePCDFileBinaryCompressed (good, cloud), 0);
+  const std::string bytes = readBytes (good);
+  ScanCloud scan;
+  ASSERT_NO_THROW (loadScanCloud (good, scan));
+  EXPECT_EQ (scan.report.input_points, 100u);
+
+  const std::string data_line = "DATA binary_compressed\n";
+  const std::size_t data = bytes.find (data_line) + data_line.size ();
+  ASSERT_LT (data + 8, bytes.size ());
+  const auto withSizes = [&] (std::uint32_t compressed, std::uint32_t uncompressed) {
+    std::string changed = bytes;
+    std::memcpy (&changed[data], &compressed, 4);
+    std::memcpy (&changed[data + 4], &uncompressed, 4);
+    return changed;
+  };
+  std::uint32_t compressed = 0;
+  std::memcpy (&compressed, &bytes[data], 4);
+  pcl::PointCloud<pcl::PointXYZ> loaded;
+  const auto expectBothRefused = [&] (const std::string& name, const std::string& changed, const std::string& problem) {
+    const std::string path = dir.file (name);
+    writeBytes (path, changed);
+    expectScanRefused (path, problem);
+    EXPECT_THROW (loadPointCloud (path, loaded), Error);
+  };
+  expectBothRefused ("zero.pcd", withSizes (0, 0), "bad binary_compressed PCD data");
+  expectBothRefused ("zero_uncompressed.pcd", withSizes (compressed, 0), "bad binary_compressed PCD data");
+  expectBothRefused ("short_uncompressed.pcd", withSizes (compressed, 100 * 12 - 1), "bad binary_compressed PCD data");
+  expectBothRefused ("past_the_end.pcd", withSizes (1u << 30, 100 * 12), "truncated PCD data");
+  std::string more = bytes;
+  const std::size_t width = more.find ("WIDTH 100\n"), points = more.find ("POINTS 100\n");
+  ASSERT_NE (width, std::string::npos);
+  ASSERT_NE (points, std::string::npos);
+  more.replace (points, 11, "POINTS 150\n");
+  more.replace (width, 10, "WIDTH 150\n");
+  expectBothRefused ("more_points.pcd", more, "bad binary_compressed PCD data");
 }
 
 TEST (IoBadInput, PointCloudsAreRefusedTheSameWay)

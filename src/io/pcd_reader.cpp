@@ -223,6 +223,31 @@ namespace pcl_sparse
         blob.sensor_origin = header.sensor_origin;
         blob.sensor_orientation = header.sensor_orientation;
       }
+      /// The two sizes that open binary_compressed data, checked before PCL's reader sees them: it takes
+      /// them on trust, resizes the cloud to the stored uncompressed size and then copies WIDTH x HEIGHT
+      /// points into it, so a smaller size (0, or a header announcing more points than were compressed)
+      /// read and wrote past its buffers (sizes of 0 crashed every tool).
+      void
+      checkCompressedSizes (const std::string& path, const PcdHeader& header)
+      {
+        std::uint32_t stored[2] = {0, 0};
+        std::ifstream in (path, std::ios::binary | std::ios::ate);
+        const long long file_size = static_cast<long long> (in.tellg ());
+        in.seekg (static_cast<std::streamoff> (header.data_offset));
+        if (!in.read (reinterpret_cast<char*> (stored), sizeof (stored)))
+          throw Error (path + ": truncated PCD data");
+        const long long compressed = stored[0], uncompressed = stored[1];
+        const long long left = file_size - static_cast<long long> (header.data_offset) - 8;
+        if (compressed > left)
+          throw Error (path + ": truncated PCD data (" + std::to_string (compressed) + " compressed bytes announced, " +
+                       std::to_string (left) + " left)");
+        const long long points = static_cast<long long> (header.layout.width) * header.layout.height;
+        const long long point_size = header.layout.point_step;
+        if (point_size > 0 && points > uncompressed / point_size)  // uncompressed < points * point_size
+          throw Error (path + ": bad binary_compressed PCD data (" + std::to_string (uncompressed) +
+                       " bytes uncompressed, but " + std::to_string (points) + " points of " +
+                       std::to_string (point_size) + " bytes announced)");
+      }
     } // namespace
 
     void
@@ -237,6 +262,8 @@ namespace pcl_sparse
       }
       if (pclReadsDataAsHeader (path, header.data_offset))
         throw Error (path + ": not a readable PCD file (its data starts like a header line)");
+      if (header.data_kind == "binary_compressed")
+        checkCompressedSizes (path, header);
       QuietPclConsole quiet;
       pcl::PCDReader reader;
       int version = 0;
