@@ -12,6 +12,8 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -106,6 +108,36 @@ TEST_F (ScanTools, SharedScansThroughEveryTool)
     ASSERT_EQ (runTool ("pcl_sparse_keypoints", shared (c.file) + " " + path ("keypoints.pcd") + " --json -q", out, err), 0)
       << c.file << ": " << err;
     EXPECT_GT (jsonInteger (out, "keypoints"), 0) << c.file;
+  }
+}
+
+TEST_F (ScanTools, FramesWithNoPointLeftNameTheFileAndTheCause)
+{
+  // A frame of no-returns only (NaN, and 0,0,0 at the sensor): every tool said "buildCloudSurface: the
+  // scan has no points" (encode -tiles: "MemoryTileSource: ..."), naming neither the file nor the cause,
+  // where the spilled path says "FILE: no point left after cleaning (3 non-finite, 1 at the sensor origin)".
+  std::ofstream (path ("noreturn.pcd"))
+    << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 2\n"
+       "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\nnan nan nan\nnan nan nan\nnan nan nan\n0 0 0\n";
+  const std::string in = path ("noreturn.pcd");
+  const std::vector<std::pair<std::string, std::string>> runs = {
+    {"pcl_sparse_encode", in + " -o " + path ("out.psm")},
+    {"pcl_sparse_encode", in + " -tiles 2 -o " + path ("out.psm")},
+    {"pcl_sparse_resample", in + " " + path ("out.pcd")},
+    {"pcl_sparse_keypoints", in + " " + path ("out.pcd")},
+    {"pcl_sparse_patches", in + " " + path ("out.ply")},
+    {"pcl_sparse_render", in + " " + path ("out.png")}};
+  for (const auto& run : runs)
+  {
+    SCOPED_TRACE (run.first + " " + run.second);
+    std::string out, err;
+    EXPECT_EQ (runTool (run.first, run.second + " -q", out, err), 1);
+    EXPECT_EQ (std::count (err.begin (), err.end (), '\n'), 1) << err;
+    EXPECT_NE (err.find ("noreturn.pcd: no point left after cleaning (3 non-finite, 1 at the sensor origin)"),
+               std::string::npos)
+      << err;
+    for (const char* output : {"out.psm", "out.pcd", "out.ply", "out.png"})
+      EXPECT_FALSE (std::filesystem::exists (path (output))) << output;
   }
 }
 
