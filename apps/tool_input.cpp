@@ -59,8 +59,7 @@ namespace pcl_sparse
       // As the spilled path says it (spillIntoTiles): naming the file and the causes, not "the scan has no
       // points" from whichever stage met the empty scan first (a frame of no-returns, all NaN or all 0,0,0).
       if (scan->size () == 0)
-        throw Error (path + ": no point left after cleaning (" + std::to_string (scan->report.non_finite) +
-                     " non-finite, " + std::to_string (scan->report.at_sensor_origin) + " at the sensor origin)");
+        throw Error (path + ": " + scan->report.whyNoPointIsLeft ());
       input.scan = scan;
       return input;
     }

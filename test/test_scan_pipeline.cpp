@@ -4,11 +4,13 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/scan_conversion.h>
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/keypoints/harris_keypoint3d_mesh.h>
 #include <pcl_sparse/normals/mesh_normal_estimation.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
+#include <pcl_sparse/tiles/memory_tile_source.h>
 
 #include <pcl/io/pcd_io.h>
 
@@ -265,4 +267,38 @@ TEST (ScanPipeline, HolesAreNotFilled)
   EXPECT_GE (facing, out.size () - out.size () / 1000);  // measured 19999 of 20000
   // Patches stop at 4096 vertices on scans (max_patch_vertices): measured 19 patches here, 7 unbounded.
   EXPECT_GE (model->numPatches (), 5u);
+}
+
+TEST (ScanPipeline, AScanWithNoPointLeftSaysWhy)
+{
+  // A frame of no-returns only: what cleaning dropped is the reason, in the library's message as in the tools'.
+  pcl::PointCloud<pcl::PointXYZ> frame;
+  for (int i = 0; i < 3; ++i)
+    frame.push_back (pcl::PointXYZ (NAN, NAN, NAN));
+  frame.push_back (pcl::PointXYZ (0.0f, 0.0f, 0.0f));
+  auto scan = std::make_shared<ScanCloud> ();
+  toScanCloud (frame, *scan);
+  ASSERT_EQ (scan->size (), 0u);
+  const std::string why = "no point left after cleaning (3 non-finite, 1 at the sensor origin)";
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputScan (scan);
+  SparseSurfaceModel model;
+  try
+  {
+    encoder.compute (model);
+    ADD_FAILURE () << "an empty scan was encoded";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find (why), std::string::npos) << e.what ();
+  }
+  try
+  {
+    MemoryTileSource source (scan, TileGridOptions ());
+    ADD_FAILURE () << "an empty scan was cut into tiles";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find (why), std::string::npos) << e.what ();
+  }
 }

@@ -122,8 +122,7 @@ namespace pcl_sparse
       }
       report (options, "spill: reading", 1, 1);
       if (pass.report.kept == 0)
-        throw Error (reader.path () + ": no point left after cleaning (" + std::to_string (pass.report.non_finite) +
-                     " non-finite, " + std::to_string (pass.report.at_sensor_origin) + " at the sensor origin)");
+        throw Error (reader.path () + ": " + pass.report.whyNoPointIsLeft ());
       return pass;
     }
 

@@ -34,6 +34,15 @@ namespace pcl_sparse
     {
       return input_points - non_finite;
     }
+
+    /// "no point left after cleaning (N non-finite, M at the sensor origin)": why a scan is empty, for the
+    /// error every reader and stage gives about it.
+    std::string
+    whyNoPointIsLeft () const
+    {
+      return "no point left after cleaning (" + std::to_string (non_finite) + " non-finite, " +
+             std::to_string (at_sensor_origin) + " at the sensor origin)";
+    }
   };
 
   /// A scan: positions in a local frame (world = origin + p) and, where the file has them, per-point normals,
