@@ -32,7 +32,9 @@ if(TARGET pcl_sparse_encode)
     COMMAND ${CMAKE_COMMAND} -DTOOLS_DIR=$<TARGET_FILE_DIR:pcl_sparse_encode> -DSHARED=${PCL_SPARSE_SHARED_MESHES}/..
             -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/tool_outputs -DCASES=${CMAKE_CURRENT_SOURCE_DIR}/golden/tool_outputs.cases
             -P ${PROJECT_SOURCE_DIR}/cmake/CheckToolOutputs.cmake)
-  set_tests_properties(tool_outputs_unchanged PROPERTIES FAIL_REGULAR_EXPRESSION "differ|failed" TIMEOUT 600)
+  # Without ../shared the script compares nothing: ctest reports it skipped (with the reason), not passed.
+  set_tests_properties(tool_outputs_unchanged PROPERTIES FAIL_REGULAR_EXPRESSION "differ|failed"
+                       SKIP_REGULAR_EXPRESSION "SKIP: the shared meshes are not at" TIMEOUT 600)
 endif()
 
 # Layering (issue 11): no include cycle between the library's folders, no function in src/ over 120
