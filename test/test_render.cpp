@@ -12,8 +12,10 @@
 
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <png.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <random>
 
@@ -204,7 +206,21 @@ TEST (PngFile, SignatureAndAtomicWrite)
 {
   RgbImage image;
   image.reset (3, 2, {10, 20, 30});
+  // Every byte different (channel order, rows and columns all show), then decoded again by libpng's reader:
+  // the picture the file holds is the image's, pixel for pixel.
+  for (std::size_t i = 0; i < image.pixels.size (); ++i)
+    image.pixels[i] = static_cast<std::uint8_t> (11 * i + 7);
   const std::vector<std::uint8_t> png = encodePng (image);
+  png_image read;
+  std::memset (&read, 0, sizeof (read));
+  read.version = PNG_IMAGE_VERSION;
+  ASSERT_TRUE (png_image_begin_read_from_memory (&read, png.data (), png.size ())) << read.message;
+  read.format = PNG_FORMAT_RGB;
+  EXPECT_EQ (read.width, 3u);
+  EXPECT_EQ (read.height, 2u);
+  std::vector<std::uint8_t> decoded (PNG_IMAGE_SIZE (read));
+  ASSERT_TRUE (png_image_finish_read (&read, nullptr, decoded.data (), 0, nullptr)) << read.message;
+  EXPECT_EQ (decoded, image.pixels);
   const std::uint8_t signature[8] = {137, 80, 78, 71, 13, 10, 26, 10};
   ASSERT_GE (png.size (), 8u);
   EXPECT_TRUE (std::equal (signature, signature + 8, png.begin ()));

@@ -784,3 +784,91 @@ TEST (CloudQuality, PointPastAKnifeEdgeMatchesEitherFace)
     EXPECT_NEAR (quality.max_distance, 0.001, 1e-5);
   }
 }
+
+// The yardstick itself on a known answer (the resampling tests' completeness, largest gap, NN CV, RMS and
+// normal statistics all come from evaluateCloudQuality): the square [-1, 1]^2 at z = 0, sampled on its left
+// half only by a 20 x 40 grid of spacing 0.05 (x = -0.975 .. -0.025), columns alternately 0.01 and 0.03 above
+// it, normals 10 degrees off except every tenth point (flipped), and 5 NaN points.
+TEST (CloudQuality, KnownAnswersOnAHalfSampledSquare)
+{
+  const TriangleMesh mesh = makePlaneGrid (8, 1.0);
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  const double tilt = 10.0 * M_PI / 180.0;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 40; ++j)
+    {
+      pcl::PointNormal p;
+      p.x = static_cast<float> (-1.0 + 0.05 * (i + 0.5));
+      p.y = static_cast<float> (-1.0 + 0.05 * (j + 0.5));
+      p.z = i % 2 == 0 ? 0.01f : 0.03f;
+      const bool flip = (40 * i + j) % 10 == 9;
+      p.normal_x = 0.0f;
+      p.normal_y = flip ? 0.0f : static_cast<float> (std::sin (tilt));
+      p.normal_z = flip ? -1.0f : static_cast<float> (std::cos (tilt));
+      cloud.push_back (p);
+    }
+  for (int k = 0; k < 5; ++k)
+  {
+    pcl::PointNormal p;
+    p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN ();
+    p.normal_x = p.normal_y = 0.0f;
+    p.normal_z = 1.0f;
+    cloud.push_back (p);
+  }
+  const CloudQuality q = evaluateCloudQuality (mesh, cloud);  // 50000 probes, holes beyond 3 spacings
+  std::cout << "half-sampled square: completeness " << q.completeness << ", largest gap " << q.largest_gap
+            << " spacings, NN CV " << q.nn_cv << std::endl;
+  EXPECT_EQ (q.invalid, 5u);
+  EXPECT_NEAR (q.bbox_diagonal, 2.0 * std::sqrt (2.0), 1e-12);
+  // Distances: half the points 0.01 off, half 0.03.
+  EXPECT_NEAR (q.mean_distance, 0.02, 1e-7);
+  EXPECT_NEAR (q.rms_distance, std::sqrt (0.0005), 1e-7);
+  EXPECT_NEAR (q.max_distance, 0.03, 1e-7);
+  // Angles: 720 points at 10 degrees, 80 at 180: mean 27, median 10, the 90th percentile the first flip.
+  EXPECT_EQ (q.flipped, 80u);
+  EXPECT_NEAR (q.mean_normal_angle, 27.0, 1e-3);
+  EXPECT_NEAR (q.median_normal_angle, 10.0, 1e-3);
+  EXPECT_NEAR (q.p90_normal_angle, 180.0, 1e-3);
+  // A regular grid: every nearest neighbour 0.05 away (along y, same height).
+  EXPECT_LT (q.nn_cv, 1e-4);
+  // Spacing sqrt(area 4 / 800 valid points); a probe is covered within 3 spacings = 0.212: the left half and
+  // x <= -0.025 + sqrt(0.212^2 - 0.03^2) = 0.185 on the right, (1 + 0.185) / 2 = 0.5925 of the square. The
+  // farthest probes, at x = 1, are 1.0257 = 14.51 spacings from the last column.
+  EXPECT_NEAR (q.spacing, std::sqrt (4.0 / 800.0), 1e-12);
+  EXPECT_NEAR (q.completeness, 0.5925, 0.01);
+  EXPECT_NEAR (q.largest_gap, 14.5, 0.1);
+  // Covered everywhere by the same grid over the whole square.
+  pcl::PointCloud<pcl::PointNormal> whole;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+    {
+      pcl::PointNormal p;
+      p.x = static_cast<float> (-1.0 + 0.05 * (i + 0.5));
+      p.y = static_cast<float> (-1.0 + 0.05 * (j + 0.5));
+      p.z = 0.0f;
+      p.normal_x = p.normal_y = 0.0f;
+      p.normal_z = 1.0f;
+      whole.push_back (p);
+    }
+  // Four points on a line, 0.1, 0.3 and 0.5 apart: nearest-neighbour distances 0.1, 0.1, 0.3, 0.5, mean 0.25,
+  // standard deviation sqrt(0.0275), CV 0.6633; spacing sqrt(4 / 4).
+  pcl::PointCloud<pcl::PointNormal> line;
+  for (const float x : {0.0f, 0.1f, 0.4f, 0.9f})
+  {
+    pcl::PointNormal p;
+    p.x = x;
+    p.y = p.z = 0.0f;
+    p.normal_x = p.normal_y = 0.0f;
+    p.normal_z = 1.0f;
+    line.push_back (p);
+  }
+  const CloudQuality spread = evaluateCloudQuality (mesh, line);
+  EXPECT_NEAR (spread.nn_cv, std::sqrt (0.0275) / 0.25, 1e-5);
+  EXPECT_NEAR (spread.spacing, 1.0, 1e-12);
+  EXPECT_EQ (spread.max_distance, 0.0);
+  const CloudQuality full = evaluateCloudQuality (mesh, whole);
+  EXPECT_EQ (full.completeness, 1.0);
+  EXPECT_LT (full.largest_gap, 0.7072);  // a probe is at most 0.025 sqrt 2 = 0.7071 spacings of 0.05 from a point
+  EXPECT_EQ (full.flipped, 0u);
+  EXPECT_NEAR (full.mean_normal_angle, 0.0, 1e-6);
+}

@@ -162,8 +162,15 @@ namespace
     return {q.max_distance / q.bbox_diagonal, q.largest_gap * q.spacing / q.bbox_diagonal};
   }
 
+  /// Bounds of checkNoStrays, / bbox diagonal: the largest distance with 16 and with footprint_angles angles,
+  /// and the largest hole (both).
+  struct StrayBounds
+  {
+    double distance_16, distance_64, hole;
+  };
+
   void
-  checkNoStrays (const std::string& name, const TriangleMesh::ConstPtr& mesh, double bound, bool through_file = false)
+  checkNoStrays (const std::string& name, const TriangleMesh::ConstPtr& mesh, const StrayBounds& bounds, bool through_file = false)
   {
     for (const int angles : {16, footprint_angles})
     {
@@ -173,8 +180,9 @@ namespace
       const std::pair<double, double> d = strayAndGap (*mesh, model);
       std::cout << name << " (" << angles << " angles): largest distance / diag " << d.first << ", largest hole / diag "
                 << d.second << std::endl;
+      const double bound = angles == 16 ? bounds.distance_16 : bounds.distance_64;
       EXPECT_LT (d.first, bound) << name << ", " << angles << " angles: points far off the surface";
-      EXPECT_LT (d.second, bound) << name << ", " << angles << " angles: a hole in the cloud";
+      EXPECT_LT (d.second, bounds.hole) << name << ", " << angles << " angles: a hole in the cloud";
       if (!through_file)
         continue;
       // The same through a quantised file (tolerance 1e-3 of the diagonal, at most 8 angles kept).
@@ -186,7 +194,7 @@ namespace
       std::cout << name << " (" << angles << " angles, quantised file): largest distance / diag " << f.first
                 << ", largest hole / diag " << f.second << std::endl;
       EXPECT_LT (f.first, bound) << name << ", " << angles << " angles, quantised file: points far off the surface";
-      EXPECT_LT (f.second, bound) << name << ", " << angles << " angles, quantised file: a hole in the cloud";
+      EXPECT_LT (f.second, bounds.hole) << name << ", " << angles << " angles, quantised file: a hole in the cloud";
     }
   }
 
@@ -222,18 +230,20 @@ TEST (ResamplingMeshes, NoStrayPointsShared)
     if (!mesh)
       continue;
     ++found;
-    checkNoStrays (name, mesh, 0.03, true);
+    checkNoStrays (name, mesh, {0.03, 0.03, 0.03}, true);
   }
   if (found == 0)
     GTEST_SKIP () << "shared meshes not found in " << PCL_SPARSE_SHARED_MESHES;
 }
 
-// Measured: torus largest distance 6.2e-3 (16 angles) / 1.2e-3 (64), holes 1.4e-2 (a few spacings of
-// these coarse meshes); cube 1.3e-2 / 2.0e-3 (16 angles overshoot the sharp edges), holes 2.0e-2.
+// Measured (default options, Dct atoms): torus largest distance 1.07e-2 (16 angles) / 7.3e-3 (64), holes
+// 9.2e-3 (a few spacings of these coarse meshes); cube 1.98e-2 / 5.4e-3 (16 angles overshoot the sharp
+// edges), holes 1.9e-2. Bounds about 1.5 x those, per angle count: the one 0.03 for all let the 64-angle
+// footprints lose their edge (a cube at 16 angles' 2e-2) unnoticed.
 TEST (ResamplingMeshes, NoStrayPointsGenerated)
 {
-  checkNoStrays ("torus", std::make_shared<TriangleMesh> (makeTorus (96, 32, 1.0, 0.25)), 0.03);
-  checkNoStrays ("cube", std::make_shared<TriangleMesh> (makeCube (16)), 0.03);
+  checkNoStrays ("torus", std::make_shared<TriangleMesh> (makeTorus (96, 32, 1.0, 0.25)), {0.016, 0.011, 0.014});
+  checkNoStrays ("cube", std::make_shared<TriangleMesh> (makeCube (16)), {0.03, 0.008, 0.028});
 }
 
 // The normals' error is a property of the basis, not of resampling: the paper's atoms are even in x and y
