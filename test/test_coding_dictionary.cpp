@@ -125,6 +125,7 @@ TEST (NyquistCap, Conventions)
   EXPECT_EQ (paper_count, 64);
   EXPECT_EQ (authors_count, 144);
   const std::vector<char> plain = nyquistAllowedAtoms (dictionary, 10.0, 0.0, NyquistRule::Paper);
+  ASSERT_EQ (plain.size (), 144u);
   for (char a : plain)
     EXPECT_TRUE (a);
   // Very coarse sampling: only the constant atom survives.

@@ -209,9 +209,16 @@ TEST (SparseSurfaceEncoder, ProgressCallbackMayThrowToCancel)
 TEST (SparseSurfaceEncoder, FootprintsContainTheirVertices)
 {
   const SparseSurfaceModel model = encode (makeIcosphere (3, 1.0));
+  ASSERT_FALSE (model.patches.empty ());
+  std::size_t checked = 0;
   for (const PatchCode& code : model.patches)
     for (const Eigen::Vector2d& xy : code.vertex_xy)
+    {
       EXPECT_TRUE (code.footprint.contains (xy.x (), xy.y ()));
+      ++checked;
+    }
+  // Every one of the 642 vertices lies in at least one patch (an empty vertex list would check nothing).
+  EXPECT_GE (checked, 642u);
 }
 
 // The paper's claim for the Nyquist cap: on a coarse mesh, plain OMP (f = 0) fits the vertices at least as
