@@ -197,3 +197,29 @@ TEST (PatchCoder, CodesAParaboloidPatch)
   codePatch (wholeMeshPatch (small, 1.5), 3, small, meanRingEdgeLengths (small, small_topology), dictionary, options, &info);
   EXPECT_EQ (info.num_samples, 128);
 }
+
+// A seed on the patch's border (a corner here, as at a crease or an open border): the rays pointing away
+// from the patch cross no border edge, and clip_at_border must pull them in like the others. They kept the
+// sector maxima: the footprint reached a whole sector beyond the border (area 0.58 for this 0.5 triangle).
+TEST (PatchFootprint, BorderClipPullsInTheRaysOutsideTheTriangles)
+{
+  TriangleMesh mesh;
+  mesh.vertices = {Eigen::Vector3d (0.0, 0.0, 0.0), Eigen::Vector3d (1.0, 0.0, 0.0), Eigen::Vector3d (0.0, 1.0, 0.0)};
+  mesh.triangles = {Eigen::Vector3i (0, 1, 2)};
+  const Patch patch = wholeMeshPatch (mesh, 1.0);  // seed at the corner (0, 0)
+  const PatchFootprint footprint = computePatchFootprint (patch, mesh, 64, false, true);
+  EXPECT_FALSE (footprint.contains (-0.03, 0.9));  // beyond the edge x = 0
+  EXPECT_FALSE (footprint.contains (0.9, -0.03));  // beyond the edge y = 0
+  double area = 0.0;
+  const int steps = 20000;
+  for (int i = 0; i < steps; ++i)
+  {
+    const double r = footprint.extentAt (2.0 * M_PI * (i + 0.5) / steps);
+    area += 0.5 * r * r * 2.0 * M_PI / steps;
+  }
+  EXPECT_LT (area, 0.54);
+  // Still a cover of the triangle.
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; i + j <= 20; ++j)
+      EXPECT_TRUE (footprint.contains (i / 20.0, j / 20.0)) << i << " " << j;
+}

@@ -266,7 +266,10 @@ namespace pcl_sparse
         exits = firstExits (local_triangles, corners, crossings, median_length, rays);
       if (clip_at_border)
       {
-        outer.assign (angles, std::numeric_limits<double>::infinity ());
+        // A ray that crosses no border edge lies outside the triangles (from a seed on the patch's border
+        // it points away from the patch): its outermost crossing is the seed itself, 0. Left at the
+        // sector maxima, it kept a whole sector's reach outside the patch (a wedge beyond its border).
+        outer.assign (angles, 0.0);
         for (int k = 0; k < angles; ++k)
           if (!crossings[k].empty ())
             outer[k] = crossings[k].back ();
