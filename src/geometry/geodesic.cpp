@@ -1,6 +1,8 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/geometry/geodesic.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -10,13 +12,15 @@
 namespace pcl_sparse
 {
   std::vector<double>
-  computeEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology)
+  computeEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology, int num_threads)
   {
     if (topology.numVertices () != mesh.numVertices ())
       throw Error ("computeEdgeLengths: the topology does not belong to the mesh (vertex counts differ)");
     const int num_vertices = static_cast<int> (mesh.numVertices ());
     std::vector<double> lengths (topology.vertex_neighbors.size ());
-#pragma omp parallel for schedule(static)
+    // The caller's thread count, not all: extra threads would spin-wait through the single-threaded rest.
+    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+#pragma omp parallel for schedule(static) num_threads(threads)
     for (int v = 0; v < num_vertices; ++v)
       for (int i = topology.vertex_neighbor_offsets[v]; i < topology.vertex_neighbor_offsets[v + 1]; ++i)
       {

@@ -387,7 +387,7 @@ namespace pcl_sparse
     const TriangleMesh& mesh = *growth.mesh;
     const MeshTopology& topology = *growth.topology;
     const int num_vertices = static_cast<int> (mesh.vertices.size ());
-    const PatchGrowthGeometry geometry = computePatchGrowthGeometry (mesh, topology, growth.normalsOf (point_normals));
+    const PatchGrowthGeometry geometry = computePatchGrowthGeometry (mesh, topology, growth.normalsOf (point_normals), num_threads);
     const std::vector<int> order =
       orderWithCopies (growth, candidateOrder (num_input, result.responses, result.keypoints), num_input);
 

@@ -43,10 +43,11 @@ namespace pcl_sparse
   /// (max_distance +infinity), which offers what lies behind them last; the lengths DijkstraGeodesic
   /// computes itself follow the same rule. Parallel over vertices, deterministic.
   /// \param[in] mesh      the mesh
-  /// \param[in] topology  its topology
+  /// \param[in] topology     its topology
+  /// \param[in] num_threads  OpenMP threads (0: all)
   /// \return one length per entry of topology.vertex_neighbors (CSR, same layout)
   std::vector<double>
-  computeEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology);
+  computeEdgeLengths (const TriangleMesh& mesh, const MeshTopology& topology, int num_threads = 0);
 
   /// Called once per reached vertex, when its distance is final, in increasing distance (ties by vertex
   /// index); again for deferred vertices (GeodesicVisit::Defer). \a parent is the accepted vertex it

@@ -60,10 +60,11 @@ namespace pcl_sparse
   /// \param[in] mesh           the mesh
   /// \param[in] topology       its topology
   /// \param[in] point_normals  #V unit normals (zero: none for that vertex), or empty to use the mesh's
+  /// \param[in] num_threads    OpenMP threads (0: all)
   /// \return the quantities every growth on this mesh reads
   PatchGrowthGeometry
   computePatchGrowthGeometry (const TriangleMesh& mesh, const MeshTopology& topology,
-                              const std::vector<Eigen::Vector3d>& point_normals = {});
+                              const std::vector<Eigen::Vector3d>& point_normals = {}, int num_threads = 0);
 
   /// Whether adding face \a f's corners to a patch (which holds the vertices \a holds says) would put all
   /// corners of another face facing away from the patch's seed normal \a ns in it: the patch's vertices
