@@ -1,5 +1,7 @@
 #include <pcl_sparse/coding/patch_samples.h>
 
+#include "patch_local_index.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -98,14 +100,7 @@ namespace pcl_sparse
       return samples;
 
     // Local index of each patch vertex (faces hold mesh vertex ids).
-    std::vector<std::pair<int, int>> lookup (patch.vertices.size ());
-    for (std::size_t i = 0; i < patch.vertices.size (); ++i)
-      lookup[i] = {patch.vertices[i], static_cast<int> (i)};
-    std::sort (lookup.begin (), lookup.end ());
-    auto local_index = [&] (int v) {
-      const auto it = std::lower_bound (lookup.begin (), lookup.end (), std::make_pair (v, -1));
-      return (it != lookup.end () && it->first == v) ? it->second : -1;
-    };
+    const PatchLocalIndex local_index (patch.vertices, patch.vertices.size (), mesh.vertices.size ());
 
     // Corners as local indices and the cumulative area (local units: same ratios as world ones).
     std::vector<Eigen::Vector3i> corners;
