@@ -388,6 +388,78 @@ TEST (ModelFile, RangeCodedAndVarintLayoutsDecodeToTheSameModel)
              }()));
 }
 
+namespace
+{
+  /// Peak resident memory of this process in kB (VmHWM), after \a reset starts it again from the current one;
+  /// -1 where /proc cannot do it.
+  long
+  peakResidentKb (bool reset)
+  {
+    if (reset && !(std::ofstream ("/proc/self/clear_refs") << "5" << std::flush))
+      return -1;
+    std::ifstream status ("/proc/self/status");
+    for (std::string line; std::getline (status, line);)
+      if (line.rfind ("VmHWM:", 0) == 0)
+        return std::stol (line.substr (6));
+    return -1;
+  }
+} // namespace
+
+TEST (ModelFile, PatchesPromisedByTheSeedsAreNotAllocatedBeforeTheyDecode)
+{
+  // SEED and RADI hold a few bytes a patch (zstd may shrink them 64 times), the range-coded sections less
+  // than a byte: the reader made all M patches (285 bytes each) and unpacked M seed and radius integers
+  // (32 bytes) before decoding the first, so a 280 KB file promising 4 million patches took 1.1 GB before
+  // its empty FOOT section was found (this stored one: 4 MB, 310 MB).
+  const std::uint32_t m = 1u << 20;
+  ByteWriter out;
+  const std::uint8_t magic[8] = {0x89, 'P', 'S', 'M', '\r', '\n', 0x1a, '\n'};
+  out.putBytes (magic, 8);
+  out.putU16 (1);
+  out.putU16 (1 | 8);  // quantised, range-coded
+  out.putU8 (1);       // the paper's cosine basis
+  out.putU8 (0);
+  out.putU16 (12);
+  out.putU32 (m);
+  out.putU32 (7);
+  out.putU64 (1000);
+  out.putF64 (1.0);
+  out.putF64 (1e-3);
+  out.putU32 (crc32 (out.bytes ().data (), 48));
+  ByteWriter quan;
+  for (double v : {0.0, 0.0, 0.0, 0.01})
+    quan.putF64 (v);
+  quan.putU8 (1);  // seed bytes
+  quan.putF64 (-3.0);
+  quan.putF64 (0.01);
+  quan.putU8 (1);  // radius bytes
+  quan.putF64 (0.1);
+  quan.putU8 (4);  // extent bits
+  quan.putF64 (1e-3);
+  quan.putF64 (1e-3);
+  const std::vector<std::uint8_t> seeds (3 * std::size_t (m), 0), radii (m, 0), none;
+  for (const auto& [tag, payload] : std::vector<std::pair<std::string, const std::vector<std::uint8_t>*>> {
+         {"QUAN", &quan.bytes ()}, {"SEED", &seeds}, {"FRAM", &none}, {"RADI", &radii}, {"FOOT", &none},
+         {"ATOM", &none}, {"COEF", &none}})
+  {
+    const std::size_t start = out.size ();
+    out.putBytes (reinterpret_cast<const std::uint8_t*> (tag.data ()), 4);
+    out.putU32 (0);  // stored
+    out.putU64 (payload->size ());
+    out.putU64 (payload->size ());
+    out.putU32 (crc32 (payload->data (), payload->size ()));
+    out.putU32 (crc32 (out.bytes ().data () + start, 28));
+    out.putBytes (payload->data (), payload->size ());
+  }
+  const std::vector<std::uint8_t>& bytes = out.bytes ();
+  if (peakResidentKb (true) < 0)
+    GTEST_SKIP () << "no /proc/self/clear_refs to measure the peak";
+  const long before = peakResidentKb (false);
+  expectErrorContaining (bytes, "section FOOT");
+  const long grown = peakResidentKb (false) - before;
+  EXPECT_LT (grown, 64 * 1024) << "kB, for a file of " << bytes.size () / 1024 << " kB";
+}
+
 TEST (ModelFile, DamagedRangeCodedSectionsAreErrorsNotCrashes)
 {
   // The checksums catch damage in a file; here every bit of the range-coded payloads is flipped behind

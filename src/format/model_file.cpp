@@ -127,15 +127,15 @@ namespace pcl_sparse
           out.putU8 (static_cast<std::uint8_t> (v >> (8 * b)));
     }
 
-    std::vector<std::uint64_t>
-    getPlanes (ByteReader& in, std::size_t count, int bytes, const char* field)
+    /// Entry \a index of \a count integers stored as \a bytes byte planes at \a planes (all low bytes, then
+    /// the next, ...; putPlanes).
+    std::uint64_t
+    planeValue (const std::uint8_t* planes, std::size_t count, int bytes, std::size_t index)
     {
-      const std::uint8_t* p = in.getBytes (count * static_cast<std::size_t> (bytes), field);
-      std::vector<std::uint64_t> values (count, 0);
+      std::uint64_t value = 0;
       for (int b = 0; b < bytes; ++b)
-        for (std::size_t i = 0; i < count; ++i)
-          values[i] |= static_cast<std::uint64_t> (p[b * count + i]) << (8 * b);
-      return values;
+        value |= static_cast<std::uint64_t> (planes[static_cast<std::size_t> (b) * count + index]) << (8 * b);
+      return value;
     }
 
     double
@@ -716,18 +716,21 @@ namespace pcl_sparse
         frame.fail ("too short for " + std::to_string (m) + " patches");
     }
 
-    /// Seed and radius of patch \a p: from the byte planes \a seeds and \a radii of a quantised file,
-    /// else read from \a seed and \a radius.
+    /// Seed and radius of patch \a p of \a m: from the byte planes \a seed_planes (x, y, z one after the
+    /// other) and \a radius_planes of a quantised file, else read from \a seed and \a radius.
     void
     readPlacement (ByteReader& seed, ByteReader& radius, bool quantised, const QuantisationParameters& q,
-                   const std::vector<std::vector<std::uint64_t>>& seeds, const std::vector<std::uint64_t>& radii,
-                   std::size_t p, PatchCode& patch)
+                   const std::uint8_t* seed_planes, const std::uint8_t* radius_planes, std::size_t m, std::size_t p,
+                   PatchCode& patch)
     {
       if (quantised)
       {
+        const std::size_t axis_bytes = m * static_cast<std::size_t> (q.seed_bytes);
         for (int i = 0; i < 3; ++i)
-          patch.origin[i] = q.seed_min[i] + static_cast<double> (seeds[i][p]) * q.seed_step;
-        patch.radius = std::exp (q.log_radius_min + static_cast<double> (radii[p]) * q.log_radius_step);
+          patch.origin[i] = q.seed_min[i] + static_cast<double> (planeValue (seed_planes + i * axis_bytes, m, q.seed_bytes, p)) *
+                                              q.seed_step;
+        patch.radius = std::exp (q.log_radius_min +
+                                 static_cast<double> (planeValue (radius_planes, m, q.radius_bytes, p)) * q.log_radius_step);
         if (!patch.origin.allFinite ())
           seed.fail ("patch " + std::to_string (p) + " seed is not finite");
       }
@@ -1138,24 +1141,28 @@ namespace pcl_sparse
     ByteReader coef = open ();
     const bool range_coded = shared.flags & kFlagRangeCoded;
     checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, q);
-    model.patches.resize (m);
+    // Patches are added as they decode, not made for the m the header promises up front: SEED and RADI
+    // hold only a few bytes a patch, which zstd may shrink 64 times (and a range-coded patch may take less
+    // than a byte), so a 280 KB file promising 4 million patches had the reader take 1.1 GB (285 bytes a
+    // patch and 32 of unpacked seed and radius integers) before its first patch failed to decode.
+    model.patches.reserve (std::min<std::size_t> (m, 4096));
     // Range-coded: one decoder per section over all its bytes (the ByteReaders are then at their end).
     std::optional<RangeCodedPatchSections> coded;
     if (range_coded)
       coded.emplace (frame, foot, atom, coef, q.extent_bits, shared.basis_parameter);
 
-    std::vector<std::vector<std::uint64_t>> seeds;
-    std::vector<std::uint64_t> radii;
+    const std::uint8_t* seed_planes = nullptr;
+    const std::uint8_t* radius_planes = nullptr;
     if (quantised)
     {
-      for (int i = 0; i < 3; ++i)
-        seeds.push_back (getPlanes (seed, m, q.seed_bytes, "seed"));
-      radii = getPlanes (radius, m, q.radius_bytes, "radius");
+      seed_planes = seed.getBytes (3 * m * static_cast<std::size_t> (q.seed_bytes), "seed");
+      radius_planes = radius.getBytes (m * static_cast<std::size_t> (q.radius_bytes), "radius");
     }
     for (std::size_t p = 0; p < m; ++p)
     {
-      PatchCode& patch = model.patches[p];
-      readPlacement (seed, radius, quantised, q, seeds, radii, p, patch);
+      model.patches.emplace_back ();
+      PatchCode& patch = model.patches.back ();
+      readPlacement (seed, radius, quantised, q, seed_planes, radius_planes, m, p, patch);
       if (coded)
       {
         coded->readPatch (q, p, patch);
