@@ -429,7 +429,11 @@ TEST (IoBadInput, PcdDataThatLooksLikeAHeaderLine)
   expectScanRefused (ascii_path, "its data starts like a header line");
   writeBytes (ascii_path, header + "DATA ascii\nFIELDS\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n");  // a keyword alone on its line
   expectScanRefused (ascii_path, "its data starts like a header line");
+  // PCL reads the data from the line after DATA: a comment there is taken for a point (its words read as 0),
+  // and the last point is dropped; refused (this file loaded as (0, 0, 0) (0, 0, 0) (1, 0, 0) (0, 1, 0)).
   writeBytes (ascii_path, header + "DATA ascii\n\n# a comment\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n");
+  expectScanRefused (ascii_path, "a comment on line 2 of the PCD data");
+  writeBytes (ascii_path, header + "DATA ascii\n\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n");
   ASSERT_NO_THROW (loadScanCloud (ascii_path, scan, keep_all));
   EXPECT_EQ (scan.positions.size (), 4u);
 }
@@ -480,6 +484,182 @@ TEST (IoBadInput, BinaryCompressedSizesMustHoldThePoints)
   more.replace (points, 11, "POINTS 150\n");
   more.replace (width, 10, "WIDTH 150\n");
   expectBothRefused ("more_points.pcd", more, "bad binary_compressed PCD data");
+}
+
+TEST (IoBadInput, BinaryCompressedSizeLargerThanThePointsIsRefused)
+{
+  // PCL's reader resizes the cloud to the stored uncompressed size and allocates as much again before
+  // LZF finds the data too short: 0xffffffff in a 116-byte file made every tool zero-fill 8 GiB (20 s)
+  // before refusing it (found by bench/fuzz.sh inputs). PCL writes exactly WIDTH x HEIGHT points.
+  TempDir dir;
+  const std::string header = "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\n"
+                             "POINTS 1\nDATA binary_compressed\n";
+  const auto withSizes = [&] (std::uint32_t compressed, std::uint32_t uncompressed, const std::string& data) {
+    std::string bytes = header;
+    put (bytes, compressed);
+    put (bytes, uncompressed);
+    return bytes + data;
+  };
+  // One point as an LZF literal run (control byte 11: 12 bytes follow).
+  const std::string point = std::string (1, '\x0b') + std::string (12, '\0');
+  const std::string good = dir.file ("good.pcd");
+  writeBytes (good, withSizes (13, 12, point));
+  ScanCloud scan;
+  ASSERT_NO_THROW (loadScanCloud (good, scan));
+  EXPECT_EQ (scan.report.input_points, 1u);
+  pcl::PointCloud<pcl::PointXYZ> loaded;
+  for (const std::uint32_t uncompressed : {13u, 64u << 20})
+  {
+    const std::string path = dir.file ("large_" + std::to_string (uncompressed) + ".pcd");
+    writeBytes (path, withSizes (13, uncompressed, point));
+    expectScanRefused (path, "bad binary_compressed PCD data");
+    EXPECT_THROW (loadPointCloud (path, loaded), Error);
+  }
+}
+
+TEST (IoBadInput, PcdHeaderWithABlankLine)
+{
+  // PCL's header reader skips empty lines only: a line of blanks (a space, the "\r" of a CRLF line, a form
+  // feed) ends the header there. Before the fields, every tool then crashed in pcl::PCDReader::read (found
+  // by bench/fuzz.sh inputs); further down, the file loaded with PCL's half of the header or had no points.
+  TempDir dir;
+  const std::vector<std::string> lines = {"VERSION .7", "FIELDS x y z", "SIZE 4 4 4", "TYPE F F F", "COUNT 1 1 1",
+                                          "WIDTH 1",    "HEIGHT 1",     "POINTS 1",   "DATA ascii"};
+  pcl::PointCloud<pcl::PointXYZ> loaded;
+  for (const std::string blank : {" ", "\r", "\f", "\t \v"})
+    for (std::size_t at : {0, 3, 8})
+    {
+      std::string bytes;
+      for (std::size_t i = 0; i < lines.size (); ++i)
+        bytes += (i == at ? blank + "\n" : std::string ()) + lines[i] + "\n";
+      const std::string path = dir.file ("blank_" + std::to_string (at) + "_" + std::to_string (blank.size ()) +
+                                         std::to_string (int (blank[0])) + ".pcd");
+      writeBytes (path, bytes + "1 2 3\n");
+      expectScanRefused (path, "a blank line in its header");
+      EXPECT_THROW (loadPointCloud (path, loaded), Error);
+    }
+  // Empty lines are fine for both.
+  std::string bytes = "\n";
+  for (const std::string& line : lines)
+    bytes += line + "\n\n";
+  writeBytes (dir.file ("empty_lines.pcd"), bytes + "1 2 3\n");
+  ScanCloud scan;
+  ASSERT_NO_THROW (loadScanCloud (dir.file ("empty_lines.pcd"), scan));
+  EXPECT_EQ (scan.report.input_points, 1u);
+}
+
+TEST (IoBadInput, PcdWidthAndHeightBeyond32Bits)
+{
+  // WIDTH and HEIGHT were taken up to 2^32 each and multiplied in a long long: 2^32 x 2^32 overflowed
+  // (undefined behaviour; it came out 0 points) and WIDTH 2^32 became 0 in the 32-bit cloud.
+  TempDir dir;
+  const auto pcd = [] (const std::string& width, const std::string& height, const std::string& data) {
+    return "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " + width + "\nHEIGHT " + height +
+           "\nDATA " + data + "\n" + std::string (12, '\0');
+  };
+  for (const char* data : {"binary", "ascii", "binary_compressed"})
+  {
+    const std::string kind = data;
+    writeBytes (dir.file (kind + "_square.pcd"), pcd ("4294967296", "4294967296", kind));
+    expectScanRefused (dir.file (kind + "_square.pcd"), "bad PCD header value '4294967296'");
+    writeBytes (dir.file (kind + "_zero.pcd"), pcd ("4294967296", "0", kind));
+    expectScanRefused (dir.file (kind + "_zero.pcd"), "bad PCD header value '4294967296'");
+    writeBytes (dir.file (kind + "_product.pcd"), pcd ("4294967295", "4294967295", kind));
+    expectScanRefused (dir.file (kind + "_product.pcd"), "WIDTH x HEIGHT = 4294967295 x 4294967295 points");
+  }
+}
+
+TEST (IoBadInput, PcdAsciiLinesThatPclWouldSkip)
+{
+  // PCL's reader skips, without a word, every data line that has not one value per field, and still returns
+  // the points the header announced: the missing ones zeros. It also splits a line into strings before
+  // counting them (a 100 MB line took 3.3 GB) and reads a value it cannot parse as 0.
+  TempDir dir;
+  const std::string header = "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\n"
+                             "POINTS 2\nDATA ascii\n";
+  pcl::PointCloud<pcl::PointXYZ> loaded;
+  const auto expectBothRefused = [&] (const std::string& name, const std::string& data, const std::string& problem) {
+    const std::string path = dir.file (name);
+    writeBytes (path, header + data);
+    expectScanRefused (path, problem);
+    EXPECT_THROW (loadPointCloud (path, loaded), Error);
+  };
+  expectBothRefused ("four.pcd", "5 6 7\n1 2 3 4\n", "more than 3 values on line 2 of the PCD data");
+  expectBothRefused ("two.pcd", "5 6 7\n1 2\n", "2 values on line 2 of the PCD data, its fields need 3");
+  expectBothRefused ("blank.pcd", "5 6 7\n\r\n1 1 1\n", "0 values on line 2");
+  expectBothRefused ("word.pcd", "5 6 7\n1 x 1\n", "bad value 'x' on line 2");
+  expectBothRefused ("digits.pcd", "5 6 7\n1 1 " + std::string (1000, '1') + "\n", "bad value '1111");
+  std::string long_line = "5 6 7\n";
+  for (int i = 0; i < 500000; ++i)
+    long_line += "1 ";
+  expectBothRefused ("long_line.pcd", long_line + "\n", "more than 3 values on line 2");
+  expectBothRefused ("one_missing.pcd", "5 6 7\n", "the file ends after 1 of 2 points");
+  expectBothRefused ("cut.pcd", "5 6 7\n1 1", "the file ends after 1 of 2 points");
+  // What PCL reads as it should: runs of blanks, CRLF, empty lines, nan, no final newline, lines after the points.
+  for (const std::string data : {"5 6 7\n1 1 1", " 5\t6  7 \r\n\n1 1 1\r\n", "5 6 7\nnan NaN 1\n", "5 6 7\n1 1 1\nmore\n"})
+  {
+    SCOPED_TRACE (data);
+    writeBytes (dir.file ("good.pcd"), header + data);
+    ScanCloud scan;
+    ScanLoadOptions keep_all;
+    keep_all.clean = false;
+    ASSERT_NO_THROW (loadScanCloud (dir.file ("good.pcd"), scan, keep_all));
+    EXPECT_EQ (scan.report.input_points, 2u);
+    EXPECT_EQ (scan.positions.size (), 2u);
+  }
+}
+
+namespace
+{
+  /// Peak resident memory of this process in kB (VmHWM), after \a reset starts it again from the current one;
+  /// -1 where /proc cannot do it.
+  long
+  peakResidentKb (bool reset)
+  {
+    if (reset && !(std::ofstream ("/proc/self/clear_refs") << "5" << std::flush))
+      return -1;
+    std::ifstream status ("/proc/self/status");
+    for (std::string line; std::getline (status, line);)
+      if (line.rfind ("VmHWM:", 0) == 0)
+        return std::stol (line.substr (6));
+    return -1;
+  }
+} // namespace
+
+TEST (IoBadInput, PlyHeaderLineOfManyWords)
+{
+  // Every PLY header line was split into all its words before it was looked at: a 100 MB line of 50 million
+  // words took 2.2 GB (and 4 s) before "bad PLY element line". No header line needs more than 5.
+  TempDir dir;
+  std::string line = "element vertex";
+  for (int i = 0; i < 5000000; ++i)
+    line += " 1";
+  const std::string path = dir.file ("words.ply");
+  writeBytes (path, "ply\nformat ascii 1.0\n" + line + "\nproperty float x\nproperty float y\nproperty float z\n"
+                    "end_header\n0 0 0\n");
+  line = std::string ();
+  if (peakResidentKb (true) < 0)
+    GTEST_SKIP () << "no /proc/self/clear_refs to measure the peak";
+  const long before = peakResidentKb (false);
+  expectRefused (path, "bad PLY element line");
+  expectScanRefused (path, "bad PLY element line");
+  EXPECT_LT (peakResidentKb (false) - before, 64 * 1024) << "kB, for a file of 10 MB";
+}
+
+TEST (IoBadInput, PlyRangeGridOfMoreThan32BitsOfCells)
+{
+  // obj_info num_cols and num_rows may each be up to 2^32 - 1; their product was taken in a long long,
+  // which overflowed (undefined behaviour, UBSan: signed integer overflow) for 4294967295 x 4294967295.
+  TempDir dir;
+  std::string ply = "ply\nformat binary_little_endian 1.0\nobj_info num_cols 4294967295\nobj_info num_rows 4294967295\n"
+                    "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element range_grid 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int k = 0; k < 3; ++k)
+    put (ply, 1.0f);
+  put (ply, std::uint8_t (1));
+  put (ply, std::int32_t (0));
+  writeBytes (dir.file ("grid.ply"), ply);
+  expectScanRefused (dir.file ("grid.ply"), "more than 2^32 - 1");
 }
 
 TEST (IoBadInput, PointCloudsAreRefusedTheSameWay)

@@ -56,6 +56,12 @@ namespace pcl_sparse
     PcdHeader
     readPcdHeader (const std::string& path);
 
+    /// Checks the lines of DATA ascii (\a header from readPcdHeader) before PCL's ascii parser reads them: one
+    /// number per field and element on each non-empty line, up to WIDTH x HEIGHT points (PCL skips other lines
+    /// in silence and gives zeros for the points it did not find).
+    void
+    checkPcdAsciiData (const std::string& path, const PcdHeader& header);
+
     /// A PCD file as PCL's reader gives it, after checkReadableFile and readPcdHeader: the raw blob (any
     /// field types) and the VIEWPOINT pose.
     struct PcdBlob

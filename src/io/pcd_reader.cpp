@@ -10,6 +10,7 @@
 #include <cctype>
 #include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -63,6 +64,10 @@ namespace pcl_sparse
         const std::size_t nl = head.find ('\n', position);
         if (nl == std::string::npos)
           throw Error (path + ": not a PCD file (no complete header with a DATA line)");
+        // PCL's reader skips only empty lines: a line of blanks (" ", the "\r" of CRLF) ends its header there,
+        // without fields, and it then crashed on the data (found by bench/fuzz.sh inputs).
+        if (nl > position && head.find_first_not_of (" \t\r\v\f", position) >= nl)
+          throw Error (path + ": not a readable PCD file (a blank line in its header, where PCL's reader ends it)");
         std::istringstream line (head.substr (position, nl - position));
         position = nl + 1;
         std::string keyword;
@@ -119,7 +124,12 @@ namespace pcl_sparse
           throw Error (path + ": the PCD file has no x, y, z fields");
       if (header["WIDTH"].size () != 1 || header["HEIGHT"].size () != 1)
         throw Error (path + ": bad PCD header (WIDTH/HEIGHT)");
-      const long long points = number (header["WIDTH"][0], 1ll << 32) * number (header["HEIGHT"][0], 1ll << 32);
+      // 32 bits each in PCL's cloud (2^32 was taken as 0); their product overflowed (2^32 x 2^32 gave 0 points).
+      const long long width = number (header["WIDTH"][0], 0xffffffffll), height = number (header["HEIGHT"][0], 0xffffffffll);
+      if (width > 0 && height > (1ll << 62) / width)
+        throw Error (path + ": bad PCD header (WIDTH x HEIGHT = " + std::to_string (width) + " x " +
+                     std::to_string (height) + " points)");
+      const long long points = width * height;
       if (header.count ("POINTS") && (header["POINTS"].size () != 1 || number (header["POINTS"][0], 1ll << 62) != points))
         throw Error (path + ": bad PCD header (POINTS is not WIDTH * HEIGHT)");
       const long long remaining = file_size - static_cast<long long> (position);
@@ -142,8 +152,8 @@ namespace pcl_sparse
       else
         throw Error (path + ": unknown PCD DATA kind '" + data_kind.substr (0, 20) + "'");
 
-      result.layout.width = static_cast<std::uint32_t> (number (header["WIDTH"][0], 1ll << 32));
-      result.layout.height = static_cast<std::uint32_t> (number (header["HEIGHT"][0], 1ll << 32));
+      result.layout.width = static_cast<std::uint32_t> (width);
+      result.layout.height = static_cast<std::uint32_t> (height);
       result.layout.point_step = static_cast<std::uint32_t> (point_size);
       result.layout.row_step = result.layout.point_step * result.layout.width;
       result.data_kind = data_kind;
@@ -223,10 +233,84 @@ namespace pcl_sparse
         blob.sensor_origin = header.sensor_origin;
         blob.sensor_orientation = header.sensor_orientation;
       }
+      /// The lines of DATA ascii, checked before PCL's reader sees them: it skips (silently) every non-empty
+      /// line without exactly one value per field and element, yet returns as many points as the header
+      /// announced, the missing ones zeros (WIDTH 2 and the lines "5 6 7", "1 2 3 4" gave (5, 6, 7) and
+      /// (0, 0, 0)); it splits each line into strings first (one 100 MB line took 3.3 GB); a value it cannot
+      /// read becomes 0. Its values are separated by runs of ' ', '\t', '\r'; it stops after WIDTH x HEIGHT
+      /// points, and so do we.
+      void
+      checkAsciiData (const std::string& path, const PcdHeader& header)
+      {
+        long long values_per_point = 0;
+        for (const pcl::PCLPointField& field : header.layout.fields)
+          values_per_point += field.count;
+        const long long points = static_cast<long long> (header.layout.width) * header.layout.height;
+        long long read = 0, line = 1, values = 0, length = 0;
+        std::string token;
+        bool too_long = false;
+        const auto where = [&] () { return " on line " + std::to_string (line) + " of the PCD data"; };
+        const auto endValue = [&] () {
+          if (token.empty ())
+            return;
+          char* end = nullptr;
+          std::strtod (token.c_str (), &end);
+          if (token[0] == '#')
+            throw Error (path + ": a comment" + where () + " (PCL's reader takes it for a point)");
+          if (too_long || end != token.c_str () + token.size ())
+            throw Error (path + ": bad value '" + token.substr (0, 20) + (too_long ? "...'" : "'") + where ());
+          if (++values > values_per_point)
+            throw Error (path + ": more than " + std::to_string (values_per_point) + " values" + where ());
+          token.clear ();
+        };
+        const auto endLine = [&] () {
+          endValue ();
+          if (length > 0 && values != values_per_point)
+            throw Error (path + ": " + std::to_string (values) + " values" + where () + ", its fields need " +
+                         std::to_string (values_per_point));
+          read += length > 0;
+          ++line;
+          values = length = 0;
+        };
+        std::ifstream in (path, std::ios::binary);
+        in.seekg (static_cast<std::streamoff> (header.data_offset));
+        char buffer[65536];
+        while (read < points && in)
+        {
+          in.read (buffer, sizeof buffer);
+          const std::streamsize got = in.gcount ();
+          for (std::streamsize i = 0; i < got && read < points; ++i)
+          {
+            const char c = buffer[i];
+            if (c == '\n')
+              endLine ();
+            else
+            {
+              ++length;
+              if (c == ' ' || c == '\t' || c == '\r')
+                endValue ();
+              else if (token.size () < 64)  // longer than any number
+                token += c;
+              else
+                too_long = true;
+            }
+          }
+        }
+        if (read < points && length > 0)  // the last line needs no newline, but all its values
+        {
+          endValue ();
+          read += values == values_per_point;
+        }
+        if (read < points)
+          throw Error (path + ": truncated or bad ascii PCD data (the file ends after " + std::to_string (read) + " of " +
+                       std::to_string (points) + " points)");
+      }
+
       /// The two sizes that open binary_compressed data, checked before PCL's reader sees them: it takes
       /// them on trust, resizes the cloud to the stored uncompressed size and then copies WIDTH x HEIGHT
       /// points into it, so a smaller size (0, or a header announcing more points than were compressed)
-      /// read and wrote past its buffers (sizes of 0 crashed every tool).
+      /// read and wrote past its buffers (sizes of 0 crashed every tool); a larger size made it allocate that
+      /// much twice.
       void
       checkCompressedSizes (const std::string& path, const PcdHeader& header)
       {
@@ -243,12 +327,22 @@ namespace pcl_sparse
                        std::to_string (left) + " left)");
         const long long points = static_cast<long long> (header.layout.width) * header.layout.height;
         const long long point_size = header.layout.point_step;
-        if (point_size > 0 && points > uncompressed / point_size)  // uncompressed < points * point_size
+        // PCL writes exactly WIDTH x HEIGHT points; its reader resizes the cloud to the stored size and
+        // allocates as much again before decompressing, so a larger size (up to 4 GiB from a 100-byte file)
+        // made it zero-fill 8 GiB before LZF found the data too short (found by bench/fuzz.sh inputs).
+        if ((point_size > 0 && points > uncompressed / point_size) ||  // uncompressed < points * point_size
+            uncompressed != points * point_size)
           throw Error (path + ": bad binary_compressed PCD data (" + std::to_string (uncompressed) +
                        " bytes uncompressed, but " + std::to_string (points) + " points of " +
                        std::to_string (point_size) + " bytes announced)");
       }
     } // namespace
+
+    void
+    checkPcdAsciiData (const std::string& path, const PcdHeader& header)
+    {
+      checkAsciiData (path, header);
+    }
 
     void
     readPcdBlob (const std::string& path, PcdBlob& blob)
@@ -264,6 +358,8 @@ namespace pcl_sparse
         throw Error (path + ": not a readable PCD file (its data starts like a header line)");
       if (header.data_kind == "binary_compressed")
         checkCompressedSizes (path, header);
+      else
+        checkAsciiData (path, header);
       QuietPclConsole quiet;
       pcl::PCDReader reader;
       int version = 0;

@@ -219,6 +219,8 @@ namespace pcl_sparse
       {
         io_detail::checkReadableFile (path);
         io_detail::PcdHeader header = io_detail::readPcdHeader (path);
+        if (header.data_kind == "ascii")
+          io_detail::checkPcdAsciiData (path, header);  // as loadScanCloud: PCL's parser below trusts the lines
         if (header.data_kind != "binary_compressed")
           return std::make_unique<PcdStream> (path, header);
       }
