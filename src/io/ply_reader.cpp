@@ -155,13 +155,14 @@ namespace pcl_sparse
         return 0.0;
       }
 
-      /// Splits a header line into words.
+      /// Splits a header line into words, at most \a max_words of them (no header line needs more than 5: a
+      /// 100 MB line of 50 million words took 2.2 GB as strings before it was refused).
       std::vector<std::string>
-      splitWords (const char* begin, const char* end)
+      splitWords (const char* begin, const char* end, std::size_t max_words)
       {
         std::vector<std::string> words;
         const char* p = begin;
-        while (p < end)
+        while (p < end && words.size () < max_words)
         {
           while (p < end && TextCursor::isBlank (*p))
             ++p;
@@ -199,7 +200,7 @@ namespace pcl_sparse
           if (!nl)
             throw Error (path + ": truncated PLY header (no end_header)");
           ++line;
-          const std::vector<std::string> words = splitWords (p, nl);
+          const std::vector<std::string> words = splitWords (p, nl, 6);
           p = nl + 1;
           if (line == 1 || words.empty () || words[0] == "comment")
             continue;
@@ -719,6 +720,10 @@ namespace pcl_sparse
         }
       if (columns < 0 || rows < 0)
         throw Error (path + ": PLY range_grid without obj_info num_cols and num_rows");
+      // Each may be up to 2^32 - 1: their product overflowed a long long (undefined behaviour).
+      if (columns > std::numeric_limits<std::uint32_t>::max () / rows)
+        throw Error (path + ": PLY range_grid of num_cols x num_rows = " + std::to_string (columns) + " x " +
+                     std::to_string (rows) + " cells, more than 2^32 - 1");
       if (static_cast<long long> (points.range_grid.size ()) != columns * rows)
         throw Error (path + ": PLY range_grid has " + std::to_string (points.range_grid.size ()) + " cells, not num_cols x num_rows = " +
                      std::to_string (columns) + " x " + std::to_string (rows));
