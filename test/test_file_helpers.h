@@ -128,4 +128,18 @@ namespace pcl_sparse_test
     ::waitpid (pid, &run.status, 0);
     return run;
   }
+
+  /// Peak resident memory of this process in kB (VmHWM), after \a reset starts it again from the current one;
+  /// -1 where /proc cannot do it.
+  inline long
+  peakResidentKb (bool reset)
+  {
+    if (reset && !(std::ofstream ("/proc/self/clear_refs") << "5" << std::flush))
+      return -1;
+    std::ifstream status ("/proc/self/status");
+    for (std::string line; std::getline (status, line);)
+      if (line.rfind ("VmHWM:", 0) == 0)
+        return std::stol (line.substr (6));
+    return -1;
+  }
 } // namespace pcl_sparse_test

@@ -1,5 +1,6 @@
 /// Round trips and bad files for the .psm model file format (src/format).
 
+#include "test_file_helpers.h"
 #include "test_format_models.h"
 
 #include <pcl_sparse/coding/dct_cosine_dictionary.h>
@@ -19,6 +20,7 @@
 #include <iostream>
 
 using namespace pcl_sparse;
+using namespace pcl_sparse_test;
 
 namespace
 {
@@ -387,23 +389,6 @@ TEST (ModelFile, RangeCodedAndVarintLayoutsDecodeToTheSameModel)
                return o;
              }()));
 }
-
-namespace
-{
-  /// Peak resident memory of this process in kB (VmHWM), after \a reset starts it again from the current one;
-  /// -1 where /proc cannot do it.
-  long
-  peakResidentKb (bool reset)
-  {
-    if (reset && !(std::ofstream ("/proc/self/clear_refs") << "5" << std::flush))
-      return -1;
-    std::ifstream status ("/proc/self/status");
-    for (std::string line; std::getline (status, line);)
-      if (line.rfind ("VmHWM:", 0) == 0)
-        return std::stol (line.substr (6));
-    return -1;
-  }
-} // namespace
 
 TEST (ModelFile, PatchesPromisedByTheSeedsAreNotAllocatedBeforeTheyDecode)
 {

@@ -609,23 +609,6 @@ TEST (IoBadInput, PcdAsciiLinesThatPclWouldSkip)
   }
 }
 
-namespace
-{
-  /// Peak resident memory of this process in kB (VmHWM), after \a reset starts it again from the current one;
-  /// -1 where /proc cannot do it.
-  long
-  peakResidentKb (bool reset)
-  {
-    if (reset && !(std::ofstream ("/proc/self/clear_refs") << "5" << std::flush))
-      return -1;
-    std::ifstream status ("/proc/self/status");
-    for (std::string line; std::getline (status, line);)
-      if (line.rfind ("VmHWM:", 0) == 0)
-        return std::stol (line.substr (6));
-    return -1;
-  }
-} // namespace
-
 TEST (IoBadInput, PlyHeaderLineOfManyWords)
 {
   // Every PLY header line was split into all its words before it was looked at: a 100 MB line of 50 million
