@@ -233,79 +233,6 @@ namespace pcl_sparse
         blob.sensor_origin = header.sensor_origin;
         blob.sensor_orientation = header.sensor_orientation;
       }
-      /// The lines of DATA ascii, checked before PCL's reader sees them: it skips (silently) every non-empty
-      /// line without exactly one value per field and element, yet returns as many points as the header
-      /// announced, the missing ones zeros (WIDTH 2 and the lines "5 6 7", "1 2 3 4" gave (5, 6, 7) and
-      /// (0, 0, 0)); it splits each line into strings first (one 100 MB line took 3.3 GB); a value it cannot
-      /// read becomes 0. Its values are separated by runs of ' ', '\t', '\r'; it stops after WIDTH x HEIGHT
-      /// points, and so do we.
-      void
-      checkAsciiData (const std::string& path, const PcdHeader& header)
-      {
-        long long values_per_point = 0;
-        for (const pcl::PCLPointField& field : header.layout.fields)
-          values_per_point += field.count;
-        const long long points = static_cast<long long> (header.layout.width) * header.layout.height;
-        long long read = 0, line = 1, values = 0, length = 0;
-        std::string token;
-        bool too_long = false;
-        const auto where = [&] () { return " on line " + std::to_string (line) + " of the PCD data"; };
-        const auto endValue = [&] () {
-          if (token.empty ())
-            return;
-          char* end = nullptr;
-          std::strtod (token.c_str (), &end);
-          if (token[0] == '#')
-            throw Error (path + ": a comment" + where () + " (PCL's reader takes it for a point)");
-          if (too_long || end != token.c_str () + token.size ())
-            throw Error (path + ": bad value '" + token.substr (0, 20) + (too_long ? "...'" : "'") + where ());
-          if (++values > values_per_point)
-            throw Error (path + ": more than " + std::to_string (values_per_point) + " values" + where ());
-          token.clear ();
-        };
-        const auto endLine = [&] () {
-          endValue ();
-          if (length > 0 && values != values_per_point)
-            throw Error (path + ": " + std::to_string (values) + " values" + where () + ", its fields need " +
-                         std::to_string (values_per_point));
-          read += length > 0;
-          ++line;
-          values = length = 0;
-        };
-        std::ifstream in (path, std::ios::binary);
-        in.seekg (static_cast<std::streamoff> (header.data_offset));
-        char buffer[65536];
-        while (read < points && in)
-        {
-          in.read (buffer, sizeof buffer);
-          const std::streamsize got = in.gcount ();
-          for (std::streamsize i = 0; i < got && read < points; ++i)
-          {
-            const char c = buffer[i];
-            if (c == '\n')
-              endLine ();
-            else
-            {
-              ++length;
-              if (c == ' ' || c == '\t' || c == '\r')
-                endValue ();
-              else if (token.size () < 64)  // longer than any number
-                token += c;
-              else
-                too_long = true;
-            }
-          }
-        }
-        if (read < points && length > 0)  // the last line needs no newline, but all its values
-        {
-          endValue ();
-          read += values == values_per_point;
-        }
-        if (read < points)
-          throw Error (path + ": truncated or bad ascii PCD data (the file ends after " + std::to_string (read) + " of " +
-                       std::to_string (points) + " points)");
-      }
-
       /// The two sizes that open binary_compressed data, checked before PCL's reader sees them: it takes
       /// them on trust, resizes the cloud to the stored uncompressed size and then copies WIDTH x HEIGHT
       /// points into it, so a smaller size (0, or a header announcing more points than were compressed)
@@ -338,10 +265,77 @@ namespace pcl_sparse
       }
     } // namespace
 
+    /// The lines of DATA ascii, checked before PCL's reader sees them: it skips (silently) every non-empty
+    /// line without exactly one value per field and element, yet returns as many points as the header
+    /// announced, the missing ones zeros (WIDTH 2 and the lines "5 6 7", "1 2 3 4" gave (5, 6, 7) and
+    /// (0, 0, 0)); it splits each line into strings first (one 100 MB line took 3.3 GB); a value it cannot
+    /// read becomes 0. Its values are separated by runs of ' ', '\t', '\r'; it stops after WIDTH x HEIGHT
+    /// points, and so do we.
     void
     checkPcdAsciiData (const std::string& path, const PcdHeader& header)
     {
-      checkAsciiData (path, header);
+      long long values_per_point = 0;
+      for (const pcl::PCLPointField& field : header.layout.fields)
+        values_per_point += field.count;
+      const long long points = static_cast<long long> (header.layout.width) * header.layout.height;
+      long long read = 0, line = 1, values = 0, length = 0;
+      std::string token;
+      bool too_long = false;
+      const auto where = [&] () { return " on line " + std::to_string (line) + " of the PCD data"; };
+      const auto endValue = [&] () {
+        if (token.empty ())
+          return;
+        char* end = nullptr;
+        std::strtod (token.c_str (), &end);
+        if (token[0] == '#')
+          throw Error (path + ": a comment" + where () + " (PCL's reader takes it for a point)");
+        if (too_long || end != token.c_str () + token.size ())
+          throw Error (path + ": bad value '" + token.substr (0, 20) + (too_long ? "...'" : "'") + where ());
+        if (++values > values_per_point)
+          throw Error (path + ": more than " + std::to_string (values_per_point) + " values" + where ());
+        token.clear ();
+      };
+      const auto endLine = [&] () {
+        endValue ();
+        if (length > 0 && values != values_per_point)
+          throw Error (path + ": " + std::to_string (values) + " values" + where () + ", its fields need " +
+                       std::to_string (values_per_point));
+        read += length > 0;
+        ++line;
+        values = length = 0;
+      };
+      std::ifstream in (path, std::ios::binary);
+      in.seekg (static_cast<std::streamoff> (header.data_offset));
+      char buffer[65536];
+      while (read < points && in)
+      {
+        in.read (buffer, sizeof buffer);
+        const std::streamsize got = in.gcount ();
+        for (std::streamsize i = 0; i < got && read < points; ++i)
+        {
+          const char c = buffer[i];
+          if (c == '\n')
+            endLine ();
+          else
+          {
+            ++length;
+            if (c == ' ' || c == '\t' || c == '\r')
+              endValue ();
+            else if (token.size () < 64)  // longer than any number
+              token += c;
+            else
+              too_long = true;
+          }
+        }
+      }
+      if (read < points && length > 0)  // the last line needs no newline, but all its values
+      {
+        endValue ();
+        read += values == values_per_point;
+      }
+      if (read < points)
+        throw Error (path + ": truncated or bad ascii PCD data (the file ends after " + std::to_string (read) + " of " +
+                     std::to_string (points) + " points)");
     }
 
     void
@@ -359,7 +353,7 @@ namespace pcl_sparse
       if (header.data_kind == "binary_compressed")
         checkCompressedSizes (path, header);
       else
-        checkAsciiData (path, header);
+        checkPcdAsciiData (path, header);
       QuietPclConsole quiet;
       pcl::PCDReader reader;
       int version = 0;
