@@ -6,6 +6,7 @@
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/io/scan_io.h>
+#include <pcl_sparse/io/scan_stream.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
 #include <pcl/io/pcd_io.h>
@@ -583,6 +584,20 @@ TEST (IoBadInput, PcdAsciiLinesThatPclWouldSkip)
     writeBytes (path, header + data);
     expectScanRefused (path, problem);
     EXPECT_THROW (loadPointCloud (path, loaded), Error);
+    // Streamed (the spilled path): opening reads the header alone (the tools' -memory probe asks only the
+    // size), and the first read refuses the data before PCL's parser sees it.
+    ScanStreamReader stream (path);
+    EXPECT_EQ (stream.size (), 2u);
+    ScanCloud chunk;
+    try
+    {
+      stream.read (chunk, 1000);
+      ADD_FAILURE () << "streamed without error";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find (problem), std::string::npos) << e.what ();
+    }
   };
   expectBothRefused ("four.pcd", "5 6 7\n1 2 3 4\n", "more than 3 values on line 2 of the PCD data");
   expectBothRefused ("two.pcd", "5 6 7\n1 2\n", "2 values on line 2 of the PCD data, its fields need 3");

@@ -98,6 +98,12 @@ namespace pcl_sparse
         }
         else
         {
+          // As loadScanCloud, the lines are checked once before PCL's parser trusts them; on the first read,
+          // not at opening, so that a reader made only for its size (the tools' -memory probe) reads the
+          // header alone.
+          if (!ascii_checked_)
+            io_detail::checkPcdAsciiData (path_, header_);
+          ascii_checked_ = true;
           // PCL's own ascii parser, n lines at a time: the values are those of a whole-file read.
           io_detail::QuietPclConsole quiet;
           pcl::PCDReader reader;
@@ -117,6 +123,7 @@ namespace pcl_sparse
       std::string path_;
       io_detail::PcdHeader header_;
       std::ifstream file_;
+      bool ascii_checked_ = false;
     };
 
     /// Binary PLY whose vertex records come first: a chunk of records at a time.
@@ -219,8 +226,6 @@ namespace pcl_sparse
       {
         io_detail::checkReadableFile (path);
         io_detail::PcdHeader header = io_detail::readPcdHeader (path);
-        if (header.data_kind == "ascii")
-          io_detail::checkPcdAsciiData (path, header);  // as loadScanCloud: PCL's parser below trusts the lines
         if (header.data_kind != "binary_compressed")
           return std::make_unique<PcdStream> (path, header);
       }
