@@ -18,6 +18,7 @@
 #include <pcl_sparse/common/color_map.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/tiled_model_file.h>
@@ -34,7 +35,6 @@
 #include <cstdio>
 #include <cstdint>
 #include <string>
-#include <thread>
 #include <vector>
 
 using namespace pcl_sparse;
@@ -172,7 +172,7 @@ main (int argc, char** argv)
     if (tiled && has_viewpoint)
       throw Error ("option -viewpoint is not supported with tiling yet");
     if (tiled && !args.has ("-tiles"))  // tiles sized for the budget, so many side by side at most
-      threads = std::min (threads > 0 ? threads : static_cast<int> (std::max (1u, std::thread::hardware_concurrency ())), tools::kBudgetTilesAtOnce);
+      threads = std::min (resolveThreadCount (threads), tools::kBudgetTilesAtOnce);
     if (!tiled && group.rank () != 0)
       return 0;  // an untiled encoding is rank 0's alone
     TileSource::Ptr source;

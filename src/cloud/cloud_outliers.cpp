@@ -1,4 +1,5 @@
 #include <pcl_sparse/cloud/cloud_outliers.h>
+#include <pcl_sparse/common/thread_count.h>
 
 #include <omp.h>
 
@@ -16,7 +17,7 @@ namespace pcl_sparse
     std::vector<std::uint8_t> outlier (positions.size (), 0);
     const std::ptrdiff_t count = only ? static_cast<std::ptrdiff_t> (only->size ())
                                       : static_cast<std::ptrdiff_t> (positions.size ());
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
     for (std::ptrdiff_t m = 0; m < count; ++m)
     {

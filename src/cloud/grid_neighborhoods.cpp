@@ -1,4 +1,5 @@
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
+#include <pcl_sparse/common/thread_count.h>
 
 #include <omp.h>
 
@@ -9,12 +10,6 @@ namespace pcl_sparse
 {
   namespace
   {
-    int
-    threadsFor (int num_threads)
-    {
-      return num_threads > 0 ? num_threads : omp_get_max_threads ();
-    }
-
     /// Lengths of the horizontal (dx = 1) or vertical (dy = 1) edges, -1 where missing.
     std::vector<float>
     edgeLengths (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, int dx, int dy, int threads,
@@ -121,7 +116,7 @@ namespace pcl_sparse
                      const ShadowRule& shadow, int num_threads, const DepthQuantization* steps)
   {
     GridEdges edges;
-    const int threads = threadsFor (num_threads);
+    const int threads = resolveThreadCount (num_threads);
     if (steps && !steps->active ())
       steps = nullptr;
     classifyDirection (grid, positions, 1, 0, gap_factor, shadow, threads, steps, edges.horizontal_state,
@@ -156,7 +151,7 @@ namespace pcl_sparse
     hoods.spacing.assign (n, 0.0);
     std::vector<int> found (n * static_cast<std::size_t> (stride), -1);
     std::vector<int> counts (n, 0);
-    const int threads = threadsFor (num_threads);
+    const int threads = resolveThreadCount (num_threads);
     const double gap2 = gap_factor * gap_factor;
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int y = 0; y < grid.height; ++y)

@@ -1,4 +1,5 @@
 #include <pcl_sparse/cloud/grid_triangulation.h>
+#include <pcl_sparse/common/thread_count.h>
 
 #include <omp.h>
 
@@ -128,7 +129,7 @@ namespace pcl_sparse
     if (rows <= 0 || grid.width < 2)
       return {};
     std::vector<std::vector<Eigen::Vector3i>> per_row (rows);
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 8)
     for (int y = 0; y < rows; ++y)
       for (int x = 0; x + 1 < grid.width; ++x)

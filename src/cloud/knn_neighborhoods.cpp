@@ -1,4 +1,5 @@
 #include <pcl_sparse/cloud/knn_neighborhoods.h>
+#include <pcl_sparse/common/thread_count.h>
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -74,7 +75,7 @@ namespace pcl_sparse
     tree.setInputCloud (cloud);
     const int wanted = std::min<int> (k + 1, static_cast<int> (original.size ()));
 
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
 #pragma omp parallel num_threads(threads)
     {
       pcl::Indices found;
@@ -110,7 +111,7 @@ namespace pcl_sparse
   {
     const std::ptrdiff_t n = static_cast<std::ptrdiff_t> (positions.size ());
     const int k = graph.k;
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
     PointNeighborhoods hoods;
     std::vector<double> raw (n);
 #pragma omp parallel for num_threads(threads) schedule(static)

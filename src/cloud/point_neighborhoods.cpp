@@ -1,4 +1,5 @@
 #include <pcl_sparse/cloud/point_neighborhoods.h>
+#include <pcl_sparse/common/thread_count.h>
 
 #include <omp.h>
 
@@ -36,7 +37,7 @@ namespace pcl_sparse
 
     // Each point's own list merged with its reverse list: sizes first, then the lists.
     std::vector<std::vector<int>> merged (n);
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
     {

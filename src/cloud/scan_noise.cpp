@@ -1,5 +1,6 @@
 #include <pcl_sparse/cloud/scan_noise.h>
 
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/quadric_fit.h>
 
 #include <Eigen/Cholesky>
@@ -78,7 +79,7 @@ namespace pcl_sparse
     const std::size_t stride = std::max<std::size_t> (1, (n + max_samples - 1) / std::max<std::size_t> (1, max_samples));
     const std::ptrdiff_t samples = static_cast<std::ptrdiff_t> ((n + stride - 1) / stride);
     std::vector<double> residuals (samples, -1.0);
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
 #pragma omp parallel num_threads(threads)
     {
       std::vector<Eigen::Vector3d> local;

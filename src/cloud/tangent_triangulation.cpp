@@ -1,5 +1,6 @@
 #include <pcl_sparse/cloud/tangent_triangulation.h>
 
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/quadric_fit.h>
 
 #include "edge_set.h"
@@ -139,7 +140,7 @@ namespace pcl_sparse
   {
     const std::ptrdiff_t n = static_cast<std::ptrdiff_t> (positions.size ());
     std::vector<Key> proposals;
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
 #pragma omp parallel num_threads(threads)
     {
       FanScratch scratch;

@@ -1,7 +1,6 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/stage_base.h>
-
-#include <omp.h>
+#include <pcl_sparse/common/thread_count.h>
 
 #include <string>
 
@@ -24,6 +23,6 @@ namespace pcl_sparse
   int
   StageBase::threadsToUse () const
   {
-    return num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
+    return resolveThreadCount (num_threads_);
   }
 } // namespace pcl_sparse

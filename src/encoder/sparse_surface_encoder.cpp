@@ -3,6 +3,7 @@
 #include <pcl_sparse/coding/patch_samples.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/parallel_failure.h>
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/encoder/impl/sparse_surface_encoder.hpp>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -405,7 +406,7 @@ namespace pcl_sparse
     SurfaceEncoding encoding;
     const CodingContext context{mesh, meanRingEdgeLengths (mesh, topology), *basis, options.coding,
                                 attribute_input.values ? &attribute_input : nullptr,
-                                num_threads > 0 ? num_threads : omp_get_max_threads (), progress};
+                                resolveThreadCount (num_threads), progress};
 
     // Steps 2-6: patches with frames and local coordinates.
     PatchSamplingResult sampling = sampleFeatureAwarePatches (mesh, topology, options.patches, {}, {}, num_threads, progress,

@@ -1,3 +1,4 @@
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 
 #include <pcl_sparse/common/atomic_write.h>
@@ -605,7 +606,7 @@ namespace pcl_sparse
     std::vector<std::vector<std::uint8_t>> blobs (tiled.tiles.size ());
     std::vector<std::string> errors (tiled.tiles.size ());
 #ifdef _OPENMP
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
 #else
     const int threads = 1;
     (void) num_threads;

@@ -1,4 +1,5 @@
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/geodesic.h>
 
 #include <omp.h>
@@ -19,7 +20,7 @@ namespace pcl_sparse
     const int num_vertices = static_cast<int> (mesh.numVertices ());
     std::vector<double> lengths (topology.vertex_neighbors.size ());
     // The caller's thread count, not all: extra threads would spin-wait through the single-threaded rest.
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int v = 0; v < num_vertices; ++v)
       for (int i = topology.vertex_neighbor_offsets[v]; i < topology.vertex_neighbor_offsets[v + 1]; ++i)

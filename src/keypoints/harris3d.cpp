@@ -1,4 +1,5 @@
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/bounding_box.h>
@@ -157,7 +158,7 @@ namespace pcl_sparse
       std::vector<double> responses (num_vertices, kNoResponse);
       const std::vector<int> order = spatialOrder (mesh, indices);
       const std::int64_t count = static_cast<std::int64_t> (order.size ());
-      const int threads = options.num_threads > 0 ? options.num_threads : omp_get_max_threads ();
+      const int threads = resolveThreadCount (options.num_threads);
 #pragma omp parallel num_threads(threads)
       {
         ResponseScratch scratch;

@@ -1,3 +1,4 @@
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/patches/impl/feature_aware_patch_sampling.hpp>
 
 #include <pcl_sparse/common/error.h>
@@ -373,7 +374,7 @@ namespace pcl_sparse
     require (seed_vertices.empty () || seed_vertices.size () == input.vertices.size (),
              std::to_string (seed_vertices.size ()) + " seed flags for " + std::to_string (input.vertices.size ()) +
                " vertices");
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
     const int num_input = static_cast<int> (input.vertices.size ());
     PatchSamplingResult result;
 

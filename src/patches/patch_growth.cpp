@@ -1,3 +1,4 @@
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/patches/patch_growth.h>
 
 #include <pcl_sparse/common/error.h>
@@ -36,7 +37,7 @@ namespace pcl_sparse
     PatchGrowthGeometry g;
     // The caller's thread count, not all: with -threads 1 an idle second thread spin-waited in the OpenMP
     // pool through the rest of the encode (a quarter of the CPU time of a small mesh).
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
     const int num_faces = static_cast<int> (mesh.triangles.size ());
     const int num_vertices = static_cast<int> (mesh.vertices.size ());
     if (!point_normals.empty () && point_normals.size () != mesh.vertices.size ())

@@ -1,3 +1,4 @@
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/resampling/patch_ownership.h>
 
 #include <pcl_sparse/common/error.h>
@@ -71,7 +72,7 @@ namespace pcl_sparse
     : evaluator_ (evaluator), options_ (options)
   {
     options.validate ();
-    threads = threads > 0 ? threads : omp_get_max_threads ();
+    threads = resolveThreadCount (threads);
     const double slope = std::tan (std::min (options.max_slope_angle, 90.0) * M_PI / 180.0);
     max_slope_squared_ = options.max_slope_angle >= 90.0 ? std::numeric_limits<double>::infinity () : slope * slope;
     const SparseSurfaceModel& model = evaluator.model ();

@@ -1,3 +1,4 @@
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/tiles/tile_encoding.h>
 
 #include <pcl_sparse/coding/cosine_atoms.h>
@@ -183,7 +184,7 @@ namespace pcl_sparse
                int num_threads, const std::vector<std::size_t>& covered, const std::function<void (std::size_t)>& progress,
                bool keep_xy)
   {
-    const int threads = num_threads > 0 ? num_threads : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads);
     const long count = static_cast<long> (tiles.size ());
     std::vector<TileEncoding> result (tiles.size ());
     std::vector<std::string> errors (tiles.size ());
@@ -511,7 +512,7 @@ namespace pcl_sparse
     const TileGrid& grid = source_->grid ();
     tile_seconds_.assign (grid.size (), 0.0);
     statistics_ = ModelStatistics ();
-    const int threads = num_threads_ > 0 ? num_threads_ : omp_get_max_threads ();
+    const int threads = resolveThreadCount (num_threads_);
     const bool drop = measure_ && statistics_options_.drop_vertices;
     auto tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);
     WavefrontRun run (*source_, options, threads, measure_, !drop,
