@@ -8,7 +8,9 @@
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/patches/non_manifold_split.h>
+#include <pcl_sparse/geometry/quadric_fit.h>
 #include <pcl_sparse/patches/patch_checks.h>
+#include <pcl_sparse/patches/patch_frame.h>
 #include <pcl_sparse/patches/patch_growth.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 
@@ -657,6 +659,64 @@ TEST (PatchSamplingShared, VertexSetsDoNotFold)
   CloudQualityOptions quality;
   quality.probes = 1000;
   EXPECT_EQ (evaluateCloudQuality (*mesh, cloud, quality).flipped, 0u);
+}
+
+/// A bent strip of long thin triangles (two rows of vertices): across the strip the jet has only two
+/// distinct y values, so its fit is nearly singular and its normal can lie in the strip's own plane. With a
+/// drift of 1 % across, the jet's normal is 80 degrees from the strip and every triangle still projects
+/// with positive area, so it used to be the frame: blade's patch 207 (35 vertices, 89.9 degrees) coded
+/// vertex errors of 0.8 % of the diagonal. Now the jet may not make the steepest triangle steeper than
+/// the seed's plane does, beyond 72 degrees.
+TEST (PatchFrame, AJetAcrossAThinStripKeepsTheSeedsPlane)
+{
+  TriangleMesh mesh;
+  const int n = 12;
+  for (int i = 0; i < n; ++i)
+  {
+    const double x = (i - n / 2) * 0.18, x2 = x + 0.09;
+    mesh.vertices.emplace_back (x, 0.01 * x, -0.09 * x * x);
+    mesh.vertices.emplace_back (x2, 1.0 + 0.01 * x2 * x2, -0.03 * x2 * x2);
+  }
+  Patch patch;
+  for (int i = 0; i + 1 < n; ++i)
+  {
+    mesh.triangles.emplace_back (2 * i, 2 * i + 2, 2 * i + 1);
+    mesh.triangles.emplace_back (2 * i + 1, 2 * i + 2, 2 * i + 3);
+  }
+  for (int v = 0; v < 2 * n; ++v)
+    patch.vertices.push_back (v);
+  for (int f = 0; f < static_cast<int> (mesh.triangles.size ()); ++f)
+    patch.triangles.push_back (f);
+  patch.seed = n - 2;
+  patch.origin = mesh.vertices[patch.seed];
+
+  MongeJet jet;
+  const std::vector<Eigen::Vector3d> points (mesh.vertices.begin (), mesh.vertices.end ());
+  ASSERT_TRUE (fitMongeJet (points, patch.origin, Eigen::Vector3d::UnitZ (), jet));
+  ASSERT_LT (std::abs (jet.normal.z ()), std::cos (75.0 * M_PI / 180.0)) << "the case: a jet normal near the strip's plane";
+  for (int f : patch.triangles)
+    ASSERT_GT (projectedSignedArea (mesh, f, jet.normal), 0.0) << "the case: no triangle flips under the jet";
+
+  EXPECT_EQ (computePatchFrame (mesh, Eigen::Vector3d::UnitZ (), 0.18, patch), PatchFrameKind::SeedNormal);
+  EXPECT_NEAR (patch.frame.col (2).z (), 1.0, 1e-12);
+  for (const Eigen::Vector3d& local : patch.local)
+    EXPECT_LT (std::abs (local.z ()), 0.1) << "heights of a nearly flat strip";
+
+  // A well-posed jet is still the frame: a paraboloid seen from an off-centre seed, whose jet normal is
+  // not the seed normal given (+z).
+  const TriangleMesh bowl = makeHeightFieldGrid (9, 9, 1.0, 1.0, [] (double x, double y) { return 0.3 * (x * x + y * y); });
+  Patch cap;
+  for (int v = 0; v < static_cast<int> (bowl.vertices.size ()); ++v)
+    cap.vertices.push_back (v);
+  for (int f = 0; f < static_cast<int> (bowl.triangles.size ()); ++f)
+    cap.triangles.push_back (f);
+  cap.seed = 30;
+  cap.origin = bowl.vertices[cap.seed];
+  EXPECT_EQ (computePatchFrame (bowl, Eigen::Vector3d::UnitZ (), 0.1, cap), PatchFrameKind::Jet);
+  const Eigen::Vector3d& s = cap.origin;
+  const Eigen::Vector3d exact = Eigen::Vector3d (-0.6 * s.x (), -0.6 * s.y (), 1.0).normalized ();
+  EXPECT_GT (cap.frame.col (2).dot (exact), std::cos (1.0 * M_PI / 180.0));
+  EXPECT_GT (std::acos (exact.z ()), 5.0 * M_PI / 180.0) << "the seed lies off the bowl's centre";
 }
 
 // A stray triangle beside a large flat grid: the sampling loop cannot cover it (a patch needs

@@ -282,7 +282,9 @@ TEST (ResamplingMeshes, DctNormalsReachTheVertexNormalFloor)
 // the overlapping patch that sees them frontally: measured against the mesh (default options, 4 points per
 // vertex), the cloud's RMS distance is 0.76 of what 75 degrees gave, the mean normal error 0.79 of it, flipped
 // normals 97 instead of 139, and the probes within 3 spacings 99.22 % instead of 99.30 %
-// (bench/results/max_slope.md has all 25 meshes).
+// (bench/results/max_slope.md has all 25 meshes). Since jets that tilt a patch's steepest triangle past 72
+// degrees are refused as frames (patch_frame.cpp), fewer codes are steep and 75 degrees does better:
+// RMS 0.85 of it, mean normal error 0.84, flipped 81 instead of 91.
 TEST (ResamplingMeshes, SlopeBoundLeavesEdgesToTheFrontalPatch)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes/cheese-cgal.off";
@@ -317,7 +319,7 @@ TEST (ResamplingMeshes, SlopeBoundLeavesEdgesToTheFrontalPatch)
             << "), mean angle " << bounded.mean_normal_angle << " (" << loose.mean_normal_angle << "), completeness "
             << bounded.completeness << " (" << loose.completeness << "), flipped " << bounded.flipped << " ("
             << loose.flipped << ")" << std::endl;
-  EXPECT_LT (bounded.rms_distance, 0.8 * loose.rms_distance);
+  EXPECT_LT (bounded.rms_distance, 0.9 * loose.rms_distance);
   EXPECT_LT (bounded.mean_normal_angle, 0.9 * loose.mean_normal_angle);
   EXPECT_LT (bounded.flipped, loose.flipped);
   EXPECT_GE (bounded.completeness, loose.completeness - 0.002);

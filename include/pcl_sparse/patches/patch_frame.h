@@ -15,7 +15,8 @@ namespace pcl_sparse
   {
     Jet,          ///< the jet's principal directions and normal (the method)
     SeedNormal,   ///< N = the seed's vertex normal, T1 = the jet's max direction projected on its plane:
-                  ///< used when the jet normal would flip a patch triangle in projection
+                  ///< used when the jet normal would flip a patch triangle in projection, or tilt the
+                  ///< steepest one past 72 degrees and past its tilt on the seed's plane
     NormalOnly    ///< N = the seed's vertex normal, any tangent basis: fewer than 6 vertices or a
                   ///< degenerate layout (jet underdetermined)
   };
