@@ -173,23 +173,19 @@ namespace pcl_sparse
       return responses;
     }
 
-    /// Strict total order "a ranks before b": larger response first, then smaller index; NaN last.
-    struct RanksBefore
-    {
-      const std::vector<double>& responses;
-      bool
-      operator() (int a, int b) const
-      {
-        const double ra = responses[a], rb = responses[b];
-        const bool fa = !std::isnan (ra), fb = !std::isnan (rb);
-        if (fa != fb)
-          return fa;
-        if (fa && ra != rb)
-          return ra > rb;
-        return a < b;
-      }
-    };
   } // namespace
+
+  bool
+  harris3DRanksBefore (const std::vector<double>& responses, int a, int b)
+  {
+    const double ra = responses[a], rb = responses[b];
+    const bool fa = std::isfinite (ra), fb = std::isfinite (rb);
+    if (fa != fb)
+      return fa;
+    if (fa && ra != rb)
+      return ra > rb;
+    return a < b;
+  }
 
   void
   validateHarris3DOptions (const Harris3DOptions& options)
@@ -243,18 +239,17 @@ namespace pcl_sparse
     std::vector<int> order (responses.size ());
     for (std::size_t i = 0; i < order.size (); ++i)
       order[i] = static_cast<int> (i);
-    std::sort (order.begin (), order.end (), RanksBefore{responses});
+    std::sort (order.begin (), order.end (), [&responses] (int a, int b) { return harris3DRanksBefore (responses, a, b); });
     return order;
   }
 
   bool
   isHarris3DLocalMaximum (const MeshTopology& topology, const std::vector<double>& responses, int v)
   {
-    if (std::isnan (responses[v]))
+    if (!std::isfinite (responses[v]))
       return false;
-    const RanksBefore before{responses};
     for (int u : topology.neighborsOf (v))
-      if (!before (v, u))
+      if (!harris3DRanksBefore (responses, v, u))
         return false;
     return true;
   }
@@ -270,7 +265,7 @@ namespace pcl_sparse
     for (int v = 0; v < static_cast<int> (responses.size ()); ++v)
       if (isHarris3DLocalMaximum (topology, responses, v))
         maxima.push_back (v);
-    std::sort (maxima.begin (), maxima.end (), RanksBefore{responses});
+    std::sort (maxima.begin (), maxima.end (), [&responses] (int a, int b) { return harris3DRanksBefore (responses, a, b); });
 
     if (options.selection == Harris3DSelection::Fraction)
     {

@@ -22,21 +22,14 @@ namespace pcl_sparse
 {
   namespace
   {
-    /// Candidate order: \a keypoints first, then the other vertices; each part by decreasing response,
-    /// ties by increasing index, vertices without a finite response last.
+    /// Candidate order: \a keypoints first, then the other vertices; each part in the order of
+    /// orderVerticesByResponse (decreasing response, ties by increasing index, no response last).
     std::vector<int>
     candidateOrder (std::size_t num_vertices, const std::vector<double>& responses, const std::vector<int>& keypoints)
     {
-      auto before = [&] (int a, int b) {
-        const double ra = responses.empty () ? NAN : responses[a];
-        const double rb = responses.empty () ? NAN : responses[b];
-        const bool fa = std::isfinite (ra), fb = std::isfinite (rb);
-        if (fa != fb)
-          return fa;
-        if (fa && ra != rb)
-          return ra > rb;
-        return a < b;
-      };
+      const std::vector<double> no_responses (responses.empty () ? num_vertices : 0, std::nan (""));
+      const std::vector<double>& ranked = responses.empty () ? no_responses : responses;
+      auto before = [&ranked] (int a, int b) { return harris3DRanksBefore (ranked, a, b); };
       std::vector<std::uint8_t> is_keypoint (num_vertices, 0);
       std::vector<int> first, rest;
       for (int k : keypoints)

@@ -90,10 +90,15 @@ namespace pcl_sparse
   computeHarris3DResponses (const TriangleMesh& mesh, const MeshTopology& topology, const Harris3DOptions& options,
                             const std::vector<int>& indices);
 
+  /// The strict total order of orderVerticesByResponse: whether \a a ranks before \a b (larger response,
+  /// equal responses by increasing index, no finite response last). The seed sampling's candidate order.
+  bool
+  harris3DRanksBefore (const std::vector<double>& responses, int a, int b);
+
   /// All vertex indices ordered by decreasing response: the candidate order of the feature-aware seed
   /// sampling (docs/METHOD.md step 4).
   /// \param[in] responses  #V responses (NaN: none)
-  /// \return #V vertex indices; ties by increasing index, NaN responses last (by index)
+  /// \return #V vertex indices; ties by increasing index, non-finite responses last (by index)
   std::vector<int>
   orderVerticesByResponse (const std::vector<double>& responses);
 
