@@ -701,6 +701,14 @@ TEST (PatchFrame, AJetAcrossAThinStripKeepsTheSeedsPlane)
   EXPECT_NEAR (patch.frame.col (2).z (), 1.0, 1e-12);
   for (const Eigen::Vector3d& local : patch.local)
     EXPECT_LT (std::abs (local.z ()), 0.1) << "heights of a nearly flat strip";
+  // The rule is PatchOptions::steep_frame_angle: 72 degrees on a mesh, off (0) on a scan, where noisy
+  // triangles are steep for any normal; off, only a flipped triangle refuses the jet.
+  EXPECT_EQ (computePatchFrame (mesh, Eigen::Vector3d::UnitZ (), 0.18, patch, 0.0), PatchFrameKind::Jet);
+  EXPECT_NEAR (patchOptionsFor (PatchOptions (), false).steep_frame_angle, 72.0 * M_PI / 180.0, 1e-12);
+  EXPECT_EQ (patchOptionsFor (PatchOptions (), true).steep_frame_angle, 0.0);
+  PatchOptions too_steep;
+  too_steep.steep_frame_angle = 2.0;
+  EXPECT_THROW (too_steep.validate (), Error);
 
   // A well-posed jet is still the frame: a paraboloid seen from an off-centre seed, whose jet normal is
   // not the seed normal given (+z).

@@ -265,8 +265,8 @@ namespace pcl_sparse
 
     /// Frames (docs/METHOD.md step 6), in parallel: one output per patch.
     std::vector<PatchFrameKind>
-    fitFrames (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry, int threads,
-               std::vector<Patch>& patches)
+    fitFrames (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+               double steep_frame_angle, int threads, std::vector<Patch>& patches)
     {
       double global_edge = 0.0;
       if (!topology.edges.empty ())
@@ -286,7 +286,7 @@ namespace pcl_sparse
         const double guard = meanEdgeLength (mesh, topology, p.seed);
         const Eigen::Vector3d& seed_normal =
           p.seed_face >= 0 ? geometry.face_normals[p.seed_face] : geometry.vertex_normals[p.seed];
-        frame_kinds[i] = computePatchFrame (mesh, seed_normal, guard > 0.0 ? guard : global_edge, p);
+        frame_kinds[i] = computePatchFrame (mesh, seed_normal, guard > 0.0 ? guard : global_edge, p, steep_frame_angle);
       }
       return frame_kinds;
     }
@@ -439,7 +439,9 @@ namespace pcl_sparse
       result.uncovered_faces = std::move (completion.uncovered);
     }
 
-    result.frame_kinds = fitFrames (mesh, topology, geometry, threads, result.patches);
+    // Unresolved (< 0): a mesh's (patchOptionsFor).
+    const double steep_frame_angle = options.steep_frame_angle < 0.0 ? M_PI / 2.5 : options.steep_frame_angle;
+    result.frame_kinds = fitFrames (mesh, topology, geometry, steep_frame_angle, threads, result.patches);
     if (growth.is_split)
       mapToInputVertices (growth, num_input, result.patches);
     if (!options.cover_unreferenced_vertices)

@@ -20,10 +20,6 @@ namespace pcl_sparse
 
   namespace
   {
-    /// Cosine of the steepest tilt a frame of this normal accepts for its steepest triangle, whatever the
-    /// seed's plane gives (72 degrees, the authors' normal cone).
-    const double kSteepestAcceptedCosine = std::cos (72.0 * M_PI / 180.0);
-
     /// Smallest cosine between \a normal and a patch triangle's normal (projected area over area): the
     /// steepest triangle; -infinity when a triangle flips or projects to nothing.
     double
@@ -45,7 +41,8 @@ namespace pcl_sparse
   } // namespace
 
   PatchFrameKind
-  computePatchFrame (const TriangleMesh& mesh, const Eigen::Vector3d& seed_normal, double radius_guard, Patch& patch)
+  computePatchFrame (const TriangleMesh& mesh, const Eigen::Vector3d& seed_normal, double radius_guard, Patch& patch,
+                     double steep_angle)
   {
     const Eigen::Vector3d n0 = seed_normal.isZero () || !seed_normal.allFinite ()
                                  ? Eigen::Vector3d::UnitZ ()
@@ -62,12 +59,13 @@ namespace pcl_sparse
       if (fitMongeJet (points, patch.origin, n0, jet) && jet.frame ().allFinite ())
       {
         // The jet's normal must not make the steepest triangle steeper than the seed's plane does, beyond
-        // 72 degrees: on a strip of long thin triangles (two rows of collinear vertices) the jet is
+        // steep_angle (72 degrees on meshes): on a strip of long thin triangles (two rows of collinear vertices) the jet is
         // underdetermined across the strip and its normal can lie in the strip's plane, 89.9 degrees from
         // every triangle, which no height field codes (blade: vertex errors of 0.8 % of the diagonal).
         const double jet_steepest = steepestTriangleCosine (mesh, patch, jet.normal);
-        if (jet.normal.dot (n0) > 0.0 &&
-            jet_steepest >= std::min (kSteepestAcceptedCosine, steepestTriangleCosine (mesh, patch, n0)))
+        const double steep_cosine = steep_angle > 0.0 ? std::cos (steep_angle) : 0.0;
+        if (jet.normal.dot (n0) > 0.0 && jet_steepest > 0.0 &&
+            jet_steepest >= std::min (steep_cosine, steepestTriangleCosine (mesh, patch, n0)))
         {
           R = jet.frame ();
           kind = PatchFrameKind::Jet;

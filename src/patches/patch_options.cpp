@@ -26,6 +26,8 @@ namespace pcl_sparse
       fail ("max_patch_vertices", max_patch_vertices, "max_patch_vertices >= -1");
     if (min_growth_vertices < 0)
       fail ("min_growth_vertices", min_growth_vertices, "min_growth_vertices >= 0");
+    if (!(steep_frame_angle == -1.0 || (steep_frame_angle >= 0.0 && steep_frame_angle <= M_PI / 2.0)))
+      fail ("steep_frame_angle", steep_frame_angle, "-1 (by surface) or 0 <= steep_frame_angle <= pi / 2");
     if (min_patch_size < 1)
       fail ("min_patch_size", min_patch_size, "min_patch_size >= 1");
   }

@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 namespace pcl_sparse
 {
   /// How computePatchFrame chose the frame.
@@ -16,7 +18,8 @@ namespace pcl_sparse
     Jet,          ///< the jet's principal directions and normal (the method)
     SeedNormal,   ///< N = the seed's vertex normal, T1 = the jet's max direction projected on its plane:
                   ///< used when the jet normal would flip a patch triangle in projection, or tilt the
-                  ///< steepest one past 72 degrees and past its tilt on the seed's plane
+                  ///< steepest one past PatchOptions::steep_frame_angle (72 degrees on meshes) and
+                  ///< past its tilt on the seed's plane
     NormalOnly    ///< N = the seed's vertex normal, any tangent basis: fewer than 6 vertices or a
                   ///< degenerate layout (jet underdetermined)
   };
@@ -30,9 +33,13 @@ namespace pcl_sparse
   /// \param[in]     radius_guard  r_P used when every vertex lies on the normal line through the seed
   ///                              (one-vertex patches): must be > 0, for instance the seed's mean edge length
   /// \param[in,out] patch         vertices, triangles and origin set; receives frame, radius and local
+  /// \param[in]     steep_angle   a jet that makes the steepest triangle steeper than this (radians) and
+  ///                              steeper than the seed's plane does is refused (PatchOptions::
+  ///                              steep_frame_angle); 0 = only a jet that flips a triangle
   /// \return how the frame was chosen
   PatchFrameKind
-  computePatchFrame (const TriangleMesh& mesh, const Eigen::Vector3d& seed_normal, double radius_guard, Patch& patch);
+  computePatchFrame (const TriangleMesh& mesh, const Eigen::Vector3d& seed_normal, double radius_guard, Patch& patch,
+                     double steep_angle = M_PI / 2.5);
 
   /// Signed area of a triangle projected on a plane.
   /// \param[in] mesh    the mesh

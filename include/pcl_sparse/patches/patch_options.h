@@ -84,6 +84,13 @@ namespace pcl_sparse
     /// the encoder raises it only where its model would exceed SparseSurfaceEncoderOptions::
     /// max_compression_ratio.
     int min_growth_vertices = 0;
+    /// Frame fallback (ours, docs/METHOD.md section 6): a jet whose normal makes the patch's steepest
+    /// triangle steeper than this and steeper than the seed's plane does is refused as the frame (the seed's
+    /// plane is used). Radians; 0 = only a jet that flips a triangle is refused (as before); < 0 (default) =
+    /// 72 degrees on a mesh (on a strip of thin triangles a nearly singular jet lay in the strip's plane)
+    /// and 0 on a scan, whose noisy triangles are steep for any normal (with it, sensor-facing flipped
+    /// normals over the shared scans rose from 45603 to 53481; bench/results/frames.md).
+    double steep_frame_angle = -1.0;
 
     /// Checks the ranges: angles in (0, pi], eta >= 1, rho >= 0, sigma >= 0, min_patch_size >= 1,
     /// min_growth_vertices >= 0.
