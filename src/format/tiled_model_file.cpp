@@ -1,8 +1,8 @@
-#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/format/attribute_sections.h>
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/crc32.h>

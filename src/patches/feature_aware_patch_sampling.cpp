@@ -1,7 +1,7 @@
-#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/patches/impl/feature_aware_patch_sampling.hpp>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_components.h>

@@ -1,7 +1,7 @@
-#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/patches/patch_growth.h>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/thread_count.h>
 
 #include <Eigen/Geometry>
 

@@ -1,7 +1,7 @@
-#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/resampling/patch_ownership.h>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/thread_count.h>
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>

@@ -1,9 +1,9 @@
-#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/tiles/tile_encoding.h>
 
 #include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/parallel_failure.h>
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/tiles/wavefront_measurement.h>
 
 #include <algorithm>
