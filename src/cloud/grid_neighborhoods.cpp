@@ -1,8 +1,6 @@
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
 #include <pcl_sparse/common/thread_count.h>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 

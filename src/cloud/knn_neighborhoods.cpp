@@ -5,8 +5,6 @@
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
 
-#include <omp.h>
-
 #include <Eigen/Geometry>
 
 #include <algorithm>

@@ -3,8 +3,6 @@
 
 #include <Eigen/Eigenvalues>
 
-#include <omp.h>
-
 namespace pcl_sparse
 {
   namespace

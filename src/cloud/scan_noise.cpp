@@ -6,8 +6,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 

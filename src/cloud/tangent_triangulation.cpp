@@ -7,8 +7,6 @@
 
 #include <Eigen/Geometry>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>

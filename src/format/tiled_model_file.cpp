@@ -9,10 +9,6 @@
 #include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/zstd_codec.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -2,8 +2,6 @@
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/geodesic.h>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>

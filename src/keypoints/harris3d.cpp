@@ -6,8 +6,6 @@
 
 #include <Eigen/Eigenvalues>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -10,8 +10,6 @@
 #include <pcl_sparse/patches/non_manifold_split.h>
 #include <pcl_sparse/patches/patch_growth.h>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -5,8 +5,6 @@
 
 #include <Eigen/Geometry>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>

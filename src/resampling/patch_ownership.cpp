@@ -6,8 +6,6 @@
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
