@@ -697,7 +697,9 @@ TEST (PatchFrame, AJetAcrossAThinStripKeepsTheSeedsPlane)
   for (int f : patch.triangles)
     ASSERT_GT (projectedSignedArea (mesh, f, jet.normal), 0.0) << "the case: no triangle flips under the jet";
 
-  EXPECT_EQ (computePatchFrame (mesh, Eigen::Vector3d::UnitZ (), 0.18, patch), PatchFrameKind::SeedNormal);
+  const double mesh_steep_angle = patchOptionsFor (PatchOptions (), false).steep_frame_angle;
+  EXPECT_EQ (computePatchFrame (mesh, Eigen::Vector3d::UnitZ (), 0.18, patch, mesh_steep_angle),
+             PatchFrameKind::SeedNormal);
   EXPECT_NEAR (patch.frame.col (2).z (), 1.0, 1e-12);
   for (const Eigen::Vector3d& local : patch.local)
     EXPECT_LT (std::abs (local.z ()), 0.1) << "heights of a nearly flat strip";
@@ -720,7 +722,7 @@ TEST (PatchFrame, AJetAcrossAThinStripKeepsTheSeedsPlane)
     cap.triangles.push_back (f);
   cap.seed = 30;
   cap.origin = bowl.vertices[cap.seed];
-  EXPECT_EQ (computePatchFrame (bowl, Eigen::Vector3d::UnitZ (), 0.1, cap), PatchFrameKind::Jet);
+  EXPECT_EQ (computePatchFrame (bowl, Eigen::Vector3d::UnitZ (), 0.1, cap, mesh_steep_angle), PatchFrameKind::Jet);
   const Eigen::Vector3d& s = cap.origin;
   const Eigen::Vector3d exact = Eigen::Vector3d (-0.6 * s.x (), -0.6 * s.y (), 1.0).normalized ();
   EXPECT_GT (cap.frame.col (2).dot (exact), std::cos (1.0 * M_PI / 180.0));

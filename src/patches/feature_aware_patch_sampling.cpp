@@ -437,8 +437,8 @@ namespace pcl_sparse
       result.uncovered_faces = std::move (completion.uncovered);
     }
 
-    // Unresolved (< 0): a mesh's (patchOptionsFor).
-    const double steep_frame_angle = options.steep_frame_angle < 0.0 ? M_PI / 2.5 : options.steep_frame_angle;
+    // Unresolved (< 0), it is a mesh's.
+    const double steep_frame_angle = patchOptionsFor (options, false).steep_frame_angle;
     result.frame_kinds = fitFrames (mesh, topology, geometry, steep_frame_angle, threads, result.patches);
     if (growth.is_split)
       mapToInputVertices (growth, num_input, result.patches);

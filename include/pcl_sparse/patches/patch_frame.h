@@ -8,8 +8,6 @@
 
 #include <Eigen/Core>
 
-#include <cmath>
-
 namespace pcl_sparse
 {
   /// How computePatchFrame chose the frame.
@@ -39,7 +37,7 @@ namespace pcl_sparse
   /// \return how the frame was chosen
   PatchFrameKind
   computePatchFrame (const TriangleMesh& mesh, const Eigen::Vector3d& seed_normal, double radius_guard, Patch& patch,
-                     double steep_angle = M_PI / 2.5);
+                     double steep_angle);
 
   /// Signed area of a triangle projected on a plane.
   /// \param[in] mesh    the mesh
