@@ -47,8 +47,7 @@ namespace pcl_sparse
     {
       const std::size_t n = scan.size ();
       if (n == 0)
-        throw Error ("buildCloudSurface: the scan has no points" +
-                     (scan.report.input_points > 0 ? ": " + scan.report.whyNoPointIsLeft () : std::string ()));
+        throw Error ("buildCloudSurface: " + scan.report.emptyScanMessage ());
       if (!scan.normals.empty () && scan.normals.size () != n)
         throw Error ("buildCloudSurface: the scan has " + std::to_string (scan.normals.size ()) + " normals for " +
                      std::to_string (n) + " points");

@@ -21,8 +21,7 @@ namespace pcl_sparse
   MemoryTileSource::MemoryTileSource (const ScanCloud::ConstPtr& scan, const TileGridOptions& options) : scan_ (scan)
   {
     if (!scan || scan->size () == 0)
-      throw Error ("MemoryTileSource: the scan has no points" +
-                   (scan && scan->report.input_points > 0 ? ": " + scan->report.whyNoPointIsLeft () : std::string ()));
+      throw Error ("MemoryTileSource: " + (scan ? scan->report : ScanCleaningReport ()).emptyScanMessage ());
     cut (worldPositions (*scan), options);
   }
 

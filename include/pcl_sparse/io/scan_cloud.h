@@ -43,6 +43,14 @@ namespace pcl_sparse
       return "no point left after cleaning (" + std::to_string (non_finite) + " non-finite, " +
              std::to_string (at_sensor_origin) + " at the sensor origin)";
     }
+
+    /// "the scan has no points", and why when cleaning emptied it (a scan built in memory has no report):
+    /// the error of a stage given an empty scan.
+    std::string
+    emptyScanMessage () const
+    {
+      return "the scan has no points" + (input_points > 0 ? ": " + whyNoPointIsLeft () : std::string ());
+    }
   };
 
   /// A scan: positions in a local frame (world = origin + p) and, where the file has them, per-point normals,
