@@ -2,6 +2,7 @@
 
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstring>
 #include <mutex>
@@ -32,8 +33,9 @@ namespace pcl_sparse
       std::size_t registered = 0;
       struct sigaction previous[kSignals.size ()];
 
-      /// Unlinks the files of one directory, then the directory (async-signal-safe calls only).
-      void
+      /// Unlinks the files of one directory, then the directory (async-signal-safe calls only); false with
+      /// errno set when the directory stays.
+      bool
       removeDirectory (const char* path)
       {
         const int fd = ::open (path, O_RDONLY | O_DIRECTORY);
@@ -55,7 +57,7 @@ namespace pcl_sparse
           }
           ::close (fd);
         }
-        ::rmdir (path);
+        return ::rmdir (path) == 0;
       }
 
       void
@@ -65,7 +67,11 @@ namespace pcl_sparse
           if (slot.used.load ())
           {
             if (slot.folder)
-              removeDirectory (slot.path);
+            {
+              // Another thread may add a file between listing and rmdir: list again, a bounded number of times.
+              for (int attempt = 0; attempt < 100 && !removeDirectory (slot.path) && errno == ENOTEMPTY; ++attempt)
+                ;
+            }
             else
               ::unlink (slot.path);
           }

@@ -191,10 +191,11 @@ namespace pcl_sparse
     w.offset = offset;
     const bool pcd = io_detail::lowerCaseExtension (path) == ".pcd";
     const std::string header = pcd ? pcdHeader (total, w.doubles) : io_detail::plyHeader (total, binary, w.doubles);
+    // Registered before the file exists, so a signal in between does not leave it behind.
+    w.on_signal = std::make_unique<detail::RemovedOnSignal> (w.temporary, detail::RemovedKind::File);
     w.fd = ::open (w.temporary.c_str (), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
     if (w.fd < 0)
       w.fail (std::strerror (errno));
-    w.on_signal = std::make_unique<detail::RemovedOnSignal> (w.temporary, detail::RemovedKind::File);
     const std::string error = writeAll (w.fd, header);
     w.written_bytes = header.size ();
     if (!error.empty ())

@@ -2,11 +2,13 @@
 
 #include <pcl_sparse/common/signal_cleanup.h>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <system_error>
 
-#include <stdlib.h>  // mkdtemp
+#include <sys/stat.h>  // mkdir
+#include <unistd.h>    // getpid
 
 namespace pcl_sparse
 {
@@ -22,12 +24,23 @@ namespace pcl_sparse
         if (error)
           base = "/tmp";
       }
-      std::string pattern = base + "/pcl_sparse_spill_XXXXXX";
-      if (!::mkdtemp (&pattern[0]))
-        throw Error (base + ": cannot make a temporary directory for the tiles' spill files (" +
-                     std::strerror (errno) + ")");
-      path_ = pattern;
-      detail::registerRemovalOnSignal (path_, detail::RemovedKind::Folder);
+      // Registered before it exists, so that a signal never meets a folder it does not know (mkdtemp, then
+      // registering, left the folder behind when mpirun stopped a rank between the two). The pid and a
+      // counter make the name unique among live processes; a taken name (EEXIST: left by a dead process
+      // with this pid) tries the next.
+      static std::atomic<unsigned> counter{0};
+      for (;;)
+      {
+        path_ = base + "/pcl_sparse_spill_" + std::to_string (::getpid ()) + "_" + std::to_string (counter++);
+        detail::registerRemovalOnSignal (path_, detail::RemovedKind::Folder);
+        if (::mkdir (path_.c_str (), 0700) == 0)
+          return;
+        const int error = errno;
+        detail::unregisterRemovalOnSignal (path_);
+        if (error != EEXIST)
+          throw Error (base + ": cannot make a temporary directory for the tiles' spill files (" +
+                       std::strerror (error) + ")");
+      }
     }
 
     SpillDirectory::~SpillDirectory ()

@@ -1,0 +1,86 @@
+// Files and folders registered with registerRemovalOnSignal are gone when SIGTERM ends the process, also when
+// another thread keeps adding files to the folder meanwhile (a rank's spill folder while mpirun stops it), and
+// a path registered before it exists does no harm.
+
+#include <pcl_sparse/common/signal_cleanup.h>
+
+#include <gtest/gtest.h>
+
+#include "test_file_helpers.h"
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  /// Runs \a body in a child process and returns its wait status.
+  template <typename Body>
+  int
+  inChild (Body body)
+  {
+    const pid_t child = ::fork ();
+    if (child == 0)
+    {
+      body ();
+      ::_exit (0);  // not reached when the body raises the signal
+    }
+    int status = 0;
+    ::waitpid (child, &status, 0);
+    return status;
+  }
+} // namespace
+
+TEST (SignalCleanup, FolderBeingFilledIsRemoved)
+{
+  const pcl_sparse_test::TempDir dir ("pcl_sparse_signal");
+  // Each round: a thread creates files in the folder as fast as it can, the main thread raises SIGTERM. The
+  // handler listed the folder once and left it when a file came in before its rmdir.
+  for (int round = 0; round < 20; ++round)
+  {
+    const std::string folder = dir.file ("spill" + std::to_string (round));
+    std::filesystem::create_directory (folder);
+    const int status = inChild ([&] {
+      detail::registerRemovalOnSignal (folder, detail::RemovedKind::Folder);
+      std::atomic<bool> started{false};
+      std::thread writer ([&] {
+        for (long i = 0;; ++i)
+        {
+          std::ofstream (folder + "/f" + std::to_string (i)) << i;
+          started = true;
+        }
+      });
+      while (!started)
+        std::this_thread::yield ();
+      ::usleep (1000);
+      ::raise (SIGTERM);
+      writer.join ();  // not reached
+    });
+    ASSERT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGTERM) << "round " << round << ": status " << status;
+    EXPECT_FALSE (std::filesystem::exists (folder)) << "round " << round << ": the folder stayed";
+  }
+}
+
+TEST (SignalCleanup, PathRegisteredBeforeItExists)
+{
+  const pcl_sparse_test::TempDir dir ("pcl_sparse_signal");
+  const std::string folder = dir.file ("not_yet");
+  const std::string file = dir.file ("made.tmp");
+  const int status = inChild ([&] {
+    detail::registerRemovalOnSignal (folder, detail::RemovedKind::Folder);  // never made
+    detail::registerRemovalOnSignal (file, detail::RemovedKind::File);
+    std::ofstream (file) << "partial";
+    ::raise (SIGTERM);
+  });
+  EXPECT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGTERM) << "status " << status;
+  EXPECT_FALSE (std::filesystem::exists (file));
+  EXPECT_FALSE (std::filesystem::exists (folder));
+}
