@@ -13,6 +13,8 @@
 ///  - file bytes with and without the attribute sections, lossless and at tolerance 1e-4.
 /// Prints one JSON line.
 
+#include "bench_main.h"
+
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
@@ -90,8 +92,8 @@ namespace
   }
 } // namespace
 
-int
-main (int argc, char** argv)
+static int
+run (int argc, char** argv)
 {
   if (argc < 2)
   {
@@ -215,4 +217,10 @@ main (int argc, char** argv)
                resampled, neighbour, seconds, lossless_bytes, (lossless_bytes - lossless_geometry) / m, quantised_bytes,
                (quantised_bytes - quantised_geometry) / m);
   return 0;
+}
+
+int
+main (int argc, char** argv)
+{
+  return runReportingErrors (argc, argv, run);
 }

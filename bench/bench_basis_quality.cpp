@@ -3,6 +3,8 @@
 /// 4 N_V points, measure the cloud against the mesh (cloud_quality.h). Markdown rows on stdout.
 ///
 ///   bench_basis_quality MESH...
+#include "bench_main.h"
+
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
@@ -14,8 +16,8 @@
 
 using namespace pcl_sparse;
 
-int
-main (int argc, char** argv)
+static int
+run (int argc, char** argv)
 {
   std::printf ("| mesh | basis | vertex RMSE/diag | cloud RMS distance/diag | max/diag | normal error mean (deg) | p90 | flipped | completeness | resample s |\n");
   std::printf ("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -47,4 +49,11 @@ main (int argc, char** argv)
                    q.max_distance / q.bbox_diagonal, q.mean_normal_angle, q.p90_normal_angle, q.flipped, q.completeness, sec);
     }
   }
+  return 0;
+}
+
+int
+main (int argc, char** argv)
+{
+  return runReportingErrors (argc, argv, run);
 }

@@ -10,6 +10,8 @@
 ///   bench_cloud_surface CLOUDS_DIR [MESHES_DIR] [REPEATS]
 ///   (bench/cloud_surface.sh runs it with ../shared/clouds, ../shared/meshes, 5)
 
+#include "bench_main.h"
+
 #include <pcl_sparse/cloud/cloud_surface.h>
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
 #include <pcl_sparse/cloud/knn_neighborhoods.h>
@@ -556,8 +558,8 @@ namespace
   }
 } // namespace
 
-int
-main (int argc, char** argv)
+static int
+run (int argc, char** argv)
 {
   if (argc < 2)
   {
@@ -578,4 +580,10 @@ main (int argc, char** argv)
   trianglesSection (clouds, repeats);
   std::printf ("1-minute load average at the end: %.1f\n", loadAverage ());
   return 0;
+}
+
+int
+main (int argc, char** argv)
+{
+  return runReportingErrors (argc, argv, run);
 }

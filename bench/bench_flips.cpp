@@ -27,6 +27,8 @@
 //   1 spacing  ... within 1 spacing: the point is off its surface by a fraction of a spacing
 //   the others are farther: the code normal points away from a surface facing N (the code oscillates), or
 //   the point lies on a surface facing away from N (the patch reaches across a thin part)
+#include "bench_main.h"
+
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
@@ -125,8 +127,8 @@ namespace
   }
 } // namespace
 
-int
-main (int argc, char** argv)
+static int
+run (int argc, char** argv)
 {
   if (argc < 2)
   {
@@ -293,4 +295,10 @@ main (int argc, char** argv)
     std::printf (" %d:%d", p, k);
   std::printf ("\n");
   return 0;
+}
+
+int
+main (int argc, char** argv)
+{
+  return runReportingErrors (argc, argv, run);
 }

@@ -8,6 +8,8 @@
 /// a machine shared with other jobs the CPU time is the meaningful one), microseconds per vertex, patches M,
 /// seeds grown by the sampling loop, coverage-pass patches, patch size median, mean patches per vertex.
 
+#include "bench_main.h"
+
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
@@ -37,8 +39,8 @@ namespace
   }
 } // namespace
 
-int
-main (int argc, char** argv)
+static int
+run (int argc, char** argv)
 {
   PatchOptions options;
   int repeat = 3;
@@ -111,4 +113,10 @@ main (int argc, char** argv)
     std::fflush (stdout);
   }
   return 0;
+}
+
+int
+main (int argc, char** argv)
+{
+  return runReportingErrors (argc, argv, run);
 }

@@ -9,6 +9,8 @@
 // the 1- and 2-thread clouds of a build can be seen to agree.
 //
 //   bench_resample_speed [-n N] [-repeat R] [-threads T1,T2,..] [-label NAME] MESH...
+#include "bench_main.h"
+
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
@@ -71,8 +73,8 @@ namespace
   }
 } // namespace
 
-int
-main (int argc, char** argv)
+static int
+run (int argc, char** argv)
 {
   std::size_t n = 4000000;
   int repeat = 3;
@@ -131,4 +133,10 @@ main (int argc, char** argv)
     }
   }
   return 0;
+}
+
+int
+main (int argc, char** argv)
+{
+  return runReportingErrors (argc, argv, run);
 }

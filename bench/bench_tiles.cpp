@@ -10,6 +10,8 @@
 //   bench_tiles [CELLS (700) | MESH] [TILES_ALONG (8)] [RHO (0.0002)] [THREADS (0)] [HARRIS_RINGS (0: adaptive)]
 //               [TOLERANCE_FRACTION (3; 0: lossless)] [UNTILED (1; 0 skips the untiled encoding)]
 
+#include "bench_main.h"
+
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/model_sections.h>
@@ -194,8 +196,8 @@ namespace
   }
 } // namespace
 
-int
-main (int argc, char** argv)
+static int
+run (int argc, char** argv)
 {
   const std::string input = argc > 1 ? argv[1] : "700";
   const int along = argc > 2 ? std::atoi (argv[2]) : 8;
@@ -317,4 +319,10 @@ main (int argc, char** argv)
   }
   std::filesystem::remove (path);
   return 0;
+}
+
+int
+main (int argc, char** argv)
+{
+  return runReportingErrors (argc, argv, run);
 }
