@@ -2,13 +2,16 @@
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/coding/patch_footprint.h>
 #include <pcl_sparse/coding/patch_samples.h>
+#include <pcl_sparse/common/error.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 using namespace pcl_sparse;
 
@@ -222,4 +225,48 @@ TEST (PatchFootprint, BorderClipPullsInTheRaysOutsideTheTriangles)
   for (int i = 0; i <= 20; ++i)
     for (int j = 0; i + j <= 20; ++j)
       EXPECT_TRUE (footprint.contains (i / 20.0, j / 20.0)) << i << " " << j;
+}
+
+// The compression bound cuts codes to fewer atoms: truncatePatchCode gives, bit for bit, what coding the
+// patch again with that L gives (OMP's first k steps do not depend on L), for every k.
+TEST (PatchCoder, TruncatedCodeIsTheCodeWithFewerAtoms)
+{
+  const auto bumpy = [] (double x, double y) { return 0.2 * std::cos (3.0 * x) * std::cos (5.0 * y) + 0.1 * x * x * y * y; };
+  const TriangleMesh mesh = makeHeightFieldGrid (10, 10, 1.0, 1.0, bumpy);
+  const MeshTopology topology = buildMeshTopology (mesh);
+  const Patch patch = wholeMeshPatch (mesh, 1.5);
+  const std::vector<double> rings = meanRingEdgeLengths (mesh, topology);
+  const CosineDictionary dictionary (12);
+  SparseCodingOptions options;
+  options.tolerance = 1e-9;  // all 12 atoms
+  PatchCodingInfo full_info;
+  const PatchCode full = codePatch (patch, 5, mesh, rings, dictionary, options, &full_info);
+  ASSERT_EQ (full.atoms.size (), 12u);
+  ASSERT_EQ (full_info.prefix_coefficients.size (), 12u * 13u / 2u);
+  for (int k = 0; k <= 13; ++k)
+  {
+    PatchCode cut = full;
+    PatchCodingInfo cut_info = full_info;
+    truncatePatchCode (k, cut, cut_info);
+    SparseCodingOptions fewer = options;
+    fewer.max_atoms = std::clamp (k, 1, 12);
+    PatchCodingInfo info;
+    PatchCode again = codePatch (patch, 5, mesh, rings, dictionary, fewer, &info);
+    if (k == 0)  // codePatch needs L >= 1: the empty code is the first atom's prefix
+    {
+      again.atoms.clear ();
+      again.coefficients.clear ();
+      info.residual_norms.resize (1);
+      info.prefix_coefficients.clear ();
+      info.relative_residual = 1.0;
+    }
+    EXPECT_EQ (cut.atoms, again.atoms) << k;
+    EXPECT_EQ (cut.coefficients, again.coefficients) << k;  // exact: the same arithmetic
+    EXPECT_EQ (cut_info.residual_norms, info.residual_norms) << k;
+    EXPECT_EQ (cut_info.prefix_coefficients, info.prefix_coefficients) << k;
+    EXPECT_EQ (cut_info.relative_residual, info.relative_residual) << k;
+  }
+  PatchCodingInfo none;
+  PatchCode code = full;
+  EXPECT_THROW (truncatePatchCode (3, code, none), Error);  // no prefixes to cut to
 }

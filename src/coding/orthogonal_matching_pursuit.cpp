@@ -36,6 +36,7 @@ namespace pcl_sparse
     const double target = tolerance * signal_norm;
     int size = 0;
 
+    result.prefix_coefficients.reserve (static_cast<std::size_t> (capacity * (capacity + 1) / 2));
     Eigen::VectorXd correlation (num_atoms);
     while (size < capacity && result.residual_norm > target)
     {
@@ -86,6 +87,8 @@ namespace pcl_sparse
       residual = signal - support.leftCols (size) * coefficients;
       result.residual_norm = residual.norm ();
       result.residual_norms.push_back (result.residual_norm);
+      result.prefix_coefficients.insert (result.prefix_coefficients.end (), coefficients.data (),
+                                         coefficients.data () + size);
     }
     result.coefficients.assign (coefficients.data (), coefficients.data () + coefficients.size ());
     return result;

@@ -3,10 +3,12 @@
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/coding/patch_footprint.h>
 #include <pcl_sparse/coding/patch_samples.h>
+#include <pcl_sparse/common/error.h>
 #include <pcl_sparse/geometry/quadric_fit.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace pcl_sparse
 {
@@ -113,7 +115,25 @@ namespace pcl_sparse
       const double norm = signal.norm ();
       info->relative_residual = norm > 0.0 ? omp.residual_norm / norm : 0.0;
       info->residual_norms = omp.residual_norms;
+      info->prefix_coefficients = std::move (omp.prefix_coefficients);
     }
     return code;
+  }
+
+  void
+  truncatePatchCode (int max_atoms, PatchCode& code, PatchCodingInfo& info)
+  {
+    const std::size_t k = static_cast<std::size_t> (std::max (max_atoms, 0));
+    if (k >= code.atoms.size ())
+      return;
+    if (info.prefix_coefficients.size () < k * (k + 1) / 2 || info.residual_norms.size () <= k)
+      throw Error ("truncatePatchCode: the coding info holds no prefix of " + std::to_string (k) + " atoms");
+    code.atoms.resize (k);
+    const auto first = info.prefix_coefficients.begin () + static_cast<std::ptrdiff_t> (k * (k - 1) / 2);
+    code.coefficients.assign (first, first + static_cast<std::ptrdiff_t> (k));
+    info.residual_norms.resize (k + 1);
+    info.prefix_coefficients.resize (k * (k + 1) / 2);
+    const double norm = info.residual_norms.front ();
+    info.relative_residual = norm > 0.0 ? info.residual_norms.back () / norm : 0.0;
   }
 } // namespace pcl_sparse

@@ -62,12 +62,9 @@ namespace pcl_sparse
       ProgressCallback progress;
     };
 
-    /// Codes every patch into its own slot, in parallel (the result does not depend on the threads);
-    /// \a max_atoms, when given, is each patch's L instead of coding.max_atoms (the others are copied from
-    /// \a previous).
+    /// Codes every patch into its own slot, in parallel (the result does not depend on the threads).
     std::vector<PatchCode>
-    codePatches (const CodingContext& context, const std::vector<Patch>& patches, std::vector<PatchCodingInfo>& info,
-                 const std::vector<int>* max_atoms = nullptr, const std::vector<PatchCode>* previous = nullptr)
+    codePatches (const CodingContext& context, const std::vector<Patch>& patches, std::vector<PatchCodingInfo>& info)
     {
       const long num_patches = static_cast<long> (patches.size ());
       std::vector<PatchCode> codes (patches.size ());
@@ -78,16 +75,8 @@ namespace pcl_sparse
 #pragma omp parallel for schedule(dynamic, 16) num_threads(context.threads) if(num_patches > 64)
       for (long p = 0; p < num_patches; ++p)
         failure.run ([&] {
-          if (max_atoms && previous && (*max_atoms)[p] >= static_cast<int> ((*previous)[p].atoms.size ()))
-            codes[p] = (*previous)[p];
-          else
-          {
-            SparseCodingOptions coding = context.coding;
-            if (max_atoms)
-              coding.max_atoms = (*max_atoms)[p];
-            codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), context.mesh, context.ring_lengths,
-                                  context.basis, coding, &info[p], context.attributes);
-          }
+          codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), context.mesh, context.ring_lengths,
+                                context.basis, context.coding, &info[p], context.attributes);
           const long finished = ++done;
           // (finished % 64 == 0 on thread 0 missed every report when the other threads took those counts.)
           if (context.progress && omp_get_thread_num () == 0 && finished >= next_report)
@@ -166,9 +155,8 @@ namespace pcl_sparse
           gains[p] = patchAtomGains (candidate.info[p].residual_norms, candidate.codes[p].radius, shares[p],
                                      candidate.info[p].num_samples);
         const std::vector<int> counts = allocateAtoms (gains, budget);
-        CodingContext quiet = context;
-        quiet.progress = nullptr;
-        candidate.codes = codePatches (quiet, candidate.patches, candidate.info, &counts, &candidate.codes);
+        for (std::size_t p = 0; p < counts.size (); ++p)
+          truncatePatchCode (counts[p], candidate.codes[p], candidate.info[p]);
       }
       SparseSurfaceModel model = shape;
       model.patches = candidate.codes;
@@ -251,10 +239,8 @@ namespace pcl_sparse
       {
         // Even the fewest patches' frames exceed the bound: keep them, as cheap as they get.
         best = std::move (fewest);
-        const std::vector<int> none (best.patches.size (), 0);
-        CodingContext quiet = context;
-        quiet.progress = nullptr;
-        best.codes = codePatches (quiet, best.patches, best.info, &none, &best.codes);
+        for (std::size_t p = 0; p < best.codes.size (); ++p)
+          truncatePatchCode (0, best.codes[p], best.info[p]);
       }
       encoding.patches = std::move (best.patches);
       encoding.coding_info = std::move (best.info);
@@ -442,6 +428,9 @@ namespace pcl_sparse
       enforceCompressionBound (context, inputs, encoding, model);
       encoding.timings.coding += secondsSince (bound_start);
     }
+    // The prefixes served the bound; kept, they would add up to 78 doubles a patch to the encoding.
+    for (PatchCodingInfo& info : encoding.coding_info)
+      std::vector<double> ().swap (info.prefix_coefficients);
     encoding.timings.total = secondsSince (start);
     return encoding;
   }

@@ -18,6 +18,10 @@ namespace pcl_sparse
     /// ||r|| after 0, 1, ..., atoms.size () atoms (so residual_norms.front () = ||y||): the code's first k
     /// atoms are what OMP with max_atoms = k selects, and these are their residuals (atom_budget.h).
     std::vector<double> residual_norms;
+    /// The least-squares coefficients after 1, 2, ..., atoms.size () atoms, one set after another: those
+    /// of the first k atoms start at k (k - 1) / 2. OMP with max_atoms = k gives exactly these (the same
+    /// steps in the same order), so a code can be cut to fewer atoms without coding it again.
+    std::vector<double> prefix_coefficients;
   };
 
   /// Greedy sparse approximation y ~ D alpha.

@@ -70,6 +70,9 @@ namespace pcl_sparse
     /// ||r|| over the samples after each prefix of the code (0, 1, ..., all its atoms), in the patch's
     /// local units (OmpResult::residual_norms): what each atom buys (atom_budget.h).
     std::vector<double> residual_norms;
+    /// The code's coefficients after each prefix of its atoms (OmpResult::prefix_coefficients): what
+    /// truncatePatchCode cuts a code to. The encoder's coding info (SurfaceEncoding) leaves them out.
+    std::vector<double> prefix_coefficients;
   };
 
   /// Codes one patch as a sparse height field (docs/METHOD.md steps 7 to 9). The signal is the local
@@ -91,4 +94,10 @@ namespace pcl_sparse
   codePatch (const Patch& patch, std::size_t patch_index, const TriangleMesh& mesh,
              const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info = nullptr,
              const AttributeCodingInput* attributes = nullptr);
+
+  /// Cuts \a code, coded with \a info by codePatch, to its first \a max_atoms atoms (nothing changes when
+  /// it has no more): the code and info that codePatch with options.max_atoms = \a max_atoms gives, bit for
+  /// bit, without sampling, evaluating or pursuing again (OMP's first k steps do not depend on L).
+  void
+  truncatePatchCode (int max_atoms, PatchCode& code, PatchCodingInfo& info);
 } // namespace pcl_sparse
