@@ -471,7 +471,7 @@ namespace pcl_sparse
       const SparseSurfaceEncoderOptions& options_;
       const int threads_;
       const bool measure_, keep_xy_;
-      const std::function<void (double)>& progress_;
+      const std::function<void (double)> progress_;  // a copy: encodeAll passes a temporary
       WavefrontMeasurement& tiles_;
       std::vector<std::size_t> order_;
       std::vector<State> state_;
