@@ -416,8 +416,10 @@ TEST (ResamplingStreamTools, MemoryIsBoundedByTheBlockNotTheCount)
   std::cout << "peak RSS: streamed 0.5M " << streamed_small / 1024 << " MB, 4M " << streamed_large / 1024
             << " MB; whole 2M " << whole / 1024 << " MB" << std::endl;
   const long cloud_kb = 4000000L * sizeof (pcl::PointNormal) / 1024;
+  EXPECT_GT (whole, cloud_kb / 2);  // the 2M cloud alone is cloud_kb / 2
+#if !defined(__SANITIZE_ADDRESS__)  // ASan keeps freed blocks (256 MB of quarantine) and its own tables
   EXPECT_LT (streamed_large, streamed_small + 16 * 1024);  // + 16 MB at most for 3.5 M more points
   EXPECT_LT (streamed_large, cloud_kb / 2);
-  EXPECT_GT (whole, cloud_kb / 2);  // the 2M cloud alone is cloud_kb / 2
   EXPECT_LT (streamed_large, whole / 2);
+#endif
 }

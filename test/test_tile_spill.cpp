@@ -721,8 +721,10 @@ TEST (SpilledTileSource, BoundedMemory)
   const long per_point_bytes = 32;  // what one point costs in a loaded ScanCloud (position + index), at least
   std::printf ("peak RSS above a bare child: spilled %ld kB, loaded whole %ld kB (%ld kB = 32 bytes per point)\n",
                spilled - base, whole - base, static_cast<long> (terrain.points) * per_point_bytes / 1024);
-  EXPECT_LT (spilled - base, static_cast<long> (terrain.points) * per_point_bytes / 1024 / 3);
   EXPECT_GT (whole - base, static_cast<long> (terrain.points) * per_point_bytes / 1024);
+#if !defined(__SANITIZE_ADDRESS__)  // ASan keeps freed blocks (256 MB of quarantine) and its own tables
+  EXPECT_LT (spilled - base, static_cast<long> (terrain.points) * per_point_bytes / 1024 / 3);
+#endif
 }
 
 namespace
@@ -1060,5 +1062,7 @@ TEST (SpilledMeshTileSource, BoundedMemory)
   const long whole = childPeakKb ([&] { loadTriangleMesh (path); }, ok);
   ASSERT_TRUE (ok);
   std::printf ("peak RSS above a bare child: spilled %ld kB, loaded whole %ld kB\n", spilled - base, whole - base);
+#if !defined(__SANITIZE_ADDRESS__)  // ASan keeps freed blocks (256 MB of quarantine) and its own tables
   EXPECT_LT (spilled - base, (whole - base) / 3);
+#endif
 }
