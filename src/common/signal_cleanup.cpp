@@ -60,18 +60,32 @@ namespace pcl_sparse
         return ::rmdir (path) == 0;
       }
 
+      /// Removes a folder other threads may still be adding files to (a rank's spill folder when mpirun
+      /// stops it): renamed first, so that files opened by its old path can no longer appear in it, then
+      /// emptied, listing it again while rmdir finds a file that came in before the rename.
+      void
+      removeFolderInUse (const char* path)
+      {
+        constexpr char kSuffix[] = ".removed";
+        char moved[kPathBytes + sizeof (kSuffix)];
+        const std::size_t length = std::strlen (path);
+        std::memcpy (moved, path, length);
+        std::memcpy (moved + length, kSuffix, sizeof (kSuffix));
+        const char* folder = ::rename (path, moved) == 0 ? moved : path;
+        for (int attempt = 0; attempt < 100 && !removeDirectory (folder) && (errno == ENOTEMPTY || errno == EEXIST);
+             ++attempt)
+          ;
+      }
+
       void
       onSignal (int signal)
       {
+        const int saved_errno = errno;  // restored for the previous handler and the interrupted code
         for (Slot& slot : slots)
           if (slot.used.load ())
           {
             if (slot.folder)
-            {
-              // Another thread may add a file between listing and rmdir: list again, a bounded number of times.
-              for (int attempt = 0; attempt < 100 && !removeDirectory (slot.path) && errno == ENOTEMPTY; ++attempt)
-                ;
-            }
+              removeFolderInUse (slot.path);
             else
               ::unlink (slot.path);
           }
@@ -79,6 +93,7 @@ namespace pcl_sparse
         for (std::size_t k = 0; k < kSignals.size (); ++k)
           if (kSignals[k] == signal)
             ::sigaction (signal, &previous[k], nullptr);
+        errno = saved_errno;
         ::raise (signal);
       }
     } // namespace

@@ -25,7 +25,7 @@ namespace pcl_sparse
           base = "/tmp";
       }
       // Registered before it exists, so that a signal never meets a folder it does not know (mkdtemp, then
-      // registering, left the folder behind when mpirun stopped a rank between the two). The pid and a
+      // registering, could leave the folder behind when mpirun stopped a rank between the two). The pid and a
       // counter make the name unique among live processes; a taken name (EEXIST: left by a dead process
       // with this pid) tries the next.
       static std::atomic<unsigned> counter{0};
