@@ -413,6 +413,29 @@ TEST (PatchSampling, SameOutputForAnyThreadCountAndGivenTopology)
   EXPECT_TRUE (samePartition (results[0], results[1]));
 }
 
+TEST (PatchSampling, SameOutputWithGrowthHelpers)
+{
+  // Over 20000 vertices the sampling loop has helper threads grow candidates ahead of it
+  // (src/patches/speculative_growth.h): the partition must be the one-thread partition, with any count.
+  TriangleMesh torus = makeTorus (256, 96);
+  for (auto& p : torus.vertices)
+    p *= 1.0 + 0.05 * std::sin (7.0 * std::atan2 (p.y (), p.x ()));
+  ASSERT_GE (torus.vertices.size (), 20000u);
+  auto mesh = std::make_shared<TriangleMesh> (torus);
+  std::vector<std::vector<Patch>> results;
+  for (int threads : {1, 2, 4})
+  {
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+    sampling.setInputMesh (mesh);
+    sampling.setNumberOfThreads (threads);
+    results.emplace_back ();
+    sampling.compute (results.back ());
+  }
+  EXPECT_GT (results[0].size (), 500u);
+  EXPECT_TRUE (samePartition (results[0], results[1]));
+  EXPECT_TRUE (samePartition (results[0], results[2]));
+}
+
 TEST (PatchSampling, IndependentOfTheLengthUnit)
 {
   // Scaling by a power of two is exact in floating point: the partition must be the same, radii scaled.

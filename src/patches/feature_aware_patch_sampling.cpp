@@ -10,7 +10,10 @@
 #include <pcl_sparse/patches/non_manifold_split.h>
 #include <pcl_sparse/patches/patch_growth.h>
 
+#include "speculative_growth.h"
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -20,6 +23,12 @@ namespace pcl_sparse
 {
   namespace
   {
+    /// Growth helpers of the sampling loop (speculative_growth.h): at most this many (each holds a grower of
+    /// about 14 bytes per vertex, and the loop takes the patches of one thread or two most of the time),
+    /// on meshes of at least this many vertices (below, the loop takes milliseconds).
+    constexpr int kMaxGrowthHelpers = 3;
+    constexpr std::size_t kMinVerticesForHelpers = 20000;
+
     /// Candidate order: \a keypoints first, then the other vertices; each part in the order of
     /// orderVerticesByResponse (decreasing response, ties by increasing index, no response last).
     std::vector<int>
@@ -185,31 +194,39 @@ namespace pcl_sparse
 
     /// Sampling loop (docs/METHOD.md step 4), sequential by nature: each candidate not marked invalid grows a
     /// patch, kept if large enough and covering a new vertex; its vertices near the seed become invalid.
-    /// Returns the number of seeds grown. (Growing the next candidates speculatively in parallel gives the
-    /// same output, but on a loaded machine the per-batch barriers cost more than they save: measured 3-6x
-    /// slower with 2 threads while other jobs ran, so it was dropped.)
+    /// With more than one thread, helpers grow the next valid candidates ahead of the loop
+    /// (speculative_growth.h): the same patches, sooner. Returns the number of seeds grown.
     std::size_t
-    runSamplingLoop (const TriangleMesh& mesh, const std::vector<int>& order, const std::vector<std::uint8_t>& referenced,
-                     int target, const PatchOptions& options, PatchGrower& grower, Coverage& coverage,
+    runSamplingLoop (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                     const std::vector<int>& order, const std::vector<std::uint8_t>& referenced, int target,
+                     const PatchOptions& options, int threads, PatchGrower& grower, Coverage& coverage,
                      const ProgressCallback& progress)
     {
-      std::vector<std::uint8_t> invalid (mesh.vertices.size (), 0);
+      const std::size_t num_vertices = mesh.vertices.size ();
+      std::unique_ptr<std::atomic<std::uint8_t>[]> invalid (new std::atomic<std::uint8_t>[num_vertices] ());
+      std::vector<std::uint8_t> never_grown (num_vertices);
+      for (std::size_t v = 0; v < num_vertices; ++v)
+        never_grown[v] = !referenced[v] || coverage.covered[v] == 2;
+      // Helpers pay on large inputs only (a patch of a few dozen vertices grows in microseconds).
+      const int helpers = num_vertices >= kMinVerticesForHelpers ? std::min (threads - 1, kMaxGrowthHelpers) : 0;
+      SpeculativeGrowth speculative (mesh, topology, geometry, options, order, never_grown, invalid.get (), helpers);
       std::size_t num_grown = 0;
       int fruitless = 0;  // grown seeds in a row that covered nothing new
       Patch patch;
       const int progress_step = std::max (1, target / 100);
       int next_progress = 0;
-      for (int v : order)
+      for (std::size_t i = 0; i < order.size (); ++i)
       {
+        const int v = order[i];
         if (coverage.num_covered >= target)
           break;
         if (options.max_fruitless_seeds > 0 && fruitless >= options.max_fruitless_seeds)
           break;
-        if (invalid[v] || !referenced[v] || coverage.covered[v] == 2)
+        if (never_grown[v] || invalid[v].load (std::memory_order_relaxed))
           continue;
         ++num_grown;
         ++fruitless;
-        const double radius = grower.grow (v, patch);
+        const double radius = speculative.grow (i, grower, patch);
         if (static_cast<int> (patch.size ()) < options.min_patch_size)
           continue;
         if (coverage.newlyCovered (patch) == 0)
@@ -219,8 +236,8 @@ namespace pcl_sparse
         const double reach = options.sigma * radius;
         for (int u : patch.vertices)
           if ((mesh.vertices[u] - mesh.vertices[v]).norm () < reach)
-            invalid[u] = 1;
-        invalid[v] = 1;
+            invalid[u].store (1, std::memory_order_relaxed);
+        invalid[v].store (1, std::memory_order_relaxed);
         if (progress && coverage.num_covered >= next_progress)
         {
           progress ("patches", static_cast<double> (coverage.num_covered) / std::max (1, target));
@@ -411,7 +428,8 @@ namespace pcl_sparse
 
     PatchGrower grower (mesh, topology, geometry, options);
     Coverage coverage (result.patches, num_vertices, seedable);
-    result.num_grown = runSamplingLoop (mesh, order, referenced, loop_target, options, grower, coverage, progress);
+    result.num_grown =
+      runSamplingLoop (mesh, topology, geometry, order, referenced, loop_target, options, threads, grower, coverage, progress);
     const std::size_t num_sampled = result.patches.size ();
     if (options.cover_all_vertices)
       runCoveragePass (topology, geometry, order, referenced, target, grower, coverage);
