@@ -181,3 +181,41 @@ TEST (OrthogonalMatchingPursuit, HandlesDependentColumns)
                     std::find (result.atoms.begin (), result.atoms.end (), 3) != result.atoms.end ();
   EXPECT_FALSE (both);
 }
+
+// Batch OMP codes each signal as orthogonalMatchingPursuit does (the same atoms, coefficients and residuals
+// up to round-off), with per-signal tolerances, a zero signal and dependent columns among them.
+TEST (BatchOrthogonalMatchingPursuit, EachSignalAsOrthogonalMatchingPursuit)
+{
+  std::mt19937 rng (11);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    const int rows = 30 + 10 * (trial % 5), cols = 40 + 7 * (trial % 4);
+    Eigen::MatrixXd D = randomMatrix (rows, cols, rng);
+    D.col (5) = D.col (2) - 2.0 * D.col (3);  // in the span of two others (a scaled copy would tie exactly)
+    // Signals: sparse combinations plus noise, so that some reach their tolerance and some use L atoms.
+    Eigen::MatrixXd Y = 0.05 * randomMatrix (rows, 4, rng);
+    for (int c = 0; c < 3; ++c)
+      for (int k : {1, 2, 7 + c, 20 + 3 * c})
+        Y.col (c) += (1.0 + k % 4) * D.col (k);
+    Y.col (3).setZero ();
+    const std::vector<double> tolerances = {1e-3, 0.05, 0.2, 0.01};
+    const int max_atoms = 6 + trial % 7;
+    const std::vector<OmpResult> batch = batchOrthogonalMatchingPursuit (Y, D, tolerances, max_atoms);
+    ASSERT_EQ (batch.size (), 4u);
+    for (int c = 0; c < 4; ++c)
+    {
+      const OmpResult single = orthogonalMatchingPursuit (Y.col (c), D, {}, tolerances[c], max_atoms);
+      ASSERT_EQ (batch[c].atoms, single.atoms) << "trial " << trial << ", signal " << c;
+      ASSERT_EQ (batch[c].coefficients.size (), single.coefficients.size ());
+      for (std::size_t k = 0; k < single.coefficients.size (); ++k)
+        EXPECT_NEAR (batch[c].coefficients[k], single.coefficients[k], 1e-9 * (1.0 + std::abs (single.coefficients[k])));
+      EXPECT_NEAR (batch[c].residual_norm, single.residual_norm, 1e-9 * (1.0 + Y.col (c).norm ()));
+      EXPECT_EQ (batch[c].residual_norms.size (), single.residual_norms.size ());
+    }
+    EXPECT_TRUE (batch[3].atoms.empty ());
+    EXPECT_EQ (batch[3].residual_norm, 0.0);
+    EXPECT_GT (batch[2].residual_norm, 0.0);
+  }
+  EXPECT_THROW (batchOrthogonalMatchingPursuit (Eigen::MatrixXd::Ones (3, 2), Eigen::MatrixXd::Ones (3, 2), {0.1}, 4),
+                std::exception);
+}

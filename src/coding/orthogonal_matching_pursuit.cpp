@@ -1,9 +1,12 @@
 #include <pcl_sparse/coding/orthogonal_matching_pursuit.h>
 
+#include <pcl_sparse/common/error.h>
+
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace pcl_sparse
 {
@@ -92,5 +95,118 @@ namespace pcl_sparse
     }
     result.coefficients.assign (coefficients.data (), coefficients.data () + coefficients.size ());
     return result;
+  }
+
+  std::vector<OmpResult>
+  batchOrthogonalMatchingPursuit (const Eigen::MatrixXd& signals, const Eigen::MatrixXd& dictionary,
+                                  const std::vector<double>& tolerances, int max_atoms)
+  {
+    const Eigen::Index num_points = dictionary.rows ();
+    const Eigen::Index num_atoms = dictionary.cols ();
+    const Eigen::Index num_signals = signals.cols ();
+    if (static_cast<Eigen::Index> (tolerances.size ()) != num_signals)
+      throw Error ("batchOrthogonalMatchingPursuit: " + std::to_string (tolerances.size ()) + " tolerances for " +
+                   std::to_string (num_signals) + " signals");
+    std::vector<OmpResult> results (static_cast<std::size_t> (num_signals));
+    if (num_points == 0 || num_atoms == 0 || max_atoms < 1 || signals.rows () != num_points)
+    {
+      for (Eigen::Index c = 0; c < num_signals; ++c)
+      {
+        results[c].residual_norm = signals.col (c).norm ();
+        results[c].residual_norms.assign (1, results[c].residual_norm);
+      }
+      return results;
+    }
+
+    const Eigen::VectorXd squared_norms = dictionary.colwise ().squaredNorm ().transpose ();
+    const double largest = squared_norms.maxCoeff ();
+    std::vector<char> usable (num_atoms);
+    for (Eigen::Index k = 0; k < num_atoms; ++k)
+      usable[k] = squared_norms[k] > 1e-24 * largest;
+    const Eigen::MatrixXd projections = dictionary.transpose () * signals;  // D^T Y
+
+    // Gram columns D^T d_j, formed when some signal first chooses atom j.
+    const int capacity = static_cast<int> (std::min<Eigen::Index> (max_atoms, std::min (num_points, num_atoms)));
+    Eigen::MatrixXd gram (num_atoms, std::min (num_atoms, num_signals * capacity));
+    std::vector<Eigen::Index> gram_column (num_atoms, -1);
+    Eigen::Index gram_columns = 0;
+    auto gramOf = [&] (int atom) {
+      if (gram_column[atom] < 0)
+      {
+        gram_column[atom] = gram_columns++;
+        gram.col (gram_column[atom]).noalias () = dictionary.transpose () * dictionary.col (atom);
+      }
+      return gram.col (gram_column[atom]);
+    };
+
+    Eigen::MatrixXd support (num_points, capacity);
+    Eigen::MatrixXd cholesky (capacity, capacity);
+    Eigen::VectorXd rhs (capacity), correlation (num_atoms), w (capacity);
+    for (Eigen::Index c = 0; c < num_signals; ++c)
+    {
+      OmpResult& result = results[c];
+      const auto signal = signals.col (c);
+      const double signal_norm = signal.norm ();
+      result.residual_norm = signal_norm;
+      result.residual_norms.assign (1, signal_norm);
+      if (signal_norm == 0.0)
+        continue;
+      std::vector<char> candidate (usable);
+      const double target = tolerances[c] * signal_norm;
+      Eigen::VectorXd coefficients;
+      int size = 0;
+      cholesky.setZero ();
+      while (size < capacity && result.residual_norm > target)
+      {
+        // D^T r = D^T y - sum over the support of alpha_t D^T d_t.
+        correlation = projections.col (c);
+        for (int t = 0; t < size; ++t)
+          correlation -= coefficients[t] * gram.col (gram_column[result.atoms[t]]);
+        int best = -1;
+        double best_score = 0.0;
+        for (Eigen::Index k = 0; k < num_atoms; ++k)
+        {
+          if (!candidate[k])
+            continue;
+          const double score = correlation[k] * correlation[k] / squared_norms[k];
+          if (score > best_score)
+          {
+            best_score = score;
+            best = static_cast<int> (k);
+          }
+        }
+        if (best < 0 || std::sqrt (best_score) <= 1e-12 * signal_norm)
+          break;
+        candidate[best] = 0;
+
+        // The factor's new row from the Gram column: w = L^-1 D_S^T d_new.
+        const auto column_gram = gramOf (best);
+        double pivot = squared_norms[best];
+        if (size > 0)
+        {
+          for (int t = 0; t < size; ++t)
+            w[t] = column_gram[result.atoms[t]];
+          cholesky.topLeftCorner (size, size).triangularView<Eigen::Lower> ().solveInPlace (w.head (size));
+          pivot -= w.head (size).squaredNorm ();
+        }
+        if (pivot <= 1e-10 * squared_norms[best])
+          continue;
+        if (size > 0)
+          cholesky.block (size, 0, 1, size) = w.head (size).transpose ();
+        cholesky (size, size) = std::sqrt (pivot);
+        support.col (size) = dictionary.col (best);
+        rhs[size] = projections (best, c);
+        result.atoms.push_back (best);
+        ++size;
+
+        const auto factor = cholesky.topLeftCorner (size, size).triangularView<Eigen::Lower> ();
+        coefficients = factor.solve (rhs.head (size));
+        factor.transpose ().solveInPlace (coefficients);
+        result.residual_norm = (signal - support.leftCols (size) * coefficients).norm ();
+        result.residual_norms.push_back (result.residual_norm);
+      }
+      result.coefficients.assign (coefficients.data (), coefficients.data () + coefficients.size ());
+    }
+    return results;
   }
 } // namespace pcl_sparse

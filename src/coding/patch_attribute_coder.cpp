@@ -32,31 +32,42 @@ namespace pcl_sparse
   std::vector<SparseCode>
   codePatchAttributes (const Patch& patch, const std::vector<Eigen::Vector2d>& positions,
                        const std::vector<PatchSurfacePoint>& extra_samples, double spacing,
-                       const AttributeCodingInput& input)
+                       const AttributeCodingInput& input, const CodingDictionary* height_dictionary)
   {
     std::vector<SparseCode> codes (input.channels.size ());
-    if (positions.size () != patch.vertices.size () + extra_samples.size ())
+    if (positions.size () != patch.vertices.size () + extra_samples.size () || codes.empty ())
       return codes;
     const std::vector<char> allowed = nyquistAllowedAtoms (*input.basis, spacing, input.nyquist_factor, input.nyquist_rule);
     std::vector<int> allowed_atoms;
     for (int k = 0; k < static_cast<int> (allowed.size ()); ++k)
       if (allowed[k])
         allowed_atoms.push_back (k);
-    Eigen::MatrixXd dictionary;
-    input.basis->evaluate (positions, allowed_atoms, dictionary);
+    // The height's dictionary when it is the same matrix (same basis, samples and allowed atoms).
+    Eigen::MatrixXd own_dictionary;
+    const bool shared = height_dictionary && height_dictionary->basis == input.basis.get () &&
+                        *height_dictionary->atoms == allowed_atoms &&
+                        height_dictionary->matrix->rows () == static_cast<Eigen::Index> (positions.size ());
+    if (!shared)
+      input.basis->evaluate (positions, allowed_atoms, own_dictionary);
+    const Eigen::MatrixXd& dictionary = shared ? *height_dictionary->matrix : own_dictionary;
+
+    Eigen::MatrixXd signals (static_cast<Eigen::Index> (positions.size ()), static_cast<Eigen::Index> (codes.size ()));
+    std::vector<double> tolerances (codes.size ());
     for (std::size_t c = 0; c < codes.size (); ++c)
     {
-      const Eigen::VectorXd signal = channelSignal (patch, extra_samples, *input.values, static_cast<Eigen::Index> (c));
-      const double norm = signal.norm ();
-      if (!(norm > 0.0))
-        continue;
+      signals.col (c) = channelSignal (patch, extra_samples, *input.values, static_cast<Eigen::Index> (c));
       // OMP's tolerance is relative to ||y||: an RMS target t over P samples is ||r|| <= t sqrt(P).
+      const double norm = signals.col (c).norm ();
       const double range = input.channels[c].upper - input.channels[c].lower;
-      const double target = input.options.tolerance * range * std::sqrt (static_cast<double> (signal.size ()));
-      const OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, {}, target / norm, input.options.max_atoms);
-      for (int a : omp.atoms)
+      const double target = input.options.tolerance * range * std::sqrt (static_cast<double> (signals.rows ()));
+      tolerances[c] = norm > 0.0 ? target / norm : 0.0;
+    }
+    const std::vector<OmpResult> omp = batchOrthogonalMatchingPursuit (signals, dictionary, tolerances, input.options.max_atoms);
+    for (std::size_t c = 0; c < codes.size (); ++c)
+    {
+      for (int a : omp[c].atoms)
         codes[c].atoms.push_back (allowed_atoms[a]);
-      codes[c].coefficients = omp.coefficients;
+      codes[c].coefficients = omp[c].coefficients;
     }
     return codes;
   }

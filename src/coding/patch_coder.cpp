@@ -103,7 +103,10 @@ namespace pcl_sparse
       code.atoms.push_back (allowed_atoms[a]);
     code.coefficients = std::move (omp.coefficients);
     if (attributes && attributes->values && attributes->basis && !attributes->channels.empty ())
-      code.attributes = codePatchAttributes (patch, positions, extra_samples, spacing, *attributes);
+    {
+      const CodingDictionary height_dictionary{&basis, &allowed_atoms, &dictionary};
+      code.attributes = codePatchAttributes (patch, positions, extra_samples, spacing, *attributes, &height_dictionary);
+    }
 
     if (info)
     {

@@ -40,4 +40,23 @@ namespace pcl_sparse
   OmpResult
   orthogonalMatchingPursuit (const Eigen::VectorXd& signal, const Eigen::MatrixXd& dictionary,
                              const std::vector<char>& allowed, double tolerance, int max_atoms);
+
+  /// OMP of several signals over one dictionary (Batch OMP: Rubinstein, Zibulevsky and Elad, "Efficient
+  /// implementation of the K-SVD algorithm using Batch Orthogonal Matching Pursuit", 2008), for the
+  /// channels of an attribute (colour), which share their samples.
+  /// \param[in] signals     #P by C matrix: one signal per column
+  /// \param[in] dictionary  #P by K matrix D, every atom allowed
+  /// \param[in] tolerances  C relative tolerances, as orthogonalMatchingPursuit's
+  /// \param[in] max_atoms   L, for every signal
+  /// \return C codes: orthogonalMatchingPursuit's steps and stopping rules, with the same atoms and
+  ///         coefficients up to round-off (prefix_coefficients are not kept)
+  ///
+  /// orthogonalMatchingPursuit forms D^T r, O(#P K), at every step of every signal. Here the correlations
+  /// are D^T y - G_S alpha, from D^T Y (formed once for all signals) and the Gram columns D^T d_j of the atoms
+  /// chosen so far, each formed once when some signal first chooses it: channels that choose the same atoms
+  /// share them. The Cholesky factor's new row comes from the Gram columns too. The residual is still
+  /// formed, O(#P |S|), for the stopping test.
+  std::vector<OmpResult>
+  batchOrthogonalMatchingPursuit (const Eigen::MatrixXd& signals, const Eigen::MatrixXd& dictionary,
+                                  const std::vector<double>& tolerances, int max_atoms);
 } // namespace pcl_sparse

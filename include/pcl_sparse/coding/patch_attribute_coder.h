@@ -48,6 +48,14 @@ namespace pcl_sparse
     AttributeCodingOptions options;
   };
 
+  /// The dictionary matrix the height was coded over, which the attributes reuse when theirs is the same.
+  struct CodingDictionary
+  {
+    const SurfaceBasis* basis = nullptr;     ///< the basis evaluated
+    const std::vector<int>* atoms = nullptr; ///< the atoms evaluated (the columns), ascending
+    const Eigen::MatrixXd* matrix = nullptr; ///< the atoms at the samples: #samples by atoms->size ()
+  };
+
   /// \brief One sparse code per attribute channel of \a patch.
   /// The samples are the patch's vertices (their attribute values), then \a extra_samples, points on the
   /// patch's triangles with the barycentric interpolation of their corners' values: what a renderer shows
@@ -57,9 +65,11 @@ namespace pcl_sparse
   /// \param[in] extra_samples the extra points the height was coded at
   /// \param[in] spacing the patch's sample spacing mu (local units), for the Nyquist cap
   /// \param[in] input the attributes, their ranges, basis and options
+  /// \param[in] height_dictionary the height's dictionary at the same samples, used if it is the same
+  ///            matrix (the attribute basis is the height's, the same atoms allowed), else evaluated again
   /// \return input.channels.size () codes over input.basis
   std::vector<SparseCode>
   codePatchAttributes (const Patch& patch, const std::vector<Eigen::Vector2d>& positions,
                        const std::vector<PatchSurfacePoint>& extra_samples, double spacing,
-                       const AttributeCodingInput& input);
+                       const AttributeCodingInput& input, const CodingDictionary* height_dictionary = nullptr);
 } // namespace pcl_sparse
