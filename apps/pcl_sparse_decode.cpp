@@ -17,6 +17,8 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
+#include <pcl_sparse/format/attribute_sections.h>
+#include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/io/scan_cloud.h>
@@ -34,6 +36,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 using namespace pcl_sparse;
@@ -44,7 +47,8 @@ namespace
     "pcl_sparse_decode", "MODEL.psm OUT.{pcd,ply} [options]",
     {
       {"MODEL.psm", "a model file written by pcl_sparse_encode -o"},
-      {"OUT", "the resampled cloud: x y z, normal, curvature (.pcd or .ply)"},
+      {"OUT", "the resampled cloud: x y z, normal, curvature (.pcd or .ply), and rgb where the model"},
+      {"", "codes colour (intensity where it codes intensity)"},
       {"-n N", "exactly N points (default: the model's number of input vertices)"},
       {"-density D", "D points per unit area instead of -n"},
       {"-box X0,Y0,Z0,X1,Y1,Z1", "only the points inside this box (needs -density); of a tiled model only the"},
@@ -58,23 +62,24 @@ namespace
       {"-stream M", "auto (default) or on: write the cloud block by block as it is made, memory set"},
       {"", "by -block, not N; off: make the whole cloud first (the same bytes either way)"},
       {"-block N", "streamed: N points per block (default 2097152; memory about 200 x N bytes)"},
+      tools::noAttributesHelpLine (),
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet"},
     },
     2, {"-n", "-density", "-seed", "-max-slope", "-clearance", "-threads", "-box", {"-recon", 2}, "-stream", "-block"},
-    {"--json", "-q"}};
+    {"--json", "-q", "-no-attributes"}};
 
   /// The points of a tiled model at a density, decoded over the processes of \a group: each rank takes a
   /// run of tiles (about the same number of patches each), reads them and every tile whose patches reach into them (ownership
   /// at their borders), resamples with the whole model's patch numbers and keeps its own tiles' points;
   /// rank 0 concatenates them in tile order, which is the order of the full decode, and gets them in
   /// \a local (the other ranks get nothing). Returns the bytes this rank read.
+  template <typename PointT>
   std::uint64_t
-  decodeAcross (const tools::ProcessGroup& group, const std::string& path, SparseSurfaceResampling<pcl::PointNormal>& resampling,
-                tools::LocalCloud& local, std::size_t& patches)
+  decodeAcross (const tools::ProcessGroup& group, const TiledModelIndex& index, const std::string& path,
+                SparseSurfaceResampling<PointT>& resampling, tools::LocalCloud<PointT>& local, std::size_t& patches)
   {
     // Contiguous runs of tiles of about equal patch counts, so a rank's neighbours are few.
-    const TiledModelIndex index = readTiledModelIndex (path);
     std::vector<std::size_t> mine;
     const double share = static_cast<double> (index.total_patches) / group.size ();
     for (std::size_t i = 0; i < index.entries.size (); ++i)
@@ -95,7 +100,7 @@ namespace
       TiledModel tiled = loadTiledModelRegions (path, boxes, &bytes_read);
       const std::vector<std::size_t> numbers = tiled.patchNumbers ();
       resampling.setPatchNumbers (numbers);
-      const tools::LocalCloud part =
+      const tools::LocalCloud<PointT> part =
         tools::resampleInLocalFrame (resampling, std::make_shared<const SparseSurfaceModel> (std::move (tiled.model)), origin);
       const std::vector<int>& from = resampling.getPointPatches ();
       // Points come in patch order: each own tile's points are one run. Message: per tile, its entry, count, points.
@@ -112,7 +117,7 @@ namespace
         const auto* h = reinterpret_cast<const std::uint8_t*> (header);
         message.insert (message.end (), h, h + sizeof header);
         const auto* points = reinterpret_cast<const std::uint8_t*> (part.cloud.points.data () + first);
-        message.insert (message.end (), points, points + (p - first) * sizeof (pcl::PointNormal));
+        message.insert (message.end (), points, points + (p - first) * sizeof (PointT));
       }
     }
     const std::vector<std::vector<std::uint8_t>> all = group.gather (message);
@@ -127,7 +132,7 @@ namespace
         std::memcpy (header, m.data () + at, sizeof header);
         at += sizeof header;
         runs.at (header[0]) = {m.data () + at, header[1]};
-        at += header[1] * sizeof (pcl::PointNormal);
+        at += header[1] * sizeof (PointT);
         total += header[1];
       }
     local.origin = origin;
@@ -136,11 +141,152 @@ namespace
     for (const auto& run : runs)
       if (run.second > 0)
       {
-        std::memcpy (static_cast<void*> (local.cloud.points.data () + at), run.first, run.second * sizeof (pcl::PointNormal));
+        std::memcpy (static_cast<void*> (local.cloud.points.data () + at), run.first, run.second * sizeof (PointT));
         at += run.second;
       }
     patches = index.total_patches;
     return bytes_read;
+  }
+
+  /// What the command line asks of the resampling and the output.
+  struct DecodeRequest
+  {
+    SparseSurfaceResamplingOptions options;
+    bool has_density = false, has_n = false;
+    double density = 0.0;
+    std::size_t n = 0;
+    int threads = 0;
+    bool quiet = false;   ///< no progress
+    bool stream = true;   ///< tools::chooseStreaming
+    bool has_box = false;
+    Eigen::AlignedBox3d box;
+    std::string path;     ///< the output cloud
+  };
+
+  /// What decodeAndWrite did.
+  struct Decoded
+  {
+    std::size_t points = 0;
+    double resample_seconds = 0.0, write_seconds = 0.0, area = 0.0;
+    bool streamed = false;
+    std::string attributes;  ///< "none", "rgb" or "intensity": the field written after x y z
+  };
+
+  const char*
+  attributeName (CloudExtraField extra)
+  {
+    return extra == CloudExtraField::Colour ? "rgb" : extra == CloudExtraField::Intensity ? "intensity" : "none";
+  }
+
+  /// The attribute channels of a tiled model, from its index (version 3 files share them; none for version 2).
+  std::vector<AttributeChannelInfo>
+  tiledChannels (const TiledModelIndex& index)
+  {
+    if (index.shared.channels.empty ())
+      return {};
+    ByteReader channels (index.shared.channels.data (), index.shared.channels.size (), "section ACHN");
+    return decodeAttributeChannels (channels, (index.shared.flags & 1) != 0);
+  }
+
+  /// Decodes a tiled model over the processes of \a group into PointT (decodeAcross) and writes the cloud
+  /// on rank 0. Returns the tool's exit code.
+  template <typename PointT>
+  int
+  decodeAcrossAndWrite (const tools::ProcessGroup& group, const TiledModelIndex& index, const std::string& model_path,
+                        const std::string& out_path, const DecodeRequest& request, bool json, bool quiet)
+  {
+    pcl::console::TicToc timer;
+    timer.tic ();
+    SparseSurfaceResampling<PointT> resampling;
+    resampling.setOptions (request.options);
+    resampling.setDensity (request.density);
+    resampling.setNumberOfThreads (request.threads);
+    tools::LocalCloud<PointT> local;
+    std::size_t patches = 0;
+    std::uint64_t bytes_read = 0;
+    try
+    {
+      bytes_read = decodeAcross (group, index, model_path, resampling, local, patches);
+    }
+    catch (const Error& e)
+    {
+      // The library's advice, to resample in blocks, is for one process: the ranks' clouds are gathered whole.
+      throw Error (std::string (e.what ()) + " (under mpirun every rank holds its clouds whole: run one process to stream)");
+    }
+    if (group.rank () != 0)
+      return 0;
+    const double resample_seconds = timer.toc () / 1000.0;
+    timer.tic ();
+    tools::saveLocalCloud (out_path, local, true);
+    const double write_seconds = timer.toc () / 1000.0;
+    if (json)
+      tools::JsonObject ()
+        .add ("model", model_path)
+        .add ("patches", patches)
+        .add ("points", local.cloud.size ())
+        .add ("tiled", true)
+        .add ("ranks", group.size ())
+        .add ("attributes", attributeName (cloudExtraFieldOf<PointT> ()))
+        .add ("bytes_read_rank0", bytes_read)
+        .add ("seconds", tools::JsonObject ().addSeconds ("resample", resample_seconds).addSeconds ("write", write_seconds))
+        .print ();
+    else if (!quiet)
+      std::printf ("%zu patches -> %zu points over %d processes; seconds: resample %.3f, write %.3f\n", patches,
+                   local.cloud.size (), group.size (), resample_seconds, write_seconds);
+    return 0;
+  }
+
+  /// Resamples \a model into PointT as \a request asks and writes the cloud, streamed or whole (only the
+  /// points inside -box); \a origin: the local frame of a tiled model (else the model's own).
+  template <typename PointT>
+  Decoded
+  decodeAndWrite (const tools::CommandLine& args, const DecodeRequest& request, const SparseSurfaceModel::ConstPtr& model,
+                  const std::vector<std::size_t>& patch_numbers, const Eigen::Vector3d* origin)
+  {
+    pcl::console::TicToc timer;
+    timer.tic ();
+    SparseSurfaceResampling<PointT> resampling;
+    resampling.setOptions (request.options);
+    if (request.has_density)
+      resampling.setDensity (request.density);
+    else
+      resampling.setPointCount (request.has_n ? request.n : std::max<std::size_t> (model->num_input_vertices, 1));
+    resampling.setNumberOfThreads (request.threads);
+    resampling.setProgressCallback (makeConsoleProgress (request.quiet));
+    resampling.setPatchNumbers (patch_numbers);
+    tools::setStreamBlock (args, resampling);
+    Decoded decoded;
+    decoded.attributes = attributeName (cloudExtraFieldOf<PointT> ());
+    decoded.streamed = request.stream && !request.has_box && !model->patches.empty ();
+    if (decoded.streamed)
+    {
+      const tools::StreamedCloud result = tools::streamResampledCloud (resampling, model, request.path, true, origin);
+      decoded.points = result.points;
+      decoded.resample_seconds = result.resample_seconds;
+      decoded.write_seconds = result.save_seconds;
+    }
+    else
+    {
+      tools::LocalCloud<PointT> local;
+      if (!model->patches.empty () || !request.has_box)
+        local = origin ? tools::resampleInLocalFrame (resampling, model, *origin) : tools::resampleInLocalFrame (resampling, model);
+      if (request.has_box)
+      {
+        // Exactly the points inside the box (closed), as the whole model places them.
+        std::size_t kept = 0;
+        for (const PointT& p : local.cloud)
+          if (request.box.contains (local.origin + p.getVector3fMap ().template cast<double> ()))
+            local.cloud[kept++] = p;
+        local.cloud.resize (kept);
+      }
+      decoded.points = local.cloud.size ();
+      decoded.resample_seconds = timer.toc () / 1000.0;
+      timer.tic ();
+      tools::saveLocalCloud (request.path, local, true);
+      decoded.write_seconds = timer.toc () / 1000.0;
+    }
+    decoded.area = resampling.getEstimatedArea ();
+    return decoded;
   }
 
   /// Option -box: six numbers, min corner then max corner.
@@ -208,50 +354,32 @@ main (int argc, char** argv)
     if (has_box && !recon_mesh.empty ())
       throw Error ("options -box and -recon exclude each other");
 
+    const bool attributes = !args.has ("-no-attributes");
+    DecodeRequest request;
+    request.options = resampling_options;
+    request.has_density = has_density;
+    request.density = density;
+    request.has_n = has_n;
+    request.n = n;
+    request.threads = threads;
+    request.quiet = quiet || json;
+    request.stream = stream;
+    request.has_box = has_box;
+    request.box = box;
+    request.path = out_path;
+
     const bool is_tiled = isTiledModelFile (model_path);
     const bool across = group.size () > 1 && is_tiled && has_density && !has_box && recon_mesh.empty ();
     if (group.size () > 1 && !across && group.rank () != 0)
       return 0;  // rank 0 decodes alone
     if (across)
     {
-      pcl::console::TicToc timer;
-      timer.tic ();
-      SparseSurfaceResampling<pcl::PointNormal> resampling;
-      resampling.setOptions (resampling_options);
-      resampling.setDensity (density);
-      resampling.setNumberOfThreads (threads);
-      tools::LocalCloud local;
-      std::size_t patches = 0;
-      std::uint64_t bytes_read = 0;
-      try
-      {
-        bytes_read = decodeAcross (group, model_path, resampling, local, patches);
-      }
-      catch (const Error& e)
-      {
-        // The library's advice, to resample in blocks, is for one process: the ranks' clouds are gathered whole.
-        throw Error (std::string (e.what ()) + " (under mpirun every rank holds its clouds whole: run one process to stream)");
-      }
-      if (group.rank () != 0)
-        return 0;
-      const double resample_seconds = timer.toc () / 1000.0;
-      timer.tic ();
-      tools::saveLocalCloud (out_path, local, true);
-      const double write_seconds = timer.toc () / 1000.0;
-      if (json)
-        tools::JsonObject ()
-          .add ("model", model_path)
-          .add ("patches", patches)
-          .add ("points", local.cloud.size ())
-          .add ("tiled", true)
-          .add ("ranks", group.size ())
-          .add ("bytes_read_rank0", bytes_read)
-          .add ("seconds", tools::JsonObject ().addSeconds ("resample", resample_seconds).addSeconds ("write", write_seconds))
-          .print ();
-      else if (!quiet)
-        std::printf ("%zu patches -> %zu points over %d processes; seconds: resample %.3f, write %.3f\n", patches,
-                     local.cloud.size (), group.size (), resample_seconds, write_seconds);
-      return 0;
+      // The fields from the index, which every rank reads, so that all gather the same point type.
+      const TiledModelIndex index = readTiledModelIndex (model_path);
+      return tools::withPointTypeOf (tools::resampledExtraField (tiledChannels (index), attributes), [&] (auto* type) {
+        using PointT = std::remove_pointer_t<decltype (type)>;
+        return decodeAcrossAndWrite<PointT> (group, index, model_path, out_path, request, json, quiet);
+      });
     }
 
     pcl::console::TicToc timer;
@@ -294,49 +422,14 @@ main (int argc, char** argv)
     }
 
     timer.tic ();
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setOptions (resampling_options);
-    if (has_density)
-      resampling.setDensity (density);
-    else
-      resampling.setPointCount (has_n ? n : std::max<std::size_t> (model->num_input_vertices, 1));
-    resampling.setNumberOfThreads (threads);
-    resampling.setProgressCallback (makeConsoleProgress (quiet || json));
-    resampling.setPatchNumbers (patch_numbers);
-    tools::setStreamBlock (args, resampling);
-    // A tiled model resamples in its grid's frame, so that a region's points are the whole model's there.
-    const Eigen::Vector3d* origin = is_tiled ? &frame_origin : nullptr;
-    std::size_t points = 0;
-    double resample_seconds = 0.0, write_seconds = 0.0;
-    const bool streamed = stream && !has_box && !model->patches.empty ();
-    if (streamed)
-    {
-      const tools::StreamedCloud result = tools::streamResampledCloud (resampling, model, out_path, true, origin);
-      points = result.points;
-      resample_seconds = result.resample_seconds;
-      write_seconds = result.save_seconds;
-    }
-    else
-    {
-      tools::LocalCloud local;
-      if (!model->patches.empty () || !has_box)
-        local = origin ? tools::resampleInLocalFrame (resampling, model, *origin) : tools::resampleInLocalFrame (resampling, model);
-      if (has_box)
-      {
-        // Exactly the points inside the box (closed), as the whole model places them.
-        std::size_t kept = 0;
-        for (const pcl::PointNormal& p : local.cloud)
-          if (box.contains (local.origin + p.getVector3fMap ().cast<double> ()))
-            local.cloud[kept++] = p;
-        local.cloud.resize (kept);
-      }
-      points = local.cloud.size ();
-      resample_seconds = timer.toc () / 1000.0;
-      timer.tic ();
-      tools::saveLocalCloud (out_path, local, true);
-      write_seconds = timer.toc () / 1000.0;
-    }
-
+    const Decoded decoded =
+      tools::withPointTypeOf (tools::resampledExtraField (model->attribute_channels, attributes), [&] (auto* type) {
+        return decodeAndWrite<std::remove_pointer_t<decltype (type)>> (args, request, model, patch_numbers,
+                                                                      is_tiled ? &frame_origin : nullptr);
+      });
+    const std::size_t points = decoded.points;
+    const double resample_seconds = decoded.resample_seconds;
+    double write_seconds = decoded.write_seconds;
     timer.tic ();
     if (!recon_mesh.empty ())
     {
@@ -354,8 +447,9 @@ main (int argc, char** argv)
         .add ("patches", model->numPatches ())
         .add ("nnz", model->numNonZeros ())
         .add ("points", points)
-        .add ("streamed", streamed)
-        .add ("area", resampling.getEstimatedArea ())
+        .add ("streamed", decoded.streamed)
+        .add ("attributes", decoded.attributes)
+        .add ("area", decoded.area)
         .add ("tiled", is_tiled)
         .add ("bytes_read", bytes_read)
         .add ("seconds", tools::JsonObject ()

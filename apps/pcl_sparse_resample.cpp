@@ -21,11 +21,13 @@
 
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
+#include <pcl/common/io.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 using namespace pcl_sparse;
@@ -38,7 +40,8 @@ namespace
       {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points), encoded first,"},
       {"", "or a saved model (.psm)"},
       {"OUT", "the cloud: .pcd (binary unless -ascii) or .ply; fields x y z nx ny nz curvature"},
-      {"", "(curvature = signed mean curvature, 1/length, positive where convex)"},
+      {"", "(curvature = signed mean curvature, 1/length, positive where convex), and rgb where"},
+      {"", "the input has colour (intensity where it has intensity)"},
       {"-n N", "exactly N points (default: 4 x the mesh's vertices, 1 x the scan's kept points)"},
       {"-density D", "D points per unit of surface area instead"},
       {"-spacing S", "mean spacing S between neighbouring points instead (density 1 / S^2)"},
@@ -59,13 +62,14 @@ namespace
       {"", "-block, not N, for binary .pcd and any .ply without -png; on: so, or fail; off: whole"},
       {"", "(the same bytes either way)"},
       {"-block N", "streamed: N points per block (default 2097152; memory about 200 x N bytes)"},
+      tools::noAttributesHelpLine (),
       tools::pngHelpLine (),
       {"-q", "quiet: no progress or messages"},
       {"--json", "print one JSON object with counts and timings on stdout"},
     },
     1, {"-n", "-density", "-spacing", "-rho", "-f", "-seed", "-max-slope", "-clearance", "-threads", "-angles", "-basis",
      "-viewpoint", "-preset", "-png", "-size", "-view", "-stream", "-block"},
-    {"-ascii", "-q", "--json"}};
+    {"-ascii", "-q", "--json", "-no-attributes"}};
 
   struct Settings
   {
@@ -77,6 +81,7 @@ namespace
     SparseSurfaceResamplingOptions resampling;
     int threads = 0;
     bool binary = true, quiet = false, json = false;
+    bool attributes = true;  ///< colour or intensity coded and written where the input has them
     bool stream = true;  ///< write block by block (tools::streamResampledCloud)
     bool has_viewpoint = false;
     Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero ();
@@ -126,10 +131,88 @@ namespace
     args.integer ("-threads", s.threads, Range::closed (0, 1024));  // 0 = OpenMP's default, as the other tools
     s.has_viewpoint = tools::parseViewpoint (args, s.viewpoint);
     s.binary = !args.has ("-ascii");
+    s.attributes = !args.has ("-no-attributes");
     s.quiet = args.has ("-q");
     s.json = args.has ("--json");
     s.stream = tools::chooseStreaming (args, s.output, s.binary, args.has ("-png"));
     return s;
+  }
+
+  /// What resampleAndWrite did.
+  struct Resampled
+  {
+    std::size_t points = 0;
+    double resample_seconds = 0.0, save_seconds = 0.0, area = 0.0, density = 0.0;
+    std::string attributes;  ///< "none", "rgb" or "intensity": the field written after x y z
+  };
+
+  const char*
+  attributeName (CloudExtraField extra)
+  {
+    return extra == CloudExtraField::Colour ? "rgb" : extra == CloudExtraField::Intensity ? "intensity" : "none";
+  }
+
+  /// Resamples \a model into PointT (the fields written) and writes the cloud, whole or streamed;
+  /// \a default_count: the point count when no -n, -density or -spacing is given.
+  template <typename PointT>
+  Resampled
+  resampleAndWrite (const tools::CommandLine& args, const Settings& s, const SparseSurfaceModel::ConstPtr& model,
+                    std::size_t default_count, const ProgressCallback& progress)
+  {
+    SparseSurfaceResampling<PointT> resampling;
+    resampling.setOptions (s.resampling);
+    resampling.setNumberOfThreads (s.threads);
+    resampling.setProgressCallback (progress);
+    tools::setStreamBlock (args, resampling);
+    if (s.mode == 0)
+    {
+      if (default_count == 0)
+        throw Error (s.input + ": the model does not record its vertex count; give -n, -density or -spacing");
+      resampling.setPointCount (std::min<std::size_t> (default_count, SparseSurfaceResampling<PointT>::max_points));
+    }
+    else if (s.mode == 1)
+      resampling.setPointCount (s.count);
+    else if (s.mode == 2)
+      resampling.setDensity (s.density);
+    else
+      resampling.setSpacing (s.spacing);
+    Resampled out;
+    out.attributes = attributeName (cloudExtraFieldOf<PointT> ());
+    if (s.stream)
+    {
+      const tools::StreamedCloud streamed = tools::streamResampledCloud (resampling, model, s.output, s.binary);
+      out.points = streamed.points;
+      out.resample_seconds = streamed.resample_seconds;
+      out.save_seconds = streamed.save_seconds;
+      pcl::console::print_info ("Resampled and wrote %zu points block by block (area %.6g, density %.6g%s) in %.3f s\n",
+                                out.points, resampling.getEstimatedArea (), resampling.getDensityUsed (),
+                                streamed.bounds_pass ? "; map coordinates: a first pass for the bounds" : "",
+                                out.resample_seconds);
+    }
+    else
+    {
+      pcl::console::TicToc timer;
+      timer.tic ();
+      const tools::LocalCloud<PointT> local = tools::resampleInLocalFrame (resampling, model);
+      out.points = local.cloud.size ();
+      out.resample_seconds = timer.toc () / 1000.0;
+      pcl::console::print_info ("Resampled %zu points (area %.6g, density %.6g) in %.3f s\n", out.points,
+                                resampling.getEstimatedArea (), resampling.getDensityUsed (), out.resample_seconds);
+      timer.tic ();
+      tools::saveLocalCloud (s.output, local, s.binary);
+      if constexpr (std::is_same_v<PointT, pcl::PointNormal>)
+        tools::writeCloudPng (args, local.cloud, local.origin);
+      else
+      {
+        pcl::PointCloud<pcl::PointNormal> shape;  // the picture shades the surface; its colour is not drawn
+        pcl::copyPointCloud (local.cloud, shape);
+        tools::writeCloudPng (args, shape, local.origin);
+      }
+      out.save_seconds = timer.toc () / 1000.0;
+    }
+    out.area = resampling.getEstimatedArea ();
+    out.density = resampling.getDensityUsed ();
+    return out;
   }
 } // namespace
 
@@ -179,9 +262,10 @@ main (int argc, char** argv)
       encoder.setOptions (s.encoder);
       encoder.setNumberOfThreads (s.threads);
       encoder.setProgressCallback (progress);
-      // The cloud written has no colour field: a scan's colour is not coded (on the 640x480 stereo frame
-      // that was a tenth of the run). The geometry does not depend on it.
-      encoder.setVertexAttributes (std::make_shared<VertexAttributes> ());
+      // -no-attributes: a scan's colour is not coded (on the 640x480 stereo frame that is a tenth of the
+      // run). The geometry does not depend on it.
+      if (!s.attributes)
+        encoder.setVertexAttributes (std::make_shared<VertexAttributes> ());
       timer.tic ();
       encoder.compute (*model);
       encode_seconds = timer.toc () / 1000.0;
@@ -191,50 +275,12 @@ main (int argc, char** argv)
                                 model->numNonZeros (), encode_seconds);
     }
 
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setOptions (s.resampling);
-    resampling.setNumberOfThreads (s.threads);
-    resampling.setProgressCallback (progress);
-    tools::setStreamBlock (args, resampling);
-    if (s.mode == 0)
-    {
-      if (input_vertices == 0)
-        throw Error (s.input + ": the model does not record its vertex count; give -n, -density or -spacing");
-      resampling.setPointCount (
-        std::min<std::size_t> (default_factor * input_vertices, SparseSurfaceResampling<pcl::PointNormal>::max_points));
-    }
-    else if (s.mode == 1)
-      resampling.setPointCount (s.count);
-    else if (s.mode == 2)
-      resampling.setDensity (s.density);
-    else
-      resampling.setSpacing (s.spacing);
-    std::size_t points = 0;
-    double resample_seconds = 0.0, save_seconds = 0.0;
-    if (s.stream)
-    {
-      const tools::StreamedCloud streamed = tools::streamResampledCloud (resampling, model, s.output, s.binary);
-      points = streamed.points;
-      resample_seconds = streamed.resample_seconds;
-      save_seconds = streamed.save_seconds;
-      pcl::console::print_info ("Resampled and wrote %zu points block by block (area %.6g, density %.6g%s) in %.3f s\n",
-                                points, resampling.getEstimatedArea (), resampling.getDensityUsed (),
-                                streamed.bounds_pass ? "; map coordinates: a first pass for the bounds" : "",
-                                resample_seconds);
-    }
-    else
-    {
-      timer.tic ();
-      const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
-      points = local.cloud.size ();
-      resample_seconds = timer.toc () / 1000.0;
-      pcl::console::print_info ("Resampled %zu points (area %.6g, density %.6g) in %.3f s\n", points,
-                                resampling.getEstimatedArea (), resampling.getDensityUsed (), resample_seconds);
-      timer.tic ();
-      tools::saveLocalCloud (s.output, local, s.binary);
-      tools::writeCloudPng (args, local.cloud, local.origin);
-      save_seconds = timer.toc () / 1000.0;
-    }
+    const Resampled out = tools::withPointTypeOf (tools::resampledExtraField (model->attribute_channels, s.attributes), [&] (auto* type) {
+      return resampleAndWrite<std::remove_pointer_t<decltype (type)>> (args, s, model, input_vertices * default_factor,
+                                                                      progress);
+    });
+    const std::size_t points = out.points;
+    const double resample_seconds = out.resample_seconds, save_seconds = out.save_seconds;
     const double seconds = total.toc () / 1000.0;
     if (!s.quiet && !s.json)
     {
@@ -251,8 +297,9 @@ main (int argc, char** argv)
         .add ("streamed", s.stream)
         .add ("patches", model->numPatches ())
         .add ("input_vertices", input_vertices)
-        .add ("area", resampling.getEstimatedArea ())
-        .add ("density", resampling.getDensityUsed ())
+        .add ("area", out.area)
+        .add ("density", out.density)
+        .add ("attributes", out.attributes)
         .addSeconds ("load_seconds", load_seconds)
         .addSeconds ("encode_seconds", encode_seconds)
         .addSeconds ("resample_seconds", resample_seconds)

@@ -8,6 +8,7 @@
 #include <pcl/common/common.h>
 #include <pcl/console/time.h>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -19,8 +20,9 @@ namespace pcl_sparse
     {
       /// Whether a cloud in the local frame at \a origin, with bounds \a lo .. \a hi (\a empty: none),
       /// is written with double x y z = origin + point; otherwise floats, moved to the model's frame.
+      template <typename PointT>
       bool
-      doublePositions (const Eigen::Vector3d& origin, bool empty, const pcl::PointNormal& lo, const pcl::PointNormal& hi)
+      doublePositions (const Eigen::Vector3d& origin, bool empty, const PointT& lo, const PointT& hi)
       {
         // Double x y z only where floats would lose the cloud's resolution (map coordinates): PCL's own
         // loader reads a PCD with double x y z into PointXYZ as zeros, so a mesh merely off the origin
@@ -33,13 +35,13 @@ namespace pcl_sparse
       }
 
       /// \a cloud moved by \a origin, in float (the points of a float file in the model's frame).
+      template <typename PointT>
       void
-      moveToWorld (const pcl::PointCloud<pcl::PointNormal>& cloud, const Eigen::Vector3d& origin,
-                   pcl::PointCloud<pcl::PointNormal>& world)
+      moveToWorld (const pcl::PointCloud<PointT>& cloud, const Eigen::Vector3d& origin, pcl::PointCloud<PointT>& world)
       {
         world = cloud;
-        for (pcl::PointNormal& p : world)
-          p.getVector3fMap () = (p.getVector3fMap ().cast<double> () + origin).cast<float> ();
+        for (PointT& p : world)
+          p.getVector3fMap () = (p.getVector3fMap ().template cast<double> () + origin).template cast<float> ();
       }
 
       /// The local frame a model is resampled in: localFrameOrigin of its seeds (0 unless it lies far from
@@ -55,8 +57,9 @@ namespace pcl_sparse
       }
 
       /// Sets the model of \a resampling, moved to the local frame at \a origin.
+      template <typename PointT>
       void
-      setLocalModel (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+      setLocalModel (SparseSurfaceResampling<PointT>& resampling, const SparseSurfaceModel::ConstPtr& model,
                      const Eigen::Vector3d& origin)
       {
         if (origin.isZero (0.0))
@@ -70,28 +73,30 @@ namespace pcl_sparse
       }
     } // namespace
 
-    LocalCloud
-    resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model)
+    template <typename PointT>
+    LocalCloud<PointT>
+    resampleInLocalFrame (SparseSurfaceResampling<PointT>& resampling, const SparseSurfaceModel::ConstPtr& model)
     {
       return resampleInLocalFrame (resampling, model, modelFrameOrigin (*model));
     }
 
-    LocalCloud
-    resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+    template <typename PointT>
+    LocalCloud<PointT>
+    resampleInLocalFrame (SparseSurfaceResampling<PointT>& resampling, const SparseSurfaceModel::ConstPtr& model,
                           const Eigen::Vector3d& origin)
     {
-      LocalCloud local;
+      LocalCloud<PointT> local;
       local.origin = origin;
       setLocalModel (resampling, model, origin);
       resampling.compute (local.cloud);
       return local;
     }
 
-
+    template <typename PointT>
     void
-    saveLocalCloud (const std::string& path, const LocalCloud& local, bool binary)
+    saveLocalCloud (const std::string& path, const LocalCloud<PointT>& local, bool binary)
     {
-      pcl::PointNormal lo, hi;
+      PointT lo, hi;
       if (!local.cloud.empty ())
         pcl::getMinMax3D (local.cloud, lo, hi);
       if (local.origin.isZero (0.0) || doublePositions (local.origin, local.cloud.empty (), lo, hi))
@@ -99,7 +104,7 @@ namespace pcl_sparse
         savePointNormalCloud (path, local.cloud, binary, local.origin);
         return;
       }
-      pcl::PointCloud<pcl::PointNormal> world;
+      pcl::PointCloud<PointT> world;
       moveToWorld (local.cloud, local.origin, world);
       savePointNormalCloud (path, world, binary);
     }
@@ -149,8 +154,9 @@ namespace pcl_sparse
       resampling.setStreamOptions (options);
     }
 
+    template <typename PointT>
     StreamedCloud
-    streamResampledCloud (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+    streamResampledCloud (SparseSurfaceResampling<PointT>& resampling, const SparseSurfaceModel::ConstPtr& model,
                           const std::string& path, bool binary, const Eigen::Vector3d* frame_origin)
     {
       if (!PointNormalStreamWriter::supports (path, binary))
@@ -166,11 +172,11 @@ namespace pcl_sparse
         // The bounds of the whole cloud, from the same points (min and max do not depend on the blocks).
         result.bounds_pass = true;
         bool empty = true;
-        pcl::PointNormal lo, hi;
-        resampling.compute ([&] (const ResampledBlock<pcl::PointNormal>& block) {
+        PointT lo, hi;
+        resampling.compute ([&] (const ResampledBlock<PointT>& block) {
           if (block.cloud.empty ())
             return;
-          pcl::PointNormal a, b;
+          PointT a, b;
           pcl::getMinMax3D (block.cloud, a, b);
           if (!empty)
           {
@@ -184,11 +190,12 @@ namespace pcl_sparse
         doubles = doublePositions (origin, empty, lo, hi);
       }
       std::unique_ptr<PointNormalStreamWriter> writer;
-      pcl::PointCloud<pcl::PointNormal> world;
-      resampling.compute ([&] (const ResampledBlock<pcl::PointNormal>& block) {
+      pcl::PointCloud<PointT> world;
+      resampling.compute ([&] (const ResampledBlock<PointT>& block) {
         if (!writer)
           writer = std::make_unique<PointNormalStreamWriter> (path, block.total, binary,
-                                                              doubles ? origin : Eigen::Vector3d::Zero ());
+                                                              doubles ? origin : Eigen::Vector3d::Zero (),
+                                                              cloudExtraFieldOf<PointT> ());
         if (origin.isZero (0.0) || doubles)
           writer->write (block.cloud);
         else
@@ -204,5 +211,38 @@ namespace pcl_sparse
       result.save_seconds = timer.toc () / 1000.0;
       return result;
     }
+
+    CloudExtraField
+    resampledExtraField (const std::vector<AttributeChannelInfo>& channels, bool wanted)
+    {
+      if (!wanted)
+        return CloudExtraField::None;
+      auto codes = [&] (AttributeChannel channel) {
+        return std::any_of (channels.begin (), channels.end (),
+                            [&] (const AttributeChannelInfo& info) { return info.channel == channel; });
+      };
+      if (codes (AttributeChannel::Red) && codes (AttributeChannel::Green) && codes (AttributeChannel::Blue))
+        return CloudExtraField::Colour;
+      return codes (AttributeChannel::Intensity) ? CloudExtraField::Intensity : CloudExtraField::None;
+    }
+
+    HelpLine
+    noAttributesHelpLine ()
+    {
+      return {"-no-attributes", "write x y z, normal and curvature only (by default a model with colour gives "
+                                "rgb, one with intensity gives intensity)"};
+    }
+
+#define PCL_SPARSE_INSTANTIATE_TOOL_RESAMPLING(T)                                                                      \
+  template LocalCloud<T> resampleInLocalFrame (SparseSurfaceResampling<T>&, const SparseSurfaceModel::ConstPtr&);    \
+  template LocalCloud<T> resampleInLocalFrame (SparseSurfaceResampling<T>&, const SparseSurfaceModel::ConstPtr&,     \
+                                               const Eigen::Vector3d&);                                              \
+  template void saveLocalCloud (const std::string&, const LocalCloud<T>&, bool);                                    \
+  template StreamedCloud streamResampledCloud (SparseSurfaceResampling<T>&, const SparseSurfaceModel::ConstPtr&,     \
+                                               const std::string&, bool, const Eigen::Vector3d*);
+    PCL_SPARSE_INSTANTIATE_TOOL_RESAMPLING (pcl::PointNormal)
+    PCL_SPARSE_INSTANTIATE_TOOL_RESAMPLING (pcl::PointXYZRGBNormal)
+    PCL_SPARSE_INSTANTIATE_TOOL_RESAMPLING (pcl::PointXYZINormal)
+#undef PCL_SPARSE_INSTANTIATE_TOOL_RESAMPLING
   } // namespace tools
 } // namespace pcl_sparse

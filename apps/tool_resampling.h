@@ -5,6 +5,7 @@
 
 #include "tool_support.h"
 
+#include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
@@ -14,30 +15,35 @@ namespace pcl_sparse
 {
   namespace tools
   {
-    /// A resampled cloud in a local frame and that frame's origin in the model's frame.
+    /// A resampled cloud in a local frame and that frame's origin in the model's frame. PointT, here and
+    /// below: pcl::PointNormal, pcl::PointXYZRGBNormal or pcl::PointXYZINormal (resampledPointType).
+    template <typename PointT = pcl::PointNormal>
     struct LocalCloud
     {
-      pcl::PointCloud<pcl::PointNormal> cloud;
+      pcl::PointCloud<PointT> cloud;
       Eigen::Vector3d origin = Eigen::Vector3d::Zero ();  ///< 0 unless the model lies far from the origin
     };
 
     /// Resamples \a model with \a resampling (its density, options, threads and progress already set). A
     /// model far from the origin for its size (localFrameOrigin of its seeds is not 0: map coordinates) is
     /// resampled moved to that origin, so that float coordinates keep the cloud's resolution.
-    LocalCloud
-    resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model);
+    template <typename PointT>
+    LocalCloud<PointT>
+    resampleInLocalFrame (SparseSurfaceResampling<PointT>& resampling, const SparseSurfaceModel::ConstPtr& model);
 
     /// As above, in the local frame of \a origin (a tiled model's: the same for the whole model and any
     /// region of it, so a region's points are exactly the whole model's there).
-    LocalCloud
-    resampleInLocalFrame (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+    template <typename PointT>
+    LocalCloud<PointT>
+    resampleInLocalFrame (SparseSurfaceResampling<PointT>& resampling, const SparseSurfaceModel::ConstPtr& model,
                           const Eigen::Vector3d& origin);
 
     /// Writes \a local to \a path (.pcd / .ply) in the model's frame: float x y z where floats keep the
     /// cloud's resolution (the origin is 0, or every coordinate is within 16 extents of 0), else double
     /// x y z = origin + point (map coordinates; PCL's loader cannot read those into PointXYZ).
+    template <typename PointT>
     void
-    saveLocalCloud (const std::string& path, const LocalCloud& local, bool binary);
+    saveLocalCloud (const std::string& path, const LocalCloud<PointT>& local, bool binary);
 
     /// The -stream option of the resampling tools (auto, on or off; auto when absent): true to write
     /// the cloud with streamResampledCloud. auto streams whenever the output can be streamed (binary .pcd,
@@ -86,8 +92,34 @@ namespace pcl_sparse
     /// map coordinates is resampled twice: the first pass finds the bounds that decide between float and
     /// double x y z, as saveLocalCloud does from the whole cloud. \a frame_origin (optional) gives the local
     /// frame, as the second resampleInLocalFrame (a tiled model's).
+    template <typename PointT>
     StreamedCloud
-    streamResampledCloud (SparseSurfaceResampling<pcl::PointNormal>& resampling, const SparseSurfaceModel::ConstPtr& model,
+    streamResampledCloud (SparseSurfaceResampling<PointT>& resampling, const SparseSurfaceModel::ConstPtr& model,
                           const std::string& path, bool binary, const Eigen::Vector3d* frame_origin = nullptr);
+
+    /// The attribute a resampled cloud of a model with \a channels carries: colour where it codes r, g and b
+    /// (pcl::PointXYZRGBNormal), else intensity where it codes intensity (pcl::PointXYZINormal), else none
+    /// (pcl::PointNormal); none if \a wanted is false (the tools' -no-attributes).
+    CloudExtraField
+    resampledExtraField (const std::vector<AttributeChannelInfo>& channels, bool wanted = true);
+
+    /// The help line of the -no-attributes option of the resampling tools.
+    HelpLine
+    noAttributesHelpLine ();
+
+    /// Calls \a run with a null pointer of the point type that carries \a extra:
+    /// run (static_cast<pcl::PointXYZRGBNormal*> (nullptr)) for colour, and so on.
+    template <typename Run>
+    decltype (auto)
+    withPointTypeOf (CloudExtraField extra, Run&& run)
+    {
+      switch (extra)
+      {
+        case CloudExtraField::Colour: return run (static_cast<pcl::PointXYZRGBNormal*> (nullptr));
+        case CloudExtraField::Intensity: return run (static_cast<pcl::PointXYZINormal*> (nullptr));
+        case CloudExtraField::None: break;
+      }
+      return run (static_cast<pcl::PointNormal*> (nullptr));
+    }
   } // namespace tools
 } // namespace pcl_sparse

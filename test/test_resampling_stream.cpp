@@ -13,11 +13,16 @@
 
 #include <gtest/gtest.h>
 
+#include <pcl/common/io.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -273,49 +278,131 @@ TEST (ResamplingStream, CallbackErrorStopsTheStream)
   EXPECT_THROW (unset.compute ([] (const ResampledBlock<pcl::PointNormal>&) {}), Error);  // no model
 }
 
+namespace
+{
+  /// \a cloud with the extra field of PointT filled: colours or intensities that vary from point to point.
+  template <typename PointT>
+  pcl::PointCloud<PointT>
+  withExtraField (const pcl::PointCloud<pcl::PointNormal>& cloud)
+  {
+    pcl::PointCloud<PointT> out;
+    pcl::copyPointCloud (cloud, out);
+    for (std::size_t i = 0; i < out.size (); ++i)
+    {
+      if constexpr (std::is_same_v<PointT, pcl::PointXYZRGBNormal>)
+      {
+        out[i].r = static_cast<std::uint8_t> (i * 7);
+        out[i].g = static_cast<std::uint8_t> (i * 13 + 5);
+        out[i].b = static_cast<std::uint8_t> (255 - i % 256);
+        out[i].a = 255;
+      }
+      else if constexpr (std::is_same_v<PointT, pcl::PointXYZINormal>)
+        out[i].intensity = 0.37f * static_cast<float> (i % 1000);
+    }
+    return out;
+  }
+
+  /// Every form the writer supports, in blocks of uneven sizes, with and without a map-coordinate offset:
+  /// the bytes of savePointNormalCloud.
+  template <typename PointT>
+  void
+  expectStreamedBytesAsWhole (const pcl::PointCloud<pcl::PointNormal>& points, const std::string& type)
+  {
+    const pcl::PointCloud<PointT> cloud = withExtraField<PointT> (points);
+    TempDir dir ("pcl_sparse_stream");
+    struct Form
+    {
+      const char* name;
+      bool binary;
+    };
+    for (const Form form : {Form {"c.pcd", true}, Form {"c.ply", true}, Form {"c.ply", false}})
+      for (const Eigen::Vector3d& offset : {Eigen::Vector3d (0.0, 0.0, 0.0), Eigen::Vector3d (512000.25, 5403000.5, 101.0)})
+      {
+        const std::string tag = std::to_string (form.binary) + (offset.isZero () ? "_local_" : "_map_") + form.name;
+        const std::string whole = dir.file ("whole" + tag), streamed = dir.file ("streamed" + tag);
+        savePointNormalCloud (whole, cloud, form.binary, offset);
+        PointNormalStreamWriter writer (streamed, cloud.size (), form.binary, offset, cloudExtraFieldOf<PointT> ());
+        std::size_t begin = 0;
+        for (std::size_t size = 1; begin < cloud.size (); size = size * 3 + 1)
+        {
+          const std::size_t end = std::min (cloud.size (), begin + size);
+          pcl::PointCloud<PointT> block;
+          block.insert (block.end (), cloud.begin () + begin, cloud.begin () + end);
+          writer.write (block);
+          begin = end;
+        }
+        EXPECT_FALSE (std::filesystem::exists (streamed));  // only the temporary until finish
+        writer.finish ();
+        EXPECT_EQ (writer.written (), cloud.size ());
+        const std::string expected = readBytes (whole);
+        ASSERT_GT (expected.size (), cloud.size () * (form.binary ? 28 : 40));
+        const std::string bytes = readBytes (streamed);
+        const std::size_t differs = std::mismatch (bytes.begin (), bytes.end (), expected.begin (), expected.end ()).first - bytes.begin ();
+        EXPECT_TRUE (bytes == expected) << type << " " << form.name << (form.binary ? " binary" : " ascii") << ", offset "
+                                        << offset.transpose () << ": first difference at byte " << differs << " of "
+                                        << expected.size () << ":\n" << expected.substr (0, std::min<std::size_t> (400, differs + 40))
+                                        << "\n---\n" << bytes.substr (0, std::min<std::size_t> (400, differs + 40));
+      }
+  }
+} // namespace
+
+namespace
+{
+  /// \a count points resampled from a synthetic model.
+  pcl::PointCloud<pcl::PointNormal>
+  syntheticCloud (std::size_t count)
+  {
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (syntheticModel (30, 7));
+    resampling.setPointCount (count);
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    resampling.compute (cloud);
+    return cloud;
+  }
+} // namespace
+
 TEST (CloudStreamWriter, SameBytesAsWholeCloudWriter)
 {
-  // Every form the writer supports, in blocks of uneven sizes, with and without a map-coordinate offset.
-  const auto model = syntheticModel (30, 7);
-  SparseSurfaceResampling<pcl::PointNormal> resampling;
-  resampling.setInputModel (model);
-  resampling.setPointCount (20011);
-  pcl::PointCloud<pcl::PointNormal> cloud;
-  resampling.compute (cloud);
+  const pcl::PointCloud<pcl::PointNormal> cloud = syntheticCloud (20011);
+  expectStreamedBytesAsWhole<pcl::PointNormal> (cloud, "PointNormal");
+  expectStreamedBytesAsWhole<pcl::PointXYZRGBNormal> (cloud, "PointXYZRGBNormal");
+  expectStreamedBytesAsWhole<pcl::PointXYZINormal> (cloud, "PointXYZINormal");
+}
+
+TEST (CloudStreamWriter, ColourAndIntensityReadBackWithPcl)
+{
+  // Float positions: PCL's readers give back every field (PLY colour as uchar red green blue); the writer
+  // refuses blocks of another point type than its fields.
+  const pcl::PointCloud<pcl::PointNormal> cloud = syntheticCloud (2000);
   TempDir dir ("pcl_sparse_stream");
-  struct Form
-  {
-    const char* name;
-    bool binary;
-  };
-  for (const Form form : {Form {"c.pcd", true}, Form {"c.ply", true}, Form {"c.ply", false}})
-    for (const Eigen::Vector3d& offset : {Eigen::Vector3d (0.0, 0.0, 0.0), Eigen::Vector3d (512000.25, 5403000.5, 101.0)})
+  const auto coloured = withExtraField<pcl::PointXYZRGBNormal> (cloud);
+  const auto intense = withExtraField<pcl::PointXYZINormal> (cloud);
+  for (const char* name : {"c.pcd", "c.ply"})
+    for (const bool binary : {true, false})
     {
-      const std::string tag = std::to_string (form.binary) + (offset.isZero () ? "_local_" : "_map_") + form.name;
-      const std::string whole = dir.file ("whole" + tag), streamed = dir.file ("streamed" + tag);
-      savePointNormalCloud (whole, cloud, form.binary, offset);
-      PointNormalStreamWriter writer (streamed, cloud.size (), form.binary, offset);
-      std::size_t begin = 0;
-      for (std::size_t size = 1; begin < cloud.size (); size = size * 3 + 1)
-      {
-        const std::size_t end = std::min (cloud.size (), begin + size);
-        pcl::PointCloud<pcl::PointNormal> block;
-        block.insert (block.end (), cloud.begin () + begin, cloud.begin () + end);
-        writer.write (block);
-        begin = end;
-      }
-      EXPECT_FALSE (std::filesystem::exists (streamed));  // only the temporary until finish
-      writer.finish ();
-      EXPECT_EQ (writer.written (), cloud.size ());
-      const std::string expected = readBytes (whole);
-      ASSERT_GT (expected.size (), cloud.size () * (form.binary ? 28 : 40));
-      const std::string bytes = readBytes (streamed);
-      const std::size_t differs = std::mismatch (bytes.begin (), bytes.end (), expected.begin (), expected.end ()).first - bytes.begin ();
-      EXPECT_TRUE (bytes == expected) << form.name << (form.binary ? " binary" : " ascii") << ", offset " << offset.transpose ()
-                                      << ": first difference at byte " << differs << " of " << expected.size () << ":\n"
-                                      << expected.substr (0, std::min<std::size_t> (400, differs + 40)) << "\n---\n"
-                                      << bytes.substr (0, std::min<std::size_t> (400, differs + 40));
+      savePointNormalCloud (dir.file (name), coloured, binary);
+      pcl::PointCloud<pcl::PointXYZRGBNormal> colour_back;
+      ASSERT_EQ (std::string (name) == "c.pcd" ? pcl::io::loadPCDFile (dir.file (name), colour_back)
+                                                : pcl::io::loadPLYFile (dir.file (name), colour_back), 0);
+      ASSERT_EQ (colour_back.size (), coloured.size ());
+      savePointNormalCloud (dir.file (name), intense, binary);
+      pcl::PointCloud<pcl::PointXYZINormal> intensity_back;
+      ASSERT_EQ (std::string (name) == "c.pcd" ? pcl::io::loadPCDFile (dir.file (name), intensity_back)
+                                                : pcl::io::loadPLYFile (dir.file (name), intensity_back), 0);
+      ASSERT_EQ (intensity_back.size (), intense.size ());
+      std::size_t same = 0;
+      for (std::size_t i = 0; i < coloured.size (); ++i)
+        same += colour_back[i].r == coloured[i].r && colour_back[i].g == coloured[i].g && colour_back[i].b == coloured[i].b &&
+                colour_back[i].x == coloured[i].x && colour_back[i].normal_y == coloured[i].normal_y &&
+                colour_back[i].curvature == coloured[i].curvature && intensity_back[i].intensity == intense[i].intensity &&
+                intensity_back[i].z == intense[i].z && intensity_back[i].normal_x == intense[i].normal_x;
+      EXPECT_EQ (same, coloured.size ()) << name << (binary ? " binary" : " ascii");
     }
+  PointNormalStreamWriter writer (dir.file ("w.pcd"), cloud.size (), true, Eigen::Vector3d::Zero (), CloudExtraField::Colour);
+  EXPECT_THROW (writer.write (cloud), Error);
+  EXPECT_THROW (writer.write (intense), Error);
+  writer.write (coloured);
+  writer.finish ();
 }
 
 TEST (CloudStreamWriter, LeavesNothingHalfWritten)

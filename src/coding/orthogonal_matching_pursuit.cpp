@@ -10,6 +10,31 @@
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// The candidate atom k maximising <r, d_k>^2 / |d_k|^2 (normalised columns) given the correlations
+    /// <r, d_k>, and that score in \a best_score; -1 if no candidate scores above 0.
+    int
+    bestAtom (const Eigen::VectorXd& correlation, const Eigen::VectorXd& squared_norms, const std::vector<char>& candidate,
+              double& best_score)
+    {
+      int best = -1;
+      best_score = 0.0;
+      for (Eigen::Index k = 0; k < correlation.size (); ++k)
+      {
+        if (!candidate[k])
+          continue;
+        const double score = correlation[k] * correlation[k] / squared_norms[k];
+        if (score > best_score)
+        {
+          best_score = score;
+          best = static_cast<int> (k);
+        }
+      }
+      return best;
+    }
+  } // namespace
+
   OmpResult
   orthogonalMatchingPursuit (const Eigen::VectorXd& signal, const Eigen::MatrixXd& dictionary,
                              const std::vector<char>& allowed, double tolerance, int max_atoms)
@@ -44,19 +69,8 @@ namespace pcl_sparse
     while (size < capacity && result.residual_norm > target)
     {
       correlation.noalias () = dictionary.transpose () * residual;
-      int best = -1;
       double best_score = 0.0;
-      for (Eigen::Index k = 0; k < num_atoms; ++k)
-      {
-        if (!candidate[k])
-          continue;
-        const double score = correlation[k] * correlation[k] / squared_norms[k];
-        if (score > best_score)
-        {
-          best_score = score;
-          best = static_cast<int> (k);
-        }
-      }
+      const int best = bestAtom (correlation, squared_norms, candidate, best_score);
       // No allowed atom left that can reduce the residual (relative to the signal, beyond round-off).
       if (best < 0 || std::sqrt (best_score) <= 1e-12 * signal_norm)
         break;
@@ -162,19 +176,8 @@ namespace pcl_sparse
         correlation = projections.col (c);
         for (int t = 0; t < size; ++t)
           correlation -= coefficients[t] * gram.col (gram_column[result.atoms[t]]);
-        int best = -1;
         double best_score = 0.0;
-        for (Eigen::Index k = 0; k < num_atoms; ++k)
-        {
-          if (!candidate[k])
-            continue;
-          const double score = correlation[k] * correlation[k] / squared_norms[k];
-          if (score > best_score)
-          {
-            best_score = score;
-            best = static_cast<int> (k);
-          }
-        }
+        const int best = bestAtom (correlation, squared_norms, candidate, best_score);
         if (best < 0 || std::sqrt (best_score) <= 1e-12 * signal_norm)
           break;
         candidate[best] = 0;

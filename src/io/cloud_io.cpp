@@ -58,40 +58,46 @@ namespace pcl_sparse
   namespace
   {
     /// The PLY file of \a cloud; with \a doubles, x y z are written as double offset + position.
+    template <typename PointT>
     std::string
-    plyText (const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary, bool doubles, const Eigen::Vector3d& offset)
+    plyText (const pcl::PointCloud<PointT>& cloud, bool binary, bool doubles, const Eigen::Vector3d& offset)
     {
-      std::string out = io_detail::plyHeader (cloud.size (), binary, doubles);
-      out.reserve (out.size () + cloud.size () * (binary ? io_detail::binaryRecordSize (doubles) : 120));
-      for (const pcl::PointNormal& point : cloud)
+      constexpr CloudExtraField extra = cloudExtraFieldOf<PointT> ();
+      std::string out = io_detail::plyHeader (cloud.size (), binary, doubles, extra);
+      out.reserve (out.size () + cloud.size () * (binary ? io_detail::binaryRecordSize (doubles, extra, true) : 120));
+      for (const PointT& point : cloud)
         io_detail::appendPlyVertex (out, point, binary, doubles, offset);
       return out;
     }
 
-    /// \a cloud as a PCLPointCloud2 with x y z as FLOAT64 (offset + position), the rest as in PointNormal.
+    /// \a cloud as a PCLPointCloud2 with x y z as FLOAT64 (offset + position), the rest as in PointT.
+    template <typename PointT>
     pcl::PCLPointCloud2
-    doublePositionBlob (const pcl::PointCloud<pcl::PointNormal>& cloud, const Eigen::Vector3d& offset)
+    doublePositionBlob (const pcl::PointCloud<PointT>& cloud, const Eigen::Vector3d& offset)
     {
-      pcl::PCLPointCloud2 blob = io_detail::doublePositionLayout (cloud.size (), cloud.is_dense);
+      constexpr CloudExtraField extra = cloudExtraFieldOf<PointT> ();
+      pcl::PCLPointCloud2 blob = io_detail::doublePositionLayout (cloud.size (), cloud.is_dense, extra);
       blob.data.resize (static_cast<std::size_t> (blob.row_step));
       char* out = reinterpret_cast<char*> (blob.data.data ());
-      for (const pcl::PointNormal& point : cloud)
+      for (const PointT& point : cloud)
       {
         io_detail::writeBinaryRecord (point, true, offset, out);
-        out += io_detail::binaryRecordSize (true);
+        out += io_detail::binaryRecordSize (true, extra);
       }
       return blob;
     }
   } // namespace
 
+  template <typename PointT>
   void
-  savePointNormalCloud (const std::string& path, const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary)
+  savePointNormalCloud (const std::string& path, const pcl::PointCloud<PointT>& cloud, bool binary)
   {
     savePointNormalCloud (path, cloud, binary, Eigen::Vector3d::Zero ());
   }
 
+  template <typename PointT>
   void
-  savePointNormalCloud (const std::string& path, const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary,
+  savePointNormalCloud (const std::string& path, const pcl::PointCloud<PointT>& cloud, bool binary,
                         const Eigen::Vector3d& offset)
   {
     const bool doubles = !offset.isZero (0.0);
@@ -124,4 +130,12 @@ namespace pcl_sparse
     const std::string buffer = plyText (cloud, binary, doubles, offset);
     writeBytesAtomically (path, buffer.data (), buffer.size ());
   }
+
+#define PCL_SPARSE_INSTANTIATE_SAVE_CLOUD(T)                                                                       \
+  template void savePointNormalCloud<T> (const std::string&, const pcl::PointCloud<T>&, bool);                   \
+  template void savePointNormalCloud<T> (const std::string&, const pcl::PointCloud<T>&, bool, const Eigen::Vector3d&);
+  PCL_SPARSE_INSTANTIATE_SAVE_CLOUD (pcl::PointNormal)
+  PCL_SPARSE_INSTANTIATE_SAVE_CLOUD (pcl::PointXYZRGBNormal)
+  PCL_SPARSE_INSTANTIATE_SAVE_CLOUD (pcl::PointXYZINormal)
+#undef PCL_SPARSE_INSTANTIATE_SAVE_CLOUD
 } // namespace pcl_sparse

@@ -46,13 +46,19 @@ namespace pcl_sparse
 
     /// The header savePointNormalCloud's PCD writer (PCL's) gives the whole cloud of \a total points.
     std::string
-    pcdHeader (std::size_t total, bool doubles)
+    pcdHeader (std::size_t total, bool doubles, CloudExtraField extra)
     {
       if (!doubles)
-        return pcl::PCDWriter::generateHeader (pcl::PointCloud<pcl::PointNormal> (), static_cast<int> (total)) +
-               "DATA binary\n";
+      {
+        const int count = static_cast<int> (total);
+        const std::string header =
+          extra == CloudExtraField::Colour      ? pcl::PCDWriter::generateHeader (pcl::PointCloud<pcl::PointXYZRGBNormal> (), count)
+          : extra == CloudExtraField::Intensity ? pcl::PCDWriter::generateHeader (pcl::PointCloud<pcl::PointXYZINormal> (), count)
+                                                : pcl::PCDWriter::generateHeader (pcl::PointCloud<pcl::PointNormal> (), count);
+        return header + "DATA binary\n";
+      }
       // As the double-position blob of savePointNormalCloud, without its data.
-      const pcl::PCLPointCloud2 blob = io_detail::doublePositionLayout (total, true);
+      const pcl::PCLPointCloud2 blob = io_detail::doublePositionLayout (total, true, extra);
       pcl::PCDWriter writer;
       return writer.generateHeaderBinary (blob, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity ()) +
              "DATA binary\n";
@@ -64,7 +70,8 @@ namespace pcl_sparse
     std::string path, temporary;
     std::unique_ptr<detail::RemovedOnSignal> on_signal;  // the temporary, tens of GB, stayed after Ctrl-C
     std::size_t total = 0, count = 0;
-    bool binary = true, doubles = false;
+    bool binary = true, doubles = false, ply = false;
+    CloudExtraField extra = CloudExtraField::None;
     Eigen::Vector3d offset = Eigen::Vector3d::Zero ();
     int fd = -1;
     bool finished = false;
@@ -174,7 +181,7 @@ namespace pcl_sparse
   }
 
   PointNormalStreamWriter::PointNormalStreamWriter (const std::string& path, std::size_t total, bool binary,
-                                                    const Eigen::Vector3d& offset)
+                                                    const Eigen::Vector3d& offset, CloudExtraField extra)
     : impl_ (std::make_unique<Impl> ())
   {
     Impl& w = *impl_;
@@ -189,8 +196,11 @@ namespace pcl_sparse
     w.binary = binary;
     w.doubles = !offset.isZero (0.0);
     w.offset = offset;
+    w.extra = extra;
     const bool pcd = io_detail::lowerCaseExtension (path) == ".pcd";
-    const std::string header = pcd ? pcdHeader (total, w.doubles) : io_detail::plyHeader (total, binary, w.doubles);
+    w.ply = !pcd;
+    const std::string header =
+      pcd ? pcdHeader (total, w.doubles, extra) : io_detail::plyHeader (total, binary, w.doubles, extra);
     // Registered before the file exists, so a signal in between does not leave it behind.
     w.on_signal = std::make_unique<detail::RemovedOnSignal> (w.temporary, detail::RemovedKind::File);
     w.fd = ::open (w.temporary.c_str (), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
@@ -208,7 +218,7 @@ namespace pcl_sparse
     // mapping it: after a short header, the file ends in zeros up to that size.
     if (pcd && w.doubles)
       w.file_size = std::max (header.size (), static_cast<std::size_t> (::getpagesize ())) +
-                    total * io_detail::binaryRecordSize (true);
+                    total * io_detail::binaryRecordSize (true, extra);
     w.thread = std::thread ([&w] { w.run (); });
   }
 
@@ -222,10 +232,13 @@ namespace pcl_sparse
       std::remove (w.temporary.c_str ());
   }
 
+  template <typename PointT>
   void
-  PointNormalStreamWriter::write (const pcl::PointCloud<pcl::PointNormal>& block)
+  PointNormalStreamWriter::write (const pcl::PointCloud<PointT>& block)
   {
     Impl& w = *impl_;
+    if (cloudExtraFieldOf<PointT> () != w.extra)
+      throw Error (w.path + ": the blocks' point type does not match the writer's fields");
     if (w.finished)
       throw Error (w.path + ": the file is already finished");
     if (block.size () > w.total - w.count)
@@ -245,19 +258,19 @@ namespace pcl_sparse
     }
     if (w.binary)
     {
-      const std::size_t record = io_detail::binaryRecordSize (w.doubles);
+      const std::size_t record = io_detail::binaryRecordSize (w.doubles, w.extra, w.ply);
       buffer.resize (block.size () * record);
       char* out = &buffer[0];
-      for (const pcl::PointNormal& point : block)
+      for (const PointT& point : block)
       {
-        io_detail::writeBinaryRecord (point, w.doubles, w.offset, out);
+        io_detail::writeBinaryRecord (point, w.doubles, w.offset, out, w.ply);
         out += record;
       }
     }
     else
     {
       buffer.clear ();
-      for (const pcl::PointNormal& point : block)
+      for (const PointT& point : block)
         io_detail::appendPlyVertex (buffer, point, false, w.doubles, w.offset);
     }
     std::unique_lock<std::mutex> lock (w.mutex);
@@ -298,4 +311,8 @@ namespace pcl_sparse
   {
     return impl_->count;
   }
+
+  template void PointNormalStreamWriter::write (const pcl::PointCloud<pcl::PointNormal>&);
+  template void PointNormalStreamWriter::write (const pcl::PointCloud<pcl::PointXYZRGBNormal>&);
+  template void PointNormalStreamWriter::write (const pcl::PointCloud<pcl::PointXYZINormal>&);
 } // namespace pcl_sparse

@@ -9,6 +9,7 @@
 #include <pcl/point_types.h>
 
 #include <string>
+#include <type_traits>
 
 namespace pcl_sparse
 {
@@ -25,14 +26,43 @@ namespace pcl_sparse
   void
   loadPointCloud (const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud);
 
+  /// The field a resampled cloud has between x y z and its normal: none (pcl::PointNormal), colour
+  /// (pcl::PointXYZRGBNormal: PCD field rgb, PLY properties uchar red green blue) or intensity
+  /// (pcl::PointXYZINormal: float intensity in both).
+  enum class CloudExtraField
+  {
+    None,
+    Colour,
+    Intensity
+  };
+
+  /// The extra field of PointT: pcl::PointNormal none, pcl::PointXYZRGBNormal colour, pcl::PointXYZINormal
+  /// intensity.
+  template <typename PointT>
+  constexpr CloudExtraField
+  cloudExtraFieldOf ()
+  {
+    if constexpr (std::is_same_v<PointT, pcl::PointXYZRGBNormal>)
+      return CloudExtraField::Colour;
+    else if constexpr (std::is_same_v<PointT, pcl::PointXYZINormal>)
+      return CloudExtraField::Intensity;
+    else
+    {
+      static_assert (std::is_same_v<PointT, pcl::PointNormal>, "a point type with a normal and curvature");
+      return CloudExtraField::None;
+    }
+  }
+
   /// Writes points with normals and curvature, atomically: .pcd through PCL's writer, or .ply with float
-  /// properties x y z nx ny nz curvature.
+  /// properties x y z nx ny nz curvature (with colour or intensity after z, as PCL's PLY writer puts them).
+  /// PointT: pcl::PointNormal, pcl::PointXYZRGBNormal or pcl::PointXYZINormal.
   /// \param[in] path    the file; its extension chooses the format
   /// \param[in] cloud   the points
   /// \param[in] binary  binary (PCD binary, PLY binary little endian; default) or ascii
   /// \throws pcl_sparse::Error on an unknown extension or a failed write
+  template <typename PointT>
   void
-  savePointNormalCloud (const std::string& path, const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary = true);
+  savePointNormalCloud (const std::string& path, const pcl::PointCloud<PointT>& cloud, bool binary = true);
 
   /// \brief Same, for a cloud in a local frame: the file gets x y z = \a offset + each point's position, in
   /// double precision (PCD fields x y z of TYPE F SIZE 8, PLY properties double x y z), so that map
@@ -42,7 +72,8 @@ namespace pcl_sparse
   /// \param[in] cloud points in the local frame
   /// \param[in] binary binary (default) or ascii
   /// \param[in] offset the local frame's origin in the file's frame
+  template <typename PointT>
   void
-  savePointNormalCloud (const std::string& path, const pcl::PointCloud<pcl::PointNormal>& cloud, bool binary,
+  savePointNormalCloud (const std::string& path, const pcl::PointCloud<PointT>& cloud, bool binary,
                         const Eigen::Vector3d& offset);
 } // namespace pcl_sparse

@@ -3,6 +3,8 @@
 /// Writing a cloud of points with normals block by block (a streamed resampling larger than memory), in
 /// the bytes savePointNormalCloud writes for the whole cloud, and atomically.
 
+#include <pcl_sparse/io/cloud_io.h>
+
 #include <Eigen/Core>
 
 #include <pcl/point_cloud.h>
@@ -14,8 +16,9 @@
 
 namespace pcl_sparse
 {
-  /// \brief Writes a cloud of pcl::PointNormal given block by block: binary PCD, binary or ascii PLY, the
-  /// same bytes as savePointNormalCloud (path, whole cloud, binary, offset). The point count goes into
+  /// \brief Writes a cloud of pcl::PointNormal (or pcl::PointXYZRGBNormal, pcl::PointXYZINormal: the
+  /// constructor's extra field) given block by block: binary PCD, binary or ascii PLY, the same bytes as
+  /// savePointNormalCloud (path, whole cloud, binary, offset). The point count goes into
   /// the header first, so it must be known before the first block. (With an offset, the PCD ends as
   /// PCL's PCLPointCloud2 writer ends it: in zeros up to a page plus the data.)
   ///
@@ -43,18 +46,23 @@ namespace pcl_sparse
     /// \param[in] total  the number of points that will be written
     /// \param[in] binary binary (default) or ascii (.ply only)
     /// \param[in] offset as in savePointNormalCloud: a non-zero offset writes double x y z = offset + point
+    /// \param[in] extra  the field after x y z: the blocks are clouds of the matching point type
     /// \throws pcl_sparse::Error naming \a path for an unsupported form or a file that cannot be created
     PointNormalStreamWriter (const std::string& path, std::size_t total, bool binary = true,
-                             const Eigen::Vector3d& offset = Eigen::Vector3d::Zero ());
+                             const Eigen::Vector3d& offset = Eigen::Vector3d::Zero (),
+                             CloudExtraField extra = CloudExtraField::None);
     /// Removes the temporary file unless finish () succeeded.
     ~PointNormalStreamWriter ();
     PointNormalStreamWriter (const PointNormalStreamWriter&) = delete;
     PointNormalStreamWriter& operator= (const PointNormalStreamWriter&) = delete;
 
-    /// \brief Appends the points of \a block.
-    /// \throws pcl_sparse::Error if a write failed (disk full, ...) or more than the total would be written
+    /// \brief Appends the points of \a block (PointT: pcl::PointNormal, pcl::PointXYZRGBNormal or
+    /// pcl::PointXYZINormal, the one of the constructor's extra field).
+    /// \throws pcl_sparse::Error if a write failed (disk full, ...), more than the total would be written,
+    ///         or the point type does not match the extra field
+    template <typename PointT>
     void
-    write (const pcl::PointCloud<pcl::PointNormal>& block);
+    write (const pcl::PointCloud<PointT>& block);
 
     /// \brief Waits for the writes, checks that exactly the total was written, closes the file and renames
     /// it onto the path.
