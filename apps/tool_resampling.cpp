@@ -229,8 +229,7 @@ namespace pcl_sparse
     HelpLine
     noAttributesHelpLine ()
     {
-      return {"-no-attributes", "write x y z, normal and curvature only (by default a model with colour gives "
-                                "rgb, one with intensity gives intensity)"};
+      return {"-no-attributes", "write x y z, normal and curvature only, without the colour or intensity"};
     }
 
 #define PCL_SPARSE_INSTANTIATE_TOOL_RESAMPLING(T)                                                                      \
