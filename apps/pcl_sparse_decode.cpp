@@ -172,12 +172,6 @@ namespace
     std::string attributes;  ///< "none", "rgb" or "intensity": the field written after x y z
   };
 
-  const char*
-  attributeName (CloudExtraField extra)
-  {
-    return extra == CloudExtraField::Colour ? "rgb" : extra == CloudExtraField::Intensity ? "intensity" : "none";
-  }
-
   /// The attribute channels of a tiled model, from its index (version 3 files share them; none for version 2).
   std::vector<AttributeChannelInfo>
   tiledChannels (const TiledModelIndex& index)
@@ -226,7 +220,7 @@ namespace
         .add ("points", local.cloud.size ())
         .add ("tiled", true)
         .add ("ranks", group.size ())
-        .add ("attributes", attributeName (cloudExtraFieldOf<PointT> ()))
+        .add ("attributes", tools::extraFieldName (cloudExtraFieldOf<PointT> ()))
         .add ("bytes_read_rank0", bytes_read)
         .add ("seconds", tools::JsonObject ().addSeconds ("resample", resample_seconds).addSeconds ("write", write_seconds))
         .print ();
@@ -256,7 +250,7 @@ namespace
     resampling.setPatchNumbers (patch_numbers);
     tools::setStreamBlock (args, resampling);
     Decoded decoded;
-    decoded.attributes = attributeName (cloudExtraFieldOf<PointT> ());
+    decoded.attributes = tools::extraFieldName (cloudExtraFieldOf<PointT> ());
     decoded.streamed = request.stream && !request.has_box && !model->patches.empty ();
     if (decoded.streamed)
     {

@@ -146,12 +146,6 @@ namespace
     std::string attributes;  ///< "none", "rgb" or "intensity": the field written after x y z
   };
 
-  const char*
-  attributeName (CloudExtraField extra)
-  {
-    return extra == CloudExtraField::Colour ? "rgb" : extra == CloudExtraField::Intensity ? "intensity" : "none";
-  }
-
   /// Resamples \a model into PointT (the fields written) and writes the cloud, whole or streamed;
   /// \a default_count: the point count when no -n, -density or -spacing is given.
   template <typename PointT>
@@ -177,7 +171,7 @@ namespace
     else
       resampling.setSpacing (s.spacing);
     Resampled out;
-    out.attributes = attributeName (cloudExtraFieldOf<PointT> ());
+    out.attributes = tools::extraFieldName (cloudExtraFieldOf<PointT> ());
     if (s.stream)
     {
       const tools::StreamedCloud streamed = tools::streamResampledCloud (resampling, model, s.output, s.binary);

@@ -226,6 +226,12 @@ namespace pcl_sparse
       return codes (AttributeChannel::Intensity) ? CloudExtraField::Intensity : CloudExtraField::None;
     }
 
+    const char*
+    extraFieldName (CloudExtraField extra)
+    {
+      return extra == CloudExtraField::Colour ? "rgb" : extra == CloudExtraField::Intensity ? "intensity" : "none";
+    }
+
     HelpLine
     noAttributesHelpLine ()
     {

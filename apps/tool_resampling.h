@@ -103,6 +103,10 @@ namespace pcl_sparse
     CloudExtraField
     resampledExtraField (const std::vector<AttributeChannelInfo>& channels, bool wanted = true);
 
+    /// "rgb", "intensity" or "none": the field \a extra writes after x y z, as the tools' --json says it.
+    const char*
+    extraFieldName (CloudExtraField extra);
+
     /// The help line of the -no-attributes option of the resampling tools.
     HelpLine
     noAttributesHelpLine ();
