@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <utility>
 
@@ -98,7 +99,8 @@ namespace pcl_sparse_ros
 
   ResampleResult
   resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings,
-                 const ResamplingSettings& resampling, bool want_cloud, bool want_model)
+                 const ResamplingSettings& resampling, bool want_cloud, bool want_model,
+                 const std::function<void (const sensor_msgs::PointCloud2&)>& on_cloud)
   {
     ResampleResult result;
     result.layout = cloudLayoutOf (input);
@@ -112,6 +114,8 @@ namespace pcl_sparse_ros
       resample (model, resampling, result.input_points, settings.threads, result.layout.output, result.cloud);
       result.cloud.header = input.header;
       result.resample_seconds = secondsSince (start);
+      if (on_cloud)
+        on_cloud (result.cloud);
     }
     if (want_model)
     {
@@ -179,22 +183,27 @@ namespace pcl_sparse_ros
     cloud_served_ = cloud_served_ || want_cloud;  // an input that fails is not tried again
     model_served_ = model_served_ || want_model;
     ResampleResult result;
+    bool cloud_published = false;
+    // The cloud goes out as soon as it is made: the model's bytes (~0.03 s on a 640x480 frame) come after.
+    const auto publish_cloud = [this, &cloud_published] (const sensor_msgs::PointCloud2& cloud) {
+      cloud_pub_.publish (cloud);
+      cloud_published = true;
+    };
     try
     {
-      result = resampleCloud (*input, settings_, resampling_, want_cloud, want_model);
+      result = resampleCloud (*input, settings_, resampling_, want_cloud, want_model, publish_cloud);
     }
     catch (const std::exception& e)  // not only the library's errors: std::bad_alloc ended the node (and a manager)
     {
       if (ros::ok ())
         errorThrottled ("cannot encode the cloud (frame '" + input->header.frame_id + "', " + describeCloud (*input) +
-                        "): " + e.what () + "; nothing published");
+                        "): " + e.what () +
+                        (cloud_published ? "; only the resampled cloud published" : "; nothing published"));
       return;
     }
     ROS_DEBUG ("[%s] %s: %zu points -> %zu patches in %.3f s, resampled in %.3f s, %zu model bytes in %.3f s",
                name_.c_str (), pointTypeName (result.layout.input), result.input_points, result.patches,
                result.encode_seconds, result.resample_seconds, result.model.size (), result.model_seconds);
-    if (want_cloud)
-      cloud_pub_.publish (result.cloud);
     if (want_model)
       model_pub_.publish (toModelMessage (std::move (result.model)));
   }

@@ -18,6 +18,7 @@
 #include <std_msgs/UInt8MultiArray.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,9 +42,12 @@ namespace pcl_sparse_ros
   /// the cloud has no x y z, the encoder refuses it, or the budget is out of range.
   /// \param[in] resampling point count (PointBudget::Kind::Default = the number of finite input points) and
   ///                       resampling options
+  /// \param[in] on_cloud if set, called with result.cloud as soon as it is made, before the model is
+  ///                     written: the node publishes it there, so the model costs the cloud no latency
   ResampleResult
   resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings,
-                 const ResamplingSettings& resampling, bool want_cloud, bool want_model);
+                 const ResamplingSettings& resampling, bool want_cloud, bool want_model,
+                 const std::function<void (const sensor_msgs::PointCloud2&)>& on_cloud = {});
 
   /// The .psm bytes as a std_msgs/UInt8MultiArray (one dimension labelled "psm").
   std_msgs::UInt8MultiArray
