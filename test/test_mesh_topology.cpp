@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <tuple>
 
 using namespace pcl_sparse;
 
@@ -103,7 +104,9 @@ TEST (MeshTopology, AdjacencyIsConsistentOnClosedAndOpenMeshes)
 {
   TriangleMesh two_spheres = makeIcosphere (2);
   appendMesh (two_spheres, makeIcosphere (1, 1.0, Eigen::Vector3d (3, 0, 0)));
-  for (const TriangleMesh& mesh : {makeTetrahedron (), makeCube (3), makeDisk (4), makeTorus (16, 8), two_spheres})
+  // The large torus has enough vertices for buildMeshTopology to run in parallel.
+  for (const TriangleMesh& mesh :
+       {makeTetrahedron (), makeCube (3), makeDisk (4), makeTorus (16, 8), makeTorus (160, 64), two_spheres})
   {
     const MeshTopology topo = buildMeshTopology (mesh);
     const int num_faces = static_cast<int> (mesh.numTriangles ());
@@ -169,4 +172,33 @@ TEST (MeshTopology, RepeatedIndexFaceHasNoSelfEdge)
   EXPECT_EQ (topo.numEdges (), 3u);
   EXPECT_EQ (topo.face_edges[1][0], -1);  // corners 0 and 1 are both vertex 1
   EXPECT_EQ (topo.facesOf (1).size (), 2u);  // counted once per face
+}
+
+TEST (MeshTopology, SameForAnyThreadCount)
+{
+  // Enough vertices to run in parallel, with faces across the mesh: non-manifold fins, a repeated index, a
+  // face using one edge twice.
+  TriangleMesh mesh = makeTorus (160, 64);
+  const int n = static_cast<int> (mesh.numVertices ());
+  mesh.vertices.emplace_back (0.0, 0.0, 2.0);
+  for (int v = 0; v + 1 < n; v += 997)
+    mesh.triangles.emplace_back (v, v + 1, n);
+  mesh.triangles.emplace_back (5, 5, n - 3);
+  mesh.triangles.emplace_back (7, n - 7, 7);
+  const auto lists = [] (const MeshTopology& t) {
+    return std::tie (t.vertex_face_offsets, t.vertex_faces, t.vertex_neighbor_offsets, t.vertex_neighbors, t.edges,
+                     t.edge_face_count, t.face_edges, t.face_neighbors);
+  };
+  const MeshTopology one = buildMeshTopology (mesh, 1);
+  for (const int threads : {2, 3})
+  {
+    const MeshTopology topo = buildMeshTopology (mesh, threads);
+    EXPECT_TRUE (lists (topo) == lists (one)) << threads << " threads";
+  }
+  EXPECT_GT (countEdges (one, 3), 0);
+  const int twice = static_cast<int> (mesh.numTriangles ()) - 1;  // (7, n - 7, 7): edge (7, n - 7) twice
+  EXPECT_EQ (one.face_edges[twice][0], one.face_edges[twice][1]);
+  EXPECT_EQ (one.face_neighbors[twice][0], twice);
+  EXPECT_EQ (one.face_edges[twice][2], -1);
+  EXPECT_EQ (one.face_edges[twice - 1][0], -1);
 }

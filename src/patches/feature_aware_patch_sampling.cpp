@@ -115,11 +115,11 @@ namespace pcl_sparse
       const TriangleMesh* mesh = nullptr;
       const MeshTopology* topology = nullptr;
 
-      GrowthMesh (const TriangleMesh& input, const MeshTopology& input_topology)
+      GrowthMesh (const TriangleMesh& input, const MeshTopology& input_topology, int num_threads)
       {
         is_split = splitNonManifoldVertices (input, input_topology, split);
         if (is_split)
-          split_topology = buildMeshTopology (split.mesh);
+          split_topology = buildMeshTopology (split.mesh, num_threads);
         mesh = is_split ? &split.mesh : &input;
         topology = is_split ? &split_topology : &input_topology;
       }
@@ -396,7 +396,7 @@ namespace pcl_sparse
     if (responses.empty () && keypoints.empty ())
       computeUnitScaleHarris3D (input, input_topology, num_threads, result.responses, result.keypoints, options.harris_rings);
 
-    const GrowthMesh growth (input, input_topology);
+    const GrowthMesh growth (input, input_topology, num_threads);
     const TriangleMesh& mesh = *growth.mesh;
     const MeshTopology& topology = *growth.topology;
     const int num_vertices = static_cast<int> (mesh.vertices.size ());

@@ -65,9 +65,10 @@ namespace pcl_sparse
   };
 
   /// Builds the topology of a mesh in O(#V + #F).
-  /// \param[in] mesh  triangle indices must be valid (0 <= i < #V); faces with repeated vertices are
-  ///                  allowed and contribute only their proper edges
+  /// \param[in] mesh         triangle indices must be valid (0 <= i < #V); faces with repeated vertices are
+  ///                         allowed and contribute only their proper edges
+  /// \param[in] num_threads  OpenMP threads (0: all); the topology does not depend on it
   /// \return the connectivity, every list sorted
   MeshTopology
-  buildMeshTopology (const TriangleMesh& mesh);
+  buildMeshTopology (const TriangleMesh& mesh, int num_threads = 0);
 } // namespace pcl_sparse

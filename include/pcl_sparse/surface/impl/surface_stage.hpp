@@ -81,7 +81,7 @@ namespace pcl_sparse
     if (surface_->vertices.empty () || surface_->triangles.empty ())
       fail ("no input mesh or an empty one (set a mesh with triangles)");
     if (!surface_topology_)
-      surface_topology_ = std::make_shared<const MeshTopology> (buildMeshTopology (*surface_));
+      surface_topology_ = std::make_shared<const MeshTopology> (buildMeshTopology (*surface_, num_threads_));
   }
 
   template <typename PointInT>
