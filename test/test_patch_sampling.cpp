@@ -390,6 +390,29 @@ TEST (PatchSampling, NonManifoldEdgeIsABorder)
       EXPECT_NEAR (normals[f].dot (normals[p.triangles[0]]), 1.0, 1e-9) << "patch crosses the non-manifold edge";
 }
 
+TEST (PatchSampling, NonManifoldSplitSameForAnyThreadCount)
+{
+  // Enough vertices to split in parallel; fins on the torus make non-manifold edges all over it, and their
+  // common apex a vertex with one umbrella per fin.
+  TriangleMesh mesh = makeTorus (160, 64);
+  const int n = static_cast<int> (mesh.vertices.size ());
+  mesh.vertices.emplace_back (0.0, 0.0, 2.0);
+  for (int v = 0; v + 1 < n; v += 997)
+    mesh.triangles.emplace_back (v, v + 1, n);
+  const MeshTopology topology = buildMeshTopology (mesh);
+  NonManifoldSplit one;
+  ASSERT_TRUE (splitNonManifoldVertices (mesh, topology, one, 1));
+  EXPECT_GT (one.mesh.vertices.size (), mesh.vertices.size () + 10);
+  for (const int threads : {2, 3})
+  {
+    NonManifoldSplit split;
+    ASSERT_TRUE (splitNonManifoldVertices (mesh, topology, split, threads));
+    EXPECT_EQ (split.original, one.original);
+    EXPECT_EQ (split.mesh.vertices, one.mesh.vertices);
+    EXPECT_EQ (split.mesh.triangles, one.mesh.triangles);
+  }
+}
+
 TEST (PatchSampling, SameOutputForAnyThreadCountAndGivenTopology)
 {
   // Default candidate order (Harris 3D computed inside), a bumpy torus so that responses vary.

@@ -117,7 +117,7 @@ namespace pcl_sparse
 
       GrowthMesh (const TriangleMesh& input, const MeshTopology& input_topology, int num_threads)
       {
-        is_split = splitNonManifoldVertices (input, input_topology, split);
+        is_split = splitNonManifoldVertices (input, input_topology, split, num_threads);
         if (is_split)
           split_topology = buildMeshTopology (split.mesh, num_threads);
         mesh = is_split ? &split.mesh : &input;

@@ -24,12 +24,14 @@ namespace pcl_sparse
   /// Splits the vertices that have more than one umbrella (non-manifold edges and vertices, "bow ties").
   /// Degenerate faces (a repeated corner, zero or non-finite area) belong to no umbrella of their own:
   /// they stay with the vertex's first umbrella.
-  /// \param[in]  mesh      the input
-  /// \param[in]  topology  its topology
-  /// \param[out] split     the split mesh and the map to input vertices
+  /// \param[in]  mesh         the input
+  /// \param[in]  topology     its topology
+  /// \param[out] split        the split mesh and the map to input vertices
+  /// \param[in]  num_threads  OpenMP threads (0: all); the split does not depend on it
   /// \return false (and \a split untouched) when every vertex has at most one umbrella
   bool
-  splitNonManifoldVertices (const TriangleMesh& mesh, const MeshTopology& topology, NonManifoldSplit& split);
+  splitNonManifoldVertices (const TriangleMesh& mesh, const MeshTopology& topology, NonManifoldSplit& split,
+                            int num_threads = 0);
 
   /// Per-vertex vectors of the input (a scan's normals) on the split mesh: each copy takes its original's.
   /// \param[in] split   the split
