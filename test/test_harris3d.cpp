@@ -203,6 +203,30 @@ TEST (Harris3D, KeypointsAreLocalMaximaAndTheFractionIsRespected)
                  (responses[order[i - 1]] == responses[order[i]] && order[i - 1] < order[i]));
 }
 
+TEST (Harris3D, SortByRankIsTheOrderOfRanksBefore)
+{
+  // More vertices than are sorted on one thread; equal responses, -0 and 0, NaN and infinities (no
+  // response) in a shuffled subset.
+  std::mt19937 random (7);
+  std::vector<double> responses (200000);
+  for (double& r : responses)
+    r = static_cast<double> (random () % 1000) - 500.0;
+  const double specials[] = {0.0, -0.0, std::nan (""), INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < responses.size (); i += 7)
+    responses[i] = specials[(i / 7) % 5];
+  std::vector<int> vertices (150000);
+  std::iota (vertices.begin (), vertices.end (), 30000);
+  std::shuffle (vertices.begin (), vertices.end (), random);
+  std::vector<int> expected = vertices;
+  std::sort (expected.begin (), expected.end (), [&responses] (int a, int b) { return harris3DRanksBefore (responses, a, b); });
+  for (const int threads : {1, 2})
+  {
+    std::vector<int> sorted = vertices;
+    sortByHarris3DRank (responses, sorted, threads);
+    EXPECT_EQ (sorted, expected) << threads << " threads";
+  }
+}
+
 TEST (Harris3D, SameOutputForAnyThreadCount)
 {
   const auto mesh = std::make_shared<TriangleMesh> (bumpyTorus ());

@@ -12,6 +12,7 @@
 #include <limits>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 namespace pcl_sparse
 {
@@ -231,13 +232,38 @@ namespace pcl_sparse
     return computeResponses (mesh, topology, options, &indices);
   }
 
+  void
+  sortByHarris3DRank (const std::vector<double>& responses, std::vector<int>& vertices, int num_threads)
+  {
+    // harris3DRanksBefore on keys read once, (-response or +inf for none, index), instead of a call and two
+    // scattered reads per comparison. A strict total order: the halves sorted on two threads and merged
+    // are the same order.
+    std::vector<std::pair<double, int>> keyed (vertices.size ());
+    for (std::size_t i = 0; i < vertices.size (); ++i)
+    {
+      const double r = responses[vertices[i]];
+      keyed[i] = {std::isfinite (r) ? -r : std::numeric_limits<double>::infinity (), vertices[i]};
+    }
+    const auto middle = keyed.begin () + static_cast<std::ptrdiff_t> (keyed.size () / 2);
+#pragma omp parallel sections num_threads(std::min (2, resolveThreadCount (num_threads))) if(keyed.size () > 65536)
+    {
+#pragma omp section
+      std::sort (keyed.begin (), middle);
+#pragma omp section
+      std::sort (middle, keyed.end ());
+    }
+    std::inplace_merge (keyed.begin (), middle, keyed.end ());
+    for (std::size_t i = 0; i < vertices.size (); ++i)
+      vertices[i] = keyed[i].second;
+  }
+
   std::vector<int>
   orderVerticesByResponse (const std::vector<double>& responses)
   {
     std::vector<int> order (responses.size ());
     for (std::size_t i = 0; i < order.size (); ++i)
       order[i] = static_cast<int> (i);
-    std::sort (order.begin (), order.end (), [&responses] (int a, int b) { return harris3DRanksBefore (responses, a, b); });
+    sortByHarris3DRank (responses, order);
     return order;
   }
 
@@ -263,7 +289,7 @@ namespace pcl_sparse
     for (int v = 0; v < static_cast<int> (responses.size ()); ++v)
       if (isHarris3DLocalMaximum (topology, responses, v))
         maxima.push_back (v);
-    std::sort (maxima.begin (), maxima.end (), [&responses] (int a, int b) { return harris3DRanksBefore (responses, a, b); });
+    sortByHarris3DRank (responses, maxima, options.num_threads);
 
     if (options.selection == Harris3DSelection::Fraction)
     {

@@ -32,11 +32,11 @@ namespace pcl_sparse
     /// Candidate order: \a keypoints first, then the other vertices; each part in the order of
     /// orderVerticesByResponse (decreasing response, ties by increasing index, no response last).
     std::vector<int>
-    candidateOrder (std::size_t num_vertices, const std::vector<double>& responses, const std::vector<int>& keypoints)
+    candidateOrder (std::size_t num_vertices, const std::vector<double>& responses, const std::vector<int>& keypoints,
+                    int num_threads)
     {
       const std::vector<double> no_responses (responses.empty () ? num_vertices : 0, std::nan (""));
       const std::vector<double>& ranked = responses.empty () ? no_responses : responses;
-      auto before = [&ranked] (int a, int b) { return harris3DRanksBefore (ranked, a, b); };
       std::vector<std::uint8_t> is_keypoint (num_vertices, 0);
       std::vector<int> first, rest;
       for (int k : keypoints)
@@ -49,8 +49,8 @@ namespace pcl_sparse
       for (std::size_t v = 0; v < num_vertices; ++v)
         if (!is_keypoint[v])
           rest.push_back (static_cast<int> (v));
-      std::sort (first.begin (), first.end (), before);
-      std::sort (rest.begin (), rest.end (), before);
+      sortByHarris3DRank (ranked, first, num_threads);
+      sortByHarris3DRank (ranked, rest, num_threads);
       first.insert (first.end (), rest.begin (), rest.end ());
       return first;
     }
@@ -402,7 +402,7 @@ namespace pcl_sparse
     const int num_vertices = static_cast<int> (mesh.vertices.size ());
     const PatchGrowthGeometry geometry = computePatchGrowthGeometry (mesh, topology, growth.normalsOf (point_normals), num_threads);
     const std::vector<int> order =
-      orderWithCopies (growth, candidateOrder (num_input, result.responses, result.keypoints), num_input);
+      orderWithCopies (growth, candidateOrder (num_input, result.responses, result.keypoints, threads), num_input);
 
     std::vector<std::uint8_t> referenced (num_vertices, 0);
     std::vector<std::uint8_t> seedable;  // on the growth mesh: a split copy takes its original's flag

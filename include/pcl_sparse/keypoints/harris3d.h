@@ -95,6 +95,13 @@ namespace pcl_sparse
   bool
   harris3DRanksBefore (const std::vector<double>& responses, int a, int b);
 
+  /// Sorts \a vertices in the order of harris3DRanksBefore (the same order for any thread count).
+  /// \param[in]     responses    #V responses (NaN: none)
+  /// \param[in,out] vertices     vertex indices
+  /// \param[in]     num_threads  OpenMP threads (0: all; at most two are used)
+  void
+  sortByHarris3DRank (const std::vector<double>& responses, std::vector<int>& vertices, int num_threads = 0);
+
   /// All vertex indices ordered by decreasing response: the candidate order of the feature-aware seed
   /// sampling (docs/METHOD.md step 4).
   /// \param[in] responses  #V responses (NaN: none)
