@@ -415,7 +415,6 @@ main (int argc, char** argv)
         throw Error ("option -recon: '" + model_path + "' stores no patch vertices (encode with --store-vertices)");
     }
 
-    timer.tic ();
     const Decoded decoded =
       tools::withPointTypeOf (tools::resampledExtraField (model->attribute_channels, attributes), [&] (auto* type) {
         return decodeAndWrite<std::remove_pointer_t<decltype (type)>> (args, request, model, patch_numbers,
