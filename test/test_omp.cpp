@@ -219,3 +219,34 @@ TEST (BatchOrthogonalMatchingPursuit, EachSignalAsOrthogonalMatchingPursuit)
   EXPECT_THROW (batchOrthogonalMatchingPursuit (Eigen::MatrixXd::Ones (3, 2), Eigen::MatrixXd::Ones (3, 2), {0.1}, 4),
                 std::exception);
 }
+
+// Fewer samples than atoms (a small patch): many cosines are nearly dependent at a few points, so atoms are
+// skipped after their Gram column was formed; the Gram store must hold more columns than signals x L
+// (it overflowed its heap block on such patches of a real scan, found by bench/scans.sh).
+TEST (BatchOrthogonalMatchingPursuit, FewerSamplesThanAtoms)
+{
+  const CosineDictionary dictionary (12);
+  std::mt19937 rng (5);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    std::vector<Eigen::Vector2d> points;
+    for (int p = 0; p < 3 + trial % 6; ++p)
+      points.emplace_back (0.05 * u (rng), 0.05 * u (rng));  // clustered: the cosines are nearly dependent there
+    Eigen::MatrixXd D;
+    dictionary.evaluate (points, D);
+    Eigen::MatrixXd Y (static_cast<Eigen::Index> (points.size ()), 3);
+    for (Eigen::Index r = 0; r < Y.rows (); ++r)
+      for (Eigen::Index c = 0; c < 3; ++c)
+        Y (r, c) = u (rng);
+    const std::vector<OmpResult> batch = batchOrthogonalMatchingPursuit (Y, D, {1e-14, 1e-14, 1e-14}, 12);
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_LE (batch[c].atoms.size (), points.size ());
+      ASSERT_EQ (batch[c].coefficients.size (), batch[c].atoms.size ());
+      EXPECT_LE (batch[c].residual_norm, Y.col (c).norm () * (1.0 + 1e-12));
+      for (double a : batch[c].coefficients)
+        ASSERT_TRUE (std::isfinite (a));
+    }
+  }
+}

@@ -141,12 +141,16 @@ namespace pcl_sparse
 
     // Gram columns D^T d_j, formed when some signal first chooses atom j.
     const int capacity = static_cast<int> (std::min<Eigen::Index> (max_atoms, std::min (num_points, num_atoms)));
+    // Room for every atom: an atom found dependent on a support is skipped after its column was formed, so
+    // more than num_signals * capacity atoms can get one (patches with fewer samples than atoms).
     Eigen::MatrixXd gram (num_atoms, std::min (num_atoms, num_signals * capacity));
     std::vector<Eigen::Index> gram_column (num_atoms, -1);
     Eigen::Index gram_columns = 0;
     auto gramOf = [&] (int atom) {
       if (gram_column[atom] < 0)
       {
+        if (gram_columns == gram.cols ())
+          gram.conservativeResize (Eigen::NoChange, std::min (num_atoms, 2 * gram.cols () + 1));
         gram_column[atom] = gram_columns++;
         gram.col (gram_column[atom]).noalias () = dictionary.transpose () * dictionary.col (atom);
       }
