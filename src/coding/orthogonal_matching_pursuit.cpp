@@ -139,10 +139,10 @@ namespace pcl_sparse
       usable[k] = squared_norms[k] > 1e-24 * largest;
     const Eigen::MatrixXd projections = dictionary.transpose () * signals;  // D^T Y
 
-    // Gram columns D^T d_j, formed when some signal first chooses atom j.
     const int capacity = static_cast<int> (std::min<Eigen::Index> (max_atoms, std::min (num_points, num_atoms)));
-    // Room for every atom: an atom found dependent on a support is skipped after its column was formed, so
-    // more than num_signals * capacity atoms can get one (patches with fewer samples than atoms).
+    // Gram columns D^T d_j, formed when some signal first chooses atom j: room for signals x L at first,
+    // grown when full, since an atom found dependent on a support is skipped after its column was formed
+    // (patches with fewer samples than atoms form more).
     Eigen::MatrixXd gram (num_atoms, std::min (num_atoms, num_signals * capacity));
     std::vector<Eigen::Index> gram_column (num_atoms, -1);
     Eigen::Index gram_columns = 0;
