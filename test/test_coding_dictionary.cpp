@@ -9,6 +9,7 @@
 #include <Eigen/QR>
 
 #include <cmath>
+#include <iostream>
 #include <functional>
 #include <random>
 
@@ -295,8 +296,108 @@ TEST (DctCosineDictionary, RepresentsOddHeightsThePaperDictionaryCannot)
 
 TEST (CosineBasisKindNames, RoundTripAndRefuseUnknown)
 {
-  for (const CosineBasisKind kind : {CosineBasisKind::Paper, CosineBasisKind::Dct})
+  for (const CosineBasisKind kind : {CosineBasisKind::Paper, CosineBasisKind::Dct, CosineBasisKind::DctQuadric})
     EXPECT_EQ (cosineBasisKindFromName (cosineBasisKindName (kind)), kind);
+  EXPECT_STREQ (cosineBasisKindName (CosineBasisKind::DctQuadric), "quadric");
   EXPECT_THROW (cosineBasisKindFromName ("dst"), Error);
   EXPECT_THROW (cosineBasisKindFromName (""), Error);
+}
+
+// The quadric basis: the 144 half-period atoms unchanged, then x, y, x^2, x y, y^2 (infinite wavelength:
+// the Nyquist cap never removes them), with exact values and derivatives, in a code mixed with cosines.
+TEST (QuadricDctDictionary, MonomialsAfterTheCosines)
+{
+  const QuadricDctDictionary quadric (12);
+  const DctCosineDictionary dct (12);
+  EXPECT_EQ (quadric.size (), 149);
+  EXPECT_EQ (quadric.kind (), CosineBasisKind::DctQuadric);
+  EXPECT_EQ (quadric.monomials (), 5);
+  EXPECT_NE (dynamic_cast<const QuadricDctDictionary*> (makeCosineBasis (CosineBasisKind::DctQuadric, 12).get ()), nullptr);
+  for (int atom = 144; atom < 149; ++atom)
+  {
+    EXPECT_TRUE (quadric.isMonomial (atom));
+    EXPECT_TRUE (std::isinf (quadric.wavelength (atom)));
+  }
+  EXPECT_FALSE (quadric.isMonomial (143));
+  EXPECT_EQ (nyquistAllowedAtoms (quadric, 0.5, 0.5, NyquistRule::Paper).back (), 1);
+
+  const std::vector<Eigen::Vector2d> points = randomPoints (50, 4);
+  Eigen::MatrixXd all, cosines, some;
+  quadric.evaluate (points, all);
+  dct.evaluate (points, cosines);
+  ASSERT_EQ (all.cols (), 149);
+  EXPECT_EQ (all.leftCols (144), cosines);  // the cosines bit for bit
+  const std::vector<int> atoms = {146, 3, 144, 147, 13, 148, 145};
+  quadric.evaluate (points, atoms, some);
+  for (std::size_t p = 0; p < points.size (); ++p)
+  {
+    const double x = points[p].x (), y = points[p].y ();
+    const double expected[5] = {x, y, x * x, x * y, y * y};
+    for (int m = 0; m < 5; ++m)
+      EXPECT_EQ (all (static_cast<Eigen::Index> (p), 144 + m), expected[m]);
+    for (std::size_t k = 0; k < atoms.size (); ++k)
+      EXPECT_EQ (some (static_cast<Eigen::Index> (p), static_cast<Eigen::Index> (k)), all (static_cast<Eigen::Index> (p), atoms[k]));
+  }
+
+  // A code: 1 + 2 x - y + 0.5 x^2 - 3 x y + 0.25 y^2 + 0.1 cos(3 pi (x + 1) / 2) cos(pi (y + 1) / 2).
+  const std::vector<int> code = {0, 144, 145, 146, 147, 148, dct.atomIndex (3, 1)};
+  const std::vector<double> coefficients = {1.0, 2.0, -1.0, 0.5, -3.0, 0.25, 0.1};
+  for (const Eigen::Vector2d& p : points)
+  {
+    const double x = p.x (), y = p.y ();
+    const double a = 1.5 * M_PI * (x + 1.0), b = 0.5 * M_PI * (y + 1.0);
+    const HeightSample s = quadric.evaluateCode (code, coefficients, x, y);
+    EXPECT_NEAR (s.value, 1.0 + 2.0 * x - y + 0.5 * x * x - 3.0 * x * y + 0.25 * y * y + 0.1 * std::cos (a) * std::cos (b), 1e-13);
+    EXPECT_NEAR (quadric.evaluateCodeValue (code, coefficients, x, y), s.value, 1e-13);
+    EXPECT_NEAR (s.gradient.x (), 2.0 + x - 3.0 * y - 0.1 * 1.5 * M_PI * std::sin (a) * std::cos (b), 1e-12);
+    EXPECT_NEAR (s.gradient.y (), -1.0 - 3.0 * x + 0.5 * y - 0.1 * 0.5 * M_PI * std::cos (a) * std::sin (b), 1e-12);
+    EXPECT_NEAR (s.hessian (0, 0), 1.0 - 0.1 * 2.25 * M_PI * M_PI * std::cos (a) * std::cos (b), 1e-11);
+    EXPECT_NEAR (s.hessian (0, 1), -3.0 + 0.1 * 0.75 * M_PI * M_PI * std::sin (a) * std::sin (b), 1e-11);
+    EXPECT_EQ (s.hessian (0, 1), s.hessian (1, 0));
+    EXPECT_NEAR (s.hessian (1, 1), 0.5 - 0.1 * 0.25 * M_PI * M_PI * std::cos (a) * std::cos (b), 1e-11);
+  }
+  // Without monomials in a code, the quadric basis gives the cosines' bits.
+  const std::vector<int> cosine_code = {0, 5, 17, 140};
+  const std::vector<double> cosine_coefficients = {0.3, -0.2, 0.05, 0.01};
+  const HeightSample a = quadric.evaluateCode (cosine_code, cosine_coefficients, 0.3, -0.7);
+  const HeightSample b = dct.evaluateCode (cosine_code, cosine_coefficients, 0.3, -0.7);
+  EXPECT_EQ (a.value, b.value);
+  EXPECT_EQ (a.gradient, b.gradient);
+  EXPECT_EQ (a.hessian, b.hessian);
+}
+
+// Why the quadric: a sphere's cap of radius 4 (local units) over the unit disk. The cosines reach x^2 + y^2
+// only slowly (their series of x^2 decays as 1 / k^2): OMP stops at L = 12 atoms 3.6 % off. The quadric's
+// six atoms, preferred, code it to 0.2 % (the rest is the cap's quartic term), with half the atoms.
+TEST (QuadricDctDictionary, CodesASphereCapWithTheQuadric)
+{
+  std::vector<Eigen::Vector2d> points;
+  for (const Eigen::Vector2d& p : randomPoints (400, 5))
+    if (p.norm () < 1.0)
+      points.push_back (p);
+  Eigen::VectorXd heights (static_cast<Eigen::Index> (points.size ()));
+  for (std::size_t p = 0; p < points.size (); ++p)
+    heights[static_cast<Eigen::Index> (p)] = std::sqrt (16.0 - points[p].squaredNorm ()) - 4.0 + 0.1 * points[p].x ();
+  Eigen::MatrixXd cosines, quadric;
+  DctCosineDictionary (12).evaluate (points, cosines);
+  const QuadricDctDictionary basis (12);
+  basis.evaluate (points, quadric);
+  std::vector<char> preferred (149, 1);
+  preferred[0] = 2;
+  for (int atom = 144; atom < 149; ++atom)
+    preferred[atom] = 2;
+  const OmpResult with_cosines = orthogonalMatchingPursuit (heights, cosines, {}, 0.01, 12);
+  const OmpResult with_quadric = orthogonalMatchingPursuit (heights, quadric, preferred, 0.01, 12, 0.3);
+  const double norm = heights.norm ();
+  std::cout << "sphere cap: cosines " << with_cosines.atoms.size () << " atoms, residual " << with_cosines.residual_norm / norm
+            << "; quadric " << with_quadric.atoms.size () << " atoms, residual " << with_quadric.residual_norm / norm << std::endl;
+  EXPECT_EQ (with_cosines.atoms.size (), 12u);
+  EXPECT_GT (with_cosines.residual_norm, 0.02 * norm);
+  EXPECT_LE (with_quadric.atoms.size (), 6u);
+  EXPECT_LT (with_quadric.residual_norm, 0.005 * norm);
+  for (int atom : with_quadric.atoms)
+    EXPECT_TRUE (atom == 0 || basis.isMonomial (atom)) << atom;
+  // Without the preference (1: the best atom always), OMP starts with cosines and does not get there.
+  const OmpResult unpreferred = orthogonalMatchingPursuit (heights, quadric, preferred, 0.01, 12, 1.0);
+  EXPECT_GT (unpreferred.residual_norm, 2.0 * with_quadric.residual_norm);
 }

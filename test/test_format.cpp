@@ -290,6 +290,51 @@ TEST (ModelFile, EmptyModelRoundTrips)
 }
 
 // Basis kind 2: the half-period cosines (pcl_sparse_encode -basis dct) survive a round trip as such.
+// Basis kind 3: the half-period cosines and the monomials x, y, x^2, x y, y^2 as atoms 144 .. 148.
+TEST (ModelFile, QuadricBasisRoundTrips)
+{
+  auto model = test::makeSyntheticModel (200, 5, true);
+  model.basis = std::make_shared<QuadricDctDictionary> (12);
+  for (std::size_t p = 0; p < model.patches.size (); ++p)
+  {
+    // One to three monomials a patch, some in front of the cosines (the order OMP picks them in).
+    PatchCode& patch = model.patches[p];
+    for (int k = 0; k <= static_cast<int> (p % 3); ++k)
+    {
+      const int monomial = 144 + static_cast<int> ((p + 2 * k) % 5);
+      patch.atoms.insert (patch.atoms.begin () + (k % 2 == 0 ? 0 : static_cast<std::ptrdiff_t> (patch.atoms.size ())), monomial);
+      patch.coefficients.insert (patch.coefficients.begin () + (k % 2 == 0 ? 0 : static_cast<std::ptrdiff_t> (patch.coefficients.size ())),
+                                 0.02 * (static_cast<double> (p % 7) - 3.0) + 0.005);
+    }
+  }
+  for (double tolerance : {0.0, 1e-4})
+  {
+    ModelWriteOptions options;
+    options.tolerance = tolerance;
+    const auto bytes = encodeModel (model, options);
+    EXPECT_EQ (bytes[12], 3);
+    const auto decoded = decodeModel (bytes.data (), bytes.size ());
+    ASSERT_NE (dynamic_cast<const QuadricDctDictionary*> (decoded.basis.get ()), nullptr);
+    EXPECT_EQ (decoded.basis->size (), 149);
+    EXPECT_EQ (inspectModel (bytes.data (), bytes.size ()).basis, "quadric + dct cosine 12x12");
+    if (tolerance == 0.0)
+    {
+      expectBitIdentical (model, decoded, false);
+      EXPECT_EQ (encodeModel (decoded, options), bytes);
+    }
+    else
+    {
+      EXPECT_LE (largestSurfaceDisplacement (model, decoded), tolerance * model.bbox_diagonal);
+      EXPECT_GT (largestSurfaceDisplacement (model, decoded), 0.0);
+    }
+    // Read over the cosines alone, the monomials lie outside the basis.
+    auto relabelled = bytes;
+    relabelled[12] = 2;
+    resealHeader (relabelled);
+    expectErrorContaining (relabelled, tolerance == 0.0 ? "outside the basis" : "runs past the basis' last atom");
+  }
+}
+
 TEST (ModelFile, DctBasisRoundTrips)
 {
   auto model = test::makeSyntheticModel (200, 5, true);
@@ -322,9 +367,9 @@ TEST (ModelFile, DctBasisRoundTrips)
     EXPECT_GT (largestSurfaceDisplacement (decoded, wrong), 1e-3 * model.bbox_diagonal);
   }
   auto bytes = encodeModel (model);
-  bytes[12] = 3;
+  bytes[12] = 4;
   resealHeader (bytes);
-  expectErrorContaining (bytes, "unknown basis kind 3");
+  expectErrorContaining (bytes, "unknown basis kind 4");
 }
 
 TEST (ModelFile, QuantisedRoundTripWithinTolerance)

@@ -241,3 +241,43 @@ TEST (SparseCodeContexts, RefusesACountAboveTheBasis)
     EXPECT_NE (std::string (e.what ()).find ("patch 0 has 5 atoms"), std::string::npos) << e.what ();
   }
 }
+
+// QuadricDctDictionary's monomials (atoms n^2 .. n^2 + 4) rank right after the constant, the cosines after
+// them in their shell order: a bijection of the 149 atoms onto ranks 0 .. 148.
+TEST (ShellRank, MonomialsRankAfterTheConstant)
+{
+  const int n = 12, monomials = 5;
+  std::vector<int> atom_of_rank (n * n + monomials, -1);
+  for (int atom = 0; atom < n * n + monomials; ++atom)
+  {
+    const int rank = shellRank (atom, n, monomials);
+    ASSERT_GE (rank, 0);
+    ASSERT_LT (rank, n * n + monomials);
+    EXPECT_EQ (atom_of_rank[rank], -1) << "rank " << rank << " taken twice";
+    atom_of_rank[rank] = atom;
+    EXPECT_EQ (atomOfShellRank (rank, n, monomials), atom);
+  }
+  EXPECT_EQ (atom_of_rank[0], 0);
+  for (int k = 0; k < monomials; ++k)
+    EXPECT_EQ (atom_of_rank[1 + k], n * n + k);
+  for (int atom = 1; atom < n * n; ++atom)
+    EXPECT_EQ (shellRank (atom, n, monomials), shellRank (atom, n) + monomials);
+
+  // The range coder's contexts take every atom of the basis, monomials included.
+  const std::vector<std::vector<int>> codes = {{0, 144, 146, 148, 13}, {147}, {143, 145}};
+  RangeEncoder out;
+  SparseCodeContexts writer (n, monomials);
+  for (const std::vector<int>& code : codes)
+    writer.putAtoms (out, code);
+  const std::vector<std::uint8_t> bytes = out.finish ();
+  RangeDecoder in (bytes.data (), bytes.size (), "atoms");
+  SparseCodeContexts reader (n, monomials);
+  for (const std::vector<int>& code : codes)
+  {
+    std::vector<int> atoms;
+    reader.getAtoms (in, "code", atoms);
+    std::vector<int> sorted (code);
+    std::sort (sorted.begin (), sorted.end (), [&] (int a, int b) { return shellRank (a, n, monomials) < shellRank (b, n, monomials); });
+    EXPECT_EQ (atoms, sorted);
+  }
+}

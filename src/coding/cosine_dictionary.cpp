@@ -85,15 +85,16 @@ namespace pcl_sparse
   } // namespace
 
   CosineAtoms::CosineAtoms (int frequencies, CosineBasisKind kind)
-    : n_ (frequencies), kind_ (kind), scale_ (kind == CosineBasisKind::Dct ? 0.5 : 1.0),
-      shift_ (kind == CosineBasisKind::Dct ? 0.5 : 0.0)
+    : n_ (frequencies), kind_ (kind), monomials_ (kind == CosineBasisKind::DctQuadric ? quadric_monomials : 0),
+      scale_ (kind == CosineBasisKind::Paper ? 1.0 : 0.5), shift_ (kind == CosineBasisKind::Paper ? 0.0 : 0.5)
   {
     if (frequencies < 1 || frequencies > max_frequencies)
-      throw Error (std::string (kind == CosineBasisKind::Dct ? "DctCosineDictionary" : "CosineDictionary") +
+      throw Error (std::string (kind == CosineBasisKind::Paper ? "CosineDictionary" : "DctCosineDictionary") +
                    ": frequencies must be in [1, " + std::to_string (max_frequencies) + "], got " +
                    std::to_string (frequencies));
-    frequency_x_.resize (n_ * n_);
-    frequency_y_.resize (n_ * n_);
+    // Monomials get frequency 0 here (their own terms are added by addMonomials).
+    frequency_x_.assign (static_cast<std::size_t> (size ()), 0);
+    frequency_y_.assign (static_cast<std::size_t> (size ()), 0);
     for (int a = 0; a < n_ * n_; ++a)
     {
       frequency_x_[a] = static_cast<std::uint8_t> (a / n_);
@@ -101,10 +102,54 @@ namespace pcl_sparse
     }
   }
 
+  void
+  CosineAtoms::monomialExponents (int monomial, int& p, int& q)
+  {
+    static constexpr int px[quadric_monomials] = {1, 0, 2, 1, 0}, py[quadric_monomials] = {0, 1, 0, 1, 2};
+    p = px[monomial];
+    q = py[monomial];
+  }
+
+  void
+  CosineAtoms::addMonomials (const std::vector<int>& atoms, const std::vector<double>& coefficients, double x,
+                             double y, HeightSample& sample) const
+  {
+    const std::size_t k_end = std::min (atoms.size (), coefficients.size ());
+    for (std::size_t k = 0; k < k_end; ++k)
+    {
+      if (!isMonomial (atoms[k]))
+        continue;
+      const double a = coefficients[k];
+      switch (atoms[k] - n_ * n_)
+      {
+        case 0: sample.value += a * x; sample.gradient.x () += a; break;
+        case 1: sample.value += a * y; sample.gradient.y () += a; break;
+        case 2:
+          sample.value += a * x * x;
+          sample.gradient.x () += 2.0 * a * x;
+          sample.hessian (0, 0) += 2.0 * a;
+          break;
+        case 3:
+          sample.value += a * x * y;
+          sample.gradient += a * Eigen::Vector2d (y, x);
+          sample.hessian (0, 1) += a;
+          sample.hessian (1, 0) += a;
+          break;
+        default:
+          sample.value += a * y * y;
+          sample.gradient.y () += 2.0 * a * y;
+          sample.hessian (1, 1) += 2.0 * a;
+          break;
+      }
+    }
+  }
+
   double
   CosineAtoms::wavelength (int atom) const
   {
     // cos(m pi s) has period 2 / m in s, i.e. 2 / (m ds/dt) in the patch coordinate t.
+    if (isMonomial (atom))
+      return std::numeric_limits<double>::infinity ();
     const int m = std::max (frequencyX (atom), frequencyY (atom));
     return m == 0 ? std::numeric_limits<double>::infinity () : 2.0 / (scale_ * m);
   }
@@ -131,6 +176,20 @@ namespace pcl_sparse
           cy (p, k) = c[k];
       }
     }
+
+    /// Values x^p y^q of monomial \a monomial at every point.
+    template <typename Column>
+    void
+    monomialColumn (const std::vector<Eigen::Vector2d>& points, int monomial, Column&& column)
+    {
+      int p, q;
+      CosineAtoms::monomialExponents (monomial, p, q);
+      for (std::size_t k = 0; k < points.size (); ++k)
+      {
+        const double x = points[k].x (), y = points[k].y ();
+        column[static_cast<Eigen::Index> (k)] = (p == 0 ? 1.0 : p == 1 ? x : x * x) * (q == 0 ? 1.0 : q == 1 ? y : y * y);
+      }
+    }
   } // namespace
 
   void
@@ -139,10 +198,12 @@ namespace pcl_sparse
     // Per-axis tables first, then each atom column is one vectorised product of two table columns.
     Eigen::MatrixXd cx, cy;
     axisTables (points, n_, scale_, shift_, cx, cy);
-    values.resize (static_cast<Eigen::Index> (points.size ()), n_ * n_);
+    values.resize (static_cast<Eigen::Index> (points.size ()), size ());
     for (int i = 0; i < n_; ++i)
       for (int j = 0; j < n_; ++j)
         values.col (i * n_ + j) = cx.col (i).cwiseProduct (cy.col (j));
+    for (int m = 0; m < monomials_; ++m)
+      monomialColumn (points, m, values.col (n_ * n_ + m));
   }
 
   void
@@ -151,12 +212,16 @@ namespace pcl_sparse
   {
     int count = 1;
     for (int a : atoms)
-      count = std::max ({count, a / n_ + 1, a % n_ + 1});
+      if (!isMonomial (a))
+        count = std::max ({count, a / n_ + 1, a % n_ + 1});
     Eigen::MatrixXd cx, cy;
     axisTables (points, count, scale_, shift_, cx, cy);
     values.resize (static_cast<Eigen::Index> (points.size ()), static_cast<Eigen::Index> (atoms.size ()));
     for (std::size_t k = 0; k < atoms.size (); ++k)
-      values.col (static_cast<Eigen::Index> (k)) = cx.col (atoms[k] / n_).cwiseProduct (cy.col (atoms[k] % n_));
+      if (isMonomial (atoms[k]))
+        monomialColumn (points, atoms[k] - n_ * n_, values.col (static_cast<Eigen::Index> (k)));
+      else
+        values.col (static_cast<Eigen::Index> (k)) = cx.col (atoms[k] / n_).cwiseProduct (cy.col (atoms[k] % n_));
   }
 
   HeightSample
@@ -169,13 +234,23 @@ namespace pcl_sparse
     if (k_end > static_cast<std::size_t> (stack_atoms))
       return evaluateLongCode (atoms, coefficients, x, y);
     int fi[stack_atoms], fj[stack_atoms];
+    double coefficient[stack_atoms];
     int count_x = 1, count_y = 1;
+    std::size_t terms = 0;
+    bool monomials = false;
     for (std::size_t k = 0; k < k_end; ++k)
     {
-      fi[k] = frequency_x_[atoms[k]];
-      fj[k] = frequency_y_[atoms[k]];
-      count_x = std::max (count_x, fi[k] + 1);
-      count_y = std::max (count_y, fj[k] + 1);
+      if (isMonomial (atoms[k]))
+      {
+        monomials = true;
+        continue;
+      }
+      fi[terms] = frequency_x_[atoms[k]];
+      fj[terms] = frequency_y_[atoms[k]];
+      coefficient[terms] = coefficients[k];
+      count_x = std::max (count_x, fi[terms] + 1);
+      count_y = std::max (count_y, fj[terms] + 1);
+      ++terms;
     }
     double cx[max_frequencies + 4], sx[max_frequencies + 4], cy[max_frequencies + 4], sy[max_frequencies + 4];
     harmonics (argument (x), count_x, cx, sx);
@@ -183,10 +258,10 @@ namespace pcl_sparse
 
     // Derivatives: d/dx cos(i pi s) = -i pi s' sin(i pi s), d2/dx2 = -(i pi s')^2 cos(i pi s), s' = scale_.
     double v = 0.0, gx = 0.0, gy = 0.0, hxx = 0.0, hxy = 0.0, hyy = 0.0;
-    for (std::size_t k = 0; k < k_end; ++k)
+    for (std::size_t k = 0; k < terms; ++k)
     {
       const int i = fi[k], j = fj[k];
-      const double a = coefficients[k];
+      const double a = coefficient[k];
       const double ci = cx[i], si = sx[i], cj = cy[j], sj = sy[j];
       const double di = i, dj = j;
       const double acc = a * ci * cj;
@@ -203,6 +278,8 @@ namespace pcl_sparse
     sample.gradient = Eigen::Vector2d (pi * gx, pi * gy);
     const double pi2 = pi * pi;
     sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
+    if (monomials)
+      addMonomials (atoms, coefficients, x, y, sample);
     return sample;
   }
 
@@ -241,8 +318,22 @@ namespace pcl_sparse
     cosines (argument (x), count_x, cx);
     cosines (argument (y), count_y, cy);
     double v = 0.0;
+    if (monomials_ == 0)
+    {
+      for (std::size_t k = 0; k < k_end; ++k)
+        v += coefficients[k] * cx[frequency_x_[atoms[k]]] * cy[frequency_y_[atoms[k]]];
+      return v;
+    }
     for (std::size_t k = 0; k < k_end; ++k)
-      v += coefficients[k] * cx[frequency_x_[atoms[k]]] * cy[frequency_y_[atoms[k]]];
+      if (!isMonomial (atoms[k]))
+        v += coefficients[k] * cx[frequency_x_[atoms[k]]] * cy[frequency_y_[atoms[k]]];
+    for (std::size_t k = 0; k < k_end; ++k)
+      if (isMonomial (atoms[k]))
+      {
+        int p, q;
+        monomialExponents (atoms[k] - n_ * n_, p, q);
+        v += coefficients[k] * (p == 0 ? 1.0 : p == 1 ? x : x * x) * (q == 0 ? 1.0 : q == 1 ? y : y * y);
+      }
     return v;
   }
 
@@ -251,21 +342,23 @@ namespace pcl_sparse
   {
     if (kind == CosineBasisKind::Dct)
       return std::make_shared<DctCosineDictionary> (frequencies);
+    if (kind == CosineBasisKind::DctQuadric)
+      return std::make_shared<QuadricDctDictionary> (frequencies);
     return std::make_shared<CosineDictionary> (frequencies);
   }
 
   const char*
   cosineBasisKindName (CosineBasisKind kind)
   {
-    return kind == CosineBasisKind::Dct ? "dct" : "paper";
+    return kind == CosineBasisKind::Dct ? "dct" : kind == CosineBasisKind::DctQuadric ? "quadric" : "paper";
   }
 
   CosineBasisKind
   cosineBasisKindFromName (const std::string& name)
   {
-    for (const CosineBasisKind kind : {CosineBasisKind::Paper, CosineBasisKind::Dct})
+    for (const CosineBasisKind kind : {CosineBasisKind::Paper, CosineBasisKind::Dct, CosineBasisKind::DctQuadric})
       if (name == cosineBasisKindName (kind))
         return kind;
-    throw Error ("unknown basis '" + name + "': expected paper or dct");
+    throw Error ("unknown basis '" + name + "': expected paper, dct or quadric");
   }
 } // namespace pcl_sparse

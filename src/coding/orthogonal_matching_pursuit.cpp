@@ -16,13 +16,13 @@ namespace pcl_sparse
     /// <r, d_k>, and that score in \a best_score; -1 if no candidate scores above 0.
     int
     bestAtom (const Eigen::VectorXd& correlation, const Eigen::VectorXd& squared_norms, const std::vector<char>& candidate,
-              double& best_score)
+              double& best_score, char tier = 1)
     {
       int best = -1;
       best_score = 0.0;
       for (Eigen::Index k = 0; k < correlation.size (); ++k)
       {
-        if (!candidate[k])
+        if (candidate[k] < tier)
           continue;
         const double score = correlation[k] * correlation[k] / squared_norms[k];
         if (score > best_score)
@@ -37,7 +37,7 @@ namespace pcl_sparse
 
   OmpResult
   orthogonalMatchingPursuit (const Eigen::VectorXd& signal, const Eigen::MatrixXd& dictionary,
-                             const std::vector<char>& allowed, double tolerance, int max_atoms)
+                             const std::vector<char>& allowed, double tolerance, int max_atoms, double preference)
   {
     OmpResult result;
     const Eigen::Index num_points = dictionary.rows ();
@@ -52,8 +52,13 @@ namespace pcl_sparse
     const Eigen::VectorXd squared_norms = dictionary.colwise ().squaredNorm ().transpose ();
     const double largest = squared_norms.maxCoeff ();
     std::vector<char> candidate (num_atoms, 0);
+    bool preferred = false;
     for (Eigen::Index k = 0; k < num_atoms; ++k)
-      candidate[k] = (allowed.empty () || allowed[k]) && squared_norms[k] > 1e-24 * largest;
+    {
+      const char flag = allowed.empty () ? 1 : allowed[k];
+      candidate[k] = squared_norms[k] > 1e-24 * largest ? flag : 0;
+      preferred = preferred || candidate[k] == 2;
+    }
 
     const int capacity = static_cast<int> (std::min<Eigen::Index> (max_atoms, std::min (num_points, num_atoms)));
     Eigen::MatrixXd support (num_points, capacity);    // D_S, the selected columns
@@ -70,7 +75,18 @@ namespace pcl_sparse
     {
       correlation.noalias () = dictionary.transpose () * residual;
       double best_score = 0.0;
-      const int best = bestAtom (correlation, squared_norms, candidate, best_score);
+      int best = bestAtom (correlation, squared_norms, candidate, best_score);
+      // A preferred atom wins while it scores at least preference x the best one.
+      if (preferred)
+      {
+        double preferred_score = 0.0;
+        const int best_preferred = bestAtom (correlation, squared_norms, candidate, preferred_score, 2);
+        if (best_preferred >= 0 && std::sqrt (preferred_score) > 1e-12 * signal_norm && preferred_score >= preference * best_score)
+        {
+          best = best_preferred;
+          best_score = preferred_score;
+        }
+      }
       // No allowed atom left that can reduce the residual (relative to the signal, beyond round-off).
       if (best < 0 || std::sqrt (best_score) <= 1e-12 * signal_norm)
         break;

@@ -1,3 +1,4 @@
+#include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/coding/orthogonal_matching_pursuit.h>
 #include <pcl_sparse/coding/patch_attribute_coder.h>
 #include <pcl_sparse/coding/patch_coder.h>
@@ -96,8 +97,18 @@ namespace pcl_sparse
     Eigen::MatrixXd dictionary;
     basis.evaluate (positions, allowed_atoms, dictionary);
     const Eigen::VectorXd signal = Eigen::Map<const Eigen::VectorXd> (heights.data (), heights.size ());
-    OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, {}, stoppingTolerance (signal, patch, options),
-                                               options.max_atoms);
+    // A quadric basis: its constant and monomials are preferred (SparseCodingOptions::quadric_preference).
+    std::vector<char> preferred;
+    const auto* cosine = dynamic_cast<const CosineAtoms*> (&basis);
+    if (cosine && cosine->monomials () > 0)
+    {
+      preferred.assign (allowed_atoms.size (), 1);
+      for (std::size_t k = 0; k < allowed_atoms.size (); ++k)
+        if (allowed_atoms[k] == 0 || cosine->isMonomial (allowed_atoms[k]))
+          preferred[k] = 2;
+    }
+    OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, preferred, stoppingTolerance (signal, patch, options),
+                                               options.max_atoms, options.quadric_preference);
     code.atoms.reserve (omp.atoms.size ());
     for (int a : omp.atoms)
       code.atoms.push_back (allowed_atoms[a]);

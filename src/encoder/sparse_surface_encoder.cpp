@@ -255,6 +255,8 @@ namespace pcl_sparse
     require (patches.rho > 0.0, "rho must be > 0, got " + std::to_string (patches.rho));
     require (coding.nyquist_factor >= 0.0 && coding.nyquist_factor <= 1.0,
              "Nyquist factor f must be in [0, 1], got " + std::to_string (coding.nyquist_factor));
+    require (coding.quadric_preference >= 0.0 && coding.quadric_preference <= 1.0,
+             "quadric preference must be in [0, 1], got " + std::to_string (coding.quadric_preference));
     require (coding.max_atoms >= 1, "L (atoms per patch) must be >= 1, got " + std::to_string (coding.max_atoms));
     require (coding.tolerance > 0.0 && coding.tolerance < 1.0,
              "eps must be in (0, 1), got " + std::to_string (coding.tolerance));
@@ -276,8 +278,8 @@ namespace pcl_sparse
              "noise level must be >= 0, got " + std::to_string (coding.noise_level));
     require (dictionary_frequencies >= 1 && dictionary_frequencies <= CosineAtoms::max_frequencies,
              "dictionary frequencies must be in [1, 64], got " + std::to_string (dictionary_frequencies));
-    require (basis == CosineBasisKind::Paper || basis == CosineBasisKind::Dct,
-             "basis must be Paper or Dct, got " + std::to_string (static_cast<int> (basis)));
+    require (basis == CosineBasisKind::Paper || basis == CosineBasisKind::Dct || basis == CosineBasisKind::DctQuadric,
+             "basis must be Paper, Dct or DctQuadric, got " + std::to_string (static_cast<int> (basis)));
     require (attributes.basis == CosineBasisKind::Paper || attributes.basis == CosineBasisKind::Dct,
              "attribute basis must be Paper or Dct, got " + std::to_string (static_cast<int> (attributes.basis)));
     require (attributes.max_atoms >= 1,

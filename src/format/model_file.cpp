@@ -39,6 +39,32 @@ namespace pcl_sparse
     constexpr std::uint16_t kFlagRangeCoded = 8;  ///< quantised files: FRAM FOOT ATOM COEF AATM ACOF range-coded
     constexpr std::uint8_t kBasisCosine = 1;     ///< CosineDictionary: cos(i pi x) cos(j pi y)
     constexpr std::uint8_t kBasisDctCosine = 2;  ///< DctCosineDictionary: cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2)
+    constexpr std::uint8_t kBasisQuadricDct = 3; ///< QuadricDctDictionary: the Dct atoms, then x, y, x^2, x y, y^2
+
+    std::uint8_t
+    basisKindByte (CosineBasisKind kind)
+    {
+      switch (kind)
+      {
+        case CosineBasisKind::Dct: return kBasisDctCosine;
+        case CosineBasisKind::DctQuadric: return kBasisQuadricDct;
+        default: return kBasisCosine;
+      }
+    }
+
+    CosineBasisKind
+    basisKindOfByte (std::uint8_t kind)
+    {
+      return kind == kBasisDctCosine ? CosineBasisKind::Dct : kind == kBasisQuadricDct ? CosineBasisKind::DctQuadric
+                                                                                        : CosineBasisKind::Paper;
+    }
+
+    /// Monomial atoms after the cosines of a basis kind (shellRank).
+    int
+    monomialsOfKind (std::uint8_t kind)
+    {
+      return kind == kBasisQuadricDct ? CosineAtoms::quadric_monomials : 0;
+    }
     constexpr std::uint8_t kCodecStored = 0;
     constexpr std::uint8_t kCodecZstd = 1;
     constexpr std::uint64_t kMaxPatches = std::numeric_limits<std::int32_t>::max ();
@@ -321,8 +347,8 @@ namespace pcl_sparse
     /// fields"); the writer and the reader build the same ones and code the same values in the same order.
     struct PatchFieldContexts
     {
-      PatchFieldContexts (int extent_bits, int frequencies)
-        : first_level (extent_bits), level_delta (extent_bits), code (frequencies) {}
+      PatchFieldContexts (int extent_bits, int frequencies, int monomials)
+        : first_level (extent_bits), level_delta (extent_bits), code (frequencies, monomials) {}
 
       BitTreeModel angles{13};              ///< footprint angles K (<= kMaxFootprintAngles)
       BitTreeModel first_level;             ///< the first extent's level
@@ -354,9 +380,9 @@ namespace pcl_sparse
     /// already set) receives the atoms and coefficients as the decoder will read them.
     void
     putQuantisedCode (ByteWriter& atom, ByteWriter& coef, const PatchCode& patch, const QuantisationParameters& q,
-                      int frequencies, PatchCode& decoded)
+                      int frequencies, int monomials, PatchCode& decoded)
     {
-      const std::vector<std::size_t> order = putCodeAtoms (atom, patch.atoms, true, frequencies);
+      const std::vector<std::size_t> order = putCodeAtoms (atom, patch.atoms, true, frequencies, monomials);
       for (std::size_t k : order)
         decoded.atoms.push_back (patch.atoms[k]);
       const double step = coefficientStep (q.coefficient_budget, decoded.radius, order.size ());
@@ -463,14 +489,14 @@ namespace pcl_sparse
     /// The six per-patch sections of patches [first, first + count), quantised with \a q.
     std::vector<std::vector<std::uint8_t>>
     encodeQuantisedRun (const SparseSurfaceModel& model, std::size_t first, std::size_t count,
-                        const QuantisationParameters& q, const ModelWriteOptions& options, int frequencies)
+                        const QuantisationParameters& q, const ModelWriteOptions& options, int frequencies, int monomials)
     {
       // Decode as we go, so that the steps derived from decoded values match the decoder's.
       std::vector<std::vector<std::uint64_t>> seeds (3, std::vector<std::uint64_t> (count));
       std::vector<std::uint64_t> radii (count);
       ByteWriter frame, foot, atom, coef;  // the varint layout
       RangeEncoder coded_frame, coded_foot, coded_atom, coded_coef;
-      PatchFieldContexts contexts (q.extent_bits, frequencies);
+      PatchFieldContexts contexts (q.extent_bits, frequencies, monomials);
       for (std::size_t k = 0; k < count; ++k)
       {
         const PatchCode& patch = model.patches[first + k];
@@ -489,7 +515,7 @@ namespace pcl_sparse
         else
         {
           putQuantisedFootprint (foot, deltas);
-          putQuantisedCode (atom, coef, patch, q, frequencies, decoded);
+          putQuantisedCode (atom, coef, patch, q, frequencies, monomials, decoded);
           putQuantisedFrame (frame, quantisedFrame (patch.frame, decoded, q));
         }
       }
@@ -564,7 +590,7 @@ namespace pcl_sparse
         throw Error (what + ": unknown header flags (written by a newer pcl_sparse?)");
       if ((flags & kFlagRangeCoded) && !(flags & kFlagQuantised))
         throw Error (what + ": the range-coded flag needs the quantised flag");
-      if (basis_kind != kBasisCosine && basis_kind != kBasisDctCosine)
+      if (basis_kind != kBasisCosine && basis_kind != kBasisDctCosine && basis_kind != kBasisQuadricDct)
         throw Error (what + ": unknown basis kind " + std::to_string (basis_kind));
       if (basis_parameter < 1 || basis_parameter > CosineDictionary::max_frequencies)
         throw Error (what + ": cosine basis with " + std::to_string (basis_parameter) + " frequencies is out of range");
@@ -863,9 +889,9 @@ namespace pcl_sparse
     {
     public:
       RangeCodedPatchSections (ByteReader& frame, ByteReader& foot, ByteReader& atom, ByteReader& coef, int extent_bits,
-                               int basis_parameter)
+                               int basis_parameter, int monomials)
         : frame_ (rangeDecoderOverRest (frame)), foot_ (rangeDecoderOverRest (foot)), atom_ (rangeDecoderOverRest (atom)),
-          coef_ (rangeDecoderOverRest (coef)), contexts_ (extent_bits, basis_parameter)
+          coef_ (rangeDecoderOverRest (coef)), contexts_ (extent_bits, basis_parameter, monomials)
       {}
 
       /// The footprint, code and frame of patch \a p (its seed and radius already read).
@@ -967,6 +993,14 @@ namespace pcl_sparse
     return tags;
   }
 
+  std::string
+  basisDescription (std::uint8_t basis_kind, std::uint16_t basis_parameter)
+  {
+    const std::string n = std::to_string (basis_parameter);
+    const char* kind = basis_kind == kBasisDctCosine ? "dct cosine " : basis_kind == kBasisQuadricDct ? "quadric + dct cosine " : "cosine ";
+    return kind + n + "x" + n;
+  }
+
   ModelSections
   encodeModelSections (const SparseSurfaceModel& model, const ModelWriteOptions& options,
                        const std::vector<std::pair<std::size_t, std::size_t>>& runs)
@@ -997,7 +1031,7 @@ namespace pcl_sparse
     const bool range_coded = quantised && options.range_coding;
     shared.flags = static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0) |
                                                (attributes ? kFlagAttributes : 0) | (range_coded ? kFlagRangeCoded : 0));
-    shared.basis_kind = cosine.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine;
+    shared.basis_kind = basisKindByte (cosine.kind ());
     shared.basis_parameter = static_cast<std::uint16_t> (frequencies);
     shared.num_input_vertices = model.num_input_vertices;
     shared.bbox_diagonal = model.bbox_diagonal;
@@ -1014,7 +1048,8 @@ namespace pcl_sparse
     for (const auto& [first, count] : runs)
     {
       std::vector<std::vector<std::uint8_t>> sections =
-        quantised ? encodeQuantisedRun (model, first, count, q, options, frequencies) : encodeLosslessRun (model, first, count);
+        quantised ? encodeQuantisedRun (model, first, count, q, options, frequencies, cosine.monomials ())
+                  : encodeLosslessRun (model, first, count);
       if (options.include_vertices)
         sections.push_back (encodeVertices (model, first, count, quantised));
       if (attributes)
@@ -1117,8 +1152,7 @@ namespace pcl_sparse
       throw Error (name + ": number of patches " + std::to_string (m) + " out of range");
 
     SparseSurfaceModel model;
-    model.basis = makeCosineBasis (shared.basis_kind == kBasisDctCosine ? CosineBasisKind::Dct : CosineBasisKind::Paper,
-                                   shared.basis_parameter);
+    model.basis = makeCosineBasis (basisKindOfByte (shared.basis_kind), shared.basis_parameter);
     model.num_input_vertices = shared.num_input_vertices;
     model.bbox_diagonal = shared.bbox_diagonal;
 
@@ -1149,7 +1183,7 @@ namespace pcl_sparse
     // Range-coded: one decoder per section over all its bytes (the ByteReaders are then at their end).
     std::optional<RangeCodedPatchSections> coded;
     if (range_coded)
-      coded.emplace (frame, foot, atom, coef, q.extent_bits, shared.basis_parameter);
+      coded.emplace (frame, foot, atom, coef, q.extent_bits, shared.basis_parameter, monomialsOfKind (shared.basis_kind));
 
     const std::uint8_t* seed_planes = nullptr;
     const std::uint8_t* radius_planes = nullptr;
@@ -1169,7 +1203,8 @@ namespace pcl_sparse
         continue;
       }
       readFootprint (foot, quantised, q, p, patch.footprint);
-      getCodeAtoms (atom, quantised, shared.basis_parameter, "patch " + std::to_string (p), patch.atoms);
+      getCodeAtoms (atom, quantised, shared.basis_parameter, "patch " + std::to_string (p), patch.atoms,
+                    monomialsOfKind (shared.basis_kind));
       readCoefficients (coef, quantised, q, patch);
       readFrame (frame, quantised, q, p, patch);
     }
@@ -1249,9 +1284,7 @@ namespace pcl_sparse
       for (const AttributeChannelInfo& channel : decodeAttributeChannels (channels, info.quantised))
         info.attributes.push_back (attributeChannelName (channel.channel));
     }
-    info.basis = std::string (container.header.basis_kind == kBasisDctCosine ? "dct cosine " : "cosine ") +
-                 std::to_string (container.header.basis_parameter) + "x" +
-                 std::to_string (container.header.basis_parameter);
+    info.basis = basisDescription (container.header.basis_kind, container.header.basis_parameter);
     info.num_patches = container.header.num_patches;
     info.num_input_vertices = container.header.num_input_vertices;
     info.bbox_diagonal = container.header.bbox_diagonal;

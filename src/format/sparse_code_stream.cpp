@@ -33,15 +33,23 @@ namespace pcl_sparse
   } // namespace
 
   int
-  shellRank (int atom, int n)
+  shellRank (int atom, int n, int monomials)
   {
+    if (atom >= n * n)
+      return 1 + atom - n * n;
     const int i = atom / n, j = atom % n, m = std::max (i, j);
-    return m * m + (i == m ? j : m + 1 + i);
+    const int rank = m * m + (i == m ? j : m + 1 + i);
+    return rank == 0 ? 0 : rank + monomials;
   }
 
   int
-  atomOfShellRank (int rank, int n)
+  atomOfShellRank (int rank, int n, int monomials)
   {
+    if (rank == 0)
+      return 0;
+    if (rank <= monomials)
+      return n * n + rank - 1;
+    rank -= monomials;
     int m = static_cast<int> (std::sqrt (static_cast<double> (rank)));
     while (m * m > rank)
       --m;
@@ -52,11 +60,11 @@ namespace pcl_sparse
   }
 
   std::vector<std::size_t>
-  shellRankOrder (const std::vector<int>& atoms, int frequencies)
+  shellRankOrder (const std::vector<int>& atoms, int frequencies, int monomials)
   {
     std::vector<int> ranks (atoms.size ());
     for (std::size_t k = 0; k < atoms.size (); ++k)
-      ranks[k] = shellRank (atoms[k], frequencies);
+      ranks[k] = shellRank (atoms[k], frequencies, monomials);
     std::vector<std::size_t> order (atoms.size ());
     std::iota (order.begin (), order.end (), 0);
     std::sort (order.begin (), order.end (), [&] (std::size_t a, std::size_t b) { return ranks[a] < ranks[b]; });
@@ -71,7 +79,7 @@ namespace pcl_sparse
   }
 
   std::vector<std::size_t>
-  putCodeAtoms (ByteWriter& out, const std::vector<int>& atoms, bool quantised, int frequencies)
+  putCodeAtoms (ByteWriter& out, const std::vector<int>& atoms, bool quantised, int frequencies, int monomials)
   {
     out.putVarint (atoms.size ());
     if (!quantised)
@@ -82,11 +90,11 @@ namespace pcl_sparse
       std::iota (order.begin (), order.end (), 0);
       return order;
     }
-    const std::vector<std::size_t> order = shellRankOrder (atoms, frequencies);
+    const std::vector<std::size_t> order = shellRankOrder (atoms, frequencies, monomials);
     int previous_rank = -1;
     for (std::size_t k : order)
     {
-      const int rank = shellRank (atoms[k], frequencies);
+      const int rank = shellRank (atoms[k], frequencies, monomials);
       out.putVarint (static_cast<std::uint64_t> (rank - previous_rank - 1));
       previous_rank = rank;
     }
@@ -94,9 +102,10 @@ namespace pcl_sparse
   }
 
   void
-  getCodeAtoms (ByteReader& in, bool quantised, int frequencies, const std::string& code, std::vector<int>& atoms)
+  getCodeAtoms (ByteReader& in, bool quantised, int frequencies, const std::string& code, std::vector<int>& atoms,
+                int monomials)
   {
-    const int basis_size = frequencies * frequencies;
+    const int basis_size = frequencies * frequencies + monomials;
     const std::size_t n = in.getCount ("atom count", std::min<std::uint64_t> (basis_size, in.remaining ()));
     atoms.resize (n);
     std::int64_t previous = -1;
@@ -109,7 +118,7 @@ namespace pcl_sparse
         in.fail (code + " atom " + std::to_string (index) + " outside the basis of " + std::to_string (basis_size));
       previous = index;
       if (quantised)
-        index = atomOfShellRank (static_cast<int> (index), frequencies);
+        index = atomOfShellRank (static_cast<int> (index), frequencies, monomials);
       if (index >= basis_size)
         in.fail (code + " atom index " + std::to_string (index) + " outside the basis of " + std::to_string (basis_size));
       if (used[index])
@@ -153,22 +162,22 @@ namespace pcl_sparse
     }
   }
 
-  SparseCodeContexts::SparseCodeContexts (int frequencies)
-    : frequencies_ (frequencies), count_ (bitsFor (frequencies * frequencies)),
-      present_ (static_cast<std::size_t> (frequencies) * frequencies),
-      coefficient_ (std::min (coefficient_contexts, frequencies * frequencies))
+  SparseCodeContexts::SparseCodeContexts (int frequencies, int monomials)
+    : frequencies_ (frequencies), monomials_ (monomials), count_ (bitsFor (frequencies * frequencies + monomials)),
+      present_ (static_cast<std::size_t> (frequencies * frequencies + monomials)),
+      coefficient_ (std::min (coefficient_contexts, frequencies * frequencies + monomials))
   {
   }
 
   std::vector<std::size_t>
   SparseCodeContexts::putAtoms (RangeEncoder& out, const std::vector<int>& atoms)
   {
-    const std::vector<std::size_t> order = shellRankOrder (atoms, frequencies_);
+    const std::vector<std::size_t> order = shellRankOrder (atoms, frequencies_, monomials_);
     count_.put (out, static_cast<std::uint32_t> (atoms.size ()));
     int rank = 0;
     for (std::size_t k : order)
     {
-      for (const int next = shellRank (atoms[k], frequencies_); rank < next; ++rank)
+      for (const int next = shellRank (atoms[k], frequencies_, monomials_); rank < next; ++rank)
         out.put (present_[rank], false);
       out.put (present_[rank++], true);
     }
@@ -178,7 +187,7 @@ namespace pcl_sparse
   void
   SparseCodeContexts::getAtoms (RangeDecoder& in, const std::string& code, std::vector<int>& atoms)
   {
-    const int basis_size = frequencies_ * frequencies_;
+    const int basis_size = frequencies_ * frequencies_ + monomials_;
     const std::uint32_t n = count_.get (in);
     if (n > static_cast<std::uint32_t> (basis_size))
       in.fail (code + " has " + std::to_string (n) + " atoms, the basis " + std::to_string (basis_size));
@@ -189,7 +198,7 @@ namespace pcl_sparse
       if (rank >= basis_size)
         in.fail (code + " runs past the basis' last atom");
       if (in.get (present_[rank]))
-        atoms.push_back (atomOfShellRank (rank, frequencies_));
+        atoms.push_back (atomOfShellRank (rank, frequencies_, monomials_));
     }
   }
 
@@ -203,7 +212,7 @@ namespace pcl_sparse
     for (std::size_t k : order)
     {
       const std::int64_t steps = coefficientSteps (coefficients[k], step);
-      const int rank = shellRank (atoms[k], frequencies_);
+      const int rank = shellRank (atoms[k], frequencies_, monomials_);
       coefficient_[std::min<std::size_t> (rank, coefficient_.size () - 1)].put (out, steps);
       decoded.push_back (static_cast<double> (steps) * step);
     }
@@ -217,7 +226,7 @@ namespace pcl_sparse
     coefficients.resize (atoms.size ());
     for (std::size_t i = 0; i < atoms.size (); ++i)
     {
-      const int rank = shellRank (atoms[i], frequencies_);
+      const int rank = shellRank (atoms[i], frequencies_, monomials_);
       const double c = static_cast<double> (coefficient_[std::min<std::size_t> (rank, coefficient_.size () - 1)].get (in)) * step;
       if (!std::isfinite (c))
         in.fail ("coefficient is not finite");

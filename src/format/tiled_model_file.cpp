@@ -828,8 +828,7 @@ namespace pcl_sparse
       return info;
     }
     const SharedModelFields& shared = index.shared;
-    info.basis = std::string (shared.basis_kind == 2 ? "dct cosine " : "cosine ") + std::to_string (shared.basis_parameter) +
-                 "x" + std::to_string (shared.basis_parameter);
+    info.basis = basisDescription (shared.basis_kind, shared.basis_parameter);
     info.has_vertices = shared.flags & 2;
     const std::uint64_t index_bytes = index.index_bytes - shared.quantisation.size () - shared.channels.size ();
     info.sections.push_back ({"TIDX", index_bytes, index_bytes});

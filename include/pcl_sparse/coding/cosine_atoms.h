@@ -15,11 +15,15 @@ namespace pcl_sparse
   enum class CosineBasisKind
   {
     Paper,  ///< cos(i pi x) cos(j pi y): even in x and y only (the paper's dictionary, the default)
-    Dct     ///< cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2): even and odd parts (our option)
+    Dct,    ///< cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2): even and odd parts (our option)
+    /// The Dct atoms and the five monomials x, y, x^2, x y, y^2 after them (ours, the default): with the
+    /// constant atom they span every quadric, which cosines reach only slowly (a paraboloid needs about 12
+    /// cosines for 2 % of its height; the quadric codes a sphere's cap to 0.05 % with 6 atoms).
+    DctQuadric
   };
 
   /// Atom index = i * n + j for frequencies (i, j): atom 0 is the constant, atom j varies along y only,
-  /// atom i * n varies along x only. Wavelength of atom (i, j) is 2 / max(i, j) for Paper and
+  /// atom i * n varies along x only. DctQuadric adds atoms n^2 .. n^2 + 4: x, y, x^2, x y, y^2. Wavelength of atom (i, j) is 2 / max(i, j) for Paper and
   /// 4 / max(i, j) for Dct (+infinity for (0, 0)).
   ///
   /// Evaluation never calls cos per atom: cos(k pi s) and sin(k pi s) for all k come from one sin/cos
@@ -45,9 +49,18 @@ namespace pcl_sparse
     /// Frequency along y (j) of \a atom.
     int frequencyY (int atom) const { return atom % n_; }
 
-    /// n^2 atoms.
-    int size () const override { return n_ * n_; }
-    /// 2 / max(i, j) (Paper) or 4 / max(i, j) (Dct) for atom (i, j); +infinity for the constant atom.
+    /// Number of monomial atoms after the cosines: 5 for DctQuadric, else 0.
+    static constexpr int quadric_monomials = 5;
+    int monomials () const { return monomials_; }
+    /// Whether \a atom is a monomial (DctQuadric's atoms from n^2 on).
+    bool isMonomial (int atom) const { return atom >= n_ * n_; }
+    /// Exponents (p, q) of monomial atom \a atom, x^p y^q.
+    static void monomialExponents (int monomial, int& p, int& q);
+
+    /// n^2 cosine atoms, then the monomials.
+    int size () const override { return n_ * n_ + monomials_; }
+    /// 2 / max(i, j) (Paper) or 4 / max(i, j) (Dct) for atom (i, j); +infinity for the constant atom and
+    /// the monomials.
     double wavelength (int atom) const override;
 
     /// Values of every atom at every point.
@@ -86,6 +99,9 @@ namespace pcl_sparse
     CosineAtoms (int frequencies, CosineBasisKind kind);
 
   private:
+    /// The monomial atoms' terms of a code, added to \a sample.
+    void addMonomials (const std::vector<int>& atoms, const std::vector<double>& coefficients, double x, double y,
+                       HeightSample& sample) const;
     HeightSample evaluateLongCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                                    double x, double y) const;
 
@@ -94,6 +110,7 @@ namespace pcl_sparse
 
     int n_;
     CosineBasisKind kind_;
+    int monomials_;
     double scale_;  ///< ds/dt: 1 (Paper) or 1/2 (Dct)
     double shift_;  ///< 0 (Paper) or 1/2 (Dct)
     std::vector<std::uint8_t> frequency_x_;  ///< i of each atom (avoids integer division in the hot path)

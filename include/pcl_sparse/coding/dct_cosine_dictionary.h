@@ -25,4 +25,20 @@ namespace pcl_sparse
     /// \throws pcl_sparse::Error if \a frequencies is out of range
     explicit DctCosineDictionary (int frequencies = 12) : CosineAtoms (frequencies, CosineBasisKind::Dct) {}
   };
+
+  /// The half-period atoms and, after them, the monomials x, y, x^2, x y, y^2 (atoms n^2 .. n^2 + 4; their
+  /// wavelength is infinite, so the Nyquist cap allows them everywhere). With the constant atom they span
+  /// the quadrics: a curved patch's bulk in six atoms, the cosines left for what a quadric misses. The
+  /// patch coder selects them first (SparseCodingOptions). Ours, the encoder's default.
+  class QuadricDctDictionary : public CosineAtoms
+  {
+  public:
+    using Ptr = std::shared_ptr<QuadricDctDictionary>;
+    using ConstPtr = std::shared_ptr<const QuadricDctDictionary>;
+
+    /// Half-period atoms with n frequencies per axis, then the five monomials.
+    /// \param[in] frequencies  n, in 1 .. max_frequencies
+    /// \throws pcl_sparse::Error if \a frequencies is out of range
+    explicit QuadricDctDictionary (int frequencies = 12) : CosineAtoms (frequencies, CosineBasisKind::DctQuadric) {}
+  };
 } // namespace pcl_sparse

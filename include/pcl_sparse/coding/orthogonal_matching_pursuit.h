@@ -27,9 +27,12 @@ namespace pcl_sparse
   /// Greedy sparse approximation y ~ D alpha.
   /// \param[in] signal      #P values y
   /// \param[in] dictionary  #P by K matrix D (columns need not be normalised)
-  /// \param[in] allowed     K flags (non-zero: may be selected); empty: every atom is allowed
+  /// \param[in] allowed     K flags (non-zero: may be selected; 2: preferred); empty: every atom is allowed
   /// \param[in] tolerance   stop once ||r|| <= tolerance ||y|| (eps of docs/METHOD.md step 9: 0.01)
   /// \param[in] max_atoms   stop after this many atoms (L: 12)
+  /// \param[in] preference  a step takes the best preferred atom instead of the best atom when its score
+  ///                        is at least \a preference times the best one's (0: preferred atoms first while
+  ///                        one still correlates with the residual; 1: no preference)
   /// \return the selected atoms, their coefficients and the residual norm
   ///
   /// Each step selects the allowed atom maximising |<r, d_k>| / ||d_k|| (normalised columns), then
@@ -39,7 +42,7 @@ namespace pcl_sparse
   /// A zero signal gives the empty code.
   OmpResult
   orthogonalMatchingPursuit (const Eigen::VectorXd& signal, const Eigen::MatrixXd& dictionary,
-                             const std::vector<char>& allowed, double tolerance, int max_atoms);
+                             const std::vector<char>& allowed, double tolerance, int max_atoms, double preference = 1.0);
 
   /// OMP of several signals over one dictionary (Batch OMP: Rubinstein, Zibulevsky and Elad, "Efficient
   /// implementation of the K-SVD algorithm using Batch Orthogonal Matching Pursuit", 2008), for the

@@ -22,7 +22,7 @@ namespace pcl_sparse
   struct SharedModelFields
   {
     std::uint16_t flags = 0;                 ///< as the version-1 header: bit 0 quantised, 1 vertices, 2 attributes
-    std::uint8_t basis_kind = 0;             ///< 1 the paper's cosines, 2 half-period cosines
+    std::uint8_t basis_kind = 0;             ///< 1 the paper's cosines, 2 half-period cosines, 3 those and the quadric
     std::uint16_t basis_parameter = 0;       ///< n, frequencies per axis
     std::uint64_t num_input_vertices = 0;    ///< of the whole input
     double bbox_diagonal = 0.0;              ///< of the whole input
@@ -37,6 +37,10 @@ namespace pcl_sparse
     SharedModelFields shared;                                   ///< as above
     std::vector<std::vector<std::vector<std::uint8_t>>> runs;   ///< per run, per tag of runSectionTags (shared.flags)
   };
+
+  /// \brief The basis of a header as pcl_sparse_info prints it, e.g. "dct cosine 12x12".
+  std::string
+  basisDescription (std::uint8_t basis_kind, std::uint16_t basis_parameter);
 
   class ByteReader;
   class ByteWriter;

@@ -22,16 +22,19 @@ namespace pcl_sparse
   /// Rank of cosine atom (i, j) = (atom / n, atom % n) in "shell order": by max(i, j) first (the Nyquist
   /// cap allows exactly the shells up to a frequency, and OMP picks low shells most), so a code's sorted
   /// ranks form a near-prefix with small deltas. Shell m = max(i, j) holds ranks m^2 .. m^2 + 2m.
+  /// With \a monomials atoms after the cosines (QuadricDctDictionary: 5), monomial k (atom n^2 + k) has
+  /// rank 1 + k, right after the constant, and the other cosines move up by \a monomials: the quadric's
+  /// atoms, in nearly every code, come first.
   int
-  shellRank (int atom, int frequencies);
+  shellRank (int atom, int frequencies, int monomials = 0);
 
   /// The atom of shell rank \a rank (inverse of shellRank).
   int
-  atomOfShellRank (int rank, int frequencies);
+  atomOfShellRank (int rank, int frequencies, int monomials = 0);
 
   /// \brief Positions of \a atoms sorted by shell rank: the order quantised files store a code in.
   std::vector<std::size_t>
-  shellRankOrder (const std::vector<int>& atoms, int frequencies);
+  shellRankOrder (const std::vector<int>& atoms, int frequencies, int monomials = 0);
 
   /// \brief A range decoder over every byte \a in has left, named as \a in (\a in is then at its end): a
   /// range-coded section.
@@ -41,12 +44,14 @@ namespace pcl_sparse
   /// \brief Writes the atoms of a code; returns the order they were written in (positions in \a atoms):
   /// selection order lossless, shell-rank order quantised.
   std::vector<std::size_t>
-  putCodeAtoms (ByteWriter& out, const std::vector<int>& atoms, bool quantised, int frequencies);
+  putCodeAtoms (ByteWriter& out, const std::vector<int>& atoms, bool quantised, int frequencies, int monomials = 0);
 
   /// \brief Reads the atoms of a code written by putCodeAtoms. Refuses (ByteReader::fail, naming \a code,
-  /// e.g. "patch 3") a count above n^2 or the bytes left, indices outside the basis, and repeats.
+  /// e.g. "patch 3") a count above the basis' size (n^2 + \a monomials) or the bytes left, indices outside
+  /// the basis, and repeats.
   void
-  getCodeAtoms (ByteReader& in, bool quantised, int frequencies, const std::string& code, std::vector<int>& atoms);
+  getCodeAtoms (ByteReader& in, bool quantised, int frequencies, const std::string& code, std::vector<int>& atoms,
+                int monomials = 0);
 
   /// \brief Writes \a coefficients in \a order: f64 when \a step is 0, else svarint multiples of \a step.
   /// Throws pcl_sparse::Error for a coefficient too large for the step. Returns the values the reader
@@ -70,8 +75,9 @@ namespace pcl_sparse
     /// Ranks from this one up share their coefficients' model.
     static constexpr int coefficient_contexts = 32;
 
-    /// \param[in] frequencies  n of the basis (n^2 atoms)
-    explicit SparseCodeContexts (int frequencies);
+    /// \param[in] frequencies  n of the basis (n^2 cosine atoms)
+    /// \param[in] monomials    monomial atoms after them (shellRank)
+    explicit SparseCodeContexts (int frequencies, int monomials = 0);
 
     /// Codes \a atoms (distinct, < n^2); returns the order they were coded in: by shell rank.
     std::vector<std::size_t>
@@ -95,6 +101,7 @@ namespace pcl_sparse
 
   private:
     int frequencies_;
+    int monomials_;
     BitTreeModel count_;
     std::vector<AdaptiveBit> present_;                ///< per shell rank
     std::vector<SignedIntegerModel> coefficient_;     ///< per shell rank below coefficient_contexts, then shared
