@@ -2,7 +2,7 @@
 /// normals and curvature, at any density (docs/METHOD.md step 12).
 ///
 ///   pcl_sparse_resample IN OUT [-n N | -density D | -spacing S] [-rho R] [-f F] [-angles K] [-preset default|paper]
-///                       [-basis dct|paper] [-seed S] [-max-slope DEG] [-clearance C]
+///                       [-basis quadric|dct|paper] [-seed S] [-max-slope DEG] [-clearance C]
 ///                       [-threads T] [-ascii] [-stream auto|on|off] [-block N] [-q] [--json]
 
 #include "tool_input.h"
@@ -49,8 +49,8 @@ namespace
       {"-f F", "encoder: Nyquist factor f in [0, 1] (default: 0.5, paper)"},
       {"-angles K", "encoder: footprint angles (default: 64)"},
       {"-preset P", "encoder: default (measured best) or paper (the paper's configuration)"},
-      {"-basis paper|dct", "encoder: cosine atoms, half-period dct (default: both parities, about half the"},
-      {"", "distance and normal error; see README) or paper"},
+      {"-basis B", "encoder: atoms, quadric (default: half-period cosines and the quadric's monomials,"},
+      {"", "the least distance and normal error; see README), dct (the cosines alone) or paper"},
       {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
       {"", "when plausible, else consistently oriented, outward on closed surfaces)"},
       {"-seed S", "seed of the sampling (default: 42)"},

@@ -20,7 +20,7 @@ main (int argc, char** argv)
   {
     auto mesh = std::make_shared<pcl_sparse::TriangleMesh> (pcl_sparse::loadTriangleMesh (argv[1]));
 
-    pcl_sparse::SparseSurfaceEncoder<pcl::PointXYZ> encoder;  // defaults: rho = 0.001, f = 0.5, 144 cosine atoms
+    pcl_sparse::SparseSurfaceEncoder<pcl::PointXYZ> encoder;  // defaults: rho = 0.001, f = 0.5, 144 cosines and the quadric
     encoder.setInputMesh (mesh);
     auto model = std::make_shared<pcl_sparse::SparseSurfaceModel> ();
     encoder.compute (*model);

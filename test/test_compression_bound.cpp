@@ -133,11 +133,23 @@ TEST (CompressionBound, CoarseMeshGetsTheCheaperCode)
   EXPECT_LE (after.compression_ratio, 1.0);
   EXPECT_LT (after.num_patches, before.num_patches) << "fewer frames";
   EXPECT_EQ (after.uncovered, 0u);
-  EXPECT_LE (facesInNoPatch (*mesh, patches).size (), facesInNoPatch (*mesh, unbounded_patches).size ());
-  // Measured: CR 2.31 -> 0.62, M 45 -> 12 (only the 32-vertex floor's frames fit), RMSE/diag 4.0e-4 ->
-  // 2.1e-3: five times the unbounded error, still below the mesh's own chord error (edges of 0.3 on a unit
+  // Fewer, larger patches must still cover the surface. The kept candidate (lowest RMSE) leaves 4 of the
+  // 320 faces out of every patch's triangle list (another candidate of 12 patches, 3 % less accurate, leaves
+  // none; with the cosines alone it was the one kept), but footprints reach over them: every probe of the
+  // sphere has a resampled point within 2 spacings (largest gap measured: 1.3).
+  std::cout << "faces in no patch: " << facesInNoPatch (*mesh, unbounded_patches).size () << " -> "
+            << facesInNoPatch (*mesh, patches).size () << std::endl;
+  const auto shared_model = std::make_shared<const SparseSurfaceModel> (model);
+  const pcl::PointCloud<pcl::PointNormal> cloud = pcl_sparse_test::resampleModel (shared_model, 4 * mesh->vertices.size ());
+  CloudQualityOptions quality_options;
+  quality_options.hole_spacings = 2.0;
+  const CloudQuality quality = evaluateCloudQuality (*mesh, cloud, quality_options);
+  EXPECT_EQ (quality.completeness, 1.0);
+  EXPECT_EQ (quality.flipped, 0u);
+  // Measured: CR 2.31 -> 0.62, M 45 -> 12 (only the 32-vertex floor's frames fit), RMSE/diag 8.8e-4 ->
+  // 1.05e-3 (the cosines alone: 4.0e-4 -> 2.1e-3), below the mesh's own chord error (edges of 0.3 on a unit
   // sphere stand 1.1e-2 off it, 3.3e-3 of the diagonal).
-  EXPECT_LT (after.rmse_over_diagonal, 3e-3);
+  EXPECT_LT (after.rmse_over_diagonal, 1.5e-3);
 
   // Same model for any thread count (the bunny case below has enough patches to code them in parallel).
   const SparseSurfaceModel threaded = encode (mesh, SparseSurfaceEncoderOptions (), 2);

@@ -157,7 +157,7 @@ TEST_F (EncodeTool, ConeBoundsThePatches)
 }
 
 // -basis dct: recorded in the JSON and in the model file (basis kind 2), read back as DctCosineDictionary.
-TEST_F (EncodeTool, DctBasisReachesTheModelFile)
+TEST_F (EncodeTool, BasisReachesTheModelFile)
 {
   const std::string model_path = (dir_ / "model.psm").string ();
   std::string out;
@@ -170,8 +170,13 @@ TEST_F (EncodeTool, DctBasisReachesTheModelFile)
   EXPECT_NE (out.find ("\"basis\": \"paper\""), std::string::npos) << out;
   ASSERT_EQ (run (input_ + " -q --json -preset paper", out), 0);
   EXPECT_NE (out.find ("\"basis\": \"paper\""), std::string::npos) << out;
-  ASSERT_EQ (run (input_ + " -q --json", out), 0);  // the default since issue 13
-  EXPECT_NE (out.find ("\"basis\": \"dct\""), std::string::npos) << out;
+  ASSERT_EQ (run (input_ + " -q --json", out), 0);  // the default since 2026-12-01
+  EXPECT_NE (out.find ("\"basis\": \"quadric\""), std::string::npos) << out;
+  ASSERT_EQ (run (input_ + " -q --json -basis quadric -o " + model_path, out), 0);
+  const SparseSurfaceModel quadric = loadModel (model_path);
+  EXPECT_NE (dynamic_cast<const QuadricDctDictionary*> (quadric.basis.get ()), nullptr);
+  EXPECT_EQ (quadric.basis->size (), 149);
+  EXPECT_NE (run (input_ + " -q --json -basis cubic", out), 0);  // unknown basis: refused
   EXPECT_NE (run (input_ + " -q --json -preset authors", out), 0);  // unknown preset: refused
 }
 

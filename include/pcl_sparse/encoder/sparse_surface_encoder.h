@@ -34,7 +34,7 @@ namespace pcl_sparse
 {
   /// Every parameter of the pipeline. Defaults are the paper's numbers (delta = pi/6, eta = 1.01,
   /// rho = 0.001, sigma = 0.8, f = 0.5, L = 12, eps = 0.01, m_min = 64, 144 cosine atoms) where they
-  /// measured best, and otherwise what did (README, issue 13): the half-period cosines (Dct), the authors'
+  /// measured best, and otherwise what did (README, issue 13): the half-period cosines and the quadric (DctQuadric), the authors'
   /// 72-degree cone instead of the paper's 90, our pairwise cone, face completion, extra samples per
   /// triangle, footprints clipped at their border and the compression bound (CR <= 1).
   /// encoderPresetOptions (EncoderPreset::Paper) gives the paper's configuration.
@@ -43,10 +43,12 @@ namespace pcl_sparse
     PatchOptions patches;             ///< seed sampling and growth: rho, delta, cone_angle, eta, sigma, ...
     SparseCodingOptions coding;       ///< f, Nyquist rule, L, eps, m_min, footprint angles, seed
     int dictionary_frequencies = 12;  ///< n: the cosine dictionary has n^2 atoms (paper: 12, 144 atoms)
-    /// Cosine atoms: Dct (default) = cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2), even and odd (ours: a
-    /// tilt or an offset left by the frame costs one atom, so the error floor is lower); Paper =
-    /// cos(i pi x) cos(j pi y), the paper's, same count, even only. Ignored after setBasis.
-    CosineBasisKind basis = CosineBasisKind::Dct;
+    /// Atoms: DctQuadric (default) = the half-period cosines and the monomials x, y, x^2, x y, y^2 (ours:
+    /// the quadric codes a curved patch's bulk, which cosines reach only slowly; lower RMSE than Dct on
+    /// every shared mesh at about the same bytes, bench/results/quadric_basis.md); Dct = cos(i pi (x + 1) / 2)
+    /// cos(j pi (y + 1) / 2), even and odd (ours: a tilt or an offset left by the frame costs one atom);
+    /// Paper = cos(i pi x) cos(j pi y), the paper's, same count, even only. Ignored after setBasis.
+    CosineBasisKind basis = CosineBasisKind::DctQuadric;
     /// For a scan (a cloud without polygons, or setInputScan) with coding.noise_level 0: code down to the
     /// scan's estimated noise (CloudSurface::noise) and not below, so that sensor noise is smoothed, not
     /// coded (docs/METHOD.md, scans). Meshes are never affected.

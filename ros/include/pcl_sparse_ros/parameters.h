@@ -71,7 +71,7 @@ namespace pcl_sparse_ros
   readEncoderSettings (const ros::NodeHandle& private_nh);
 
   /// \brief The encoder options of a named preset (pcl_sparse::encoderPresetOptions): "default" (the
-  /// library's defaults, the dct atoms) or "paper" (the paper's configuration). Throws for other names.
+  /// library's defaults, the quadric and dct atoms) or "paper" (the paper's configuration). Throws for other names.
   pcl_sparse::SparseSurfaceEncoderOptions
   presetOptions (const std::string& preset);
 
