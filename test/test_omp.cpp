@@ -167,6 +167,58 @@ TEST (OrthogonalMatchingPursuit, NeverSelectsForbiddenAtoms)
   }
 }
 
+// Preferred atoms (allowed flag 2): with preference 1 a step still takes the best atom (the same code as
+// without flags); with 0 the preferred ones come first while they correlate; in between, a preferred atom
+// wins when it scores at least that fraction of the best. Forbidden atoms stay forbidden.
+TEST (OrthogonalMatchingPursuit, PreferredAtomsFirst)
+{
+  std::mt19937 rng (11);
+  const Eigen::MatrixXd D = randomMatrix (40, 30, rng);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  Eigen::VectorXd y (40);
+  for (int p = 0; p < 40; ++p)
+    y[p] = u (rng);
+  std::vector<char> flags (30, 1);
+  for (int k : {3, 7, 21})
+    flags[k] = 2;
+  flags[5] = 0;
+  const OmpResult plain = orthogonalMatchingPursuit (y, D, std::vector<char> (30, 1), 1e-9, 10);
+  const OmpResult unpreferred = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, 1.0);
+  const OmpResult first = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, 0.0);
+  ASSERT_EQ (first.atoms.size (), 10u);
+  std::vector<int> head (first.atoms.begin (), first.atoms.begin () + 3);
+  std::sort (head.begin (), head.end ());
+  EXPECT_EQ (head, (std::vector<int>{3, 7, 21}));
+  for (int a : first.atoms)
+    EXPECT_NE (a, 5);
+  if (std::find (plain.atoms.begin (), plain.atoms.end (), 5) == plain.atoms.end ())
+    EXPECT_EQ (unpreferred.atoms, plain.atoms);
+  // Each preferred step of a preference-0.5 run had a score of at least half the best one's: recompute it.
+  const OmpResult half = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, 0.5);
+  const Eigen::VectorXd norms = D.colwise ().squaredNorm ().transpose ();
+  for (std::size_t step = 0; step < half.atoms.size (); ++step)
+  {
+    Eigen::VectorXd residual = y;
+    if (step > 0)
+    {
+      Eigen::MatrixXd support (40, static_cast<Eigen::Index> (step));
+      for (std::size_t k = 0; k < step; ++k)
+        support.col (static_cast<Eigen::Index> (k)) = D.col (half.atoms[k]);
+      residual = y - support * support.colPivHouseholderQr ().solve (y);
+    }
+    const Eigen::VectorXd scores = (D.transpose () * residual).array ().square () / norms.array ();
+    double best = 0.0;
+    for (int k = 0; k < 30; ++k)
+      if (flags[k] && std::find (half.atoms.begin (), half.atoms.begin () + step, k) == half.atoms.begin () + step)
+        best = std::max (best, scores[k]);
+    const int chosen = half.atoms[step];
+    if (flags[chosen] == 2)
+      EXPECT_GE (scores[chosen], 0.5 * best * (1.0 - 1e-9)) << "step " << step;
+    else
+      EXPECT_NEAR (scores[chosen], best, 1e-9 * best) << "step " << step;
+  }
+}
+
 // More atoms than points / dependent atoms: the factor stays valid, the fit is exact at the points.
 TEST (OrthogonalMatchingPursuit, HandlesDependentColumns)
 {

@@ -177,18 +177,22 @@ namespace pcl_sparse
       }
     }
 
-    /// Values x^p y^q of monomial \a monomial at every point.
+    /// x^p y^q of monomial \a monomial (CosineAtoms::monomialExponents) at (x, y).
+    inline double
+    monomialValue (int monomial, double x, double y)
+    {
+      int p, q;
+      CosineAtoms::monomialExponents (monomial, p, q);
+      return (p == 0 ? 1.0 : p == 1 ? x : x * x) * (q == 0 ? 1.0 : q == 1 ? y : y * y);
+    }
+
+    /// Values of monomial \a monomial at every point.
     template <typename Column>
     void
     monomialColumn (const std::vector<Eigen::Vector2d>& points, int monomial, Column&& column)
     {
-      int p, q;
-      CosineAtoms::monomialExponents (monomial, p, q);
       for (std::size_t k = 0; k < points.size (); ++k)
-      {
-        const double x = points[k].x (), y = points[k].y ();
-        column[static_cast<Eigen::Index> (k)] = (p == 0 ? 1.0 : p == 1 ? x : x * x) * (q == 0 ? 1.0 : q == 1 ? y : y * y);
-      }
+        column[static_cast<Eigen::Index> (k)] = monomialValue (monomial, points[k].x (), points[k].y ());
     }
   } // namespace
 
@@ -237,12 +241,12 @@ namespace pcl_sparse
     double coefficient[stack_atoms];
     int count_x = 1, count_y = 1;
     std::size_t terms = 0;
-    bool monomials = false;
+    bool has_monomials = false;
     for (std::size_t k = 0; k < k_end; ++k)
     {
       if (isMonomial (atoms[k]))
       {
-        monomials = true;
+        has_monomials = true;
         continue;
       }
       fi[terms] = frequency_x_[atoms[k]];
@@ -278,7 +282,7 @@ namespace pcl_sparse
     sample.gradient = Eigen::Vector2d (pi * gx, pi * gy);
     const double pi2 = pi * pi;
     sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
-    if (monomials)
+    if (has_monomials)
       addMonomials (atoms, coefficients, x, y, sample);
     return sample;
   }
@@ -329,11 +333,7 @@ namespace pcl_sparse
         v += coefficients[k] * cx[frequency_x_[atoms[k]]] * cy[frequency_y_[atoms[k]]];
     for (std::size_t k = 0; k < k_end; ++k)
       if (isMonomial (atoms[k]))
-      {
-        int p, q;
-        monomialExponents (atoms[k] - n_ * n_, p, q);
-        v += coefficients[k] * (p == 0 ? 1.0 : p == 1 ? x : x * x) * (q == 0 ? 1.0 : q == 1 ? y : y * y);
-      }
+        v += coefficients[k] * monomialValue (atoms[k] - n_ * n_, x, y);
     return v;
   }
 

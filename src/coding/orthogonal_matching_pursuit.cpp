@@ -81,7 +81,8 @@ namespace pcl_sparse
       {
         double preferred_score = 0.0;
         const int best_preferred = bestAtom (correlation, squared_norms, candidate, preferred_score, 2);
-        if (best_preferred >= 0 && std::sqrt (preferred_score) > 1e-12 * signal_norm && preferred_score >= preference * best_score)
+        if (best_preferred >= 0 && std::sqrt (preferred_score) > 1e-12 * signal_norm &&
+            preferred_score >= preference * best_score)
         {
           best = best_preferred;
           best_score = preferred_score;

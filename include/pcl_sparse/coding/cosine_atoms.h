@@ -49,12 +49,13 @@ namespace pcl_sparse
     /// Frequency along y (j) of \a atom.
     int frequencyY (int atom) const { return atom % n_; }
 
-    /// Number of monomial atoms after the cosines: 5 for DctQuadric, else 0.
+    /// DctQuadric's monomials: x, y, x^2, x y, y^2.
     static constexpr int quadric_monomials = 5;
+    /// Number of monomial atoms after the cosines: quadric_monomials for DctQuadric, else 0.
     int monomials () const { return monomials_; }
     /// Whether \a atom is a monomial (DctQuadric's atoms from n^2 on).
     bool isMonomial (int atom) const { return atom >= n_ * n_; }
-    /// Exponents (p, q) of monomial atom \a atom, x^p y^q.
+    /// Exponents (p, q), x^p y^q, of monomial \a monomial (0 .. 4: atom n^2 + monomial).
     static void monomialExponents (int monomial, int& p, int& q);
 
     /// n^2 cosine atoms, then the monomials.
