@@ -44,9 +44,10 @@ namespace
     return frame;
   }
 
-  /// Codes height(x, y) over the unit disk with the cosine atoms of frequency < 8, least squares.
+  /// Codes height(x, y) over the unit disk with the cosine atoms of frequency < 8 (and a quadric basis's
+  /// monomials), least squares.
   void
-  codeHeight (const CosineDictionary& basis, const std::function<double (double, double)>& height, PatchCode& code)
+  codeHeight (const CosineAtoms& basis, const std::function<double (double, double)>& height, PatchCode& code)
   {
     std::vector<Eigen::Vector2d> points;
     std::vector<double> values;
@@ -66,6 +67,8 @@ namespace
     for (int i = 0; i < 8; ++i)
       for (int j = 0; j < 8; ++j)
         atoms.push_back (basis.atomIndex (i, j));
+    for (int m = 0; m < basis.monomials (); ++m)
+      atoms.push_back (basis.frequencies () * basis.frequencies () + m);
     Eigen::MatrixXd design (points.size (), atoms.size ());
     for (std::size_t k = 0; k < atoms.size (); ++k)
       design.col (k) = all.col (atoms[k]);
@@ -109,10 +112,10 @@ namespace
   /// and footprint extent 0.8, so the footprint stays away from the square's edges, where every cosine
   /// atom has zero slope.
   SparseSurfaceModel::Ptr
-  makeSphereModel ()
+  makeSphereModel (CosineBasisKind kind = CosineBasisKind::Paper)
   {
     auto model = std::make_shared<SparseSurfaceModel> ();
-    auto basis = std::make_shared<CosineDictionary> (12);
+    const CosineAtoms::ConstPtr basis = makeCosineBasis (kind, 12);
     model->basis = basis;
     const TriangleMesh seeds = makeIcosphere (1);
     const double r = 0.625;
@@ -199,67 +202,77 @@ TEST (PatchGeometry, MeanCurvatureOfSphereCap)
 
 TEST (PatchEvaluator, MatchesTheBasis)
 {
-  const auto model = makeSphereModel ();
-  // Some extents, so the footprint path is exercised too.
-  model->patches[0].footprint.extent = {0.5f, 1.0f, 0.25f, 0.75f};
-  const PatchEvaluator evaluator (*model);
-  std::mt19937 random (42);
-  std::uniform_real_distribution<double> uniform (-1.6, 1.6);
-  for (int k = 0; k < 2000; ++k)
+  // Every cosine basis has the fast tables: the paper's, the half-period one, and with the quadric.
+  for (const CosineBasisKind kind : {CosineBasisKind::Paper, CosineBasisKind::Dct, CosineBasisKind::DctQuadric})
   {
-    const std::size_t p = k % model->numPatches ();
-    const double x = uniform (random), y = uniform (random);
-    const HeightSample expected = model->evaluate (p, x, y);
-    const HeightSample fast = evaluator.sample (p, x, y);
-    ASSERT_NEAR (fast.value, expected.value, 1e-12);
-    ASSERT_NEAR (evaluator.height (p, x, y), expected.value, 1e-12);
-    ASSERT_NEAR ((fast.gradient - expected.gradient).norm (), 0.0, 1e-10);
-    ASSERT_NEAR ((fast.hessian - expected.hessian).norm (), 0.0, 1e-9);
-    ASSERT_NEAR (PatchEvaluator::fastAtan2 (y, x), std::atan2 (y, x), 1e-9);
-    ASSERT_NEAR (evaluator.centrality (p, x, y), footprintCentralityReference (model->patches[p].footprint, x, y), 1e-8);
+    SCOPED_TRACE (cosineBasisKindName (kind));
+    const auto model = makeSphereModel (kind);
+    // Some extents, so the footprint path is exercised too.
+    model->patches[0].footprint.extent = {0.5f, 1.0f, 0.25f, 0.75f};
+    const PatchEvaluator evaluator (*model);
+    std::mt19937 random (42);
+    std::uniform_real_distribution<double> uniform (-1.6, 1.6);
+    for (int k = 0; k < 2000; ++k)
+    {
+      const std::size_t p = k % model->numPatches ();
+      const double x = uniform (random), y = uniform (random);
+      const HeightSample expected = model->evaluate (p, x, y);
+      const HeightSample fast = evaluator.sample (p, x, y);
+      ASSERT_NEAR (fast.value, expected.value, 1e-12);
+      ASSERT_NEAR (evaluator.height (p, x, y), expected.value, 1e-12);
+      ASSERT_NEAR ((fast.gradient - expected.gradient).norm (), 0.0, 1e-10);
+      ASSERT_NEAR ((fast.hessian - expected.hessian).norm (), 0.0, 1e-9);
+      ASSERT_NEAR (PatchEvaluator::fastAtan2 (y, x), std::atan2 (y, x), 1e-9);
+      ASSERT_NEAR (evaluator.centrality (p, x, y), footprintCentralityReference (model->patches[p].footprint, x, y), 1e-8);
+    }
   }
 }
 
 TEST (PatchEvaluator, BlockEqualsPointByPointBitForBit)
 {
   // The block evaluation (vectorised, maybe AVX2) must give the same bits as sample, so that the resampled
-  // cloud does not depend on which path made a point: the sphere's codes, and random codes on all atoms.
-  const auto model = makeSphereModel ();
-  std::mt19937 random (7);
-  std::uniform_real_distribution<double> coefficient (-0.3, 0.3);
-  for (int k = 0; k < 3; ++k)
+  // cloud does not depend on which path made a point: the sphere's codes, and random codes on all atoms,
+  // for every cosine basis.
+  for (const CosineBasisKind kind : {CosineBasisKind::Paper, CosineBasisKind::Dct, CosineBasisKind::DctQuadric})
   {
-    PatchCode code = model->patches[k];
-    code.atoms.clear ();
-    code.coefficients.clear ();
-    for (int atom = 0; atom < 144; atom += 1 + k)
+    SCOPED_TRACE (cosineBasisKindName (kind));
+    const auto model = makeSphereModel (kind);
+    std::mt19937 random (7);
+    std::uniform_real_distribution<double> coefficient (-0.3, 0.3);
+    for (int k = 0; k < 3; ++k)
     {
-      code.atoms.push_back (atom);
-      code.coefficients.push_back (coefficient (random));
+      PatchCode code = model->patches[k];
+      code.atoms.clear ();
+      code.coefficients.clear ();
+      for (int atom = 0; atom < model->basis->size (); atom += 1 + k)
+      {
+        code.atoms.push_back (atom);
+        code.coefficients.push_back (coefficient (random));
+      }
+      model->patches.push_back (code);
     }
-    model->patches.push_back (code);
+    const PatchEvaluator evaluator (*model);
+    std::uniform_real_distribution<double> uniform (-1.6, 1.6);
+    PatchEvaluator::Block block;
+    for (std::size_t p = 0; p < model->numPatches (); ++p)
+      for (int round = 0; round < 4; ++round)
+      {
+        for (int b = 0; b < PatchEvaluator::Block::size; ++b)
+        {
+          block.x[b] = uniform (random);
+          block.y[b] = round == 3 ? 0.25 * b : uniform (random);  // quarter turns: every quadrant of sinCosPi
+        }
+        evaluator.sampleBlock (p, block);
+        for (int b = 0; b < PatchEvaluator::Block::size; ++b)
+        {
+          const HeightSample expected = evaluator.sample (p, block.x[b], block.y[b]);
+          const HeightSample got = block.sample (b);
+          ASSERT_EQ (std::memcmp (&got.value, &expected.value, sizeof (double)), 0) << p << " " << b;
+          ASSERT_EQ (std::memcmp (got.gradient.data (), expected.gradient.data (), 2 * sizeof (double)), 0);
+          ASSERT_EQ (std::memcmp (got.hessian.data (), expected.hessian.data (), 4 * sizeof (double)), 0);
+        }
+      }
   }
-  const PatchEvaluator evaluator (*model);
-  std::uniform_real_distribution<double> uniform (-1.6, 1.6);
-  PatchEvaluator::Block block;
-  for (std::size_t p = 0; p < model->numPatches (); ++p)
-    for (int round = 0; round < 4; ++round)
-    {
-      for (int b = 0; b < PatchEvaluator::Block::size; ++b)
-      {
-        block.x[b] = uniform (random);
-        block.y[b] = round == 3 ? 0.25 * b : uniform (random);  // quarter turns: every quadrant of sinCosPi
-      }
-      evaluator.sampleBlock (p, block);
-      for (int b = 0; b < PatchEvaluator::Block::size; ++b)
-      {
-        const HeightSample expected = evaluator.sample (p, block.x[b], block.y[b]);
-        const HeightSample got = block.sample (b);
-        ASSERT_EQ (std::memcmp (&got.value, &expected.value, sizeof (double)), 0) << p << " " << b;
-        ASSERT_EQ (std::memcmp (got.gradient.data (), expected.gradient.data (), 2 * sizeof (double)), 0);
-        ASSERT_EQ (std::memcmp (got.hessian.data (), expected.hessian.data (), 4 * sizeof (double)), 0);
-      }
-    }
 }
 
 TEST (Resampling, ReusedOutputCloudGivesTheSameBytes)

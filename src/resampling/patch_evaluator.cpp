@@ -90,12 +90,33 @@ namespace pcl_sparse
       }
     }
 
+    /// The half-period atoms' argument s = (t + 1) / 2 (CosineAtoms: scale 1/2, shift 1/2).
+    inline double
+    halfPeriodArgument (double t)
+    {
+      return 0.5 * t + 0.5;
+    }
+
+    /// Adds the quadric's monomial terms a_x x + a_y y + a_xx x^2 + a_xy x y + a_yy y^2 (\a m = those five
+    /// coefficients) to a sample.
+    inline void
+    addMonomials (const double* m, double x, double y, double& value, double& gx, double& gy, double& hxx, double& hxy,
+                  double& hyy)
+    {
+      value += m[0] * x + m[1] * y + m[2] * x * x + m[3] * x * y + m[4] * y * y;
+      gx += m[0] + 2.0 * m[2] * x + m[3] * y;
+      gy += m[1] + m[3] * x + 2.0 * m[4] * y;
+      hxx += 2.0 * m[2];
+      hxy += m[3];
+      hyy += 2.0 * m[4];
+    }
+
     /// PatchEvaluator::sample with the Hessian for a block of places: the same operations in the same
     /// order per lane, so the same bits; the lanes are independent, so the loops vectorise. Compiled for
     /// AVX2 too (no FMA: a fused multiply-add would round differently) and chosen at load time.
     PCL_SPARSE_AVX2_CLONE void
-    cosineBlock (const PatchEvaluator::Term* begin, const PatchEvaluator::Term* end, int nx, int ny,
-                 PatchEvaluator::Block& block)
+    cosineBlock (const PatchEvaluator::Term* begin, const PatchEvaluator::Term* end, int nx, int ny, bool half_period,
+                 const double* monomials, PatchEvaluator::Block& block)
     {
       block.tables.resize (static_cast<std::size_t> (2 * (nx + ny) * lanes));
       double* const cx = block.tables.data ();
@@ -103,8 +124,22 @@ namespace pcl_sparse
       double* const cy = sx + nx * lanes;
       double* const sy = cy + ny * lanes;
       double s1x[lanes], c1x[lanes], s1y[lanes], c1y[lanes];
-      sinCosPiLanes (block.x, s1x, c1x);
-      sinCosPiLanes (block.y, s1y, c1y);
+      if (half_period)
+      {
+        double tx[lanes], ty[lanes];
+        for (int b = 0; b < lanes; ++b)
+        {
+          tx[b] = halfPeriodArgument (block.x[b]);
+          ty[b] = halfPeriodArgument (block.y[b]);
+        }
+        sinCosPiLanes (tx, s1x, c1x);
+        sinCosPiLanes (ty, s1y, c1y);
+      }
+      else
+      {
+        sinCosPiLanes (block.x, s1x, c1x);
+        sinCosPiLanes (block.y, s1y, c1y);
+      }
       harmonicLanes (s1x, c1x, nx, cx, sx);
       harmonicLanes (s1y, c1y, ny, cy, sy);
       double v[lanes] = {}, gx[lanes] = {}, gy[lanes] = {}, hxx[lanes] = {}, hxy[lanes] = {}, hyy[lanes] = {};
@@ -124,24 +159,32 @@ namespace pcl_sparse
           hyy[b] -= jj * cc;
         }
       }
-      const double pi2 = M_PI * M_PI;
+      const double pi = half_period ? 0.5 * M_PI : M_PI, pi2 = pi * pi;
       for (int b = 0; b < lanes; ++b)
       {
         block.value[b] = v[b];
-        block.gx[b] = M_PI * gx[b];
-        block.gy[b] = M_PI * gy[b];
+        block.gx[b] = pi * gx[b];
+        block.gy[b] = pi * gy[b];
         block.hxx[b] = pi2 * hxx[b];
         block.hxy[b] = pi2 * hxy[b];
         block.hyy[b] = pi2 * hyy[b];
       }
+      if (monomials)
+        for (int b = 0; b < lanes; ++b)
+          addMonomials (monomials, block.x[b], block.y[b], block.value[b], block.gx[b], block.gy[b], block.hxx[b],
+                        block.hxy[b], block.hyy[b]);
     }
   } // namespace
 
   PatchEvaluator::PatchEvaluator (const SparseSurfaceModel& model) : model_ (model)
   {
     const std::size_t m = model.numPatches ();
-    const auto* cosine = dynamic_cast<const CosineDictionary*> (model.basis.get ());
+    const auto* cosine = dynamic_cast<const CosineAtoms*> (model.basis.get ());
     cosine_ = cosine != nullptr;
+    half_period_ = cosine_ && cosine->kind () != CosineBasisKind::Paper;
+    monomials_ = cosine_ && cosine->monomials () > 0;
+    if (monomials_)
+      monomial_coefficients_.assign (CosineAtoms::quadric_monomials * m, 0.0);
     term_begin_.assign (1, 0);
     extent_begin_.assign (1, 0);
     count_x_.assign (m, 1);
@@ -155,6 +198,13 @@ namespace pcl_sparse
         const std::size_t count = std::min (code.atoms.size (), code.coefficients.size ());
         for (std::size_t k = 0; k < count; ++k)
         {
+          if (cosine->isMonomial (code.atoms[k]))
+          {
+            const int n2 = cosine->frequencies () * cosine->frequencies ();
+            monomial_coefficients_[CosineAtoms::quadric_monomials * p + static_cast<std::size_t> (code.atoms[k] - n2)] +=
+                code.coefficients[k];
+            continue;
+          }
           Term term;
           term.i = cosine->frequencyX (code.atoms[k]);
           term.j = cosine->frequencyY (code.atoms[k]);
@@ -187,8 +237,8 @@ namespace pcl_sparse
     double cx[CosineDictionary::max_frequencies], cy[CosineDictionary::max_frequencies];
     const int nx = count_x_[p], ny = count_y_[p];
     double s1x, c1x, s1y, c1y;
-    sinCosPi (x, s1x, c1x);
-    sinCosPi (y, s1y, c1y);
+    sinCosPi (half_period_ ? halfPeriodArgument (x) : x, s1x, c1x);
+    sinCosPi (half_period_ ? halfPeriodArgument (y) : y, s1y, c1y);
     cx[0] = cy[0] = 1.0;
     if (nx > 1)
       cx[1] = c1x;
@@ -201,6 +251,11 @@ namespace pcl_sparse
     double v = 0.0;
     for (std::size_t t = term_begin_[p]; t < term_begin_[p + 1]; ++t)
       v += terms_[t].coefficient * cx[terms_[t].i] * cy[terms_[t].j];
+    if (monomials_)
+    {
+      const double* m = &monomial_coefficients_[CosineAtoms::quadric_monomials * p];
+      v += m[0] * x + m[1] * y + m[2] * x * x + m[3] * x * y + m[4] * y * y;
+    }
     return v;
   }
 
@@ -214,8 +269,8 @@ namespace pcl_sparse
     double cy[CosineDictionary::max_frequencies], sy[CosineDictionary::max_frequencies];
     const int nx = count_x_[p], ny = count_y_[p];
     double s1x, c1x, s1y, c1y;
-    sinCosPi (x, s1x, c1x);
-    sinCosPi (y, s1y, c1y);
+    sinCosPi (half_period_ ? halfPeriodArgument (x) : x, s1x, c1x);
+    sinCosPi (half_period_ ? halfPeriodArgument (y) : y, s1y, c1y);
     cx[0] = cy[0] = 1.0;
     sx[0] = sy[0] = 0.0;
     for (int k = 1; k < nx; ++k)
@@ -250,12 +305,17 @@ namespace pcl_sparse
         gx -= term->ai * sx[term->i] * cy[term->j];
         gy -= term->aj * cx[term->i] * sy[term->j];
       }
+    // Chain rule of the half-period argument (t + 1) / 2: a factor 1/2 per derivative.
+    const double pi = half_period_ ? 0.5 * M_PI : M_PI, pi2 = pi * pi;
+    double value = v, gx_out = pi * gx, gy_out = pi * gy, hxx_out = pi2 * hxx, hxy_out = pi2 * hxy, hyy_out = pi2 * hyy;
+    if (monomials_)
+      addMonomials (&monomial_coefficients_[CosineAtoms::quadric_monomials * p], x, y, value, gx_out, gy_out, hxx_out,
+                    hxy_out, hyy_out);
     HeightSample sample;
-    sample.value = v;
-    sample.gradient = Eigen::Vector2d (M_PI * gx, M_PI * gy);
-    const double pi2 = M_PI * M_PI;
+    sample.value = value;
+    sample.gradient = Eigen::Vector2d (gx_out, gy_out);
     if (hessian)
-      sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
+      sample.hessian << hxx_out, hxy_out, hxy_out, hyy_out;
     return sample;
   }
 
@@ -264,7 +324,8 @@ namespace pcl_sparse
   {
     if (cosine_)
     {
-      cosineBlock (terms_.data () + term_begin_[p], terms_.data () + term_begin_[p + 1], count_x_[p], count_y_[p], block);
+      cosineBlock (terms_.data () + term_begin_[p], terms_.data () + term_begin_[p + 1], count_x_[p], count_y_[p], half_period_,
+                   monomials_ ? &monomial_coefficients_[CosineAtoms::quadric_monomials * p] : nullptr, block);
       return;
     }
     for (int b = 0; b < Block::size; ++b)

@@ -2,8 +2,9 @@
 /// \file patch_evaluator.h
 /// Fast evaluation of a model's patches for resampling, which evaluates codes and footprints tens of
 /// millions of times: frequencies of cosine atoms decoded once per patch (no integer division per atom,
-/// no virtual call), footprint centrality with a polynomial atan2 (error below 1e-9 rad). Any other
-/// SurfaceBasis goes through SparseSurfaceModel::evaluate.
+/// no virtual call), footprint centrality with a polynomial atan2 (error below 1e-9 rad). Every cosine
+/// basis (CosineAtoms: the paper's, the half-period one, and with the quadric's monomials) has these
+/// tables; any other SurfaceBasis goes through SparseSurfaceModel::evaluate.
 
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/model/surface_basis.h>
@@ -68,7 +69,7 @@ namespace pcl_sparse
 
     /// Height h(x, y) of patch \a p.
     double height (std::size_t p, double x, double y) const;
-    /// Height, gradient and Hessian of a patch; equal to SparseSurfaceModel::evaluate.
+    /// Height, gradient and Hessian of a patch; equal to SparseSurfaceModel::evaluate up to round-off.
     /// \param[in] p        patch index
     /// \param[in] x, y     local position
     /// \param[in] hessian  false leaves the Hessian zero (value and gradient are the same bits either
@@ -142,7 +143,10 @@ namespace pcl_sparse
   private:
 
     const SparseSurfaceModel& model_;
-    bool cosine_ = false;
+    bool cosine_ = false;       ///< a cosine basis (CosineAtoms): the tables below
+    bool half_period_ = false;  ///< its atoms are cos(k pi (t + 1) / 2) (Dct, DctQuadric), not cos(k pi t)
+    bool monomials_ = false;    ///< it has the quadric's monomials (DctQuadric)
+    std::vector<double> monomial_coefficients_;  ///< DctQuadric: 5 per patch, x y x^2 xy y^2 (0 if absent)
     std::vector<Term> terms_;
     std::vector<std::size_t> term_begin_;  ///< #patches + 1 offsets into terms_
     std::vector<int> count_x_, count_y_;   ///< highest frequency + 1 per axis, per patch
