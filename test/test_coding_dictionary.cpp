@@ -387,7 +387,7 @@ TEST (QuadricDctDictionary, CodesASphereCapWithTheQuadric)
   for (int atom = 144; atom < 149; ++atom)
     preferred[atom] = 2;
   const OmpResult with_cosines = orthogonalMatchingPursuit (heights, cosines, {}, 0.01, 12);
-  const OmpResult with_quadric = orthogonalMatchingPursuit (heights, quadric, preferred, 0.01, 12, 0.3);
+  const OmpResult with_quadric = orthogonalMatchingPursuit (heights, quadric, preferred, 0.01, 12, OmpSelection{0.3});
   const double norm = heights.norm ();
   std::cout << "sphere cap: cosines " << with_cosines.atoms.size () << " atoms, residual " << with_cosines.residual_norm / norm
             << "; quadric " << with_quadric.atoms.size () << " atoms, residual " << with_quadric.residual_norm / norm << std::endl;
@@ -398,6 +398,6 @@ TEST (QuadricDctDictionary, CodesASphereCapWithTheQuadric)
   for (int atom : with_quadric.atoms)
     EXPECT_TRUE (atom == 0 || basis.isMonomial (atom)) << atom;
   // Without the preference (1: the best atom always), OMP starts with cosines and does not get there.
-  const OmpResult unpreferred = orthogonalMatchingPursuit (heights, quadric, preferred, 0.01, 12, 1.0);
+  const OmpResult unpreferred = orthogonalMatchingPursuit (heights, quadric, preferred, 0.01, 12, OmpSelection{1.0});
   EXPECT_GT (unpreferred.residual_norm, 2.0 * with_quadric.residual_norm);
 }

@@ -183,8 +183,8 @@ TEST (OrthogonalMatchingPursuit, PreferredAtomsFirst)
     flags[k] = 2;
   flags[5] = 0;
   const OmpResult plain = orthogonalMatchingPursuit (y, D, std::vector<char> (30, 1), 1e-9, 10);
-  const OmpResult unpreferred = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, 1.0);
-  const OmpResult first = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, 0.0);
+  const OmpResult unpreferred = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, OmpSelection{1.0});
+  const OmpResult first = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, OmpSelection{0.0});
   ASSERT_EQ (first.atoms.size (), 10u);
   std::vector<int> head (first.atoms.begin (), first.atoms.begin () + 3);
   std::sort (head.begin (), head.end ());
@@ -194,7 +194,7 @@ TEST (OrthogonalMatchingPursuit, PreferredAtomsFirst)
   if (std::find (plain.atoms.begin (), plain.atoms.end (), 5) == plain.atoms.end ())
     EXPECT_EQ (unpreferred.atoms, plain.atoms);
   // Each preferred step of a preference-0.5 run had a score of at least half the best one's: recompute it.
-  const OmpResult half = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, 0.5);
+  const OmpResult half = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, OmpSelection{0.5});
   const Eigen::VectorXd norms = D.colwise ().squaredNorm ().transpose ();
   for (std::size_t step = 0; step < half.atoms.size (); ++step)
   {

@@ -37,7 +37,8 @@ namespace pcl_sparse
 
   OmpResult
   orthogonalMatchingPursuit (const Eigen::VectorXd& signal, const Eigen::MatrixXd& dictionary,
-                             const std::vector<char>& allowed, double tolerance, int max_atoms, double preference)
+                             const std::vector<char>& allowed, double tolerance, int max_atoms,
+                             const OmpSelection& selection)
   {
     OmpResult result;
     const Eigen::Index num_points = dictionary.rows ();
@@ -53,10 +54,12 @@ namespace pcl_sparse
     const double largest = squared_norms.maxCoeff ();
     std::vector<char> candidate (num_atoms, 0);
     bool preferred = false;
+    const double min_squared_norm = std::max (1e-24 * largest, selection.min_column_rms * selection.min_column_rms *
+                                                                   static_cast<double> (num_points));
     for (Eigen::Index k = 0; k < num_atoms; ++k)
     {
       const char flag = allowed.empty () ? 1 : allowed[k];
-      candidate[k] = squared_norms[k] > 1e-24 * largest ? flag : 0;
+      candidate[k] = squared_norms[k] > min_squared_norm ? flag : 0;
       preferred = preferred || candidate[k] == 2;
     }
 
@@ -82,7 +85,7 @@ namespace pcl_sparse
         double preferred_score = 0.0;
         const int best_preferred = bestAtom (correlation, squared_norms, candidate, preferred_score, 2);
         if (best_preferred >= 0 && std::sqrt (preferred_score) > 1e-12 * signal_norm &&
-            preferred_score >= preference * best_score)
+            preferred_score >= selection.preference * best_score)
         {
           best = best_preferred;
           best_score = preferred_score;
@@ -103,8 +106,8 @@ namespace pcl_sparse
         cholesky.topLeftCorner (size, size).triangularView<Eigen::Lower> ().solveInPlace (w);
         pivot -= w.squaredNorm ();
       }
-      // Numerically in the span of the support: skip this atom, keep the factor well conditioned.
-      if (pivot <= 1e-10 * squared_norms[best])
+      // (Nearly) in the span of the support: skip this atom, keep the factor well conditioned.
+      if (pivot <= selection.min_new_fraction * squared_norms[best])
         continue;
       if (size > 0)
         cholesky.block (size, 0, 1, size) = w.transpose ();

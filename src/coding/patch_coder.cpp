@@ -20,6 +20,12 @@ namespace pcl_sparse
     /// of a rotated CAD part). Double round-off in R^T (p - s) / r_P is about 1e-16.
     constexpr double kRoundOffHeight = 1e-12;
 
+    /// With the quadric basis, atoms whose RMS over a patch's samples is below this are not used (their
+    /// coefficient would be 100 times the heights they fit), and an atom must bring this fraction of its
+    /// squared norm outside the support's span (1 % of its norm): OmpSelection.
+    constexpr double kMinQuadricColumnRms = 0.01;
+    constexpr double kMinQuadricNewFraction = 1e-4;
+
     /// OMP's relative tolerance: eps, or looser where the noise level is reached first (a residual RMS of
     /// noise_level / r_P in local units, or the patch's own noise if larger), at most 1 (the empty code:
     /// the patch's plane).
@@ -107,8 +113,18 @@ namespace pcl_sparse
         if (allowed_atoms[k] == 0 || cosine->isMonomial (allowed_atoms[k]))
           preferred[k] = 2;
     }
+    OmpSelection selection;
+    if (!preferred.empty ())
+    {
+      // The quadric's atoms are nearly dependent on some cosines over small or thin sample sets: the
+      // conditioning floors keep their coefficients from cancelling in the thousands (a scan's strip of
+      // samples coded y with -4e4 without them).
+      selection.preference = options.quadric_preference;
+      selection.min_column_rms = kMinQuadricColumnRms;
+      selection.min_new_fraction = kMinQuadricNewFraction;
+    }
     OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, preferred, stoppingTolerance (signal, patch, options),
-                                               options.max_atoms, options.quadric_preference);
+                                               options.max_atoms, selection);
     code.atoms.reserve (omp.atoms.size ());
     for (int a : omp.atoms)
       code.atoms.push_back (allowed_atoms[a]);

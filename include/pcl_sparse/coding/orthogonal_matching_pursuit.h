@@ -24,15 +24,32 @@ namespace pcl_sparse
     std::vector<double> prefix_coefficients;
   };
 
+  /// How orthogonalMatchingPursuit chooses among the atoms besides their correlation; the defaults are
+  /// plain OMP.
+  struct OmpSelection
+  {
+    /// A step takes the best preferred atom (allowed flag 2) instead of the best atom when its score is at
+    /// least this fraction of the best one's (0: preferred atoms first while one still correlates with
+    /// the residual; 1: no preference).
+    double preference = 1.0;
+    /// Atoms whose RMS over the samples is below this are never selected: nearly zero at every sample
+    /// (a monomial y on samples along a line y = 0), such an atom fits the signal only with a coefficient
+    /// that explodes away from the samples. 0: no floor.
+    double min_column_rms = 0.0;
+    /// An atom is skipped when the part of its column outside the span of the support holds less than this
+    /// fraction of its squared norm (1e-10: only numerically dependent atoms). Larger keeps the least-squares
+    /// system well conditioned where atoms are nearly dependent on the samples (x^2 and cos(pi x) on a
+    /// small cluster), whose coefficients would otherwise cancel in the thousands.
+    double min_new_fraction = 1e-10;
+  };
+
   /// Greedy sparse approximation y ~ D alpha.
   /// \param[in] signal      #P values y
   /// \param[in] dictionary  #P by K matrix D (columns need not be normalised)
   /// \param[in] allowed     K flags (non-zero: may be selected; 2: preferred); empty: every atom is allowed
   /// \param[in] tolerance   stop once ||r|| <= tolerance ||y|| (eps of docs/METHOD.md step 9: 0.01)
   /// \param[in] max_atoms   stop after this many atoms (L: 12)
-  /// \param[in] preference  a step takes the best preferred atom instead of the best atom when its score
-  ///                        is at least \a preference times the best one's (0: preferred atoms first while
-  ///                        one still correlates with the residual; 1: no preference)
+  /// \param[in] selection   preference for the preferred atoms and conditioning floors (OmpSelection)
   /// \return the selected atoms, their coefficients and the residual norm
   ///
   /// Each step selects the allowed atom maximising |<r, d_k>| / ||d_k|| (normalised columns), then
@@ -42,7 +59,8 @@ namespace pcl_sparse
   /// A zero signal gives the empty code.
   OmpResult
   orthogonalMatchingPursuit (const Eigen::VectorXd& signal, const Eigen::MatrixXd& dictionary,
-                             const std::vector<char>& allowed, double tolerance, int max_atoms, double preference = 1.0);
+                             const std::vector<char>& allowed, double tolerance, int max_atoms,
+                             const OmpSelection& selection = OmpSelection ());
 
   /// OMP of several signals over one dictionary (Batch OMP: Rubinstein, Zibulevsky and Elad, "Efficient
   /// implementation of the K-SVD algorithm using Batch Orthogonal Matching Pursuit", 2008), for the
