@@ -219,6 +219,39 @@ TEST (OrthogonalMatchingPursuit, PreferredAtomsFirst)
   }
 }
 
+// The conditioning floors (OmpSelection): samples along a line y = 1e-4 x, where the atom y is nearly zero.
+// Plain OMP picks it and codes a slope across the line with a coefficient in the thousands; with the RMS floor
+// it is never a candidate. Atoms nearly in the span of the support (1 and 1 + 1e-3 y) are skipped under
+// min_new_fraction.
+TEST (OrthogonalMatchingPursuit, ConditioningFloors)
+{
+  const int m = 50;
+  Eigen::MatrixXd D (m, 3);
+  Eigen::VectorXd y (m);
+  for (int p = 0; p < m; ++p)
+  {
+    const double x = -1.0 + 2.0 * p / (m - 1.0), line_y = 1e-4 * x + 1e-5 * std::sin (7.0 * p);
+    D (p, 0) = 1.0;
+    D (p, 1) = line_y;              // the monomial y
+    D (p, 2) = 1.0 + 1e-3 * line_y;  // nearly the constant
+    y[p] = 0.3 * line_y * 1e4 + 0.1;  // a height that varies along the line, not across it
+  }
+  const OmpResult plain = orthogonalMatchingPursuit (y, D, {}, 1e-9, 3);
+  ASSERT_FALSE (plain.atoms.empty ());
+  double largest = 0.0;
+  for (double c : plain.coefficients)
+    largest = std::max (largest, std::abs (c));
+  EXPECT_GT (largest, 1000.0);  // what the floors prevent
+  OmpSelection floors;
+  floors.min_column_rms = 0.01;
+  floors.min_new_fraction = 1e-4;
+  const OmpResult floored = orthogonalMatchingPursuit (y, D, {}, 1e-9, 3, floors);
+  // One of the two near-constants (the other adds 1e-7 of its norm outside its span: skipped), never y.
+  ASSERT_EQ (floored.atoms.size (), 1u);
+  EXPECT_NE (floored.atoms[0], 1);
+  EXPECT_LT (std::abs (floored.coefficients[0]), 1.0);
+}
+
 // More atoms than points / dependent atoms: the factor stays valid, the fit is exact at the points.
 TEST (OrthogonalMatchingPursuit, HandlesDependentColumns)
 {
