@@ -182,6 +182,14 @@ TEST (SparseSurfaceEncoder, RejectsBadOptionsAndInput)
   options.basis = static_cast<CosineBasisKind> (7);
   encoder.setOptions (options);
   EXPECT_THROW (encoder.compute (model), Error);
+  for (const double preference : {-0.1, 1.5, std::nan ("")})
+  {
+    options = SparseSurfaceEncoderOptions ();
+    options.coding.quadric_preference = preference;
+    EXPECT_THROW (options.validate (), Error) << preference;
+  }
+  options.coding.quadric_preference = 0.0;
+  EXPECT_NO_THROW (options.validate ());
 }
 
 TEST (SparseSurfaceEncoder, SameModelForAnyThreadCount)

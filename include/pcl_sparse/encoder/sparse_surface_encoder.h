@@ -74,8 +74,9 @@ namespace pcl_sparse
     double budget_sigma = 1.2;
 
     /// Throws pcl_sparse::Error naming the first option out of range: the patch options, rho > 0,
-    /// 0 <= f <= 1, L >= 1, eps in (0, 1), m_min in [0, 100000], footprint angles >= 3, n in [1, 64], attribute
-    /// L >= 1 and tolerance >= 0, max_compression_ratio >= 0, growth floors >= 0, budget_sigma >= 0.
+    /// 0 <= f <= 1, L >= 1, eps in (0, 1), quadric preference in [0, 1], m_min in [0, 100000], footprint
+    /// angles >= 3, n in [1, 64], attribute L >= 1 and tolerance >= 0, max_compression_ratio >= 0, growth
+    /// floors >= 0, budget_sigma >= 0.
     void validate () const;
   };
 
