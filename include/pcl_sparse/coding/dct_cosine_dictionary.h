@@ -5,8 +5,8 @@
 /// functions odd in x (y), so tilts, cubic terms and off-centre features are representable. Not in the
 /// paper (an option of ours: SparseSurfaceEncoderOptions::basis, pcl_sparse_encode -basis dct).
 ///
-/// It is deliberately not a CosineDictionary: code with a fast path for the paper's atoms
-/// (dynamic_cast<const CosineDictionary*>) falls back to the generic SurfaceBasis calls for it.
+/// It is deliberately not a CosineDictionary (which is the paper's atoms only); code with tables for cosine
+/// atoms takes any CosineAtoms and reads its kind (PatchEvaluator).
 
 #include <pcl_sparse/coding/cosine_atoms.h>
 
