@@ -111,7 +111,13 @@ namespace
       EXPECT_TRUE (sameBits (a.attribute_channels[c].lower, b.attribute_channels[c].lower));
       EXPECT_TRUE (sameBits (a.attribute_channels[c].upper, b.attribute_channels[c].upper));
     }
-    ASSERT_NE (dynamic_cast<const DctCosineDictionary*> (b.attribute_basis.get ()), nullptr);
+    // The same cosine basis (kind and n) as the written model's.
+    const auto* written = dynamic_cast<const CosineAtoms*> (a.attribute_basis.get ());
+    const auto* read = dynamic_cast<const CosineAtoms*> (b.attribute_basis.get ());
+    ASSERT_NE (written, nullptr);
+    ASSERT_NE (read, nullptr);
+    EXPECT_EQ (read->kind (), written->kind ());
+    EXPECT_EQ (read->frequencies (), written->frequencies ());
     ASSERT_EQ (a.patches.size (), b.patches.size ());
     for (std::size_t p = 0; p < a.patches.size (); ++p)
     {
@@ -751,6 +757,38 @@ TEST (ModelFile, AttributesLosslessRoundTripIsBitIdentical)
     // The geometry's sections are the file without attributes, byte for byte (after the header).
     if (!with_vertices)
       EXPECT_TRUE (std::equal (plain.begin () + 52, plain.end (), bytes.begin () + 52));
+  }
+}
+
+// An attribute basis with the quadric's monomials (a model built in the library; the encoder codes colour over
+// the cosines): ACHN stores kind 3 and the monomials' shell ranks, as the header's basis does. Before, ACHN knew
+// kinds 1 and 2 only and wrote such a basis as kind 1, which the reader refused ("outside the basis").
+TEST (ModelFile, QuadricAttributeBasisRoundTrips)
+{
+  auto model = test::makeSyntheticModel (150, 17);
+  test::addSyntheticAttributes (model, 18, CosineBasisKind::DctQuadric);
+  std::size_t monomials = 0;
+  for (const PatchCode& patch : model.patches)
+    for (const SparseCode& code : patch.attributes)
+      monomials += std::count_if (code.atoms.begin (), code.atoms.end (), [] (int a) { return a >= 144; });
+  ASSERT_GT (monomials, 20u) << "the codes must use the monomials";
+  const auto lossless = encodeModel (model);
+  const SparseSurfaceModel decoded = decodeModel (lossless.data (), lossless.size ());
+  ASSERT_NE (dynamic_cast<const QuadricDctDictionary*> (decoded.attribute_basis.get ()), nullptr);
+  expectSameAttributes (model, decoded);
+  EXPECT_EQ (largestAttributeChange (model, decoded), 0.0);
+  for (bool range_coding : {true, false})
+  {
+    ModelWriteOptions options;
+    options.tolerance = 1e-4;
+    options.attribute_tolerance = 0.5 / 255.0;
+    options.range_coding = range_coding;
+    const auto bytes = encodeModel (model, options);
+    const SparseSurfaceModel quantised = decodeModel (bytes.data (), bytes.size ());
+    ASSERT_NE (dynamic_cast<const QuadricDctDictionary*> (quantised.attribute_basis.get ()), nullptr);
+    const double changed = largestAttributeChange (model, quantised);
+    EXPECT_LE (changed, options.attribute_tolerance * (1.0 + 1e-9)) << range_coding;
+    EXPECT_GT (changed, 0.0) << range_coding;
   }
 }
 

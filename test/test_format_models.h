@@ -64,13 +64,14 @@ namespace pcl_sparse
     }
 
     /// Adds colour and intensity to \a model: channels r, g, b (0 .. 255) and intensity (-50 .. 1000), one
-    /// random sparse code per channel and patch over the half-period cosines (some codes empty).
+    /// random sparse code per channel and patch over the half-period cosines, or another basis \a kind (some
+    /// codes empty).
     inline void
-    addSyntheticAttributes (SparseSurfaceModel& model, unsigned seed)
+    addSyntheticAttributes (SparseSurfaceModel& model, unsigned seed, CosineBasisKind kind = CosineBasisKind::Dct)
     {
       std::mt19937 rng (seed);
       std::normal_distribution<double> normal (0.0, 1.0);
-      auto basis = makeCosineBasis (CosineBasisKind::Dct, 12);
+      auto basis = makeCosineBasis (kind, 12);
       model.attribute_basis = basis;
       model.attribute_channels = {{AttributeChannel::Red, 0.0, 255.0}, {AttributeChannel::Green, 0.0, 255.0},
                                   {AttributeChannel::Blue, 0.0, 255.0}, {AttributeChannel::Intensity, -50.0, 1000.0}};

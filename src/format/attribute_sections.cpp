@@ -3,6 +3,7 @@
 #include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/frame_quantization.h>
+#include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/sparse_code_stream.h>
 
 #include <cmath>
@@ -12,15 +13,12 @@ namespace pcl_sparse
 {
   namespace
   {
-    // Basis kinds as in the file header (docs/FORMAT.md).
-    constexpr std::uint8_t kBasisCosine = 1;
-    constexpr std::uint8_t kBasisDctCosine = 2;
-
     /// What ACHN holds besides the channels.
     struct ChannelTable
     {
       CosineBasisKind kind = CosineBasisKind::Dct;
       int frequencies = 12;
+      int monomials = 0;  ///< the quadric's monomials after the cosines (shellRank)
       std::vector<AttributeChannelInfo> channels;
       std::vector<double> budgets;  ///< quantised: largest change of a value, per channel
     };
@@ -39,7 +37,7 @@ namespace pcl_sparse
     {
       const auto* cosine = dynamic_cast<const CosineAtoms*> (model.attribute_basis.get ());
       if (!cosine)
-        throw Error ("encodeModel: the attribute basis must be a cosine basis (CosineDictionary or DctCosineDictionary)");
+        throw Error ("encodeModel: the attribute basis must be a cosine basis (CosineDictionary, DctCosineDictionary or QuadricDctDictionary)");
       return *cosine;
     }
 
@@ -57,9 +55,10 @@ namespace pcl_sparse
     {
       ChannelTable table;
       const std::uint8_t kind = in.getU8 ("attribute basis kind");
-      if (kind != kBasisCosine && kind != kBasisDctCosine)
+      if (!isBasisKindByte (kind))
         in.fail ("unknown attribute basis kind " + std::to_string (kind));
-      table.kind = kind == kBasisDctCosine ? CosineBasisKind::Dct : CosineBasisKind::Paper;
+      table.kind = basisKindOfByte (kind);
+      table.monomials = monomialsOfKindByte (kind);
       table.frequencies = in.getU16 ("attribute basis parameter");
       if (table.frequencies < 1 || table.frequencies > CosineAtoms::max_frequencies)
         in.fail ("attribute basis with " + std::to_string (table.frequencies) + " frequencies is out of range");
@@ -106,7 +105,8 @@ namespace pcl_sparse
     {
       RangeDecoder coded_atoms = rangeDecoderOverRest (atoms);
       RangeDecoder coded_coefficients = rangeDecoderOverRest (coefficients);
-      std::vector<SparseCodeContexts> contexts (table.channels.size (), SparseCodeContexts (table.frequencies));
+      std::vector<SparseCodeContexts> contexts (table.channels.size (),
+                                                SparseCodeContexts (table.frequencies, table.monomials));
       for (std::size_t p = 0; p < model.patches.size (); ++p)
       {
         std::vector<SparseCode>& codes = model.patches[p].attributes;
@@ -131,7 +131,7 @@ namespace pcl_sparse
     const int n = basis.frequencies ();  // the codes were checked by SparseSurfaceModel::checkPatches
     const bool quantised = tolerance > 0.0;
     ByteWriter channels, atoms, coefficients;
-    channels.putU8 (basis.kind () == CosineBasisKind::Dct ? kBasisDctCosine : kBasisCosine);
+    channels.putU8 (basisKindByte (basis.kind ()));
     channels.putU16 (static_cast<std::uint16_t> (n));
     channels.putU8 (static_cast<std::uint8_t> (model.attribute_channels.size ()));
     std::vector<double> budgets;
@@ -146,7 +146,8 @@ namespace pcl_sparse
     }
     range_coded = range_coded && quantised;
     RangeEncoder coded_atoms, coded_coefficients;
-    std::vector<SparseCodeContexts> contexts (model.attribute_channels.size (), SparseCodeContexts (n));
+    std::vector<SparseCodeContexts> contexts (model.attribute_channels.size (),
+                                              SparseCodeContexts (n, basis.monomials ()));
     for (const PatchCode& patch : model.patches)
       for (std::size_t c = 0; c < patch.attributes.size (); ++c)
       {
@@ -159,7 +160,7 @@ namespace pcl_sparse
                                        coefficientStep (budgets[c], 1.0, order.size ()));
           continue;
         }
-        const std::vector<std::size_t> order = putCodeAtoms (atoms, code.atoms, quantised, n);
+        const std::vector<std::size_t> order = putCodeAtoms (atoms, code.atoms, quantised, n, basis.monomials ());
         putCodeCoefficients (coefficients, code.coefficients, order,
                              quantised ? coefficientStep (budgets[c], 1.0, order.size ()) : 0.0);
       }
@@ -197,7 +198,8 @@ namespace pcl_sparse
       codes.resize (count);
       for (std::size_t c = 0; c < count; ++c)
       {
-        getCodeAtoms (atoms, quantised, table.frequencies, codeName (p, table.channels[c]), codes[c].atoms);
+        getCodeAtoms (atoms, quantised, table.frequencies, codeName (p, table.channels[c]), codes[c].atoms,
+                      table.monomials);
         const std::size_t k = codes[c].atoms.size ();
         getCodeCoefficients (coefficients, k, quantised ? coefficientStep (table.budgets[c], 1.0, k) : 0.0,
                              codes[c].coefficients);

@@ -40,31 +40,6 @@ namespace pcl_sparse
     constexpr std::uint8_t kBasisCosine = 1;     ///< CosineDictionary: cos(i pi x) cos(j pi y)
     constexpr std::uint8_t kBasisDctCosine = 2;  ///< DctCosineDictionary: cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2)
     constexpr std::uint8_t kBasisQuadricDct = 3; ///< QuadricDctDictionary: the Dct atoms, then x, y, x^2, x y, y^2
-
-    std::uint8_t
-    basisKindByte (CosineBasisKind kind)
-    {
-      switch (kind)
-      {
-        case CosineBasisKind::Dct: return kBasisDctCosine;
-        case CosineBasisKind::DctQuadric: return kBasisQuadricDct;
-        default: return kBasisCosine;
-      }
-    }
-
-    CosineBasisKind
-    basisKindOfByte (std::uint8_t kind)
-    {
-      return kind == kBasisDctCosine ? CosineBasisKind::Dct : kind == kBasisQuadricDct ? CosineBasisKind::DctQuadric
-                                                                                        : CosineBasisKind::Paper;
-    }
-
-    /// Monomial atoms after the cosines of a basis kind (shellRank).
-    int
-    monomialsOfKind (std::uint8_t kind)
-    {
-      return kind == kBasisQuadricDct ? CosineAtoms::quadric_monomials : 0;
-    }
     constexpr std::uint8_t kCodecStored = 0;
     constexpr std::uint8_t kCodecZstd = 1;
     constexpr std::uint64_t kMaxPatches = std::numeric_limits<std::int32_t>::max ();
@@ -202,7 +177,7 @@ namespace pcl_sparse
         throw Error ("encodeModel: " + what + " is not finite");
     }
 
-    /// The model's cosine basis (CosineDictionary or DctCosineDictionary); throws for any other.
+    /// The model's cosine basis (CosineAtoms: the paper's, the half-period or the quadric one); throws for any other.
     const CosineAtoms&
     cosineBasis (const SparseSurfaceModel& model)
     {
@@ -590,7 +565,7 @@ namespace pcl_sparse
         throw Error (what + ": unknown header flags (written by a newer pcl_sparse?)");
       if ((flags & kFlagRangeCoded) && !(flags & kFlagQuantised))
         throw Error (what + ": the range-coded flag needs the quantised flag");
-      if (basis_kind != kBasisCosine && basis_kind != kBasisDctCosine && basis_kind != kBasisQuadricDct)
+      if (!isBasisKindByte (basis_kind))
         throw Error (what + ": unknown basis kind " + std::to_string (basis_kind));
       if (basis_parameter < 1 || basis_parameter > CosineDictionary::max_frequencies)
         throw Error (what + ": cosine basis with " + std::to_string (basis_parameter) + " frequencies is out of range");
@@ -993,6 +968,36 @@ namespace pcl_sparse
     return tags;
   }
 
+  std::uint8_t
+  basisKindByte (CosineBasisKind kind)
+  {
+    switch (kind)
+    {
+      case CosineBasisKind::Dct: return kBasisDctCosine;
+      case CosineBasisKind::DctQuadric: return kBasisQuadricDct;
+      default: return kBasisCosine;
+    }
+  }
+
+  bool
+  isBasisKindByte (std::uint8_t byte)
+  {
+    return byte == kBasisCosine || byte == kBasisDctCosine || byte == kBasisQuadricDct;
+  }
+
+  CosineBasisKind
+  basisKindOfByte (std::uint8_t byte)
+  {
+    return byte == kBasisDctCosine ? CosineBasisKind::Dct : byte == kBasisQuadricDct ? CosineBasisKind::DctQuadric
+                                                                                      : CosineBasisKind::Paper;
+  }
+
+  int
+  monomialsOfKindByte (std::uint8_t byte)
+  {
+    return byte == kBasisQuadricDct ? CosineAtoms::quadric_monomials : 0;
+  }
+
   std::string
   basisDescription (std::uint8_t basis_kind, std::uint16_t basis_parameter)
   {
@@ -1183,7 +1188,7 @@ namespace pcl_sparse
     // Range-coded: one decoder per section over all its bytes (the ByteReaders are then at their end).
     std::optional<RangeCodedPatchSections> coded;
     if (range_coded)
-      coded.emplace (frame, foot, atom, coef, q.extent_bits, shared.basis_parameter, monomialsOfKind (shared.basis_kind));
+      coded.emplace (frame, foot, atom, coef, q.extent_bits, shared.basis_parameter, monomialsOfKindByte (shared.basis_kind));
 
     const std::uint8_t* seed_planes = nullptr;
     const std::uint8_t* radius_planes = nullptr;
@@ -1204,7 +1209,7 @@ namespace pcl_sparse
       }
       readFootprint (foot, quantised, q, p, patch.footprint);
       getCodeAtoms (atom, quantised, shared.basis_parameter, "patch " + std::to_string (p), patch.atoms,
-                    monomialsOfKind (shared.basis_kind));
+                    monomialsOfKindByte (shared.basis_kind));
       readCoefficients (coef, quantised, q, patch);
       readFrame (frame, quantised, q, p, patch);
     }

@@ -8,6 +8,7 @@
 /// Quantising with the whole model's parameters makes a run decode to exactly the patches the version-1 file of the
 /// whole model gives.
 
+#include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/format/model_file.h>
 
 #include <cstddef>
@@ -41,6 +42,23 @@ namespace pcl_sparse
   /// \brief The basis of a header as pcl_sparse_info prints it, e.g. "dct cosine 12x12".
   std::string
   basisDescription (std::uint8_t basis_kind, std::uint16_t basis_parameter);
+
+  /// \brief The basis kind byte of a cosine basis (docs/FORMAT.md: 1 paper, 2 dct, 3 quadric), as the header
+  /// and the attribute channel table ACHN store it.
+  std::uint8_t
+  basisKindByte (CosineBasisKind kind);
+
+  /// \brief Whether \a byte is a basis kind this build reads.
+  bool
+  isBasisKindByte (std::uint8_t byte);
+
+  /// \brief The cosine basis of a kind byte (isBasisKindByte).
+  CosineBasisKind
+  basisKindOfByte (std::uint8_t byte);
+
+  /// \brief Monomial atoms after the cosines of a kind byte (shellRank): 5 for the quadric, else 0.
+  int
+  monomialsOfKindByte (std::uint8_t byte);
 
   class ByteReader;
   class ByteWriter;
