@@ -92,7 +92,7 @@ namespace pcl_sparse
       throw Error (std::string (kind == CosineBasisKind::Paper ? "CosineDictionary" : "DctCosineDictionary") +
                    ": frequencies must be in [1, " + std::to_string (max_frequencies) + "], got " +
                    std::to_string (frequencies));
-    // Monomials get frequency 0 here (their own terms are added by addMonomials).
+    // Monomials get frequency 0 here (their own terms are added by addQuadric).
     frequency_x_.assign (static_cast<std::size_t> (size ()), 0);
     frequency_y_.assign (static_cast<std::size_t> (size ()), 0);
     for (int a = 0; a < n_ * n_; ++a)
@@ -110,38 +110,20 @@ namespace pcl_sparse
     q = py[monomial];
   }
 
-  void
-  CosineAtoms::addMonomials (const std::vector<int>& atoms, const std::vector<double>& coefficients, double x,
-                             double y, HeightSample& sample) const
+  bool
+  CosineAtoms::quadricCoefficients (const std::vector<int>& atoms, const std::vector<double>& coefficients,
+                                    double* m) const
   {
+    std::fill (m, m + quadric_monomials, 0.0);
+    bool any = false;
     const std::size_t k_end = std::min (atoms.size (), coefficients.size ());
     for (std::size_t k = 0; k < k_end; ++k)
-    {
-      if (!isMonomial (atoms[k]))
-        continue;
-      const double a = coefficients[k];
-      switch (atoms[k] - n_ * n_)
+      if (isMonomial (atoms[k]))
       {
-        case 0: sample.value += a * x; sample.gradient.x () += a; break;
-        case 1: sample.value += a * y; sample.gradient.y () += a; break;
-        case 2:
-          sample.value += a * x * x;
-          sample.gradient.x () += 2.0 * a * x;
-          sample.hessian (0, 0) += 2.0 * a;
-          break;
-        case 3:
-          sample.value += a * x * y;
-          sample.gradient += a * Eigen::Vector2d (y, x);
-          sample.hessian (0, 1) += a;
-          sample.hessian (1, 0) += a;
-          break;
-        default:
-          sample.value += a * y * y;
-          sample.gradient.y () += 2.0 * a * y;
-          sample.hessian (1, 1) += 2.0 * a;
-          break;
+        m[atoms[k] - n_ * n_] += coefficients[k];
+        any = true;
       }
-    }
+    return any;
   }
 
   double
@@ -177,22 +159,18 @@ namespace pcl_sparse
       }
     }
 
-    /// x^p y^q of monomial \a monomial (CosineAtoms::monomialExponents) at (x, y).
-    inline double
-    monomialValue (int monomial, double x, double y)
-    {
-      int p, q;
-      CosineAtoms::monomialExponents (monomial, p, q);
-      return (p == 0 ? 1.0 : p == 1 ? x : x * x) * (q == 0 ? 1.0 : q == 1 ? y : y * y);
-    }
-
-    /// Values of monomial \a monomial at every point.
+    /// Values x^p y^q of monomial \a monomial (CosineAtoms::monomialExponents) at every point.
     template <typename Column>
     void
     monomialColumn (const std::vector<Eigen::Vector2d>& points, int monomial, Column&& column)
     {
+      int p, q;
+      CosineAtoms::monomialExponents (monomial, p, q);
       for (std::size_t k = 0; k < points.size (); ++k)
-        column[static_cast<Eigen::Index> (k)] = monomialValue (monomial, points[k].x (), points[k].y ());
+      {
+        const double x = points[k].x (), y = points[k].y ();
+        column[static_cast<Eigen::Index> (k)] = (p == 0 ? 1.0 : p == 1 ? x : x * x) * (q == 0 ? 1.0 : q == 1 ? y : y * y);
+      }
     }
   } // namespace
 
@@ -282,8 +260,14 @@ namespace pcl_sparse
     sample.gradient = Eigen::Vector2d (pi * gx, pi * gy);
     const double pi2 = pi * pi;
     sample.hessian << pi2 * hxx, pi2 * hxy, pi2 * hxy, pi2 * hyy;
-    if (has_monomials)
-      addMonomials (atoms, coefficients, x, y, sample);
+    double m[quadric_monomials];
+    if (has_monomials && quadricCoefficients (atoms, coefficients, m))
+    {
+      double hxy_total = sample.hessian (0, 1);
+      addQuadric (m, x, y, sample.value, sample.gradient.x (), sample.gradient.y (), sample.hessian (0, 0), hxy_total,
+                  sample.hessian (1, 1));
+      sample.hessian (0, 1) = sample.hessian (1, 0) = hxy_total;
+    }
     return sample;
   }
 
@@ -331,9 +315,9 @@ namespace pcl_sparse
     for (std::size_t k = 0; k < k_end; ++k)
       if (!isMonomial (atoms[k]))
         v += coefficients[k] * cx[frequency_x_[atoms[k]]] * cy[frequency_y_[atoms[k]]];
-    for (std::size_t k = 0; k < k_end; ++k)
-      if (isMonomial (atoms[k]))
-        v += coefficients[k] * monomialValue (atoms[k] - n_ * n_, x, y);
+    double m[quadric_monomials];
+    if (quadricCoefficients (atoms, coefficients, m))
+      v += quadricValue (m, x, y);
     return v;
   }
 

@@ -97,20 +97,6 @@ namespace pcl_sparse
       return 0.5 * t + 0.5;
     }
 
-    /// Adds the quadric's monomial terms a_x x + a_y y + a_xx x^2 + a_xy x y + a_yy y^2 (\a m = those five
-    /// coefficients) to a sample.
-    inline void
-    addMonomials (const double* m, double x, double y, double& value, double& gx, double& gy, double& hxx, double& hxy,
-                  double& hyy)
-    {
-      value += m[0] * x + m[1] * y + m[2] * x * x + m[3] * x * y + m[4] * y * y;
-      gx += m[0] + 2.0 * m[2] * x + m[3] * y;
-      gy += m[1] + m[3] * x + 2.0 * m[4] * y;
-      hxx += 2.0 * m[2];
-      hxy += m[3];
-      hyy += 2.0 * m[4];
-    }
-
     /// PatchEvaluator::sample with the Hessian for a block of places: the same operations in the same
     /// order per lane, so the same bits; the lanes are independent, so the loops vectorise. Compiled for
     /// AVX2 too (no FMA: a fused multiply-add would round differently) and chosen at load time.
@@ -171,7 +157,7 @@ namespace pcl_sparse
       }
       if (monomials)
         for (int b = 0; b < lanes; ++b)
-          addMonomials (monomials, block.x[b], block.y[b], block.value[b], block.gx[b], block.gy[b], block.hxx[b],
+          CosineAtoms::addQuadric (monomials, block.x[b], block.y[b], block.value[b], block.gx[b], block.gy[b], block.hxx[b],
                         block.hxy[b], block.hyy[b]);
     }
   } // namespace
@@ -193,18 +179,16 @@ namespace pcl_sparse
     for (std::size_t p = 0; p < m; ++p)
     {
       const PatchCode& code = model.patches[p];
+      if (monomials_)
+        cosine->quadricCoefficients (code.atoms, code.coefficients,
+                                     &monomial_coefficients_[CosineAtoms::quadric_monomials * p]);
       if (cosine_)
       {
         const std::size_t count = std::min (code.atoms.size (), code.coefficients.size ());
         for (std::size_t k = 0; k < count; ++k)
         {
           if (cosine->isMonomial (code.atoms[k]))
-          {
-            const int n2 = cosine->frequencies () * cosine->frequencies ();
-            monomial_coefficients_[CosineAtoms::quadric_monomials * p + static_cast<std::size_t> (code.atoms[k] - n2)] +=
-                code.coefficients[k];
-            continue;
-          }
+            continue;  // in monomial_coefficients_
           Term term;
           term.i = cosine->frequencyX (code.atoms[k]);
           term.j = cosine->frequencyY (code.atoms[k]);
@@ -252,10 +236,7 @@ namespace pcl_sparse
     for (std::size_t t = term_begin_[p]; t < term_begin_[p + 1]; ++t)
       v += terms_[t].coefficient * cx[terms_[t].i] * cy[terms_[t].j];
     if (monomials_)
-    {
-      const double* m = &monomial_coefficients_[CosineAtoms::quadric_monomials * p];
-      v += m[0] * x + m[1] * y + m[2] * x * x + m[3] * x * y + m[4] * y * y;
-    }
+      v += CosineAtoms::quadricValue (&monomial_coefficients_[CosineAtoms::quadric_monomials * p], x, y);
     return v;
   }
 
@@ -309,7 +290,7 @@ namespace pcl_sparse
     const double pi = half_period_ ? 0.5 * M_PI : M_PI, pi2 = pi * pi;
     double value = v, gx_out = pi * gx, gy_out = pi * gy, hxx_out = pi2 * hxx, hxy_out = pi2 * hxy, hyy_out = pi2 * hyy;
     if (monomials_)
-      addMonomials (&monomial_coefficients_[CosineAtoms::quadric_monomials * p], x, y, value, gx_out, gy_out, hxx_out,
+      CosineAtoms::addQuadric (&monomial_coefficients_[CosineAtoms::quadric_monomials * p], x, y, value, gx_out, gy_out, hxx_out,
                     hxy_out, hyy_out);
     HeightSample sample;
     sample.value = value;

@@ -58,6 +58,31 @@ namespace pcl_sparse
     /// Exponents (p, q), x^p y^q, of monomial \a monomial (0 .. 4: atom n^2 + monomial).
     static void monomialExponents (int monomial, int& p, int& q);
 
+    /// The quadric's five coefficients m (of x, y, x^2, x y, y^2) in a code: each monomial atom's coefficient
+    /// added to its slot, the others 0.
+    /// \return whether the code has a monomial atom
+    bool quadricCoefficients (const std::vector<int>& atoms, const std::vector<double>& coefficients, double* m) const;
+
+    /// m[0] x + m[1] y + m[2] x^2 + m[3] x y + m[4] y^2.
+    static double
+    quadricValue (const double* m, double x, double y)
+    {
+      return m[0] * x + m[1] * y + m[2] * x * x + m[3] * x * y + m[4] * y * y;
+    }
+
+    /// Adds quadricValue and its gradient and Hessian (h_xy once) to a sample's parts.
+    static void
+    addQuadric (const double* m, double x, double y, double& value, double& gx, double& gy, double& hxx, double& hxy,
+                double& hyy)
+    {
+      value += quadricValue (m, x, y);
+      gx += m[0] + 2.0 * m[2] * x + m[3] * y;
+      gy += m[1] + m[3] * x + 2.0 * m[4] * y;
+      hxx += 2.0 * m[2];
+      hxy += m[3];
+      hyy += 2.0 * m[4];
+    }
+
     /// n^2 cosine atoms, then the monomials.
     int size () const override { return n_ * n_ + monomials_; }
     /// 2 / max(i, j) (Paper) or 4 / max(i, j) (Dct) for atom (i, j); +infinity for the constant atom and
@@ -100,9 +125,6 @@ namespace pcl_sparse
     CosineAtoms (int frequencies, CosineBasisKind kind);
 
   private:
-    /// The monomial atoms' terms of a code, added to \a sample.
-    void addMonomials (const std::vector<int>& atoms, const std::vector<double>& coefficients, double x, double y,
-                       HeightSample& sample) const;
     HeightSample evaluateLongCode (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                                    double x, double y) const;
 
