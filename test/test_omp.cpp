@@ -22,6 +22,20 @@ namespace
         m (r, c) = n (rng) * (1.0 + c % 3);  // unequal column norms: selection must normalise
     return m;
   }
+
+  /// \a count points uniform in [-scale, scale]^2 (into \a points) and \a basis's atoms at them.
+  Eigen::MatrixXd
+  atomsAtRandomPoints (const SurfaceBasis& basis, int count, double scale, std::mt19937& rng,
+                       std::vector<Eigen::Vector2d>& points)
+  {
+    std::uniform_real_distribution<double> u (-1.0, 1.0);
+    points.clear ();
+    for (int p = 0; p < count; ++p)
+      points.emplace_back (scale * u (rng), scale * u (rng));
+    Eigen::MatrixXd D;
+    basis.evaluate (points, D);
+    return D;
+  }
 } // namespace
 
 // Every step's coefficients equal the brute-force least squares on the selected support, and each
@@ -98,10 +112,7 @@ TEST (OrthogonalMatchingPursuit, RecoversSyntheticSparseCosineSignals)
   for (int trial = 0; trial < 30; ++trial)
   {
     std::vector<Eigen::Vector2d> points;
-    for (int p = 0; p < 400; ++p)
-      points.emplace_back (u (rng), u (rng));
-    Eigen::MatrixXd D;
-    dictionary.evaluate (points, D);
+    const Eigen::MatrixXd D = atomsAtRandomPoints (dictionary, 400, 1.0, rng, points);
     std::vector<int> truth;
     while (truth.size () < 4)
     {
@@ -144,10 +155,7 @@ TEST (OrthogonalMatchingPursuit, NeverSelectsForbiddenAtoms)
   for (int trial = 0; trial < 20; ++trial)
   {
     std::vector<Eigen::Vector2d> points;
-    for (int p = 0; p < 64; ++p)
-      points.emplace_back (u (rng), u (rng));
-    Eigen::MatrixXd D;
-    dictionary.evaluate (points, D);
+    const Eigen::MatrixXd D = atomsAtRandomPoints (dictionary, 64, 1.0, rng, points);
     // High-frequency signal that the forbidden atoms would fit best.
     Eigen::VectorXd y (64);
     for (int p = 0; p < 64; ++p)
@@ -315,11 +323,9 @@ TEST (BatchOrthogonalMatchingPursuit, FewerSamplesThanAtoms)
   std::uniform_real_distribution<double> u (-1.0, 1.0);
   for (int trial = 0; trial < 200; ++trial)
   {
+    // Clustered: the cosines are nearly dependent there.
     std::vector<Eigen::Vector2d> points;
-    for (int p = 0; p < 3 + trial % 6; ++p)
-      points.emplace_back (0.05 * u (rng), 0.05 * u (rng));  // clustered: the cosines are nearly dependent there
-    Eigen::MatrixXd D;
-    dictionary.evaluate (points, D);
+    const Eigen::MatrixXd D = atomsAtRandomPoints (dictionary, 3 + trial % 6, 0.05, rng, points);
     Eigen::MatrixXd Y (static_cast<Eigen::Index> (points.size ()), 3);
     for (Eigen::Index r = 0; r < Y.rows (); ++r)
       for (Eigen::Index c = 0; c < 3; ++c)
