@@ -1,5 +1,6 @@
 // Colour and intensity (issue 12 point 7): coded per patch over the height's atoms, resampled into the
 // output's rgb / intensity fields, taken from a PCL cloud's fields automatically; known colour fields.
+#include <pcl_sparse/coding/patch_attribute_coder.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
@@ -359,4 +360,62 @@ TEST (Attributes, ScanWithColourGivesTheColoursAutomatically)
   SparseSurfaceModel from_scan;
   scan_encoder.compute (from_scan);
   EXPECT_EQ (encodeModel (from_scan), encodeModel (*model));
+}
+
+// The attribute coder takes its dictionary from the height's where that holds its atoms (the default
+// bases: the quadric's cosines are the Dct atoms), never from a basis with other functions: either way
+// the codes are those of its own dictionary, to the bit.
+TEST (Attributes, CodesDoNotDependOnTheHeightDictionary)
+{
+  const int num_points = 60;
+  Patch patch;
+  std::vector<Eigen::Vector2d> positions;
+  VertexAttributes values;
+  values.channels = {AttributeChannel::Red, AttributeChannel::Green, AttributeChannel::Blue};
+  values.values.resize (num_points, 3);
+  for (int i = 0; i < num_points; ++i)
+  {
+    patch.vertices.push_back (i);
+    // A deterministic scatter over the unit square.
+    const Eigen::Vector2d p (std::fmod (0.618034 * i, 1.0) * 2.0 - 1.0, std::fmod (0.754878 * i, 1.0) * 2.0 - 1.0);
+    positions.push_back (p);
+    values.values.row (i) << static_cast<float> (128.0 + 90.0 * std::sin (2.0 * p.x ())),
+      static_cast<float> (100.0 + 40.0 * p.x () * p.y ()), static_cast<float> (60.0 + 30.0 * std::cos (3.0 * p.y ()));
+  }
+  AttributeCodingInput input;
+  input.values = &values;
+  input.channels = values.channelInfo ();
+  input.basis = makeCosineBasis (CosineBasisKind::Dct);
+  input.options.tolerance = 0.0;  // every allowed atom is a candidate to the end: any column mix-up shows
+  const double spacing = 0.6;     // the Nyquist cap leaves the cosines up to frequency 6
+  const std::vector<SparseCode> own = codePatchAttributes (patch, positions, {}, spacing, input);
+  ASSERT_EQ (own.size (), 3u);
+  for (const SparseCode& code : own)
+    ASSERT_EQ (code.atoms.size (), 12u);
+
+  for (const CosineBasisKind height_kind : {CosineBasisKind::DctQuadric, CosineBasisKind::Dct, CosineBasisKind::Paper})
+  {
+    SCOPED_TRACE (cosineBasisKindName (height_kind));
+    // The attribute atoms' indices (the monomials after them): the paper's atoms under the same indices
+    // are other functions, and must not be taken.
+    const CosineAtoms::ConstPtr height = makeCosineBasis (height_kind);
+    const std::vector<char> allowed = nyquistAllowedAtoms (*input.basis, spacing, input.nyquist_factor, input.nyquist_rule);
+    std::vector<int> atoms;
+    for (int k = 0; k < static_cast<int> (allowed.size ()); ++k)
+      if (allowed[k])
+        atoms.push_back (k);
+    ASSERT_LT (atoms.size (), allowed.size ());
+    for (int m = 0; m < height->monomials (); ++m)
+      atoms.push_back (static_cast<int> (allowed.size ()) + m);
+    Eigen::MatrixXd matrix;
+    height->evaluate (positions, atoms, matrix);
+    const CodingDictionary dictionary{height.get (), &atoms, &matrix};
+    const std::vector<SparseCode> shared = codePatchAttributes (patch, positions, {}, spacing, input, &dictionary);
+    ASSERT_EQ (shared.size (), own.size ());
+    for (std::size_t c = 0; c < own.size (); ++c)
+    {
+      EXPECT_EQ (shared[c].atoms, own[c].atoms);
+      EXPECT_EQ (shared[c].coefficients, own[c].coefficients);
+    }
+  }
 }

@@ -132,7 +132,7 @@ namespace pcl_sparse
   }
 
   std::vector<OmpResult>
-  batchOrthogonalMatchingPursuit (const Eigen::MatrixXd& signals, const Eigen::MatrixXd& dictionary,
+  batchOrthogonalMatchingPursuit (const Eigen::MatrixXd& signals, const Eigen::Ref<const Eigen::MatrixXd>& dictionary,
                                   const std::vector<double>& tolerances, int max_atoms)
   {
     const Eigen::Index num_points = dictionary.rows ();

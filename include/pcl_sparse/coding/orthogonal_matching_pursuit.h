@@ -78,6 +78,6 @@ namespace pcl_sparse
   /// share them. The Cholesky factor's new row comes from the Gram columns too. The residual is still
   /// formed, O(#P |S|), for the stopping test.
   std::vector<OmpResult>
-  batchOrthogonalMatchingPursuit (const Eigen::MatrixXd& signals, const Eigen::MatrixXd& dictionary,
+  batchOrthogonalMatchingPursuit (const Eigen::MatrixXd& signals, const Eigen::Ref<const Eigen::MatrixXd>& dictionary,
                                   const std::vector<double>& tolerances, int max_atoms);
 } // namespace pcl_sparse

@@ -48,7 +48,8 @@ namespace pcl_sparse
     AttributeCodingOptions options;
   };
 
-  /// The dictionary matrix the height was coded over, which the attributes reuse when theirs is the same.
+  /// The dictionary matrix the height was coded over. The attributes reuse its first columns when they are
+  /// the attribute atoms at the same samples: the same basis, or the quadric's cosines for the cosines alone.
   struct CodingDictionary
   {
     const SurfaceBasis* basis = nullptr;     ///< the basis evaluated
