@@ -459,6 +459,76 @@ TEST (PatchSampling, SameOutputWithGrowthHelpers)
   EXPECT_TRUE (samePartition (results[0], results[2]));
 }
 
+// The loop's tail (PatchOptions::uncovered_candidates_after): up to the given coverage the paper's loop,
+// then only candidates not yet covered grow, with helpers or without, and every vertex is still covered.
+TEST (PatchSampling, TailGrowsOnlyUncoveredCandidates)
+{
+  TriangleMesh torus = makeTorus (256, 96);
+  for (auto& p : torus.vertices)
+    p *= 1.0 + 0.05 * std::sin (7.0 * std::atan2 (p.y (), p.x ()));
+  auto mesh = std::make_shared<TriangleMesh> (torus);
+  struct Run
+  {
+    std::vector<Patch> patches;
+    std::size_t grown = 0;
+  };
+  auto run = [&] (double tail, int threads) {
+    PatchOptions options;
+    options.uncovered_candidates_after = tail;
+    options.complete_faces = false;  // it would add corners to the prefix's patches beside the tail's
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+    sampling.setInputMesh (mesh);
+    sampling.setOptions (options);
+    sampling.setNumberOfThreads (threads);
+    Run r;
+    sampling.compute (r.patches);
+    r.grown = sampling.getNumGrownSeeds ();
+    EXPECT_TRUE (sampling.getUncoveredVertices ().empty ());
+    return r;
+  };
+  const Run paper = run (1.0, 1), tail = run (0.95, 1), tail_helpers = run (0.95, 2);
+  EXPECT_EQ (paper.patches.size (), run (-1.0, 1).patches.size ());  // the default on a mesh: the paper's loop
+  EXPECT_TRUE (samePartition (tail.patches, tail_helpers.patches));
+
+  // Patch k seeded at a vertex patches 0 .. k-1 covered.
+  auto seededCovered = [&] (const std::vector<Patch>& patches, std::size_t from) {
+    std::vector<std::uint8_t> covered (torus.vertices.size (), 0);
+    std::vector<std::size_t> found;
+    for (std::size_t k = 0; k < patches.size (); ++k)
+    {
+      if (k >= from && covered[patches[k].seed])
+        found.push_back (k);
+      for (int v : patches[k].vertices)
+        covered[v] = 1;
+    }
+    return found;
+  };
+  // The prefix that reached 95 % coverage is the paper's.
+  const std::size_t target = (95 * torus.vertices.size () + 99) / 100;
+  std::vector<std::uint8_t> covered (torus.vertices.size (), 0);
+  std::size_t num_covered = 0, prefix = 0;
+  while (prefix < paper.patches.size () && num_covered < target)
+    for (int v : paper.patches[prefix++].vertices)
+      num_covered += covered[v] ? 0 : 1, covered[v] = 1;
+  ASSERT_LT (prefix, tail.patches.size ());
+  for (std::size_t k = 0; k < prefix; ++k)
+    ASSERT_EQ (tail.patches[k].vertices, paper.patches[k].vertices) << "patch " << k;
+  // After it the paper's loop grows patches from covered seeds; the tail does not.
+  EXPECT_FALSE (seededCovered (paper.patches, prefix).empty ());
+  EXPECT_TRUE (seededCovered (tail.patches, prefix).empty ());
+  EXPECT_LT (tail.grown, paper.grown);
+  EXPECT_LE (tail.patches.size (), paper.patches.size ());
+
+  EXPECT_EQ (patchOptionsFor (PatchOptions (), false).uncovered_candidates_after, 1.0);
+  EXPECT_EQ (patchOptionsFor (PatchOptions (), true).uncovered_candidates_after, 0.99);
+  for (double bad : {-0.5, 1.5, std::nan ("")})
+  {
+    PatchOptions options;
+    options.uncovered_candidates_after = bad;
+    EXPECT_THROW (options.validate (), Error) << bad;
+  }
+}
+
 TEST (PatchSampling, IndependentOfTheLengthUnit)
 {
   // Scaling by a power of two is exact in floating point: the partition must be the same, radii scaled.

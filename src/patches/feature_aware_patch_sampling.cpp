@@ -213,6 +213,28 @@ namespace pcl_sparse
       std::size_t num_grown = 0;
       int fruitless = 0;  // grown seeds in a row that covered nothing new
       Patch patch;
+      // The tail (PatchOptions::uncovered_candidates_after; unresolved, < 0, is a mesh's: never): covered
+      // vertices become invalid, so the helpers skip them too.
+      const double tail_fraction = options.uncovered_candidates_after < 0.0 ? 1.0 : options.uncovered_candidates_after;
+      const long tail_start = static_cast<long> (std::ceil (tail_fraction * target));
+      bool in_tail = false;
+      auto markTail = [&] (const Patch* kept) {
+        if (tail_fraction >= 1.0 || coverage.num_covered < tail_start)
+          return;
+        if (!in_tail)
+        {
+          for (std::size_t u = 0; u < num_vertices; ++u)
+            if (coverage.covered[u] == 1)
+              invalid[u].store (1, std::memory_order_relaxed);
+        }
+        else if (kept)
+        {
+          for (int u : kept->vertices)
+            invalid[u].store (1, std::memory_order_relaxed);
+        }
+        in_tail = true;
+      };
+      markTail (nullptr);
       const int progress_step = std::max (1, target / 100);
       int next_progress = 0;
       for (std::size_t i = 0; i < order.size (); ++i)
@@ -238,6 +260,7 @@ namespace pcl_sparse
           if ((mesh.vertices[u] - mesh.vertices[v]).norm () < reach)
             invalid[u].store (1, std::memory_order_relaxed);
         invalid[v].store (1, std::memory_order_relaxed);
+        markTail (&patch);
         if (progress && coverage.num_covered >= next_progress)
         {
           progress ("patches", static_cast<double> (coverage.num_covered) / std::max (1, target));
