@@ -154,14 +154,38 @@ namespace pcl_sparse
     borderCrossings (const std::vector<std::pair<int, int>>& border, const std::vector<Corner>& corners,
                      const std::vector<Eigen::Vector2d>& rays)
     {
+      const int angles = static_cast<int> (rays.size ());
       std::vector<std::vector<double>> crossings (rays.size ());
+      auto test = [&] (int k, const Corner& a, const Corner& b) {
+        double r = 0.0;
+        if (rayCrossing (rays[k], a.p, b.p, r))
+          crossings[k].push_back (r);
+      };
       for (const auto& e : border)
-        for (std::size_t k = 0; k < rays.size (); ++k)
+      {
+        const Corner &a = corners[e.first], &b = corners[e.second];
+        if (a.r == 0.0 || b.r == 0.0)
+          continue;  // a segment from the origin crosses no ray at r > 0
+        const double cross = cross2 (a.p, b.p);
+        if (std::abs (cross) <= 1e-12 * a.r * b.r)
         {
-          double r = 0.0;
-          if (rayCrossing (rays[k], corners[e.first].p, corners[e.second].p, r))
-            crossings[k].push_back (r);
+          for (int k = 0; k < angles; ++k)
+            test (k, a, b);
+          continue;
         }
+        // Only the rays on the shorter arc between the endpoints' directions can cross the segment; the
+        // rays of the endpoints' own sectors' borders are tested too, so a ray through an endpoint
+        // counts whatever the rounding of its sector (every test skipped here fails).
+        const Corner& from = cross > 0.0 ? a : b;
+        const Corner& to = cross > 0.0 ? b : a;
+        const int last = (to.sector + 1) % angles;
+        for (int k = from.sector;; k = (k + 1) % angles)
+        {
+          test (k, a, b);
+          if (k == last)
+            break;
+        }
+      }
       for (auto& c : crossings)
         std::sort (c.begin (), c.end ());
       return crossings;
