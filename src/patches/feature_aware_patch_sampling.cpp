@@ -192,6 +192,48 @@ namespace pcl_sparse
       }
     };
 
+    /// The loop's invalid flag of a candidate pruned from its tail (1: near a kept patch's seed).
+    constexpr std::uint8_t kFarFromUncovered = 2;
+
+    /// R of PatchOptions::tail_pruning_after: ceil (sqrt (mean vertex count of \a kept)), at least 2.
+    int
+    tailPruningHops (const std::vector<Patch>& kept)
+    {
+      double total = 0.0;
+      for (const Patch& p : kept)
+        total += static_cast<double> (p.vertices.size ());
+      const double mean = kept.empty () ? 0.0 : total / static_cast<double> (kept.size ());
+      return std::max (2, static_cast<int> (std::ceil (std::sqrt (mean))));
+    }
+
+    /// Per vertex, whether it lies within \a hops edges of a vertex still to cover (covered 0): a
+    /// breadth-first search from all of them at once.
+    std::vector<std::uint8_t>
+    nearUncovered (const MeshTopology& topology, const std::vector<std::uint8_t>& covered, int hops)
+    {
+      std::vector<std::uint8_t> near (covered.size (), 0);
+      std::vector<int> frontier, next;
+      for (std::size_t u = 0; u < covered.size (); ++u)
+        if (covered[u] == 0)
+        {
+          near[u] = 1;
+          frontier.push_back (static_cast<int> (u));
+        }
+      for (int h = 0; h < hops && !frontier.empty (); ++h)
+      {
+        next.clear ();
+        for (int u : frontier)
+          for (int w : topology.neighborsOf (u))
+            if (!near[w])
+            {
+              near[w] = 1;
+              next.push_back (w);
+            }
+        frontier.swap (next);
+      }
+      return near;
+    }
+
     /// Sampling loop (docs/METHOD.md step 4), sequential by nature: each candidate not marked invalid grows a
     /// patch, kept if large enough and covering a new vertex; its vertices near the seed become invalid.
     /// With more than one thread, helpers grow the next valid candidates ahead of the loop
@@ -213,28 +255,25 @@ namespace pcl_sparse
       std::size_t num_grown = 0;
       int fruitless = 0;  // grown seeds in a row that covered nothing new
       Patch patch;
-      // The tail (PatchOptions::uncovered_candidates_after; unresolved, < 0, is a mesh's: never): covered
-      // vertices become invalid, so the helpers skip them too.
-      const double tail_fraction = options.uncovered_candidates_after < 0.0 ? 1.0 : options.uncovered_candidates_after;
-      const long tail_start = static_cast<long> (std::ceil (tail_fraction * target));
-      bool in_tail = false;
-      auto markTail = [&] (const Patch* kept) {
-        if (tail_fraction >= 1.0 || coverage.num_covered < tail_start)
+      // The pruned tail (PatchOptions::tail_pruning_after; unresolved, < 0, is a mesh's: never): once,
+      // covered candidates far from every uncovered vertex are marked, and the helpers skip them too.
+      const double prune_fraction = options.tail_pruning_after < 0.0 ? 1.0 : options.tail_pruning_after;
+      const long prune_start = static_cast<long> (std::ceil (prune_fraction * target));
+      bool pruned = prune_fraction >= 1.0;
+      auto pruneTail = [&] () {
+        if (pruned || coverage.num_covered < prune_start)
           return;
-        if (!in_tail)
-        {
-          for (std::size_t u = 0; u < num_vertices; ++u)
-            if (coverage.covered[u] == 1)
-              invalid[u].store (1, std::memory_order_relaxed);
-        }
-        else if (kept)
-        {
-          for (int u : kept->vertices)
-            invalid[u].store (1, std::memory_order_relaxed);
-        }
-        in_tail = true;
+        pruned = true;
+        const std::vector<std::uint8_t> near =
+          nearUncovered (topology, coverage.covered, tailPruningHops (coverage.patches));
+        for (std::size_t u = 0; u < num_vertices; ++u)
+          if (coverage.covered[u] == 1 && !near[u])
+          {
+            std::uint8_t valid = 0;
+            invalid[u].compare_exchange_strong (valid, kFarFromUncovered, std::memory_order_relaxed);
+          }
       };
-      markTail (nullptr);
+      pruneTail ();
       const int progress_step = std::max (1, target / 100);
       int next_progress = 0;
       for (std::size_t i = 0; i < order.size (); ++i)
@@ -244,7 +283,12 @@ namespace pcl_sparse
           break;
         if (options.max_fruitless_seeds > 0 && fruitless >= options.max_fruitless_seeds)
           break;
-        if (never_grown[v] || invalid[v].load (std::memory_order_relaxed))
+        if (never_grown[v])
+          continue;
+        const std::uint8_t state = invalid[v].load (std::memory_order_relaxed);
+        if (state == kFarFromUncovered)
+          ++fruitless;  // the paper's loop grows it and finds nothing new
+        if (state)
           continue;
         ++num_grown;
         ++fruitless;
@@ -260,7 +304,7 @@ namespace pcl_sparse
           if ((mesh.vertices[u] - mesh.vertices[v]).norm () < reach)
             invalid[u].store (1, std::memory_order_relaxed);
         invalid[v].store (1, std::memory_order_relaxed);
-        markTail (&patch);
+        pruneTail ();
         if (progress && coverage.num_covered >= next_progress)
         {
           progress ("patches", static_cast<double> (coverage.num_covered) / std::max (1, target));

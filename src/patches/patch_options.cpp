@@ -22,8 +22,8 @@ namespace pcl_sparse
       fail ("sigma", sigma, "sigma >= 0, finite");
     if (max_fruitless_seeds < -1)
       fail ("max_fruitless_seeds", max_fruitless_seeds, "max_fruitless_seeds >= -1");
-    if (!(uncovered_candidates_after == -1.0 || (uncovered_candidates_after >= 0.0 && uncovered_candidates_after <= 1.0)))
-      fail ("uncovered_candidates_after", uncovered_candidates_after, "-1 (by surface) or 0 <= uncovered_candidates_after <= 1");
+    if (!(tail_pruning_after == -1.0 || (tail_pruning_after >= 0.0 && tail_pruning_after <= 1.0)))
+      fail ("tail_pruning_after", tail_pruning_after, "-1 (by surface) or 0 <= tail_pruning_after <= 1");
     if (max_patch_vertices < -1)
       fail ("max_patch_vertices", max_patch_vertices, "max_patch_vertices >= -1");
     if (min_growth_vertices < 0)

@@ -70,7 +70,7 @@ namespace pcl_sparse
   }
 
   /// \brief The options whose defaults depend on the surface (harris_rings, max_fruitless_seeds,
-  /// uncovered_candidates_after, max_patch_vertices, steep_frame_angle) resolved for a mesh or a scan.
+  /// tail_pruning_after, max_patch_vertices, steep_frame_angle) resolved for a mesh or a scan.
   /// \param[in] options the options as given
   /// \param[in] scan    whether the surface is a scan's neighbourhood surface
   /// \return the options with those fields resolved
@@ -80,8 +80,8 @@ namespace pcl_sparse
     options.harris_rings = harrisRingsFor (options.harris_rings, scan);
     if (options.max_fruitless_seeds < 0)
       options.max_fruitless_seeds = scan ? 256 : 0;
-    if (options.uncovered_candidates_after < 0.0)
-      options.uncovered_candidates_after = scan ? 0.99 : 1.0;
+    if (options.tail_pruning_after < 0.0)
+      options.tail_pruning_after = scan ? 0.9 : 1.0;
     if (options.max_patch_vertices < 0)
       options.max_patch_vertices = scan ? 4096 : 0;
     if (options.steep_frame_angle < 0.0)

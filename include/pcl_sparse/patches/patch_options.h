@@ -73,13 +73,14 @@ namespace pcl_sparse
     /// O(N^2). 0 = never (the paper's loop, and the default on meshes); < 0 (default) = 0 on a mesh and
     /// 256 on a scan.
     int max_fruitless_seeds = -1;
-    /// Tail of the sampling loop (ours): once this fraction of the vertices to cover is covered, candidates
-    /// already covered grow no patch; the uncovered ones go on in the same order, and the coverage pass
-    /// takes what is left. In the paper's loop the last percent of a scan is costly: on a 640x480 RGB-D
-    /// frame the last 1.3 % of its vertices took half of the loop's 6922 growths (7 grown for each patch
-    /// kept there). 1 = never (the paper's loop, and the default on meshes, where it saves little and
-    /// raised fandisk's RMSE 3 %); < 0 (default) = 1 on a mesh and 0.99 on a scan.
-    double uncovered_candidates_after = -1.0;
+    /// Pruned tail of the sampling loop (ours): once this fraction of the vertices to cover is covered, a
+    /// candidate already covered and more than R edges from every vertex still uncovered grows no patch and
+    /// counts as a fruitless seed, as its patch would most likely cover nothing new (R = ceil(sqrt(mean
+    /// vertex count of the patches kept so far)), about twice the edge radius of a disc-shaped patch). The
+    /// paper's loop grows them all: on a 640x480 RGB-D frame the last 1.3 % of the points took half of its
+    /// 6922 growths. 1 = never (the paper's loop, and the default on meshes, where it saved under 10 %);
+    /// < 0 (default) = 1 on a mesh and 0.9 on a scan.
+    double tail_pruning_after = -1.0;
     /// Growth stops once a patch has this many vertices. 0 = no bound (the paper's, and the default on
     /// meshes, where eta bounds curved patches and flat ones are cheap); < 0 (default) = 0 on a mesh and
     /// 4096 on a scan, where a flat wall or floor would otherwise make each grown seed cost O(N).
