@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 
 using namespace pcl_sparse;
@@ -82,6 +83,51 @@ TEST (OrthogonalMatchingPursuit, MatchesBruteForceGreedyLeastSquares)
       }
     }
   }
+}
+
+// With orthogonal scores each step takes the atom whose addition leaves the smallest least-squares
+// residual (brute force over every candidate), which plain OMP does not always do on these dictionaries.
+TEST (OrthogonalMatchingPursuit, OrthogonalScoresTakeTheLargestReduction)
+{
+  std::mt19937 rng (5);
+  OmpSelection orthogonal;
+  orthogonal.orthogonal_scores = true;
+  int differs = 0;
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    // Correlated columns (a shared part), where the two rules part.
+    Eigen::MatrixXd D = randomMatrix (30, 12, rng);
+    D.rightCols (6) += 2.0 * D.leftCols (6);
+    const Eigen::VectorXd y = randomMatrix (30, 1, rng).col (0);
+    const OmpResult result = orthogonalMatchingPursuit (y, D, {}, 1e-9, 6, orthogonal);
+    ASSERT_EQ (result.atoms.size (), 6u);
+    differs += result.atoms != orthogonalMatchingPursuit (y, D, {}, 1e-9, 6).atoms;
+    std::vector<int> support;
+    for (int step = 0; step < 6; ++step)
+    {
+      int best = -1;
+      double least = std::numeric_limits<double>::infinity ();
+      for (int k = 0; k < 12; ++k)
+      {
+        if (std::find (support.begin (), support.end (), k) != support.end ())
+          continue;
+        Eigen::MatrixXd Ds (30, static_cast<Eigen::Index> (support.size () + 1));
+        for (std::size_t s = 0; s < support.size (); ++s)
+          Ds.col (static_cast<Eigen::Index> (s)) = D.col (support[s]);
+        Ds.col (static_cast<Eigen::Index> (support.size ())) = D.col (k);
+        const double r = (y - Ds * Ds.colPivHouseholderQr ().solve (y)).norm ();
+        if (r < least)
+        {
+          least = r;
+          best = k;
+        }
+      }
+      ASSERT_EQ (result.atoms[step], best) << "trial " << trial << ", step " << step;
+      EXPECT_NEAR (result.residual_norms[step + 1], least, 1e-9);
+      support.push_back (best);
+    }
+  }
+  EXPECT_GT (differs, 0);
 }
 
 TEST (OrthogonalMatchingPursuit, StopsAtTolerance)

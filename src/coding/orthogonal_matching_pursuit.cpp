@@ -12,19 +12,20 @@ namespace pcl_sparse
 {
   namespace
   {
-    /// The candidate atom k maximising <r, d_k>^2 / |d_k|^2 (normalised columns) given the correlations
-    /// <r, d_k>, and that score in \a best_score; -1 if no candidate scores above 0.
+    /// The candidate atom k maximising <r, d_k>^2 / n_k given the correlations <r, d_k> and the norms n_k
+    /// (|d_k|^2, or the part outside the support's span), and that score in \a best_score; -1 if no
+    /// candidate scores above 0. A norm at most \a floor_k (numerically in the span) is no candidate.
     int
-    bestAtom (const Eigen::VectorXd& correlation, const Eigen::VectorXd& squared_norms, const std::vector<char>& candidate,
-              double& best_score, char tier = 1)
+    bestAtom (const Eigen::VectorXd& correlation, const Eigen::VectorXd& norms, const Eigen::VectorXd& floors,
+              const std::vector<char>& candidate, double& best_score, char tier = 1)
     {
       int best = -1;
       best_score = 0.0;
       for (Eigen::Index k = 0; k < correlation.size (); ++k)
       {
-        if (candidate[k] < tier)
+        if (candidate[k] < tier || !(norms[k] > floors[k]))
           continue;
-        const double score = correlation[k] * correlation[k] / squared_norms[k];
+        const double score = correlation[k] * correlation[k] / norms[k];
         if (score > best_score)
         {
           best_score = score;
@@ -74,16 +75,21 @@ namespace pcl_sparse
 
     result.prefix_coefficients.reserve (static_cast<std::size_t> (capacity * (capacity + 1) / 2));
     Eigen::VectorXd correlation (num_atoms);
+    // Orthogonal scores: rows t of L^-1 D_S^T D, and |d_k|^2 minus their squares (the part outside the span).
+    Eigen::MatrixXd spanned (selection.orthogonal_scores ? capacity : 0, num_atoms);
+    Eigen::VectorXd outside = squared_norms;
+    const Eigen::VectorXd floors = selection.orthogonal_scores ? Eigen::VectorXd (selection.min_new_fraction * squared_norms)
+                                                               : Eigen::VectorXd::Zero (num_atoms);
     while (size < capacity && result.residual_norm > target)
     {
       correlation.noalias () = dictionary.transpose () * residual;
       double best_score = 0.0;
-      int best = bestAtom (correlation, squared_norms, candidate, best_score);
+      int best = bestAtom (correlation, outside, floors, candidate, best_score);
       // A preferred atom wins while it scores at least preference x the best one.
       if (preferred)
       {
         double preferred_score = 0.0;
-        const int best_preferred = bestAtom (correlation, squared_norms, candidate, preferred_score, 2);
+        const int best_preferred = bestAtom (correlation, outside, floors, candidate, preferred_score, 2);
         if (best_preferred >= 0 && std::sqrt (preferred_score) > 1e-12 * signal_norm &&
             preferred_score >= selection.preference * best_score)
         {
@@ -114,6 +120,15 @@ namespace pcl_sparse
       cholesky (size, size) = std::sqrt (pivot);
       support.col (size) = column;
       rhs[size] = column.dot (signal);
+      if (selection.orthogonal_scores)
+      {
+        // Row size of L^-1 D_S^T D: (d_new^T D - w^T rows 0 .. size-1) / L(size, size).
+        spanned.row (size).noalias () = column.transpose () * dictionary;
+        if (size > 0)
+          spanned.row (size).noalias () -= w.transpose () * spanned.topRows (size);
+        spanned.row (size) /= cholesky (size, size);
+        outside -= spanned.row (size).transpose ().cwiseAbs2 ();
+      }
       result.atoms.push_back (best);
       ++size;
 
@@ -180,6 +195,7 @@ namespace pcl_sparse
     Eigen::MatrixXd support (num_points, capacity);
     Eigen::MatrixXd cholesky (capacity, capacity);
     Eigen::VectorXd rhs (capacity), correlation (num_atoms), w (capacity);
+    const Eigen::VectorXd no_floors = Eigen::VectorXd::Zero (num_atoms);
     for (Eigen::Index c = 0; c < num_signals; ++c)
     {
       OmpResult& result = results[c];
@@ -201,7 +217,7 @@ namespace pcl_sparse
         for (int t = 0; t < size; ++t)
           correlation -= coefficients[t] * gram.col (gram_column[result.atoms[t]]);
         double best_score = 0.0;
-        const int best = bestAtom (correlation, squared_norms, candidate, best_score);
+        const int best = bestAtom (correlation, squared_norms, no_floors, candidate, best_score);
         if (best < 0 || std::sqrt (best_score) <= 1e-12 * signal_norm)
           break;
         candidate[best] = 0;

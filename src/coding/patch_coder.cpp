@@ -122,6 +122,7 @@ namespace pcl_sparse
       selection.preference = options.quadric_preference;
       selection.min_column_rms = kMinQuadricColumnRms;
       selection.min_new_fraction = kMinQuadricNewFraction;
+      selection.orthogonal_scores = true;
     }
     OmpResult omp = orthogonalMatchingPursuit (signal, dictionary, preferred, stoppingTolerance (signal, patch, options),
                                                options.max_atoms, selection);
