@@ -1,6 +1,6 @@
 // Resampling throughput from an encoded model (issue 14): points per second, and per core, at 1 and 2
-// threads. Each mesh is encoded once (paper defaults, 64 footprint angles, 1 thread, not timed), then a
-// fresh stage resamples N PointNormal points (so the model's overlap tables are included) several times;
+// threads. Each mesh is encoded once (the paper's atoms unless -basis names another, 64 footprint angles,
+// 1 thread, not timed), then a fresh stage resamples N PointNormal points (so the model's overlap tables are included) several times;
 // the best run counts, since the machine is shared and slower runs measure the other jobs. Seconds are the
 // wall clock and the process's CPU seconds; per core = points / CPU seconds (at 1 thread the two agree
 // unless other jobs took the core; at 2 threads it shows what the second core added).
@@ -8,7 +8,7 @@
 // compare in the same run. Prints one markdown row per (mesh, threads) and a checksum of the cloud, so
 // the 1- and 2-thread clouds of a build can be seen to agree.
 //
-//   bench_resample_speed [-n N] [-repeat R] [-threads T1,T2,..] [-label NAME] MESH...
+//   bench_resample_speed [-n N] [-repeat R] [-threads T1,T2,..] [-label NAME] [-basis paper|dct|quadric] MESH...
 #include "bench_main.h"
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
@@ -33,14 +33,14 @@ using namespace pcl_sparse;
 namespace
 {
   SparseSurfaceModel::Ptr
-  encodeMesh (const std::shared_ptr<TriangleMesh>& mesh)
+  encodeMesh (const std::shared_ptr<TriangleMesh>& mesh, CosineBasisKind basis)
   {
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (mesh);
     encoder.setNumberOfThreads (1);
     SparseSurfaceEncoderOptions options;
     options.coding.footprint_angles = 64;
-    options.basis = CosineBasisKind::Paper;
+    options.basis = basis;
     options.coding.max_atoms = 12;
     encoder.setOptions (options);
     auto model = std::make_shared<SparseSurfaceModel> ();
@@ -80,6 +80,7 @@ run (int argc, char** argv)
   int repeat = 3;
   std::vector<int> threads = {1, 2};
   std::string label = "this build";
+  CosineBasisKind basis = CosineBasisKind::Paper;
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i)
   {
@@ -90,6 +91,8 @@ run (int argc, char** argv)
       repeat = std::max (1, std::stoi (argv[++i]));
     else if (a == "-label" && i + 1 < argc)
       label = argv[++i];
+    else if (a == "-basis" && i + 1 < argc)
+      basis = cosineBasisKindFromName (argv[++i]);
     else if (a == "-threads" && i + 1 < argc)
     {
       threads.clear ();
@@ -103,7 +106,7 @@ run (int argc, char** argv)
   for (const std::string& path : meshes)
   {
     auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-    const SparseSurfaceModel::Ptr model = encodeMesh (mesh);
+    const SparseSurfaceModel::Ptr model = encodeMesh (mesh, basis);
     const std::string name = path.substr (path.find_last_of ('/') + 1);
     for (int t : threads)
     {
