@@ -400,10 +400,7 @@ TEST (Attributes, CodesDoNotDependOnTheHeightDictionary)
     // are other functions, and must not be taken.
     const CosineAtoms::ConstPtr height = makeCosineBasis (height_kind);
     const std::vector<char> allowed = nyquistAllowedAtoms (*input.basis, spacing, input.nyquist_factor, input.nyquist_rule);
-    std::vector<int> atoms;
-    for (int k = 0; k < static_cast<int> (allowed.size ()); ++k)
-      if (allowed[k])
-        atoms.push_back (k);
+    std::vector<int> atoms = allowedAtomIndices (allowed);
     ASSERT_LT (atoms.size (), allowed.size ());
     for (int m = 0; m < height->monomials (); ++m)
       atoms.push_back (static_cast<int> (allowed.size ()) + m);

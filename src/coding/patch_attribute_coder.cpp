@@ -53,10 +53,7 @@ namespace pcl_sparse
     if (positions.size () != patch.vertices.size () + extra_samples.size () || codes.empty ())
       return codes;
     const std::vector<char> allowed = nyquistAllowedAtoms (*input.basis, spacing, input.nyquist_factor, input.nyquist_rule);
-    std::vector<int> allowed_atoms;
-    for (int k = 0; k < static_cast<int> (allowed.size ()); ++k)
-      if (allowed[k])
-        allowed_atoms.push_back (k);
+    const std::vector<int> allowed_atoms = allowedAtomIndices (allowed);
     // The height's dictionary's first columns when they are these atoms at these samples: the same basis,
     // or the quadric's cosines for the cosines alone (the default bases: that saved 2 % of a colour scan's
     // encoding CPU).

@@ -96,10 +96,7 @@ namespace pcl_sparse
         nyquistAllowedAtoms (basis, spacing, options.nyquist_factor, options.nyquist_rule);
 
     // OMP over the allowed atoms only (the cap typically leaves a third of them): same result, less work.
-    std::vector<int> allowed_atoms;
-    for (int k = 0; k < static_cast<int> (allowed.size ()); ++k)
-      if (allowed[k])
-        allowed_atoms.push_back (k);
+    const std::vector<int> allowed_atoms = allowedAtomIndices (allowed);
     Eigen::MatrixXd dictionary;
     basis.evaluate (positions, allowed_atoms, dictionary);
     const Eigen::VectorXd signal = Eigen::Map<const Eigen::VectorXd> (heights.data (), heights.size ());

@@ -44,4 +44,17 @@ namespace pcl_sparse
       allowed[k] = passesNyquistCap (basis.wavelength (k), spacing, factor, rule);
     return allowed;
   }
+
+  /// The indices of the non-zero flags, ascending: the atoms a patch's OMP runs over.
+  /// \param[in] allowed  flags, as nyquistAllowedAtoms returns them
+  /// \return the indices k with allowed[k] != 0
+  inline std::vector<int>
+  allowedAtomIndices (const std::vector<char>& allowed)
+  {
+    std::vector<int> atoms;
+    for (int k = 0; k < static_cast<int> (allowed.size ()); ++k)
+      if (allowed[k])
+        atoms.push_back (k);
+    return atoms;
+  }
 } // namespace pcl_sparse
