@@ -60,33 +60,44 @@ namespace pcl_sparse
       sector_max[(k + angles - 1) % angles] = std::max (sector_max[(k + angles - 1) % angles], r);
     }
 
-    /// Raises sector maxima with the points of segment [a, b] (endpoints are counted by the caller).
-    /// The segment sweeps the shorter arc between its endpoints' directions unless it passes through the
-    /// origin; only the rays on that arc can cross it.
+    /// Calls \a visit (k) for each ray k that segment [a, b] (no endpoint at the origin) can cross. The
+    /// segment sweeps the shorter arc between its endpoints' directions unless it is collinear with the
+    /// origin (then every ray): rays from.sector + 1 .. to.sector, counter-clockwise. With \a margin the
+    /// rays bordering the endpoints' own sectors (from.sector, to.sector + 1) are visited too, so a ray
+    /// through an endpoint is tried whatever the rounding of its sector.
+    template <typename Visit>
+    void
+    forEachRayOnArc (const Corner& a, const Corner& b, int angles, bool margin, Visit&& visit)
+    {
+      const double cross = cross2 (a.p, b.p);
+      if (std::abs (cross) <= 1e-12 * a.r * b.r)
+      {
+        for (int k = 0; k < angles; ++k)
+          visit (k);
+        return;
+      }
+      // Counter-clockwise from a to b if cross > 0.
+      const Corner& from = cross > 0.0 ? a : b;
+      const Corner& to = cross > 0.0 ? b : a;
+      const int last = margin ? (to.sector + 1) % angles : to.sector;
+      for (int k = margin ? from.sector : (from.sector + 1) % angles;; k = (k + 1) % angles)
+      {
+        visit (k);
+        if (k == last)
+          break;
+      }
+    }
+
+    /// Raises sector maxima with the points of segment [a, b] (endpoints are counted by the caller): only
+    /// the rays on its arc can cross it.
     void
     addSegment (const Corner& a, const Corner& b, const std::vector<Eigen::Vector2d>& rays,
                 std::vector<double>& sector_max)
     {
-      const int angles = static_cast<int> (rays.size ());
       if (a.r == 0.0 || b.r == 0.0 || a.sector == b.sector)
         return;  // from the origin the segment is one direction; within one sector no ray is crossed
-      const double cross = cross2 (a.p, b.p);
-      if (std::abs (cross) <= 1e-12 * a.r * b.r)
-      {
-        // Collinear with the origin: either one direction or through the origin; test every ray.
-        for (int k = 0; k < angles; ++k)
-          addRayCrossing (a, b, k, rays, sector_max);
-        return;
-      }
-      // Counter-clockwise from a to b if cross > 0: rays a.sector + 1 .. b.sector are crossed.
-      const Corner& from = cross > 0.0 ? a : b;
-      const Corner& to = cross > 0.0 ? b : a;
-      for (int k = (from.sector + 1) % angles;; k = (k + 1) % angles)
-      {
-        addRayCrossing (a, b, k, rays, sector_max);
-        if (k == to.sector)
-          break;
-      }
+      forEachRayOnArc (a, b, static_cast<int> (rays.size ()), false,
+                       [&] (int k) { addRayCrossing (a, b, k, rays, sector_max); });
     }
 
     /// Whether \a q lies in one of the projected triangles (corner indices into \a corners).
@@ -154,37 +165,18 @@ namespace pcl_sparse
     borderCrossings (const std::vector<std::pair<int, int>>& border, const std::vector<Corner>& corners,
                      const std::vector<Eigen::Vector2d>& rays)
     {
-      const int angles = static_cast<int> (rays.size ());
       std::vector<std::vector<double>> crossings (rays.size ());
-      auto test = [&] (int k, const Corner& a, const Corner& b) {
-        double r = 0.0;
-        if (rayCrossing (rays[k], a.p, b.p, r))
-          crossings[k].push_back (r);
-      };
       for (const auto& e : border)
       {
         const Corner &a = corners[e.first], &b = corners[e.second];
         if (a.r == 0.0 || b.r == 0.0)
           continue;  // a segment from the origin crosses no ray at r > 0
-        const double cross = cross2 (a.p, b.p);
-        if (std::abs (cross) <= 1e-12 * a.r * b.r)
-        {
-          for (int k = 0; k < angles; ++k)
-            test (k, a, b);
-          continue;
-        }
-        // Only the rays on the shorter arc between the endpoints' directions can cross the segment; the
-        // rays of the endpoints' own sectors' borders are tested too, so a ray through an endpoint
-        // counts whatever the rounding of its sector (every test skipped here fails).
-        const Corner& from = cross > 0.0 ? a : b;
-        const Corner& to = cross > 0.0 ? b : a;
-        const int last = (to.sector + 1) % angles;
-        for (int k = from.sector;; k = (k + 1) % angles)
-        {
-          test (k, a, b);
-          if (k == last)
-            break;
-        }
+        // Every ray the arc with its margin leaves out would fail the test.
+        forEachRayOnArc (a, b, static_cast<int> (rays.size ()), true, [&] (int k) {
+          double r = 0.0;
+          if (rayCrossing (rays[k], a.p, b.p, r))
+            crossings[k].push_back (r);
+        });
       }
       for (auto& c : crossings)
         std::sort (c.begin (), c.end ());
