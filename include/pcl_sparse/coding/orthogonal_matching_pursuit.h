@@ -59,7 +59,8 @@ namespace pcl_sparse
   /// \param[in] selection   preference for the preferred atoms and conditioning floors (OmpSelection)
   /// \return the selected atoms, their coefficients and the residual norm
   ///
-  /// Each step selects the allowed atom maximising |<r, d_k>| / ||d_k|| (normalised columns), then
+  /// Each step selects the allowed atom maximising |<r, d_k>| / ||d_k|| (normalised columns; over the norm of
+  /// d_k's part outside the support's span with OmpSelection::orthogonal_scores), then
   /// re-solves least squares on the whole support through an incrementally updated Cholesky factor of
   /// D_S^T D_S (O(#P |S|) per step, no pseudo-inverse). It also stops when no allowed atom correlates
   /// with the residual any more; an atom numerically dependent on the support is skipped, never added.
