@@ -279,6 +279,37 @@ TEST (ModelFile, UncompressedSectionsRoundTrip)
   }
 }
 
+TEST (ModelFile, LargeSectionsTakeTheFasterLevel)
+{
+  ModelWriteOptions options;  // 19 up to 1 MiB, 9 above
+  EXPECT_EQ (zstdLevelFor (0, options), 19);
+  EXPECT_EQ (zstdLevelFor (std::size_t (1) << 20, options), 19);
+  EXPECT_EQ (zstdLevelFor ((std::size_t (1) << 20) + 1, options), 9);
+  options.zstd_level = 3;  // never a slower level than asked for
+  EXPECT_EQ (zstdLevelFor (std::size_t (1) << 30, options), 3);
+  options.zstd_level = 0;  // stored stays stored
+  EXPECT_EQ (zstdLevelFor (std::size_t (1) << 30, options), 0);
+  options = ModelWriteOptions ();
+  options.zstd_large_level = 0;
+  EXPECT_THROW (encodeModel (test::makeSyntheticModel (3, 4), options), Error);
+
+  // A threshold below this model's sections changes the file, not the model it holds.
+  const auto model = test::makeSyntheticModel (200, 5, true);
+  for (double tolerance : {0.0, 1e-4})
+  {
+    ModelWriteOptions slow;
+    slow.tolerance = tolerance;
+    slow.include_vertices = true;
+    ModelWriteOptions fast = slow;
+    fast.zstd_large_section = 256;
+    fast.zstd_large_level = 1;
+    const auto a = encodeModel (model, slow);
+    const auto b = encodeModel (model, fast);
+    EXPECT_NE (a, b) << "tolerance " << tolerance;
+    expectBitIdentical (decodeModel (a.data (), a.size ()), decodeModel (b.data (), b.size ()), true);
+  }
+}
+
 TEST (ModelFile, EmptyModelRoundTrips)
 {
   SparseSurfaceModel model;

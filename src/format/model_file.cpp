@@ -1021,6 +1021,8 @@ namespace pcl_sparse
       throw Error ("encodeModel: extent_bits must be in 2..8");
     if (options.zstd_level < 0 || options.zstd_level > 22)
       throw Error ("encodeModel: zstd_level must be in 0..22");
+    if (options.zstd_large_level < 1 || options.zstd_large_level > 22)
+      throw Error ("encodeModel: zstd_large_level must be in 1..22");
     if (model.num_input_vertices > static_cast<std::uint64_t> (std::numeric_limits<std::int32_t>::max ()))
       throw Error ("encodeModel: num_input_vertices out of range");
     const bool quantised = options.tolerance > 0.0;
@@ -1074,6 +1076,14 @@ namespace pcl_sparse
     return out;
   }
 
+  int
+  zstdLevelFor (std::size_t raw_bytes, const ModelWriteOptions& options)
+  {
+    if (options.zstd_level == 0 || raw_bytes <= options.zstd_large_section)
+      return options.zstd_level;
+    return std::min (options.zstd_level, options.zstd_large_level);
+  }
+
   std::vector<std::uint8_t>
   encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options)
   {
@@ -1111,7 +1121,7 @@ namespace pcl_sparse
         section.codec = kCodecStored;
       if (section.codec == kCodecZstd)
       {
-        payload = compressBytes (section.raw.data (), section.raw.size (), options.zstd_level);
+        payload = compressBytes (section.raw.data (), section.raw.size (), zstdLevelFor (section.raw.size (), options));
         // Stored where zstd does not help (range-coded sections), or where the reader would refuse the ratio.
         if (payload.size () >= section.raw.size () || section.raw.size () > kMaxExpansion * payload.size () + kExpansionSlack)
         {

@@ -79,7 +79,7 @@ namespace pcl_sparse
     /// A tile's stored bytes (its CRC-32 follows them): per section a varint 2 S + codec (S its stored bytes;
     /// codec 1: a zstd frame, 0: the payload itself, where zstd would not make it smaller), then the sections.
     std::vector<std::uint8_t>
-    encodeTile (const std::vector<std::vector<std::uint8_t>>& sections, int level)
+    encodeTile (const std::vector<std::vector<std::uint8_t>>& sections, const ModelWriteOptions& options)
     {
       ByteWriter out;
       std::vector<std::vector<std::uint8_t>> payloads;
@@ -87,6 +87,7 @@ namespace pcl_sparse
       {
         std::vector<std::uint8_t> payload;
         std::uint8_t codec = kCodecStored;
+        const int level = zstdLevelFor (section.size (), options);
         if (level > 0 && !section.empty ())
         {
           payload = compressBytes (section.data (), section.size (), level);
@@ -617,7 +618,7 @@ namespace pcl_sparse
         e.first_patch = tiled.tiles[i].first_patch;
         e.num_patches = tiled.tiles[i].num_patches;
         std::vector<std::uint8_t>& blob = blobs[i];
-        blob = encodeTile (sections.runs[i], options.zstd_level);
+        blob = encodeTile (sections.runs[i], options);
         ByteWriter crc;
         crc.putU32 (crc32 (blob.data (), blob.size ()));
         blob.insert (blob.end (), crc.bytes ().begin (), crc.bytes ().end ());

@@ -72,10 +72,23 @@ namespace pcl_sparse
     /// over varints: 9-14 % smaller files on the shared meshes (bench/results/format_entropy.md). false
     /// writes the varint layout, which pcl_sparse builds from before the range coder can read.
     bool range_coding = true;
-    /// zstd level (1..22); 19 compresses well and still writes a 1 MB model in well under a second.
-    /// 0 stores every section uncompressed (for inspection and the fuzzer's seed corpus).
+    /// zstd level (1..22) of every section up to zstd_large_section bytes; 19 compresses well, at about
+    /// 6 MB/s. 0 stores every section uncompressed (for inspection and the fuzzer's seed corpus).
     int zstd_level = 19;
+    /// Sections larger than this (uncompressed bytes) take zstd_large_level when that is lower. At level 19
+    /// writing office1's lossless model (11 MB) took 3.4 s, twice its encoding; with level 9 above 1 MiB it
+    /// takes 0.7 s for 1.2 % more bytes (bench/results/file_write_speed.md). No quantised file of the shared
+    /// meshes and scans, and no lossless file of a shared mesh, has a section that large: their bytes stay
+    /// level 19's (on cheese-cgal's lossless file level 9 would cost 8 %, for 0.16 s).
+    std::size_t zstd_large_section = std::size_t (1) << 20;
+    /// zstd level (1..22) of the sections larger than zstd_large_section (at most zstd_level).
+    int zstd_large_level = 9;
   };
+
+  /// The zstd level encodeModel gives a section of \a raw_bytes uncompressed bytes (0: stored): zstd_level,
+  /// or above zstd_large_section the lower of it and zstd_large_level.
+  int
+  zstdLevelFor (std::size_t raw_bytes, const ModelWriteOptions& options);
 
   /// One section of a model file as stored.
   struct ModelFileSection
