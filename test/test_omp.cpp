@@ -126,6 +126,13 @@ TEST (OrthogonalMatchingPursuit, OrthogonalScoresTakeTheLargestReduction)
       EXPECT_NEAR (result.residual_norms[step + 1], least, 1e-9);
       support.push_back (best);
     }
+    // The coefficients are the least-squares fit on the support (the factor's rows come from the scores' rows).
+    Eigen::MatrixXd Ds (30, 6);
+    for (int s = 0; s < 6; ++s)
+      Ds.col (s) = D.col (support[s]);
+    const Eigen::VectorXd fit = Ds.colPivHouseholderQr ().solve (y);
+    for (int s = 0; s < 6; ++s)
+      EXPECT_NEAR (result.coefficients[s], fit[s], 1e-9 * (1.0 + std::abs (fit[s]))) << "trial " << trial;
   }
   EXPECT_GT (differs, 0);
 }
