@@ -76,10 +76,10 @@ namespace pcl_sparse
     /// 6 MB/s. 0 stores every section uncompressed (for inspection and the fuzzer's seed corpus).
     int zstd_level = 19;
     /// Sections larger than this (uncompressed bytes) take zstd_large_level when that is lower. At level 19
-    /// writing office1's lossless model (11 MB) took 3.4 s, twice its encoding; with level 9 above 1 MiB it
-    /// takes 0.7 s for 1.2 % more bytes (bench/results/file_write_speed.md). No quantised file of the shared
-    /// meshes and scans, and no lossless file of a shared mesh, has a section that large: their bytes stay
-    /// level 19's (on cheese-cgal's lossless file level 9 would cost 8 %, for 0.16 s).
+    /// encoding office1's lossless model (11 MB) took 3.0 s, twice the model's own encoding; with level 9
+    /// above 1 MiB it takes 0.7 s for 1.2 % more bytes (bench/results/file_write_speed.md). No quantised file
+    /// of the shared meshes and scans, and no lossless file of a shared mesh, has a section that large: their
+    /// bytes stay level 19's (level 9 everywhere would cost cheese-cgal's lossless file 6 %, to save 0.1 s).
     std::size_t zstd_large_section = std::size_t (1) << 20;
     /// zstd level (1..22) of the sections larger than zstd_large_section (at most zstd_level).
     int zstd_large_level = 9;
