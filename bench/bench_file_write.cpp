@@ -5,13 +5,14 @@
 //   bench_file_write MODEL.psm [TOLERANCE]   (TOLERANCE: 0 = lossless, the default; as -tolerance otherwise)
 // Prints one tab-separated line per configuration: name, bytes, bytes / default's, seconds.
 
+#include "bench_main.h"
+
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -60,37 +61,35 @@ namespace
 } // namespace
 
 int
-main (int argc, char** argv)
+run (int argc, char** argv)
 {
   if (argc < 2)
   {
     std::fprintf (stderr, "usage: %s MODEL.psm [TOLERANCE]\n", argv[0]);
     return 2;
   }
-  try
-  {
-    const SparseSurfaceModel model = loadModel (argv[1]);
-    ModelWriteOptions defaults;
-    defaults.tolerance = argc > 2 ? std::stod (argv[2]) : 0.0;
-    ModelWriteOptions stored = defaults, level19 = defaults, level9 = defaults;
-    stored.zstd_level = 0;
-    level19.zstd_large_level = 19;
-    level9.zstd_level = 9;
-    // The reference: the model as the file holds it (quantised or not), re-encoded uncompressed.
-    const std::vector<std::uint8_t> raw = storedBytesOf (encodeModel (model, stored), stored);
-    const Configuration configurations[] = {{"default", defaults}, {"level 19 everywhere", level19},
-                                            {"level 9 everywhere", level9}, {"stored", stored}};
-    const Measurement reference = measure (model, defaults, raw);
-    for (const Configuration& c : configurations)
-    {
-      const Measurement m = &c == &configurations[0] ? reference : measure (model, c.options, raw);
-      std::printf ("%s\t%zu\t%.4f\t%.3f\n", c.name, m.bytes, static_cast<double> (m.bytes) / reference.bytes, m.seconds);
-    }
-    return 0;
-  }
-  catch (const std::exception& e)
-  {
-    std::fprintf (stderr, "%s: %s\n", argv[0], e.what ());
-    return 1;
-  }
+  const SparseSurfaceModel model = loadModel (argv[1]);
+  ModelWriteOptions defaults;
+  defaults.tolerance = argc > 2 ? std::stod (argv[2]) : 0.0;
+  ModelWriteOptions stored = defaults, level19 = defaults, level9 = defaults;
+  stored.zstd_level = 0;
+  level19.zstd_large_level = 19;
+  level9.zstd_level = 9;
+  // The reference: the model as the file holds it (quantised or not), re-encoded uncompressed.
+  const std::vector<std::uint8_t> raw = storedBytesOf (encodeModel (model, stored), stored);
+  const Configuration configurations[] = {{"default", defaults}, {"level 19 everywhere", level19},
+                                          {"level 9 everywhere", level9}, {"stored", stored}};
+  std::vector<Measurement> measured;
+  for (const Configuration& c : configurations)
+    measured.push_back (measure (model, c.options, raw));
+  for (std::size_t i = 0; i < measured.size (); ++i)
+    std::printf ("%s\t%zu\t%.4f\t%.3f\n", configurations[i].name, measured[i].bytes,
+                 static_cast<double> (measured[i].bytes) / measured[0].bytes, measured[i].seconds);
+  return 0;
+}
+
+int
+main (int argc, char** argv)
+{
+  return runReportingErrors (argc, argv, run);
 }
