@@ -34,6 +34,21 @@ namespace pcl_sparse
       }
       return best;
     }
+
+    /// Row \a size of L^-1 D_S^T D for the atom \a column just added, (d_new^T D - w^T rows 0 .. size-1) /
+    /// L(size, size) with w = L^-1 D_S^T d_new, into \a spanned; \a outside (|d_k|^2 minus the squares of
+    /// the rows so far) loses its square.
+    template <typename Column>
+    void
+    appendSpannedRow (const Eigen::MatrixXd& dictionary, const Column& column, const Eigen::VectorXd& w,
+                      double diagonal, int size, Eigen::MatrixXd& spanned, Eigen::VectorXd& outside)
+    {
+      spanned.row (size).noalias () = column.transpose () * dictionary;
+      if (size > 0)
+        spanned.row (size).noalias () -= w.transpose () * spanned.topRows (size);
+      spanned.row (size) /= diagonal;
+      outside -= spanned.row (size).transpose ().cwiseAbs2 ();
+    }
   } // namespace
 
   OmpResult
@@ -82,15 +97,17 @@ namespace pcl_sparse
                                                                : Eigen::VectorXd::Zero (num_atoms);
     // With the rows of L^-1 D_S^T D at hand, D^T r = D^T y - (L^-1 D_S^T D)^T z with z = L^-1 D_S^T y: K x |S|
     // operations instead of the P x K of D^T r (the coding stage of the shared meshes 12-24 % faster).
-    Eigen::VectorXd projections, projected_signal;  // D^T y; z
+    const Eigen::VectorXd projections =  // D^T y
+      selection.orthogonal_scores ? Eigen::VectorXd (dictionary.transpose () * signal) : Eigen::VectorXd ();
+    Eigen::VectorXd projected_signal;  // z
     while (size < capacity && result.residual_norm > target)
     {
-      if (selection.orthogonal_scores && size > 0)
-        correlation.noalias () = projections - spanned.topRows (size).transpose () * projected_signal;
-      else
+      if (!selection.orthogonal_scores)
         correlation.noalias () = dictionary.transpose () * residual;
-      if (selection.orthogonal_scores && size == 0)
-        projections = correlation;
+      else if (size == 0)
+        correlation = projections;
+      else
+        correlation.noalias () = projections - spanned.topRows (size).transpose () * projected_signal;
       double best_score = 0.0;
       int best = bestAtom (correlation, outside, floors, candidate, best_score);
       // A preferred atom wins while it scores at least preference x the best one.
@@ -134,14 +151,7 @@ namespace pcl_sparse
       support.col (size) = column;
       rhs[size] = column.dot (signal);
       if (selection.orthogonal_scores)
-      {
-        // Row size of L^-1 D_S^T D: (d_new^T D - w^T rows 0 .. size-1) / L(size, size).
-        spanned.row (size).noalias () = column.transpose () * dictionary;
-        if (size > 0)
-          spanned.row (size).noalias () -= w.transpose () * spanned.topRows (size);
-        spanned.row (size) /= cholesky (size, size);
-        outside -= spanned.row (size).transpose ().cwiseAbs2 ();
-      }
+        appendSpannedRow (dictionary, column, w, cholesky (size, size), size, spanned, outside);
       result.atoms.push_back (best);
       ++size;
 

@@ -46,7 +46,8 @@ namespace pcl_sparse
     /// (OMP). With the quadric's monomials OMP undervalued them: after the constant, x^2 correlates with
     /// the residual through its part without the mean only, but its OMP score divides by its whole norm,
     /// and on a sphere's cap cos(pi x) cos(pi y) won (resampled normals up to 17.7 degrees off, 0.26 with
-    /// these scores). One more D^T d per step, for the running norms.
+    /// these scores). Each step forms the rows L^-1 D_S^T D for the running norms, and takes the next
+    /// correlations and the factor's new row from them instead of from the samples.
     bool orthogonal_scores = false;
   };
 
