@@ -147,7 +147,7 @@ namespace pcl_sparse
       const Eigen::Index size = static_cast<Eigen::Index> (points.size ());
       cx.resize (size, count);
       cy.resize (size, count);
-      double c[CosineAtoms::max_frequencies + 4];
+      double c[2 * CosineAtoms::max_frequencies + 4];
       for (Eigen::Index p = 0; p < size; ++p)
       {
         cosines (scale * points[p].x () + shift, count, c);
@@ -204,6 +204,16 @@ namespace pcl_sparse
         monomialColumn (points, atoms[k] - n_ * n_, values.col (static_cast<Eigen::Index> (k)));
       else
         values.col (static_cast<Eigen::Index> (k)) = cx.col (atoms[k] / n_).cwiseProduct (cy.col (atoms[k] % n_));
+  }
+
+  void
+  CosineAtoms::axisCosines (const std::vector<Eigen::Vector2d>& points, int count, Eigen::MatrixXd& cx,
+                            Eigen::MatrixXd& cy) const
+  {
+    if (count < 1 || count > 2 * max_frequencies)
+      throw Error ("CosineAtoms::axisCosines: count must be in [1, " + std::to_string (2 * max_frequencies) +
+                   "], got " + std::to_string (count));
+    axisTables (points, count, scale_, shift_, cx, cy);
   }
 
   HeightSample

@@ -173,7 +173,8 @@ namespace pcl_sparse
 
   std::vector<OmpResult>
   batchOrthogonalMatchingPursuit (const Eigen::MatrixXd& signals, const Eigen::Ref<const Eigen::MatrixXd>& dictionary,
-                                  const std::vector<double>& tolerances, int max_atoms)
+                                  const std::vector<double>& tolerances, int max_atoms,
+                                  const GramColumnFunction& gram_column)
   {
     const Eigen::Index num_points = dictionary.rows ();
     const Eigen::Index num_atoms = dictionary.cols ();
@@ -204,17 +205,20 @@ namespace pcl_sparse
     // grown when full, since an atom found dependent on a support is skipped after its column was formed
     // (patches with fewer samples than atoms form more).
     Eigen::MatrixXd gram (num_atoms, std::min (num_atoms, num_signals * capacity));
-    std::vector<Eigen::Index> gram_column (num_atoms, -1);
-    Eigen::Index gram_columns = 0;
+    std::vector<Eigen::Index> gram_index (num_atoms, -1);
+    Eigen::Index formed_columns = 0;
     auto gramOf = [&] (int atom) {
-      if (gram_column[atom] < 0)
+      if (gram_index[atom] < 0)
       {
-        if (gram_columns == gram.cols ())
+        if (formed_columns == gram.cols ())
           gram.conservativeResize (Eigen::NoChange, std::min (num_atoms, 2 * gram.cols () + 1));
-        gram_column[atom] = gram_columns++;
-        gram.col (gram_column[atom]).noalias () = dictionary.transpose () * dictionary.col (atom);
+        gram_index[atom] = formed_columns++;
+        if (gram_column)
+          gram_column (atom, gram.col (gram_index[atom]));
+        else
+          gram.col (gram_index[atom]).noalias () = dictionary.transpose () * dictionary.col (atom);
       }
-      return gram.col (gram_column[atom]);
+      return gram.col (gram_index[atom]);
     };
 
     Eigen::MatrixXd support (num_points, capacity);
@@ -240,7 +244,7 @@ namespace pcl_sparse
         // D^T r = D^T y - sum over the support of alpha_t D^T d_t.
         correlation = projections.col (c);
         for (int t = 0; t < size; ++t)
-          correlation -= coefficients[t] * gram.col (gram_column[result.atoms[t]]);
+          correlation -= coefficients[t] * gram.col (gram_index[result.atoms[t]]);
         double best_score = 0.0;
         const int best = bestAtom (correlation, squared_norms, no_floors, candidate, best_score);
         if (best < 0 || std::sqrt (best_score) <= 1e-12 * signal_norm)

@@ -1,10 +1,12 @@
 #include <pcl_sparse/coding/patch_attribute_coder.h>
 
 #include <pcl_sparse/coding/cosine_atoms.h>
+#include <pcl_sparse/coding/cosine_gram.h>
 #include <pcl_sparse/coding/orthogonal_matching_pursuit.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace pcl_sparse
 {
@@ -79,7 +81,16 @@ namespace pcl_sparse
       const double target = input.options.tolerance * range * std::sqrt (static_cast<double> (signals.rows ()));
       tolerances[c] = norm > 0.0 ? target / norm : 0.0;
     }
-    const std::vector<OmpResult> omp = batchOrthogonalMatchingPursuit (signals, dictionary, tolerances, input.options.max_atoms);
+    // Cosine atoms' Gram columns from sums over the samples (CosineGram): O(K) each instead of O(#P K).
+    GramColumnFunction gram_column;
+    std::unique_ptr<CosineGram> gram;
+    if (const auto* cosines = dynamic_cast<const CosineAtoms*> (input.basis.get ()); cosines && cosines->monomials () == 0)
+    {
+      gram = std::make_unique<CosineGram> (*cosines, positions, allowed_atoms);
+      gram_column = [&gram] (int j, Eigen::Ref<Eigen::VectorXd> column) { gram->column (j, column); };
+    }
+    const std::vector<OmpResult> omp =
+      batchOrthogonalMatchingPursuit (signals, dictionary, tolerances, input.options.max_atoms, gram_column);
     for (std::size_t c = 0; c < codes.size (); ++c)
     {
       for (int a : omp[c].atoms)

@@ -123,6 +123,15 @@ namespace pcl_sparse
     double evaluateCodeValue (const std::vector<int>& atoms, const std::vector<double>& coefficients,
                               double x, double y) const override;
 
+    /// The atoms' factors along each axis at \a points: cx (p, k) = cos(k pi s(x_p)) and cy (p, k) =
+    /// cos(k pi s(y_p)) for k = 0 .. count - 1 (CosineGram needs the sums of two frequencies too).
+    /// \param[in]  points  #points local positions (x, y)
+    /// \param[in]  count   factors per axis, in 1 .. 2 max_frequencies
+    /// \param[out] cx, cy  #points by count
+    /// \throws pcl_sparse::Error if \a count is out of range
+    void axisCosines (const std::vector<Eigen::Vector2d>& points, int count, Eigen::MatrixXd& cx,
+                      Eigen::MatrixXd& cy) const;
+
   protected:
     /// Tables for n frequencies per axis of the given kind.
     /// \param[in] frequencies  n, in 1 .. max_frequencies

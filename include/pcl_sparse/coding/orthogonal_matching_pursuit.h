@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <vector>
 
 namespace pcl_sparse
@@ -71,6 +72,9 @@ namespace pcl_sparse
                              const std::vector<char>& allowed, double tolerance, int max_atoms,
                              const OmpSelection& selection = OmpSelection ());
 
+  /// Fills column j of a dictionary's Gram matrix D^T D (K values) when it can be formed more cheaply than D^T d_j.
+  using GramColumnFunction = std::function<void (int j, Eigen::Ref<Eigen::VectorXd> column)>;
+
   /// OMP of several signals over one dictionary (Batch OMP: Rubinstein, Zibulevsky and Elad, "Efficient
   /// implementation of the K-SVD algorithm using Batch Orthogonal Matching Pursuit", 2008), for the
   /// channels of an attribute (colour), which share their samples.
@@ -85,8 +89,11 @@ namespace pcl_sparse
   /// are D^T y - G_S alpha, from D^T Y (formed once for all signals) and the Gram columns D^T d_j of the atoms
   /// chosen so far, each formed once when some signal first chooses it: channels that choose the same atoms
   /// share them. The Cholesky factor's new row comes from the Gram columns too. The residual is still
-  /// formed, O(#P |S|), for the stopping test.
+  /// formed, O(#P |S|), for the stopping test. With \a gram_column (CosineGram for cosine atoms), a Gram column
+  /// comes from it instead of the O(#P K) product D^T d_j.
+  /// \param[in] gram_column  empty, or fills D^T d_j for column j (K values)
   std::vector<OmpResult>
   batchOrthogonalMatchingPursuit (const Eigen::MatrixXd& signals, const Eigen::Ref<const Eigen::MatrixXd>& dictionary,
-                                  const std::vector<double>& tolerances, int max_atoms);
+                                  const std::vector<double>& tolerances, int max_atoms,
+                                  const GramColumnFunction& gram_column = {});
 } // namespace pcl_sparse
