@@ -3,8 +3,10 @@
 // (evaluateCloudQuality: over 120 degrees from its nearest face's normal), tells the patch that emitted it
 // and what is special there, then counts the points per cause.
 //
-//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-v] [-far] [-patch P] [-o CLOUD.pcd]
+//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-v] [-far] [-patch P] [-o CLOUD.pcd]
 //
+// -max-cr R encodes with that compression bound (SparseSurfaceEncoderOptions::max_compression_ratio, default
+// 1; 0: none), to tell the flipped points the bound's trimmed codes cause.
 // -seed S and -clearance C resample with that seed and knife-edge clearance (defaults: the library's, as
 // pcl_sparse_resample). Every run also prints how many points lie farther than 1/4, 1/2, 1 and 2 spacings
 // from the mesh and the share of the mean distance those beyond 1/2 spacing make. -far lists the points
@@ -132,7 +134,7 @@ run (int argc, char** argv)
 {
   if (argc < 2)
   {
-    std::fprintf (stderr, "usage: %s MESH [-n COUNT] [-v]\n", argv[0]);
+    std::fprintf (stderr, "usage: %s MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-v] [-far] [-patch P] [-o CLOUD.pcd]\n", argv[0]);
     return 2;
   }
   std::size_t count = 0;
@@ -141,6 +143,7 @@ run (int argc, char** argv)
   bool far = false;
   std::string cloud_path;  // -o: the cloud, for bench_meshes (p99 holes)
   SparseSurfaceResamplingOptions resampling_options;
+  SparseSurfaceEncoderOptions encoder_options = encoderPresetOptions (EncoderPreset::Default);
   for (int i = 2; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -158,11 +161,13 @@ run (int argc, char** argv)
       cloud_path = argv[++i];
     else if (a == "-far")
       far = true;
+    else if (a == "-max-cr" && i + 1 < argc)
+      encoder_options.max_compression_ratio = std::stod (argv[++i]);
   }
   auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (argv[1]));
   SparseSurfaceEncoder<pcl::PointXYZ> encoder;
   encoder.setInputMesh (mesh);
-  encoder.setOptions (encoderPresetOptions (EncoderPreset::Default));
+  encoder.setOptions (encoder_options);
   auto model = std::make_shared<SparseSurfaceModel> ();
   encoder.compute (*model);
   SparseSurfaceResampling<pcl::PointNormal> resampling;
