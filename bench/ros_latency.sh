@@ -21,7 +21,12 @@ ws=${PCL_SPARSE_CACHE:-$HOME/.cache/pcl_sparse}/ros_bench_ws
 
 export PATH="/usr/bin:/bin:$PATH" ROS_VERSION=1 CCACHE_BASEDIR=$ws
 mkdir -p "$ws/src"
-ln -sfn "$root" "$ws/src/pcl_sparse"  # this checkout, even if another one made the workspace
+# This checkout, even if another one made the workspace. Make compares timestamps only, so objects built from
+# the other checkout's newer files would be kept (a link error, or a stale library): start the build over.
+if [ "$(readlink "$ws/src/pcl_sparse" 2> /dev/null)" != "$root" ]; then
+  rm -rf "$ws/build" "$ws/devel"
+fi
+ln -sfn "$root" "$ws/src/pcl_sparse"
 echo "building $ws (catkin_make) ..."
 catkin_make -C "$ws" -DCMAKE_BUILD_TYPE=Release -DPCL_SPARSE_BUILD_BENCH=OFF -DPCL_SPARSE_BUILD_SAMPLES=OFF \
   -DBUILD_TESTING=OFF -DCATKIN_ENABLE_TESTING=OFF -DPYTHON_EXECUTABLE=/usr/bin/python3 \
