@@ -3,7 +3,9 @@
 ///   bench_format convert IN OUT                 re-save a mesh (positions and faces only) for draco_encoder
 ///   bench_format mesh ORIGINAL DECODED [-n N]    symmetric surface distance of a decoded mesh (Draco)
 ///   bench_format model ORIGINAL MODEL.psm [-n N] same for a .psm model file, plus its load + resample time
-///   bench_format requantise IN.psm OUT.psm T [EXTENT_BITS [ANGLES]]   re-save a (lossless) model at tolerance T;
+///   bench_format requantise IN.psm OUT.psm T [EXTENT_BITS [ANGLES [REFINE_STEPS]]]   re-save a (lossless) model at
+///                                               tolerance T (ModelWriteOptions' extent_bits, max_footprint_angles,
+///                                               footprint_refine_steps);
 ///                                               prints the encode seconds
 ///
 /// Distance: A = N points drawn uniformly by area on the decoded surface, B = N points on the original
@@ -253,6 +255,8 @@ main (int argc, char** argv)
         options.extent_bits = std::stoi (argv[5]);
       if (argc >= 7)
         options.max_footprint_angles = std::stoi (argv[6]);
+      if (argc >= 8)
+        options.footprint_refine_steps = std::stod (argv[7]);
       const auto start = std::chrono::steady_clock::now ();
       saveModel (argv[3], model, options);
       std::printf ("%.4f\n", std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ());

@@ -210,7 +210,10 @@ TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
   EXPECT_LE (d_quantised, 1.1 * d_lossless);
 }
 
-TEST_F (EncodeTool, VarintLayoutWritesTheSameModelLarger)
+// The same model in either layout; which is smaller depends on the model's size (the range coder's
+// adaptive models learn as they go): FormatResample.RangeCodingShrinksARealModelAndChangesNoPoint measures a
+// real one.
+TEST_F (EncodeTool, VarintLayoutWritesTheSameModel)
 {
   const std::string coded = (dir_ / "coded.psm").string (), varints = (dir_ / "varints.psm").string ();
   std::string out;
@@ -218,7 +221,6 @@ TEST_F (EncodeTool, VarintLayoutWritesTheSameModelLarger)
   ASSERT_EQ (run (input_ + " -q --varint-layout -o " + varints, out), 0);
   EXPECT_TRUE (inspectModelFile (coded).range_coded);
   EXPECT_FALSE (inspectModelFile (varints).range_coded);
-  EXPECT_LT (std::filesystem::file_size (coded), std::filesystem::file_size (varints));
   const SparseSurfaceModel a = loadModel (coded), b = loadModel (varints);
   ASSERT_EQ (a.patches.size (), b.patches.size ());
   for (std::size_t p = 0; p < a.patches.size (); ++p)
@@ -226,6 +228,7 @@ TEST_F (EncodeTool, VarintLayoutWritesTheSameModelLarger)
     EXPECT_EQ (a.patches[p].atoms, b.patches[p].atoms);
     EXPECT_EQ (a.patches[p].coefficients, b.patches[p].coefficients);
     EXPECT_EQ (a.patches[p].frame, b.patches[p].frame);
+    EXPECT_EQ (a.patches[p].footprint.extent, b.patches[p].footprint.extent);
   }
   EXPECT_EQ (run (input_ + " -q --varint-layout", out), 1);  // no file to lay out
 }

@@ -418,6 +418,7 @@ TEST (ModelFile, QuantisedRoundTripWithinTolerance)
   {
     ModelWriteOptions options;
     options.tolerance = tolerance;
+    options.footprint_refine_steps = 0.0;  // every patch keeps 8 angles (refinement: the next test)
     const auto bytes = encodeModel (model, options);
     const auto decoded = decodeModel (bytes.data (), bytes.size ());
     ASSERT_EQ (decoded.numPatches (), model.numPatches ());
@@ -446,6 +447,57 @@ TEST (ModelFile, QuantisedRoundTripWithinTolerance)
       EXPECT_LT (bytes.size (), previous);
     previous = bytes.size ();
   }
+}
+
+// A quantised footprint keeps 8 angles where those draw it within footprint_refine_steps extent steps, and
+// twice, four times, ... as many where they would not (a border clipped at a crease): round footprints stay
+// small, clipped ones keep their border.
+TEST (ModelFile, FootprintsKeepTheAnglesTheirBordersNeed)
+{
+  auto model = test::makeSyntheticModel (3, 2, false);
+  const int angles = 64;
+  for (std::size_t p = 0; p < 3; ++p)
+  {
+    std::vector<float>& extent = model.patches[p].footprint.extent;
+    extent.assign (angles, 0.9f);
+    for (int k = 0; k < angles; ++k)
+      if (p == 1 && k >= 24 && k < 44)
+        extent[k] = 0.15f;  // clipped across a third of the circle
+      else if (p == 2)
+        extent[k] = static_cast<float> (0.6 + 0.3 * std::cos (2.0 * M_PI * k / angles));  // smooth, not round
+  }
+  const double step = 0.9 / 15.0;  // the largest extent / (2^4 - 1)
+  // Largest distance from the original extents to the decoded footprint, at the original angles.
+  auto deviation = [&] (const PatchFootprint& decoded, const PatchFootprint& original) {
+    double worst = 0.0;
+    for (int k = 0; k < angles; ++k)
+      worst = std::max (worst, std::abs (decoded.extentAt (2.0 * M_PI * k / angles) - original.extent[k]));
+    return worst;
+  };
+  ModelWriteOptions options;
+  options.tolerance = 1e-4;
+  const auto refined_bytes = encodeModel (model, options);
+  const auto refined = decodeModel (refined_bytes.data (), refined_bytes.size ());
+  options.footprint_refine_steps = 0.0;
+  const auto coarse_bytes = encodeModel (model, options);
+  const auto coarse = decodeModel (coarse_bytes.data (), coarse_bytes.size ());
+  // Round and smooth: 8 angles either way, within a step (rounding and the cosine's chords).
+  for (std::size_t p : {0u, 2u})
+  {
+    EXPECT_EQ (refined.patches[p].footprint.extent.size (), 8u) << "patch " << p;
+    EXPECT_LE (deviation (refined.patches[p].footprint, model.patches[p].footprint), step) << "patch " << p;
+  }
+  // Clipped: 8 angles miss the clip by about its depth; refined, within the refinement's steps plus the
+  // rounding (half a step).
+  EXPECT_EQ (coarse.patches[1].footprint.extent.size (), 8u);
+  EXPECT_GT (deviation (coarse.patches[1].footprint, model.patches[1].footprint), 5.0 * step);
+  EXPECT_GT (refined.patches[1].footprint.extent.size (), 8u);
+  EXPECT_LE (deviation (refined.patches[1].footprint, model.patches[1].footprint),
+             (ModelWriteOptions ().footprint_refine_steps + 0.5) * step + 1e-6);
+  // A refused value is an error.
+  EXPECT_GT (ModelWriteOptions ().footprint_refine_steps, 0.0);
+  options.footprint_refine_steps = -1.0;
+  EXPECT_THROW (encodeModel (model, options), Error);
 }
 
 TEST (ModelFile, RangeCodedAndVarintLayoutsDecodeToTheSameModel)

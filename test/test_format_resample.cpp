@@ -95,7 +95,9 @@ TEST (FormatResample, RangeCodingShrinksARealModelAndChangesNoPoint)
   const auto varints = encodeModel (model, options);
   std::cout << "  fandisk: " << range_coded.size () << " bytes range-coded, " << varints.size () << " varint layout"
             << std::endl;
-  EXPECT_LT (range_coded.size (), 0.93 * varints.size ());
+  // 9-14 % with 8 footprint angles a patch; the footprints refined at borders (ModelWriteOptions::
+  // footprint_refine_steps: a fifth of the file) the range coder codes about as small as zstd does.
+  EXPECT_LT (range_coded.size (), 0.95 * varints.size ());
   const auto a = resample (decodeModel (range_coded.data (), range_coded.size ()));
   const auto b = resample (decodeModel (varints.data (), varints.size ()));
   ASSERT_EQ (a.size (), b.size ());

@@ -294,10 +294,30 @@ namespace pcl_sparse
       return static_cast<std::uint64_t> (radius_steps);
     }
 
-    /// Footprint: fewer angles, every stride-th extent (docs/FORMAT.md: no measurable change on spot),
-    /// as circular deltas of extent levels on q.extent_bits bits.
+    /// The largest distance, over the footprint's angles, between its extent and the linear interpolation
+    /// of every \a stride-th extent (what a reader of those alone draws within).
+    double
+    strideDeviation (const std::vector<float>& extent, std::size_t stride)
+    {
+      const std::size_t k_in = extent.size ();
+      double deviation = 0.0;
+      for (std::size_t j = 0; j < k_in; ++j)
+      {
+        const std::size_t k0 = j - j % stride, k1 = (k0 + stride) % k_in;
+        const double w = static_cast<double> (j - k0) / static_cast<double> (stride);
+        const double interpolated = (1.0 - w) * extent[k0] + w * extent[k1];
+        deviation = std::max (deviation, std::abs (interpolated - static_cast<double> (extent[j])));
+      }
+      return deviation;
+    }
+
+    /// Footprint: fewer angles, every stride-th extent, as circular deltas of extent levels on q.extent_bits
+    /// bits. The stride is the largest that keeps at most max_footprint_angles angles, halved while the
+    /// footprint drawn from those strays more than refine_steps extent steps from the full one (a border
+    /// clipped at a crease or an open border needs its angles; a round footprint does not).
     std::vector<unsigned>
-    footprintLevelDeltas (const PatchFootprint& footprint, const QuantisationParameters& q, int max_footprint_angles)
+    footprintLevelDeltas (const PatchFootprint& footprint, const QuantisationParameters& q, int max_footprint_angles,
+                          double refine_steps)
     {
       const unsigned extent_mask = (1u << q.extent_bits) - 1u;
       std::size_t stride = 1;
@@ -305,6 +325,8 @@ namespace pcl_sparse
       while (max_footprint_angles > 0 && k_in / stride > static_cast<std::size_t> (max_footprint_angles) &&
              k_in % (2 * stride) == 0)
         stride *= 2;
+      while (refine_steps > 0.0 && stride > 1 && strideDeviation (footprint.extent, stride) > refine_steps * q.extentStep ())
+        stride /= 2;
       std::vector<unsigned> deltas;
       unsigned previous = 0;
       for (std::size_t k = 0; k < k_in; k += stride)
@@ -480,7 +502,8 @@ namespace pcl_sparse
         PatchCode decoded;
         radii[k] = quantiseRadius (patch.radius, q);
         decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[k]) * q.log_radius_step);
-        const std::vector<unsigned> deltas = footprintLevelDeltas (patch.footprint, q, options.max_footprint_angles);
+        const std::vector<unsigned> deltas = footprintLevelDeltas (patch.footprint, q, options.max_footprint_angles,
+                                                                    options.footprint_refine_steps);
         if (options.range_coding)
         {
           putQuantisedFootprint (coded_foot, contexts, deltas);
@@ -1017,6 +1040,8 @@ namespace pcl_sparse
       throw Error ("encodeModel: tolerance must be >= 0");
     if (options.max_footprint_angles < 0)
       throw Error ("encodeModel: max_footprint_angles must be >= 0");
+    if (!(options.footprint_refine_steps >= 0.0) || !std::isfinite (options.footprint_refine_steps))
+      throw Error ("encodeModel: footprint_refine_steps must be >= 0 and finite");
     if (options.extent_bits < 2 || options.extent_bits > 8)
       throw Error ("encodeModel: extent_bits must be in 2..8");
     if (options.zstd_level < 0 || options.zstd_level > 22)
