@@ -63,10 +63,11 @@ namespace pcl_sparse
     /// footprint drawn from max_footprint_angles would stray more than this many extent steps
     /// (the largest extent / (2^extent_bits - 1)) from its full one at some angle: footprints clipped at a
     /// crease or an open border keep the angles that hold them there. 0: every patch keeps
-    /// max_footprint_angles. With 8 angles everywhere the default file added 5-200 % to the Chamfer distance
-    /// of the lossless model on the shared meshes (their border overshoots or cuts the surface); at 3 steps it
-    /// adds at most 7.9 % on 23 of 25, for 10-45 % more bytes (bench/results/file_footprints.md).
-    double footprint_refine_steps = 3.0;
+    /// max_footprint_angles. With 8 angles everywhere the default file added 4-201 % to the Chamfer distance
+    /// of the lossless model on the shared meshes (footprints clipped at borders and creases overshoot or cut
+    /// the surface between 8 rays); at 2 steps it adds at most 10 % on 23 of 25 (anchor-dense 28 %, fandisk
+    /// 21 %: their 4-bit extents), for 15-59 % more bytes; 3 steps: 22 of 25, 4-48 % (file_footprints.md).
+    double footprint_refine_steps = 2.0;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
     /// input vertices, docs/METHOD.md step 10). Off by default: decoding and resampling do not need them.
     bool include_vertices = false;
