@@ -5,18 +5,13 @@
 # default before 2026-12-01), refined at 3 extent steps and at 2 (the default); bytes and Chamfer of each.
 #   bench/file_footprints.sh [BUILD_DIR]   (default: build) -> bench/results/file_footprints.md
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
-build=${1:-$root/build}
-shared=${PCL_SPARSE_SHARED:-$root/../shared}
+# shellcheck source=bench/bench_setup.sh
+source "$(dirname "$0")/bench_setup.sh"
 cmake --build "$build" --target pcl_sparse_encode bench_format -j2 > /dev/null
 encode="$build/apps/pcl_sparse_encode"
 format="$build/bench/bench_format"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 out="$here/results/file_footprints.md"
 refines="0 3 2"
-json () { python3 "$here/json_fields.py" "$@"; }
 percent () { python3 -c "print('%+.1f %%' % (100.0 * ($1 / $2 - 1.0)))"; }
 {
   echo "# Quantised footprints: bytes and Chamfer distance against the lossless model"

@@ -3,18 +3,13 @@
 # tolerances of 0.1, 1, 3, 5 and 10 x the model's own mean vertex error, its bytes and its Chamfer distance.
 #   bench/file_tolerance.sh [BUILD_DIR]   (default: build) -> bench/results/file_tolerance.md
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
-build=${1:-$root/build}
-shared=${PCL_SPARSE_SHARED:-$root/../shared}
+# shellcheck source=bench/bench_setup.sh
+source "$(dirname "$0")/bench_setup.sh"
 cmake --build "$build" --target pcl_sparse_encode bench_format -j2 > /dev/null
 encode="$build/apps/pcl_sparse_encode"
 format="$build/bench/bench_format"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 out="$here/results/file_tolerance.md"
 fractions="0.1 1 3 5 10"
-json () { python3 "$here/json_fields.py" "$@"; }
 {
   echo "# The default file tolerance: bytes and Chamfer distance against the tolerance"
   echo

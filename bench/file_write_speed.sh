@@ -4,15 +4,11 @@
 # quantised file of the largest scan; bench_file_write encodes each model in memory, best of 3.
 #   bench/file_write_speed.sh [BUILD_DIR]   (default: build) -> bench/results/file_write_speed.md
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
-build=${1:-$root/build}
-shared=${PCL_SPARSE_SHARED:-$root/../shared}
+# shellcheck source=bench/bench_setup.sh
+source "$(dirname "$0")/bench_setup.sh"
 cmake --build "$build" --target pcl_sparse_encode bench_file_write -j2 > /dev/null
 encode="$build/apps/pcl_sparse_encode"
 writer="$build/bench/bench_file_write"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 out="$here/results/file_write_speed.md"
 inputs="clouds/office1.pcd clouds/table_scene_mug_stereo_textured.pcd meshes/spot.obj extra-meshes/cheese-cgal.off meshes/koala-loop1-200k.ply"
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')

@@ -1,0 +1,11 @@
+# Sourced by bench scripts after `set -euo pipefail`: the paths every one needs, a scratch folder and the
+# JSON reader. Sets here (bench/), root (the checkout), build (the first argument, default build/), shared
+# (PCL_SPARSE_SHARED, default ../shared beside the checkout) and work (a temporary folder removed on exit);
+# json KEY ... prints fields of the JSON object on stdin (json_fields.py).
+here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
+root=$(dirname "$here")
+build=${1:-$root/build}
+shared=${PCL_SPARSE_SHARED:-$root/../shared}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+json () { python3 "$here/json_fields.py" "$@"; }
