@@ -210,6 +210,28 @@ TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
   EXPECT_LE (d_quantised, 1.1 * d_lossless);
 }
 
+// -footprint-steps R reaches the file: 0 keeps 8 footprint angles on every patch (the smallest file), the
+// default keeps more where a patch's border needs them; the option needs -o and a value >= 0.
+TEST_F (EncodeTool, FootprintStepsReachTheFile)
+{
+  const std::string refined = (dir_ / "refined.psm").string (), eight = (dir_ / "eight.psm").string ();
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q -o " + refined, out), 0);
+  ASSERT_EQ (run (input_ + " -q -footprint-steps 0 -o " + eight, out), 0);
+  const SparseSurfaceModel a = loadModel (refined), b = loadModel (eight);
+  ASSERT_EQ (a.patches.size (), b.patches.size ());
+  std::size_t refined_patches = 0;
+  for (std::size_t p = 0; p < a.patches.size (); ++p)
+  {
+    EXPECT_EQ (b.patches[p].footprint.extent.size (), 8u);
+    refined_patches += a.patches[p].footprint.extent.size () > 8u ? 1 : 0;
+  }
+  EXPECT_GT (refined_patches, 0u);
+  EXPECT_LT (std::filesystem::file_size (eight), std::filesystem::file_size (refined));
+  EXPECT_EQ (run (input_ + " -q -footprint-steps -1 -o " + eight, out), 1);
+  EXPECT_EQ (run (input_ + " -q -footprint-steps 2", out), 1);  // no file
+}
+
 // The same model in either layout; which is smaller depends on the model's size (the range coder's
 // adaptive models learn as they go): FormatResample.RangeCodingShrinksARealModelAndChangesNoPoint measures a
 // real one.
