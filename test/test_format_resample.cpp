@@ -31,6 +31,25 @@ namespace
       *patches = resampling.getPointPatches ();
     return cloud;
   }
+
+  /// ../shared/meshes/NAME, or an empty path when it is absent (the test then skips).
+  std::string
+  sharedMesh (const std::string& name)
+  {
+    const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/" + name;
+    return std::filesystem::exists (path) ? path : std::string ();
+  }
+
+  /// The model the encoder gives \a mesh with its default options.
+  SparseSurfaceModel
+  encodeWithDefaults (const std::shared_ptr<TriangleMesh>& mesh)
+  {
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+    encoder.setInputMesh (mesh);
+    SparseSurfaceModel model;
+    encoder.compute (model);
+    return model;
+  }
 } // namespace
 
 TEST (FormatResample, LosslessFileResamplesBitIdentically)
@@ -81,14 +100,11 @@ TEST (FormatResample, RangeCodingShrinksARealModelAndChangesNoPoint)
   // The default file of a real mesh (quantised at the tolerance derived from its error), range-coded
   // against the varint layout: smaller by 8.9 % on fandisk, 13-14 % on smooth meshes such as spot
   // (bench/results/format_entropy.md), and the same points when resampled.
-  const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "needs ../shared/meshes/fandisk.off (not found at " << path << ")";
+  const std::string path = sharedMesh ("fandisk.off");
+  if (path.empty ())
+    GTEST_SKIP () << "needs ../shared/meshes/fandisk.off (not found in " << PCL_SPARSE_SHARED_MESHES << ")";
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-  encoder.setInputMesh (mesh);
-  SparseSurfaceModel model;
-  encoder.compute (model);
+  const SparseSurfaceModel model = encodeWithDefaults (mesh);
   ModelWriteOptions options;
   options.tolerance = derivedFileTolerance (model.statistics (mesh->vertices));
   const auto range_coded = encodeModel (model, options);
@@ -111,14 +127,11 @@ TEST (FormatResample, RangeCodingShrinksARealModelAndChangesNoPoint)
 // with these 20000 points, where the default file is +7.6 % (bench/results/file_footprints.md: Chamfer).
 TEST (FormatResample, DefaultFileResamplesAsNearTheMeshAsTheModel)
 {
-  const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/blade.off";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "needs ../shared/meshes/blade.off (not found at " << path << ")";
+  const std::string path = sharedMesh ("blade.off");
+  if (path.empty ())
+    GTEST_SKIP () << "needs ../shared/meshes/blade.off (not found in " << PCL_SPARSE_SHARED_MESHES << ")";
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-  encoder.setInputMesh (mesh);
-  SparseSurfaceModel model;
-  encoder.compute (model);
+  const SparseSurfaceModel model = encodeWithDefaults (mesh);
   auto meanDistance = [&] (const SparseSurfaceModel& m) { return evaluateCloudQuality (*mesh, resample (m)).mean_distance; };
   const double in_memory = meanDistance (model);
   ModelWriteOptions options;
