@@ -98,8 +98,8 @@ TEST (FormatResample, QuantisedFileResamplesWithinTolerance)
 TEST (FormatResample, RangeCodingShrinksARealModelAndChangesNoPoint)
 {
   // The default file of a real mesh (quantised at the tolerance derived from its error), range-coded
-  // against the varint layout: smaller by 8.9 % on fandisk, 13-14 % on smooth meshes such as spot
-  // (bench/results/format_entropy.md), and the same points when resampled.
+  // against the varint layout: smaller by 5.2 % on fandisk, 9-12 % on smooth meshes such as spot, and the
+  // same points when resampled.
   const std::string path = sharedMesh ("fandisk.off");
   if (path.empty ())
     GTEST_SKIP () << "needs ../shared/meshes/fandisk.off (not found in " << PCL_SPARSE_SHARED_MESHES << ")";

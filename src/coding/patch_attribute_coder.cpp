@@ -6,7 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
+#include <optional>
 
 namespace pcl_sparse
 {
@@ -83,10 +83,10 @@ namespace pcl_sparse
     }
     // Cosine atoms' Gram columns from sums over the samples (CosineGram): O(K) each instead of O(#P K).
     GramColumnFunction gram_column;
-    std::unique_ptr<CosineGram> gram;
+    std::optional<CosineGram> gram;
     if (const auto* cosines = dynamic_cast<const CosineAtoms*> (input.basis.get ()); cosines && cosines->monomials () == 0)
     {
-      gram = std::make_unique<CosineGram> (*cosines, positions, allowed_atoms);
+      gram.emplace (*cosines, positions, allowed_atoms);
       gram_column = [&gram] (int j, Eigen::Ref<Eigen::VectorXd> column) { gram->column (j, column); };
     }
     const std::vector<OmpResult> omp =

@@ -77,7 +77,8 @@ namespace pcl_sparse
     double attribute_tolerance = 0.5 / 255.0;
     /// Quantised mode: code the per-patch fields FRAM FOOT ATOM COEF (and AATM ACOF) with an adaptive range
     /// coder, each field with its own probabilities (docs/FORMAT.md, "Range-coded fields"), instead of zstd
-    /// over varints: 9-14 % smaller files on the shared meshes (bench/results/format_entropy.md). false
+    /// over varints: 5-12 % smaller default files on the shared meshes (9-14 % while every footprint kept 8
+    /// angles, bench/results/format_entropy.md; the refined extents it codes about as small as zstd). false
     /// writes the varint layout, which pcl_sparse builds from before the range coder can read.
     bool range_coding = true;
     /// zstd level (1..22) of every section up to zstd_large_section bytes; 19 compresses well, at about
