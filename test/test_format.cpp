@@ -450,8 +450,8 @@ TEST (ModelFile, QuantisedRoundTripWithinTolerance)
 }
 
 // A quantised footprint keeps 8 angles where those draw it within footprint_refine_steps extent steps, and
-// twice, four times, ... as many where they would not (a border clipped at a crease): round footprints stay
-// small, clipped ones keep their border.
+// the angles between them where they would not (a border clipped at a crease): round footprints stay small,
+// clipped ones keep their border (test_footprint_coding.cpp: the coding itself).
 TEST (ModelFile, FootprintsKeepTheAnglesTheirBordersNeed)
 {
   auto model = test::makeSyntheticModel (3, 2, false);
@@ -781,7 +781,12 @@ TEST (ModelFile, ForgedHeadersGiveClearErrors)
   expectErrorContaining (bytes, "range-coded flag needs the quantised flag");
 
   bytes = good;
-  bytes[10] |= 16;  // a flag of a later format
+  bytes[10] |= 16;  // the adaptive-footprint flag on a lossless file
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "adaptive-footprint flag needs the quantised flag");
+
+  bytes = good;
+  bytes[10] |= 32;  // a flag of a later format
   resealHeader (bytes);
   expectErrorContaining (bytes, "unknown header flags");
 

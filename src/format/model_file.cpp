@@ -6,6 +6,7 @@
 #include <pcl_sparse/format/attribute_sections.h>
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/crc32.h>
+#include <pcl_sparse/format/footprint_coding.h>
 #include <pcl_sparse/format/frame_quantization.h>
 #include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/range_coder.h>
@@ -33,10 +34,11 @@ namespace pcl_sparse
     constexpr std::uint16_t kVersion = 1;
     constexpr std::size_t kHeaderBytes = 52;
     constexpr std::size_t kSectionHeaderBytes = 32;
-    constexpr std::uint16_t kFlagQuantised = 1;
-    constexpr std::uint16_t kFlagVertices = 2;
-    constexpr std::uint16_t kFlagAttributes = 4;
-    constexpr std::uint16_t kFlagRangeCoded = 8;  ///< quantised files: FRAM FOOT ATOM COEF AATM ACOF range-coded
+    constexpr std::uint16_t kFlagQuantised = header_flag::quantised;
+    constexpr std::uint16_t kFlagVertices = header_flag::vertices;
+    constexpr std::uint16_t kFlagAttributes = header_flag::attributes;
+    constexpr std::uint16_t kFlagRangeCoded = header_flag::range_coded;
+    constexpr std::uint16_t kFlagAdaptiveFootprints = header_flag::adaptive_footprints;
     constexpr std::uint8_t kBasisCosine = 1;     ///< CosineDictionary: cos(i pi x) cos(j pi y)
     constexpr std::uint8_t kBasisDctCosine = 2;  ///< DctCosineDictionary: cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2)
     constexpr std::uint8_t kBasisQuadricDct = 3; ///< QuadricDctDictionary: the Dct atoms, then x, y, x^2, x y, y^2
@@ -44,6 +46,10 @@ namespace pcl_sparse
     constexpr std::uint8_t kCodecZstd = 1;
     constexpr std::uint64_t kMaxPatches = std::numeric_limits<std::int32_t>::max ();
     constexpr std::uint64_t kMaxFootprintAngles = 4096;
+    // A run's footprints may hold at most kFootprintAnglesAllowance + kFootprintAnglesPerByte x (FOOT bytes)
+    // angles in all (1 KiB of extents a byte; default files of the shared meshes hold 4-7 a byte).
+    constexpr std::size_t kFootprintAnglesAllowance = 65536;
+    constexpr std::size_t kFootprintAnglesPerByte = 256;
     // A zstd section may decompress to at most kMaxExpansion times its stored size plus kExpansionSlack
     // bytes: bounds every allocation by what the file can justify, zip bombs included. Real sections
     // compress 1-10x; the writer stores a section uncompressed if it would exceed the bound.
@@ -93,6 +99,7 @@ namespace pcl_sparse
       double coefficient_budget = 0.0;
 
       double extentStep () const { return extent_max / static_cast<double> ((1 << extent_bits) - 1); }
+      FootprintLevels footprintLevels () const { return {extentStep (), extent_bits}; }
     };
 
 #ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
@@ -294,83 +301,30 @@ namespace pcl_sparse
       return static_cast<std::uint64_t> (radius_steps);
     }
 
-    /// The largest distance, over the footprint's angles, between its extent and the linear interpolation
-    /// of every \a stride-th extent (what a reader of those alone draws within).
-    double
-    strideDeviation (const std::vector<float>& extent, std::size_t stride)
+    /// The models of a range-coded FOOT without kFlagAdaptiveFootprints: K, the first level, the next
+    /// levels' circular deltas.
+    struct UniformFootprintContexts
     {
-      const std::size_t k_in = extent.size ();
-      double deviation = 0.0;
-      for (std::size_t j = 0; j < k_in; ++j)
-      {
-        const std::size_t k0 = j - j % stride, k1 = (k0 + stride) % k_in;
-        const double w = static_cast<double> (j - k0) / static_cast<double> (stride);
-        const double interpolated = (1.0 - w) * extent[k0] + w * extent[k1];
-        deviation = std::max (deviation, std::abs (interpolated - static_cast<double> (extent[j])));
-      }
-      return deviation;
-    }
+      explicit UniformFootprintContexts (int extent_bits) : first_level (extent_bits), level_delta (extent_bits) {}
 
-    /// Footprint: fewer angles, every stride-th extent, as circular deltas of extent levels on q.extent_bits
-    /// bits. The stride is the largest that keeps at most max_footprint_angles angles, halved while the
-    /// footprint drawn from those strays more than refine_steps extent steps from the full one (a border
-    /// clipped at a crease or an open border needs its angles; a round footprint does not).
-    std::vector<unsigned>
-    footprintLevelDeltas (const PatchFootprint& footprint, const QuantisationParameters& q, int max_footprint_angles,
-                          double refine_steps)
-    {
-      const unsigned extent_mask = (1u << q.extent_bits) - 1u;
-      std::size_t stride = 1;
-      const std::size_t k_in = footprint.extent.size ();
-      while (max_footprint_angles > 0 && k_in / stride > static_cast<std::size_t> (max_footprint_angles) &&
-             k_in % (2 * stride) == 0)
-        stride *= 2;
-      while (refine_steps > 0.0 && stride > 1 && strideDeviation (footprint.extent, stride) > refine_steps * q.extentStep ())
-        stride /= 2;
-      std::vector<unsigned> deltas;
-      unsigned previous = 0;
-      for (std::size_t k = 0; k < k_in; k += stride)
-      {
-        const float e = footprint.extent[k];
-        const unsigned level =
-          std::min (extent_mask, static_cast<unsigned> (std::lround (static_cast<double> (e) / q.extentStep ())));
-        deltas.push_back ((level - previous) & extent_mask);
-        previous = level;
-      }
-      return deltas;
-    }
+      BitTreeModel angles{13};
+      BitTreeModel first_level;
+      BitTreeModel level_delta;
+    };
 
     /// The adaptive models of the range-coded per-patch fields of a run (docs/FORMAT.md, "Range-coded
     /// fields"); the writer and the reader build the same ones and code the same values in the same order.
     struct PatchFieldContexts
     {
       PatchFieldContexts (int extent_bits, int frequencies, int monomials)
-        : first_level (extent_bits), level_delta (extent_bits), code (frequencies, monomials) {}
+        : footprint (extent_bits), uniform_footprint (extent_bits), code (frequencies, monomials) {}
 
-      BitTreeModel angles{13};              ///< footprint angles K (<= kMaxFootprintAngles)
-      BitTreeModel first_level;             ///< the first extent's level
-      BitTreeModel level_delta;             ///< the next levels' circular deltas
+      FootprintContexts footprint;          ///< FOOT
+      UniformFootprintContexts uniform_footprint;  ///< FOOT of files without kFlagAdaptiveFootprints
       BitTreeModel frame_header{3};         ///< dropped component and reflection
       SignedIntegerModel frame_component[3];  ///< the quaternion's other three components, by position
       SparseCodeContexts code;              ///< ATOM and COEF
     };
-
-    /// Footprint of a quantised patch: K, then K level deltas.
-    void
-    putQuantisedFootprint (ByteWriter& foot, const std::vector<unsigned>& deltas)
-    {
-      foot.putVarint (deltas.size ());
-      for (unsigned d : deltas)
-        foot.putU8 (static_cast<std::uint8_t> (d));
-    }
-
-    void
-    putQuantisedFootprint (RangeEncoder& foot, PatchFieldContexts& contexts, const std::vector<unsigned>& deltas)
-    {
-      contexts.angles.put (foot, static_cast<std::uint32_t> (deltas.size ()));
-      for (std::size_t k = 0; k < deltas.size (); ++k)
-        (k == 0 ? contexts.first_level : contexts.level_delta).put (foot, deltas[k]);
-    }
 
     /// Atoms sorted by shell rank (the deltas are small and the code is the same sum), then their
     /// coefficients in that order, in steps of the patch's coefficient step. \a decoded (its radius
@@ -494,6 +448,7 @@ namespace pcl_sparse
       ByteWriter frame, foot, atom, coef;  // the varint layout
       RangeEncoder coded_frame, coded_foot, coded_atom, coded_coef;
       PatchFieldContexts contexts (q.extent_bits, frequencies, monomials);
+      std::size_t angles = 0;  // the footprints' angles as a reader gets them
       for (std::size_t k = 0; k < count; ++k)
       {
         const PatchCode& patch = model.patches[first + k];
@@ -502,30 +457,34 @@ namespace pcl_sparse
         PatchCode decoded;
         radii[k] = quantiseRadius (patch.radius, q);
         decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[k]) * q.log_radius_step);
-        const std::vector<unsigned> deltas = footprintLevelDeltas (patch.footprint, q, options.max_footprint_angles,
-                                                                    options.footprint_refine_steps);
+        const FootprintRefinement refinement{options.max_footprint_angles, options.footprint_refine_steps};
         if (options.range_coding)
         {
-          putQuantisedFootprint (coded_foot, contexts, deltas);
+          angles += putFootprint (coded_foot, contexts.footprint, patch.footprint, q.footprintLevels (), refinement);
           putQuantisedCode (coded_atom, coded_coef, contexts.code, patch, q, decoded);
           putQuantisedFrame (coded_frame, contexts, quantisedFrame (patch.frame, decoded, q));
         }
         else
         {
-          putQuantisedFootprint (foot, deltas);
+          angles += putFootprint (foot, patch.footprint, q.footprintLevels (), refinement);
           putQuantisedCode (atom, coef, patch, q, frequencies, monomials, decoded);
           putQuantisedFrame (frame, quantisedFrame (patch.frame, decoded, q));
         }
       }
+      std::vector<std::uint8_t> foot_bytes = options.range_coding ? coded_foot.finish () : std::move (foot.bytes ());
+      if (angles > kFootprintAnglesAllowance + kFootprintAnglesPerByte * foot_bytes.size ())
+        throw Error ("encodeModel: the footprints hold " + std::to_string (angles) + " angles in " +
+                     std::to_string (foot_bytes.size ()) + " bytes, more than a reader accepts (footprints of " +
+                     "thousands of angles coded from a few: keep fewer, or max_footprint_angles 0)");
       ByteWriter seed, radius;
       for (int i = 0; i < 3; ++i)
         putPlanes (seed, seeds[i], q.seed_bytes);
       putPlanes (radius, radii, q.radius_bytes);
       if (options.range_coding)
         return {std::move (seed.bytes ()), coded_frame.finish (), std::move (radius.bytes ()),
-                coded_foot.finish (),      coded_atom.finish (),  coded_coef.finish ()};
+                std::move (foot_bytes),    coded_atom.finish (),  coded_coef.finish ()};
       return {std::move (seed.bytes ()), std::move (frame.bytes ()), std::move (radius.bytes ()),
-              std::move (foot.bytes ()), std::move (atom.bytes ()),  std::move (coef.bytes ())};
+              std::move (foot_bytes),    std::move (atom.bytes ()), std::move (coef.bytes ())};
     }
 
     std::vector<std::uint8_t>
@@ -584,10 +543,12 @@ namespace pcl_sparse
     checkHeaderValues (std::uint16_t flags, std::uint8_t basis_kind, std::uint16_t basis_parameter, std::uint64_t num_patches,
                        std::uint64_t num_input_vertices, double bbox_diagonal, double tolerance, const std::string& what)
     {
-      if ((flags & ~(kFlagQuantised | kFlagVertices | kFlagAttributes | kFlagRangeCoded)) != 0)
+      if ((flags & ~header_flag::known) != 0)
         throw Error (what + ": unknown header flags (written by a newer pcl_sparse?)");
       if ((flags & kFlagRangeCoded) && !(flags & kFlagQuantised))
         throw Error (what + ": the range-coded flag needs the quantised flag");
+      if ((flags & kFlagAdaptiveFootprints) && !(flags & kFlagQuantised))
+        throw Error (what + ": the adaptive-footprint flag needs the quantised flag");
       if (!isBasisKindByte (basis_kind))
         throw Error (what + ": unknown basis kind " + std::to_string (basis_kind));
       if (basis_parameter < 1 || basis_parameter > CosineDictionary::max_frequencies)
@@ -779,9 +740,10 @@ namespace pcl_sparse
       return extent;
     }
 
+    /// A range-coded footprint without kFlagAdaptiveFootprints: K, then K level deltas.
     void
-    readFootprint (RangeDecoder& foot, PatchFieldContexts& contexts, const QuantisationParameters& q, std::size_t p,
-                   PatchFootprint& footprint)
+    readUniformFootprint (RangeDecoder& foot, UniformFootprintContexts& contexts, const QuantisationParameters& q,
+                          std::size_t p, PatchFootprint& footprint)
     {
       const std::uint32_t k = contexts.angles.get (foot);
       if (k > kMaxFootprintAngles)
@@ -797,9 +759,11 @@ namespace pcl_sparse
       }
     }
 
+    /// A footprint of the varint layout: lossless, or quantised without kFlagAdaptiveFootprints (K, then K
+    /// level deltas).
     void
-    readFootprint (ByteReader& foot, bool quantised, const QuantisationParameters& q, std::size_t p,
-                   PatchFootprint& footprint)
+    readUniformFootprint (ByteReader& foot, bool quantised, const QuantisationParameters& q, std::size_t p,
+                          PatchFootprint& footprint)
     {
       const unsigned extent_mask = (1u << q.extent_bits) - 1u;
       const std::size_t k = foot.getCount ("footprint angles", std::min<std::uint64_t> (kMaxFootprintAngles, foot.remaining ()));
@@ -887,16 +851,20 @@ namespace pcl_sparse
     {
     public:
       RangeCodedPatchSections (ByteReader& frame, ByteReader& foot, ByteReader& atom, ByteReader& coef, int extent_bits,
-                               int basis_parameter, int monomials)
+                               int basis_parameter, int monomials, bool adaptive_footprints)
         : frame_ (rangeDecoderOverRest (frame)), foot_ (rangeDecoderOverRest (foot)), atom_ (rangeDecoderOverRest (atom)),
-          coef_ (rangeDecoderOverRest (coef)), contexts_ (extent_bits, basis_parameter, monomials)
+          coef_ (rangeDecoderOverRest (coef)), contexts_ (extent_bits, basis_parameter, monomials),
+          adaptive_footprints_ (adaptive_footprints)
       {}
 
       /// The footprint, code and frame of patch \a p (its seed and radius already read).
       void
       readPatch (const QuantisationParameters& q, std::size_t p, PatchCode& patch)
       {
-        readFootprint (foot_, contexts_, q, p, patch.footprint);
+        if (adaptive_footprints_)
+          getFootprint (foot_, contexts_.footprint, q.footprintLevels (), p, patch.footprint);
+        else
+          readUniformFootprint (foot_, contexts_.uniform_footprint, q, p, patch.footprint);
         contexts_.code.getAtoms (atom_, "patch " + std::to_string (p), patch.atoms);
         contexts_.code.getCoefficients (coef_, patch.atoms,
                                         coefficientStep (q.coefficient_budget, patch.radius, patch.atoms.size ()),
@@ -917,6 +885,7 @@ namespace pcl_sparse
     private:
       RangeDecoder frame_, foot_, atom_, coef_;
       PatchFieldContexts contexts_;
+      bool adaptive_footprints_;
     };
 
     /// Section VERT: every patch's input vertices and their local (x', y').
@@ -1062,7 +1031,8 @@ namespace pcl_sparse
     const bool attributes = model.hasAttributes ();
     const bool range_coded = quantised && options.range_coding;
     shared.flags = static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0) |
-                                               (attributes ? kFlagAttributes : 0) | (range_coded ? kFlagRangeCoded : 0));
+                                               (attributes ? kFlagAttributes : 0) | (range_coded ? kFlagRangeCoded : 0) |
+                                               (quantised ? kFlagAdaptiveFootprints : 0));
     shared.basis_kind = basisKindByte (cosine.kind ());
     shared.basis_parameter = static_cast<std::uint16_t> (frequencies);
     shared.num_input_vertices = model.num_input_vertices;
@@ -1214,16 +1184,23 @@ namespace pcl_sparse
     ByteReader atom = open ();
     ByteReader coef = open ();
     const bool range_coded = shared.flags & kFlagRangeCoded;
+    const bool adaptive_footprints = shared.flags & kFlagAdaptiveFootprints;
     checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, q);
     // Patches are added as they decode, not made for the m the header promises up front: SEED and RADI
     // hold only a few bytes a patch, which zstd may shrink 64 times (and a range-coded patch may take less
     // than a byte), so a 280 KB file promising 4 million patches had the reader take 1.1 GB (285 bytes a
     // patch and 32 of unpacked seed and radius integers) before its first patch failed to decode.
     model.patches.reserve (std::min<std::size_t> (m, 4096));
+    // Adaptive footprints draw the angles no split reached from the coded ones, so a few bits of FOOT can
+    // stand for 4096 extents: the run's extents are held to what its FOOT bytes justify (default files
+    // of the shared meshes: 4-7 angles a byte).
+    const std::size_t max_angles = kFootprintAnglesAllowance + kFootprintAnglesPerByte * foot.remaining ();
+    std::size_t angles = 0;
     // Range-coded: one decoder per section over all its bytes (the ByteReaders are then at their end).
     std::optional<RangeCodedPatchSections> coded;
     if (range_coded)
-      coded.emplace (frame, foot, atom, coef, q.extent_bits, shared.basis_parameter, monomialsOfKindByte (shared.basis_kind));
+      coded.emplace (frame, foot, atom, coef, q.extent_bits, shared.basis_parameter, monomialsOfKindByte (shared.basis_kind),
+                     adaptive_footprints);
 
     const std::uint8_t* seed_planes = nullptr;
     const std::uint8_t* radius_planes = nullptr;
@@ -1238,11 +1215,16 @@ namespace pcl_sparse
       PatchCode& patch = model.patches.back ();
       readPlacement (seed, radius, quantised, q, seed_planes, radius_planes, m, p, patch);
       if (coded)
-      {
         coded->readPatch (q, p, patch);
+      else if (adaptive_footprints)
+        getFootprint (foot, q.footprintLevels (), p, patch.footprint);
+      else
+        readUniformFootprint (foot, quantised, q, p, patch.footprint);
+      angles += patch.footprint.extent.size ();
+      if (angles > max_angles)
+        foot.fail ("the footprints hold more angles than its bytes justify (patch " + std::to_string (p) + ")");
+      if (coded)
         continue;
-      }
-      readFootprint (foot, quantised, q, p, patch.footprint);
       getCodeAtoms (atom, quantised, shared.basis_parameter, "patch " + std::to_string (p), patch.atoms,
                     monomialsOfKindByte (shared.basis_kind));
       readCoefficients (coef, quantised, q, patch);

@@ -31,8 +31,6 @@ namespace pcl_sparse
     constexpr std::size_t kEntryBytes2 = 88;
     constexpr std::uint8_t kCodecStored = 0;
     constexpr std::uint8_t kCodecZstd = 1;
-    constexpr std::uint16_t kKnownFlags = 15;       ///< as version 1: quantised, vertices, attributes, range-coded
-    constexpr std::uint16_t kFlagRangeCoded = 8;
     constexpr double kReachSteps = 64.0;            ///< reach boxes are stored in steps of edge / 64
     // As version 1's sections: a tile may decompress to at most 64 x its stored bytes + 4 KiB.
     constexpr std::uint64_t kMaxExpansion = 64;
@@ -287,7 +285,7 @@ namespace pcl_sparse
       const std::uint32_t crc = in.getU32 ("header checksum");
       if (kVerifyChecksums && crc32 (data, kHeaderBytes - 4) != crc)
         throw Error (name + ": tiled model file (version 3): header checksum mismatch (corrupt file)");
-      if (reserved != 0 || (shared.flags & ~kKnownFlags) != 0)
+      if (reserved != 0 || (shared.flags & ~header_flag::known) != 0)
         throw Error (name + ": unknown header flags");
       checkGrid (index, entries, name);
       shared.num_input_vertices = index.num_input_vertices;
@@ -310,9 +308,9 @@ namespace pcl_sparse
       if (kVerifyChecksums && crc32 (data, body) != crc_reader.getU32 ("index checksum"))
         throw Error (name + ": tile index checksum mismatch (corrupt file)");
       SharedModelFields& shared = index.shared;
-      const bool quantised = shared.flags & 1;
+      const bool quantised = shared.flags & header_flag::quantised;
       const std::size_t quan_bytes = quantised ? 75 : 0;
-      if (shared_bytes < quan_bytes || (shared_bytes > quan_bytes) != static_cast<bool> (shared.flags & 4))
+      if (shared_bytes < quan_bytes || (shared_bytes > quan_bytes) != static_cast<bool> (shared.flags & header_flag::attributes))
         throw Error (name + ": shared sections of " + std::to_string (shared_bytes) + " bytes do not match the flags");
       shared.quantisation.assign (data, data + quan_bytes);
       shared.channels.assign (data + quan_bytes, data + shared_bytes);
@@ -794,7 +792,7 @@ namespace pcl_sparse
     info.bbox_diagonal = index.bbox_diagonal;
     info.tolerance = index.tolerance;
     info.quantised = index.tolerance > 0.0;
-    info.range_coded = index.shared.flags & kFlagRangeCoded;
+    info.range_coded = index.shared.flags & header_flag::range_coded;
     info.file_bytes = size;
     const std::size_t count = index.entries.size ();
     info.num_tiles = count;
@@ -830,7 +828,7 @@ namespace pcl_sparse
     }
     const SharedModelFields& shared = index.shared;
     info.basis = basisDescription (shared.basis_kind, shared.basis_parameter);
-    info.has_vertices = shared.flags & 2;
+    info.has_vertices = shared.flags & header_flag::vertices;
     const std::uint64_t index_bytes = index.index_bytes - shared.quantisation.size () - shared.channels.size ();
     info.sections.push_back ({"TIDX", index_bytes, index_bytes});
     if (!shared.quantisation.empty ())

@@ -56,17 +56,18 @@ namespace pcl_sparse
     /// points, they do not move the surface; 4 bits = 1/15 of the largest extent (on spot, 6 bits cost
     /// 10 % more bytes for no measurable change of the Chamfer distance).
     int extent_bits = 4;
-    /// In quantised mode, keep at most this many footprint angles per patch (every 2nd, 4th, ... extent,
-    /// while the count stays a multiple) where footprint_refine_steps allows; 0 keeps all.
+    /// In quantised mode, every patch keeps this many footprint angles (every 2nd, 4th, ... extent, while the
+    /// count stays a multiple; the others only where footprint_refine_steps needs them); 0 keeps all.
     int max_footprint_angles = 8;
-    /// In quantised mode, a patch keeps twice, four times, ... as many angles (up to all) while the
-    /// footprint drawn from max_footprint_angles would stray more than this many extent steps
-    /// (the largest extent / (2^extent_bits - 1)) from its full one at some angle: footprints clipped at a
-    /// crease or an open border keep the angles that hold them there. 0: every patch keeps
-    /// max_footprint_angles. With 8 angles everywhere the default file added 4-201 % to the Chamfer distance
-    /// of the lossless model on the shared meshes (footprints clipped at borders and creases overshoot or cut
-    /// the surface between 8 rays); at 2 steps it adds at most 10 % on 23 of 25 (anchor-dense 28 %, fandisk
-    /// 21 %: their 4-bit extents), for 15-59 % more bytes; 3 steps: 22 of 25, 4-48 % (file_footprints.md).
+    /// In quantised mode, the angles between two kept ones are kept where the footprint drawn from those two
+    /// strays from the full one by more than this many extent steps (the largest extent / (2^extent_bits -
+    /// 1)) summed over the angles between them: the middle angle, then each half the same way
+    /// (footprint_coding.h). Footprints clipped at a crease or an open border keep their angles there and
+    /// only there. 0: every patch keeps max_footprint_angles. With 8 angles everywhere the default file added
+    /// 4-201 % to the Chamfer distance of the lossless model on the shared meshes (footprints clipped at
+    /// borders and creases overshoot or cut the surface between 8 rays); at 2 steps it adds at most 10 % on
+    /// 23 of 25 (anchor-dense 19 %, fandisk 14 %: their 4-bit extents), 0.2-9.3 % on the others
+    /// (file_footprints.md).
     double footprint_refine_steps = 2.0;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
     /// input vertices, docs/METHOD.md step 10). Off by default: decoding and resampling do not need them.
@@ -77,9 +78,10 @@ namespace pcl_sparse
     double attribute_tolerance = 0.5 / 255.0;
     /// Quantised mode: code the per-patch fields FRAM FOOT ATOM COEF (and AATM ACOF) with an adaptive range
     /// coder, each field with its own probabilities (docs/FORMAT.md, "Range-coded fields"), instead of zstd
-    /// over varints: 5-12 % smaller default files on the shared meshes (9-14 % while every footprint kept 8
-    /// angles, bench/results/format_entropy.md; the refined extents it codes about as small as zstd). false
-    /// writes the varint layout, which pcl_sparse builds from before the range coder can read.
+    /// over varints: 5-17 % smaller default files on 24 of the 25 shared meshes, 13-17 % on the smooth ones
+    /// (cheese-cgal's is 0.3 % larger: zstd finds its many alike footprints as repeats;
+    /// bench/results/format_entropy.md has the sections of an earlier layout). false writes the varint
+    /// layout (readable by builds since the adaptive footprints of 2026-12-01, as the range-coded one).
     bool range_coding = true;
     /// zstd level (1..22) of every section up to zstd_large_section bytes; 19 compresses well, at about
     /// 6 MB/s. 0 stores every section uncompressed (for inspection and the fuzzer's seed corpus).

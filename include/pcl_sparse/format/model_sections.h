@@ -19,10 +19,23 @@
 
 namespace pcl_sparse
 {
+  /// The header's flag bits (docs/FORMAT.md), the same in version-1 and tiled files.
+  namespace header_flag
+  {
+    constexpr std::uint16_t quantised = 1;
+    constexpr std::uint16_t vertices = 2;             ///< VERT present
+    constexpr std::uint16_t attributes = 4;           ///< ACHN, AATM, ACOF present
+    constexpr std::uint16_t range_coded = 8;          ///< quantised: FRAM FOOT ATOM COEF AATM ACOF range-coded
+    /// Quantised: FOOT codes coarse angles and the others only where needed (footprint_coding.h); files
+    /// without it (written before 2026-12-01) keep every stride-th angle of a footprint.
+    constexpr std::uint16_t adaptive_footprints = 16;
+    constexpr std::uint16_t known = 31;               ///< every flag this build reads
+  } // namespace header_flag
+
   /// What the parts of a model share.
   struct SharedModelFields
   {
-    std::uint16_t flags = 0;                 ///< as the version-1 header: bit 0 quantised, 1 vertices, 2 attributes
+    std::uint16_t flags = 0;                 ///< as the version-1 header (header_flag)
     std::uint8_t basis_kind = 0;             ///< 1 the paper's cosines, 2 half-period cosines, 3 those and the quadric
     std::uint16_t basis_parameter = 0;       ///< n, frequencies per axis
     std::uint64_t num_input_vertices = 0;    ///< of the whole input

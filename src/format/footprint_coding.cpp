@@ -1,0 +1,284 @@
+#include <pcl_sparse/format/footprint_coding.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    constexpr std::uint32_t kMaxAngles = 4096;
+    constexpr unsigned kMaxStrideLog2 = 12;
+
+    unsigned
+    levelMask (const FootprintLevels& levels)
+    {
+      return (1u << levels.bits) - 1u;
+    }
+
+    unsigned
+    levelOf (float extent, const FootprintLevels& levels)
+    {
+      return std::min (levelMask (levels), static_cast<unsigned> (std::lround (static_cast<double> (extent) / levels.step)));
+    }
+
+    /// The extent a reader draws at \a w in [0, 1] of the way between levels \a a and \a b.
+    double
+    interpolatedExtent (unsigned a, unsigned b, double w, const FootprintLevels& levels)
+    {
+      return ((1.0 - w) * static_cast<double> (a) + w * static_cast<double> (b)) * levels.step;
+    }
+
+    /// What the middle level of an interval is coded against.
+    unsigned
+    midpointPrediction (unsigned a, unsigned b)
+    {
+      return (a + b + 1) / 2;
+    }
+
+    int
+    depthContext (int depth)
+    {
+      return std::min (depth, FootprintContexts::depth_contexts - 1);
+    }
+
+    // ---- writing: the symbols in their order, to either layout ------------------------------------
+
+    struct ByteFootprintSymbols
+    {
+      ByteWriter& out;
+      void angles (std::uint32_t k) { out.putVarint (k); }
+      void strideLog2 (unsigned s) { out.putU8 (static_cast<std::uint8_t> (s)); }
+      void level (bool first, unsigned delta) { (void) first; out.putU8 (static_cast<std::uint8_t> (delta)); }
+      void split (int depth, bool yes) { (void) depth; out.putU8 (yes ? 1 : 0); }
+      void residual (int depth, unsigned r) { (void) depth; out.putU8 (static_cast<std::uint8_t> (r)); }
+    };
+
+    struct RangeFootprintSymbols
+    {
+      RangeEncoder& out;
+      FootprintContexts& c;
+      void angles (std::uint32_t k) { c.angles.put (out, k); }
+      void strideLog2 (unsigned s) { c.stride_log2.put (out, s); }
+      void level (bool first, unsigned delta) { (first ? c.first_level : c.level_delta).put (out, delta); }
+      void split (int depth, bool yes) { c.split[depthContext (depth)].put (out, yes ? 1u : 0u); }
+      void residual (int depth, unsigned r) { c.residual[depthContext (depth)].put (out, r); }
+    };
+
+    /// How far the extents strictly inside [a, a + len) (angles mod K) lie from the line between the levels at
+    /// its ends, summed over the angles: the area (steps x angles) between the border drawn and the true one.
+    /// 0 where more angles could not change the drawing: every level inside already is the line's, rounded
+    /// (a round footprint whose extent lies between two levels).
+    double
+    intervalDeviation (const std::vector<float>& extent, const std::vector<unsigned>& level, std::size_t a,
+                       std::size_t len, const FootprintLevels& levels)
+    {
+      const std::size_t b = (a + len) % extent.size ();
+      double deviation = 0.0;
+      bool improvable = false;
+      for (std::size_t j = 1; j < len; ++j)
+      {
+        const double drawn = interpolatedExtent (level[a], level[b], static_cast<double> (j) / static_cast<double> (len), levels);
+        deviation += std::abs (drawn - static_cast<double> (extent[a + j]));
+        improvable = improvable || levelOf (extent[a + j], levels) != levelOf (static_cast<float> (drawn), levels);
+      }
+      return improvable ? deviation : 0.0;
+    }
+
+    /// Codes the splits of [a, a + len); whether any was split.
+    template <typename Symbols>
+    bool
+    putInterval (Symbols& symbols, const std::vector<float>& extent, std::vector<unsigned>& level, std::size_t a,
+                 std::size_t len, int depth, const FootprintLevels& levels, const FootprintRefinement& refinement)
+    {
+      if (len < 2)
+        return false;
+      const bool split = refinement.max_deviation_steps > 0.0 &&
+                         intervalDeviation (extent, level, a, len, levels) > refinement.max_deviation_steps * levels.step;
+      symbols.split (depth, split);
+      if (!split)
+        return false;
+      const std::size_t half = len / 2, middle = a + half, b = (a + len) % extent.size ();
+      level[middle] = levelOf (extent[middle], levels);
+      symbols.residual (depth, (level[middle] - midpointPrediction (level[a], level[b])) & levelMask (levels));
+      putInterval (symbols, extent, level, a, half, depth + 1, levels, refinement);
+      putInterval (symbols, extent, level, middle, half, depth + 1, levels, refinement);
+      return true;
+    }
+
+    /// \return the number of angles a reader gets
+    template <typename Symbols>
+    std::size_t
+    putFootprintSymbols (Symbols& symbols, const PatchFootprint& footprint, const FootprintLevels& levels,
+                         const FootprintRefinement& refinement)
+    {
+      const std::vector<float>& extent = footprint.extent;
+      const std::size_t k = extent.size ();
+      std::size_t stride = 1;
+      unsigned stride_log2 = 0;
+      while (refinement.max_coarse_angles > 0 && k / stride > static_cast<std::size_t> (refinement.max_coarse_angles) &&
+             k % (2 * stride) == 0)
+      {
+        stride *= 2;
+        ++stride_log2;
+      }
+      symbols.angles (static_cast<std::uint32_t> (k));
+      symbols.strideLog2 (stride_log2);
+      std::vector<unsigned> level (k, 0);
+      unsigned previous = 0;
+      for (std::size_t a = 0; a < k; a += stride)
+      {
+        level[a] = levelOf (extent[a], levels);
+        symbols.level (a == 0, (level[a] - previous) & levelMask (levels));
+        previous = level[a];
+      }
+      bool refined = false;
+      for (std::size_t a = 0; a < k; a += stride)
+        refined = putInterval (symbols, extent, level, a, stride, 0, levels, refinement) || refined;
+      return refined ? k : k / stride;
+    }
+
+    // ---- reading ------------------------------------------------------------------------------------
+
+    struct ByteFootprintSource
+    {
+      ByteReader& in;
+      unsigned mask;
+      [[noreturn]] void fail (const std::string& message) const { in.fail (message); }
+      std::uint32_t angles ()
+      {
+        // Not bounded by the bytes left: interpolated angles take none.
+        return static_cast<std::uint32_t> (in.getCount ("footprint angles", kMaxAngles));
+      }
+      unsigned strideLog2 () { return in.getU8 ("footprint stride"); }
+      unsigned level (bool) { return byteAtMost (mask, "extent level"); }
+      bool split (int) { return byteAtMost (1, "footprint split") != 0; }
+      unsigned residual (int) { return byteAtMost (mask, "extent level"); }
+      unsigned
+      byteAtMost (unsigned max, const char* field)
+      {
+        const unsigned v = in.getU8 (field);
+        if (v > max)
+          in.fail (std::string (field) + " out of range");
+        return v;
+      }
+    };
+
+    struct RangeFootprintSource
+    {
+      RangeDecoder& in;
+      FootprintContexts& c;
+      [[noreturn]] void fail (const std::string& message) const { in.fail (message); }
+      std::uint32_t angles () { return c.angles.get (in); }
+      unsigned strideLog2 () { return c.stride_log2.get (in); }
+      unsigned level (bool first) { return (first ? c.first_level : c.level_delta).get (in); }
+      bool split (int depth) { return c.split[depthContext (depth)].get (in) != 0; }
+      unsigned residual (int depth) { return c.residual[depthContext (depth)].get (in); }
+    };
+
+    /// Reads the splits of [a, a + len), marking the coded angles in \a coded; whether any was split.
+    template <typename Source>
+    bool
+    getInterval (Source& source, std::vector<unsigned>& level, std::vector<char>& coded, std::size_t a, std::size_t len,
+                 int depth, unsigned mask)
+    {
+      if (len < 2 || !source.split (depth))
+        return false;
+      const std::size_t half = len / 2, middle = a + half, b = (a + len) % level.size ();
+      level[middle] = (midpointPrediction (level[a], level[b]) + source.residual (depth)) & mask;
+      coded[middle] = 1;
+      getInterval (source, level, coded, a, half, depth + 1, mask);
+      getInterval (source, level, coded, middle, half, depth + 1, mask);
+      return true;
+    }
+
+    template <typename Source>
+    void
+    getFootprintSymbols (Source& source, const FootprintLevels& levels, std::size_t patch, PatchFootprint& footprint)
+    {
+      const std::string name = "patch " + std::to_string (patch);
+      const std::uint32_t k = source.angles ();
+      if (k > kMaxAngles)
+        source.fail (name + " has " + std::to_string (k) + " footprint angles, more than " + std::to_string (kMaxAngles));
+      const unsigned stride_log2 = source.strideLog2 ();
+      const std::size_t stride = std::size_t{1} << std::min (stride_log2, kMaxStrideLog2);
+      if (stride_log2 > kMaxStrideLog2 || k % stride != 0)
+        source.fail (name + " footprint stride 2^" + std::to_string (stride_log2) + " does not divide its " +
+                     std::to_string (k) + " angles");
+      if (!std::isfinite (static_cast<float> (levelMask (levels) * levels.step)))
+        source.fail (name + " extent is not finite");
+      const unsigned mask = levelMask (levels);
+      std::vector<unsigned> level (k, 0);
+      std::vector<char> coded (k, 0);
+      unsigned previous = 0;
+      for (std::size_t a = 0; a < k; a += stride)
+      {
+        previous = (previous + source.level (a == 0)) & mask;
+        level[a] = previous;
+        coded[a] = 1;
+      }
+      bool refined = false;
+      for (std::size_t a = 0; a < k; a += stride)
+        refined = getInterval (source, level, coded, a, stride, 0, mask) || refined;
+
+      if (!refined)  // the coarse angles draw it
+      {
+        footprint.extent.resize (k / std::max<std::size_t> (stride, 1));
+        for (std::size_t i = 0; i < footprint.extent.size (); ++i)
+          footprint.extent[i] = static_cast<float> (level[i * stride] * levels.step);
+        return;
+      }
+      // Every angle, linear between the coded ones (what resampling draws from them).
+      footprint.extent.resize (k);
+      for (std::size_t a = 0; a < k;)
+      {
+        std::size_t b = a + 1;
+        while (b < k && !coded[b])
+          ++b;
+        const std::size_t len = b - a;
+        for (std::size_t j = 0; j < len; ++j)
+          footprint.extent[a + j] = static_cast<float> (
+            interpolatedExtent (level[a], level[b % k], static_cast<double> (j) / static_cast<double> (len), levels));
+        a = b;
+      }
+    }
+  } // namespace
+
+  FootprintContexts::FootprintContexts (int bits)
+    : first_level (bits), level_delta (bits), split (depth_contexts, BitTreeModel (1)),
+      residual (depth_contexts, BitTreeModel (bits))
+  {}
+
+  std::size_t
+  putFootprint (ByteWriter& out, const PatchFootprint& footprint, const FootprintLevels& levels,
+                const FootprintRefinement& refinement)
+  {
+    ByteFootprintSymbols symbols{out};
+    return putFootprintSymbols (symbols, footprint, levels, refinement);
+  }
+
+  std::size_t
+  putFootprint (RangeEncoder& out, FootprintContexts& contexts, const PatchFootprint& footprint,
+                const FootprintLevels& levels, const FootprintRefinement& refinement)
+  {
+    RangeFootprintSymbols symbols{out, contexts};
+    return putFootprintSymbols (symbols, footprint, levels, refinement);
+  }
+
+  void
+  getFootprint (ByteReader& in, const FootprintLevels& levels, std::size_t patch, PatchFootprint& footprint)
+  {
+    ByteFootprintSource source{in, levelMask (levels)};
+    getFootprintSymbols (source, levels, patch, footprint);
+  }
+
+  void
+  getFootprint (RangeDecoder& in, FootprintContexts& contexts, const FootprintLevels& levels, std::size_t patch,
+                PatchFootprint& footprint)
+  {
+    RangeFootprintSource source{in, contexts};
+    getFootprintSymbols (source, levels, patch, footprint);
+  }
+} // namespace pcl_sparse

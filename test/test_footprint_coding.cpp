@@ -1,0 +1,233 @@
+/// Quantised footprints (format/footprint_coding.h): coarse angles where they draw the footprint, the others
+/// only where a clipped border needs them, both layouts alike, damaged symbols refused; and files written
+/// before the adaptive footprints (every stride-th angle of a patch) still read as they did.
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/footprint_coding.h>
+#include <pcl_sparse/format/model_file.h>
+
+#include "test_format_models.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  constexpr int kAngles = 64;
+  const FootprintLevels kLevels{1.0 / 15.0, 4};  // 4-bit levels of extents up to 1
+
+  PatchFootprint
+  roundFootprint (float extent)
+  {
+    PatchFootprint footprint;
+    footprint.extent.assign (kAngles, extent);
+    return footprint;
+  }
+
+  /// A round footprint of radius 0.9 cut by the line at distance \a d from the centre, facing angle 0
+  /// (polar: r = d / cos(theta) where that is shorter): a patch at a crease or an open border.
+  PatchFootprint
+  clippedFootprint (double d)
+  {
+    PatchFootprint footprint;
+    for (int k = 0; k < kAngles; ++k)
+    {
+      const double c = std::cos (2.0 * M_PI * k / kAngles);
+      footprint.extent.push_back (static_cast<float> (c > d / 0.9 ? d / c : 0.9));
+    }
+    return footprint;
+  }
+
+  PatchFootprint
+  throughBytes (const PatchFootprint& footprint, const FootprintRefinement& refinement, std::size_t* bytes = nullptr)
+  {
+    ByteWriter out;
+    putFootprint (out, footprint, kLevels, refinement);
+    if (bytes)
+      *bytes = out.size ();
+    ByteReader in (out.bytes ().data (), out.size (), "FOOT");
+    PatchFootprint decoded;
+    getFootprint (in, kLevels, 0, decoded);
+    EXPECT_TRUE (in.atEnd ());
+    return decoded;
+  }
+
+  PatchFootprint
+  throughRangeCoder (const PatchFootprint& footprint, const FootprintRefinement& refinement)
+  {
+    RangeEncoder out;
+    FootprintContexts write_contexts (kLevels.bits);
+    putFootprint (out, write_contexts, footprint, kLevels, refinement);
+    const std::vector<std::uint8_t> bytes = out.finish ();
+    RangeDecoder in (bytes.data (), bytes.size (), "FOOT");
+    FootprintContexts read_contexts (kLevels.bits);
+    PatchFootprint decoded;
+    getFootprint (in, read_contexts, kLevels, 0, decoded);
+    in.expectEnd ();
+    return decoded;
+  }
+
+  /// The largest distance between the footprint \a decoded draws (linear between its angles) and
+  /// \a original's extents, at \a original's angles.
+  double
+  largestDeviation (const PatchFootprint& original, const PatchFootprint& decoded)
+  {
+    double worst = 0.0;
+    for (std::size_t k = 0; k < original.extent.size (); ++k)
+      worst = std::max (worst, std::abs (decoded.extentAt (2.0 * M_PI * k / original.extent.size ()) - original.extent[k]));
+    return worst;
+  }
+} // namespace
+
+TEST (FootprintCoding, RoundFootprintKeepsItsCoarseAngles)
+{
+  const PatchFootprint round = roundFootprint (0.83f);
+  std::size_t bytes = 0;
+  const PatchFootprint decoded = throughBytes (round, FootprintRefinement{}, &bytes);
+  ASSERT_EQ (decoded.extent.size (), 8u);
+  for (float e : decoded.extent)
+    EXPECT_FLOAT_EQ (e, static_cast<float> (12 * kLevels.step));  // 0.83 * 15 = 12.45: level 12
+  EXPECT_EQ (bytes, 1u + 1u + 8u + 8u);  // angles, stride, 8 levels, 8 "not split"
+}
+
+TEST (FootprintCoding, ClippedBorderKeepsItsAnglesThereOnly)
+{
+  const PatchFootprint clipped = clippedFootprint (0.35);
+  for (double steps : {2.0, 1.0, 0.5})
+  {
+    const FootprintRefinement refinement{8, steps};
+    std::size_t bytes = 0;
+    const PatchFootprint decoded = throughBytes (clipped, refinement, &bytes);
+    ASSERT_EQ (decoded.extent.size (), static_cast<std::size_t> (kAngles));
+    // Within the bound plus the rounding of the interval's ends.
+    EXPECT_LE (largestDeviation (clipped, decoded), (steps + 0.5) * kLevels.step + 1e-6) << steps;
+    // The uncut part (about 60 % of the angles) is drawn from its coarse angles: at most two thirds of the
+    // bytes of a level for every angle (66; 30-42 here; splitting every interval would take 130).
+    EXPECT_LE (bytes, 44u) << steps;
+    const PatchFootprint ranged = throughRangeCoder (clipped, refinement);
+    EXPECT_EQ (ranged.extent, decoded.extent) << "the two layouts code the same footprint";
+  }
+  // Coarse angles alone stray far from the cut (what the refinement is for).
+  const PatchFootprint coarse = throughBytes (clipped, FootprintRefinement{8, 0.0});
+  ASSERT_EQ (coarse.extent.size (), 8u);
+  EXPECT_GT (largestDeviation (clipped, coarse), 3.0 * kLevels.step);
+}
+
+TEST (FootprintCoding, EveryAngleKeptWithoutACoarseBound)
+{
+  const PatchFootprint clipped = clippedFootprint (0.5);
+  const PatchFootprint decoded = throughRangeCoder (clipped, FootprintRefinement{0, 2.0});
+  ASSERT_EQ (decoded.extent.size (), static_cast<std::size_t> (kAngles));
+  EXPECT_LE (largestDeviation (clipped, decoded), 0.5 * kLevels.step + 1e-6);
+}
+
+TEST (FootprintCoding, DamagedSymbolsAreRefused)
+{
+  ByteWriter out;
+  putFootprint (out, clippedFootprint (0.35), kLevels, FootprintRefinement{});
+  const std::vector<std::uint8_t> good = out.bytes ();
+  auto expectError = [] (std::vector<std::uint8_t> bytes, const std::string& text) {
+    ByteReader in (bytes.data (), bytes.size (), "FOOT");
+    PatchFootprint decoded;
+    try
+    {
+      getFootprint (in, kLevels, 3, decoded);
+      ADD_FAILURE () << "no error, expected one containing '" << text << "'";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find (text), std::string::npos) << e.what ();
+    }
+  };
+  auto bytes = good;
+  bytes[1] = 7;  // stride 128 does not divide 64 angles
+  expectError (bytes, "does not divide");
+  bytes = good;
+  bytes[2] = 16;  // a level of 5 bits
+  expectError (bytes, "extent level out of range");
+  bytes = good;
+  bytes[10] = 2;  // the first interval's split is a bit
+  expectError (bytes, "footprint split out of range");
+  bytes = good;
+  bytes.resize (bytes.size () - 1);
+  expectError (bytes, "FOOT");
+  bytes = {0x81, 0x40, 0};  // 8193 angles
+  expectError (bytes, "footprint angles");
+}
+
+// Files written before the adaptive footprints (commit 24e4214, test/data/uniform_footprints_*.psm): the model
+// below at tolerance 1e-3, range-coded and in the varint layout; every patch kept every stride-th of its 64
+// angles (8 for the round ones, all 64 for the random ones). makeSyntheticModel's uniform reals are those of
+// libstdc++, with which the files were written.
+TEST (FootprintCoding, FilesOfUniformFootprintsReadAsBefore)
+{
+  SparseSurfaceModel model = test::makeSyntheticModel (24, 7, false, kAngles);
+  for (std::size_t p = 0; p < model.patches.size (); p += 2)
+    model.patches[p].footprint = roundFootprint (0.8f);
+  float extent_max = 0.0f;
+  for (const PatchCode& patch : model.patches)
+    extent_max = std::max (extent_max, *std::max_element (patch.footprint.extent.begin (), patch.footprint.extent.end ()));
+  const double step = extent_max / 15.0;
+  ModelWriteOptions options;
+  options.tolerance = 1e-3;
+  const std::vector<std::uint8_t> bytes = encodeModel (model, options);
+  const SparseSurfaceModel now = decodeModel (bytes.data (), bytes.size (), "now");
+  for (const char* layout : {"range", "varint"})
+  {
+    const std::string path = std::string (PCL_SPARSE_SOURCE_DIR) + "/test/data/uniform_footprints_" + layout + ".psm";
+    const SparseSurfaceModel old = loadModel (path);
+    ASSERT_EQ (old.patches.size (), model.patches.size ()) << layout;
+    for (std::size_t p = 0; p < model.patches.size (); ++p)
+    {
+      const PatchCode &a = old.patches[p], &b = now.patches[p];
+      EXPECT_EQ (a.origin, b.origin) << layout << " patch " << p;  // only the footprints are coded otherwise
+      EXPECT_EQ (a.frame, b.frame);
+      EXPECT_EQ (a.radius, b.radius);
+      EXPECT_EQ (a.atoms, b.atoms);
+      EXPECT_EQ (a.coefficients, b.coefficients);
+      const std::vector<float>& original = model.patches[p].footprint.extent;
+      const std::size_t k = a.footprint.extent.size ();
+      ASSERT_EQ (k, p % 2 == 0 ? 8u : 64u) << layout << " patch " << p;
+      for (std::size_t i = 0; i < k; ++i)
+        EXPECT_NEAR (a.footprint.extent[i], std::round (original[i * (kAngles / k)] / step) * step, 1e-6);
+    }
+  }
+}
+
+// A few bits of FOOT can stand for thousands of interpolated angles; a reader holds a run's footprints to 1 KiB
+// of extents a byte of FOOT (over a 64k-angle allowance), and the writer refuses a model it would not read back.
+TEST (FootprintCoding, FootprintsOfThousandsOfAnglesFromAFewAreRefused)
+{
+  SparseSurfaceModel model = test::makeSyntheticModel (40, 3, false, 8);
+  for (PatchCode& patch : model.patches)
+  {
+    patch.footprint.extent.assign (4096, 0.8f);
+    patch.footprint.extent[1] = 0.1f;  // one notch: the first interval splits down to it, the rest stay coarse
+  }
+  ModelWriteOptions options;
+  options.tolerance = 1e-3;
+  try
+  {
+    encodeModel (model, options);
+    ADD_FAILURE () << "no error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("more than a reader accepts"), std::string::npos) << e.what ();
+  }
+  // Fewer patches of it fit the allowance and read back: every one with its 4096 angles, the notch kept.
+  model.patches.resize (8);
+  const std::vector<std::uint8_t> bytes = encodeModel (model, options);
+  const SparseSurfaceModel decoded = decodeModel (bytes.data (), bytes.size (), "notched");
+  for (const PatchCode& patch : decoded.patches)
+  {
+    ASSERT_EQ (patch.footprint.extent.size (), 4096u);
+    EXPECT_LT (patch.footprint.extent[1], 0.2f);
+    EXPECT_GT (patch.footprint.extent[2048], 0.7f);
+  }
+}
