@@ -89,7 +89,7 @@ namespace
       {"", "of the lossless model's Chamfer distance on 23 of 25 shared meshes; 0: 8 everywhere, smaller,"},
       {"", "up to 3x as far)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
-      {"--varint-layout", "quantised model file: zstd over varints instead of range-coded fields (up to 21 %"},
+      {"--varint-layout", "quantised model file: zstd over varints instead of range-coded fields (up to 22 %"},
       {"", "larger)"},
       {"-tiles N", "tile the input: N tiles along the longest side of its bounding box, each encoded apart"},
       {"", "(docs/TILES.md); -o then writes a tiled model, which -box decodes region by region"},

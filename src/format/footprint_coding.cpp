@@ -38,10 +38,14 @@ namespace pcl_sparse
       return (a + b + 1) / 2;
     }
 
+    /// The models of an interval's split and middle level: by its depth and by how far apart its ends' levels
+    /// are (0, 1, 2-3, more: a steep stretch of border is split more often, and its middles stray more).
     int
-    depthContext (int depth)
+    intervalContext (int depth, unsigned a, unsigned b)
     {
-      return std::min (depth, FootprintContexts::depth_contexts - 1);
+      const unsigned apart = a > b ? a - b : b - a;
+      const int ends = apart == 0 ? 0 : apart == 1 ? 1 : apart <= 3 ? 2 : 3;
+      return std::min (depth, FootprintContexts::depth_contexts - 1) * FootprintContexts::end_contexts + ends;
     }
 
     // ---- writing: the symbols in their order, to either layout ------------------------------------
@@ -52,8 +56,8 @@ namespace pcl_sparse
       void angles (std::uint32_t k) { out.putVarint (k); }
       void strideLog2 (unsigned s) { out.putU8 (static_cast<std::uint8_t> (s)); }
       void level (bool first, unsigned delta) { (void) first; out.putU8 (static_cast<std::uint8_t> (delta)); }
-      void split (int depth, bool yes) { (void) depth; out.putU8 (yes ? 1 : 0); }
-      void residual (int depth, unsigned r) { (void) depth; out.putU8 (static_cast<std::uint8_t> (r)); }
+      void split (int, bool yes) { out.putU8 (yes ? 1 : 0); }
+      void residual (int, unsigned r) { out.putU8 (static_cast<std::uint8_t> (r)); }
     };
 
     struct RangeFootprintSymbols
@@ -63,8 +67,8 @@ namespace pcl_sparse
       void angles (std::uint32_t k) { c.angles.put (out, k); }
       void strideLog2 (unsigned s) { c.stride_log2.put (out, s); }
       void level (bool first, unsigned delta) { (first ? c.first_level : c.level_delta).put (out, delta); }
-      void split (int depth, bool yes) { c.split[depthContext (depth)].put (out, yes ? 1u : 0u); }
-      void residual (int depth, unsigned r) { c.residual[depthContext (depth)].put (out, r); }
+      void split (int context, bool yes) { c.split[context].put (out, yes ? 1u : 0u); }
+      void residual (int context, unsigned r) { c.residual[context].put (out, r); }
     };
 
     /// How far the extents strictly inside [a, a + len) (angles mod K) lie from the line between the levels at
@@ -97,12 +101,13 @@ namespace pcl_sparse
         return false;
       const bool split = refinement.max_deviation_steps > 0.0 &&
                          intervalDeviation (extent, level, a, len, levels) > refinement.max_deviation_steps * levels.step;
-      symbols.split (depth, split);
+      const std::size_t half = len / 2, middle = a + half, b = (a + len) % extent.size ();
+      const int context = intervalContext (depth, level[a], level[b]);
+      symbols.split (context, split);
       if (!split)
         return false;
-      const std::size_t half = len / 2, middle = a + half, b = (a + len) % extent.size ();
       level[middle] = levelOf (extent[middle], levels);
-      symbols.residual (depth, (level[middle] - midpointPrediction (level[a], level[b])) & levelMask (levels));
+      symbols.residual (context, (level[middle] - midpointPrediction (level[a], level[b])) & levelMask (levels));
       putInterval (symbols, extent, level, a, half, depth + 1, levels, refinement);
       putInterval (symbols, extent, level, middle, half, depth + 1, levels, refinement);
       return true;
@@ -174,8 +179,8 @@ namespace pcl_sparse
       std::uint32_t angles () { return c.angles.get (in); }
       unsigned strideLog2 () { return c.stride_log2.get (in); }
       unsigned level (bool first) { return (first ? c.first_level : c.level_delta).get (in); }
-      bool split (int depth) { return c.split[depthContext (depth)].get (in) != 0; }
-      unsigned residual (int depth) { return c.residual[depthContext (depth)].get (in); }
+      bool split (int context) { return c.split[context].get (in) != 0; }
+      unsigned residual (int context) { return c.residual[context].get (in); }
     };
 
     /// Reads the splits of [a, a + len), marking the coded angles in \a coded; whether any was split.
@@ -184,10 +189,13 @@ namespace pcl_sparse
     getInterval (Source& source, std::vector<unsigned>& level, std::vector<char>& coded, std::size_t a, std::size_t len,
                  int depth, unsigned mask)
     {
-      if (len < 2 || !source.split (depth))
+      if (len < 2)
         return false;
       const std::size_t half = len / 2, middle = a + half, b = (a + len) % level.size ();
-      level[middle] = (midpointPrediction (level[a], level[b]) + source.residual (depth)) & mask;
+      const int context = intervalContext (depth, level[a], level[b]);
+      if (!source.split (context))
+        return false;
+      level[middle] = (midpointPrediction (level[a], level[b]) + source.residual (context)) & mask;
       coded[middle] = 1;
       getInterval (source, level, coded, a, half, depth + 1, mask);
       getInterval (source, level, coded, middle, half, depth + 1, mask);
@@ -247,8 +255,8 @@ namespace pcl_sparse
   } // namespace
 
   FootprintContexts::FootprintContexts (int bits)
-    : first_level (bits), level_delta (bits), split (depth_contexts, BitTreeModel (1)),
-      residual (depth_contexts, BitTreeModel (bits))
+    : first_level (bits), level_delta (bits), split (depth_contexts * end_contexts, BitTreeModel (1)),
+      residual (depth_contexts * end_contexts, BitTreeModel (bits))
   {}
 
   std::size_t

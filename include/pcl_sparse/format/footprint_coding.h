@@ -44,13 +44,15 @@ namespace pcl_sparse
 
     /// Interval depths from this one on share the last models.
     static constexpr int depth_contexts = 4;
+    /// Classes of how far apart an interval's end levels are: 0, 1, 2-3, more.
+    static constexpr int end_contexts = 4;
 
     BitTreeModel angles{13};               ///< the angle count (<= 4096)
     BitTreeModel stride_log2{4};           ///< log2 of the coarse stride
     BitTreeModel first_level;              ///< the first coarse level
     BitTreeModel level_delta;              ///< the next coarse levels, as circular deltas
-    std::vector<BitTreeModel> split;       ///< per depth: whether the interval is split
-    std::vector<BitTreeModel> residual;    ///< per depth: the middle level minus the ends' mean, circular
+    std::vector<BitTreeModel> split;       ///< per depth and end class: whether the interval is split
+    std::vector<BitTreeModel> residual;    ///< per depth and end class: the middle level minus the ends' mean, circular
   };
 
   /// Writes \a footprint's symbols in the varint layout (one byte each, the count as a varint).
