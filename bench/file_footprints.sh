@@ -3,7 +3,7 @@
 # the Chamfer distance): for every shared mesh, the Chamfer distance of its lossless model, then of its model
 # saved at the default file tolerance with footprints of 8 angles everywhere (footprint_refine_steps 0) and
 # refined where they stray by more than R extent steps (R 2, the default; R 1); bytes and Chamfer of each.
-# The runs before (uniform refinement) stay below the "## Earlier runs" line of the results.
+# Hand-written notes and the runs before (uniform refinement) stay below the "## Notes" line of the results.
 #   bench/file_footprints.sh [BUILD_DIR]   (default: build) -> bench/results/file_footprints.md
 set -euo pipefail
 # shellcheck source=bench/bench_setup.sh
@@ -44,9 +44,9 @@ for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,p
   echo "$row |" >> "$out.tmp"
   echo "$name done" >&2
 done
-# Keep the earlier runs (hand-written notes and tables) below the marker.
-if [ -f "$out" ] && grep -q '^## Earlier runs' "$out"; then
-  { echo; sed -n '/^## Earlier runs/,$p' "$out"; } >> "$out.tmp"
+# Keep the hand-written notes and earlier runs below the marker.
+if [ -f "$out" ] && grep -q '^## Notes' "$out"; then
+  { echo; sed -n '/^## Notes/,$p' "$out"; } >> "$out.tmp"
 fi
 mv "$out.tmp" "$out"
 echo "written: $out"
