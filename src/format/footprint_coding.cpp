@@ -55,7 +55,7 @@ namespace pcl_sparse
       ByteWriter& out;
       void angles (std::uint32_t k) { out.putVarint (k); }
       void strideLog2 (unsigned s) { out.putU8 (static_cast<std::uint8_t> (s)); }
-      void level (bool first, unsigned delta) { (void) first; out.putU8 (static_cast<std::uint8_t> (delta)); }
+      void level (bool, unsigned delta) { out.putU8 (static_cast<std::uint8_t> (delta)); }
       void split (int, bool yes) { out.putU8 (yes ? 1 : 0); }
       void residual (int, unsigned r) { out.putU8 (static_cast<std::uint8_t> (r)); }
     };
@@ -233,7 +233,7 @@ namespace pcl_sparse
 
       if (!refined)  // the coarse angles draw it
       {
-        footprint.extent.resize (k / std::max<std::size_t> (stride, 1));
+        footprint.extent.resize (k / stride);
         for (std::size_t i = 0; i < footprint.extent.size (); ++i)
           footprint.extent[i] = static_cast<float> (level[i * stride] * levels.step);
         return;
