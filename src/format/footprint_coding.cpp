@@ -9,7 +9,6 @@ namespace pcl_sparse
 {
   namespace
   {
-    constexpr std::uint32_t kMaxAngles = 4096;
     constexpr unsigned kMaxStrideLog2 = 12;
 
     unsigned
@@ -155,7 +154,7 @@ namespace pcl_sparse
       std::uint32_t angles ()
       {
         // Not bounded by the bytes left: interpolated angles take none.
-        return static_cast<std::uint32_t> (in.getCount ("footprint angles", kMaxAngles));
+        return static_cast<std::uint32_t> (in.getCount ("footprint angles", max_file_footprint_angles));
       }
       unsigned strideLog2 () { return in.getU8 ("footprint stride"); }
       unsigned level (bool) { return byteAtMost (mask, "extent level"); }
@@ -208,8 +207,9 @@ namespace pcl_sparse
     {
       const std::string name = "patch " + std::to_string (patch);
       const std::uint32_t k = source.angles ();
-      if (k > kMaxAngles)
-        source.fail (name + " has " + std::to_string (k) + " footprint angles, more than " + std::to_string (kMaxAngles));
+      if (k > max_file_footprint_angles)
+        source.fail (name + " has " + std::to_string (k) + " footprint angles, more than " +
+                     std::to_string (max_file_footprint_angles));
       const unsigned stride_log2 = source.strideLog2 ();
       const std::size_t stride = std::size_t{1} << std::min (stride_log2, kMaxStrideLog2);
       if (stride_log2 > kMaxStrideLog2 || k % stride != 0)

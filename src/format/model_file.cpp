@@ -45,7 +45,7 @@ namespace pcl_sparse
     constexpr std::uint8_t kCodecStored = 0;
     constexpr std::uint8_t kCodecZstd = 1;
     constexpr std::uint64_t kMaxPatches = std::numeric_limits<std::int32_t>::max ();
-    constexpr std::uint64_t kMaxFootprintAngles = 4096;
+    constexpr std::uint64_t kMaxFootprintAngles = max_file_footprint_angles;
     // A run's footprints may hold at most kFootprintAnglesAllowance + kFootprintAnglesPerByte x (FOOT bytes)
     // angles in all (1 KiB of extents a byte; default files of the shared meshes hold 4-7 a byte).
     constexpr std::size_t kFootprintAnglesAllowance = 65536;
@@ -448,6 +448,7 @@ namespace pcl_sparse
       ByteWriter frame, foot, atom, coef;  // the varint layout
       RangeEncoder coded_frame, coded_foot, coded_atom, coded_coef;
       PatchFieldContexts contexts (q.extent_bits, frequencies, monomials);
+      const FootprintRefinement refinement{options.max_footprint_angles, options.footprint_refine_steps};
       std::size_t angles = 0;  // the footprints' angles as a reader gets them
       for (std::size_t k = 0; k < count; ++k)
       {
@@ -457,7 +458,6 @@ namespace pcl_sparse
         PatchCode decoded;
         radii[k] = quantiseRadius (patch.radius, q);
         decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[k]) * q.log_radius_step);
-        const FootprintRefinement refinement{options.max_footprint_angles, options.footprint_refine_steps};
         if (options.range_coding)
         {
           angles += putFootprint (coded_foot, contexts.footprint, patch.footprint, q.footprintLevels (), refinement);

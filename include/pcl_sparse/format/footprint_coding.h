@@ -12,10 +12,14 @@
 #include <pcl_sparse/model/sparse_surface_model.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace pcl_sparse
 {
+  /// The most angles a footprint in a model file may have (docs/FORMAT.md).
+  constexpr std::uint32_t max_file_footprint_angles = 4096;
+
   /// The levels of a file's extents: extent = level * step, levels on \a bits bits.
   struct FootprintLevels
   {
