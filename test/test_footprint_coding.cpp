@@ -72,16 +72,7 @@ namespace
     return decoded;
   }
 
-  /// The largest distance between the footprint \a decoded draws (linear between its angles) and
-  /// \a original's extents, at \a original's angles.
-  double
-  largestDeviation (const PatchFootprint& original, const PatchFootprint& decoded)
-  {
-    double worst = 0.0;
-    for (std::size_t k = 0; k < original.extent.size (); ++k)
-      worst = std::max (worst, std::abs (decoded.extentAt (2.0 * M_PI * k / original.extent.size ()) - original.extent[k]));
-    return worst;
-  }
+  using test::largestFootprintDeviation;
 } // namespace
 
 TEST (FootprintCoding, RoundFootprintKeepsItsCoarseAngles)
@@ -105,7 +96,7 @@ TEST (FootprintCoding, ClippedBorderKeepsItsAnglesThereOnly)
     const PatchFootprint decoded = throughBytes (clipped, refinement, &bytes);
     ASSERT_EQ (decoded.extent.size (), static_cast<std::size_t> (kAngles));
     // Within the bound plus the rounding of the interval's ends.
-    EXPECT_LE (largestDeviation (clipped, decoded), (steps + 0.5) * kLevels.step + 1e-6) << steps;
+    EXPECT_LE (largestFootprintDeviation (clipped, decoded), (steps + 0.5) * kLevels.step + 1e-6) << steps;
     // The uncut part (about 60 % of the angles) is drawn from its coarse angles: at most two thirds of the
     // bytes of a level for every angle (66; 30-42 here; splitting every interval would take 130).
     EXPECT_LE (bytes, 44u) << steps;
@@ -115,7 +106,7 @@ TEST (FootprintCoding, ClippedBorderKeepsItsAnglesThereOnly)
   // Coarse angles alone stray far from the cut (what the refinement is for).
   const PatchFootprint coarse = throughBytes (clipped, FootprintRefinement{8, 0.0});
   ASSERT_EQ (coarse.extent.size (), 8u);
-  EXPECT_GT (largestDeviation (clipped, coarse), 3.0 * kLevels.step);
+  EXPECT_GT (largestFootprintDeviation (clipped, coarse), 3.0 * kLevels.step);
 }
 
 TEST (FootprintCoding, EveryAngleKeptWithoutACoarseBound)
@@ -123,7 +114,7 @@ TEST (FootprintCoding, EveryAngleKeptWithoutACoarseBound)
   const PatchFootprint clipped = clippedFootprint (0.5);
   const PatchFootprint decoded = throughRangeCoder (clipped, FootprintRefinement{0, 2.0});
   ASSERT_EQ (decoded.extent.size (), static_cast<std::size_t> (kAngles));
-  EXPECT_LE (largestDeviation (clipped, decoded), 0.5 * kLevels.step + 1e-6);
+  EXPECT_LE (largestFootprintDeviation (clipped, decoded), 0.5 * kLevels.step + 1e-6);
 }
 
 TEST (FootprintCoding, DamagedSymbolsAreRefused)

@@ -467,13 +467,6 @@ TEST (ModelFile, FootprintsKeepTheAnglesTheirBordersNeed)
         extent[k] = static_cast<float> (0.6 + 0.3 * std::cos (2.0 * M_PI * k / angles));  // smooth, not round
   }
   const double step = 0.9 / 15.0;  // the largest extent / (2^4 - 1)
-  // Largest distance from the original extents to the decoded footprint, at the original angles.
-  auto deviation = [&] (const PatchFootprint& decoded, const PatchFootprint& original) {
-    double worst = 0.0;
-    for (int k = 0; k < angles; ++k)
-      worst = std::max (worst, std::abs (decoded.extentAt (2.0 * M_PI * k / angles) - original.extent[k]));
-    return worst;
-  };
   ModelWriteOptions options;
   options.tolerance = 1e-4;
   const auto refined_bytes = encodeModel (model, options);
@@ -485,14 +478,15 @@ TEST (ModelFile, FootprintsKeepTheAnglesTheirBordersNeed)
   for (std::size_t p : {0u, 2u})
   {
     EXPECT_EQ (refined.patches[p].footprint.extent.size (), 8u) << "patch " << p;
-    EXPECT_LE (deviation (refined.patches[p].footprint, model.patches[p].footprint), step) << "patch " << p;
+    EXPECT_LE (test::largestFootprintDeviation (model.patches[p].footprint, refined.patches[p].footprint), step)
+      << "patch " << p;
   }
   // Clipped: 8 angles miss the clip by about its depth; refined, within the refinement's steps plus the
   // rounding (half a step).
   EXPECT_EQ (coarse.patches[1].footprint.extent.size (), 8u);
-  EXPECT_GT (deviation (coarse.patches[1].footprint, model.patches[1].footprint), 5.0 * step);
+  EXPECT_GT (test::largestFootprintDeviation (model.patches[1].footprint, coarse.patches[1].footprint), 5.0 * step);
   EXPECT_GT (refined.patches[1].footprint.extent.size (), 8u);
-  EXPECT_LE (deviation (refined.patches[1].footprint, model.patches[1].footprint),
+  EXPECT_LE (test::largestFootprintDeviation (model.patches[1].footprint, refined.patches[1].footprint),
              (ModelWriteOptions ().footprint_refine_steps + 0.5) * step + 1e-6);
   // A refused value is an error.
   EXPECT_GT (ModelWriteOptions ().footprint_refine_steps, 0.0);

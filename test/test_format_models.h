@@ -98,5 +98,17 @@ namespace pcl_sparse
         }
       }
     }
+
+    /// The largest distance between the footprint \a decoded draws (linear between its angles) and
+    /// \a original's extents, at \a original's angles.
+    inline double
+    largestFootprintDeviation (const PatchFootprint& original, const PatchFootprint& decoded)
+    {
+      double worst = 0.0;
+      const std::size_t k = original.extent.size ();
+      for (std::size_t i = 0; i < k; ++i)
+        worst = std::max (worst, std::abs (decoded.extentAt (2.0 * M_PI * i / k) - original.extent[i]));
+      return worst;
+    }
   } // namespace test
 } // namespace pcl_sparse
