@@ -77,6 +77,8 @@ namespace
       {"", "odd parts too; paper cos(i pi x) cos(j pi y) (-preset paper)"},
       {"-cone DEG", "normal cone of patch growth in degrees, in (0, 180] (default 72, the authors' code's;"},
       {"", "-preset paper 90)"},
+      {"-footprint-reach DEG", "meshes: footprints reach DEG along smooth patch borders to their triangles'"},
+      {"", "outer corners, in [0, 180] (default 17; 0: clipped at every border)"},
       {"-seed S", "seed of the extra samples (default 42)"},
       {"-threads N", "OpenMP threads (default: all; the model does not depend on it)"},
       {"-recon RECON", "write the reconstructed mesh (input vertex order and faces)"},
@@ -103,7 +105,7 @@ namespace
       {"-q", "quiet (no progress, only the result and errors)"},
     },
     1,
-    {"-rho", "-f", "-L", "-eps", "-min-samples", "-cone", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
+    {"-rho", "-f", "-L", "-eps", "-min-samples", "-cone", "-footprint-reach", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
      "-footprint-steps", "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices", "--varint-layout"}};
 } // namespace
@@ -126,6 +128,7 @@ main (int argc, char** argv)
     args.number ("-eps", options.coding.tolerance);
     args.integer ("-min-samples", options.coding.min_samples);
     args.angle ("-cone", options.patches.cone_angle);
+    args.number ("-footprint-reach", options.coding.footprint_reach_degrees, tools::Range::closed (0.0, 180.0));
     args.integer ("-seed", options.coding.seed, tools::Range::atLeast (0));
     if (args.has ("--authors-nyquist"))
       options.coding.nyquist_rule = NyquistRule::AuthorsCode;

@@ -270,3 +270,96 @@ TEST (PatchCoder, TruncatedCodeIsTheCodeWithFewerAtoms)
   PatchCode code = full;
   EXPECT_THROW (truncatePatchCode (3, code, none), Error);  // no prefixes to cut to
 }
+
+namespace
+{
+  /// The triangles of \a mesh whose centroid lies within \a radius of \a centre (in x, y), as a patch with
+  /// the identity frame at \a centre and radius 1 (local coordinates are world offsets).
+  Patch
+  discPatch (const TriangleMesh& mesh, const Eigen::Vector3d& centre, double radius)
+  {
+    Patch patch;
+    patch.origin = centre;
+    patch.radius = 1.0;
+    std::vector<int> local (mesh.vertices.size (), -1);
+    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+    {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      const Eigen::Vector3d c = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0;
+      if ((c - centre).head<2> ().norm () > radius)
+        continue;
+      patch.triangles.push_back (static_cast<int> (f));
+      for (int k = 0; k < 3; ++k)
+        if (local[t[k]] < 0)
+        {
+          local[t[k]] = static_cast<int> (patch.vertices.size ());
+          patch.vertices.push_back (t[k]);
+          patch.local.push_back (patch.toLocal (mesh.vertices[t[k]]));
+        }
+    }
+    return patch;
+  }
+
+  /// The footprints of \a patch clipped at its border, without and with the reach over smooth borders.
+  std::pair<PatchFootprint, PatchFootprint>
+  clippedAndReached (const Patch& patch, const TriangleMesh& mesh, const MeshTopology& topology)
+  {
+    return {computePatchFootprint (patch, mesh, 64, false, true),
+            computePatchFootprint (patch, mesh, 64, false, true, 17.0, &topology, 20.0)};
+  }
+} // namespace
+
+// Inside a plane the clipped footprint follows the zigzag of the patch's outer corners; the reach raises the
+// extents between them (never lowers one, never by more than half the median edge, 0.05 here), and without a
+// topology or with no reach nothing changes.
+TEST (PatchFootprint, ReachesAlongSmoothBordersByAtMostHalfAnEdge)
+{
+  const TriangleMesh mesh = makePlaneGrid (20);  // edges 0.1 and diagonals 0.14
+  const MeshTopology topology = buildMeshTopology (mesh);
+  const Patch patch = discPatch (mesh, Eigen::Vector3d (0.0, 0.0, 0.0), 0.45);
+  const auto [clipped, reached] = clippedAndReached (patch, mesh, topology);
+  ASSERT_EQ (reached.extent.size (), 64u);
+  int raised = 0;
+  for (std::size_t k = 0; k < 64; ++k)
+  {
+    EXPECT_GE (reached.extent[k], clipped.extent[k]) << k;
+    EXPECT_LE (reached.extent[k], clipped.extent[k] + 0.05 + 1e-6) << k;
+    raised += reached.extent[k] > clipped.extent[k] + 0.01;
+  }
+  EXPECT_GE (raised, 24);  // measured 48 of the 64
+  EXPECT_EQ (computePatchFootprint (patch, mesh, 64, false, true, 17.0, nullptr).extent, clipped.extent);
+  EXPECT_EQ (computePatchFootprint (patch, mesh, 64, false, true, 0.0, &topology).extent, clipped.extent);
+  EXPECT_EQ (computePatchFootprint (patch, mesh, 64, false, false, 17.0, &topology).extent,
+             computePatchFootprint (patch, mesh, 64).extent);  // no clip, no reach: the sector maxima
+}
+
+// Where the patch meets the mesh's open border (x = 1) or a fold (faces tilted 30 degrees from its normal past
+// x = 0.5), the rays leaving across them keep their clipped extents; those leaving into the plane reach.
+TEST (PatchFootprint, StaysClippedAtOpenBordersAndFolds)
+{
+  const TriangleMesh plane = makePlaneGrid (20);
+  const MeshTopology plane_topology = buildMeshTopology (plane);
+  const Patch near_border = discPatch (plane, Eigen::Vector3d (0.8, 0.0, 0.0), 0.45);
+  const auto [clipped, reached] = clippedAndReached (near_border, plane, plane_topology);
+  // Rays within 60 degrees of +x leave across the border x = 1 (0.2 away, within the disc of 0.45).
+  int raised_elsewhere = 0;
+  for (std::size_t k = 0; k < 64; ++k)
+  {
+    const double angle = 2.0 * M_PI * static_cast<double> (k) / 64.0;
+    if (std::cos (angle) > 0.5)
+      EXPECT_FLOAT_EQ (reached.extent[k], clipped.extent[k]) << k;
+    else
+      raised_elsewhere += reached.extent[k] > clipped.extent[k] + 0.01;
+  }
+  EXPECT_GE (raised_elsewhere, 4);
+
+  const double slope = std::tan (30.0 * M_PI / 180.0);
+  const TriangleMesh folded =
+    makeHeightFieldGrid (20, 20, 1.0, 1.0, [slope] (double x, double) { return x > 0.5 ? slope * (x - 0.5) : 0.0; });
+  const MeshTopology folded_topology = buildMeshTopology (folded);
+  const Patch before_fold = discPatch (folded, Eigen::Vector3d (0.2, 0.0, 0.0), 0.32);
+  const auto [clipped_fold, reached_fold] = clippedAndReached (before_fold, folded, folded_topology);
+  for (std::size_t k = 0; k < 64; ++k)
+    if (std::cos (2.0 * M_PI * static_cast<double> (k) / 64.0) > 0.8)  // across the fold at x = 0.5
+      EXPECT_FLOAT_EQ (reached_fold.extent[k], clipped_fold.extent[k]) << k;
+}

@@ -48,7 +48,7 @@ namespace pcl_sparse
   PatchCode
   codePatch (const Patch& input_patch, std::size_t patch_index, const TriangleMesh& mesh,
              const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info,
-             const AttributeCodingInput* attributes)
+             const AttributeCodingInput* attributes, const MeshTopology* topology)
   {
     // A support scale s > 1 is the same patch with radius s r_P (local coordinates divided by s).
     Patch scaled;
@@ -71,7 +71,9 @@ namespace pcl_sparse
     for (const Eigen::Vector3d& p : patch.local)
       code.vertex_xy.emplace_back (p.x (), p.y ());
     code.footprint = computePatchFootprint (patch, mesh, options.footprint_angles, options.clip_footprints_at_holes,
-                                           options.clip_footprints_at_border && !patch.beside_uncovered_face);
+                                           options.clip_footprints_at_border && !patch.beside_uncovered_face,
+                                           options.footprint_reach_degrees, topology,
+                                           options.footprint_reach_max_tilt_degrees);
 
     // Samples: the vertices, then extra points on the patch's own triangles (docs/METHOD.md step 7).
     std::vector<Eigen::Vector2d> positions (code.vertex_xy);

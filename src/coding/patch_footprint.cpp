@@ -2,6 +2,8 @@
 
 #include "patch_local_index.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -115,15 +117,22 @@ namespace pcl_sparse
       return false;
     }
 
-    /// The edges of the projected triangles used by only one of them (the border of their union), and the
-    /// median length of all their edges. \a triangles: local corner indices.
-    std::vector<std::pair<int, int>>
+    /// An edge of the projected triangles used by only one of them: corners a < b, and that triangle.
+    struct BorderEdge
+    {
+      int a, b;
+      int triangle;  ///< index into the local triangles
+    };
+
+    /// The border of the union of the projected triangles, and the median length of all their edges.
+    /// \a triangles: local corner indices.
+    std::vector<BorderEdge>
     borderEdges (const std::vector<std::array<int, 3>>& triangles, const std::vector<Corner>& corners,
                  double& median_length)
     {
-      // The edges (smaller corner, larger corner) in ascending order: a counting sort on the smaller corner,
-      // then a sort of each bucket (a few edges). The same order as one std::sort of all the pairs, which
-      // was about a third of the footprint's time (a fifth of it is left).
+      // The edges (smaller corner, larger corner, triangle) in ascending order: a counting sort on the
+      // smaller corner, then a sort of each bucket (a few edges). The same order as one std::sort of all
+      // of them, which was about a third of the footprint's time (a fifth of it is left).
       const std::size_t num_edges = 3 * triangles.size ();
       std::vector<int> bucket_begin (corners.size () + 1, 0);
       for (const auto& t : triangles)
@@ -132,50 +141,89 @@ namespace pcl_sparse
       for (std::size_t v = 0; v < corners.size (); ++v)
         bucket_begin[v + 1] += bucket_begin[v];
       std::vector<int> next (bucket_begin.begin (), bucket_begin.end () - 1);
-      std::vector<std::pair<int, int>> edges (num_edges);
-      for (const auto& t : triangles)
+      std::vector<std::array<int, 3>> edges (num_edges);
+      for (std::size_t i = 0; i < triangles.size (); ++i)
         for (int c = 0; c < 3; ++c)
         {
+          const std::array<int, 3>& t = triangles[i];
           const int a = std::min (t[c], t[(c + 1) % 3]);
-          edges[next[a]++] = {a, std::max (t[c], t[(c + 1) % 3])};
+          edges[next[a]++] = {a, std::max (t[c], t[(c + 1) % 3]), static_cast<int> (i)};
         }
       for (std::size_t v = 0; v < corners.size (); ++v)
         std::sort (edges.begin () + bucket_begin[v], edges.begin () + bucket_begin[v + 1]);
       std::vector<double> lengths;
       lengths.reserve (edges.size ());
       for (const auto& e : edges)
-        lengths.push_back ((corners[e.first].p - corners[e.second].p).norm ());
+        lengths.push_back ((corners[e[0]].p - corners[e[1]].p).norm ());
       std::nth_element (lengths.begin (), lengths.begin () + lengths.size () / 2, lengths.end ());
       median_length = lengths[lengths.size () / 2];
-      std::vector<std::pair<int, int>> border;
+      std::vector<BorderEdge> border;
       for (std::size_t i = 0; i < edges.size ();)
       {
         std::size_t j = i;
-        while (j < edges.size () && edges[j] == edges[i])
+        while (j < edges.size () && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1])
           ++j;
         if (j - i == 1)
-          border.push_back (edges[i]);
+          border.push_back ({edges[i][0], edges[i][1], edges[i][2]});
         i = j;
       }
       return border;
     }
 
-    /// Per ray, the radii where it crosses the border edges, ascending.
+    /// Whether the mesh goes on smoothly past border edge \a e of the patch: the face across it (through a
+    /// manifold edge) exists and faces within the limit of the patch's normal, as the patch's own faces do.
+    /// At open borders, sharp edges and where the surface curls away (a thin part's rounded edge) it does not.
+    bool
+    continuesSmoothly (const BorderEdge& e, const std::vector<int>& faces, const Patch& patch, const TriangleMesh& mesh,
+                       const MeshTopology& topology, double min_cosine)
+    {
+      const int f = faces[e.triangle];
+      const int va = patch.vertices[e.a], vb = patch.vertices[e.b];
+      for (int k = 0; k < 3; ++k)
+      {
+        const int u = mesh.triangles[f][k], w = mesh.triangles[f][(k + 1) % 3];
+        if (!((u == va && w == vb) || (u == vb && w == va)))
+          continue;
+        const int g = topology.face_neighbors[f][k];
+        if (g < 0)
+          return false;
+        const Eigen::Vector3i& t = mesh.triangles[g];
+        const Eigen::Vector3d n = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross (mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+        const double length = n.norm ();
+        return length > 0.0 && n.dot (patch.frame.col (2)) >= min_cosine * length;
+      }
+      return false;
+    }
+
+    /// Per ray, the radii where it crosses the border edges, ascending. With \a smooth_edge (per border
+    /// edge), \a smooth_exit gets per ray whether its outermost crossing is on a smooth edge (false for a ray
+    /// that crosses none, and where edges of both kinds cross it there).
     std::vector<std::vector<double>>
-    borderCrossings (const std::vector<std::pair<int, int>>& border, const std::vector<Corner>& corners,
-                     const std::vector<Eigen::Vector2d>& rays)
+    borderCrossings (const std::vector<BorderEdge>& border, const std::vector<Corner>& corners,
+                     const std::vector<Eigen::Vector2d>& rays, const std::vector<char>* smooth_edge = nullptr,
+                     std::vector<char>* smooth_exit = nullptr)
     {
       std::vector<std::vector<double>> crossings (rays.size ());
-      for (const auto& e : border)
+      std::vector<double> outermost (rays.size (), 0.0);
+      if (smooth_exit)
+        smooth_exit->assign (rays.size (), 0);
+      for (std::size_t i = 0; i < border.size (); ++i)
       {
-        const Corner &a = corners[e.first], &b = corners[e.second];
+        const Corner &a = corners[border[i].a], &b = corners[border[i].b];
         if (a.r == 0.0 || b.r == 0.0)
           continue;  // a segment from the origin crosses no ray at r > 0
+        const char smooth = smooth_edge ? (*smooth_edge)[i] : 0;
         // Every ray the arc with its margin leaves out would fail the test.
         forEachRayOnArc (a, b, static_cast<int> (rays.size ()), true, [&] (int k) {
           double r = 0.0;
-          if (rayCrossing (rays[k], a.p, b.p, r))
-            crossings[k].push_back (r);
+          if (!rayCrossing (rays[k], a.p, b.p, r))
+            return;
+          if (smooth_exit && (crossings[k].empty () || r > outermost[k]))
+            (*smooth_exit)[k] = smooth;
+          else if (smooth_exit && r == outermost[k])
+            (*smooth_exit)[k] = (*smooth_exit)[k] && smooth;
+          outermost[k] = std::max (outermost[k], r);
+          crossings[k].push_back (r);
         });
       }
       for (auto& c : crossings)
@@ -239,11 +287,29 @@ namespace pcl_sparse
           extent[far] = std::min (conservative[far], extent[far] + (c.r - held ()) / far_weight);
       }
     }
+
+    /// Raises each extent whose ray leaves the patch across a smooth edge towards the largest extent within
+    /// \a reach angles on either side whose ray does too, by at most \a max_raise.
+    void
+    reachOverSmoothBorders (const std::vector<char>& smooth_exit, int reach, double max_raise, std::vector<double>& extent)
+    {
+      const int angles = static_cast<int> (extent.size ());
+      const std::vector<double> clipped = extent;
+      for (int k = 0; k < angles; ++k)
+        if (smooth_exit[k])
+          for (int d = -reach; d <= reach; ++d)
+          {
+            const int j = ((k + d) % angles + angles) % angles;
+            if (smooth_exit[j])
+              extent[k] = std::max (extent[k], std::min (clipped[j], clipped[k] + max_raise));
+          }
+    }
   } // namespace
 
   PatchFootprint
   computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles, bool clip_at_first_exit,
-                         bool clip_at_border)
+                         bool clip_at_border, double reach_degrees, const MeshTopology* topology,
+                         double reach_max_tilt_degrees)
   {
     PatchFootprint footprint;
     if (angles < 1)
@@ -266,6 +332,7 @@ namespace pcl_sparse
         sector_max[c.sector] = std::max (sector_max[c.sector], c.r);
     }
     std::vector<std::array<int, 3>> local_triangles;
+    std::vector<int> local_faces;  // their faces in the mesh
     for (int f : patch.triangles)
     {
       if (f < 0 || static_cast<std::size_t> (f) >= mesh.triangles.size ())
@@ -282,12 +349,25 @@ namespace pcl_sparse
       for (int c = 0; c < 3; ++c)
         addSegment (corners[corner[c]], corners[corner[(c + 1) % 3]], rays, sector_max);
       local_triangles.push_back ({corner[0], corner[1], corner[2]});
+      local_faces.push_back (f);
     }
     std::vector<double> exits, outer;
+    std::vector<char> smooth_exit;
+    double median_length = 0.0;
+    const int reach = static_cast<int> (std::lround (reach_degrees / 360.0 * angles));
+    const bool reach_over_smooth = clip_at_border && topology && reach > 0;
     if ((clip_at_first_exit || clip_at_border) && !local_triangles.empty ())
     {
-      double median_length = 0.0;
-      const auto crossings = borderCrossings (borderEdges (local_triangles, corners, median_length), corners, rays);
+      const std::vector<BorderEdge> border = borderEdges (local_triangles, corners, median_length);
+      std::vector<char> smooth_edge;
+      if (reach_over_smooth)
+      {
+        const double min_cosine = std::cos (reach_max_tilt_degrees * M_PI / 180.0);
+        for (const BorderEdge& e : border)
+          smooth_edge.push_back (continuesSmoothly (e, local_faces, patch, mesh, *topology, min_cosine));
+      }
+      const auto crossings = borderCrossings (border, corners, rays, reach_over_smooth ? &smooth_edge : nullptr,
+                                              reach_over_smooth ? &smooth_exit : nullptr);
       if (clip_at_first_exit)
         exits = firstExits (local_triangles, corners, crossings, median_length, rays);
       if (clip_at_border)
@@ -308,6 +388,8 @@ namespace pcl_sparse
       extent[k] = std::max (sector_max[k], sector_max[(k + angles - 1) % angles]);
     if (!outer.empty ())
       clipAtBorder (corners, outer, extent);
+    if (!smooth_exit.empty ())
+      reachOverSmoothBorders (smooth_exit, reach, 0.5 * median_length, extent);
     footprint.extent.resize (angles);
     for (int k = 0; k < angles; ++k)
     {

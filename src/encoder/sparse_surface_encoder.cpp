@@ -58,6 +58,7 @@ namespace pcl_sparse
       const SurfaceBasis& basis;
       SparseCodingOptions coding;
       const AttributeCodingInput* attributes;  ///< or nullptr
+      const MeshTopology& topology;
       int threads;
       ProgressCallback progress;
     };
@@ -76,7 +77,7 @@ namespace pcl_sparse
       for (long p = 0; p < num_patches; ++p)
         failure.run ([&] {
           codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), context.mesh, context.ring_lengths,
-                                context.basis, context.coding, &info[p], context.attributes);
+                                context.basis, context.coding, &info[p], context.attributes, &context.topology);
           const long finished = ++done;
           // (finished % 64 == 0 on thread 0 missed every report when the other threads took those counts.)
           if (context.progress && omp_get_thread_num () == 0 && finished >= next_report)
@@ -272,6 +273,11 @@ namespace pcl_sparse
     // The file format holds at most 4096 angles: a model with more could be neither saved nor sent.
     require (coding.footprint_angles >= 3 && coding.footprint_angles <= 4096,
              "footprint angles must be in [3, 4096], got " + std::to_string (coding.footprint_angles));
+    require (coding.footprint_reach_degrees >= 0.0 && coding.footprint_reach_degrees <= 180.0,
+             "footprint reach must be in [0, 180] degrees, got " + std::to_string (coding.footprint_reach_degrees));
+    require (coding.footprint_reach_max_tilt_degrees >= 0.0 && coding.footprint_reach_max_tilt_degrees <= 180.0,
+             "footprint reach tilt must be in [0, 180] degrees, got " +
+               std::to_string (coding.footprint_reach_max_tilt_degrees));
     require (coding.support_scale >= 1.0 && std::isfinite (coding.support_scale),
              "support scale must be >= 1, got " + std::to_string (coding.support_scale));
     require (coding.noise_level >= 0.0 && std::isfinite (coding.noise_level),
@@ -394,6 +400,7 @@ namespace pcl_sparse
     SurfaceEncoding encoding;
     const CodingContext context{mesh, meanRingEdgeLengths (mesh, topology), *basis, options.coding,
                                 attribute_input.values ? &attribute_input : nullptr,
+                                topology,
                                 resolveThreadCount (num_threads), progress};
 
     // Steps 2-6: patches with frames and local coordinates.

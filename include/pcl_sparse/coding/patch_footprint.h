@@ -2,6 +2,7 @@
 /// \file patch_footprint.h
 /// The region of its tangent plane where a patch has data (PatchFootprint), from the patch's triangles.
 
+#include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/patches/patch.h>
@@ -40,7 +41,22 @@ namespace pcl_sparse
   /// is where a code extrapolates past the surface, on a thin part to its other side, and resampled
   /// normals there point the wrong way.
   /// \param[in] clip_at_border  clip the extents as above (default false: the sector maxima)
+  ///
+  /// With clip_at_border and \a topology, where a ray's outermost border crossing is an edge past which the
+  /// surface goes on smoothly (the face beyond it tilted at most \a reach_max_tilt_degrees from the patch's
+  /// normal), its extent is then raised towards the largest extent within \a reach_degrees on either side
+  /// whose ray also leaves across such an edge, by at most half the median edge length. Inside the surface
+  /// a patch's border is the zigzag of its triangles' outer corners, and the clipped footprint followed
+  /// it, leaving slivers between the corners to patches that fit them worse; the code goes on fitting a
+  /// little past its triangles there. At open borders and sharp edges the footprint stays clipped; the cap
+  /// keeps the long corners of coarse CAD meshes' thin triangles from spreading (turbine's Chamfer distance
+  /// 39 % larger without it).
+  /// \param[in] reach_degrees  how far along the border an extent reaches (0: not at all)
+  /// \param[in] topology  the mesh's (nullptr: no reach)
+  /// \param[in] reach_max_tilt_degrees  largest tilt of the face beyond a border edge the reach goes over
   PatchFootprint
   computePatchFootprint (const Patch& patch, const TriangleMesh& mesh, int angles = 16,
-                         bool clip_at_first_exit = false, bool clip_at_border = false);
+                         bool clip_at_first_exit = false, bool clip_at_border = false,
+                         double reach_degrees = 0.0, const MeshTopology* topology = nullptr,
+                         double reach_max_tilt_degrees = 20.0);
 } // namespace pcl_sparse
