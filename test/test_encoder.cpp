@@ -190,6 +190,41 @@ TEST (SparseSurfaceEncoder, RejectsBadOptionsAndInput)
   }
   options.coding.quadric_preference = 0.0;
   EXPECT_NO_THROW (options.validate ());
+  for (const double degrees : {-1.0, 181.0, std::nan ("")})
+  {
+    options = SparseSurfaceEncoderOptions ();
+    options.coding.footprint_reach_degrees = degrees;
+    EXPECT_THROW (options.validate (), Error) << degrees;
+    options = SparseSurfaceEncoderOptions ();
+    options.coding.footprint_reach_max_tilt_degrees = degrees;
+    EXPECT_THROW (options.validate (), Error) << degrees;
+  }
+}
+
+// On a torus every patch border is smooth: the default reach widens footprints (never narrows one) and
+// changes nothing else; with no reach they are the clipped ones of before.
+TEST (SparseSurfaceEncoder, FootprintsReachAlongSmoothBorders)
+{
+  const TriangleMesh mesh = makeTorus (48, 24, 1.0, 0.35);
+  SparseSurfaceEncoderOptions clipped_options;
+  clipped_options.coding.footprint_reach_degrees = 0.0;
+  const SparseSurfaceModel reached = encode (mesh), clipped = encode (mesh, clipped_options);
+  ASSERT_EQ (reached.patches.size (), clipped.patches.size ());
+  std::size_t extents = 0, raised = 0;
+  for (std::size_t p = 0; p < reached.patches.size (); ++p)
+  {
+    const PatchCode &a = reached.patches[p], &b = clipped.patches[p];
+    EXPECT_EQ (a.atoms, b.atoms);
+    EXPECT_EQ (a.coefficients, b.coefficients);
+    ASSERT_EQ (a.footprint.extent.size (), b.footprint.extent.size ());
+    for (std::size_t k = 0; k < a.footprint.extent.size (); ++k)
+    {
+      EXPECT_GE (a.footprint.extent[k], b.footprint.extent[k]) << p << " " << k;
+      ++extents;
+      raised += a.footprint.extent[k] > b.footprint.extent[k] * 1.001f;
+    }
+  }
+  EXPECT_GT (raised, extents / 10) << raised << " of " << extents;  // measured 1505 of 8448
 }
 
 TEST (SparseSurfaceEncoder, SameModelForAnyThreadCount)
