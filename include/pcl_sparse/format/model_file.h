@@ -64,9 +64,9 @@ namespace pcl_sparse
     /// 1)) summed over the angles between them: the middle angle, then each half the same way
     /// (footprint_coding.h). Footprints clipped at a crease or an open border keep their angles there and
     /// only there. 0: every patch keeps max_footprint_angles. With 8 angles everywhere the default file added
-    /// 4-201 % to the Chamfer distance of the lossless model on the shared meshes (footprints clipped at
+    /// 3-174 % to the Chamfer distance of the lossless model on the shared meshes (footprints clipped at
     /// borders and creases overshoot or cut the surface between 8 rays); at 2 steps it adds at most 10 % on
-    /// 23 of 25 (anchor-dense 19 %, fandisk 14 %: their 4-bit extents), 0.2-9.3 % on the others
+    /// 23 of 25 (anchor-dense 15 %, fandisk 13.5 %: their 4-bit extents), 0.1-6.9 % on the others
     /// (file_footprints.md).
     double footprint_refine_steps = 2.0;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
