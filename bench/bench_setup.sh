@@ -9,3 +9,12 @@ shared=${PCL_SPARSE_SHARED:-$root/../shared}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 json () { python3 "$here/json_fields.py" "$@"; }
+# write_keeping_notes NEW OUT: moves the generated NEW to OUT, keeping OUT's hand-written text from its
+# "## Notes" line on (if it has one) below the new table.
+write_keeping_notes () {
+  if [ -f "$2" ] && grep -q '^## Notes' "$2"; then
+    { echo; sed -n '/^## Notes/,$p' "$2"; } >> "$1"
+  fi
+  mv "$1" "$2"
+  echo "written: $2"
+}

@@ -44,9 +44,4 @@ for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,p
   echo "$row |" >> "$out.tmp"
   echo "$name done" >&2
 done
-# Keep the hand-written notes and earlier runs below the marker.
-if [ -f "$out" ] && grep -q '^## Notes' "$out"; then
-  { echo; sed -n '/^## Notes/,$p' "$out"; } >> "$out.tmp"
-fi
-mv "$out.tmp" "$out"
-echo "written: $out"
+write_keeping_notes "$out.tmp" "$out"

@@ -58,9 +58,4 @@ for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,p
   echo "$row |" >> "$work/table.md"
   echo "$name done" >&2
 done
-# Keep the hand-written notes below the marker.
-if [ -f "$out" ] && grep -q '^## Notes' "$out"; then
-  { echo; sed -n '/^## Notes/,$p' "$out"; } >> "$work/table.md"
-fi
-mv "$work/table.md" "$out"
-echo "written: $out"
+write_keeping_notes "$work/table.md" "$out"
