@@ -69,8 +69,8 @@ namespace pcl_sparse
     /// With clip_footprints_at_border: where the surface goes on smoothly past a patch's border, its
     /// footprint reaches this many degrees (either way) along the border to the outer corners of its
     /// triangles, by at most half an edge (computePatchFootprint's reach; ours). 17 (3 of the 64 angles), on
-    /// the 25 shared meshes: the lossless model's Chamfer distance 1-6 % smaller on 24 (blade +1.2 %), the
-    /// default file 2-6.5 % smaller on 23 and nearer the mesh on 24 (bench/results/footprint_reach.md).
+    /// the 25 shared meshes: the lossless model's Chamfer distance 0.9-6.1 % smaller on 24 (blade +1.2 %), the
+    /// default file 1.6-6.5 % smaller on 23 and nearer the mesh on 24 (bench/results/footprint_reach.md).
     /// 0: clipped at every border. Needs codePatch's topology; the encoder passes it. Scans: 0 (not measured).
     double footprint_reach_degrees = 17.0;
     /// The reach goes over a border edge only where the face beyond it is tilted at most this far from the

@@ -50,7 +50,7 @@ namespace pcl_sparse
       // A scan's triangles join noisy points: samples on them are that noise interpolated, and the code
       // follows it (the simulated plane scan of bench/scans.sh resampled 2x farther from the truth).
       options.coding.triangle_samples = 0.0;
-      // Not measured on scans, whose triangulation's borders are not the surface's.
+      // Footprints reaching along smooth borders were measured on meshes only (bench/results/footprint_reach.md).
       options.coding.footprint_reach_degrees = 0.0;
     }
     options.patches = patchOptionsFor (options.patches, this->surfaceIsScan ());
