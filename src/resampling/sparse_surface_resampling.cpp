@@ -737,6 +737,10 @@ namespace pcl_sparse
         break;
       density *= ratio;
     }
+    // Halfway, from the calling thread: the reports inside the loop come from thread 0 alone, which may
+    // have drawn no patch when the other threads took them all (a test's cancellation was then never seen).
+    if (progress_)
+      progress_ ("resample", 0.5);
   }
 
   std::vector<std::size_t>
