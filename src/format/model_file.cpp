@@ -34,11 +34,6 @@ namespace pcl_sparse
     constexpr std::uint16_t kVersion = 1;
     constexpr std::size_t kHeaderBytes = 52;
     constexpr std::size_t kSectionHeaderBytes = 32;
-    constexpr std::uint16_t kFlagQuantised = header_flag::quantised;
-    constexpr std::uint16_t kFlagVertices = header_flag::vertices;
-    constexpr std::uint16_t kFlagAttributes = header_flag::attributes;
-    constexpr std::uint16_t kFlagRangeCoded = header_flag::range_coded;
-    constexpr std::uint16_t kFlagAdaptiveFootprints = header_flag::adaptive_footprints;
     constexpr std::uint8_t kBasisCosine = 1;     ///< CosineDictionary: cos(i pi x) cos(j pi y)
     constexpr std::uint8_t kBasisDctCosine = 2;  ///< DctCosineDictionary: cos(i pi (x + 1) / 2) cos(j pi (y + 1) / 2)
     constexpr std::uint8_t kBasisQuadricDct = 3; ///< QuadricDctDictionary: the Dct atoms, then x, y, x^2, x y, y^2
@@ -73,13 +68,13 @@ namespace pcl_sparse
     expectedTags (std::uint16_t flags)
     {
       std::vector<std::string> tags;
-      if (flags & kFlagQuantised)
+      if (flags & header_flag::quantised)
         tags.assign (std::begin (kQuantisedTags), std::end (kQuantisedTags));
       else
         tags.assign (std::begin (kLosslessTags), std::end (kLosslessTags));
-      if (flags & kFlagVertices)
+      if (flags & header_flag::vertices)
         tags.push_back ("VERT");
-      if (flags & kFlagAttributes)
+      if (flags & header_flag::attributes)
         tags.insert (tags.end (), std::begin (kAttributeTags), std::end (kAttributeTags));
       return tags;
     }
@@ -301,26 +296,15 @@ namespace pcl_sparse
       return static_cast<std::uint64_t> (radius_steps);
     }
 
-    /// The models of a range-coded FOOT without kFlagAdaptiveFootprints: K, the first level, the next
-    /// levels' circular deltas.
-    struct UniformFootprintContexts
-    {
-      explicit UniformFootprintContexts (int extent_bits) : first_level (extent_bits), level_delta (extent_bits) {}
-
-      BitTreeModel angles{13};
-      BitTreeModel first_level;
-      BitTreeModel level_delta;
-    };
-
     /// The adaptive models of the range-coded per-patch fields of a run (docs/FORMAT.md, "Range-coded
     /// fields"); the writer and the reader build the same ones and code the same values in the same order.
     struct PatchFieldContexts
     {
       PatchFieldContexts (int extent_bits, int frequencies, int monomials)
-        : footprint (extent_bits), uniform_footprint (extent_bits), code (frequencies, monomials) {}
+        : footprint (extent_bits), code (frequencies, monomials) {}
 
-      FootprintContexts footprint;          ///< FOOT
-      UniformFootprintContexts uniform_footprint;  ///< FOOT of files without kFlagAdaptiveFootprints
+      /// FOOT (files without header_flag::adaptive_footprints use its angles, first_level and level_delta models alone)
+      FootprintContexts footprint;
       BitTreeModel frame_header{3};         ///< dropped component and reflection
       SignedIntegerModel frame_component[3];  ///< the quaternion's other three components, by position
       SparseCodeContexts code;              ///< ATOM and COEF
@@ -545,9 +529,9 @@ namespace pcl_sparse
     {
       if ((flags & ~header_flag::known) != 0)
         throw Error (what + ": unknown header flags (written by a newer pcl_sparse?)");
-      if ((flags & kFlagRangeCoded) && !(flags & kFlagQuantised))
+      if ((flags & header_flag::range_coded) && !(flags & header_flag::quantised))
         throw Error (what + ": the range-coded flag needs the quantised flag");
-      if ((flags & kFlagAdaptiveFootprints) && !(flags & kFlagQuantised))
+      if ((flags & header_flag::adaptive_footprints) && !(flags & header_flag::quantised))
         throw Error (what + ": the adaptive-footprint flag needs the quantised flag");
       if (!isBasisKindByte (basis_kind))
         throw Error (what + ": unknown basis kind " + std::to_string (basis_kind));
@@ -559,7 +543,7 @@ namespace pcl_sparse
         throw Error (what + ": number of input vertices out of range");
       if (!std::isfinite (bbox_diagonal) || bbox_diagonal < 0.0)
         throw Error (what + ": bbox diagonal is negative or not finite");
-      const bool quantised = flags & kFlagQuantised;
+      const bool quantised = flags & header_flag::quantised;
       if (!std::isfinite (tolerance) || tolerance < 0.0 || (tolerance > 0.0) != quantised ||
           (quantised && !(bbox_diagonal > 0.0)))
         throw Error (what + ": tolerance does not match the quantised flag");
@@ -740,9 +724,10 @@ namespace pcl_sparse
       return extent;
     }
 
-    /// A range-coded footprint without kFlagAdaptiveFootprints: K, then K level deltas.
+    /// A range-coded footprint without header_flag::adaptive_footprints: K, then K level deltas, with the models the
+    /// adaptive footprints code K and their coarse levels with (the same ones such files were written with).
     void
-    readUniformFootprint (RangeDecoder& foot, UniformFootprintContexts& contexts, const QuantisationParameters& q,
+    readUniformFootprint (RangeDecoder& foot, FootprintContexts& contexts, const QuantisationParameters& q,
                           std::size_t p, PatchFootprint& footprint)
     {
       const std::uint32_t k = contexts.angles.get (foot);
@@ -759,7 +744,7 @@ namespace pcl_sparse
       }
     }
 
-    /// A footprint of the varint layout: lossless, or quantised without kFlagAdaptiveFootprints (K, then K
+    /// A footprint of the varint layout: lossless, or quantised without header_flag::adaptive_footprints (K, then K
     /// level deltas).
     void
     readUniformFootprint (ByteReader& foot, bool quantised, const QuantisationParameters& q, std::size_t p,
@@ -864,7 +849,7 @@ namespace pcl_sparse
         if (adaptive_footprints_)
           getFootprint (foot_, contexts_.footprint, q.footprintLevels (), p, patch.footprint);
         else
-          readUniformFootprint (foot_, contexts_.uniform_footprint, q, p, patch.footprint);
+          readUniformFootprint (foot_, contexts_.footprint, q, p, patch.footprint);
         contexts_.code.getAtoms (atom_, "patch " + std::to_string (p), patch.atoms);
         contexts_.code.getCoefficients (coef_, patch.atoms,
                                         coefficientStep (q.coefficient_budget, patch.radius, patch.atoms.size ()),
@@ -950,9 +935,9 @@ namespace pcl_sparse
   runSectionTags (std::uint16_t flags)
   {
     std::vector<std::string> tags (std::begin (kLosslessTags), std::end (kLosslessTags));
-    if (flags & kFlagVertices)
+    if (flags & header_flag::vertices)
       tags.push_back ("VERT");
-    if (flags & kFlagAttributes)
+    if (flags & header_flag::attributes)
     {
       tags.push_back ("AATM");
       tags.push_back ("ACOF");
@@ -1030,9 +1015,10 @@ namespace pcl_sparse
     SharedModelFields& shared = out.shared;
     const bool attributes = model.hasAttributes ();
     const bool range_coded = quantised && options.range_coding;
-    shared.flags = static_cast<std::uint16_t> ((quantised ? kFlagQuantised : 0) | (options.include_vertices ? kFlagVertices : 0) |
-                                               (attributes ? kFlagAttributes : 0) | (range_coded ? kFlagRangeCoded : 0) |
-                                               (quantised ? kFlagAdaptiveFootprints : 0));
+    shared.flags = static_cast<std::uint16_t> (
+      (quantised ? header_flag::quantised | header_flag::adaptive_footprints : 0) |
+      (options.include_vertices ? header_flag::vertices : 0) | (attributes ? header_flag::attributes : 0) |
+      (range_coded ? header_flag::range_coded : 0));
     shared.basis_kind = basisKindByte (cosine.kind ());
     shared.basis_parameter = static_cast<std::uint16_t> (frequencies);
     shared.num_input_vertices = model.num_input_vertices;
@@ -1084,7 +1070,7 @@ namespace pcl_sparse
   {
     ModelSections parts = encodeModelSections (model, options, {{0, model.patches.size ()}});
     const SharedModelFields& shared = parts.shared;
-    const bool quantised = shared.flags & kFlagQuantised;
+    const bool quantised = shared.flags & header_flag::quantised;
     std::vector<Section> sections;
     if (quantised)
       sections.push_back ({"QUAN", kCodecStored, std::move (parts.shared.quantisation)});
@@ -1144,8 +1130,8 @@ namespace pcl_sparse
   {
     checkHeaderValues (shared.flags, shared.basis_kind, shared.basis_parameter, 0, shared.num_input_vertices,
                        shared.bbox_diagonal, shared.tolerance, name);
-    if (shared.quantisation.empty () != !(shared.flags & kFlagQuantised) ||
-        shared.channels.empty () != !(shared.flags & kFlagAttributes))
+    if (shared.quantisation.empty () != !(shared.flags & header_flag::quantised) ||
+        shared.channels.empty () != !(shared.flags & header_flag::attributes))
       throw Error (name + ": the shared sections do not match the flags");
   }
 
@@ -1153,7 +1139,7 @@ namespace pcl_sparse
   decodeModelSections (const SharedModelFields& shared, std::size_t num_patches,
                        const std::vector<std::pair<const std::uint8_t*, std::size_t>>& payloads, const std::string& name)
   {
-    const bool quantised = shared.flags & kFlagQuantised;
+    const bool quantised = shared.flags & header_flag::quantised;
     const std::size_t m = num_patches;
     const std::vector<std::string> tags = runSectionTags (shared.flags);
     if (payloads.size () != tags.size ())
@@ -1183,8 +1169,8 @@ namespace pcl_sparse
     ByteReader foot = open ();
     ByteReader atom = open ();
     ByteReader coef = open ();
-    const bool range_coded = shared.flags & kFlagRangeCoded;
-    const bool adaptive_footprints = shared.flags & kFlagAdaptiveFootprints;
+    const bool range_coded = shared.flags & header_flag::range_coded;
+    const bool adaptive_footprints = shared.flags & header_flag::adaptive_footprints;
     checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, q);
     // Patches are added as they decode, not made for the m the header promises up front: SEED and RADI
     // hold only a few bytes a patch, which zstd may shrink 64 times (and a range-coded patch may take less
@@ -1239,12 +1225,12 @@ namespace pcl_sparse
     atom.expectEnd ();
     coef.expectEnd ();
 
-    if (shared.flags & kFlagVertices)
+    if (shared.flags & header_flag::vertices)
     {
       ByteReader vert = open ();
       readVertices (vert, quantised, shared.num_input_vertices, model.patches);
     }
-    if (shared.flags & kFlagAttributes)
+    if (shared.flags & header_flag::attributes)
     {
       ByteReader channels (shared.channels.data (), shared.channels.size (), name + ": section ACHN");
       ByteReader attribute_atoms = open ();
@@ -1295,10 +1281,10 @@ namespace pcl_sparse
     const Container container = readContainer (data, size, name);
     ModelFileInfo info;
     info.version = container.header.version;
-    info.quantised = container.header.flags & kFlagQuantised;
-    info.range_coded = container.header.flags & kFlagRangeCoded;
-    info.has_vertices = container.header.flags & kFlagVertices;
-    if (container.header.flags & kFlagAttributes)
+    info.quantised = container.header.flags & header_flag::quantised;
+    info.range_coded = container.header.flags & header_flag::range_coded;
+    info.has_vertices = container.header.flags & header_flag::vertices;
+    if (container.header.flags & header_flag::attributes)
     {
       const StoredSection& section = container.sections[container.sections.size () - 3];
       const std::vector<std::uint8_t> bytes = sectionBytes (section, name);
