@@ -123,9 +123,9 @@ TEST (FormatResample, RangeCodingShrinksARealModelAndChangesNoPoint)
 
 // Issue 13 point 3 on a real CAD mesh: the default file (the tolerance derived from the model's error, the
 // default footprints) resamples within 10 % as near the mesh as the model itself. Footprints of 8 angles
-// everywhere (the default before footprint_refine_steps) overshoot blade's clipped borders: 1.82x as far
-// with these 20000 points, where the default file is +7.2 % (+7.6 % with the uniform refinement before
-// 2026-12-01, whose file was 8 % larger; bench/results/file_footprints.md: Chamfer).
+// everywhere (the default before footprint_refine_steps) overshoot blade's clipped borders: 1.72x as far
+// with these 20000 points, where the default file is +2.9 % (+7.2 % before footprints reached along smooth
+// borders, +7.6 % with the uniform refinement before 2026-12-01; bench/results/file_footprints.md: Chamfer).
 TEST (FormatResample, DefaultFileResamplesAsNearTheMeshAsTheModel)
 {
   const std::string path = sharedMesh ("blade.off");
