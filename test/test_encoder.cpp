@@ -266,6 +266,33 @@ TEST (SparseSurfaceEncoder, ProgressCallbackMayThrowToCancel)
   }
 }
 
+// Coding progress comes from the calling thread in fixed steps, so every thread count sees the same reports
+// (reports from inside the parallel loop depended on which thread drew which patches).
+TEST (SparseSurfaceEncoder, CodingProgressIsTheSameForAnyThreadCount)
+{
+  std::vector<std::vector<double>> seen;
+  for (int threads : {1, 2, 3})
+  {
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+    encoder.setInputMesh (std::make_shared<TriangleMesh> (makeTorus (48, 24, 1.0, 0.35)));
+    encoder.setNumberOfThreads (threads);
+    std::vector<double> fractions;
+    encoder.setProgressCallback ([&] (const std::string& stage, double fraction) {
+      if (stage == "coding")
+        fractions.push_back (fraction);
+    });
+    SparseSurfaceModel model;
+    encoder.compute (model);
+    seen.push_back (fractions);
+  }
+  ASSERT_GE (seen[0].size (), 8u);
+  EXPECT_GT (seen[0].front (), 0.0);
+  EXPECT_LT (seen[0].front (), 0.2);
+  EXPECT_DOUBLE_EQ (seen[0].back (), 1.0);
+  EXPECT_EQ (seen[1], seen[0]);
+  EXPECT_EQ (seen[2], seen[0]);
+}
+
 TEST (SparseSurfaceEncoder, FootprintsContainTheirVertices)
 {
   const SparseSurfaceModel model = encode (makeIcosphere (3, 1.0));

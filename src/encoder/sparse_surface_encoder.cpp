@@ -11,9 +11,6 @@
 
 #include <Eigen/Geometry>
 
-#include <omp.h>
-
-#include <atomic>
 #include <chrono>
 #include <memory>
 #include <cmath>
@@ -70,25 +67,24 @@ namespace pcl_sparse
       const long num_patches = static_cast<long> (patches.size ());
       std::vector<PatchCode> codes (patches.size ());
       info.resize (patches.size ());
-      std::atomic<long> done (0);
-      long next_report = 64;  // thread 0's alone: it reports once 64 more patches are done, whoever did them
-      ParallelFailure failure;
+      // In blocks, each reported from the calling thread once done: a report from inside the parallel loop
+      // would come from whichever thread drew it, and thread 0 alone (the caller's) may draw no patch at all.
+      const long num_blocks = context.progress ? 16 : 1;
+      for (long block = 0; block < num_blocks; ++block)
+      {
+        const long begin = num_patches * block / num_blocks;
+        const long end = num_patches * (block + 1) / num_blocks;
+        ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 16) num_threads(context.threads) if(num_patches > 64)
-      for (long p = 0; p < num_patches; ++p)
-        failure.run ([&] {
-          codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), context.mesh, context.ring_lengths,
-                                context.basis, context.coding, &info[p], context.attributes, &context.topology);
-          const long finished = ++done;
-          // (finished % 64 == 0 on thread 0 missed every report when the other threads took those counts.)
-          if (context.progress && omp_get_thread_num () == 0 && finished >= next_report)
-          {
-            next_report = finished + 64;
-            context.progress ("coding", static_cast<double> (finished) / num_patches);
-          }
-        });
-      failure.rethrow ();
-      if (context.progress)
-        context.progress ("coding", 1.0);
+        for (long p = begin; p < end; ++p)
+          failure.run ([&] {
+            codes[p] = codePatch (patches[p], static_cast<std::size_t> (p), context.mesh, context.ring_lengths,
+                                  context.basis, context.coding, &info[p], context.attributes, &context.topology);
+          });
+        failure.rethrow ();
+        if (context.progress)
+          context.progress ("coding", static_cast<double> (end) / std::max (num_patches, 1L));
+      }
       return codes;
     }
 
