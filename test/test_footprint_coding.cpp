@@ -5,6 +5,8 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/footprint_coding.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/format/model_sections.h>
+#include <pcl_sparse/format/range_coder.h>
 
 #include "test_format_models.h"
 
@@ -221,4 +223,56 @@ TEST (FootprintCoding, FootprintsOfThousandsOfAnglesFromAFewAreRefused)
     EXPECT_LT (patch.footprint.extent[1], 0.2f);
     EXPECT_GT (patch.footprint.extent[2048], 0.7f);
   }
+}
+
+// The reader holds a run to the same angle allowance on its own, for files no writer of ours would make: runs of
+// equal patches whose FOOT section is replaced by one coding a notched 4096-angle footprint per patch (a few
+// bytes each: the range coder's splits and levels of a footprint it has seen before cost next to nothing).
+TEST (FootprintCoding, ReaderRefusesARunOfMoreAnglesThanItsBytesJustify)
+{
+  PatchFootprint notched;
+  notched.extent.assign (4096, 0.8f);
+  notched.extent[1] = 0.1f;
+  auto decodeRun = [&] (std::size_t num_patches, std::size_t* foot_bytes) {
+    SparseSurfaceModel model = test::makeSyntheticModel (1, 3, false, 8);
+    model.patches[0].footprint.extent.assign (8, 0.8f);  // the same extent scale as the notched footprints
+    model.patches.resize (num_patches, model.patches[0]);
+    ModelWriteOptions options;
+    options.tolerance = 1e-3;
+    ModelSections sections = encodeModelSections (model, options, {{0, num_patches}});
+    const std::vector<std::string> tags = runSectionTags (sections.shared.flags);
+    const std::size_t foot = std::find (tags.begin (), tags.end (), "FOOT") - tags.begin ();
+    RangeEncoder coder;
+    FootprintContexts contexts (options.extent_bits);
+    const FootprintLevels levels{0.8 / ((1 << options.extent_bits) - 1), options.extent_bits};
+    for (std::size_t p = 0; p < num_patches; ++p)
+      putFootprint (coder, contexts, notched, levels, FootprintRefinement{});
+    sections.runs[0][foot] = coder.finish ();
+    *foot_bytes = sections.runs[0][foot].size ();
+    std::vector<std::pair<const std::uint8_t*, std::size_t>> views;
+    for (const std::vector<std::uint8_t>& bytes : sections.runs[0])
+      views.emplace_back (bytes.data (), bytes.size ());
+    return decodeModelSections (sections.shared, num_patches, views, "notched");
+  };
+  // 16 patches, 65536 angles: within the allowance, and each reads back with its notch.
+  std::size_t foot_bytes = 0;
+  const SparseSurfaceModel sixteen = decodeRun (16, &foot_bytes);
+  ASSERT_EQ (sixteen.patches.size (), 16u);
+  for (const PatchCode& patch : sixteen.patches)
+  {
+    ASSERT_EQ (patch.footprint.extent.size (), 4096u);
+    EXPECT_LT (patch.footprint.extent[1], 0.2f);
+    EXPECT_GT (patch.footprint.extent[2048], 0.7f);
+  }
+  // 40 patches, 163840 angles from far fewer FOOT bytes than that justifies: refused, naming the limit.
+  try
+  {
+    decodeRun (40, &foot_bytes);
+    ADD_FAILURE () << "no error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("more angles than its bytes justify"), std::string::npos) << e.what ();
+  }
+  EXPECT_LT (65536 + 256 * foot_bytes, 40u * 4096u) << foot_bytes << " FOOT bytes";
 }
