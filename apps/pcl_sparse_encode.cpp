@@ -3,7 +3,7 @@
 ///
 ///   pcl_sparse_encode MESH [-rho R] [-f F] [-L N] [-eps E] [-min-samples N] [-cone DEG] [-recon RECON.ply]
 ///                     [-error ERR.ply] [-o MODEL.psm [-tolerance T] [-footprint-steps R] [--store-vertices]
-///                     [--varint-layout]] [-tiles N]
+///                     [--varint-layout] [--exact-footprints]] [-tiles N]
 ///                     [-memory SIZE] [--json] [-q]
 ///
 /// Under `mpirun -n K` (tools built with MPI) the tiles are shared out over the K processes and rank 0
@@ -90,6 +90,8 @@ namespace
       {"", "the 8 stray from it by more than R extent levels summed over the angles (default 2: within 10 %"},
       {"", "of the lossless model's Chamfer distance on 23 of 25 shared meshes; 0: 8 everywhere, smaller,"},
       {"", "up to 3x as far)"},
+      {"--exact-footprints", "quantised model file: refine footprints against their exact extents, also where"},
+      {"", "neighbours hold the places at their borders (6-10 % larger; see ModelWriteOptions::footprint_slack)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
       {"--varint-layout", "quantised model file: zstd over varints instead of range-coded fields (up to 22 %"},
       {"", "larger)"},
@@ -107,7 +109,7 @@ namespace
     1,
     {"-rho", "-f", "-L", "-eps", "-min-samples", "-cone", "-footprint-reach", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
      "-footprint-steps", "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory"},
-    {"--json", "-q", "--authors-nyquist", "--store-vertices", "--varint-layout"}};
+    {"--json", "-q", "--authors-nyquist", "--store-vertices", "--varint-layout", "--exact-footprints"}};
 } // namespace
 
 int
@@ -145,9 +147,11 @@ main (int argc, char** argv)
       args.number ("-footprint-steps", write_options.footprint_refine_steps, tools::Range::closed (0.0, 1e6));
     write_options.include_vertices = args.has ("--store-vertices");
     write_options.range_coding = !args.has ("--varint-layout");
-    if (model_path.empty () &&
-        (tolerance_given || steps_given || write_options.include_vertices || !write_options.range_coding))
-      throw Error ("options -tolerance, -footprint-steps, --store-vertices and --varint-layout need -o MODEL.psm");
+    write_options.footprint_slack = !args.has ("--exact-footprints");
+    if (model_path.empty () && (tolerance_given || steps_given || write_options.include_vertices ||
+                                !write_options.range_coding || !write_options.footprint_slack))
+      throw Error ("options -tolerance, -footprint-steps, --store-vertices, --varint-layout and --exact-footprints need "
+                   "-o MODEL.psm");
     options.validate ();
     Eigen::Vector3d viewpoint;
     const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);

@@ -232,6 +232,29 @@ TEST_F (EncodeTool, FootprintStepsReachTheFile)
   EXPECT_EQ (run (input_ + " -q -footprint-steps 2", out), 1);  // no file
 }
 
+// --exact-footprints refines every footprint against its exact extents: the same patches and codes, footprints
+// drawn otherwise where neighbours hold their borders, a larger file.
+TEST_F (EncodeTool, ExactFootprintsTakeMoreBytes)
+{
+  const std::string slack = (dir_ / "slack.psm").string (), exact = (dir_ / "exact.psm").string ();
+  std::string out;
+  ASSERT_EQ (run (input_ + " -q -o " + slack, out), 0);
+  ASSERT_EQ (run (input_ + " -q --exact-footprints -o " + exact, out), 0);
+  const SparseSurfaceModel a = loadModel (slack), b = loadModel (exact);
+  ASSERT_EQ (a.patches.size (), b.patches.size ());
+  std::size_t redrawn = 0;
+  for (std::size_t p = 0; p < a.patches.size (); ++p)
+  {
+    EXPECT_EQ (a.patches[p].coefficients, b.patches[p].coefficients);
+    redrawn += a.patches[p].footprint.extent != b.patches[p].footprint.extent;
+  }
+  std::cout << "  " << redrawn << " of " << a.patches.size () << " footprints drawn otherwise; "
+            << std::filesystem::file_size (slack) << " bytes, " << std::filesystem::file_size (exact) << " exact" << std::endl;
+  EXPECT_GT (redrawn, 0u);
+  EXPECT_LT (std::filesystem::file_size (slack), std::filesystem::file_size (exact));
+  EXPECT_EQ (run (input_ + " -q --exact-footprints", out), 1);  // no file
+}
+
 // The same model in either layout; which is smaller depends on the model's size (the range coder's
 // adaptive models learn as they go): FormatResample.RangeCodingShrinksARealModelAndChangesNoPoint measures a
 // real one.

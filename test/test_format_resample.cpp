@@ -98,8 +98,7 @@ TEST (FormatResample, QuantisedFileResamplesWithinTolerance)
 TEST (FormatResample, RangeCodingShrinksARealModelAndChangesNoPoint)
 {
   // The default file of a real mesh (quantised at the tolerance derived from its error), range-coded
-  // against the varint layout: smaller by 15 % on fandisk, 17 % on smooth meshes such as spot, and the
-  // same points when resampled.
+  // against the varint layout: smaller by 12 % on fandisk, and the same points when resampled.
   const std::string path = sharedMesh ("fandisk.off");
   if (path.empty ())
     GTEST_SKIP () << "needs ../shared/meshes/fandisk.off (not found in " << PCL_SPARSE_SHARED_MESHES << ")";
@@ -113,8 +112,9 @@ TEST (FormatResample, RangeCodingShrinksARealModelAndChangesNoPoint)
   std::cout << "  fandisk: " << range_coded.size () << " bytes range-coded, " << varints.size () << " varint layout"
             << std::endl;
   // 5 % while refined footprints kept every angle of a stride (their deltas code about as small with zstd);
-  // the adaptive footprints' split flags and residuals code far smaller with their models by depth and ends.
-  EXPECT_LT (range_coded.size (), 0.86 * varints.size ());  // 0.867 with models by depth alone
+  // the adaptive footprints' split flags and residuals code far smaller with their models by depth and ends
+  // (0.85; 0.871 since the footprint slack leaves fewer splits to code: 16072 against 18457 bytes).
+  EXPECT_LT (range_coded.size (), 0.9 * varints.size ());
   const auto a = resample (decodeModel (range_coded.data (), range_coded.size ()));
   const auto b = resample (decodeModel (varints.data (), varints.size ()));
   ASSERT_EQ (a.size (), b.size ());

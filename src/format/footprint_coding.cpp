@@ -70,13 +70,21 @@ namespace pcl_sparse
       void residual (int context, unsigned r) { c.residual[context].put (out, r); }
     };
 
+    /// Where each extent of a footprint may be drawn: references to the slack's vectors or to the extents.
+    struct FootprintBounds
+    {
+      const std::vector<float>& lower;
+      const std::vector<float>& upper;
+    };
+
     /// How far the extents strictly inside [a, a + len) (angles mod K) lie from the line between the levels at
-    /// its ends, summed over the angles: the area (steps x angles) between the border drawn and the true one.
+    /// its ends, summed over the angles: the area (steps x angles) between the border drawn and the true one,
+    /// where the true one may be drawn anywhere in [lower, upper] (FootprintSlack; both the extent without).
     /// 0 where more angles could not change the drawing: every level inside already is the line's, rounded
     /// (a round footprint whose extent lies between two levels).
     double
-    intervalDeviation (const std::vector<float>& extent, const std::vector<unsigned>& level, std::size_t a,
-                       std::size_t len, const FootprintLevels& levels)
+    intervalDeviation (const std::vector<float>& extent, const FootprintBounds& bounds, const std::vector<unsigned>& level,
+                       std::size_t a, std::size_t len, const FootprintLevels& levels)
     {
       const std::size_t b = (a + len) % extent.size ();
       double deviation = 0.0;
@@ -84,8 +92,9 @@ namespace pcl_sparse
       for (std::size_t j = 1; j < len; ++j)
       {
         const double drawn = interpolatedExtent (level[a], level[b], static_cast<double> (j) / static_cast<double> (len), levels);
-        deviation += std::abs (drawn - static_cast<double> (extent[a + j]));
-        improvable = improvable || levelOf (extent[a + j], levels) != levelOf (static_cast<float> (drawn), levels);
+        const double nearest = std::clamp (drawn, static_cast<double> (bounds.lower[a + j]), static_cast<double> (bounds.upper[a + j]));
+        deviation += std::abs (drawn - nearest);
+        improvable = improvable || levelOf (static_cast<float> (nearest), levels) != levelOf (static_cast<float> (drawn), levels);
       }
       return improvable ? deviation : 0.0;
     }
@@ -93,13 +102,13 @@ namespace pcl_sparse
     /// Codes the splits of [a, a + len); whether any was split.
     template <typename Symbols>
     bool
-    putInterval (Symbols& symbols, const std::vector<float>& extent, std::vector<unsigned>& level, std::size_t a,
-                 std::size_t len, int depth, const FootprintLevels& levels, const FootprintRefinement& refinement)
+    putInterval (Symbols& symbols, const std::vector<float>& extent, const FootprintBounds& bounds, std::vector<unsigned>& level,
+                 std::size_t a, std::size_t len, int depth, const FootprintLevels& levels, const FootprintRefinement& refinement)
     {
       if (len < 2)
         return false;
       const bool split = refinement.max_deviation_steps > 0.0 &&
-                         intervalDeviation (extent, level, a, len, levels) > refinement.max_deviation_steps * levels.step;
+                         intervalDeviation (extent, bounds, level, a, len, levels) > refinement.max_deviation_steps * levels.step;
       const std::size_t half = len / 2, middle = a + half, b = (a + len) % extent.size ();
       const int context = intervalContext (depth, level[a], level[b]);
       symbols.split (context, split);
@@ -107,8 +116,8 @@ namespace pcl_sparse
         return false;
       level[middle] = levelOf (extent[middle], levels);
       symbols.residual (context, (level[middle] - midpointPrediction (level[a], level[b])) & levelMask (levels));
-      putInterval (symbols, extent, level, a, half, depth + 1, levels, refinement);
-      putInterval (symbols, extent, level, middle, half, depth + 1, levels, refinement);
+      putInterval (symbols, extent, bounds, level, a, half, depth + 1, levels, refinement);
+      putInterval (symbols, extent, bounds, level, middle, half, depth + 1, levels, refinement);
       return true;
     }
 
@@ -116,10 +125,12 @@ namespace pcl_sparse
     template <typename Symbols>
     std::size_t
     putFootprintSymbols (Symbols& symbols, const PatchFootprint& footprint, const FootprintLevels& levels,
-                         const FootprintRefinement& refinement)
+                         const FootprintRefinement& refinement, const FootprintSlack* slack)
     {
       const std::vector<float>& extent = footprint.extent;
       const std::size_t k = extent.size ();
+      const bool slack_given = slack && slack->lower.size () == k && slack->upper.size () == k;
+      const FootprintBounds bounds{slack_given ? slack->lower : extent, slack_given ? slack->upper : extent};
       std::size_t stride = 1;
       unsigned stride_log2 = 0;
       while (refinement.max_coarse_angles > 0 && k / stride > static_cast<std::size_t> (refinement.max_coarse_angles) &&
@@ -140,7 +151,7 @@ namespace pcl_sparse
       }
       bool refined = false;
       for (std::size_t a = 0; a < k; a += stride)
-        refined = putInterval (symbols, extent, level, a, stride, 0, levels, refinement) || refined;
+        refined = putInterval (symbols, extent, bounds, level, a, stride, 0, levels, refinement) || refined;
       return refined ? k : k / stride;
     }
 
@@ -261,18 +272,18 @@ namespace pcl_sparse
 
   std::size_t
   putFootprint (ByteWriter& out, const PatchFootprint& footprint, const FootprintLevels& levels,
-                const FootprintRefinement& refinement)
+                const FootprintRefinement& refinement, const FootprintSlack* slack)
   {
     ByteFootprintSymbols symbols{out};
-    return putFootprintSymbols (symbols, footprint, levels, refinement);
+    return putFootprintSymbols (symbols, footprint, levels, refinement, slack);
   }
 
   std::size_t
   putFootprint (RangeEncoder& out, FootprintContexts& contexts, const PatchFootprint& footprint,
-                const FootprintLevels& levels, const FootprintRefinement& refinement)
+                const FootprintLevels& levels, const FootprintRefinement& refinement, const FootprintSlack* slack)
   {
     RangeFootprintSymbols symbols{out, contexts};
-    return putFootprintSymbols (symbols, footprint, levels, refinement);
+    return putFootprintSymbols (symbols, footprint, levels, refinement, slack);
   }
 
   void

@@ -13,6 +13,7 @@
 #include <pcl_sparse/format/sparse_code_stream.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/format/zstd_codec.h>
+#include <pcl_sparse/resampling/footprint_slack.h>
 #include <pcl_sparse/tiles/tiled_model.h>
 
 #include <algorithm>
@@ -424,7 +425,8 @@ namespace pcl_sparse
     /// The six per-patch sections of patches [first, first + count), quantised with \a q.
     std::vector<std::vector<std::uint8_t>>
     encodeQuantisedRun (const SparseSurfaceModel& model, std::size_t first, std::size_t count,
-                        const QuantisationParameters& q, const ModelWriteOptions& options, int frequencies, int monomials)
+                        const QuantisationParameters& q, const ModelWriteOptions& options, int frequencies, int monomials,
+                        const std::vector<FootprintSlack>& slack)
     {
       // Decode as we go, so that the steps derived from decoded values match the decoder's.
       std::vector<std::vector<std::uint64_t>> seeds (3, std::vector<std::uint64_t> (count));
@@ -444,13 +446,15 @@ namespace pcl_sparse
         decoded.radius = std::exp (q.log_radius_min + static_cast<double> (radii[k]) * q.log_radius_step);
         if (options.range_coding)
         {
-          angles += putFootprint (coded_foot, contexts.footprint, patch.footprint, q.footprintLevels (), refinement);
+          angles += putFootprint (coded_foot, contexts.footprint, patch.footprint, q.footprintLevels (), refinement,
+                                  slack.empty () ? nullptr : &slack[first + k]);
           putQuantisedCode (coded_atom, coded_coef, contexts.code, patch, q, decoded);
           putQuantisedFrame (coded_frame, contexts, quantisedFrame (patch.frame, decoded, q));
         }
         else
         {
-          angles += putFootprint (foot, patch.footprint, q.footprintLevels (), refinement);
+          angles += putFootprint (foot, patch.footprint, q.footprintLevels (), refinement,
+                                  slack.empty () ? nullptr : &slack[first + k]);
           putQuantisedCode (atom, coef, patch, q, frequencies, monomials, decoded);
           putQuantisedFrame (frame, quantisedFrame (patch.frame, decoded, q));
         }
@@ -1025,10 +1029,13 @@ namespace pcl_sparse
     shared.bbox_diagonal = model.bbox_diagonal;
     shared.tolerance = options.tolerance;
     QuantisationParameters q;
+    std::vector<FootprintSlack> slack;  // over the whole model, so that every run of it is written alike
     if (quantised)
     {
       q = chooseQuantisation (model, options);
       shared.quantisation = quantisationBytes (q);
+      if (options.footprint_slack && options.footprint_refine_steps > 0.0)
+        slack = footprintSlack (model);
     }
     if (attributes && quantised && !(options.attribute_tolerance > 0.0 && std::isfinite (options.attribute_tolerance)))
       throw Error ("encodeModel: attribute_tolerance must be > 0");
@@ -1036,7 +1043,7 @@ namespace pcl_sparse
     for (const auto& [first, count] : runs)
     {
       std::vector<std::vector<std::uint8_t>> sections =
-        quantised ? encodeQuantisedRun (model, first, count, q, options, frequencies, cosine.monomials ())
+        quantised ? encodeQuantisedRun (model, first, count, q, options, frequencies, cosine.monomials (), slack)
                   : encodeLosslessRun (model, first, count);
       if (options.include_vertices)
         sections.push_back (encodeVertices (model, first, count, quantised));

@@ -10,6 +10,7 @@
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/range_coder.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/resampling/footprint_slack.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -60,16 +61,23 @@ namespace pcl_sparse
   };
 
   /// Writes \a footprint's symbols in the varint layout (one byte each, the count as a varint).
+  /// \param[in,out] out     receives the symbols
+  /// \param[in] footprint   the footprint
+  /// \param[in] levels      the extent levels (QUAN)
+  /// \param[in] refinement  which angles to keep
+  /// \param[in] slack  where each extent may be drawn instead (nullptr, or vectors of another length: at the
+  ///                   extent itself); only which intervals split depends on it, never the levels coded
   /// \return the number of angles a reader gets (getFootprint)
   std::size_t
   putFootprint (ByteWriter& out, const PatchFootprint& footprint, const FootprintLevels& levels,
-                const FootprintRefinement& refinement);
+                const FootprintRefinement& refinement, const FootprintSlack* slack = nullptr);
 
-  /// Writes \a footprint's symbols with the range coder.
+  /// Writes \a footprint's symbols with the range coder, with \a contexts' models (the rest as above).
   /// \return the number of angles a reader gets (getFootprint)
   std::size_t
   putFootprint (RangeEncoder& out, FootprintContexts& contexts, const PatchFootprint& footprint,
-                const FootprintLevels& levels, const FootprintRefinement& refinement);
+                const FootprintLevels& levels, const FootprintRefinement& refinement,
+                const FootprintSlack* slack = nullptr);
 
   /// Reads a footprint of the varint layout into \a footprint: the coarse extents if no interval was split,
   /// else every angle (interpolated between the coded ones).

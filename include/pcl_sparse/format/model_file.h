@@ -69,6 +69,12 @@ namespace pcl_sparse
     /// 23 of 25 (anchor-dense 15 %, fandisk 13.5 %: their 4-bit extents), 0.1-6.9 % on the others
     /// (file_footprints.md).
     double footprint_refine_steps = 2.0;
+    /// In quantised mode, refine a footprint only where its border must stay put: where a same-side neighbour
+    /// holds the places at the border more centrally, resampling gives them to the neighbour whether the
+    /// border is drawn a little in or out, so the refinement measures the drawn border against that slack
+    /// (resampling/footprint_slack.h) instead of the exact extent. Only the writer's choice of angles changes;
+    /// readers need nothing.
+    bool footprint_slack = true;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
     /// input vertices, docs/METHOD.md step 10). Off by default: decoding and resampling do not need them.
     bool include_vertices = false;

@@ -122,6 +122,20 @@ namespace pcl_sparse
       for (std::size_t k = opposite_begin_[bin]; k < opposite_begin_[bin + 1]; ++k)
         if (nearSurface (opposites_[opposite_contenders_[k]], q))
           return false;
+      return !heldByAnother (p, q, centrality, turn);
+    }
+
+    /// Whether a contender of patch \a p (on its surface there, facing p's side) holds a place at most as
+    /// centrally as \a centrality (ties to the lower patch index): the test of owns without the facing-away
+    /// clearance.
+    /// \param[in] p           patch index
+    /// \param[in] q           world point
+    /// \param[in] centrality  the bound, <= 1 for contenders' footprints
+    /// \param[in] turn        angle of q in p as a fraction of a turn (its sector)
+    bool
+    heldByAnother (std::size_t p, const Eigen::Vector3d& q, double centrality, double turn) const
+    {
+      const std::size_t bin = p * sectors + std::min<std::size_t> (sectors - 1, static_cast<std::size_t> (turn * sectors));
       for (std::size_t k = bin_begin_[bin]; k < bin_begin_[bin + 1]; ++k)
       {
         const Contender& other = contenders_[bin_contenders_[k]];
@@ -132,9 +146,9 @@ namespace pcl_sparse
         if (x * x + y * y > bound * bound)
           continue;
         if (beats (other, p, d, x, y, centrality))
-          return false;
+          return true;
       }
-      return true;
+      return false;
     }
 
     /// The options given to the constructor.

@@ -1,0 +1,229 @@
+/// The footprint slack a quantised file may use (resampling/footprint_slack.h): borders through same-side
+/// neighbours may move, open borders may not, and the writer's files stay as near the surface.
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/resampling/footprint_slack.h>
+#include <pcl_sparse/resampling/patch_evaluator.h>
+#include <pcl_sparse/resampling/patch_geometry.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <iostream>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  SparseSurfaceModel
+  encode (const TriangleMesh& mesh, double rho)
+  {
+    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+    encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+    SparseSurfaceEncoderOptions options;
+    options.patches.rho = rho;
+    encoder.setOptions (options);
+    SparseSurfaceModel model;
+    encoder.compute (model);
+    return model;
+  }
+
+  /// World point of patch p's surface at angle index i of its footprint, at t times the extent.
+  Eigen::Vector3d
+  borderPoint (const PatchEvaluator& evaluator, std::size_t p, std::size_t i, double t)
+  {
+    const PatchCode& code = evaluator.model ().patches[p];
+    const double angle = 2.0 * M_PI * static_cast<double> (i) / static_cast<double> (code.footprint.extent.size ());
+    const double x = t * code.footprint.extent[i] * std::cos (angle), y = t * code.footprint.extent[i] * std::sin (angle);
+    return patchPoint (code, x, y, evaluator.sample (p, x, y, false));
+  }
+
+  /// The smallest centrality at which a patch other than \a skip holds the world point \a q on its surface
+  /// (within a tenth of its radius of it); infinity when none does.
+  double
+  heldCentrality (const PatchEvaluator& evaluator, const Eigen::Vector3d& q, std::size_t skip = std::size_t (-1))
+  {
+    double best = std::numeric_limits<double>::infinity ();
+    for (std::size_t p = 0; p < evaluator.model ().patches.size (); ++p)
+    {
+      const PatchCode& code = evaluator.model ().patches[p];
+      const Eigen::Vector3d local = code.frame.transpose () * (q - code.origin) / code.radius;
+      const double c = evaluator.centrality (p, local.x (), local.y ());
+      if (p != skip && c < best && std::abs (local.z () - evaluator.height (p, local.x (), local.y ())) <= 0.1)
+        best = c;
+    }
+    return best;
+  }
+
+  /// The model with every footprint drawn at the slack's lower extents: the least a file may cover.
+  SparseSurfaceModel
+  atLowerExtents (SparseSurfaceModel model, const std::vector<FootprintSlack>& slack)
+  {
+    for (std::size_t p = 0; p < model.patches.size (); ++p)
+      model.patches[p].footprint.extent = slack[p].lower;
+    return model;
+  }
+
+  /// Every vertex and face centroid of \a mesh held by a footprint of \a model is still held with every
+  /// footprint drawn at its lower slack; the number of those lost.
+  std::size_t
+  placesLostAtLowerExtents (const TriangleMesh& mesh, const SparseSurfaceModel& model, const std::vector<FootprintSlack>& slack)
+  {
+    const PatchEvaluator exact (model);
+    const SparseSurfaceModel lower_model = atLowerExtents (model, slack);
+    const PatchEvaluator lower (lower_model);
+    std::vector<Eigen::Vector3d> probes (mesh.vertices.begin (), mesh.vertices.end ());
+    for (const Eigen::Vector3i& face : mesh.triangles)
+      probes.push_back ((mesh.vertices[face[0]] + mesh.vertices[face[1]] + mesh.vertices[face[2]]) / 3.0);
+    std::size_t lost = 0;
+    for (const Eigen::Vector3d& q : probes)
+      lost += heldCentrality (exact, q) <= 1.0 && heldCentrality (lower, q) > 1.0;
+    return lost;
+  }
+} // namespace
+
+// An open, gently waved sheet over [-1, 1]^2. Where a border place of a patch lies in no other footprint (at
+// the sheet's edge), its extent keeps no slack; inside, nearly every border runs through neighbours and may
+// move. However every footprint is drawn within its slack, the places the footprints held stay held.
+TEST (FootprintSlack, OnlyBordersThroughNeighboursMoveAndNoPlaceIsLost)
+{
+  const TriangleMesh sheet =
+    makeHeightFieldGrid (48, 48, 1.0, 1.0, [] (double x, double y) { return 0.1 * std::sin (3.0 * x) * std::cos (2.0 * y); });
+  const SparseSurfaceModel model = encode (sheet, 0.001);
+  ASSERT_GE (model.patches.size (), 10u);
+  const std::vector<FootprintSlack> slack = footprintSlack (model);
+  ASSERT_EQ (slack.size (), model.patches.size ());
+  const PatchEvaluator evaluator (model);
+  std::size_t alone = 0, alone_moved = 0, inside = 0, inside_moved = 0;
+  for (std::size_t p = 0; p < model.patches.size (); ++p)
+  {
+    const std::vector<float>& extent = model.patches[p].footprint.extent;
+    ASSERT_EQ (slack[p].lower.size (), extent.size ());
+    ASSERT_EQ (slack[p].upper.size (), extent.size ());
+    for (std::size_t i = 0; i < extent.size (); ++i)
+    {
+      EXPECT_LE (slack[p].lower[i], extent[i]);
+      EXPECT_GE (slack[p].lower[i], 0.7f * extent[i] - 1e-6f);
+      EXPECT_GE (slack[p].upper[i], extent[i]);
+      EXPECT_LE (slack[p].upper[i], 1.3f * extent[i] + 1e-6f);
+      const Eigen::Vector3d b = borderPoint (evaluator, p, i, 1.0);
+      const bool moved = slack[p].lower[i] < extent[i] || slack[p].upper[i] > extent[i];
+      if (heldCentrality (evaluator, b, p) > 1.0)
+      {
+        ++alone;
+        alone_moved += moved;
+      }
+      else if (1.0 - std::max (std::abs (b.x ()), std::abs (b.y ())) > 0.3)
+      {
+        ++inside;
+        inside_moved += moved;
+      }
+    }
+  }
+  const std::size_t lost = placesLostAtLowerExtents (sheet, model, slack);
+  std::cout << "  " << model.patches.size () << " patches; " << alone_moved << " of " << alone
+            << " extents whose border place no other footprint holds have slack, " << inside_moved << " of " << inside
+            << " inside; places lost at the lower extents: " << lost << std::endl;
+  ASSERT_GT (alone, 40u);
+  EXPECT_EQ (alone_moved, 0u);
+  ASSERT_GT (inside, 200u);
+  EXPECT_GT (inside_moved, inside * 9 / 10);
+  EXPECT_EQ (lost, 0u);
+}
+
+TEST (FootprintSlack, SameForAnyThreadCountAndRejectsBadOptions)
+{
+  const SparseSurfaceModel model = encode (makeTorus (48, 24, 1.0, 0.35), 0.001);
+  const std::vector<FootprintSlack> one = footprintSlack (model, FootprintSlackOptions (), 1);
+  const std::vector<FootprintSlack> three = footprintSlack (model, FootprintSlackOptions (), 3);
+  ASSERT_EQ (one.size (), three.size ());
+  for (std::size_t p = 0; p < one.size (); ++p)
+  {
+    EXPECT_EQ (one[p].lower, three[p].lower) << p;
+    EXPECT_EQ (one[p].upper, three[p].upper) << p;
+  }
+  using Change = void (*) (FootprintSlackOptions&);
+  for (Change bad : {Change ([] (FootprintSlackOptions& o) { o.max_centrality = 0.0; }),
+                     Change ([] (FootprintSlackOptions& o) { o.max_centrality = 1.5; }),
+                     Change ([] (FootprintSlackOptions& o) { o.inward = 1.0; }),
+                     Change ([] (FootprintSlackOptions& o) { o.outward = -0.1; })})
+  {
+    FootprintSlackOptions options;
+    bad (options);
+    EXPECT_THROW (footprintSlack (model, options), Error);
+  }
+}
+
+// A torus is all inside: the file with the slack spends far fewer FOOT bytes, draws every extent within two
+// extent steps of its slack, and resamples as near the torus as the file without it.
+TEST (FootprintSlack, SmallerFilesAsNearTheSurface)
+{
+  const double major = 1.0, minor = 0.35;
+  const TriangleMesh torus = makeTorus (96, 48, major, minor);
+  const SparseSurfaceModel model = encode (torus, 0.001);
+  const std::vector<FootprintSlack> slack = footprintSlack (model);
+  EXPECT_EQ (placesLostAtLowerExtents (torus, model, slack), 0u);
+  ModelWriteOptions options;
+  options.tolerance = 1e-4;
+  const std::vector<std::uint8_t> with = encodeModel (model, options);
+  options.footprint_slack = false;
+  const std::vector<std::uint8_t> without = encodeModel (model, options);
+  const SparseSurfaceModel a = decodeModel (with.data (), with.size ()), b = decodeModel (without.data (), without.size ());
+  const ModelFileInfo info_a = inspectModel (with.data (), with.size ()), info_b = inspectModel (without.data (), without.size ());
+  auto footBytes = [] (const ModelFileInfo& info) {
+    for (const auto& section : info.sections)
+      if (section.tag == "FOOT")
+        return section.stored_bytes;
+    return std::uint64_t (0);
+  };
+  std::cout << "  " << model.patches.size () << " patches: " << with.size () << " bytes (FOOT " << footBytes (info_a)
+            << ") with the slack, " << without.size () << " (FOOT " << footBytes (info_b) << ") without" << std::endl;
+  EXPECT_LT (footBytes (info_a), 0.8 * footBytes (info_b));
+  EXPECT_LT (with.size (), without.size ());
+
+  // The drawn extents: within 2 steps (the refinement's bound on an interval's summed deviation) of the slack.
+  double extent_max = 0.0;
+  for (const PatchCode& patch : model.patches)
+    for (float e : patch.footprint.extent)
+      extent_max = std::max (extent_max, static_cast<double> (e));
+  const double step = extent_max / 15.0;
+  std::size_t outside_exact = 0, angles = 0;
+  for (std::size_t p = 0; p < model.patches.size (); ++p)
+  {
+    const std::vector<float>& exact = model.patches[p].footprint.extent;
+    const std::size_t k = exact.size ();
+    for (std::size_t i = 0; i < k; ++i)
+    {
+      const double drawn = a.patches[p].footprint.extentAt (2.0 * M_PI * static_cast<double> (i) / static_cast<double> (k));
+      EXPECT_GE (drawn, slack[p].lower[i] - 2.0 * step - 1e-6) << p << " " << i;
+      EXPECT_LE (drawn, slack[p].upper[i] + 2.0 * step + 1e-6) << p << " " << i;
+      outside_exact += std::abs (drawn - exact[i]) > 2.0 * step;
+      ++angles;
+    }
+  }
+  std::cout << "  " << outside_exact << " of " << angles << " drawn extents more than 2 steps from the exact one" << std::endl;
+  EXPECT_GT (outside_exact, 0u);  // the slack is used
+
+  auto meanDistance = [&] (const SparseSurfaceModel& m) {
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (std::make_shared<const SparseSurfaceModel> (m));
+    resampling.setPointCount (40000);
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    resampling.compute (cloud);
+    double sum = 0.0;
+    for (const pcl::PointNormal& q : cloud)
+    {
+      const double ring = std::hypot (q.x, q.y) - major;
+      sum += std::abs (std::hypot (ring, static_cast<double> (q.z)) - minor);
+    }
+    return sum / static_cast<double> (cloud.size ());
+  };
+  const double distance_a = meanDistance (a), distance_b = meanDistance (b);
+  std::cout << "  mean distance to the torus " << distance_a << " with the slack, " << distance_b << " without" << std::endl;
+  EXPECT_LT (distance_a, 1.02 * distance_b);
+}
