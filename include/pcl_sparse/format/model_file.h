@@ -66,14 +66,16 @@ namespace pcl_sparse
     /// only there. 0: every patch keeps max_footprint_angles. With 8 angles everywhere the default file added
     /// 3-174 % to the Chamfer distance of the lossless model on the shared meshes (footprints clipped at
     /// borders and creases overshoot or cut the surface between 8 rays); at 2 steps it adds at most 10 % on
-    /// 23 of 25 (anchor-dense 15 %, fandisk 13.5 %: their 4-bit extents), 0.1-6.9 % on the others
-    /// (file_footprints.md).
+    /// 23 of 25 (anchor-dense 15 %, fandisk 12.8 %: their 4-bit extents), 0.2-6.6 % on the others
+    /// (file_footprints.md; footprint_slack.md with the slack below).
     double footprint_refine_steps = 2.0;
     /// In quantised mode, refine a footprint only where its border must stay put: where a same-side neighbour
     /// holds the places at the border more centrally, resampling gives them to the neighbour whether the
     /// border is drawn a little in or out, so the refinement measures the drawn border against that slack
     /// (resampling/footprint_slack.h) instead of the exact extent. Only the writer's choice of angles changes;
-    /// readers need nothing.
+    /// readers need nothing. On the 25 shared meshes: default files 1.2-11.2 % smaller, the Chamfer distance
+    /// the same or lower on 22 (cheese-cgal +0.8 points, igea +0.2, couplingdown +0.1), the writer 10-180 ms
+    /// slower (bench/results/footprint_slack.md).
     bool footprint_slack = true;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
     /// input vertices, docs/METHOD.md step 10). Off by default: decoding and resampling do not need them.
