@@ -18,3 +18,14 @@ write_keeping_notes () {
   mv "$1" "$2"
   echo "written: $2"
 }
+# file_tools: builds pcl_sparse_encode, pcl_sparse_resample, bench_format and bench_meshes in $build and sets
+# encode, resample, format and quality to them (for the scripts that measure model files and their clouds).
+file_tools () {
+  cmake --build "$build" --target pcl_sparse_encode pcl_sparse_resample bench_format bench_meshes -j2 > /dev/null
+  encode="$build/apps/pcl_sparse_encode"
+  resample="$build/apps/pcl_sparse_resample"
+  format="$build/bench/bench_format"
+  quality="$build/bench/bench_meshes"
+}
+# ratio A B: A / B to three decimals.
+ratio () { python3 -c "print('%.3f' % ($1 / $2))"; }

@@ -9,14 +9,9 @@
 set -euo pipefail
 # shellcheck source=bench/bench_setup.sh
 source "$(dirname "$0")/bench_setup.sh"
-cmake --build "$build" --target pcl_sparse_encode pcl_sparse_resample bench_format bench_meshes -j2 > /dev/null
-encode="$build/apps/pcl_sparse_encode"
-resample="$build/apps/pcl_sparse_resample"
-format="$build/bench/bench_format"
-quality="$build/bench/bench_meshes"
+file_tools
 out="$here/results/footprint_reach.md"
 read -r -a reaches <<< "${PCL_SPARSE_REACHES:-0 17}"
-ratio () { python3 -c "print('%.3f' % ($1 / $2))"; }
 {
   echo "# Footprints reaching along smooth patch borders: bytes, Chamfer distance, holes, flipped normals"
   echo

@@ -8,13 +8,8 @@
 set -euo pipefail
 # shellcheck source=bench/bench_setup.sh
 source "$(dirname "$0")/bench_setup.sh"
-cmake --build "$build" --target pcl_sparse_encode pcl_sparse_resample bench_format bench_meshes -j2 > /dev/null
-encode="$build/apps/pcl_sparse_encode"
-resample="$build/apps/pcl_sparse_resample"
-format="$build/bench/bench_format"
-quality="$build/bench/bench_meshes"
+file_tools
 out="$here/results/footprint_slack.md"
-ratio () { python3 -c "print('%.3f' % ($1 / $2))"; }
 percent () { python3 -c "print('%+.1f %%' % (100.0 * ($1 / $2 - 1.0)))"; }
 {
   echo "# Footprint slack in quantised files: bytes, Chamfer distance, holes, flipped normals, write seconds"
