@@ -27,9 +27,19 @@ def run_stamp():
 
 
 def write_result(name, lines):
-    """Writes LINES to bench/results/NAME through a temporary file (no half-written result)."""
+    """Writes LINES to bench/results/NAME through a temporary file (no half-written result), keeping the old
+    file's hand-written text from its "## Notes" line on (as bench_setup.sh's write_keeping_notes)."""
     out = os.path.join(HERE, 'results', name)
+    notes = []
+    if os.path.exists(out):
+        with open(out) as f:
+            old = f.read().split('\n')
+        starts = [i for i, line in enumerate(old) if line.startswith('## Notes')]
+        if starts:
+            notes = [''] + old[starts[0]:]
+            while notes and notes[-1] == '':
+                notes.pop()
     with open(out + '.tmp', 'w') as f:
-        f.write('\n'.join(lines) + '\n')
+        f.write('\n'.join(list(lines) + notes) + '\n')
     os.replace(out + '.tmp', out)
     print('wrote %s' % out, file=sys.stderr)

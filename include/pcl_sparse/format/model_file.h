@@ -86,8 +86,8 @@ namespace pcl_sparse
     double attribute_tolerance = 0.5 / 255.0;
     /// Quantised mode: code the per-patch fields FRAM FOOT ATOM COEF (and AATM ACOF) with an adaptive range
     /// coder, each field with its own probabilities (docs/FORMAT.md, "Range-coded fields"), instead of zstd
-    /// over varints: 9-18 % smaller default files on the 25 shared meshes, 15-18 % on the smooth ones
-    /// (bench/results/format_entropy.md has the sections of an earlier layout). false writes the varint
+    /// over varints: 12.0-15.0 % smaller default files on eight shared meshes (bench/results/format_entropy.md,
+    /// with the sections of each). false writes the varint
     /// layout (readable by builds since the adaptive footprints of 2026-12-01, as the range-coded one).
     bool range_coding = true;
     /// zstd level (1..22) of every section up to zstd_large_section bytes; 19 compresses well, at about
