@@ -136,7 +136,7 @@ TEST (FootprintSlack, OnlyBordersThroughNeighboursMoveAndNoPlaceIsLost)
   EXPECT_EQ (lost, 0u);
 }
 
-TEST (FootprintSlack, SameForAnyThreadCountAndRejectsBadOptions)
+TEST (FootprintSlack, SameForAnyThreadCountAndAnyRunAndRejectsBadOptions)
 {
   const SparseSurfaceModel model = encode (makeTorus (48, 24, 1.0, 0.35), 0.001);
   const std::vector<FootprintSlack> one = footprintSlack (model, FootprintSlackOptions (), 1);
@@ -147,6 +147,17 @@ TEST (FootprintSlack, SameForAnyThreadCountAndRejectsBadOptions)
     EXPECT_EQ (one[p].lower, three[p].lower) << p;
     EXPECT_EQ (one[p].upper, three[p].upper) << p;
   }
+  // A run of the patches (a tiled file's tile) gets the slack the whole model gives it, found among the
+  // patches near it only.
+  const std::size_t first = one.size () / 3, count = one.size () / 4;
+  const std::vector<FootprintSlack> run = footprintSlack (model, first, count);
+  ASSERT_EQ (run.size (), count);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    EXPECT_EQ (run[k].lower, one[first + k].lower) << first + k;
+    EXPECT_EQ (run[k].upper, one[first + k].upper) << first + k;
+  }
+  EXPECT_THROW (footprintSlack (model, one.size (), 1), Error);
   using Change = void (*) (FootprintSlackOptions&);
   for (Change bad : {Change ([] (FootprintSlackOptions& o) { o.max_centrality = 0.0; }),
                      Change ([] (FootprintSlackOptions& o) { o.max_centrality = 1.5; }),

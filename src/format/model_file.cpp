@@ -426,7 +426,7 @@ namespace pcl_sparse
     std::vector<std::vector<std::uint8_t>>
     encodeQuantisedRun (const SparseSurfaceModel& model, std::size_t first, std::size_t count,
                         const QuantisationParameters& q, const ModelWriteOptions& options, int frequencies, int monomials,
-                        const std::vector<FootprintSlack>& slack)
+                        const std::vector<FootprintSlack>& slack)  // of the run's patches, or empty
     {
       // Decode as we go, so that the steps derived from decoded values match the decoder's.
       std::vector<std::vector<std::uint64_t>> seeds (3, std::vector<std::uint64_t> (count));
@@ -447,14 +447,14 @@ namespace pcl_sparse
         if (options.range_coding)
         {
           angles += putFootprint (coded_foot, contexts.footprint, patch.footprint, q.footprintLevels (), refinement,
-                                  slack.empty () ? nullptr : &slack[first + k]);
+                                  slack.empty () ? nullptr : &slack[k]);
           putQuantisedCode (coded_atom, coded_coef, contexts.code, patch, q, decoded);
           putQuantisedFrame (coded_frame, contexts, quantisedFrame (patch.frame, decoded, q));
         }
         else
         {
           angles += putFootprint (foot, patch.footprint, q.footprintLevels (), refinement,
-                                  slack.empty () ? nullptr : &slack[first + k]);
+                                  slack.empty () ? nullptr : &slack[k]);
           putQuantisedCode (atom, coef, patch, q, frequencies, monomials, decoded);
           putQuantisedFrame (frame, quantisedFrame (patch.frame, decoded, q));
         }
@@ -1029,19 +1029,21 @@ namespace pcl_sparse
     shared.bbox_diagonal = model.bbox_diagonal;
     shared.tolerance = options.tolerance;
     QuantisationParameters q;
-    std::vector<FootprintSlack> slack;  // over the whole model, so that every run of it is written alike
     if (quantised)
     {
       q = chooseQuantisation (model, options);
       shared.quantisation = quantisationBytes (q);
-      if (options.footprint_slack && options.footprint_refine_steps > 0.0)
-        slack = footprintSlack (model);
     }
     if (attributes && quantised && !(options.attribute_tolerance > 0.0 && std::isfinite (options.attribute_tolerance)))
       throw Error ("encodeModel: attribute_tolerance must be > 0");
     const double attribute_tolerance = quantised ? options.attribute_tolerance : 0.0;
     for (const auto& [first, count] : runs)
     {
+      // Each run's slack apart (the whole model's, found among the patches near the run): a tile's memory, not
+      // the whole model's (a 100 M-point terrain has half a million patches).
+      std::vector<FootprintSlack> slack;
+      if (quantised && options.footprint_slack && options.footprint_refine_steps > 0.0)
+        slack = footprintSlack (model, first, count);
       std::vector<std::vector<std::uint8_t>> sections =
         quantised ? encodeQuantisedRun (model, first, count, q, options, frequencies, cosine.monomials (), slack)
                   : encodeLosslessRun (model, first, count);

@@ -7,7 +7,12 @@
 #include <pcl_sparse/resampling/patch_geometry.h>
 #include <pcl_sparse/resampling/patch_ownership.h>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <string>
 
 namespace pcl_sparse
 {
@@ -25,54 +30,117 @@ namespace pcl_sparse
       fail ("outward", outward, "outward >= 0, finite");
   }
 
+  namespace
+  {
+    /// The slack of the patches in \a which (indices into \a model), in that order.
+    std::vector<FootprintSlack>
+    slackOf (const SparseSurfaceModel& model, const std::vector<std::size_t>& which, const FootprintSlackOptions& options,
+             int threads)
+    {
+      const PatchEvaluator evaluator (model);
+      const PatchOwnership ownership (evaluator, PatchOwnershipOptions (), threads);
+      const double max_slope_squared = ownership.maxSlopeSquared ();
+      const long n = static_cast<long> (which.size ());
+      std::vector<FootprintSlack> slack (which.size ());
+      constexpr int steps = 3;  // places tested each way: a third of the way, two thirds, all of it
+      ParallelFailure failure;
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) if(n > 64)
+      for (long w = 0; w < n; ++w)
+        failure.run ([&] {
+          const std::size_t p = which[static_cast<std::size_t> (w)];
+          const PatchCode& code = model.patches[p];
+          const std::vector<float>& extent = code.footprint.extent;
+          const std::size_t k = extent.size ();
+          FootprintSlack& s = slack[static_cast<std::size_t> (w)];
+          s.lower = extent;
+          s.upper = extent;
+          for (std::size_t i = 0; i < k; ++i)
+          {
+            const double turn = static_cast<double> (i) / static_cast<double> (k);
+            const double c = std::cos (2.0 * M_PI * turn), sn = std::sin (2.0 * M_PI * turn);
+            // Whether the place of p's surface at t along the ray is held by a neighbour at most as centrally
+            // as \a centrality.
+            auto held = [&] (double t, double centrality) {
+              const HeightSample h = evaluator.sample (p, t * c, t * sn, false);
+              if (!isValidPlace (h, ownership.options (), max_slope_squared))
+                return false;
+              return ownership.heldByAnother (p, patchPoint (code, t * c, t * sn, h), centrality, turn);
+            };
+            const double e = extent[i];
+            if (!(e > 0.0) || !held (e, options.max_centrality))
+              continue;
+            // Drawn further in, the places left go to the neighbour, whose own border may be drawn as far in:
+            // held that much more centrally, they stay inside it.
+            const double inner_centrality = options.max_centrality * (1.0 - options.inward);
+            if (held (e, inner_centrality))
+              for (int j = 1; j <= steps && held (e * (1.0 - options.inward * j / steps), inner_centrality); ++j)
+                s.lower[i] = static_cast<float> (e * (1.0 - options.inward * j / steps));
+            for (int j = 1; j <= steps && held (e * (1.0 + options.outward * j / steps), options.max_centrality); ++j)
+              s.upper[i] = static_cast<float> (e * (1.0 + options.outward * j / steps));
+          }
+        });
+      failure.rethrow ();
+      return slack;
+    }
+
+    /// A bound on the world radius of the ball around a patch's seed that holds its surface where resampling
+    /// keeps it (PatchOwnership's reach: the largest extent and |h| <= max_height, 1% margin).
+    double
+    reachBound (const PatchCode& code, double max_height)
+    {
+      double extent = code.footprint.extent.empty () ? 1.0 : 0.0;
+      for (float e : code.footprint.extent)
+        extent = std::max (extent, static_cast<double> (e));
+      return code.radius * std::sqrt (extent * extent + max_height * max_height) * 1.02;
+    }
+  } // namespace
+
   std::vector<FootprintSlack>
   footprintSlack (const SparseSurfaceModel& model, const FootprintSlackOptions& options, int threads)
   {
+    return footprintSlack (model, 0, model.patches.size (), options, threads);
+  }
+
+  std::vector<FootprintSlack>
+  footprintSlack (const SparseSurfaceModel& model, std::size_t first, std::size_t count, const FootprintSlackOptions& options,
+                  int threads)
+  {
     options.validate ();
     threads = resolveThreadCount (threads);
-    const PatchEvaluator evaluator (model);
-    const PatchOwnership ownership (evaluator, PatchOwnershipOptions (), threads);
-    const double max_slope_squared = ownership.maxSlopeSquared ();
-    const long m = static_cast<long> (model.patches.size ());
-    std::vector<FootprintSlack> slack (model.patches.size ());
-    constexpr int steps = 3;  // places tested each way: a third of the way, two thirds, all of it
-    ParallelFailure failure;
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) if(m > 64)
-    for (long p = 0; p < m; ++p)
-      failure.run ([&] {
-        const PatchCode& code = model.patches[p];
-        const std::vector<float>& extent = code.footprint.extent;
-        const std::size_t k = extent.size ();
-        FootprintSlack& s = slack[p];
-        s.lower = extent;
-        s.upper = extent;
-        for (std::size_t i = 0; i < k; ++i)
-        {
-          const double turn = static_cast<double> (i) / static_cast<double> (k);
-          const double c = std::cos (2.0 * M_PI * turn), sn = std::sin (2.0 * M_PI * turn);
-          // Whether the place of p's surface at t along the ray is held by a neighbour at most as centrally as
-          // \a centrality.
-          auto held = [&] (double t, double centrality) {
-            const HeightSample h = evaluator.sample (static_cast<std::size_t> (p), t * c, t * sn, false);
-            if (!isValidPlace (h, ownership.options (), max_slope_squared))
-              return false;
-            return ownership.heldByAnother (static_cast<std::size_t> (p), patchPoint (code, t * c, t * sn, h),
-                                            centrality, turn);
-          };
-          const double e = extent[i];
-          if (!(e > 0.0) || !held (e, options.max_centrality))
-            continue;
-          // Drawn further in, the places left go to the neighbour, whose own border may be drawn as far in: held
-          // that much more centrally, they stay inside it.
-          const double inner_centrality = options.max_centrality * (1.0 - options.inward);
-          if (held (e, inner_centrality))
-            for (int j = 1; j <= steps && held (e * (1.0 - options.inward * j / steps), inner_centrality); ++j)
-              s.lower[i] = static_cast<float> (e * (1.0 - options.inward * j / steps));
-          for (int j = 1; j <= steps && held (e * (1.0 + options.outward * j / steps), options.max_centrality); ++j)
-            s.upper[i] = static_cast<float> (e * (1.0 + options.outward * j / steps));
-        }
-      });
-    failure.rethrow ();
-    return slack;
+    const std::size_t m = model.patches.size ();
+    if (first > m || count > m - first)
+      throw Error ("footprintSlack: patches [" + std::to_string (first) + ", " + std::to_string (first + count) +
+                   ") outside the model's " + std::to_string (m));
+    std::vector<std::size_t> run (count);
+    std::iota (run.begin (), run.end (), first);
+    if (count == m)
+      return slackOf (model, run, options, threads);
+    // Only the patches whose balls can meet those of the run's patches take part (in the model's order, so
+    // that ties between contenders fall as in the whole model): the slack is the whole model's, in a tile's
+    // memory.
+    const double max_height = PatchOwnershipOptions ().max_height;
+    Eigen::AlignedBox3d box;
+    double run_reach = 0.0;
+    for (std::size_t p = first; p < first + count; ++p)
+    {
+      box.extend (model.patches[p].origin);
+      run_reach = std::max (run_reach, reachBound (model.patches[p], max_height));
+    }
+    SparseSurfaceModel near;
+    near.basis = model.basis;
+    near.num_input_vertices = model.num_input_vertices;
+    near.bbox_diagonal = model.bbox_diagonal;
+    std::vector<std::size_t> which;
+    for (std::size_t p = 0; p < m; ++p)
+    {
+      const bool in_run = p >= first && p < first + count;
+      if (in_run || (count > 0 && box.exteriorDistance (model.patches[p].origin) <= reachBound (model.patches[p], max_height) + run_reach))
+      {
+        if (in_run)
+          which.push_back (near.patches.size ());
+        near.patches.push_back (model.patches[p]);
+      }
+    }
+    return slackOf (near, which, options, threads);
   }
 } // namespace pcl_sparse
