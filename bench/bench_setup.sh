@@ -29,3 +29,8 @@ file_tools () {
 }
 # ratio A B: A / B to three decimals.
 ratio () { python3 -c "print('%.3f' % ($1 / $2))"; }
+# vertex_count MESH: the mesh's vertex count (after file_tools: bench_format converts it to OBJ in $work).
+vertex_count () {
+  "$format" convert "$1" "$work/mesh.obj" > /dev/null
+  grep -c '^v ' "$work/mesh.obj"
+}

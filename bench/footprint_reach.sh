@@ -33,8 +33,7 @@ read -r -a reaches <<< "${PCL_SPARSE_REACHES:-0 17}"
 for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
   [ -f "$mesh" ] || continue
   name=$(basename "${mesh%.*}")
-  "$format" convert "$mesh" "$work/mesh.obj" > /dev/null
-  vertices=$(grep -c '^v ' "$work/mesh.obj")
+  vertices=$(vertex_count "$mesh")
   row="| $name"
   first_bytes="" first_file="" first_lossless="" last=""
   for r in "${reaches[@]}"; do

@@ -29,8 +29,7 @@ percent () { python3 -c "print('%+.1f %%' % (100.0 * ($1 / $2 - 1.0)))"; }
 for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
   [ -f "$mesh" ] || continue
   name=$(basename "${mesh%.*}")
-  "$format" convert "$mesh" "$work/mesh.obj" > /dev/null
-  vertices=$(grep -c '^v ' "$work/mesh.obj")
+  vertices=$(vertex_count "$mesh")
   "$encode" "$mesh" -o "$work/lossless.psm" -tolerance 0 -q > /dev/null
   lossless=$("$format" model "$mesh" "$work/lossless.psm" | json chamfer)
   row="| $name | $(printf '%.3e' "$lossless")"
