@@ -5,7 +5,8 @@
 #     BUILD_DIR   a Release build with pcl_sparse_encode and bench_format (default: build)
 #     MESH_NAME   files in ../shared/meshes (default: spot.obj blub.obj bunny-hr-closed.obj koala.obj)
 #   Environment:
-#     PCL_SPARSE_BASIS       encoder bases to run, space-separated, of paper|dct (default: dct paper)
+#     PCL_SPARSE_BASIS       encoder bases to run, space-separated, of quadric|dct|paper (default: quadric paper:
+#                            the default basis and the paper's)
 #     PCL_SPARSE_RHOS        patch size bounds (default: 0.001 0.003 0.01 0.03)
 #     PCL_SPARSE_TOLERANCES  re-save tolerances, 0 = the lossless file, default = the file -o writes without
 #                            -tolerance (default: 0 default 1e-3 3e-3 6e-3 1e-2)
@@ -24,11 +25,11 @@ cmake --build "$build" --target pcl_sparse_encode bench_format -j2 > /dev/null
 shift || true
 meshes=("$@")
 [ ${#meshes[@]} -eq 0 ] && meshes=(spot.obj blub.obj bunny-hr-closed.obj koala.obj)
-read -r -a bases <<< "${PCL_SPARSE_BASIS:-dct paper}"
+read -r -a bases <<< "${PCL_SPARSE_BASIS:-quadric paper}"
 read -r -a rhos <<< "${PCL_SPARSE_RHOS:-0.001 0.003 0.01 0.03}"
 read -r -a tolerances <<< "${PCL_SPARSE_TOLERANCES:-0 default 1e-3 3e-3 6e-3 1e-2}"
 for basis in "${bases[@]}"; do
-  case $basis in paper|dct) ;; *) echo "rate_distortion.sh: PCL_SPARSE_BASIS: unknown basis '$basis' (paper|dct)" >&2; exit 1;; esac
+  case $basis in quadric|dct|paper) ;; *) echo "rate_distortion.sh: PCL_SPARSE_BASIS: unknown basis '$basis' (quadric|dct|paper)" >&2; exit 1;; esac
 done
 shared=${PCL_SPARSE_SHARED_MESHES:-$root/../shared/meshes}
 out=$root/bench/results
