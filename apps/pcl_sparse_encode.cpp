@@ -91,7 +91,7 @@ namespace
       {"", "of the lossless model's Chamfer distance on 23 of 25 shared meshes; 0: 8 everywhere, smaller,"},
       {"", "up to 3x as far)"},
       {"--exact-footprints", "quantised model file: refine footprints against their exact extents, also where"},
-      {"", "neighbours hold the places at their borders (6-10 % larger; see ModelWriteOptions::footprint_slack)"},
+      {"", "neighbours hold the places at their borders (1-13 % larger; see ModelWriteOptions::footprint_slack)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
       {"--varint-layout", "quantised model file: zstd over varints instead of range-coded fields (up to 22 %"},
       {"", "larger)"},

@@ -1,12 +1,13 @@
 #pragma once
 /// \file footprint_slack.h
-/// How far a model file may draw each footprint extent off without changing what resampling draws there.
+/// How far a model file may draw each footprint extent off without changing where resampling draws the surface.
 ///
 /// Inside the surface most of a footprint's border runs through the footprints of same-side neighbours that
 /// hold the places there more centrally, so resampling gives those places to the neighbours (PatchOwnership):
-/// moving the border a little in or out moves no point. A quantised file then need not spend refinement
-/// angles drawing such a border exactly (format/footprint_coding.h); at open borders, creases and
-/// thin parts, where no neighbour holds the places, the border stays as exact as the file's steps allow.
+/// moving the border a little in or out at most hands places between patches that agree there. A quantised
+/// file then need not spend refinement angles drawing such a border exactly (format/footprint_coding.h); at
+/// open borders, creases and thin parts, where no neighbour holds the places, the border stays as exact as
+/// the file's steps allow.
 
 #include <pcl_sparse/model/sparse_surface_model.h>
 
@@ -22,8 +23,9 @@ namespace pcl_sparse
     std::vector<float> lower, upper;  ///< one per angle, lower <= extent <= upper
   };
 
-  /// Options of footprintSlack. The defaults, against exact extents (footprint_slack false), over 8 shared
-  /// meshes: default files 6.7-10 % smaller, each as near the mesh or nearer (Chamfer distance).
+  /// Options of footprintSlack. The defaults, against exact extents (footprint_slack false), over the 25
+  /// shared meshes: default files 1.2-11.2 % smaller, as near the mesh or nearer on 22 (Chamfer distance;
+  /// bench/results/footprint_slack.md, with the variants tried).
   struct FootprintSlackOptions
   {
     /// A border place counts as held by a neighbour when the neighbour holds it at most this centrally
