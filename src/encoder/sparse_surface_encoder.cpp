@@ -83,7 +83,7 @@ namespace pcl_sparse
           });
         failure.rethrow ();
         if (context.progress)
-          context.progress ("coding", static_cast<double> (end) / std::max (num_patches, 1L));
+          context.progress ("coding", num_patches > 0 ? static_cast<double> (end) / static_cast<double> (num_patches) : 1.0);
       }
       return codes;
     }
