@@ -58,21 +58,27 @@ namespace pcl_sparse
           {
             const double turn = static_cast<double> (i) / static_cast<double> (k);
             const double c = std::cos (2.0 * M_PI * turn), sn = std::sin (2.0 * M_PI * turn);
-            // Whether the place of p's surface at t along the ray is held by a neighbour at most as centrally
-            // as \a centrality.
-            auto held = [&] (double t, double centrality) {
+            // The place of p's surface at t along the ray, if it is a valid place of p.
+            auto place = [&] (double t, Eigen::Vector3d& q) {
               const HeightSample h = evaluator.sample (p, t * c, t * sn, false);
               if (!isValidPlace (h, ownership.options (), max_slope_squared))
                 return false;
-              return ownership.heldByAnother (p, patchPoint (code, t * c, t * sn, h), centrality, turn);
+              q = patchPoint (code, t * c, t * sn, h);
+              return true;
+            };
+            // Whether that place is held by a neighbour at most as centrally as \a centrality.
+            auto held = [&] (double t, double centrality) {
+              Eigen::Vector3d q;
+              return place (t, q) && ownership.heldByAnother (p, q, centrality, turn);
             };
             const double e = extent[i];
-            if (!(e > 0.0) || !held (e, options.max_centrality))
+            Eigen::Vector3d border;
+            if (!(e > 0.0) || !place (e, border) || !ownership.heldByAnother (p, border, options.max_centrality, turn))
               continue;
             // Drawn further in, the places left go to the neighbour, whose own border may be drawn as far in:
             // held that much more centrally, they stay inside it.
             const double inner_centrality = options.max_centrality * (1.0 - options.inward);
-            if (held (e, inner_centrality))
+            if (ownership.heldByAnother (p, border, inner_centrality, turn))
               for (int j = 1; j <= steps && held (e * (1.0 - options.inward * j / steps), inner_centrality); ++j)
                 s.lower[i] = static_cast<float> (e * (1.0 - options.inward * j / steps));
             for (int j = 1; j <= steps && held (e * (1.0 + options.outward * j / steps), options.max_centrality); ++j)
