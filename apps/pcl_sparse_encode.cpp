@@ -21,6 +21,7 @@
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/format/file_tolerance.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
@@ -85,11 +86,12 @@ namespace
       {"-error ERR.ply", "write the reconstruction coloured by vertex error, blue (0) to red (max)"},
       {"-o MODEL.psm", "write the model file (docs/FORMAT.md)"},
       {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default: 3 x the model's"},
-      {"", "mean error; 0 = lossless)"},
+      {"", "mean error, lower where that is expected to add over 5 % to the distance, with 5-bit footprint"},
+      {"", "extents then (derivedWriteOptions); 0 = lossless)"},
       {"-footprint-steps R", "quantised model file: a patch's footprint keeps 8 of its angles, and those between where"},
-      {"", "the 8 stray from it by more than R extent levels summed over the angles (default 2: within 10 %"},
-      {"", "of the lossless model's Chamfer distance on 23 of 25 shared meshes; 0: 8 everywhere, smaller,"},
-      {"", "up to 3x as far)"},
+      {"", "the 8 stray from it by more than R extent levels summed over the angles (default 2, 4 with 5-bit"},
+      {"", "extents: within 10 % of the lossless model's Chamfer distance on the 25 shared meshes; 0: 8"},
+      {"", "everywhere, smaller, up to 3x as far)"},
       {"--exact-footprints", "quantised model file: refine footprints against their exact extents, also where"},
       {"", "neighbours hold the places at their borders (1-13 % larger; see ModelWriteOptions::footprint_slack)"},
       {"--store-vertices", "model file: also store the patch vertices (for -recon from the file)"},
@@ -259,7 +261,14 @@ main (int argc, char** argv)
       stats = model.statistics (input_positions, &errors);
     const double statistics_seconds = timer.toc () / 1000.0 + tiled_report.statistics;
     if (!tolerance_given)
-      write_options.tolerance = derivedFileTolerance (stats);
+    {
+      // From the vertex errors where the whole input is here; a tiled model has only its statistics (and the
+      // same file whether -recon asked for the errors or not).
+      const double steps = write_options.footprint_refine_steps;
+      write_options = derivedWriteOptions (stats, tiled ? std::vector<double> () : errors, model.bbox_diagonal, write_options);
+      if (steps_given)
+        write_options.footprint_refine_steps = steps;
+    }
 
     timer.tic ();
     if (!model_path.empty () && tiled)
@@ -310,6 +319,7 @@ main (int argc, char** argv)
         .add ("min_samples", options.coding.min_samples)
         .add ("cone_degrees", options.patches.cone_angle * 180.0 / M_PI)
         .add ("file_tolerance", model_path.empty () ? 0.0 : write_options.tolerance)
+        .add ("file_extent_bits", model_path.empty () || write_options.tolerance == 0.0 ? 0 : write_options.extent_bits)
         .add ("nnz", stats.num_nonzeros)
         .add ("cr", stats.compression_ratio)
         .add ("rmse", stats.rmse)

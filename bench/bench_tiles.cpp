@@ -13,6 +13,7 @@
 #include "bench_main.h"
 
 #include <pcl_sparse/format/byte_stream.h>
+#include <pcl_sparse/format/file_tolerance.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/tiled_model_file.h>

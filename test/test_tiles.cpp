@@ -3,6 +3,7 @@
 // region of a full decode, bytes read) and, on a shared mesh, tiled against untiled figures.
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/file_tolerance.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/tile_encoding_bytes.h>

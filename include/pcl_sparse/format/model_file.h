@@ -26,26 +26,6 @@
 
 namespace pcl_sparse
 {
-  /// The file tolerance derived from a model's own error: no surface point moves by more than \a fraction x
-  /// the model's mean vertex error. That is a worst-case bound; quantisation errors are spread over
-  /// [-bound, bound] and add to the model's error roughly in quadrature, so the Chamfer distance grows far
-  /// less. Measured on the 25 shared meshes (bench/results/file_tolerance.md): fraction 3 adds 0.9-6.5 % to
-  /// the Chamfer distance (1-3 % on most) and takes 22-32 % off the file against fraction 0.1; fraction 5
-  /// would take 3.6-6.8 % more off but adds up to 7.3 % on these meshes and 12 % on a 642-vertex sphere
-  /// (the test EncodeTool.DefaultFileAddsAtMostTenPercentToTheDistance: 9.9 % at 3), against issue 13's
-  /// 10 %; fraction 10 adds up to 24 %. pcl_sparse_encode -o uses 3 unless -tolerance is given. Never below
-  /// 1e-7 (the precision of float coordinates, and quantisation steps must stay below 2^32 over the seeds'
-  /// range).
-  /// \param[in] stats     the model's figures against its input (SparseSurfaceModel::statistics)
-  /// \param[in] fraction  the worst displacement, in units of the model's mean error (default 3)
-  /// \return a ModelWriteOptions::tolerance in [1e-7, 0.1]
-  inline double
-  derivedFileTolerance (const ModelStatistics& stats, double fraction = 3.0)
-  {
-    const double t = fraction * stats.mean_error_over_diagonal;
-    return std::isfinite (t) ? std::clamp (t, 1e-7, 0.1) : 1e-7;
-  }
-
   /// Options for saveModel / encodeModel.
   struct ModelWriteOptions
   {
