@@ -210,7 +210,7 @@ TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
   EXPECT_LE (d_quantised, 1.1 * d_lossless);
 }
 
-// -footprint-steps R reaches the file: 0 keeps 8 footprint angles on every patch (the smallest file), the
+// -footprint-steps R reaches the file: 0 keeps the 2 coarse footprint angles on every patch (the smallest file), the
 // default keeps more where a patch's border needs them; the option needs -o and a value >= 0.
 TEST_F (EncodeTool, FootprintStepsReachTheFile)
 {
@@ -223,8 +223,8 @@ TEST_F (EncodeTool, FootprintStepsReachTheFile)
   std::size_t refined_patches = 0;
   for (std::size_t p = 0; p < a.patches.size (); ++p)
   {
-    EXPECT_EQ (b.patches[p].footprint.extent.size (), 8u);
-    refined_patches += a.patches[p].footprint.extent.size () > 8u ? 1 : 0;
+    EXPECT_EQ (b.patches[p].footprint.extent.size (), 2u);
+    refined_patches += a.patches[p].footprint.extent.size () > 2u ? 1 : 0;
   }
   EXPECT_GT (refined_patches, 0u);
   EXPECT_LT (std::filesystem::file_size (eight), std::filesystem::file_size (refined));

@@ -82,10 +82,13 @@ TEST (FootprintCoding, RoundFootprintKeepsItsCoarseAngles)
   const PatchFootprint round = roundFootprint (0.83f);
   std::size_t bytes = 0;
   const PatchFootprint decoded = throughBytes (round, FootprintRefinement{}, &bytes);
-  ASSERT_EQ (decoded.extent.size (), 8u);
+  ASSERT_EQ (decoded.extent.size (), 2u);  // the default: 2 opposite angles
   for (float e : decoded.extent)
     EXPECT_FLOAT_EQ (e, static_cast<float> (12 * kLevels.step));  // 0.83 * 15 = 12.45: level 12
-  EXPECT_EQ (bytes, 1u + 1u + 8u + 8u);  // angles, stride, 8 levels, 8 "not split"
+  EXPECT_EQ (bytes, 1u + 1u + 2u + 2u);  // angles, stride, 2 levels, 2 "not split"
+  const PatchFootprint eight = throughBytes (round, FootprintRefinement{8, 2.0}, &bytes);
+  ASSERT_EQ (eight.extent.size (), 8u);
+  EXPECT_EQ (bytes, 1u + 1u + 8u + 8u);
 }
 
 TEST (FootprintCoding, ClippedBorderKeepsItsAnglesThereOnly)
@@ -122,7 +125,7 @@ TEST (FootprintCoding, EveryAngleKeptWithoutACoarseBound)
 TEST (FootprintCoding, DamagedSymbolsAreRefused)
 {
   ByteWriter out;
-  putFootprint (out, clippedFootprint (0.35), kLevels, FootprintRefinement{});
+  putFootprint (out, clippedFootprint (0.35), kLevels, FootprintRefinement{8, 2.0});
   const std::vector<std::uint8_t> good = out.bytes ();
   auto expectError = [] (std::vector<std::uint8_t> bytes, const std::string& text) {
     ByteReader in (bytes.data (), bytes.size (), "FOOT");

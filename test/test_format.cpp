@@ -418,6 +418,7 @@ TEST (ModelFile, QuantisedRoundTripWithinTolerance)
   {
     ModelWriteOptions options;
     options.tolerance = tolerance;
+    options.max_footprint_angles = 8;
     options.footprint_refine_steps = 0.0;  // every patch keeps 8 angles (refinement: the next test)
     const auto bytes = encodeModel (model, options);
     const auto decoded = decodeModel (bytes.data (), bytes.size ());
@@ -449,9 +450,10 @@ TEST (ModelFile, QuantisedRoundTripWithinTolerance)
   }
 }
 
-// A quantised footprint keeps 8 angles where those draw it within footprint_refine_steps extent steps, and
-// the angles between them where they would not (a border clipped at a crease): round footprints stay small,
-// clipped ones keep their border (test_footprint_coding.cpp: the coding itself).
+// A quantised footprint keeps its coarse angles (8 here, 2 by default) where those draw it within
+// footprint_refine_steps extent steps, and the angles between them where they would not (a border clipped at a
+// crease): round footprints stay small, clipped ones keep their border (test_footprint_coding.cpp: the coding
+// itself).
 TEST (ModelFile, FootprintsKeepTheAnglesTheirBordersNeed)
 {
   auto model = test::makeSyntheticModel (3, 2, false);
@@ -469,6 +471,14 @@ TEST (ModelFile, FootprintsKeepTheAnglesTheirBordersNeed)
   const double step = 0.9 / 15.0;  // the largest extent / (2^4 - 1)
   ModelWriteOptions options;
   options.tolerance = 1e-4;
+  // The default: 2 coarse angles, the round footprint keeps them, the others are refined within the bound.
+  const auto default_bytes = encodeModel (model, options);
+  const auto by_default = decodeModel (default_bytes.data (), default_bytes.size ());
+  EXPECT_EQ (by_default.patches[0].footprint.extent.size (), 2u);
+  for (std::size_t p : {0u, 1u, 2u})
+    EXPECT_LE (test::largestFootprintDeviation (model.patches[p].footprint, by_default.patches[p].footprint),
+               (options.footprint_refine_steps + 0.5) * step + 1e-6) << "patch " << p;
+  options.max_footprint_angles = 8;
   const auto refined_bytes = encodeModel (model, options);
   const auto refined = decodeModel (refined_bytes.data (), refined_bytes.size ());
   options.footprint_refine_steps = 0.0;

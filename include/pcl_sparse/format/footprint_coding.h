@@ -33,7 +33,7 @@ namespace pcl_sparse
   {
     /// Coarse angles: every stride-th, the stride doubled while more than this many remain and it divides
     /// the angle count; 0 keeps every angle.
-    int max_coarse_angles = 8;
+    int max_coarse_angles = 2;
     /// An interval between coded angles is split while the extents inside it stray from the line between
     /// their levels by more than this many steps in all (summed over its angles: the area between the
     /// border drawn and the true one, so no single extent strays further) and some of them would round to

@@ -34,11 +34,16 @@ namespace pcl_sparse
     double tolerance = 0.0;
     /// Bits per footprint extent in quantised mode (2..8). Extents only bound where resampling draws
     /// points, they do not move the surface; 4 bits = 1/15 of the largest extent (on spot, 6 bits cost
-    /// 10 % more bytes for no measurable change of the Chamfer distance).
+    /// 10 % more bytes for no measurable change of the Chamfer distance). Where the model's error is concentrated
+    /// at creases, footprint borders across them overshoot by up to half a level: derivedWriteOptions takes 5.
     int extent_bits = 4;
     /// In quantised mode, every patch keeps this many footprint angles (every 2nd, 4th, ... extent, while the
-    /// count stays a multiple; the others only where footprint_refine_steps needs them); 0 keeps all.
-    int max_footprint_angles = 8;
+    /// count stays a multiple; the others only where footprint_refine_steps needs them); 0 keeps all. 2 (two
+    /// opposite angles, the refinement adding the rest where the border needs them) against 8, the default
+    /// until 2026-12-01: default files 0.5-3.8 % smaller on 24 of the 25 shared meshes (couplingdown 0.5 %
+    /// larger), the Chamfer distance over the lossless model's within 0.1 points or lower on every one
+    /// (bench/results/file_tolerance_rule.md, notes); 1 codes the same as 2 within 0.2 %.
+    int max_footprint_angles = 2;
     /// In quantised mode, the angles between two kept ones are kept where the footprint drawn from those two
     /// strays from the full one by more than this many extent steps (the largest extent / (2^extent_bits -
     /// 1)) summed over the angles between them: the middle angle, then each half the same way
@@ -46,8 +51,9 @@ namespace pcl_sparse
     /// only there. 0: every patch keeps max_footprint_angles. With 8 angles everywhere the default file added
     /// 3-174 % to the Chamfer distance of the lossless model on the shared meshes (footprints clipped at
     /// borders and creases overshoot or cut the surface between 8 rays); at 2 steps it adds at most 10 % on
-    /// 23 of 25 (anchor-dense 15 %, fandisk 12.8 %: their 4-bit extents), 0.2-6.6 % on the others
-    /// (file_footprints.md; footprint_slack.md with the slack below).
+    /// 23 of 25 (anchor-dense 15 %, fandisk 12.8 %: their 4-bit extents; derivedWriteOptions gives those two
+    /// 5-bit extents at 4 steps: 7.9 %, 6.3 %), 0.2-6.6 % on the others (file_footprints.md; footprint_slack.md
+    /// with the slack below).
     double footprint_refine_steps = 2.0;
     /// In quantised mode, refine a footprint only where its border must stay put: where a same-side neighbour
     /// holds the places at the border more centrally, resampling gives them to the neighbour whether the
