@@ -27,6 +27,13 @@ file_tools () {
   format="$build/bench/bench_format"
   quality="$build/bench/bench_meshes"
 }
+# shared_mesh_files: every mesh of ../shared/meshes and ../shared/extra-meshes, a path a line.
+shared_mesh_files () {
+  local f
+  for f in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
+    if [ -f "$f" ]; then echo "$f"; fi
+  done
+}
 # ratio A B: A / B to three decimals.
 ratio () { python3 -c "print('%.3f' % ($1 / $2))"; }
 # vertex_count MESH: the mesh's vertex count (after file_tools: bench_format converts it to OBJ in $work).

@@ -23,8 +23,7 @@ fractions="0.1 1 3 5 10"
   echo
   echo "| mesh | bytes f=0.1 | Chamfer/diag f=0.1 | bytes f=1 | f=3 | f=5 | f=10 | Chamfer f=1 | f=3 | f=5 | f=10 |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|"
-  for f in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
-    [ -f "$f" ] || continue
+  for f in $(shared_mesh_files); do
     name=$(basename "${f%.*}")
     error=$("$encode" "$f" -q --json | json mean_error_over_diag)
     row="$name"

@@ -23,8 +23,7 @@ chamfer () { "$format" model "$1" "$2" 2> /dev/null | tail -1 | json chamfer; }
   echo
   echo "| mesh | RMSE / mean | f=1 measured / predicted | f=3 | f=5 | default f | bits | bytes (f=3, 4 bits) | default bytes | default over lossless |"
   echo "|---|---|---|---|---|---|---|---|---|---|"
-  for f in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
-    [ -f "$f" ] || continue
+  for f in $(shared_mesh_files); do
     name=$(basename "${f%.*}")
     "$encode" "$f" -q --json -o "$work/lossless.psm" -tolerance 0 -recon "$work/recon.obj" > "$work/lossless.json"
     "$format" convert "$f" "$work/input.obj" > /dev/null

@@ -79,8 +79,8 @@ namespace pcl_sparse
   /// (1.43 x its mean error) and fandisk (2.07 x). There, what the file loses is mostly at footprint
   /// borders drawn across the creases, so the extents take one more bit (1/31 of the largest extent instead
   /// of 1/15) and the footprints are refined at the same distance as before (footprint_refine_steps doubled):
-  /// measured (bench/results/file_tolerance.md), the default file adds 7.9 % (anchor-dense, was 15.0 %) and
-  /// 6.3 % (fandisk, was 12.8 %) to the lossless model's Chamfer distance, for 12.5 % and 8.5 % more bytes.
+  /// measured (bench/results/file_tolerance_rule.md), the default file adds 8.6 % (anchor-dense, was 14.9 %) and
+  /// 7.4 % (fandisk, was 12.5 %) to the lossless model's Chamfer distance, for 12.1 % and 8.1 % more bytes.
   /// Every other mesh's file is as before.
   /// \param[in] stats          the model's figures against its input (for the mean error)
   /// \param[in] vertex_errors  |v - v^| of every input vertex, in the model's units (statistics' \a errors);
