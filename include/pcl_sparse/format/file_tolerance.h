@@ -50,7 +50,7 @@ namespace pcl_sparse
   /// evenly over [-a, a]: its expected distance E|e + d| is e where e >= a and (a^2 + e^2) / (2 a) below, so
   /// quantisation costs only where the model is nearly exact. For a file at tolerance t, a = 0.12 t predicts
   /// the measured Chamfer increases of the 25 shared meshes' files without bias (at 3 and 5 x the mean
-  /// error, within a factor of 2 on all but those with hardly any increase; bench/results/file_tolerance.md):
+  /// error, within a factor of 2 on all but those with hardly any increase; bench/results/file_tolerance_rule.md):
   /// the worst case t is rarely reached, the displacements of a point's quantised fields mostly cancel.
   /// O(log N).
   /// \param[in] errors        sortedVertexErrors of the model
@@ -81,7 +81,7 @@ namespace pcl_sparse
   /// of 1/15) and the footprints are refined at the same distance as before (footprint_refine_steps doubled):
   /// measured (bench/results/file_tolerance_rule.md), the default file adds 8.6 % (anchor-dense, was 14.9 %) and
   /// 7.4 % (fandisk, was 12.5 %) to the lossless model's Chamfer distance, for 12.1 % and 8.1 % more bytes.
-  /// Every other mesh's file is as before.
+  /// Every other shared mesh keeps 3 x its mean error and 4-bit extents.
   /// \param[in] stats          the model's figures against its input (for the mean error)
   /// \param[in] vertex_errors  |v - v^| of every input vertex, in the model's units (statistics' \a errors);
   ///                           empty: the tolerance of derivedFileTolerance alone (a tiled model's case)
