@@ -214,11 +214,11 @@ TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
 // default keeps more where a patch's border needs them; the option needs -o and a value >= 0.
 TEST_F (EncodeTool, FootprintStepsReachTheFile)
 {
-  const std::string refined = (dir_ / "refined.psm").string (), eight = (dir_ / "eight.psm").string ();
+  const std::string refined = (dir_ / "refined.psm").string (), coarse = (dir_ / "coarse.psm").string ();
   std::string out;
   ASSERT_EQ (run (input_ + " -q -o " + refined, out), 0);
-  ASSERT_EQ (run (input_ + " -q -footprint-steps 0 -o " + eight, out), 0);
-  const SparseSurfaceModel a = loadModel (refined), b = loadModel (eight);
+  ASSERT_EQ (run (input_ + " -q -footprint-steps 0 -o " + coarse, out), 0);
+  const SparseSurfaceModel a = loadModel (refined), b = loadModel (coarse);
   ASSERT_EQ (a.patches.size (), b.patches.size ());
   std::size_t refined_patches = 0;
   for (std::size_t p = 0; p < a.patches.size (); ++p)
@@ -227,8 +227,8 @@ TEST_F (EncodeTool, FootprintStepsReachTheFile)
     refined_patches += a.patches[p].footprint.extent.size () > 2u ? 1 : 0;
   }
   EXPECT_GT (refined_patches, 0u);
-  EXPECT_LT (std::filesystem::file_size (eight), std::filesystem::file_size (refined));
-  EXPECT_EQ (run (input_ + " -q -footprint-steps -1 -o " + eight, out), 1);
+  EXPECT_LT (std::filesystem::file_size (coarse), std::filesystem::file_size (refined));
+  EXPECT_EQ (run (input_ + " -q -footprint-steps -1 -o " + coarse, out), 1);
   EXPECT_EQ (run (input_ + " -q -footprint-steps 2", out), 1);  // no file
 }
 
