@@ -71,6 +71,11 @@ TEST (FileTolerance, ConcentratedErrorsLowerTheToleranceToTheBudget)
   EXPECT_EQ (derived.extent_bits, 5);
   EXPECT_EQ (derived.footprint_refine_steps, 4.0);
   EXPECT_EQ (derived.zstd_level, 7);  // the other fields kept
+  // Extents already at the format's 8 bits stay there, refined at the same steps.
+  base.extent_bits = 8;
+  const ModelWriteOptions finest = derivedWriteOptions (statisticsOf (errors), errors, 1.0, base);
+  EXPECT_EQ (finest.extent_bits, 8);
+  EXPECT_EQ (finest.footprint_refine_steps, 2.0);
   // In the bbox diagonal's units: a diagonal of 10 scales the errors' tolerance down by 10.
   ModelStatistics scaled = statisticsOf (errors);
   scaled.mean_error_over_diagonal /= 10.0;

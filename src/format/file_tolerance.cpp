@@ -69,9 +69,12 @@ namespace pcl_sparse
     }
     derived.tolerance = low;
     // A concentrated error: borders across creases are what the file loses most, so finer extents, refined at
-    // the same distance as before.
-    derived.extent_bits = std::min (8, base.extent_bits + 1);
-    derived.footprint_refine_steps = 2.0 * base.footprint_refine_steps;
+    // the same distance as before (levels half as far apart, twice as many of them).
+    if (base.extent_bits < 8)
+    {
+      derived.extent_bits = base.extent_bits + 1;
+      derived.footprint_refine_steps = 2.0 * base.footprint_refine_steps;
+    }
     return derived;
   }
 } // namespace pcl_sparse

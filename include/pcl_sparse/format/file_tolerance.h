@@ -77,7 +77,7 @@ namespace pcl_sparse
   /// distance_budget to the distance. That happens where the error is concentrated, most of the surface coded
   /// nearly exactly (flat CAD faces) and the error at creases: of the 25 shared meshes on anchor-dense
   /// (1.43 x its mean error) and fandisk (2.07 x). There, what the file loses is mostly at footprint
-  /// borders drawn across the creases, so the extents take one more bit (1/31 of the largest extent instead
+  /// borders drawn across the creases, so the extents take one more bit, up to 8 (1/31 of the largest extent instead
   /// of 1/15) and the footprints are refined at the same distance as before (footprint_refine_steps doubled):
   /// measured (bench/results/file_tolerance_rule.md), the default file adds 8.6 % (anchor-dense, was 14.9 %) and
   /// 7.4 % (fandisk, was 12.5 %) to the lossless model's Chamfer distance, for 12.1 % and 8.1 % more bytes.
