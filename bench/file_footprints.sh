@@ -29,8 +29,7 @@ percent () { python3 -c "print('%+.1f %%' % (100.0 * ($1 / $2 - 1.0)))"; }
   echo "| mesh | lossless Chamfer | R 0 bytes | Chamfer | +% | R 2 bytes | Chamfer | +% | R 1 bytes | Chamfer | +% |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$out.tmp"
-for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
-  [ -f "$mesh" ] || continue
+for mesh in $(shared_mesh_files); do
   name=$(basename "${mesh%.*}")
   tolerance=$("$encode" "$mesh" -o "$work/default.psm" -q --json | json file_tolerance)
   "$encode" "$mesh" -o "$work/lossless.psm" -tolerance 0 -q > /dev/null

@@ -30,8 +30,7 @@ read -r -a reaches <<< "${PCL_SPARSE_REACHES:-0 17}"
   [ "${#reaches[@]}" -gt 1 ] && { header="$header bytes x | file Chamfer x | lossless Chamfer x |"; rule="$rule---|---|---|"; }
   echo "$header"; echo "$rule"
 } > "$work/table.md"
-for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
-  [ -f "$mesh" ] || continue
+for mesh in $(shared_mesh_files); do
   name=$(basename "${mesh%.*}")
   vertices=$(vertex_count "$mesh")
   row="| $name"

@@ -26,8 +26,7 @@ percent () { python3 -c "print('%+.1f %%' % (100.0 * ($1 / $2 - 1.0)))"; }
   echo "| mesh | lossless Chamfer | exact bytes | Chamfer +% | p99 | flipped | write s | slack bytes | Chamfer +% | p99 | flipped | write s | bytes x |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$work/table.md"
-for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
-  [ -f "$mesh" ] || continue
+for mesh in $(shared_mesh_files); do
   name=$(basename "${mesh%.*}")
   vertices=$(vertex_count "$mesh")
   "$encode" "$mesh" -o "$work/lossless.psm" -tolerance 0 -q > /dev/null
