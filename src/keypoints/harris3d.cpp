@@ -1,6 +1,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
+#include <pcl_sparse/geometry/morton_order.h>
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 
@@ -74,66 +75,15 @@ namespace pcl_sparse
       return harris3DResponseOfQuadric (quadric, options.k);
     }
 
-    /// Spreads the low 21 bits of \a x to every third bit (for 3D Morton codes).
-    std::uint64_t
-    spreadBits (std::uint64_t x)
-    {
-      x &= 0x1fffffu;
-      x = (x | x << 32) & 0x1f00000000ffffULL;
-      x = (x | x << 16) & 0x1f0000ff0000ffULL;
-      x = (x | x << 8) & 0x100f00f00f00f00fULL;
-      x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-      x = (x | x << 2) & 0x1249249249249249ULL;
-      return x;
-    }
-
     /// The vertices to process, sorted along a Morton (Z-order) curve: consecutive vertices then share
     /// most of their neighbourhoods in cache, which matters on meshes whose vertex order is not spatial
     /// (e.g. after subdivision). Only the processing order changes; each response is written to its own
-    /// index, so the result does not depend on it.
+    /// index, so the result does not depend on it. Repeated indices are computed once (two threads must
+    /// never write the same entry).
     std::vector<int>
     spatialOrder (const TriangleMesh& mesh, const std::vector<int>* indices)
     {
-      std::vector<int> order;
-      if (indices)
-        order = *indices;
-      else
-      {
-        order.resize (mesh.numVertices ());
-        for (std::size_t i = 0; i < order.size (); ++i)
-          order[i] = static_cast<int> (i);
-      }
-      Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ()), hi = -lo;
-      for (int v : order)
-        if (mesh.vertices[v].allFinite ())
-        {
-          lo = lo.cwiseMin (mesh.vertices[v]);
-          hi = hi.cwiseMax (mesh.vertices[v]);
-        }
-      const double extent = (hi - lo).maxCoeff ();
-      // A single point (or no finite one) has no extent: every code is 0 and the order is by index.
-      const double scale = extent > 0.0 && std::isfinite (extent) ? static_cast<double> ((1u << 21) - 1u) / extent : 0.0;
-      std::vector<std::pair<std::uint64_t, int>> keyed;
-      keyed.reserve (order.size ());
-      for (int v : order)
-      {
-        std::uint64_t code = 0;
-        const Eigen::Vector3d& p = mesh.vertices[v];
-        if (p.allFinite ())
-        {
-          const Eigen::Vector3d q = (p - lo) * scale;
-          code = spreadBits (static_cast<std::uint64_t> (q.x ())) | spreadBits (static_cast<std::uint64_t> (q.y ())) << 1 |
-                 spreadBits (static_cast<std::uint64_t> (q.z ())) << 2;
-        }
-        keyed.emplace_back (code, v);
-      }
-      std::sort (keyed.begin (), keyed.end ());
-      // Repeated indices are computed once (two threads must never write the same entry).
-      keyed.erase (std::unique (keyed.begin (), keyed.end ()), keyed.end ());
-      order.resize (keyed.size ());
-      for (std::size_t i = 0; i < keyed.size (); ++i)
-        order[i] = keyed[i].second;
-      return order;
+      return indices ? mortonOrder (mesh.vertices, *indices) : mortonOrder (mesh.vertices);
     }
 
     std::vector<double>
