@@ -790,7 +790,12 @@ TEST (ModelFile, ForgedHeadersGiveClearErrors)
   expectErrorContaining (bytes, "adaptive-footprint flag needs the quantised flag");
 
   bytes = good;
-  bytes[10] |= 32;  // a flag of a later format
+  bytes[10] |= 32;  // the coded-seed flag on a lossless file (so without the range-coded flag)
+  resealHeader (bytes);
+  expectErrorContaining (bytes, "coded-seed flag needs the range-coded flag");
+
+  bytes = good;
+  bytes[10] |= 64;  // a flag of a later format
   resealHeader (bytes);
   expectErrorContaining (bytes, "unknown header flags");
 

@@ -10,6 +10,7 @@
 #include <pcl_sparse/format/frame_quantization.h>
 #include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/range_coder.h>
+#include <pcl_sparse/format/seed_coding.h>
 #include <pcl_sparse/format/sparse_code_stream.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/format/zstd_codec.h>
@@ -17,6 +18,7 @@
 #include <pcl_sparse/tiles/tiled_model.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -465,12 +467,18 @@ namespace pcl_sparse
                      std::to_string (foot_bytes.size ()) + " bytes, more than a reader accepts (footprints of " +
                      "thousands of angles coded from a few: keep fewer, or max_footprint_angles 0)");
       ByteWriter seed, radius;
-      for (int i = 0; i < 3; ++i)
-        putPlanes (seed, seeds[i], q.seed_bytes);
       putPlanes (radius, radii, q.radius_bytes);
       if (options.range_coding)
-        return {std::move (seed.bytes ()), coded_frame.finish (), std::move (radius.bytes ()),
-                std::move (foot_bytes),    coded_atom.finish (),  coded_coef.finish ()};
+      {
+        RangeEncoder coded_seed;
+        SeedStepCoder seed_coder;
+        for (std::size_t k = 0; k < count; ++k)
+          seed_coder.put (coded_seed, {seeds[0][k], seeds[1][k], seeds[2][k]});
+        return {coded_seed.finish (),   coded_frame.finish (), std::move (radius.bytes ()),
+                std::move (foot_bytes), coded_atom.finish (),  coded_coef.finish ()};
+      }
+      for (int i = 0; i < 3; ++i)
+        putPlanes (seed, seeds[i], q.seed_bytes);
       return {std::move (seed.bytes ()), std::move (frame.bytes ()), std::move (radius.bytes ()),
               std::move (foot_bytes),    std::move (atom.bytes ()), std::move (coef.bytes ())};
     }
@@ -537,6 +545,8 @@ namespace pcl_sparse
         throw Error (what + ": the range-coded flag needs the quantised flag");
       if ((flags & header_flag::adaptive_footprints) && !(flags & header_flag::quantised))
         throw Error (what + ": the adaptive-footprint flag needs the quantised flag");
+      if ((flags & header_flag::coded_seeds) && !(flags & header_flag::range_coded))
+        throw Error (what + ": the coded-seed flag needs the range-coded flag");
       if (!isBasisKindByte (basis_kind))
         throw Error (what + ": unknown basis kind " + std::to_string (basis_kind));
       if (basis_parameter < 1 || basis_parameter > CosineDictionary::max_frequencies)
@@ -672,14 +682,15 @@ namespace pcl_sparse
 
     /// Fixed-size sections must hold exactly \a m entries, and in the varint layout every patch takes at
     /// least one byte in each variable-size section: checked before allocating patches (range-coded patches
-    /// can take less, but SEED's exact size already bounds m).
+    /// can take less, but RADI's exact size already bounds m).
     void
     checkSectionSizes (const ByteReader& seed, const ByteReader& frame, const ByteReader& radius, const ByteReader& foot,
-                       const ByteReader& atom, std::size_t m, bool quantised, bool range_coded, const QuantisationParameters& q)
+                       const ByteReader& atom, std::size_t m, bool quantised, bool range_coded, bool coded_seeds,
+                       const QuantisationParameters& q)
     {
       const std::size_t seed_entry = quantised ? 3 * static_cast<std::size_t> (q.seed_bytes) : 24;
       const std::size_t radius_entry = quantised ? static_cast<std::size_t> (q.radius_bytes) : 8;
-      if (seed.remaining () != m * seed_entry)
+      if (!coded_seeds && seed.remaining () != m * seed_entry)
         seed.fail ("holds " + std::to_string (seed.remaining ()) + " bytes, " + std::to_string (m) + " patches need " +
                    std::to_string (m * seed_entry));
       if (radius.remaining () != m * radius_entry)
@@ -689,19 +700,23 @@ namespace pcl_sparse
         frame.fail ("too short for " + std::to_string (m) + " patches");
     }
 
-    /// Seed and radius of patch \a p of \a m: from the byte planes \a seed_planes (x, y, z one after the
-    /// other) and \a radius_planes of a quantised file, else read from \a seed and \a radius.
+    /// Seed and radius of patch \a p of \a m: in a quantised file, the seed from \a seed_steps (coded seeds)
+    /// or the byte planes \a seed_planes (x, y, z one after the other), the radius from \a radius_planes;
+    /// else both read from \a seed and \a radius.
     void
     readPlacement (ByteReader& seed, ByteReader& radius, bool quantised, const QuantisationParameters& q,
-                   const std::uint8_t* seed_planes, const std::uint8_t* radius_planes, std::size_t m, std::size_t p,
-                   PatchCode& patch)
+                   const std::array<std::uint64_t, 3>* seed_steps, const std::uint8_t* seed_planes,
+                   const std::uint8_t* radius_planes, std::size_t m, std::size_t p, PatchCode& patch)
     {
       if (quantised)
       {
         const std::size_t axis_bytes = m * static_cast<std::size_t> (q.seed_bytes);
         for (int i = 0; i < 3; ++i)
-          patch.origin[i] = q.seed_min[i] + static_cast<double> (planeValue (seed_planes + i * axis_bytes, m, q.seed_bytes, p)) *
-                                              q.seed_step;
+        {
+          const std::uint64_t steps =
+            seed_steps ? (*seed_steps)[i] : planeValue (seed_planes + i * axis_bytes, m, q.seed_bytes, p);
+          patch.origin[i] = q.seed_min[i] + static_cast<double> (steps) * q.seed_step;
+        }
         patch.radius = std::exp (q.log_radius_min +
                                  static_cast<double> (planeValue (radius_planes, m, q.radius_bytes, p)) * q.log_radius_step);
         if (!patch.origin.allFinite ())
@@ -1022,7 +1037,7 @@ namespace pcl_sparse
     shared.flags = static_cast<std::uint16_t> (
       (quantised ? header_flag::quantised | header_flag::adaptive_footprints : 0) |
       (options.include_vertices ? header_flag::vertices : 0) | (attributes ? header_flag::attributes : 0) |
-      (range_coded ? header_flag::range_coded : 0));
+      (range_coded ? header_flag::range_coded | header_flag::coded_seeds : 0));
     shared.basis_kind = basisKindByte (cosine.kind ());
     shared.basis_parameter = static_cast<std::uint16_t> (frequencies);
     shared.num_input_vertices = model.num_input_vertices;
@@ -1180,7 +1195,8 @@ namespace pcl_sparse
     ByteReader coef = open ();
     const bool range_coded = shared.flags & header_flag::range_coded;
     const bool adaptive_footprints = shared.flags & header_flag::adaptive_footprints;
-    checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, q);
+    const bool coded_seeds = shared.flags & header_flag::coded_seeds;
+    checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, coded_seeds, q);
     // Patches are added as they decode, not made for the m the header promises up front: SEED and RADI
     // hold only a few bytes a patch, which zstd may shrink 64 times (and a range-coded patch may take less
     // than a byte), so a 280 KB file promising 4 million patches had the reader take 1.1 GB (285 bytes a
@@ -1199,16 +1215,24 @@ namespace pcl_sparse
 
     const std::uint8_t* seed_planes = nullptr;
     const std::uint8_t* radius_planes = nullptr;
-    if (quantised)
-    {
+    std::optional<RangeDecoder> coded_seed;
+    SeedStepCoder seed_coder;
+    if (coded_seeds)
+      coded_seed.emplace (rangeDecoderOverRest (seed));
+    else if (quantised)
       seed_planes = seed.getBytes (3 * m * static_cast<std::size_t> (q.seed_bytes), "seed");
+    if (quantised)
       radius_planes = radius.getBytes (m * static_cast<std::size_t> (q.radius_bytes), "radius");
-    }
+    const std::uint64_t seed_limit = std::uint64_t{1} << (8 * q.seed_bytes);
     for (std::size_t p = 0; p < m; ++p)
     {
       model.patches.emplace_back ();
       PatchCode& patch = model.patches.back ();
-      readPlacement (seed, radius, quantised, q, seed_planes, radius_planes, m, p, patch);
+      std::array<std::uint64_t, 3> seed_steps{};
+      if (coded_seed)
+        seed_steps = seed_coder.get (*coded_seed, seed_limit);
+      readPlacement (seed, radius, quantised, q, coded_seed ? &seed_steps : nullptr, seed_planes, radius_planes, m, p,
+                     patch);
       if (coded)
         coded->readPatch (q, p, patch);
       else if (adaptive_footprints)
@@ -1227,6 +1251,8 @@ namespace pcl_sparse
     }
     if (coded)
       coded->expectEnd ();
+    if (coded_seed)
+      coded_seed->expectEnd ();
     seed.expectEnd ();
     frame.expectEnd ();
     radius.expectEnd ();

@@ -29,7 +29,10 @@ namespace pcl_sparse
     /// Quantised: FOOT codes coarse angles and the others only where needed (footprint_coding.h); files
     /// without it (written before 2026-12-01) keep every stride-th angle of a footprint.
     constexpr std::uint16_t adaptive_footprints = 16;
-    constexpr std::uint16_t known = 31;               ///< every flag this build reads
+    /// Range-coded: SEED codes each seed as steps from the previous patch's (seed_coding.h); files without
+    /// it (written before 2026-12-02) store byte planes.
+    constexpr std::uint16_t coded_seeds = 32;
+    constexpr std::uint16_t known = 63;               ///< every flag this build reads
   } // namespace header_flag
 
   /// What the parts of a model share.
