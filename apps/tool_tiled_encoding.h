@@ -6,9 +6,9 @@
 #include "tool_processes.h"
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/model/tiled_model.h>
 #include <pcl_sparse/tiles/tile_source.h>
 #include <pcl_sparse/tiles/tile_statistics.h>
-#include <pcl_sparse/tiles/tiled_model.h>
 
 #include <cstddef>
 

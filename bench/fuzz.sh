@@ -20,8 +20,8 @@ cxx=${CXX_FUZZ:-clang++}
 common=(-std=c++17 -g -I"$root/include" -I/usr/include/eigen3)
 sources=("$root"/src/format/*.cpp "$root/src/coding/cosine_dictionary.cpp" "$root/src/model/sparse_surface_model.cpp" "$root/src/model/vertex_attributes.cpp"
          "$root/src/mesh/bounding_box.cpp"
-         "$root/src/common/atomic_write.cpp" "$root/src/common/signal_cleanup.cpp" "$root/src/tiles/tile_grid.cpp"
-         "$root/src/tiles/tiled_model.cpp")  # atomic_write needs signal_cleanup (the model target did not link without it)
+         "$root/src/common/atomic_write.cpp" "$root/src/common/signal_cleanup.cpp" "$root/src/model/tile_grid.cpp"
+         "$root/src/model/tiled_model.cpp")  # atomic_write needs signal_cleanup (the model target did not link without it)
 
 if [ "$target" = inputs ]; then
   echo "building $build/fuzz_input_files" >&2

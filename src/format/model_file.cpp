@@ -14,8 +14,8 @@
 #include <pcl_sparse/format/sparse_code_stream.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/format/zstd_codec.h>
+#include <pcl_sparse/model/tiled_model.h>
 #include <pcl_sparse/resampling/footprint_slack.h>
-#include <pcl_sparse/tiles/tiled_model.h>
 
 #include <algorithm>
 #include <array>

@@ -6,7 +6,7 @@
 /// Vertex lists held for the statistics only (no PatchCode::vertex_xy, encodeTile) go as their numbers
 /// alone, after the model, and come back so.
 
-#include <pcl_sparse/tiles/tiled_model.h>
+#include <pcl_sparse/model/tiled_model.h>
 
 #include <cstddef>
 #include <cstdint>

@@ -9,7 +9,7 @@
 
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/model_sections.h>
-#include <pcl_sparse/tiles/tiled_model.h>
+#include <pcl_sparse/model/tiled_model.h>
 
 #include <Eigen/Geometry>
 

@@ -5,7 +5,7 @@
 
 #include <pcl_sparse/io/scan_cloud.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
-#include <pcl_sparse/tiles/tile_grid.h>
+#include <pcl_sparse/model/tile_grid.h>
 #include <pcl_sparse/tiles/tile_source.h>
 
 #include <cstddef>

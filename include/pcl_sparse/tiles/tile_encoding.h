@@ -18,9 +18,9 @@
 /// options and (phase 1) the phase-0 patches, never on which process or thread encodes it.
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/model/tiled_model.h>
 #include <pcl_sparse/tiles/tile_source.h>
 #include <pcl_sparse/tiles/tile_statistics.h>
-#include <pcl_sparse/tiles/tiled_model.h>
 
 #include <Eigen/Geometry>
 

@@ -3,7 +3,7 @@
 /// Which tiles a point belongs to (issue 16): one rule for every TileSource, so that a tile cut from an
 /// input in memory and a tile read back from a spill file hold the same points.
 
-#include <pcl_sparse/tiles/tile_grid.h>
+#include <pcl_sparse/model/tile_grid.h>
 
 #include <Eigen/Core>
 

@@ -6,8 +6,8 @@
 /// and of its neighbours), so memory is bounded by one tile's input and the model.
 
 #include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/model/tiled_model.h>
 #include <pcl_sparse/tiles/tile_source.h>
-#include <pcl_sparse/tiles/tiled_model.h>
 
 #include <cstddef>
 #include <vector>

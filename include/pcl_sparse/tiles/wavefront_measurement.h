@@ -6,9 +6,9 @@
 /// are held for a band of tiles, not for the whole model, whoever encodes the tiles: the threads of one
 /// process (TiledSurfaceEncoder) or the ranks of an mpirun (pcl_sparse_encode).
 
+#include <pcl_sparse/model/tiled_model.h>
 #include <pcl_sparse/tiles/tile_source.h>
 #include <pcl_sparse/tiles/tile_statistics.h>
-#include <pcl_sparse/tiles/tiled_model.h>
 
 #include <cstddef>
 #include <optional>

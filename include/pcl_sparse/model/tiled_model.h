@@ -5,7 +5,7 @@
 /// which patches each tile owns. The tiled .psm file (format/tiled_model_file.h) stores each tile apart.
 
 #include <pcl_sparse/model/sparse_surface_model.h>
-#include <pcl_sparse/tiles/tile_grid.h>
+#include <pcl_sparse/model/tile_grid.h>
 
 #include <Eigen/Geometry>
 

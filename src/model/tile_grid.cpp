@@ -1,4 +1,4 @@
-#include <pcl_sparse/tiles/tile_grid.h>
+#include <pcl_sparse/model/tile_grid.h>
 
 #include <pcl_sparse/common/error.h>
 

@@ -1,4 +1,4 @@
-#include <pcl_sparse/tiles/tiled_model.h>
+#include <pcl_sparse/model/tiled_model.h>
 
 #include <algorithm>
 #include <cmath>
