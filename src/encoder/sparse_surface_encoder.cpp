@@ -5,7 +5,7 @@
 #include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/encoder/impl/sparse_surface_encoder.hpp>
-#include <pcl_sparse/geometry/morton_order.h>
+#include <pcl_sparse/format/coding_order.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
@@ -49,26 +49,15 @@ namespace pcl_sparse
         throw Error ("SparseSurfaceEncoder: " + message);
     }
 
-    /// Puts the patches in the Morton order of their seeds, those with atoms before those without (model,
-    /// encoding.patches and coding_info alike). The file codes each seed as a step from the previous patch's
-    /// (format/seed_coding.h), short in this order: 26-42 bits a seed on the shared meshes where the sampling
-    /// order took 25-48 under zstd; neighbouring patches, mostly alike, then also follow one another in the
-    /// adaptive models of the other fields. Default files 0.2-7.1 % smaller on 23 of the 25 shared meshes;
-    /// blade and turbine 8 % larger: their sampling order (Harris response, decreasing) keeps patches of like
-    /// curvature together, worth more there than the seeds (bench/results/patch_order.md). The codes with no
-    /// atom go last: mixed in, they cost the other fields' models more than their seeds save
-    /// (stanford-bunny, 40 % of its patches: 58.0 against 60.6 kB).
+    /// Puts the patches in the order their file codes smallest in (format/coding_order.h): model,
+    /// encoding.patches and coding_info alike.
     void
-    orderPatchesSpatially (SurfaceEncoding& encoding, SparseSurfaceModel& model)
+    orderPatchesForCoding (SurfaceEncoding& encoding, SparseSurfaceModel& model)
     {
       const std::size_t m = model.patches.size ();
       require (encoding.patches.size () == m && encoding.coding_info.size () == m,
                "the patches, their codes and their coding info must be as many");
-      std::vector<Eigen::Vector3d> seeds (m);
-      for (std::size_t p = 0; p < m; ++p)
-        seeds[p] = model.patches[p].origin;
-      std::vector<int> order = mortonOrder (seeds);
-      std::stable_partition (order.begin (), order.end (), [&] (int p) { return !model.patches[p].atoms.empty (); });
+      const std::vector<int> order = smallerCodingOrder (model);
       std::vector<PatchCode> codes;
       std::vector<Patch> patches;
       std::vector<PatchCodingInfo> info;
@@ -472,7 +461,7 @@ namespace pcl_sparse
       enforceCompressionBound (context, inputs, encoding, model);
       encoding.timings.coding += secondsSince (bound_start);
     }
-    orderPatchesSpatially (encoding, model);
+    orderPatchesForCoding (encoding, model);
     // The prefixes served the bound; kept, they would add up to 78 doubles a patch to the encoding.
     for (PatchCodingInfo& info : encoding.coding_info)
       std::vector<double> ().swap (info.prefix_coefficients);

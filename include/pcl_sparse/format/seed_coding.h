@@ -2,8 +2,8 @@
 /// \file seed_coding.h
 /// The seeds of a quantised, range-coded model file (header_flag::coded_seeds, docs/FORMAT.md): each
 /// patch's integer seed steps as the difference from the previous patch's, per axis, through an adaptive
-/// signed-integer model. The encoder puts its patches in the Morton order of their seeds
-/// (geometry/morton_order.h), so the differences are short: 26-42 bits a seed on the shared meshes (33 in
+/// signed-integer model. The encoder puts its patches in the Morton order of their seeds where that codes
+/// smaller (coding_order.h), so the differences are short: 26-42 bits a seed on the shared meshes (33 in
 /// the median), where byte planes under zstd took 25-48 (44).
 
 #include <pcl_sparse/format/range_coder.h>

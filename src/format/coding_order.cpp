@@ -1,0 +1,67 @@
+#include <pcl_sparse/format/coding_order.h>
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/geometry/morton_order.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace pcl_sparse
+{
+  std::vector<int>
+  seedMortonOrder (const SparseSurfaceModel& model)
+  {
+    std::vector<Eigen::Vector3d> seeds (model.patches.size ());
+    for (std::size_t p = 0; p < seeds.size (); ++p)
+      seeds[p] = model.patches[p].origin;
+    std::vector<int> order = mortonOrder (seeds);
+    std::stable_partition (order.begin (), order.end (), [&] (int p) { return !model.patches[p].atoms.empty (); });
+    return order;
+  }
+
+  std::vector<int>
+  smallerCodingOrder (const SparseSurfaceModel& model, double tolerance)
+  {
+    std::vector<int> own (model.patches.size ());
+    std::iota (own.begin (), own.end (), 0);
+    std::vector<int> morton = seedMortonOrder (model);
+    if (morton == own)
+      return own;
+    ModelWriteOptions options;
+    options.tolerance = tolerance;
+    // The slack (resampling/footprint_slack.h) takes most of a write's time and moves both files alike: spot
+    // 0.15 s with it, 0.05 s without; the same choice on every shared mesh.
+    options.footprint_slack = false;
+    // A file holds no input vertices, so the reordered copy leaves them out.
+    SparseSurfaceModel reordered;
+    reordered.basis = model.basis;
+    reordered.num_input_vertices = model.num_input_vertices;
+    reordered.bbox_diagonal = model.bbox_diagonal;
+    reordered.attribute_channels = model.attribute_channels;
+    reordered.attribute_basis = model.attribute_basis;
+    reordered.patches.reserve (model.patches.size ());
+    for (int p : morton)
+    {
+      const PatchCode& patch = model.patches[p];
+      PatchCode copy;
+      copy.origin = patch.origin;
+      copy.frame = patch.frame;
+      copy.radius = patch.radius;
+      copy.atoms = patch.atoms;
+      copy.coefficients = patch.coefficients;
+      copy.footprint = patch.footprint;
+      copy.attributes = patch.attributes;
+      reordered.patches.push_back (std::move (copy));
+    }
+    try
+    {
+      return encodeModel (reordered, options).size () < encodeModel (model, options).size () ? morton : own;
+    }
+    catch (const Error&)
+    {
+      // A model this trial cannot write (e.g. no bbox diagonal) is left as it is: the writer will say why.
+      return own;
+    }
+  }
+} // namespace pcl_sparse
