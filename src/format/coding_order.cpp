@@ -3,6 +3,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/geometry/morton_order.h>
+#include <pcl_sparse/model/tiled_model.h>
 
 #include <algorithm>
 #include <numeric>
@@ -34,12 +35,7 @@ namespace pcl_sparse
     // 0.15 s with it, 0.05 s without; the same choice on every shared mesh.
     options.footprint_slack = false;
     // A file holds no input vertices, so the reordered copy leaves them out.
-    SparseSurfaceModel reordered;
-    reordered.basis = model.basis;
-    reordered.num_input_vertices = model.num_input_vertices;
-    reordered.bbox_diagonal = model.bbox_diagonal;
-    reordered.attribute_channels = model.attribute_channels;
-    reordered.attribute_basis = model.attribute_basis;
+    SparseSurfaceModel reordered = subModel (model, 0, 0);
     reordered.patches.reserve (model.patches.size ());
     for (int p : morton)
     {
