@@ -52,12 +52,12 @@ namespace pcl_sparse
     /// Puts the patches in the order their file codes smallest in (format/coding_order.h): model,
     /// encoding.patches and coding_info alike.
     void
-    orderPatchesForCoding (SurfaceEncoding& encoding, SparseSurfaceModel& model)
+    orderPatchesForCoding (SurfaceEncoding& encoding, SparseSurfaceModel& model, int num_threads)
     {
       const std::size_t m = model.patches.size ();
       require (encoding.patches.size () == m && encoding.coding_info.size () == m,
                "the patches, their codes and their coding info must be as many");
-      const std::vector<int> order = smallerCodingOrder (model);
+      const std::vector<int> order = smallerCodingOrder (model, num_threads);
       std::vector<PatchCode> codes;
       std::vector<Patch> patches;
       std::vector<PatchCodingInfo> info;
@@ -461,7 +461,7 @@ namespace pcl_sparse
       enforceCompressionBound (context, inputs, encoding, model);
       encoding.timings.coding += secondsSince (bound_start);
     }
-    orderPatchesForCoding (encoding, model);
+    orderPatchesForCoding (encoding, model, context.threads);
     // The prefixes served the bound; kept, they would add up to 78 doubles a patch to the encoding.
     for (PatchCodingInfo& info : encoding.coding_info)
       std::vector<double> ().swap (info.prefix_coefficients);
