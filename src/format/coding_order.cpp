@@ -24,13 +24,13 @@ namespace pcl_sparse
   }
 
   std::vector<int>
-  smallerCodingOrder (const SparseSurfaceModel& model, int num_threads, double tolerance)
+  smallerCodingOrder (const SparseSurfaceModel& model, int num_threads, std::size_t max_trial_patches, double tolerance)
   {
     std::vector<int> own (model.patches.size ());
     std::iota (own.begin (), own.end (), 0);
     std::vector<int> morton = seedMortonOrder (model);
-    if (morton == own)
-      return own;
+    if (morton == own || model.patches.size () > max_trial_patches)
+      return morton;
     ModelWriteOptions options;
     options.tolerance = tolerance;
     // The slack (resampling/footprint_slack.h) takes most of a write's time and moves both files alike: spot

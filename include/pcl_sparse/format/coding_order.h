@@ -10,6 +10,7 @@
 
 #include <pcl_sparse/model/sparse_surface_model.h>
 
+#include <cstddef>
 #include <vector>
 
 namespace pcl_sparse
@@ -27,11 +28,17 @@ namespace pcl_sparse
   /// ModelWriteOptions at \a tolerance, footprint slack off, zstd level 1) is smaller; the model's own on a
   /// tie, or when either trial fails. The two files' sizes keep their ratio within 1 % from tolerance 3e-5
   /// to 1e-3 on the shared meshes, so one tolerance decides for every file. Costs two in-memory writes, run
-  /// at once on two threads (spot: within the noise of its 0.38 s encoding; room_scan1.pcd 0.04 s of 0.21 s).
-  /// \param[in] model        the model, as encodeModel takes it
-  /// \param[in] num_threads  OpenMP threads (0 = default; two are used); the order does not depend on it
-  /// \param[in] tolerance    the trial files' tolerance (fraction of the bbox diagonal, > 0)
+  /// at once on two threads (spot: within the noise of its 0.38 s encoding; room_scan1.pcd, 10141 patches,
+  /// 0.04 s of 0.21 s). Models of more than \a max_trial_patches patches take the Morton order untried: it
+  /// coded smaller on all 11 shared scans and every shared mesh of over 1000 patches (the sampling order won
+  /// only on blade, couplingdown and turbine, CAD meshes of 302-968 patches), and office1.pcd's 38249
+  /// patches took 0.37 s of its 2.0 s encoding to try.
+  /// \param[in] model              the model, as encodeModel takes it
+  /// \param[in] num_threads        OpenMP threads (0 = default; two are used); the order does not depend on it
+  /// \param[in] max_trial_patches  larger models take seedMortonOrder without a trial
+  /// \param[in] tolerance          the trial files' tolerance (fraction of the bbox diagonal, > 0)
   /// \return a permutation of 0 .. M - 1: entry k is the patch to put at k
   std::vector<int>
-  smallerCodingOrder (const SparseSurfaceModel& model, int num_threads = 0, double tolerance = 1e-4);
+  smallerCodingOrder (const SparseSurfaceModel& model, int num_threads = 0, std::size_t max_trial_patches = 4096,
+                      double tolerance = 1e-4);
 } // namespace pcl_sparse
