@@ -17,11 +17,16 @@ case $target in model|inputs) ;; *) echo "bench/fuzz.sh: TARGET must be model or
 corpus=$build/corpus-$target
 mkdir -p "$corpus" "$build/findings"
 cxx=${CXX_FUZZ:-clang++}
-common=(-std=c++17 -g -I"$root/include" -I/usr/include/eigen3)
+common=(-std=c++17 -g -fopenmp -I"$root/include" -I/usr/include/eigen3 -I/usr/include/pcl-1.13)
 sources=("$root"/src/format/*.cpp "$root/src/coding/cosine_dictionary.cpp" "$root/src/model/sparse_surface_model.cpp" "$root/src/model/vertex_attributes.cpp"
          "$root/src/mesh/bounding_box.cpp"
          "$root/src/common/atomic_write.cpp" "$root/src/common/signal_cleanup.cpp" "$root/src/model/tile_grid.cpp"
-         "$root/src/model/tiled_model.cpp")  # atomic_write needs signal_cleanup (the model target did not link without it)
+         "$root/src/model/tiled_model.cpp"
+         "$root/src/resampling/footprint_slack.cpp" "$root/src/resampling/patch_evaluator.cpp"
+         "$root/src/resampling/patch_ownership.cpp" "$root/src/common/thread_count.cpp"
+         "$root/src/geometry/morton_order.cpp")
+# atomic_write needs signal_cleanup; the writer's footprint slack asks resampling's ownership rule and the coding
+# order sorts seeds along a Morton curve (test/sanitized/CMakeLists.txt lists the same).
 
 if [ "$target" = inputs ]; then
   echo "building $build/fuzz_input_files" >&2
@@ -38,8 +43,8 @@ if [ "$target" = inputs ]; then
 else
   echo "building $build/fuzz_model_file" >&2
   "$cxx" "${common[@]}" -O1 -DFUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    "${sources[@]}" "$root/test/fuzz/fuzz_model_file.cpp" -lzstd -o "$build/fuzz_model_file"
-  "$cxx" "${common[@]}" -O1 "${sources[@]}" "$root/test/fuzz/make_seed_corpus.cpp" -lzstd -o "$build/make_seed_corpus"
+    "${sources[@]}" "$root/test/fuzz/fuzz_model_file.cpp" -lzstd -lpcl_kdtree -lpcl_common -o "$build/fuzz_model_file"
+  "$cxx" "${common[@]}" -O1 "${sources[@]}" "$root/test/fuzz/make_seed_corpus.cpp" -lzstd -lpcl_kdtree -lpcl_common -o "$build/make_seed_corpus"
   "$build/make_seed_corpus" "$corpus" >&2
   fuzzer=$build/fuzz_model_file
 fi
