@@ -48,15 +48,19 @@ namespace
       {"-eta E", tools::format ("flatness bound A_p / A_p^proj (default %g)", kDefaults.eta)},
       {"-sigma S", tools::format ("seed overlap control (default %g)", kDefaults.sigma)},
       {"-min-size N", tools::format ("smallest patch the sampling keeps (default %d)", kDefaults.min_patch_size)},
-      {"--authors", "the authors' code: cone 72 degrees, no pairwise cone, no coverage pass, no face completion"},
-      {"-preset P", "default or paper (the paper's cone of 90 degrees, no pairwise cone, no face completion);"},
+      {"--authors", "the authors' code: cone 72 degrees, no pairwise cone, no coverage pass, no face completion,"},
+      {"", "every patch kept"},
+      {"-preset P", "default or paper (the paper's cone of 90 degrees, no pairwise cone, no face completion,"},
+      {"", "every patch kept);"},
       {"", "the other options override it"},
       tools::pngHelpLine (),
+      {"--keep-redundant-patches", "keep the patches whose every vertex and triangle others also hold (the paper's"},
+      {"", "patches; default: dropped, PatchOptions::drop_redundant_patches)"},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet (no progress, no messages besides the report and errors)"},
     },
     1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint", "-preset", "-png", "-size", "-view"},
-    {"--json", "-q", "--authors"}};
+    {"--json", "-q", "--authors", "--keep-redundant-patches"}};
 } // namespace
 
 int
@@ -84,6 +88,8 @@ main (int argc, char** argv)
     args.number ("-eta", options.eta);
     args.number ("-sigma", options.sigma);
     args.integer ("-min-size", options.min_patch_size);
+    if (args.has ("--keep-redundant-patches"))
+      options.drop_redundant_patches = false;
     Eigen::Vector3d viewpoint;
     const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
     try
@@ -155,6 +161,7 @@ main (int argc, char** argv)
         .add ("uncovered", uncovered)
         .add ("unreferenced", sampling.getUnreferencedVertices ().size ())
         .add ("coverage_patches", sampling.getNumCoveragePatches ())
+        .add ("redundant_patches", sampling.getNumRedundantPatches ())
         .add ("keypoints", sampling.getKeypoints ().size ())
         .add ("size_min", smin)
         .add ("size_median", smed)
@@ -174,6 +181,7 @@ main (int argc, char** argv)
       std::printf ("uncovered vertices: %zu\n", uncovered);
       std::printf ("unreferenced vertices: %zu\n", sampling.getUnreferencedVertices ().size ());
       std::printf ("coverage-pass patches: %zu\n", sampling.getNumCoveragePatches ());
+      std::printf ("redundant patches dropped: %zu\n", sampling.getNumRedundantPatches ());
       std::printf ("patch size min/median/max: %zu / %zu / %zu\n", smin, smed, smax);
       std::printf ("mean patches per vertex: %.3f\n", per_vertex);
       std::printf ("patches violating an invariant: %zu\n", invalid);

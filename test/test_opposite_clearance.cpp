@@ -61,21 +61,26 @@ namespace
 
 TEST (OppositeClearance, KnifeEdgeHasNoFlippedNormalAndNoHole)
 {
-  // Both bases of ours: the cosines alone flip points at every wedge without the clearance (so the knife
-  // tests it); the quadric's codes, closer to each side, at most of them (not at 40 degrees).
+  // Both bases of ours, with the default patches and with every patch kept: the cosines alone on every
+  // patch flip points at every wedge without the clearance (so the knife tests it); the quadric's codes,
+  // closer to each side, at most of them, and the default's fewer, less overlapping patches at most too
+  // (not the cosines' at 60 degrees).
   for (const CosineBasisKind basis : {CosineBasisKind::Dct, CosineBasisKind::DctQuadric})
+  for (const bool keep_redundant : {false, true})
   for (const double wedge : {10.0, 20.0, 30.0, 40.0, 60.0})
   {
     const auto mesh = std::make_shared<TriangleMesh> (pcl_sparse_test::makeKnife (48, wedge));
     SparseSurfaceEncoderOptions options;
     options.basis = basis;
+    options.patches.drop_redundant_patches = !keep_redundant;
     const SparseSurfaceModel::ConstPtr model = pcl_sparse_test::encodeMesh (mesh, options);
     const KnifeCloud without = resampleKnife (mesh, model, noClearance ());
     const KnifeCloud with = resampleKnife (mesh, model);
-    std::cout << cosineBasisKindName (basis) << ", " << wedge << "-degree knife, " << model->numPatches () << " patches: flipped "
-              << without.flipped << " of " << without.points << " without clearance, " << with.flipped << " of " << with.points
-              << " with; p99 " << without.p99_spacings << " / " << with.p99_spacings << " spacings" << std::endl;
-    if (basis == CosineBasisKind::Dct)
+    std::cout << cosineBasisKindName (basis) << (keep_redundant ? ", every patch" : "") << ", " << wedge << "-degree knife, "
+              << model->numPatches () << " patches: flipped " << without.flipped << " of " << without.points
+              << " without clearance, " << with.flipped << " of " << with.points << " with; p99 " << without.p99_spacings
+              << " / " << with.p99_spacings << " spacings" << std::endl;
+    if (basis == CosineBasisKind::Dct && keep_redundant)
       EXPECT_GT (without.flipped, 0u) << wedge << ": the knife does not test the clearance";
     EXPECT_EQ (with.flipped, 0u) << wedge;
     EXPECT_LE (with.p99_spacings, 1.0) << wedge;

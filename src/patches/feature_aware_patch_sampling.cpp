@@ -9,6 +9,7 @@
 #include <pcl_sparse/patches/face_completion.h>
 #include <pcl_sparse/patches/non_manifold_split.h>
 #include <pcl_sparse/patches/patch_growth.h>
+#include <pcl_sparse/patches/redundant_patches.h>
 
 #include "speculative_growth.h"
 
@@ -417,6 +418,31 @@ namespace pcl_sparse
           uncovered.push_back (v);
       return uncovered;
     }
+
+    /// Drops the redundant patches (redundant_patches.h) of \a result, keeping the order of the others;
+    /// \a num_sampled patches came from the sampling loop, the rest from the coverage pass.
+    void
+    dropRedundantPatches (const TriangleMesh& mesh, const std::vector<std::uint8_t>& seedable, std::size_t num_sampled,
+                          PatchSamplingResult& result)
+    {
+      const std::vector<bool> redundant = redundantPatches (mesh, result.patches, seedable);
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < result.patches.size (); ++i)
+      {
+        if (redundant[i])
+        {
+          ++result.num_redundant;
+          result.num_coverage_patches -= i >= num_sampled ? 1 : 0;
+        }
+        else
+        {
+          if (kept != i)  // a self-move would empty the patch
+            result.patches[kept] = std::move (result.patches[i]);
+          ++kept;
+        }
+      }
+      result.patches.resize (kept);
+    }
   } // namespace
 
   void
@@ -525,6 +551,8 @@ namespace pcl_sparse
       result.num_completed_faces = completion.completed;
       result.uncovered_faces = std::move (completion.uncovered);
     }
+    if (options.drop_redundant_patches)
+      dropRedundantPatches (mesh, seedable, num_sampled, result);
 
     // Unresolved (< 0), it is a mesh's.
     const double steep_frame_angle = patchOptionsFor (options, false).steep_frame_angle;

@@ -42,6 +42,7 @@ namespace pcl_sparse
     base.cover_all_vertices = false;
     base.cover_unreferenced_vertices = false;
     base.complete_faces = false;
+    base.drop_redundant_patches = false;
     return base;
   }
 } // namespace pcl_sparse

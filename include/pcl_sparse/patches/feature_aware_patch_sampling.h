@@ -97,7 +97,8 @@ namespace pcl_sparse
     std::vector<int> keypoints;              ///< keypoints tried first (given or Harris 3D)
     std::vector<int> uncovered;              ///< vertices in no patch, ascending
     std::vector<int> unreferenced;           ///< vertices no face uses, ascending
-    std::size_t num_coverage_patches = 0;    ///< patches (a suffix) added by the coverage pass
+    std::size_t num_coverage_patches = 0;    ///< patches (a suffix) added by the coverage pass and kept
+    std::size_t num_redundant = 0;           ///< patches dropped as redundant (PatchOptions::drop_redundant_patches)
     std::size_t num_completed_faces = 0;     ///< faces face completion added to a patch (complete_faces)
     /// Proper faces (area > 0) in no patch after face completion, ascending (with complete_faces; empty
     /// without it).
@@ -167,6 +168,8 @@ namespace pcl_sparse
     const std::vector<int>& getUnreferencedVertices () const { return result_.unreferenced; }
     /// \brief Patches (a suffix of the output) added by the coverage pass, not by the sampling loop.
     std::size_t getNumCoveragePatches () const { return result_.num_coverage_patches; }
+    /// \brief Patches dropped as redundant (PatchOptions::drop_redundant_patches).
+    std::size_t getNumRedundantPatches () const { return result_.num_redundant; }
     /// \brief Seeds grown by the sampling loop, kept or not (cost indicator).
     std::size_t getNumGrownSeeds () const { return result_.num_grown; }
     /// \brief How each output patch's frame was chosen.

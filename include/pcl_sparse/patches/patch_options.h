@@ -58,6 +58,11 @@ namespace pcl_sparse
     /// cone_angle of that patch's seed normal, without flipping or overlapping its triangles on the seed's
     /// plane; no patch is added. false: the paper's patches (EncoderPreset::Paper).
     bool complete_faces = true;
+    /// Redundant patches (ours; redundant_patches.h): after face completion, drop the patches whose every
+    /// vertex and triangle other patches also hold (5-27 % of the patches of smooth meshes), each of which
+    /// costs the model a seed, frame, radius and footprint. true (default); false: the paper's patches
+    /// (EncoderPreset::Paper, authorsCodePatchOptions).
+    bool drop_redundant_patches = true;
     /// Unreferenced vertices (in no face) have no surface. true: each gets a one-vertex patch so that
     /// literally every finite vertex has an estimate (NaN ones are left out either way); false: they are
     /// left out and reported by FeatureAwarePatchSampling::getUncoveredVertices.
