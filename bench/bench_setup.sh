@@ -27,6 +27,12 @@ file_tools () {
   format="$build/bench/bench_format"
   quality="$build/bench/bench_meshes"
 }
+# file_cloud_quality MESH FILE VERTICES (after file_tools): resamples the model FILE at 4 x VERTICES points and prints
+# its cloud's 99th-percentile hole (surface-to-cloud distance in spacings) and flipped normals against MESH.
+file_cloud_quality () {
+  "$resample" "$2" "$work/cloud.pcd" -n $((4 * $3)) -q
+  "$quality" "$1" "$work/cloud.pcd" | json p99_spacings flipped
+}
 # shared_mesh_files: every mesh of ../shared/meshes and ../shared/extra-meshes, a path a line.
 shared_mesh_files () {
   local f

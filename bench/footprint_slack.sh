@@ -37,8 +37,7 @@ for mesh in $(shared_mesh_files); do
     seconds=$("$encode" "$mesh" $flag -o "$work/file.psm" -q --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["seconds"]["write"])')
     bytes=$(stat -c %s "$work/file.psm")
     file=$("$format" model "$mesh" "$work/file.psm" | json chamfer)
-    "$resample" "$work/file.psm" "$work/cloud.pcd" -n $((4 * vertices)) -q
-    read -r p99 flipped < <("$quality" "$mesh" "$work/cloud.pcd" | json p99_spacings flipped)
+    read -r p99 flipped < <(file_cloud_quality "$mesh" "$work/file.psm" "$vertices")
     row="$row | $bytes | $(percent "$file" "$lossless") | $(printf '%.2f' "$p99") | $flipped | $(printf '%.3f' "$seconds")"
     [ -n "$flag" ] && exact_bytes=$bytes
   done
