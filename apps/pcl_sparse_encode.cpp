@@ -76,6 +76,7 @@ namespace
       {"", "override it"},
       {"-basis B", "atoms: quadric = dct and x, y, x^2, xy, y^2 (default); dct cos(i pi (x+1)/2) cos(j pi (y+1)/2),"},
       {"", "odd parts too; paper cos(i pi x) cos(j pi y) (-preset paper)"},
+      {"-sigma S", "seeds closer than S r_P to a kept patch's seed are not grown (default 0.8, the paper's)"},
       {"-cone DEG", "normal cone of patch growth in degrees, in (0, 180] (default 72, the authors' code's;"},
       {"", "-preset paper 90)"},
       {"-footprint-reach DEG", "meshes: footprints reach DEG along smooth patch borders to their triangles'"},
@@ -111,7 +112,7 @@ namespace
       {"-q", "quiet (no progress, only the result and errors)"},
     },
     1,
-    {"-rho", "-f", "-L", "-eps", "-min-samples", "-cone", "-footprint-reach", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
+    {"-rho", "-f", "-L", "-eps", "-min-samples", "-sigma", "-cone", "-footprint-reach", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
      "-footprint-steps", "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices", "--varint-layout", "--exact-footprints",
      "--keep-redundant-patches"}};
@@ -134,6 +135,7 @@ main (int argc, char** argv)
     args.integer ("-L", options.coding.max_atoms);
     args.number ("-eps", options.coding.tolerance);
     args.integer ("-min-samples", options.coding.min_samples);
+    args.number ("-sigma", options.patches.sigma);
     args.angle ("-cone", options.patches.cone_angle);
     args.number ("-footprint-reach", options.coding.footprint_reach_degrees, tools::Range::closed (0.0, 180.0));
     args.integer ("-seed", options.coding.seed, tools::Range::atLeast (0));
