@@ -323,6 +323,8 @@ namespace
       {"encode_zero_atoms", "encode", {"IN", "-o", "OUT.m.psm", "-L", "0"}},
       {"encode_huge_atoms", "encode", {"IN", "-o", "OUT.m.psm", "-L", "1e12"}},
       {"encode_eps_above_one", "encode", {"IN", "-o", "OUT.m.psm", "-eps", "1.5"}},
+      {"encode_negative_sigma", "encode", {"IN", "-o", "OUT.m.psm", "-sigma", "-0.5"}},
+      {"encode_nan_sigma", "encode", {"IN", "-o", "OUT.m.psm", "-sigma", "nan"}},
       {"encode_negative_threads", "encode", {"IN", "-o", "OUT.m.psm", "-threads", "-1"}},
       {"encode_rho_not_a_number", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "abc"}},
       {"encode_rho_nan", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "nan"}},
