@@ -3,7 +3,8 @@
 ///
 ///   bench_patches MESH... [-rho R] [-repeat N] [-authors] [-header 0]
 ///
-/// -authors: the authors' code's choices (cone 72 degrees, no pairwise cone, no coverage pass, no face completion).
+/// -authors: the authors' code's choices (cone 72 degrees, no pairwise cone, no coverage pass, no face completion, every
+/// patch kept).
 /// Columns: vertices, Harris seconds, partition seconds (best of N, wall clock and process CPU time: on
 /// a machine shared with other jobs the CPU time is the meaningful one), microseconds per vertex, patches M,
 /// seeds grown by the sampling loop, coverage-pass patches, patch size median, mean patches per vertex.
