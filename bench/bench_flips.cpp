@@ -3,8 +3,10 @@
 // (evaluateCloudQuality: over 120 degrees from its nearest face's normal), tells the patch that emitted it
 // and what is special there, then counts the points per cause.
 //
-//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-v] [-far] [-patch P] [-o CLOUD.pcd]
+//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-file] [-v] [-far] [-patch P] [-o CLOUD.pcd]
 //
+// -file resamples the model as the default `-o` file holds it (quantised at derivedWriteOptions, decoded), as
+// pcl_sparse_resample FILE.psm does, instead of the lossless model in memory.
 // -max-cr R encodes with that compression bound (SparseSurfaceEncoderOptions::max_compression_ratio, default
 // 1; 0: none), to tell the flipped points the bound's trimmed codes cause.
 // -seed S and -clearance C resample with that seed and knife-edge clearance (defaults: the library's, as
@@ -32,6 +34,8 @@
 #include "bench_main.h"
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/format/file_tolerance.h>
+#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
@@ -141,6 +145,7 @@ run (int argc, char** argv)
   bool verbose = false;
   int dump_patch = -1;
   bool far = false;
+  bool through_file = false;
   std::string cloud_path;  // -o: the cloud, for bench_meshes (p99 holes)
   SparseSurfaceResamplingOptions resampling_options;
   SparseSurfaceEncoderOptions encoder_options = encoderPresetOptions (EncoderPreset::Default);
@@ -161,6 +166,8 @@ run (int argc, char** argv)
       cloud_path = argv[++i];
     else if (a == "-far")
       far = true;
+    else if (a == "-file")
+      through_file = true;
     else if (a == "-max-cr" && i + 1 < argc)
       encoder_options.max_compression_ratio = std::stod (argv[++i]);
   }
@@ -170,6 +177,15 @@ run (int argc, char** argv)
   encoder.setOptions (encoder_options);
   auto model = std::make_shared<SparseSurfaceModel> ();
   encoder.compute (*model);
+  if (through_file)
+  {
+    std::vector<double> errors;
+    const ModelStatistics stats = model->statistics (mesh->vertices, &errors);
+    const ModelWriteOptions write_options = derivedWriteOptions (stats, errors, model->bbox_diagonal);
+    const std::vector<std::uint8_t> bytes = encodeModel (*model, write_options);
+    *model = decodeModel (bytes.data (), bytes.size ());
+    std::printf ("through the default file: tolerance %.4g of the diagonal\n", write_options.tolerance);
+  }
   SparseSurfaceResampling<pcl::PointNormal> resampling;
   resampling.setInputModel (model);
   resampling.setPointCount (count > 0 ? count : 4 * mesh->vertices.size ());
