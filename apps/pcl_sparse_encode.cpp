@@ -82,7 +82,7 @@ namespace
       {"-footprint-reach DEG", "meshes: footprints reach DEG along smooth patch borders to their triangles'"},
       {"", "outer corners, in [0, 180] (default 17; 0: clipped at every border)"},
       {"--keep-redundant-patches", "keep the patches whose every vertex and triangle others also hold (default:"},
-      {"", "dropped, 5-27 % of the patches of smooth meshes; -preset paper keeps them)"},
+      {"", "dropped, up to 27 % of the patches of a mesh; -preset paper keeps them)"},
       {"-seed S", "seed of the extra samples (default 42)"},
       {"-threads N", "OpenMP threads (default: all; the model does not depend on it)"},
       {"-recon RECON", "write the reconstructed mesh (input vertex order and faces)"},

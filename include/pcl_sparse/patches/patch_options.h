@@ -59,7 +59,7 @@ namespace pcl_sparse
     /// plane; no patch is added. false: the paper's patches (EncoderPreset::Paper).
     bool complete_faces = true;
     /// Redundant patches (ours; redundant_patches.h): after face completion, drop the patches whose every
-    /// vertex and triangle other patches also hold (5-27 % of the patches of smooth meshes), each of which
+    /// vertex and triangle other patches also hold (up to 27 % of the patches of the shared meshes), each of which
     /// costs the model a seed, frame, radius and footprint. true (default); false: the paper's patches
     /// (EncoderPreset::Paper, authorsCodePatchOptions).
     bool drop_redundant_patches = true;
