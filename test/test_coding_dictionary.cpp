@@ -15,6 +15,43 @@
 
 using namespace pcl_sparse;
 
+namespace
+{
+  /// Ten random atoms of 144 and coefficients in [-1, 1].
+  void
+  randomCode (std::mt19937& rng, std::vector<int>& atoms, std::vector<double>& coefficients)
+  {
+    std::uniform_real_distribution<double> u (-1.0, 1.0);
+    std::uniform_int_distribution<int> atom (0, 143);
+    for (int k = 0; k < 10; ++k)
+    {
+      atoms.push_back (atom (rng));
+      coefficients.push_back (u (rng));
+    }
+  }
+
+  /// A code's gradient and Hessian at (x, y) against central differences of its values and gradients.
+  template <typename Dictionary>
+  void
+  expectDerivativesMatchFiniteDifferences (const Dictionary& dictionary, const std::vector<int>& atoms,
+                                           const std::vector<double>& coefficients, double x, double y)
+  {
+    // Central differences err by about h^2 (11 pi)^2 / 6 = 2e-8 relative to the derivative they estimate
+    // (atoms up to frequency 11), rounding by about 1e-11: 1e-6 of the magnitude leaves a margin of 50.
+    const double h = 1e-5;
+    auto f = [&] (double a, double b) { return dictionary.evaluateCode (atoms, coefficients, a, b); };
+    const HeightSample s = f (x, y);
+    const double scale = 1.0 + s.gradient.norm ();
+    EXPECT_NEAR (s.gradient.x (), (f (x + h, y).value - f (x - h, y).value) / (2 * h), 1e-6 * scale);
+    EXPECT_NEAR (s.gradient.y (), (f (x, y + h).value - f (x, y - h).value) / (2 * h), 1e-6 * scale);
+    const double hscale = 1.0 + s.hessian.norm ();
+    EXPECT_NEAR (s.hessian (0, 0), (f (x + h, y).gradient.x () - f (x - h, y).gradient.x ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (0, 1), (f (x, y + h).gradient.x () - f (x, y - h).gradient.x ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (1, 0), (f (x + h, y).gradient.y () - f (x - h, y).gradient.y ()) / (2 * h), 1e-6 * hscale);
+    EXPECT_NEAR (s.hessian (1, 1), (f (x, y + h).gradient.y () - f (x, y - h).gradient.y ()) / (2 * h), 1e-6 * hscale);
+  }
+} // namespace
+
 TEST (CosineDictionary, LayoutAndWavelengths)
 {
   const CosineDictionary dictionary;
@@ -75,16 +112,11 @@ TEST (CosineDictionary, CodeDerivativesMatchFiniteDifferences)
   const CosineDictionary dictionary (12);
   std::mt19937 rng (7);
   std::uniform_real_distribution<double> u (-1.0, 1.0);
-  std::uniform_int_distribution<int> atom (0, 143);
   for (int trial = 0; trial < 20; ++trial)
   {
     std::vector<int> atoms;
     std::vector<double> coefficients;
-    for (int k = 0; k < 10; ++k)
-    {
-      atoms.push_back (atom (rng));
-      coefficients.push_back (u (rng));
-    }
+    randomCode (rng, atoms, coefficients);
     const double x = 0.9 * u (rng), y = 0.9 * u (rng);
     const HeightSample s = dictionary.evaluateCode (atoms, coefficients, x, y);
     double direct = 0.0;
@@ -94,18 +126,7 @@ TEST (CosineDictionary, CodeDerivativesMatchFiniteDifferences)
     EXPECT_NEAR (s.value, direct, 1e-12);
     EXPECT_NEAR (dictionary.evaluateCodeValue (atoms, coefficients, x, y), direct, 1e-12);
 
-    // Central differences err by about h^2 (11 pi)^2 / 6 = 2e-8 relative to the derivative they estimate
-    // (atoms up to frequency 11), rounding by about 1e-11: 1e-6 of the magnitude leaves a margin of 50.
-    const double h = 1e-5;
-    auto f = [&] (double a, double b) { return dictionary.evaluateCode (atoms, coefficients, a, b); };
-    const double scale = 1.0 + s.gradient.norm ();
-    EXPECT_NEAR (s.gradient.x (), (f (x + h, y).value - f (x - h, y).value) / (2 * h), 1e-6 * scale);
-    EXPECT_NEAR (s.gradient.y (), (f (x, y + h).value - f (x, y - h).value) / (2 * h), 1e-6 * scale);
-    const double hscale = 1.0 + s.hessian.norm ();
-    EXPECT_NEAR (s.hessian (0, 0), (f (x + h, y).gradient.x () - f (x - h, y).gradient.x ()) / (2 * h), 1e-6 * hscale);
-    EXPECT_NEAR (s.hessian (0, 1), (f (x, y + h).gradient.x () - f (x, y - h).gradient.x ()) / (2 * h), 1e-6 * hscale);
-    EXPECT_NEAR (s.hessian (1, 0), (f (x + h, y).gradient.y () - f (x - h, y).gradient.y ()) / (2 * h), 1e-6 * hscale);
-    EXPECT_NEAR (s.hessian (1, 1), (f (x, y + h).gradient.y () - f (x, y - h).gradient.y ()) / (2 * h), 1e-6 * hscale);
+    expectDerivativesMatchFiniteDifferences (dictionary, atoms, coefficients, x, y);
   }
 }
 
@@ -223,16 +244,11 @@ TEST (DctCosineDictionary, CodeDerivativesMatchFiniteDifferences)
   const DctCosineDictionary dictionary (12);
   std::mt19937 rng (9);
   std::uniform_real_distribution<double> u (-1.0, 1.0);
-  std::uniform_int_distribution<int> atom (0, 143);
   for (int trial = 0; trial < 20; ++trial)
   {
     std::vector<int> atoms;
     std::vector<double> coefficients;
-    for (int k = 0; k < 10; ++k)
-    {
-      atoms.push_back (atom (rng));
-      coefficients.push_back (u (rng));
-    }
+    randomCode (rng, atoms, coefficients);
     // Beyond the square too (footprints may reach past it).
     const double x = 1.2 * u (rng), y = 1.2 * u (rng);
     const HeightSample s = dictionary.evaluateCode (atoms, coefficients, x, y);
@@ -242,18 +258,7 @@ TEST (DctCosineDictionary, CodeDerivativesMatchFiniteDifferences)
     EXPECT_NEAR (s.value, direct, 1e-12);
     EXPECT_NEAR (dictionary.evaluateCodeValue (atoms, coefficients, x, y), direct, 1e-12);
 
-    // Central differences err by about h^2 (11 pi)^2 / 6 = 2e-8 relative to the derivative they estimate
-    // (atoms up to frequency 11), rounding by about 1e-11: 1e-6 of the magnitude leaves a margin of 50.
-    const double h = 1e-5;
-    auto f = [&] (double a, double b) { return dictionary.evaluateCode (atoms, coefficients, a, b); };
-    const double scale = 1.0 + s.gradient.norm ();
-    EXPECT_NEAR (s.gradient.x (), (f (x + h, y).value - f (x - h, y).value) / (2 * h), 1e-6 * scale);
-    EXPECT_NEAR (s.gradient.y (), (f (x, y + h).value - f (x, y - h).value) / (2 * h), 1e-6 * scale);
-    const double hscale = 1.0 + s.hessian.norm ();
-    EXPECT_NEAR (s.hessian (0, 0), (f (x + h, y).gradient.x () - f (x - h, y).gradient.x ()) / (2 * h), 1e-6 * hscale);
-    EXPECT_NEAR (s.hessian (0, 1), (f (x, y + h).gradient.x () - f (x, y - h).gradient.x ()) / (2 * h), 1e-6 * hscale);
-    EXPECT_NEAR (s.hessian (1, 0), (f (x + h, y).gradient.y () - f (x - h, y).gradient.y ()) / (2 * h), 1e-6 * hscale);
-    EXPECT_NEAR (s.hessian (1, 1), (f (x, y + h).gradient.y () - f (x, y - h).gradient.y ()) / (2 * h), 1e-6 * hscale);
+    expectDerivativesMatchFiniteDifferences (dictionary, atoms, coefficients, x, y);
     // Analytic gradient of the atoms' chain rule, not just consistency: single atom (3, 0).
     const HeightSample one = dictionary.evaluateCode ({dictionary.atomIndex (3, 0)}, {1.0}, x, y);
     EXPECT_NEAR (one.gradient.x (), -1.5 * M_PI * std::sin (1.5 * M_PI * (x + 1.0)), 1e-12);
