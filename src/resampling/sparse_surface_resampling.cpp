@@ -729,6 +729,13 @@ namespace pcl_sparse
       const double expected = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
       if (!(expected > 0.0))
       {
+        // Where the area pass found only slivers no candidate keeps (a doubly covered flat disk, each side
+        // owning nothing against the other), each retry quadruples the cells: stop while they are few.
+        std::size_t cells = 0;
+        for (const PatchGrid& grid : passes.grids)
+          cells += static_cast<std::size_t> (grid.n) * static_cast<std::size_t> (grid.n);
+        if (cells > 64 * (count_ + m))
+          throw Error (name_ + "::compute: the model has no surface area to sample (no place of it is kept)");
         density *= 4.0;
         continue;
       }
