@@ -83,6 +83,8 @@ namespace
       {"", "outer corners, in [0, 180] (default 17; 0: clipped at every border)"},
       {"--keep-redundant-patches", "keep the patches whose every vertex and triangle others also hold (default:"},
       {"", "dropped, up to 27 % of the patches of a mesh; -preset paper keeps them)"},
+      {"-merge-patches K", "merge each patch with at most K vertices and triangles of its own into its neighbours"},
+      {"", "(default 0: none; 8 takes up to a third off the file, bench/results/patch_merging.md)"},
       {"-seed S", "seed of the extra samples (default 42)"},
       {"-threads N", "OpenMP threads (default: all; the model does not depend on it)"},
       {"-recon RECON", "write the reconstructed mesh (input vertex order and faces)"},
@@ -113,7 +115,7 @@ namespace
     },
     1,
     {"-rho", "-f", "-L", "-eps", "-min-samples", "-sigma", "-cone", "-footprint-reach", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
-     "-footprint-steps", "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory"},
+     "-footprint-steps", "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory", "-merge-patches"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices", "--varint-layout", "--exact-footprints",
      "--keep-redundant-patches"}};
 } // namespace
@@ -143,6 +145,7 @@ main (int argc, char** argv)
       options.coding.nyquist_rule = NyquistRule::AuthorsCode;
     if (args.has ("--keep-redundant-patches"))
       options.patches.drop_redundant_patches = false;
+    args.integer ("-merge-patches", options.patches.merge_own_elements, tools::Range::atLeast (0));
     if (args.has ("-basis"))
       options.basis = cosineBasisKindFromName (args.value ("-basis"));
     int threads = 0;

@@ -56,10 +56,13 @@ namespace
       tools::pngHelpLine (),
       {"--keep-redundant-patches", "keep the patches whose every vertex and triangle others also hold (the paper's"},
       {"", "patches; default: dropped, PatchOptions::drop_redundant_patches)"},
+      {"-merge-patches K", tools::format ("merge each patch with at most K vertices and triangles of its own into its"
+                                          " neighbours (default %d; 0: none)", kDefaults.merge_own_elements)},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet (no progress, no messages besides the report and errors)"},
     },
-    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint", "-preset", "-png", "-size", "-view"},
+    1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint", "-preset", "-png", "-size", "-view",
+        "-merge-patches"},
     {"--json", "-q", "--authors", "--keep-redundant-patches"}};
 } // namespace
 
@@ -90,6 +93,7 @@ main (int argc, char** argv)
     args.integer ("-min-size", options.min_patch_size);
     if (args.has ("--keep-redundant-patches"))
       options.drop_redundant_patches = false;
+    args.integer ("-merge-patches", options.merge_own_elements, tools::Range::atLeast (0));
     Eigen::Vector3d viewpoint;
     const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
     try
@@ -162,6 +166,7 @@ main (int argc, char** argv)
         .add ("unreferenced", sampling.getUnreferencedVertices ().size ())
         .add ("coverage_patches", sampling.getNumCoveragePatches ())
         .add ("redundant_patches", sampling.getNumRedundantPatches ())
+        .add ("merged_patches", sampling.getNumMergedPatches ())
         .add ("keypoints", sampling.getKeypoints ().size ())
         .add ("size_min", smin)
         .add ("size_median", smed)
@@ -182,6 +187,7 @@ main (int argc, char** argv)
       std::printf ("unreferenced vertices: %zu\n", sampling.getUnreferencedVertices ().size ());
       std::printf ("coverage-pass patches: %zu\n", sampling.getNumCoveragePatches ());
       std::printf ("redundant patches dropped: %zu\n", sampling.getNumRedundantPatches ());
+      std::printf ("patches merged into neighbours: %zu\n", sampling.getNumMergedPatches ());
       std::printf ("patch size min/median/max: %zu / %zu / %zu\n", smin, smed, smax);
       std::printf ("mean patches per vertex: %.3f\n", per_vertex);
       std::printf ("patches violating an invariant: %zu\n", invalid);

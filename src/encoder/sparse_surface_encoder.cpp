@@ -379,6 +379,7 @@ namespace pcl_sparse
       options.patches.pairwise_cone = false;
       options.patches.complete_faces = false;
       options.patches.drop_redundant_patches = false;
+      options.patches.merge_own_elements = 0;
       options.coding.triangle_samples = 0.0;
       options.coding.clip_footprints_at_border = false;
       options.max_compression_ratio = 0.0;

@@ -314,7 +314,7 @@ namespace pcl_sparse
         if (!canTake (p, f, q))
           continue;
         add (p, f, q);
-        return {p, !std::get<0> (entry.first)};
+        return {p, !std::get<0> (entry.first), log.back ().num_vertices};
       }
       return {};
     }

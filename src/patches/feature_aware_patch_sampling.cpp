@@ -9,6 +9,7 @@
 #include <pcl_sparse/patches/face_completion.h>
 #include <pcl_sparse/patches/non_manifold_split.h>
 #include <pcl_sparse/patches/patch_growth.h>
+#include <pcl_sparse/patches/patch_merging.h>
 #include <pcl_sparse/patches/redundant_patches.h>
 
 #include "speculative_growth.h"
@@ -419,20 +420,19 @@ namespace pcl_sparse
       return uncovered;
     }
 
-    /// Drops the redundant patches (redundant_patches.h) of \a result, keeping the order of the others;
-    /// \a num_sampled patches came from the sampling loop, the rest from the coverage pass.
-    void
-    dropRedundantPatches (const TriangleMesh& mesh, const std::vector<std::uint8_t>& seedable, std::size_t num_sampled,
-                          PatchSamplingResult& result)
+    /// Drops the patches flagged in \a dropped from \a result, keeping the order of the others; the first
+    /// \a num_sampled patches came from the sampling loop (updated), the rest from the coverage pass.
+    /// Returns how many were dropped.
+    std::size_t
+    dropPatches (const std::vector<bool>& dropped, std::size_t& num_sampled, PatchSamplingResult& result)
     {
-      const std::vector<bool> redundant = redundantPatches (mesh, result.patches, seedable);
-      std::size_t kept = 0;
+      std::size_t kept = 0, sampled_dropped = 0;
       for (std::size_t i = 0; i < result.patches.size (); ++i)
       {
-        if (redundant[i])
+        if (dropped[i])
         {
-          ++result.num_redundant;
           result.num_coverage_patches -= i >= num_sampled ? 1 : 0;
+          sampled_dropped += i < num_sampled ? 1 : 0;
         }
         else
         {
@@ -441,7 +441,10 @@ namespace pcl_sparse
           ++kept;
         }
       }
+      const std::size_t num_dropped = result.patches.size () - kept;
       result.patches.resize (kept);
+      num_sampled -= sampled_dropped;
+      return num_dropped;
     }
   } // namespace
 
@@ -523,7 +526,7 @@ namespace pcl_sparse
     Coverage coverage (result.patches, num_vertices, seedable);
     result.num_grown =
       runSamplingLoop (mesh, topology, geometry, order, referenced, loop_target, options, threads, grower, coverage, progress);
-    const std::size_t num_sampled = result.patches.size ();
+    std::size_t num_sampled = result.patches.size ();
     if (options.cover_all_vertices)
       runCoveragePass (topology, geometry, order, referenced, target, grower, coverage);
     if (progress)
@@ -552,7 +555,11 @@ namespace pcl_sparse
       result.uncovered_faces = std::move (completion.uncovered);
     }
     if (options.drop_redundant_patches)
-      dropRedundantPatches (mesh, seedable, num_sampled, result);
+      result.num_redundant = dropPatches (redundantPatches (mesh, result.patches, seedable), num_sampled, result);
+    if (options.merge_own_elements > 0)
+      result.num_merged = dropPatches (
+        mergeSmallPatches (mesh, topology, geometry, options, options.merge_own_elements, result.patches, seedable),
+        num_sampled, result);
 
     // Unresolved (< 0), it is a mesh's.
     const double steep_frame_angle = patchOptionsFor (options, false).steep_frame_angle;

@@ -51,6 +51,7 @@ namespace pcl_sparse
     {
       int patch = -1;               ///< the patch that took the face, -1 if none could
       bool smooth_variation = false;  ///< whether it took the face with smooth variation
+      int num_vertices = 0;           ///< corners the patch gained: the last this many of its vertices
     };
 
     /// Adds face \a f (area > 0) to the best patch that can take it among those holding a corner of it and

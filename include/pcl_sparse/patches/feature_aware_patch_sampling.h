@@ -99,6 +99,7 @@ namespace pcl_sparse
     std::vector<int> unreferenced;           ///< vertices no face uses, ascending
     std::size_t num_coverage_patches = 0;    ///< patches (a suffix) added by the coverage pass and kept
     std::size_t num_redundant = 0;           ///< patches dropped as redundant (PatchOptions::drop_redundant_patches)
+    std::size_t num_merged = 0;              ///< patches merged into neighbours (PatchOptions::merge_own_elements)
     std::size_t num_completed_faces = 0;     ///< faces face completion added to a patch (complete_faces)
     /// Proper faces (area > 0) in no patch after face completion, ascending (with complete_faces; empty
     /// without it).
@@ -170,6 +171,8 @@ namespace pcl_sparse
     std::size_t getNumCoveragePatches () const { return result_.num_coverage_patches; }
     /// \brief Patches dropped as redundant (PatchOptions::drop_redundant_patches).
     std::size_t getNumRedundantPatches () const { return result_.num_redundant; }
+    /// \brief Patches merged into their neighbours (PatchOptions::merge_own_elements).
+    std::size_t getNumMergedPatches () const { return result_.num_merged; }
     /// \brief Seeds grown by the sampling loop, kept or not (cost indicator).
     std::size_t getNumGrownSeeds () const { return result_.num_grown; }
     /// \brief How each output patch's frame was chosen.

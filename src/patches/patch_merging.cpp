@@ -1,0 +1,107 @@
+#include <pcl_sparse/patches/patch_merging.h>
+
+#include <pcl_sparse/patches/face_placement.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace pcl_sparse
+{
+  std::vector<bool>
+  mergeSmallPatches (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                     const PatchOptions& options, int max_own_elements, std::vector<Patch>& patches,
+                     const std::vector<std::uint8_t>& seed_vertices)
+  {
+    // Holders of what this partition answers for; the rest start at "always held" (as redundantPatches).
+    constexpr int kHeldElsewhere = std::numeric_limits<int>::max () / 2;
+    const bool tiled = !seed_vertices.empty ();
+    std::vector<int> vertex_holders (mesh.vertices.size (), 0), face_holders (mesh.triangles.size (), 0);
+    if (tiled)
+    {
+      for (std::size_t v = 0; v < vertex_holders.size (); ++v)
+        vertex_holders[v] = seed_vertices[v] ? 0 : kHeldElsewhere;
+      for (std::size_t f = 0; f < face_holders.size (); ++f)
+      {
+        const Eigen::Vector3i& t = mesh.triangles[f];
+        face_holders[f] = seed_vertices[t[0]] || seed_vertices[t[1]] || seed_vertices[t[2]] ? 0 : kHeldElsewhere;
+      }
+    }
+    for (const Patch& patch : patches)
+    {
+      for (int v : patch.vertices)
+        ++vertex_holders[v];
+      for (int f : patch.triangles)
+        ++face_holders[f];
+    }
+
+    std::vector<bool> merged (patches.size (), false);
+    if (max_own_elements < 0)
+      return merged;
+    FacePlacer placer (mesh, topology, geometry, options, patches);
+    std::vector<int> own_vertices, own_faces, pending, gained_vertices;
+    std::vector<int> placed;  // own faces placed in a neighbour
+    for (std::size_t i = patches.size (); i-- > 0;)
+    {
+      const Patch& patch = patches[i];
+      if (patch.beside_uncovered_face)
+        continue;
+      own_vertices.clear ();
+      own_faces.clear ();
+      for (int v : patch.vertices)
+        if (vertex_holders[v] == 1)
+          own_vertices.push_back (v);
+      for (int f : patch.triangles)
+        if (face_holders[f] == 1)
+          own_faces.push_back (f);
+      if (static_cast<int> (own_vertices.size () + own_faces.size ()) > max_own_elements)
+        continue;
+
+      const int p = static_cast<int> (i);
+      placer.setRemoved (p, true);
+      const std::size_t mark = placer.mark ();
+      placed.clear ();
+      gained_vertices.clear ();
+      pending = own_faces;
+      // A face may fit a neighbour only once another own face brought it a corner: retry while any is placed.
+      for (bool progress = true; progress && !pending.empty ();)
+      {
+        progress = false;
+        std::size_t kept = 0;
+        for (int f : pending)
+        {
+          const FacePlacer::Placement placement = placer.place (f, true);
+          if (placement.patch < 0)
+          {
+            pending[kept++] = f;
+            continue;
+          }
+          progress = true;
+          placed.push_back (f);
+          const std::vector<int>& vertices = patches[placement.patch].vertices;
+          gained_vertices.insert (gained_vertices.end (), vertices.end () - placement.num_vertices, vertices.end ());
+        }
+        pending.resize (kept);
+      }
+      std::sort (gained_vertices.begin (), gained_vertices.end ());
+      const bool vertices_kept = std::all_of (own_vertices.begin (), own_vertices.end (), [&] (int v) {
+        return std::binary_search (gained_vertices.begin (), gained_vertices.end (), v);
+      });
+      if (!pending.empty () || !vertices_kept)
+      {
+        placer.rollback (mark);
+        placer.setRemoved (p, false);
+        continue;
+      }
+      merged[i] = true;
+      for (int v : patch.vertices)
+        --vertex_holders[v];
+      for (int f : patch.triangles)
+        --face_holders[f];
+      for (int f : placed)
+        ++face_holders[f];
+      for (int v : gained_vertices)
+        ++vertex_holders[v];
+    }
+    return merged;
+  }
+} // namespace pcl_sparse
