@@ -1,9 +1,9 @@
 #include <pcl_sparse/patches/patch_merging.h>
 
+#include <pcl_sparse/patches/element_holders.h>
 #include <pcl_sparse/patches/face_placement.h>
 
 #include <algorithm>
-#include <limits>
 
 namespace pcl_sparse
 {
@@ -12,27 +12,9 @@ namespace pcl_sparse
                      const PatchOptions& options, int max_own_elements, std::vector<Patch>& patches,
                      const std::vector<std::uint8_t>& seed_vertices)
   {
-    // Holders of what this partition answers for; the rest start at "always held" (as redundantPatches).
-    constexpr int kHeldElsewhere = std::numeric_limits<int>::max () / 2;
-    const bool tiled = !seed_vertices.empty ();
-    std::vector<int> vertex_holders (mesh.vertices.size (), 0), face_holders (mesh.triangles.size (), 0);
-    if (tiled)
-    {
-      for (std::size_t v = 0; v < vertex_holders.size (); ++v)
-        vertex_holders[v] = seed_vertices[v] ? 0 : kHeldElsewhere;
-      for (std::size_t f = 0; f < face_holders.size (); ++f)
-      {
-        const Eigen::Vector3i& t = mesh.triangles[f];
-        face_holders[f] = seed_vertices[t[0]] || seed_vertices[t[1]] || seed_vertices[t[2]] ? 0 : kHeldElsewhere;
-      }
-    }
-    for (const Patch& patch : patches)
-    {
-      for (int v : patch.vertices)
-        ++vertex_holders[v];
-      for (int f : patch.triangles)
-        ++face_holders[f];
-    }
+    ElementHolders holders = countElementHolders (mesh, patches, seed_vertices);
+    std::vector<int>& vertex_holders = holders.vertices;
+    std::vector<int>& face_holders = holders.faces;
 
     std::vector<bool> merged (patches.size (), false);
     if (max_own_elements < 0)
