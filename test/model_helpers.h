@@ -2,9 +2,13 @@
 // Encode a mesh, resample a model: the two steps most tests and benches of the whole pipeline start with.
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/format/file_tolerance.h>
+#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace pcl_sparse_test
 {
@@ -19,6 +23,20 @@ namespace pcl_sparse_test
     auto model = std::make_shared<pcl_sparse::SparseSurfaceModel> ();
     encoder.compute (*model);
     return model;
+  }
+
+  /// The bytes of \a model's default file, as `pcl_sparse_encode -o` writes it: quantised at the options
+  /// derivedWriteOptions takes from the model's errors at \a vertices (its input's); those statistics in
+  /// \a stats if given.
+  inline std::vector<std::uint8_t>
+  defaultFileBytes (const pcl_sparse::SparseSurfaceModel& model, const std::vector<Eigen::Vector3d>& vertices,
+                    pcl_sparse::ModelStatistics* stats = nullptr)
+  {
+    std::vector<double> errors;
+    const pcl_sparse::ModelStatistics statistics = model.statistics (vertices, &errors);
+    if (stats)
+      *stats = statistics;
+    return pcl_sparse::encodeModel (model, pcl_sparse::derivedWriteOptions (statistics, errors, model.bbox_diagonal));
   }
 
   /// \a count points resampled from \a model with \a options (default: the default resampling options).

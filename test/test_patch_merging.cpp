@@ -4,7 +4,6 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
-#include <pcl_sparse/format/file_tolerance.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -12,7 +11,6 @@
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/patches/patch_checks.h>
 #include <pcl_sparse/patches/patch_merging.h>
-#include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include "model_helpers.h"
 
@@ -245,14 +243,10 @@ TEST (PatchMerging, SpotFileAQuarterSmaller)
   merging.patches.merge_own_elements = 8;
   const SparseSurfaceModel::Ptr unmerged = pcl_sparse_test::encodeMesh (mesh);
   const SparseSurfaceModel::Ptr merged = pcl_sparse_test::encodeMesh (mesh, merging);
-  std::vector<double> unmerged_errors, merged_errors;
-  const ModelStatistics unmerged_stats = unmerged->statistics (mesh->vertices, &unmerged_errors);
-  const ModelStatistics merged_stats = merged->statistics (mesh->vertices, &merged_errors);
   // Each at its own default file options, as pcl_sparse_encode -o writes it.
-  const std::size_t unmerged_bytes =
-    encodeModel (*unmerged, derivedWriteOptions (unmerged_stats, unmerged_errors, unmerged->bbox_diagonal)).size ();
-  const std::size_t merged_bytes =
-    encodeModel (*merged, derivedWriteOptions (merged_stats, merged_errors, merged->bbox_diagonal)).size ();
+  ModelStatistics unmerged_stats, merged_stats;
+  const std::size_t unmerged_bytes = pcl_sparse_test::defaultFileBytes (*unmerged, mesh->vertices, &unmerged_stats).size ();
+  const std::size_t merged_bytes = pcl_sparse_test::defaultFileBytes (*merged, mesh->vertices, &merged_stats).size ();
   std::cout << "spot: " << unmerged_stats.num_patches << " patches, RMSE / diag " << unmerged_stats.rmse_over_diagonal
             << ", " << unmerged_bytes << " bytes; merged at 8: " << merged_stats.num_patches << ", "
             << merged_stats.rmse_over_diagonal << ", " << merged_bytes << " bytes" << std::endl;
@@ -277,20 +271,13 @@ TEST (PatchMerging, FlattenedSphereResamplesOrFailsCleanly)
     SparseSurfaceEncoderOptions options;
     options.patches.merge_own_elements = k;
     // Through the default file, as the tools resample it (the model in memory kept no sliver).
-    const SparseSurfaceModel::Ptr encoded = pcl_sparse_test::encodeMesh (mesh, options);
-    std::vector<double> errors;
-    const ModelStatistics stats = encoded->statistics (mesh->vertices, &errors);
-    const std::vector<std::uint8_t> bytes = encodeModel (*encoded, derivedWriteOptions (stats, errors, encoded->bbox_diagonal));
+    const std::vector<std::uint8_t> bytes =
+      pcl_sparse_test::defaultFileBytes (*pcl_sparse_test::encodeMesh (mesh, options), mesh->vertices);
     const auto model = std::make_shared<SparseSurfaceModel> (decodeModel (bytes.data (), bytes.size ()));
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    resampling.setInputModel (model);
-    resampling.setPointCount (300);
-    pcl::PointCloud<pcl::PointNormal> cloud;
     const auto start = std::chrono::steady_clock::now ();
     try
     {
-      resampling.compute (cloud);
-      EXPECT_EQ (cloud.size (), 300u) << k;
+      EXPECT_EQ (pcl_sparse_test::resampleModel (model, 300).size (), 300u) << k;
     }
     catch (const Error& e)
     {

@@ -2,8 +2,6 @@
 // patches hold is dropped, and nothing any patch held is left uncovered.
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
-#include <pcl_sparse/format/file_tolerance.h>
-#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -176,13 +174,10 @@ TEST (RedundantPatches, SpotFileAFifthSmaller)
   every_patch.patches.drop_redundant_patches = false;
   const SparseSurfaceModel::Ptr all = pcl_sparse_test::encodeMesh (mesh, every_patch);
   const SparseSurfaceModel::Ptr kept = pcl_sparse_test::encodeMesh (mesh);
-  std::vector<double> all_errors, kept_errors;
-  const ModelStatistics all_stats = all->statistics (mesh->vertices, &all_errors);
-  const ModelStatistics kept_stats = kept->statistics (mesh->vertices, &kept_errors);
   // Each at its own default file options, as pcl_sparse_encode -o writes it.
-  const std::size_t all_bytes = encodeModel (*all, derivedWriteOptions (all_stats, all_errors, all->bbox_diagonal)).size ();
-  const std::size_t kept_bytes =
-    encodeModel (*kept, derivedWriteOptions (kept_stats, kept_errors, kept->bbox_diagonal)).size ();
+  ModelStatistics all_stats, kept_stats;
+  const std::size_t all_bytes = pcl_sparse_test::defaultFileBytes (*all, mesh->vertices, &all_stats).size ();
+  const std::size_t kept_bytes = pcl_sparse_test::defaultFileBytes (*kept, mesh->vertices, &kept_stats).size ();
   std::cout << "spot: " << all_stats.num_patches << " patches, RMSE / diag " << all_stats.rmse_over_diagonal << ", "
             << all_bytes << " bytes; redundant ones dropped: " << kept_stats.num_patches << ", "
             << kept_stats.rmse_over_diagonal << ", " << kept_bytes << " bytes" << std::endl;
