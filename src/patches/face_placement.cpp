@@ -334,12 +334,6 @@ namespace pcl_sparse
     return impl_->place (f, with_added);
   }
 
-  bool
-  FacePlacer::holdsVertex (int p, int v) const
-  {
-    return impl_->holdsVertex (p, v);
-  }
-
   void
   FacePlacer::setRemoved (int p, bool removed)
   {

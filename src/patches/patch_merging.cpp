@@ -12,13 +12,12 @@ namespace pcl_sparse
                      const PatchOptions& options, int max_own_elements, std::vector<Patch>& patches,
                      const std::vector<std::uint8_t>& seed_vertices)
   {
-    ElementHolders holders = countElementHolders (mesh, patches, seed_vertices);
-    std::vector<int>& vertex_holders = holders.vertices;
-    std::vector<int>& face_holders = holders.faces;
-
     std::vector<bool> merged (patches.size (), false);
     if (max_own_elements < 0)
       return merged;
+    ElementHolders holders = countElementHolders (mesh, patches, seed_vertices);
+    std::vector<int>& vertex_holders = holders.vertices;
+    std::vector<int>& face_holders = holders.faces;
     FacePlacer placer (mesh, topology, geometry, options, patches);
     std::vector<int> own_vertices, own_faces, pending, gained_vertices;
     std::vector<int> placed;  // own faces placed in a neighbour

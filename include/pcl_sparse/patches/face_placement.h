@@ -61,10 +61,6 @@ namespace pcl_sparse
     Placement
     place (int f, bool with_added = false);
 
-    /// Whether patch \a p holds vertex \a v (as built, or given by a placement not undone).
-    bool
-    holdsVertex (int p, int v) const;
-
     /// Sets patch \a p aside (no candidate while \a removed) or back.
     void
     setRemoved (int p, bool removed);
