@@ -133,7 +133,7 @@ namespace pcl_sparse
     clearanceHelpLine ()
     {
       const PatchOwnershipOptions defaults;
-      return {"-clearance C", format ("knife edges: no point within C patch radii under the other side, max(C, %g) "
+      return {"-clearance C", format ("knife edges: no point within C (smaller) patch radii under the other side, max(C, %g) "
                                       "over it (default %g; 0: none)",
                                       defaults.opposite_outside_clearance, defaults.opposite_clearance)};
     }

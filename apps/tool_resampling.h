@@ -63,7 +63,7 @@ namespace pcl_sparse
     /// The ownership options of the resampling tools, set on \a options when given:
     /// - -max-slope DEG: a patch samples only where its code is within DEG degrees of its frame normal
     ///   (PatchOwnershipOptions::max_slope_angle; 90: no bound);
-    /// - -clearance C: places within C local units under the surface of a patch facing away (and within
+    /// - -clearance C: places within C x the smaller patch radius under the surface of a patch facing away (and within
     ///   the larger of C and opposite_outside_clearance over it) are left unsampled
     ///   (PatchOwnershipOptions::opposite_clearance; 0: none).
     /// \throws Error naming the option for a slope outside (0, 90] or a negative clearance

@@ -21,11 +21,14 @@ using namespace pcl_sparse;
 namespace
 {
   pcl::PointCloud<pcl::PointNormal>
-  resample (const SparseSurfaceModel& model, std::vector<int>* patches = nullptr)
+  resample (const SparseSurfaceModel& model, std::vector<int>* patches = nullptr, std::uint64_t seed = 42)
   {
     SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (std::make_shared<const SparseSurfaceModel> (model));
     resampling.setPointCount (20000);
+    SparseSurfaceResamplingOptions options;
+    options.seed = seed;
+    resampling.setOptions (options);
     pcl::PointCloud<pcl::PointNormal> cloud;
     resampling.compute (cloud);
     if (patches)
@@ -136,7 +139,14 @@ TEST (FormatResample, DefaultFileResamplesAsNearTheMeshAsTheModel)
     GTEST_SKIP () << "needs ../shared/meshes/blade.off (not found in " << PCL_SPARSE_SHARED_MESHES << ")";
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
   const SparseSurfaceModel model = encodeWithDefaults (mesh);
-  auto meanDistance = [&] (const SparseSurfaceModel& m) { return evaluateCloudQuality (*mesh, resample (m)).mean_distance; };
+  // Averaged over four resampling seeds: at 20000 points one or two points beyond 2 spacings move a single
+  // cloud's mean by up to 6 % (seed 42: 1.12x the model, seeds 1-3: 1.05x).
+  auto meanDistance = [&] (const SparseSurfaceModel& m) {
+    double sum = 0.0;
+    for (std::uint64_t seed : {42, 1, 2, 3})
+      sum += evaluateCloudQuality (*mesh, resample (m, nullptr, seed)).mean_distance;
+    return sum / 4.0;
+  };
   const double in_memory = meanDistance (model);
   std::vector<double> errors;
   const ModelStatistics stats = model.statistics (mesh->vertices, &errors);

@@ -237,17 +237,20 @@ namespace pcl_sparse
   }
 
   bool
-  PatchOwnership::nearSurface (const Contender& other, const Eigen::Vector3d& q) const
+  PatchOwnership::nearSurface (const Contender& other, const Eigen::Vector3d& q, double radius) const
   {
     const Eigen::Vector3d d = q - other.origin;
+    // The clearances are in the smaller radius of the two: a large Q (one that took a merged patch's
+    // triangles) would otherwise clear a band along the edge wider than a small P holds.
+    const double scale = std::min (1.0, radius * other.n.norm ());
+    const double below = options_.opposite_clearance * scale;
+    const double outside = std::max (options_.opposite_clearance, options_.opposite_outside_clearance) * scale;
     // Cheap bound first: the two sides of a thin part are usually farther apart than the heights of a code.
     const double z = other.n.dot (d);
-    const double outside = std::max (options_.opposite_clearance, options_.opposite_outside_clearance);
     if (std::abs (z) > std::min (other.height_bound, options_.max_height) + outside)
       return false;
     const double x = other.t1.dot (d), y = other.t2.dot (d);
-    return evaluator_.centrality (other.patch, x, y) <= 1.0 &&
-           liesOnSurface (other, x, y, z, options_.opposite_clearance, outside);
+    return evaluator_.centrality (other.patch, x, y) <= 1.0 && liesOnSurface (other, x, y, z, below, outside);
   }
 
   bool

@@ -16,7 +16,9 @@
 /// apart: a knife edge or a thin part), a place of P that lies in Q's footprint within opposite_clearance
 /// under Q's surface or opposite_outside_clearance over it is nobody's: within the coding error of both
 /// sides, the other side's surface may be the nearer one, and the point's normal would then be more than
-/// 120 degrees off the surface's there (a flipped normal).
+/// 120 degrees off the surface's there (a flipped normal). Both clearances are fractions of the smaller
+/// radius of P and Q: a large Q beside a small P would otherwise clear a band along the edge wider than the
+/// small patches there hold (holes at the tip of a 10-degree knife).
 
 #include <pcl_sparse/resampling/patch_evaluator.h>
 
@@ -52,13 +54,13 @@ namespace pcl_sparse
     /// widens koala's largest hole from 1.5 to 4.9 spacings (bench/results/max_slope.md). In (0, 90];
     /// 90: no bound.
     double max_slope_angle = 50.0;
-    /// Clearance (local units of Q, fraction of r_Q) a place keeps from the surface of a patch Q facing
+    /// Clearance (a fraction of min(r_P, r_Q)) a place of P keeps from the surface of a patch Q facing
     /// away (see the file comment); closer places are left unsampled. With default options, 0.03 takes
     /// sword's flipped points from 63 to 0 (its knife edges are 20 degrees), cheese-cgal's from 97 to 55 and
     /// blade's from 20 to 10, and widens sword's 99th-percentile hole from 0.77 to 0.92 spacings; 0.06 takes
     /// few more flips away and widens it to 1.67 (bench/results/flips.md). >= 0, finite (0: no clearance).
     double opposite_clearance = 0.03;
-    /// Clearance on Q's outer side (local units of Q; the larger of this and opposite_clearance applies): a
+    /// Clearance on Q's outer side (a fraction of min(r_P, r_Q); the larger of this and opposite_clearance applies): a
     /// place of P up to this far outside Q's surface is left unsampled too. Such a place has crossed the
     /// other side of a part thinner than P's coding error, so Q's surface is the nearer one and faces away
     /// from P's normal; a true place of P at a thin part or knife edge lies under Q's surface, never over
@@ -120,7 +122,7 @@ namespace pcl_sparse
     {
       const std::size_t bin = p * sectors + std::min<std::size_t> (sectors - 1, static_cast<std::size_t> (turn * sectors));
       for (std::size_t k = opposite_begin_[bin]; k < opposite_begin_[bin + 1]; ++k)
-        if (nearSurface (opposites_[opposite_contenders_[k]], q))
+        if (nearSurface (opposites_[opposite_contenders_[k]], q, evaluator_.model ().patches[p].radius))
           return false;
       return !heldByAnother (p, q, centrality, turn);
     }
@@ -174,10 +176,10 @@ namespace pcl_sparse
 
     bool
     beats (const Contender& other, std::size_t p, const Eigen::Vector3d& d, double x, double y, double centrality) const;
-    /// Whether the place \a q lies in a facing-away patch's footprint within opposite_clearance under its
-    /// surface or opposite_outside_clearance over it, where its code is valid.
+    /// Whether the place \a q of a patch of radius \a radius lies in a facing-away patch's footprint within
+    /// opposite_clearance under its surface or opposite_outside_clearance over it, where its code is valid.
     bool
-    nearSurface (const Contender& other, const Eigen::Vector3d& q) const;
+    nearSurface (const Contender& other, const Eigen::Vector3d& q, double radius) const;
     /// Whether the place at local (x, y, z) of \a other (z in its local units) lies at most \a below under
     /// and \a above over its surface, where its code is a valid place (|h| <= max_height, slope bound).
     bool
