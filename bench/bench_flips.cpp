@@ -3,11 +3,12 @@
 // (evaluateCloudQuality: over 120 degrees from its nearest face's normal), tells the patch that emitted it
 // and what is special there, then counts the points per cause.
 //
-//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-merge K] [-file] [-v] [-far] [-patch P]
-//               [-o CLOUD.pcd]
+//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-merge K] [-basis B] [-file] [-v] [-far]
+//               [-patch P] [-o CLOUD.pcd]
 //
 // -keep-redundant encodes with every patch kept (PatchOptions::drop_redundant_patches false); -merge K merges
-// the patches with at most K elements of their own (PatchOptions::merge_own_elements; 0: none).
+// the patches with at most K elements of their own (PatchOptions::merge_own_elements; 0: none); -basis B encodes
+// with that basis (paper, dct, quadric; default: the library's).
 // -file resamples the model as the default `-o` file holds it (quantised at derivedWriteOptions, decoded), as
 // pcl_sparse_resample FILE.psm does, instead of the lossless model in memory.
 // -max-cr R encodes with that compression bound (SparseSurfaceEncoderOptions::max_compression_ratio, default
@@ -36,6 +37,7 @@
 //   the point lies on a surface facing away from N (the patch reaches across a thin part)
 #include "bench_main.h"
 
+#include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/file_tolerance.h>
 #include <pcl_sparse/format/model_file.h>
@@ -141,7 +143,7 @@ run (int argc, char** argv)
 {
   if (argc < 2)
   {
-    std::fprintf (stderr, "usage: %s MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-merge K] [-file] [-v] [-far] [-patch P] [-o CLOUD.pcd]\n", argv[0]);
+    std::fprintf (stderr, "usage: %s MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-merge K] [-basis B] [-file] [-v] [-far] [-patch P] [-o CLOUD.pcd]\n", argv[0]);
     return 2;
   }
   std::size_t count = 0;
@@ -175,6 +177,8 @@ run (int argc, char** argv)
       encoder_options.patches.drop_redundant_patches = false;
     else if (a == "-merge" && i + 1 < argc)
       encoder_options.patches.merge_own_elements = std::stoi (argv[++i]);
+    else if (a == "-basis" && i + 1 < argc)
+      encoder_options.basis = cosineBasisKindFromName (argv[++i]);
     else if (a == "-max-cr" && i + 1 < argc)
       encoder_options.max_compression_ratio = std::stod (argv[++i]);
   }
