@@ -69,7 +69,7 @@ TEST (FileTolerance, ConcentratedErrorsLowerTheToleranceToTheBudget)
   const ModelWriteOptions derived = derivedWriteOptions (statisticsOf (errors), errors, 1.0, base);
   EXPECT_NEAR (derived.tolerance, 1e-5 / 0.12, 1e-12);
   EXPECT_EQ (derived.extent_bits, 5);
-  EXPECT_EQ (derived.footprint_refine_steps, 4.0);
+  EXPECT_EQ (derived.footprint_refine_steps, 2.0);  // as many of the finer levels: refined half as far
   EXPECT_EQ (derived.zstd_level, 7);  // the other fields kept
   // Extents already at the format's 8 bits stay there, refined at the same steps.
   base.extent_bits = 8;

@@ -95,7 +95,7 @@ TEST (FootprintSlack, OnlyBordersThroughNeighboursMoveAndNoPlaceIsLost)
   const TriangleMesh sheet =
     makeHeightFieldGrid (48, 48, 1.0, 1.0, [] (double x, double y) { return 0.1 * std::sin (3.0 * x) * std::cos (2.0 * y); });
   const SparseSurfaceModel model = encode (sheet, 0.001);
-  ASSERT_GE (model.patches.size (), 10u);
+  ASSERT_GE (model.patches.size (), 8u);  // 9 with the small patches merged into their neighbours
   const std::vector<FootprintSlack> slack = footprintSlack (model);
   ASSERT_EQ (slack.size (), model.patches.size ());
   const PatchEvaluator evaluator (model);

@@ -164,7 +164,7 @@ TEST (PatchMerging, OptionValidated)
   PatchOptions options;
   options.merge_own_elements = -1;
   EXPECT_THROW (options.validate (), Error);
-  EXPECT_EQ (PatchOptions ().merge_own_elements, 0);  // opt-in: bench/results/patch_merging.md says why
+  EXPECT_EQ (PatchOptions ().merge_own_elements, 8);  // the default: bench/results/patch_merging.md says why
   options.merge_own_elements = 8;
   EXPECT_EQ (authorsCodePatchOptions (options).merge_own_elements, 0);
   EXPECT_EQ (encoderPresetOptions (EncoderPreset::Paper).patches.merge_own_elements, 0);
@@ -239,9 +239,10 @@ TEST (PatchMerging, SpotFileAQuarterSmaller)
   if (!std::filesystem::exists (path))
     GTEST_SKIP () << "shared mesh " << path << " not found";
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-  SparseSurfaceEncoderOptions merging;
+  SparseSurfaceEncoderOptions merging, none;
   merging.patches.merge_own_elements = 8;
-  const SparseSurfaceModel::Ptr unmerged = pcl_sparse_test::encodeMesh (mesh);
+  none.patches.merge_own_elements = 0;
+  const SparseSurfaceModel::Ptr unmerged = pcl_sparse_test::encodeMesh (mesh, none);
   const SparseSurfaceModel::Ptr merged = pcl_sparse_test::encodeMesh (mesh, merging);
   // Each at its own default file options, as pcl_sparse_encode -o writes it.
   ModelStatistics unmerged_stats, merged_stats;

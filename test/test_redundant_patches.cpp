@@ -48,6 +48,7 @@ namespace
   {
     PatchOptions options;
     options.drop_redundant_patches = drop_redundant;
+    options.merge_own_elements = 0;  // dropping alone (merging: test_patch_merging.cpp)
     return sampleFeatureAwarePatches (mesh, buildMeshTopology (mesh), options, {}, {}, 1, nullptr);
   }
 
@@ -148,13 +149,14 @@ TEST (RedundantPatches, ParaboloidKeepsEveryVertexAndFaceCovered)
 
 TEST (RedundantPatches, ParaboloidCodedWithHalfTheAtoms)
 {
-  // The default basis on the paraboloid: fewer than half the patches and atoms, the error 17 % higher
+  // The default basis on the paraboloid, no patch merged: fewer than half the patches and atoms, the error 17 % higher
   // (4.49e-5 -> 5.27e-5 of the diagonal).
   const auto bowl = std::make_shared<TriangleMesh> (makeHeightFieldGrid (60, 60, 1.0, 1.0, paraboloid));
-  SparseSurfaceEncoderOptions every_patch;
+  SparseSurfaceEncoderOptions every_patch, dropped;
   every_patch.patches.drop_redundant_patches = false;
+  every_patch.patches.merge_own_elements = dropped.patches.merge_own_elements = 0;  // dropping alone
   const ModelStatistics all = pcl_sparse_test::encodeMesh (bowl, every_patch)->statistics (bowl->vertices);
-  const ModelStatistics kept = pcl_sparse_test::encodeMesh (bowl)->statistics (bowl->vertices);
+  const ModelStatistics kept = pcl_sparse_test::encodeMesh (bowl, dropped)->statistics (bowl->vertices);
   std::cout << "paraboloid: " << all.num_patches << " patches, " << all.num_nonzeros << " atoms, RMSE / diag "
             << all.rmse_over_diagonal << "; redundant ones dropped: " << kept.num_patches << ", " << kept.num_nonzeros
             << ", " << kept.rmse_over_diagonal << std::endl;
@@ -170,10 +172,11 @@ TEST (RedundantPatches, SpotFileAFifthSmaller)
   if (!std::filesystem::exists (path))
     GTEST_SKIP () << "shared mesh " << path << " not found";
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-  SparseSurfaceEncoderOptions every_patch;
+  SparseSurfaceEncoderOptions every_patch, dropped;
   every_patch.patches.drop_redundant_patches = false;
+  every_patch.patches.merge_own_elements = dropped.patches.merge_own_elements = 0;  // dropping alone
   const SparseSurfaceModel::Ptr all = pcl_sparse_test::encodeMesh (mesh, every_patch);
-  const SparseSurfaceModel::Ptr kept = pcl_sparse_test::encodeMesh (mesh);
+  const SparseSurfaceModel::Ptr kept = pcl_sparse_test::encodeMesh (mesh, dropped);
   // Each at its own default file options, as pcl_sparse_encode -o writes it.
   ModelStatistics all_stats, kept_stats;
   const std::size_t all_bytes = pcl_sparse_test::defaultFileBytes (*all, mesh->vertices, &all_stats).size ();

@@ -291,7 +291,8 @@ TEST (ResamplingMeshes, NoStrayPointsShared)
 TEST (ResamplingMeshes, NoStrayPointsGenerated)
 {
   checkNoStrays ("torus", std::make_shared<TriangleMesh> (makeTorus (96, 32, 1.0, 0.25)), {0.016, 0.011, 0.014});
-  checkNoStrays ("cube", std::make_shared<TriangleMesh> (makeCube (16)), {0.03, 0.008, 0.028});
+  // The cube at 16 angles: 0.0301 with the small patches merged into their neighbours (8 elements).
+  checkNoStrays ("cube", std::make_shared<TriangleMesh> (makeCube (16)), {0.032, 0.008, 0.028});
 }
 
 // The normals' error is a property of the basis, not of resampling: the paper's atoms are even in x and y

@@ -68,13 +68,10 @@ namespace pcl_sparse
       (increase (middle) <= options.distance_budget ? low : high) = middle;
     }
     derived.tolerance = low;
-    // A concentrated error: borders across creases are what the file loses most, so finer extents, refined at
-    // the same distance as before (levels half as far apart, twice as many of them).
+    // A concentrated error: borders across creases are what the file loses most, so finer extents, refined
+    // as many of their levels apart as before (half the distance: merged patches have longer borders).
     if (base.extent_bits < 8)
-    {
       derived.extent_bits = base.extent_bits + 1;
-      derived.footprint_refine_steps = 2.0 * base.footprint_refine_steps;
-    }
     return derived;
   }
 } // namespace pcl_sparse

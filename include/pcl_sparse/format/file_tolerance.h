@@ -78,9 +78,11 @@ namespace pcl_sparse
   /// nearly exactly (flat CAD faces) and the error at creases: of the 25 shared meshes on anchor-dense
   /// (1.43 x its mean error) and fandisk (2.07 x). There, what the file loses is mostly at footprint
   /// borders drawn across the creases, so the extents take one more bit, up to 8 (1/31 of the largest extent instead
-  /// of 1/15) and the footprints are refined at the same distance as before (footprint_refine_steps doubled):
-  /// measured (bench/results/file_tolerance_rule.md), the default file adds 8.6 % (anchor-dense, was 14.9 %) and
-  /// 7.4 % (fandisk, was 12.5 %) to the lossless model's Chamfer distance, for 12.1 % and 8.1 % more bytes.
+  /// of 1/15), refined as many of these finer levels apart as before (half the distance; doubling the
+  /// steps, the same distance, left merged patches' longer borders at 11 % on anchor-dense): measured
+  /// with the small patches merged (bench/results/patch_merging.md), the default file adds 8.0 % (anchor-dense)
+  /// and 7.0 % (fandisk) to the lossless model's Chamfer distance (before merging, with the steps doubled,
+  /// 8.6 % and 7.4 %: bench/results/file_tolerance_rule.md).
   /// Every other shared mesh keeps 3 x its mean error and 4-bit extents.
   /// \param[in] stats          the model's figures against its input (for the mean error)
   /// \param[in] vertex_errors  |v - v^| of every input vertex, in the model's units (statistics' \a errors);

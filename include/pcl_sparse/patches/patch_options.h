@@ -65,12 +65,12 @@ namespace pcl_sparse
     bool drop_redundant_patches = true;
     /// Patch merging (ours; patch_merging.h): after redundant patches are dropped, a patch holding at most
     /// this many vertices plus triangles no other patch holds hands its triangles to its neighbours (under
-    /// face completion's rules) and is dropped, when they all find one. 0 (default, and the paper's
-    /// patches): none. At 8 the default files of the 25 shared meshes are 0.63-1.08x as large, their Chamfer
-    /// distance 0.90-1.29x, and 13 instead of 9 reach Draco's bytes at equal Chamfer; not the default yet, since
-    /// the changed partition moves knife-edge ties: single flipped points on 3 more meshes, holes at the tip
-    /// of a 10-degree knife with the opposite clearance (bench/results/patch_merging.md).
-    int merge_own_elements = 0;
+    /// face completion's rules) and is dropped, when they all find one. 8 (default): the default files of
+    /// the 25 shared meshes are 0.63-1.08x as large, their Chamfer distance 0.90-1.29x, 13 instead of 9 reach
+    /// Draco's bytes at equal Chamfer, and the RMSE at the authors' CR falls on 13 of 15; the changed
+    /// partition moves ties at thin parts, single flipped points on horse (3), koala and nefertiti-35k
+    /// (bench/results/patch_merging.md). 0 (the paper's patches, authorsCodePatchOptions): none.
+    int merge_own_elements = 8;
     /// Unreferenced vertices (in no face) have no surface. true: each gets a one-vertex patch so that
     /// literally every finite vertex has an estimate (NaN ones are left out either way); false: they are
     /// left out and reported by FeatureAwarePatchSampling::getUncoveredVertices.
