@@ -8,6 +8,7 @@
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/patches/element_holders.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/patches/patch_checks.h>
 #include <pcl_sparse/patches/patch_merging.h>
@@ -21,6 +22,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace pcl_sparse;
@@ -74,20 +76,18 @@ namespace
     return sampleFeatureAwarePatches (mesh, buildMeshTopology (mesh), options, {}, {}, 1, nullptr);
   }
 
-  /// Flags of the vertices and faces some patch holds.
-  void
-  heldElements (const TriangleMesh& mesh, const std::vector<Patch>& patches, std::vector<int>& vertices,
-                std::vector<int>& faces)
+  /// Per vertex and per face, whether some patch holds it.
+  std::pair<std::vector<bool>, std::vector<bool>>
+  heldElements (const TriangleMesh& mesh, const std::vector<Patch>& patches)
   {
-    vertices.assign (mesh.vertices.size (), 0);
-    faces.assign (mesh.triangles.size (), 0);
-    for (const Patch& patch : patches)
-    {
-      for (int v : patch.vertices)
-        vertices[v] = 1;
-      for (int f : patch.triangles)
-        faces[f] = 1;
-    }
+    const ElementHolders holders = countElementHolders (mesh, patches);
+    auto held = [] (const std::vector<int>& counts) {
+      std::vector<bool> flags;
+      for (int count : counts)
+        flags.push_back (count > 0);
+      return flags;
+    };
+    return {held (holders.vertices), held (holders.faces)};
   }
 
   double
@@ -191,11 +191,7 @@ TEST (PatchMerging, CoverageKeptAndPartitionValidOnAnalyticSurfaces)
     EXPECT_EQ (unmerged.num_merged, 0u) << c.name;
     EXPECT_EQ (merged.num_merged, unmerged.patches.size () - merged.patches.size ()) << c.name;
     EXPECT_GE (merged.num_merged, c.min_merged) << c.name;
-    std::vector<int> vertices_unmerged, faces_unmerged, vertices_merged, faces_merged;
-    heldElements (c.mesh, unmerged.patches, vertices_unmerged, faces_unmerged);
-    heldElements (c.mesh, merged.patches, vertices_merged, faces_merged);
-    EXPECT_EQ (vertices_merged, vertices_unmerged) << c.name;
-    EXPECT_EQ (faces_merged, faces_unmerged) << c.name;
+    EXPECT_EQ (heldElements (c.mesh, merged.patches), heldElements (c.mesh, unmerged.patches)) << c.name;
     // What the patches kept grew themselves is unchanged, in the sampling's order; merged faces come last.
     std::size_t next = 0;
     for (const Patch& patch : merged.patches)

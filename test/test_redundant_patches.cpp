@@ -5,6 +5,7 @@
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/patches/element_holders.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/patches/redundant_patches.h>
 
@@ -52,22 +53,6 @@ namespace
     return sampleFeatureAwarePatches (mesh, buildMeshTopology (mesh), options, {}, {}, 1, nullptr);
   }
 
-  /// How many patches hold each vertex and each face.
-  void
-  countHolders (const TriangleMesh& mesh, const std::vector<Patch>& patches, std::vector<int>& vertex_holders,
-                std::vector<int>& face_holders)
-  {
-    vertex_holders.assign (mesh.vertices.size (), 0);
-    face_holders.assign (mesh.triangles.size (), 0);
-    for (const Patch& patch : patches)
-    {
-      for (int v : patch.vertices)
-        ++vertex_holders[v];
-      for (int f : patch.triangles)
-        ++face_holders[f];
-    }
-  }
-
   double
   paraboloid (double x, double y)
   {
@@ -91,6 +76,24 @@ TEST (RedundantPatches, LaterPatchDroppedFirstUnlessBesideAnUncoveredFace)
   patches = {makePatch ({0, 1, 2, 3, 4, 5}, {0}), makePatch ({3, 4, 5}, {1})};
   EXPECT_EQ (redundantPatches (mesh, patches), (std::vector<bool>{false, false}));
   EXPECT_EQ (redundantPatches (mesh, {}), std::vector<bool> ());
+}
+
+TEST (RedundantPatches, HoldersCountedAndReleased)
+{
+  const TriangleMesh mesh = twoTriangles ();
+  const std::vector<Patch> patches = {makePatch ({0, 1, 2}, {0}), makePatch ({0, 1, 2, 3, 4, 5}, {0, 1})};
+  ElementHolders holders = countElementHolders (mesh, patches);
+  EXPECT_EQ (holders.vertices, (std::vector<int>{2, 2, 2, 1, 1, 1}));
+  EXPECT_EQ (holders.faces, (std::vector<int>{2, 1}));
+  holders.release (patches[1]);
+  EXPECT_EQ (holders.vertices, (std::vector<int>{1, 1, 1, 0, 0, 0}));
+  EXPECT_EQ (holders.faces, (std::vector<int>{1, 0}));
+  // In a tile whose core is the first triangle, the second's vertices and face count as held elsewhere.
+  const ElementHolders core = countElementHolders (mesh, patches, {1, 1, 1, 0, 0, 0});
+  EXPECT_EQ (core.vertices[0], 2);
+  EXPECT_GT (core.vertices[3], 1000000);
+  EXPECT_EQ (core.faces[0], 2);
+  EXPECT_GT (core.faces[1], 1000000);
 }
 
 TEST (RedundantPatches, TileMarginIsTheNeighboursToCover)
@@ -117,9 +120,12 @@ TEST (RedundantPatches, ParaboloidKeepsEveryVertexAndFaceCovered)
   EXPECT_EQ (kept.num_redundant, all.patches.size () - kept.patches.size ());
   // Measured: 80 -> 37.
   EXPECT_LT (kept.patches.size (), 0.6 * all.patches.size ());
-  std::vector<int> vertices_all, faces_all, vertices_kept, faces_kept;
-  countHolders (bowl, all.patches, vertices_all, faces_all);
-  countHolders (bowl, kept.patches, vertices_kept, faces_kept);
+  const ElementHolders all_holders = countElementHolders (bowl, all.patches);
+  const ElementHolders kept_holders = countElementHolders (bowl, kept.patches);
+  const std::vector<int>& vertices_all = all_holders.vertices;
+  const std::vector<int>& faces_all = all_holders.faces;
+  const std::vector<int>& vertices_kept = kept_holders.vertices;
+  const std::vector<int>& faces_kept = kept_holders.faces;
   for (std::size_t v = 0; v < bowl.vertices.size (); ++v)
     ASSERT_EQ (vertices_kept[v] > 0, vertices_all[v] > 0) << "vertex " << v;
   for (std::size_t f = 0; f < bowl.triangles.size (); ++f)

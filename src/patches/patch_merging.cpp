@@ -74,10 +74,7 @@ namespace pcl_sparse
         continue;
       }
       merged[i] = true;
-      for (int v : patch.vertices)
-        --vertex_holders[v];
-      for (int f : patch.triangles)
-        --face_holders[f];
+      holders.release (patch);
       for (int f : placed)
         ++face_holders[f];
       for (int v : gained_vertices)

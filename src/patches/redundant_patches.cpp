@@ -24,10 +24,7 @@ namespace pcl_sparse
           !heldElsewhere (patch.triangles, face_holders))
         continue;
       redundant[i] = true;
-      for (int v : patch.vertices)
-        --vertex_holders[v];
-      for (int f : patch.triangles)
-        --face_holders[f];
+      holders.release (patch);
     }
     return redundant;
   }

@@ -17,6 +17,16 @@ namespace pcl_sparse
   {
     std::vector<int> vertices;  ///< per vertex, the patches holding it
     std::vector<int> faces;     ///< per face, the patches holding it (Patch::triangles)
+
+    /// A patch of the partition dropped: its vertices and faces lose a holder.
+    void
+    release (const Patch& patch)
+    {
+      for (int v : patch.vertices)
+        --vertices[v];
+      for (int f : patch.triangles)
+        --faces[f];
+    }
   };
 
   /// \brief Counts the patches holding each vertex and face.
