@@ -14,6 +14,7 @@
 #include <pcl_sparse/patches/patch_merging.h>
 
 #include "model_helpers.h"
+#include "patch_helpers.h"
 
 #include <gtest/gtest.h>
 
@@ -26,20 +27,10 @@
 #include <vector>
 
 using namespace pcl_sparse;
+using pcl_sparse_test::makePatch;
 
 namespace
 {
-  Patch
-  makeFacePatch (int seed_face, std::vector<int> vertices, std::vector<int> triangles)
-  {
-    Patch patch;
-    patch.seed = vertices.front ();
-    patch.seed_face = seed_face;
-    patch.vertices = std::move (vertices);
-    patch.triangles = std::move (triangles);
-    return patch;
-  }
-
   /// The unit square in z = 0 as faces 0 (0, 1, 2) and 1 (0, 2, 3), and face 2 (0, 3, 4) rising steeply
   /// from its left edge (79 degrees from +z: outside the default 72-degree cone of a patch around +z).
   TriangleMesh
@@ -101,7 +92,7 @@ TEST (PatchMerging, OwnFaceAndVertexGoToTheNeighbour)
 {
   const TriangleMesh mesh = squareAndSteepFace ();
   // The second patch holds face 1 and vertex 3 alone: two elements of its own.
-  const std::vector<Patch> patches = {makeFacePatch (0, {0, 1, 2}, {0}), makeFacePatch (1, {3, 0, 2}, {1})};
+  const std::vector<Patch> patches = {makePatch ({0, 1, 2}, {0}, 0), makePatch ({3, 0, 2}, {1}, 1)};
   const Merge one = merge (mesh, patches, 1);
   EXPECT_EQ (one.merged, (std::vector<bool>{false, false}));
   EXPECT_EQ (one.patches[0].triangles, (std::vector<int>{0}));
@@ -119,7 +110,7 @@ TEST (PatchMerging, NothingChangesWhenAnOwnFaceFitsNoNeighbour)
   const TriangleMesh mesh = squareAndSteepFace ();
   // Faces 1 (flat) and 2 (steep) are the second patch's alone: face 1 fits the first patch, face 2 lies
   // outside its cone, so the placement of face 1 is undone and both patches stay as they were.
-  const std::vector<Patch> patches = {makeFacePatch (0, {0, 1, 2}, {0}), makeFacePatch (1, {3, 0, 2, 4}, {1, 2})};
+  const std::vector<Patch> patches = {makePatch ({0, 1, 2}, {0}, 0), makePatch ({3, 0, 2, 4}, {1, 2}, 1)};
   const Merge result = merge (mesh, patches, 100);
   EXPECT_EQ (result.merged, (std::vector<bool>{false, false}));
   for (std::size_t i = 0; i < patches.size (); ++i)
@@ -133,7 +124,7 @@ TEST (PatchMerging, NothingChangesWhenAnOwnFaceFitsNoNeighbour)
 TEST (PatchMerging, PatchBesideAnUncoveredFaceStays)
 {
   const TriangleMesh mesh = squareAndSteepFace ();
-  std::vector<Patch> patches = {makeFacePatch (0, {0, 1, 2}, {0}), makeFacePatch (1, {3, 0, 2}, {1})};
+  std::vector<Patch> patches = {makePatch ({0, 1, 2}, {0}, 0), makePatch ({3, 0, 2}, {1}, 1)};
   patches[1].beside_uncovered_face = true;
   // The second patch keeps its unclipped footprint; the first, with two elements of its own, merges into it.
   const Merge result = merge (mesh, patches, 2);
@@ -149,7 +140,7 @@ TEST (PatchMerging, TileMarginIsTheNeighboursToCover)
   // The second patch alone holds vertex 3 and faces 1 and 2; with vertices 3 and 4 outside the tile's core,
   // its own elements are face 1 (two corners in the core) and face 2 (one): the steep face 2 fits no
   // neighbour, so it stays. With vertex 0 out too, face 2 has no corner in the core and the patch merges.
-  std::vector<Patch> patches = {makeFacePatch (0, {0, 1, 2}, {0}), makeFacePatch (1, {3, 0, 2, 4}, {1, 2})};
+  std::vector<Patch> patches = {makePatch ({0, 1, 2}, {0}, 0), makePatch ({3, 0, 2, 4}, {1, 2}, 1)};
   std::vector<Patch> copy = patches;
   EXPECT_EQ (mergeSmallPatches (mesh, topology, geometry, PatchOptions (), 2, copy, {1, 1, 1, 0, 0}),
              (std::vector<bool>{false, false}));

@@ -10,6 +10,7 @@
 #include <pcl_sparse/patches/redundant_patches.h>
 
 #include "model_helpers.h"
+#include "patch_helpers.h"
 
 #include <gtest/gtest.h>
 
@@ -20,19 +21,10 @@
 #include <vector>
 
 using namespace pcl_sparse;
+using pcl_sparse_test::makePatch;
 
 namespace
 {
-  Patch
-  makePatch (std::vector<int> vertices, std::vector<int> triangles)
-  {
-    Patch patch;
-    patch.seed = vertices.front ();
-    patch.vertices = std::move (vertices);
-    patch.triangles = std::move (triangles);
-    return patch;
-  }
-
   /// Two triangles apart: (0, 1, 2) and (3, 4, 5).
   TriangleMesh
   twoTriangles ()
