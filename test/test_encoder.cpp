@@ -5,6 +5,7 @@
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
+#include "analytic_surfaces.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <string>
 
 using namespace pcl_sparse;
+using pcl_sparse_test::paraboloid;
 
 namespace
 {
@@ -40,12 +42,6 @@ namespace
               << "  RMSE/diag " << stats.rmse_over_diagonal << "  CR " << stats.compression_ratio << std::endl;
     EXPECT_EQ (stats.uncovered, 0u);
     return stats;
-  }
-
-  double
-  paraboloid (double x, double y)
-  {
-    return 0.5 * (x * x + y * y) + 0.2 * x * y;
   }
 } // namespace
 

@@ -13,6 +13,7 @@
 #include <pcl_sparse/patches/patch_checks.h>
 #include <pcl_sparse/patches/patch_merging.h>
 
+#include "analytic_surfaces.h"
 #include "model_helpers.h"
 #include "patch_helpers.h"
 
@@ -27,6 +28,7 @@
 #include <vector>
 
 using namespace pcl_sparse;
+using pcl_sparse_test::paraboloid;
 using pcl_sparse_test::makePatch;
 
 namespace
@@ -79,12 +81,6 @@ namespace
       return flags;
     };
     return {held (holders.vertices), held (holders.faces)};
-  }
-
-  double
-  paraboloid (double x, double y)
-  {
-    return 0.5 * (x * x + y * y) + 0.2 * x * y;
   }
 } // namespace
 

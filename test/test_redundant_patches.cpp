@@ -9,6 +9,7 @@
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/patches/redundant_patches.h>
 
+#include "analytic_surfaces.h"
 #include "model_helpers.h"
 #include "patch_helpers.h"
 
@@ -21,6 +22,7 @@
 #include <vector>
 
 using namespace pcl_sparse;
+using pcl_sparse_test::paraboloid;
 using pcl_sparse_test::makePatch;
 
 namespace
@@ -43,12 +45,6 @@ namespace
     options.drop_redundant_patches = drop_redundant;
     options.merge_own_elements = 0;  // dropping alone (merging: test_patch_merging.cpp)
     return sampleFeatureAwarePatches (mesh, buildMeshTopology (mesh), options, {}, {}, 1, nullptr);
-  }
-
-  double
-  paraboloid (double x, double y)
-  {
-    return 0.5 * (x * x + y * y) + 0.2 * x * y;
   }
 } // namespace
 
