@@ -203,14 +203,14 @@ namespace pcl_sparse
                        code.frame.col (2) * inverse, evaluator.maxExtent (q), height_bound[q], static_cast<std::size_t> (q),
                        tame[q] != 0};
     };
-    std::vector<std::size_t> away_begin (m + 1, 0);
+    opposite_patch_begin_.assign (m + 1, 0);
     for (std::size_t p = 0; p < m; ++p)
     {
       contender_begin_[p + 1] = contender_begin_[p] + same_side[p].size ();
-      away_begin[p + 1] = away_begin[p] + facing_away[p].size ();
+      opposite_patch_begin_[p + 1] = opposite_patch_begin_[p] + facing_away[p].size ();
     }
     contenders_.resize (contender_begin_[m]);
-    opposites_.resize (away_begin[m]);
+    opposites_.resize (opposite_patch_begin_[m]);
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
@@ -218,13 +218,13 @@ namespace pcl_sparse
       for (std::size_t k = 0; k < same_side[p].size (); ++k)
         contenders_[contender_begin_[p] + k] = contender (same_side[p][k]);
       for (std::size_t k = 0; k < facing_away[p].size (); ++k)
-        opposites_[away_begin[p] + k] = contender (facing_away[p][k]);
+        opposites_[opposite_patch_begin_[p] + k] = contender (facing_away[p][k]);
       for (int sector = 0; sector < sectors; ++sector)
       {
         for (std::uint32_t& k : bins[p * sectors + sector])
           k += static_cast<std::uint32_t> (contender_begin_[p]);
         for (std::uint32_t& k : opposite_bins[p * sectors + sector])
-          k += static_cast<std::uint32_t> (away_begin[p]);
+          k += static_cast<std::uint32_t> (opposite_patch_begin_[p]);
       }
     }
     for (std::size_t b = 0; b < bins.size (); ++b)
@@ -270,6 +270,32 @@ namespace pcl_sparse
     if (c > 1.0 || c > centrality || (c == centrality && other.patch > p))
       return false;
     return liesOnSurface (other, x, y, other.n.dot (d), options_.height_tolerance, options_.height_tolerance);
+  }
+
+  std::vector<Eigen::Vector3d>
+  PatchOwnership::oppositeDisks (std::size_t p) const
+  {
+    std::vector<Eigen::Vector3d> disks;
+    const PatchCode& self = evaluator_.model ().patches[p];
+    // p's places lie within its height bound of its plane; each facing-away patch within a ball around its
+    // seed holding its footprint and its clearance band. A ball reaching that slab clears at most the disk
+    // where it crosses the slab's nearer face.
+    double self_height = 0.0;
+    for (double c : self.coefficients)
+      self_height += std::abs (c);
+    self_height = std::min (self_height, options_.max_height);
+    const double outside = std::max (options_.opposite_clearance, options_.opposite_outside_clearance);
+    for (std::size_t k = opposite_patch_begin_[p]; k < opposite_patch_begin_[p + 1]; ++k)
+    {
+      const Contender& other = opposites_[k];
+      const double height = std::min (other.height_bound, options_.max_height) + outside;
+      const double ball = std::sqrt (other.max_extent * other.max_extent + height * height) / (other.n.norm () * self.radius);
+      const Eigen::Vector3d d = self.frame.transpose () * (other.origin - self.origin) / self.radius;
+      const double gap = std::max (0.0, std::abs (d.z ()) - self_height);
+      if (gap < ball)
+        disks.emplace_back (d.x (), d.y (), std::sqrt (ball * ball - gap * gap));
+    }
+    return disks;
   }
 
   std::vector<int>

@@ -167,6 +167,24 @@ namespace pcl_sparse
           }
           return static_cast<double> (w);
         };
+        // A patch facing away that is smaller than a top block can clear places lying between four kept
+        // corners: blocks it may reach are split down to cells tested one by one. (Larger ones clear places
+        // at corners too, which splits the blocks they reach anyway.)
+        std::vector<Eigen::Vector3d> opposite = ownership_.oppositeDisks (p);
+        opposite.erase (std::remove_if (opposite.begin (), opposite.end (),
+                                        [&] (const Eigen::Vector3d& disk) { return disk.z () > 2.0 * top * grid.cell; }),
+                        opposite.end ());
+        auto mayBeCleared = [&] (int i0, int j0, int i1, int j1) {
+          const double x0 = grid.start + i0 * grid.cell, x1 = grid.start + i1 * grid.cell;
+          const double y0 = grid.start + j0 * grid.cell, y1 = grid.start + j1 * grid.cell;
+          for (const Eigen::Vector3d& disk : opposite)
+          {
+            const double dx = std::max ({x0 - disk.x (), 0.0, disk.x () - x1}), dy = std::max ({y0 - disk.y (), 0.0, disk.y () - y1});
+            if (dx * dx + dy * dy <= disk.z () * disk.z ())
+              return true;
+          }
+          return false;
+        };
         std::vector<std::array<int, 3>> stack;
         for (int j = row0; j < row1; j += top)
           for (int i = 0; i < n; i += top)
@@ -177,7 +195,7 @@ namespace pcl_sparse
           stack.pop_back ();
           const int i1 = std::min (i0 + size, n), j1 = std::min (j0 + size, n);
           const double w00 = node (i0, j0), w10 = node (i1, j0), w01 = node (i0, j1), w11 = node (i1, j1);
-          const bool all_in = w00 > 0.0 && w10 > 0.0 && w01 > 0.0 && w11 > 0.0;
+          const bool all_in = w00 > 0.0 && w10 > 0.0 && w01 > 0.0 && w11 > 0.0 && !mayBeCleared (i0, j0, i1, j1);
           const bool all_out = w00 == 0.0 && w10 == 0.0 && w01 == 0.0 && w11 == 0.0;
           if (!all_in && !all_out)
           {

@@ -163,6 +163,10 @@ namespace pcl_sparse
     /// \return patch indices (never \a p), nearest seed first
     std::vector<int> neighbours (std::size_t p) const;
 
+    /// Where the patches facing away from patch \a p may clear its places: per such patch that can reach
+    /// them, a disk (x, y, radius) in p's local units that holds every place of p it may clear.
+    std::vector<Eigen::Vector3d> oppositeDisks (std::size_t p) const;
+
   private:
     /// A patch that may own places of another: its frame rows pre-divided by its radius.
     struct Contender
@@ -195,6 +199,7 @@ namespace pcl_sparse
     /// Likewise the patches facing away (more than opposite_angle) whose surface a patch's places keep clear of:
     /// per (patch, sector) indices into opposites_, nearest seed first, and the offsets into that list.
     std::vector<Contender> opposites_;
+    std::vector<std::size_t> opposite_patch_begin_;  ///< #patches + 1 offsets into opposites_
     std::vector<std::uint32_t> opposite_contenders_;
     std::vector<std::size_t> opposite_begin_;
   };
