@@ -143,7 +143,8 @@ namespace pcl_sparse
 
       /// At high density most cells lie well inside or well outside the part a patch keeps. A quadtree over
       /// the cell corners finds them: a block whose four corners agree is taken whole (kept cells get the
-      /// bilinear weight of the corners), a block whose corners disagree is split, down to single cells
+      /// bilinear weight of the corners) unless a small facing-away patch can clear places inside it, a block
+      /// whose corners disagree is split, down to single cells
       /// that are tested candidate by candidate. Blocks start at \a top cells (1/8 of the grid or less: a
       /// quarter of the footprint radius), far smaller than the curvature of ownership borders and
       /// footprints. This classifies the rows [\a row0, \a row1) (a band of whole top blocks): \a cells
