@@ -84,6 +84,14 @@ class Topic:
         with self.cond:
             return next((m for m in self.messages if predicate(m)), None)
 
+    def last(self):
+        with self.cond:
+            return self.messages[-1] if self.messages else None
+
+    def count(self):
+        with self.cond:
+            return len(self.messages)
+
     def connected(self, timeout):
         deadline = time.time() + timeout
         while self.sub.get_num_connections() == 0 and time.time() < deadline and not rospy.is_shutdown():
@@ -99,6 +107,19 @@ def wait_until(condition, timeout):
             return value
         time.sleep(0.05)
     return condition()
+
+
+def settle(topics, quiet, timeout):
+    """Waits until none of the topics received a message for quiet seconds (at most timeout seconds)."""
+    deadline = time.time() + timeout
+    counts = [t.count() for t in topics]
+    while time.time() < deadline and not rospy.is_shutdown():
+        time.sleep(quiet)
+        now = [t.count() for t in topics]
+        if now == counts:
+            return True
+        counts = now
+    return False
 
 
 def field_values(cloud, names):
@@ -430,8 +451,14 @@ class Checker:
 
     def check_model(self, label, input_cloud, box, model, roundtrip, input_points):
         name = "model of %s -> %s" % (label, self.args.roundtrip)
-        message = wait_until(lambda: model.first(), 30)
-        decoded = wait_until(lambda: roundtrip.first(), 60)
+        # The decode node also decodes the models of the clouds sent before this scan, and on 2 busy cores one
+        # of them can arrive after the topics were cleared (a CI run decoded the previous test's grid cloud as
+        # lamppost.pcd's). The scan is the resampler's last input: once both topics are quiet, the last model
+        # is the scan's and the last decoded cloud is that model's.
+        wait_until(lambda: model.first(), 30)
+        wait_until(lambda: roundtrip.first(), 60)
+        settle([model, roundtrip], 2.0, 60)
+        message, decoded = model.last(), roundtrip.last()
         problems = []
         if message is None:
             problems.append("no model on ~model")
