@@ -168,9 +168,10 @@ namespace pcl_sparse
           }
           return static_cast<double> (w);
         };
-        // A patch facing away that is smaller than a top block can clear places lying between four kept
-        // corners: blocks it may reach are split down to cells tested one by one. (Larger ones clear places
-        // at corners too, which splits the blocks they reach anyway.)
+        // A small patch facing away can clear places lying between four kept corners: blocks its disk may
+        // reach are split down to cells tested one by one. Disks of radius over two top blocks are left out:
+        // splitting under them tests most of a patch's cells one by one (memory growing with the density),
+        // and what they clear mostly reaches a corner; a thin band between corners stays unseen.
         std::vector<Eigen::Vector3d> opposite = ownership_.oppositeDisks (p);
         opposite.erase (std::remove_if (opposite.begin (), opposite.end (),
                                         [&] (const Eigen::Vector3d& disk) { return disk.z () > 2.0 * top * grid.cell; }),
