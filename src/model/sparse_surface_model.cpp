@@ -70,6 +70,15 @@ namespace pcl_sparse
 namespace pcl_sparse
 {
   double
+  PatchCode::heightBound () const
+  {
+    double bound = 0.0;
+    for (double c : coefficients)
+      bound += std::abs (c);
+    return bound;
+  }
+
+  double
   SparseSurfaceModel::compressionRatio () const
   {
     return pcl_sparse::compressionRatio (patches.size (), numNonZeros (), num_input_vertices);

@@ -36,9 +36,7 @@ namespace pcl_sparse
     double extent = 0.0;
     for (float e : patch.footprint.extent)
       extent = std::max (extent, static_cast<double> (e));
-    double height = 0.0;
-    for (double c : patch.coefficients)
-      height += std::abs (c);
+    const double height = patch.heightBound ();
     // Surface points have |h| <= max_height (1 by default, PatchOwnershipOptions) where resampling keeps
     // them, and a place competed for lies within the height tolerance (0.1) of one: 0.25 covers it.
     const double z = std::min (height, 1.0) + 0.25;

@@ -57,6 +57,9 @@ namespace pcl_sparse
     Eigen::Vector3d toWorld (const Eigen::Vector3d& local) const { return origin + radius * (frame * local); }
     /// Local point R^T (p - s) / r_P of the world point \a p, as Patch::toLocal (r_P includes the support scale).
     Eigen::Vector3d toLocal (const Eigen::Vector3d& p) const { return frame.transpose () * (p - origin) / radius; }
+    /// Bound on the code's |h| anywhere (local units): the sum of its coefficients' magnitudes, the atoms
+    /// being bounded by 1.
+    double heightBound () const;
   };
 
   /// Figures of a model against its input mesh (docs/METHOD.md step 11).
