@@ -28,6 +28,9 @@
 // or whose footprint nearly holds the point (centrality <= 1.5): the angle between the two frames, the
 // point's centrality and its height above that patch's code in that patch's local units (the knife-edge
 // clearance drops points within 0.03 of a facing-away patch's code), and the code's slope there.
+// "fold": the sharpest turn between a face within a spacing of the point and a face across one of its
+// edges; over 150 degrees the input folds back on itself there (a crumpled scan), and the cause gets
+// ", on a fold of the input".
 // Causes, first that applies:
 //   tie        a face on the point's side within 3 mean point distances: the point lies on its side of a
 //              knife edge or thin part within the coding error, and the other side is nearer by a hair
@@ -44,6 +47,7 @@
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
+#include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/patch_evaluator.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
@@ -212,6 +216,16 @@ run (int argc, char** argv)
   const CloudQuality quality = evaluateCloudQuality (*mesh, cloud, qo);
   const std::vector<Eigen::Vector3d> face_normals = computeFaceNormals (*mesh);
   const PatchEvaluator evaluator (*model);
+  const MeshTopology topology = buildMeshTopology (*mesh);
+  // The sharpest turn between face f and a face across one of its edges (degrees); over 150 the input
+  // folds back on itself there, and a point on the fold has no one side.
+  const auto sharpestTurn = [&] (std::size_t f) {
+    double turn = 0.0;
+    for (int k = 0; k < 3; ++k)
+      if (const int g = topology.face_neighbors[f][k]; g >= 0)
+        turn = std::max (turn, std::acos (std::clamp (face_normals[f].dot (face_normals[g]), -1.0, 1.0)) * 180.0 / M_PI);
+    return turn;
+  };
   std::printf ("%s: %zu patches, %zu points, spacing %.4g, flipped %zu, mean distance/diag %.4g\n", argv[1],
                model->numPatches (), cloud.size (), quality.spacing, quality.flipped,
                quality.mean_distance / quality.bbox_diagonal);
@@ -254,7 +268,7 @@ run (int argc, char** argv)
     const double c = evaluator.centrality (p, local.x (), local.y ());
     const double slope = std::atan (h.gradient.norm ()) * 180.0 / M_PI;
     // Exact nearest face, and nearest face on the point's side.
-    double best = 1e300, best_agree = 1e300;
+    double best = 1e300, best_agree = 1e300, fold = 0.0;
     std::size_t face = 0, agree_face = 0;
     for (std::size_t f = 0; f < mesh->numTriangles (); ++f)
     {
@@ -265,6 +279,8 @@ run (int argc, char** argv)
         best = d;
         face = f;
       }
+      if (d <= quality.spacing)
+        fold = std::max (fold, sharpestTurn (f));
       if (face_normals[f].dot (n) > 0.0 && d < best_agree)
       {
         best_agree = d;
@@ -296,12 +312,14 @@ run (int argc, char** argv)
       cause = own_face ? "own face faces away from N" : "other surface facing away from N";
     else
       cause = "code normal flipped on a surface facing N";
+    if (fold > 150.0)
+      cause += ", on a fold of the input";
     ++causes[cause];
     if (verbose)
       std::printf ("  pt %zu patch %d r %.3g verts %zu: xy (%.3f %.3f) c %.3f h %.3f slope %.1f | d %.2f s, agree %.2f s, "
-                   "angle %.1f (side face %.1f, faces %.1f), N-face %.1f, own %d, vertex gap %.3f | %s\n",
+                   "angle %.1f (side face %.1f, faces %.1f), N-face %.1f, own %d, vertex gap %.3f, fold %.1f | %s\n",
                    i, p, code.radius, code.vertices.size (), local.x (), local.y (), c, h.value, slope, best / s,
-                   best_agree / s, exact_angle, agree_angle, faces_angle, frame_angle, own_face ? 1 : 0, nearest_vertex, cause.c_str ());
+                   best_agree / s, exact_angle, agree_angle, faces_angle, frame_angle, own_face ? 1 : 0, nearest_vertex, fold, cause.c_str ());
     if (verbose)
       for (std::size_t o = 0; o < model->numPatches (); ++o)
       {
