@@ -327,6 +327,8 @@ namespace
       {"encode_nan_sigma", "encode", {"IN", "-o", "OUT.m.psm", "-sigma", "nan"}},
       {"encode_negative_merge", "encode", {"IN", "-o", "OUT.m.psm", "-merge-patches", "-1"}},
       {"encode_fractional_merge", "encode", {"IN", "-o", "OUT.m.psm", "-merge-patches", "2.5"}},
+      {"encode_negative_atom_loss", "encode", {"IN", "-o", "OUT.m.psm", "-atom-loss", "-0.1"}},
+      {"encode_nan_atom_loss", "encode", {"IN", "-o", "OUT.m.psm", "-atom-loss", "nan"}},
       {"encode_negative_threads", "encode", {"IN", "-o", "OUT.m.psm", "-threads", "-1"}},
       {"encode_rho_not_a_number", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "abc"}},
       {"encode_rho_nan", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "nan"}},

@@ -9,6 +9,8 @@
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
+#include <pcl_sparse/resampling/patch_evaluator.h>
+#include <pcl_sparse/resampling/patch_ownership.h>
 
 #include <Eigen/Geometry>
 
@@ -129,6 +131,34 @@ namespace pcl_sparse
         for (int v : codes[p].vertices)
           shares[p] += 1.0 / holders[v];
       return shares;
+    }
+
+    /// Cuts the codes to the atoms that buy most, leaving out atoms whose gains add up to at most
+    /// \a allowance times the model's remaining squared error (SparseSurfaceEncoderOptions::atom_loss_allowance).
+    /// A patch facing another across a knife edge or a thin part keeps its whole code: resampling clears its
+    /// places within a few hundredths of its radius of the other side, and a coarser code there crosses it.
+    void
+    leaveOutCheapAtoms (double allowance, int threads, SurfaceEncoding& encoding, SparseSurfaceModel& model)
+    {
+      const PatchEvaluator evaluator (model);
+      const PatchOwnership ownership (evaluator, PatchOwnershipOptions (), threads);
+      const std::vector<double> shares = vertexShares (model.patches, model.num_input_vertices);
+      AtomGains gains (model.patches.size ());
+      double remaining = 0.0;
+      for (std::size_t p = 0; p < gains.size (); ++p)
+      {
+        const PatchCodingInfo& info = encoding.coding_info[p];
+        const double radius = model.patches[p].radius;
+        if (!info.residual_norms.empty ())
+          remaining += info.residual_norms.back () * info.residual_norms.back () * radius * radius * shares[p] /
+                       std::max (1, info.num_samples);
+        if (ownership.oppositeDisks (p).empty ())
+          gains[p] = patchAtomGains (info.residual_norms, radius, shares[p], info.num_samples);
+      }
+      const std::vector<int> counts = allocateAtomsWithinLoss (gains, allowance * remaining);
+      for (std::size_t p = 0; p < counts.size (); ++p)
+        if (!gains[p].empty ())
+          truncatePatchCode (counts[p], model.patches[p], encoding.coding_info[p]);
     }
 
     /// What re-sampling the patches needs: the first sampling's candidate order, so Harris 3D runs once.
@@ -322,6 +352,8 @@ namespace pcl_sparse
       require (growth_floor >= 0, "budget growth floors must be >= 0, got " + std::to_string (growth_floor));
     require (budget_sigma >= 0.0 && std::isfinite (budget_sigma),
              "budget sigma must be >= 0, got " + std::to_string (budget_sigma));
+    require (atom_loss_allowance >= 0.0 && std::isfinite (atom_loss_allowance),
+             "atom loss allowance must be >= 0, got " + std::to_string (atom_loss_allowance));
   }
 
   bool
@@ -383,6 +415,7 @@ namespace pcl_sparse
       options.coding.triangle_samples = 0.0;
       options.coding.clip_footprints_at_border = false;
       options.max_compression_ratio = 0.0;
+      options.atom_loss_allowance = 0.0;
     }
     return options;
   }
@@ -463,8 +496,10 @@ namespace pcl_sparse
       enforceCompressionBound (context, inputs, encoding, model);
       encoding.timings.coding += secondsSince (bound_start);
     }
+    if (options.atom_loss_allowance > 0.0)
+      leaveOutCheapAtoms (options.atom_loss_allowance, context.threads, encoding, model);
     orderPatchesForCoding (encoding, model, context.threads);
-    // The prefixes served the bound; kept, they would add up to 78 doubles a patch to the encoding.
+    // The prefixes served the bound and the allowance; kept, they would add up to 78 doubles a patch to the encoding.
     for (PatchCodingInfo& info : encoding.coding_info)
       std::vector<double> ().swap (info.prefix_coefficients);
     encoding.timings.total = secondsSince (start);

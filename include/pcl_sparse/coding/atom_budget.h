@@ -35,4 +35,14 @@ namespace pcl_sparse
   /// \return one count per patch, at most gains[p].size ()
   std::vector<int>
   allocateAtoms (const AtomGains& gains, long budget);
+
+  /// \brief How many atoms each patch keeps so that the atoms left out gain at most \a allowed_loss in all:
+  /// allocateAtoms' order, stopped as soon as the gains not yet given add up to no more than the allowance.
+  /// Deterministic.
+  /// \param[in] gains        per patch, the gains of its atoms in code order (patchAtomGains)
+  /// \param[in] allowed_loss weighted squared error the left-out atoms may add (<= 0: only atoms that gain
+  ///                          nothing are left out)
+  /// \return one count per patch, at most gains[p].size ()
+  std::vector<int>
+  allocateAtomsWithinLoss (const AtomGains& gains, double allowed_loss);
 } // namespace pcl_sparse
