@@ -12,14 +12,16 @@
 
 namespace pcl_sparse_test
 {
-  /// The model of \a mesh encoded with \a options.
+  /// The model of \a mesh encoded with \a options on \a threads threads (0: OpenMP's default).
   inline pcl_sparse::SparseSurfaceModel::Ptr
   encodeMesh (const pcl_sparse::TriangleMesh::ConstPtr& mesh,
-              const pcl_sparse::SparseSurfaceEncoderOptions& options = pcl_sparse::SparseSurfaceEncoderOptions ())
+              const pcl_sparse::SparseSurfaceEncoderOptions& options = pcl_sparse::SparseSurfaceEncoderOptions (),
+              int threads = 0)
   {
     pcl_sparse::SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     encoder.setInputMesh (mesh);
     encoder.setOptions (options);
+    encoder.setNumberOfThreads (threads);
     auto model = std::make_shared<pcl_sparse::SparseSurfaceModel> ();
     encoder.compute (*model);
     return model;

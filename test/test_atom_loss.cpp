@@ -17,6 +17,7 @@
 #include <random>
 
 #include "knife_mesh.h"
+#include "model_helpers.h"
 
 using namespace pcl_sparse;
 
@@ -27,13 +28,7 @@ namespace
   {
     SparseSurfaceEncoderOptions options;
     options.atom_loss_allowance = allowance;
-    SparseSurfaceEncoder<pcl::PointXYZ> encoder;
-    encoder.setInputMesh (mesh);
-    encoder.setOptions (options);
-    encoder.setNumberOfThreads (threads);
-    SparseSurfaceModel model;
-    encoder.compute (model);
-    return model;
+    return *pcl_sparse_test::encodeMesh (mesh, options, threads);
   }
 
   double
