@@ -166,4 +166,22 @@ namespace pcl_sparse
     const double norm = info.residual_norms.front ();
     info.relative_residual = norm > 0.0 ? info.residual_norms.back () / norm : 0.0;
   }
+
+  int
+  shortestPrefixWithin (const PatchCode& code, const PatchCodingInfo& info, double max_change)
+  {
+    const std::size_t n = code.atoms.size ();
+    if (info.prefix_coefficients.size () < n * (n + 1) / 2)
+      return static_cast<int> (n);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const double* prefix = info.prefix_coefficients.data () + k * (k - 1) / 2;  // unused when k = 0
+      double change = 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+        change += std::abs (code.coefficients[i] - (i < k ? prefix[i] : 0.0));
+      if (change <= max_change)
+        return static_cast<int> (k);
+    }
+    return static_cast<int> (n);
+  }
 } // namespace pcl_sparse

@@ -135,13 +135,16 @@ namespace pcl_sparse
 
     /// Cuts the codes to the atoms that buy most, leaving out atoms whose gains add up to at most
     /// \a allowance times the model's remaining squared error (SparseSurfaceEncoderOptions::atom_loss_allowance).
-    /// A patch facing another across a knife edge or a thin part keeps its whole code: resampling clears its
-    /// places within a few hundredths of its radius of the other side, and a coarser code there crosses it.
+    /// A patch facing another across a knife edge or a thin part keeps the atoms that hold its code within a
+    /// third of resampling's clearance there (PatchOwnershipOptions::opposite_clearance, a few hundredths of
+    /// its radius): a code moved further crosses it. Those kept atoms were counted as left out, so the
+    /// model's error grows by less than the allowance.
     void
     leaveOutCheapAtoms (double allowance, int threads, SurfaceEncoding& encoding, SparseSurfaceModel& model)
     {
+      const PatchOwnershipOptions ownership_options;
       const PatchEvaluator evaluator (model);
-      const PatchOwnership ownership (evaluator, PatchOwnershipOptions (), threads);
+      const PatchOwnership ownership (evaluator, ownership_options, threads);
       const std::vector<double> shares = vertexShares (model.patches, model.num_input_vertices);
       AtomGains gains (model.patches.size ());
       double remaining = 0.0;
@@ -152,13 +155,16 @@ namespace pcl_sparse
         if (!info.residual_norms.empty ())
           remaining += info.residual_norms.back () * info.residual_norms.back () * radius * radius * shares[p] /
                        std::max (1, info.num_samples);
-        if (ownership.oppositeDisks (p).empty ())
-          gains[p] = patchAtomGains (info.residual_norms, radius, shares[p], info.num_samples);
+        gains[p] = patchAtomGains (info.residual_norms, radius, shares[p], info.num_samples);
       }
-      const std::vector<int> counts = allocateAtomsWithinLoss (gains, allowance * remaining);
+      std::vector<int> counts = allocateAtomsWithinLoss (gains, allowance * remaining);
       for (std::size_t p = 0; p < counts.size (); ++p)
-        if (!gains[p].empty ())
-          truncatePatchCode (counts[p], model.patches[p], encoding.coding_info[p]);
+      {
+        if (!ownership.oppositeDisks (p).empty ())
+          counts[p] = std::max (counts[p], shortestPrefixWithin (model.patches[p], encoding.coding_info[p],
+                                                                 ownership_options.opposite_clearance / 3.0));
+        truncatePatchCode (counts[p], model.patches[p], encoding.coding_info[p]);
+      }
     }
 
     /// What re-sampling the patches needs: the first sampling's candidate order, so Harris 3D runs once.

@@ -121,4 +121,11 @@ namespace pcl_sparse
   /// bit, without sampling, evaluating or pursuing again (OMP's first k steps do not depend on L).
   void
   truncatePatchCode (int max_atoms, PatchCode& code, PatchCodingInfo& info);
+
+  /// The fewest atoms \a code, coded with \a info by codePatch, can be cut to (truncatePatchCode) while its
+  /// heights move by at most \a max_change anywhere, in local units: the atoms being bounded by 1, the
+  /// change is at most the sum of the coefficients' changes (the dropped atoms' whole coefficients).
+  /// \return a count in [0, code.atoms.size ()]; the whole code where \a info holds no prefixes
+  int
+  shortestPrefixWithin (const PatchCode& code, const PatchCodingInfo& info, double max_change);
 } // namespace pcl_sparse

@@ -78,9 +78,9 @@ namespace pcl_sparse
     /// at L atoms on nearly every patch, and its last atoms fit little: at 0.2 (an RMSE about 10 % higher)
     /// the default file of the shared meshes is 0-17 % smaller and resamples 0-21 % farther from the mesh,
     /// fewer bytes at equal distance than a smaller L or a coarser file tolerance (bench/results/atom_loss.md).
-    /// A patch facing another across a knife edge or a thin part keeps its whole code (resampling's clearance
-    /// there is a few hundredths of its radius, and a coarser code crosses it); scans are left alone (their
-    /// codes stop at their noise floor). 0 = every code as OMP made it (the default and the `paper` preset).
+    /// A patch facing another across a knife edge or a thin part keeps the atoms that hold its heights within
+    /// a third of resampling's clearance there (PatchOwnershipOptions::opposite_clearance: 0.01 of its radius;
+    /// a code moved further crosses it); scans are left alone (their codes stop at their noise floor). 0 = every code as OMP made it (the default and the `paper` preset).
     double atom_loss_allowance = 0.0;
 
     /// Throws pcl_sparse::Error naming the first option out of range: the patch options, rho > 0,
