@@ -3,6 +3,7 @@
 /// most the allowance.
 
 #include <pcl_sparse/coding/atom_budget.h>
+#include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -50,6 +51,22 @@ TEST (AtomLoss, StopsOnceWhatIsLeftOutIsWithinTheAllowance)
   EXPECT_EQ (allocateAtomsWithinLoss (gains, 11.5), (std::vector<int>{0, 0}));
   // Atoms that gain nothing are left out even without an allowance.
   EXPECT_EQ (allocateAtomsWithinLoss ({{1.0, 0.0}}, 0.0), (std::vector<int>{1}));
+}
+
+TEST (AtomLoss, ShortestPrefixWithinBoundsTheHeightsChange)
+{
+  // Coefficients 1, 0.5, 0.02; OMP's prefixes (0.9), (1, 0.48), then the code. Cut to k atoms the heights
+  // move by at most 1.52, 0.62, 0.04 and 0 for k = 0, 1, 2, 3 (the atoms are bounded by 1).
+  PatchCode code;
+  code.atoms = {0, 3, 7};
+  code.coefficients = {1.0, 0.5, 0.02};
+  PatchCodingInfo info;
+  info.prefix_coefficients = {0.9, 1.0, 0.48, 1.0, 0.5, 0.02};
+  EXPECT_EQ (shortestPrefixWithin (code, info, 2.0), 0);
+  EXPECT_EQ (shortestPrefixWithin (code, info, 1.0), 1);
+  EXPECT_EQ (shortestPrefixWithin (code, info, 0.05), 2);
+  EXPECT_EQ (shortestPrefixWithin (code, info, 0.01), 3);
+  EXPECT_EQ (shortestPrefixWithin (code, PatchCodingInfo (), 2.0), 3);  // no prefixes: the whole code
 }
 
 TEST (AtomLoss, FewerAtomsForAtMostTheAllowedError)
