@@ -76,8 +76,8 @@ namespace pcl_sparse
     /// model's squared error grows by at most this fraction (allocateAtomsWithinLoss over patchAtomGains:
     /// the patches' residuals over their samples, each weighted by the vertices it answers for). OMP stops
     /// at L atoms on nearly every patch, and its last atoms fit little: at 0.2 (an RMSE about 10 % higher)
-    /// the default file of the shared meshes is 0-17 % smaller and resamples 0-21 % farther from the mesh,
-    /// fewer bytes at equal distance than a smaller L or a coarser file tolerance (bench/results/atom_loss.md).
+    /// the default files of the shared meshes are 0-22 % smaller and resample up to 20 % farther from the
+    /// mesh, on 19 of 22 meshes fewer bytes at equal distance than L = 10 (bench/results/atom_loss.md).
     /// A patch facing another across a knife edge or a thin part keeps the atoms that hold its heights within
     /// a third of resampling's clearance there (PatchOwnershipOptions::opposite_clearance: 0.01 of its radius;
     /// a code moved further crosses it); scans are left alone (their codes stop at their noise floor). 0 = every code as OMP made it (the default and the `paper` preset).
