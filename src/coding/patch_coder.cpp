@@ -175,7 +175,7 @@ namespace pcl_sparse
       return static_cast<int> (n);
     for (std::size_t k = 0; k < n; ++k)
     {
-      const double* prefix = info.prefix_coefficients.data () + k * (k - 1) / 2;  // unused when k = 0
+      const double* prefix = info.prefix_coefficients.data () + (k > 0 ? k * (k - 1) / 2 : 0);
       double change = 0.0;
       for (std::size_t i = 0; i < n; ++i)
         change += std::abs (code.coefficients[i] - (i < k ? prefix[i] : 0.0));
