@@ -6,13 +6,19 @@
 
 namespace pcl_sparse
 {
+  double
+  patchErrorWeight (double radius, double vertex_share, int num_samples)
+  {
+    return radius * radius * vertex_share / std::max (1, num_samples);
+  }
+
   std::vector<double>
   patchAtomGains (const std::vector<double>& residual_norms, double radius, double vertex_share, int num_samples)
   {
     std::vector<double> gains;
     if (residual_norms.size () < 2)
       return gains;
-    const double scale = radius * radius * vertex_share / std::max (1, num_samples);
+    const double scale = patchErrorWeight (radius, vertex_share, num_samples);
     gains.reserve (residual_norms.size () - 1);
     for (std::size_t k = 0; k + 1 < residual_norms.size (); ++k)
     {

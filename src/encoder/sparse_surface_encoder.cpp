@@ -153,8 +153,8 @@ namespace pcl_sparse
         const PatchCodingInfo& info = encoding.coding_info[p];
         const double radius = model.patches[p].radius;
         if (!info.residual_norms.empty ())
-          remaining += info.residual_norms.back () * info.residual_norms.back () * radius * radius * shares[p] /
-                       std::max (1, info.num_samples);
+          remaining += info.residual_norms.back () * info.residual_norms.back () *
+                       patchErrorWeight (radius, shares[p], info.num_samples);
         gains[p] = patchAtomGains (info.residual_norms, radius, shares[p], info.num_samples);
       }
       std::vector<int> counts = allocateAtomsWithinLoss (gains, allowance * remaining);

@@ -27,6 +27,12 @@ namespace pcl_sparse
   std::vector<double>
   patchAtomGains (const std::vector<double>& residual_norms, double radius, double vertex_share, int num_samples);
 
+  /// \brief The weight patchAtomGains puts on a patch's squared residual norm (local units, over its samples):
+  /// radius^2 * vertex_share / num_samples (< 1 counts as 1), so that weight * ||r||^2 is the squared error of
+  /// the vertices the patch answers for, in world units.
+  double
+  patchErrorWeight (double radius, double vertex_share, int num_samples);
+
   /// \brief How many atoms each patch keeps so that at most \a budget atoms are kept in all: repeatedly
   /// the patch whose next atom has the largest gain gets it (ties: lower patch index), until the budget
   /// is spent or every code is whole. Deterministic.
