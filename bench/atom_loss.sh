@@ -13,21 +13,17 @@ source "$(dirname "$0")/bench_setup.sh"
 file_tools
 IFS=';' read -r -a sets <<< "${PCL_SPARSE_ATOM_LOSS_SETS:--atom-loss 0;-atom-loss 0.2;-L 10}"
 out="$here/results/atom_loss.md"
-cad="anchor-dense blade cheese-cgal couplingdown fandisk fandisk-large rocker-arm sword turbine wingnut"
-# draco_ratio MESH BYTES CHAMFER: BYTES over Draco's bytes at CHAMFER (log-log between the two Draco points
-# around it in meshes.tsv), or - where CHAMFER lies outside Draco's points.
+# draco_ratio MESH BYTES CHAMFER: BYTES over Draco's bytes at CHAMFER, interpolated over meshes.tsv's Draco points
+# as bench/meshes.sh's report does (meshes_report.loglog; "*" extrapolated, - too far out).
 draco_ratio () {
-  python3 - "$here/results/meshes.tsv" "$@" <<'PY'
-import math, sys
-rows = [l.rstrip('\n').split('\t') for l in open(sys.argv[1])]
-points = sorted((float(r[10]), int(r[9])) for r in rows if len(r) > 10 and r[0] == sys.argv[2] and r[2] == 'draco')
-size, chamfer = int(sys.argv[3]), float(sys.argv[4])
-for (c0, b0), (c1, b1) in zip(points, points[1:]):
-    if c0 <= chamfer <= c1:
-        t = math.log(chamfer / c0) / math.log(c1 / c0)
-        print('%.2f' % (size / math.exp(math.log(b0) + t * math.log(b1 / b0))))
-        sys.exit(0)
-print('-')
+  python3 - "$here" "$@" <<'PY'
+import csv, sys
+sys.path.insert(0, sys.argv[1])
+from meshes_report import loglog
+rows = csv.DictReader(open(sys.argv[1] + '/results/meshes.tsv'), delimiter='\t')
+points = [(float(r['chamfer']), float(r['bytes'])) for r in rows if r['mesh'] == sys.argv[2] and r['config'] == 'draco']
+draco, extrapolated = loglog(points, float(sys.argv[4]), envelope=True)
+print('%.2f%s' % (int(sys.argv[3]) / draco, '*' if extrapolated else '') if draco else '-')
 PY
 }
 {
@@ -37,9 +33,10 @@ PY
   echo "Each mesh encoded with the default options and each option set ($(IFS=';'; echo "${sets[*]}" | sed 's/;/; /g')): atoms (nnz) from"
   echo "\`pcl_sparse_encode MESH SET -o FILE --json\`; bytes of FILE (quantised at the derived tolerance); Chamfer:"
   echo "\`bench_format model MESH FILE\` (mean point-to-surface distance both ways over 200k points a side, / bbox"
-  echo "diagonal); x Draco: bytes over Draco's at that Chamfer (bench/results/meshes.tsv; - outside its points);"
+  echo "diagonal); x Draco: bytes over Draco's at that Chamfer (bench/results/meshes.tsv, interpolated as bench/meshes.sh"
+  echo "does: * extrapolated, - too far out);"
   echo "p99 / flipped: \`pcl_sparse_resample FILE\` at 4 V points, then \`bench_meshes\`. \"x\": over the first set's."
-  echo "CAD meshes (issue 13's limit 1.5x Draco): $cad."
+  echo "CAD meshes (issue 13's limit 1.5x Draco): $(python3 -c "import sys; sys.path.insert(0, '$here'); from meshes_report import CAD; print(', '.join(sorted(CAD)))")."
   echo
   header="| mesh"; rule="|---"
   for set in "${sets[@]}"; do
