@@ -40,7 +40,7 @@ namespace
       {"-cluster C", "instead: keep local maxima at least C x bbox diagonal apart"},
       {"-rings K", "fixed K-ring neighbourhoods (the paper's option: 2)"},
       {"-adaptive A", "adaptive rings up to radius A x bbox diagonal (default 0.01)"},
-      {"-k K", "Harris constant (default 0.04)"},
+      {"-k K", "Harris constant in [0, 0.25] (default 0.04)"},
       {"-responses R.ply", "also write the mesh coloured by response percentile"},
       {"", "(dark blue = low, yellow = high, grey = no response)"},
       {"-preset P", "default or paper: accepted as by every tool; both use these keypoints"},
@@ -124,7 +124,7 @@ main (int argc, char** argv)
         throw Error ("options -fraction and -cluster exclude each other");
       options.selection = Harris3DSelection::Clustering;
     }
-    args.number ("-k", options.k);
+    args.number ("-k", options.k, tools::Range::closed (0.0, 0.25));
     validateHarris3DOptions (options);
 
     pcl::console::TicToc total;

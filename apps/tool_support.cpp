@@ -161,6 +161,9 @@ namespace pcl_sparse
                                                                     " values"));
           if (has (arg))  // the first value won, silently: "-o a.psm -o b.psm" never wrote b.psm
             throw Error ("option " + arg + " given twice");
+          for (int k = 1; k <= option->values; ++k)
+            if (argv[i + k][0] == '\0')  // "-o ''" wrote nothing, silently
+              throw Error ("option " + arg + " has an empty value");
           given_.emplace_back (arg, std::vector<std::string> (argv + i + 1, argv + i + 1 + option->values));
           i += option->values;
           continue;

@@ -1,7 +1,12 @@
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/io/cloud_io.h>
 
 #include <gtest/gtest.h>
+
+#include <sys/resource.h>
+
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -89,4 +94,50 @@ TEST (AtomicWrite, FailureLeavesNoFile)
     EXPECT_EQ (entry.path ().string ().find (".tmp"), std::string::npos) << entry.path ();
   }
   EXPECT_EQ (entries, 1);  // kept.bin alone
+}
+
+TEST (AtomicWrite, AFullDiskFailsEveryCloudFormat)
+{
+  // pcl::PCDWriter::writeASCII never checks its stream: with the disk full it returned success and the tool
+  // renamed a truncated file into place and exited 0. A file size limit stands in for a full disk.
+  const fs::path dir = freshScratchDirectory ();
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  for (int i = 0; i < 5000; ++i)
+  {
+    pcl::PointNormal p;
+    p.x = 0.001f * static_cast<float> (i);
+    p.y = 1.0f / static_cast<float> (i + 1);
+    p.z = 0.5f;
+    p.normal_x = p.normal_y = 0.0f;
+    p.normal_z = 1.0f;
+    p.curvature = 0.0f;
+    cloud.push_back (p);
+  }
+  struct rlimit saved;
+  ASSERT_EQ (getrlimit (RLIMIT_FSIZE, &saved), 0);
+  const auto old_handler = std::signal (SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead of killing us
+  struct rlimit small = saved;
+  small.rlim_cur = 4096;
+  ASSERT_EQ (setrlimit (RLIMIT_FSIZE, &small), 0);
+  for (const char* name : {"cloud.pcd", "cloud.ply"})
+    for (const bool binary : {true, false})
+    {
+      SCOPED_TRACE (std::string (name) + (binary ? " binary" : " ascii"));
+      const fs::path path = dir / name;
+      EXPECT_THROW (pcl_sparse::savePointNormalCloud (path.string (), cloud, binary), pcl_sparse::Error);
+      EXPECT_FALSE (fs::exists (path));
+    }
+  setrlimit (RLIMIT_FSIZE, &saved);
+  std::signal (SIGXFSZ, old_handler);
+  EXPECT_TRUE (fs::is_empty (dir)) << "a temporary file was left behind";
+  // Without the limit every format writes (the check does not refuse complete files).
+  for (const char* name : {"cloud.pcd", "cloud.ply"})
+    for (const bool binary : {true, false})
+    {
+      const fs::path path = dir / name;
+      pcl_sparse::savePointNormalCloud (path.string (), cloud, binary);
+      pcl::PointCloud<pcl::PointXYZ> back;
+      pcl_sparse::loadPointCloud (path.string (), back);
+      EXPECT_EQ (back.size (), cloud.size ()) << name << (binary ? " binary" : " ascii");
+    }
 }

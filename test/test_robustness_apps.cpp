@@ -378,6 +378,9 @@ namespace
       {"keypoints_rings_zero", "keypoints", {"IN", "OUT.k.pcd", "-rings", "0"}},
       {"keypoints_negative_adaptive", "keypoints", {"IN", "OUT.k.pcd", "-adaptive", "-1"}},
       {"keypoints_k_nan", "keypoints", {"IN", "OUT.k.pcd", "-k", "nan"}},
+      // -k 1e308 gave every keypoint a response of -inf
+      {"keypoints_k_huge", "keypoints", {"IN", "OUT.k.pcd", "-k", "1e308"}},
+      {"keypoints_k_negative", "keypoints", {"IN", "OUT.k.pcd", "-k", "-1"}},
       {"keypoints_unknown_flag", "keypoints", {"IN", "OUT.k.pcd", "--bogus"}},
       {"keypoints_missing_output", "keypoints", {"IN"}},
       // pcl_sparse_patches
@@ -390,6 +393,9 @@ namespace
       // an option given twice (the first value won: "-o a.psm -o b.psm" never wrote b.psm)
       {"encode_output_twice", "encode", {"IN", "-o", "OUT.a.psm", "-o", "OUT.b.psm"}},
       {"encode_output_not_psm", "encode", {"IN", "-o", "OUT.m.ply"}},
+      // an empty path: encode wrote no model and exited 0
+      {"encode_output_empty", "encode", {"IN", "-o", ""}},
+      {"encode_recon_empty", "encode", {"IN", "-recon", ""}},
       // pcl_sparse_render: sscanf wrapped 4294967297 to 1
       {"encode_rho_denormal", "encode", {"IN", "-o", "OUT.m.psm", "-rho", "1e-320"}},
       {"patches_zero_rho", "patches", {"IN", "OUT.p.ply", "-rho", "0"}},

@@ -86,6 +86,46 @@ namespace pcl_sparse
       }
       return blob;
     }
+
+    /// Whether the ascii PCD file at \a path ends with \a points complete lines after its "DATA ascii" line.
+    /// pcl::PCDWriter::writeASCII returns success even when the disk fills up (it never checks its stream).
+    bool
+    asciiPcdComplete (const std::string& path, std::size_t points)
+    {
+      std::FILE* file = std::fopen (path.c_str (), "rb");
+      if (!file)
+        return false;
+      const std::string marker = "\nDATA ascii\n";
+      std::string tail;  // the last bytes read, to find the marker across buffer boundaries
+      std::size_t lines = 0;
+      bool in_data = false;
+      int last = -1;
+      char buffer[1 << 16];
+      std::size_t n;
+      while ((n = std::fread (buffer, 1, sizeof buffer, file)) > 0)
+      {
+        std::size_t start = 0;
+        if (!in_data)
+        {
+          tail.append (buffer, n);
+          const std::size_t at = tail.find (marker);
+          if (at == std::string::npos)
+          {
+            tail.erase (0, tail.size () > marker.size () ? tail.size () - marker.size () : 0);
+            continue;
+          }
+          in_data = true;
+          start = n - (tail.size () - (at + marker.size ()));
+        }
+        for (std::size_t i = start; i < n; ++i)
+          lines += buffer[i] == '\n';
+        if (start < n)
+          last = static_cast<unsigned char> (buffer[n - 1]);
+      }
+      const bool read_all = !std::ferror (file);
+      std::fclose (file);
+      return read_all && in_data && lines == points && (points == 0 || last == '\n');
+    }
   } // namespace
 
   template <typename PointT>
@@ -112,11 +152,15 @@ namespace pcl_sparse
           if (doubles)
           {
             const pcl::PCLPointCloud2 blob = doublePositionBlob (cloud, offset);
-            return (binary ? writer.writeBinary (temporary, blob)
-                           : writer.writeASCII (temporary, blob, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity (), 17)) == 0;
+            if (binary)
+              return writer.writeBinary (temporary, blob) == 0;
+            return writer.writeASCII (temporary, blob, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity (), 17) == 0 &&
+                   asciiPcdComplete (temporary, cloud.size ());
           }
+          if (binary)
+            return writer.writeBinary (temporary, cloud) == 0;
           // 9 significant digits: ascii floats read back exactly.
-          return (binary ? writer.writeBinary (temporary, cloud) : writer.writeASCII (temporary, cloud, 9)) == 0;
+          return writer.writeASCII (temporary, cloud, 9) == 0 && asciiPcdComplete (temporary, cloud.size ());
         }
         catch (const pcl::PCLException&)
         {

@@ -140,8 +140,10 @@ namespace pcl_sparse
   validateHarris3DOptions (const Harris3DOptions& options)
   {
     auto refuse = [] (const std::string& what) { throw Error ("Harris 3D option " + what); };
-    if (!std::isfinite (options.k))
-      refuse ("k must be finite");
+    // Outside [0, 1/4] the response det E - k (tr E)^2 is no longer a corner measure (k > 1/4: never positive)
+    // and a large k overflows it to -inf.
+    if (!(options.k >= 0.0 && options.k <= 0.25))
+      refuse ("k must be in [0, 0.25]");
     if (options.rings < 0)
       refuse ("rings must be >= 0 (0 = adaptive)");
     if (options.rings == 0 && !(options.adaptive_fraction > 0.0 && std::isfinite (options.adaptive_fraction)))
