@@ -121,6 +121,41 @@ TEST (MeshNeighborhood, AdaptiveRingGrowsUntilRadiusAndEnoughNeighbours)
   EXPECT_EQ (ring.size (), 49u);
 }
 
+TEST (MeshNeighborhood, AHubVertexDoesNotPutEveryVertexInEveryNeighbourhood)
+{
+  // A fan-triangulated 5000-gon: vertex 0 neighbours every other vertex, so each rim vertex's 2-ring was
+  // the whole polygon and Harris 3D took quadratic time (a 200000-gon did not finish in a minute).
+  const int n = 5000;
+  TriangleMesh fan;
+  for (int i = 0; i < n; ++i)
+    fan.vertices.emplace_back (std::cos (2.0 * M_PI * i / n), std::sin (2.0 * M_PI * i / n), 0.0);
+  for (int i = 1; i + 1 < n; ++i)
+    fan.triangles.emplace_back (0, i, i + 1);
+  const MeshTopology topo = buildMeshTopology (fan);
+  VertexMarks marks (fan.numVertices ());
+  std::vector<int> ring;
+  EXPECT_EQ (collectKRing (topo, 2500, 1, marks, ring), 1);
+  EXPECT_EQ (ring.size (), 4u);  // 2500, the hub, 2499, 2501: below the limit nothing changes
+  collectKRing (topo, 2500, 2, marks, ring);
+  EXPECT_EQ (ring.size (), static_cast<std::size_t> (1 + default_max_ring_neighbors));
+  collectKRing (topo, 2500, 2, marks, ring, 10);
+  ASSERT_EQ (ring.size (), 11u);
+  EXPECT_EQ (ring[1], 0);  // the 1-ring first, in the topology's order, then the hub's ring cut
+  for (int u : ring)
+    EXPECT_EQ (std::count (ring.begin (), ring.end (), u), 1);
+
+  AdaptiveRingOptions options;
+  options.radius = 10.0;  // everything: only the limit stops it
+  options.max_neighbors = 100;
+  collectAdaptiveRing (fan, topo, 2500, options, marks, ring);
+  EXPECT_EQ (ring.size (), 101u);
+  // The marks hold exactly the neighbourhood (the next caller clears them).
+  int marked = 0;
+  for (int v = 0; v < n; ++v)
+    marked += marks.isMarked (v) ? 1 : 0;
+  EXPECT_EQ (marked, 101);
+}
+
 TEST (MeshNeighborhood, VertexMarksClearInConstantTime)
 {
   VertexMarks marks (10);

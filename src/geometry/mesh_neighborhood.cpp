@@ -4,26 +4,34 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pcl_sparse
 {
   namespace
   {
-    /// Appends the ring after out[ring_begin, out.size ()) to \a out; returns false if it is empty.
+    /// Appends the ring after out[ring_begin, out.size ()) to \a out, stopping once \a out holds \a limit
+    /// vertices; returns false if it added none.
     bool
-    appendNextRing (const MeshTopology& topology, std::size_t ring_begin, VertexMarks& marks, std::vector<int>& out)
+    appendNextRing (const MeshTopology& topology, std::size_t ring_begin, VertexMarks& marks, std::vector<int>& out,
+                    std::size_t limit = std::numeric_limits<std::size_t>::max ())
     {
       const std::size_t ring_end = out.size ();
       for (std::size_t i = ring_begin; i < ring_end; ++i)
         for (int u : topology.neighborsOf (out[i]))
           if (marks.mark (u))
+          {
             out.push_back (u);
+            if (out.size () >= limit)
+              return true;
+          }
       return out.size () > ring_end;
     }
   } // namespace
 
   int
-  collectKRing (const MeshTopology& topology, int v, int rings, VertexMarks& marks, std::vector<int>& out)
+  collectKRing (const MeshTopology& topology, int v, int rings, VertexMarks& marks, std::vector<int>& out,
+                int max_neighbors)
   {
     marks.clear ();
     out.clear ();
@@ -31,10 +39,11 @@ namespace pcl_sparse
     marks.mark (v);
     std::size_t ring_begin = 0;
     int collected = 0;
-    while (collected < rings)
+    const std::size_t limit = 1 + static_cast<std::size_t> (std::max (max_neighbors, 0));
+    while (collected < rings && out.size () < limit)
     {
       const std::size_t next_begin = out.size ();
-      if (!appendNextRing (topology, ring_begin, marks, out))
+      if (!appendNextRing (topology, ring_begin, marks, out, limit))
         break;
       ring_begin = next_begin;
       ++collected;
@@ -56,10 +65,11 @@ namespace pcl_sparse
     std::size_t ring_begin = 0;
     int collected = 0;
     const int max_rings = std::max (1, options.max_rings);
-    while (collected < max_rings)
+    const std::size_t limit = 1 + static_cast<std::size_t> (std::max (options.max_neighbors, options.min_neighbors));
+    while (collected < max_rings && out.size () < limit)
     {
       const std::size_t next_begin = out.size ();
-      if (!appendNextRing (topology, ring_begin, marks, out))
+      if (!appendNextRing (topology, ring_begin, marks, out, limit))
         break;
       ring_begin = next_begin;
       ++collected;

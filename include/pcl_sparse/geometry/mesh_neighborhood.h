@@ -67,6 +67,12 @@ namespace pcl_sparse
     std::uint32_t current_ = 1u;
   };
 
+  /// The most neighbours a ring neighbourhood holds by default. A vertex of valence N (a fan-triangulated
+  /// N-gon) is in the 1-ring of N vertices, whose neighbourhoods would then each hold all N: quadratic
+  /// time. 16 rings of a regular mesh hold 816; Harris 3D's neighbourhoods on the shared meshes at most 271
+  /// (koala-loop1-200k).
+  constexpr int default_max_ring_neighbors = 1024;
+
   /// Collects the k-ring of a vertex: the vertex itself, then its 1-ring, then the vertices at edge
   /// distance 2, and so on, each ring in breadth-first order (deterministic: the topology's lists are
   /// sorted).
@@ -75,10 +81,13 @@ namespace pcl_sparse
   /// \param[in]     rings     k, the number of rings
   /// \param[in,out] marks     scratch sized for the mesh; cleared on entry, left marking exactly \a out
   /// \param[out]    out       the neighbourhood, out[0] == v
+  /// \param[in]     max_neighbors  never more neighbours than this: the ring that reaches it is cut there,
+  ///                               in the topology's order (see AdaptiveRingOptions::max_neighbors)
   /// \return the number of rings actually collected (fewer than \a rings when the component of v is
   ///         exhausted earlier)
   int
-  collectKRing (const MeshTopology& topology, int v, int rings, VertexMarks& marks, std::vector<int>& out);
+  collectKRing (const MeshTopology& topology, int v, int rings, VertexMarks& marks, std::vector<int>& out,
+                int max_neighbors = default_max_ring_neighbors);
 
   /// Options of the adaptive ring neighbourhood.
   struct AdaptiveRingOptions
@@ -91,11 +100,15 @@ namespace pcl_sparse
     int min_neighbors = 6;
     /// Never collect more than this many rings (guards against long thin needles and huge radii).
     int max_rings = 16;
+    /// Never collect more than this many neighbours: the ring that reaches it is cut there, in the
+    /// topology's order (default_max_ring_neighbors says why).
+    int max_neighbors = default_max_ring_neighbors;
   };
 
   /// Collects rings around a vertex (as collectKRing) until the neighbourhood radius exceeds
   /// options.radius and at least options.min_neighbors neighbours are collected, or options.max_rings
-  /// is reached, or the component of v is exhausted. At least one ring is always collected.
+  /// is reached, or options.max_neighbors are collected, or the component of v is exhausted. At least one
+  /// ring (or its first options.max_neighbors vertices) is always collected.
   /// \param[in]     mesh      the mesh (for distances)
   /// \param[in]     topology  its topology
   /// \param[in]     v         the centre vertex
