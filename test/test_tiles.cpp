@@ -718,11 +718,14 @@ TEST (TiledEncoding, WavefrontHoldsVertexListsForABandOfTiles)
   options.coding.max_atoms = 4;
   options.coding.tolerance = 0.05;
   options.coding.min_samples = 16;
-  // Measured while encoding, vertex lists dropped once every tile around theirs is measured.
+  // Measured while encoding, vertex lists dropped once every tile around theirs is measured. One thread:
+  // with two, how far the encoding runs ahead of the measurement depends on the scheduler, and on a loaded
+  // machine the peak grew from 68 to 81 of the 87 tiles the bound allows (ctest -j2 failed it once); the
+  // model must not depend on the threads anyway (the whole run below takes two).
   TiledSurfaceEncoder wavefront;
   wavefront.setTileSource (source);
   wavefront.setOptions (options);
-  wavefront.setNumberOfThreads (2);
+  wavefront.setNumberOfThreads (1);
   wavefront.setMeasurement (true);
   TiledModel measured;
   wavefront.compute (measured);
