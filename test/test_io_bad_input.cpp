@@ -217,6 +217,29 @@ TEST (IoBadInput, LyingHeadersAreRefusedBeforeAllocating)
                        "truncated");
 }
 
+TEST (IoBadInput, TextFilesWithMoreRecordsThanTheHeaderAnnounces)
+{
+  // A count one short dropped the last face silently (exit 0); the same file with the true count loads.
+  TempDir dir;
+  const std::string off_body = "0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n";
+  expectFileRefused (dir, "short_count.off", "OFF\n4 1 0\n" + off_body, "data after the 1 faces");
+  const std::string ply_header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                 "property float z\nelement face ";
+  const std::string ply_rest = "\nproperty list uchar int vertex_indices\nend_header\n" + off_body;
+  expectFileRefused (dir, "short_count.ply", ply_header + "1" + ply_rest, "data after the last element");
+  for (const auto& [name, text] : {std::pair<std::string, std::string> ("true_count.off", "OFF\n4 2 0\n" + off_body),
+                                   std::pair<std::string, std::string> ("true_count.ply", ply_header + "2" + ply_rest),
+                                   // trailing blank lines and comments are not records
+                                   std::pair<std::string, std::string> ("trailing.off", "OFF\n4 2 0\n" + off_body + "\n# end\n\n")})
+  {
+    const std::string path = dir.file (name);
+    writeBytes (path, text);
+    TriangleMesh mesh;
+    ASSERT_NO_THROW (mesh = loadTriangleMesh (path)) << name;
+    EXPECT_EQ (mesh.triangles.size (), 2u) << name;
+  }
+}
+
 TEST (IoBadInput, FaceIndexOutOfRange)
 {
   TempDir dir;

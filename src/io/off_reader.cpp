@@ -130,6 +130,10 @@ namespace pcl_sparse
           mesh.triangles.emplace_back (polygon[0], polygon[i], polygon[i + 1]);
         cursor.skipLine ();  // face colour
       }
+      // A header announcing fewer faces than follow dropped the last ones silently.
+      if (cursor.skipToToken ())
+        throw Error (atLine (path, cursor.line, "data after the " + std::to_string (num_faces) +
+                                                    " faces the header announces (a wrong face count?)"));
     }
   } // namespace io_detail
 } // namespace pcl_sparse

@@ -381,7 +381,11 @@ namespace pcl_sparse
                 break;
             }
           }
-          // Trailing bytes after the last element are tolerated (some writers pad).
+          // Trailing bytes after the last element are tolerated in binary (some writers pad); in ascii they
+          // are records the header does not count, dropped silently.
+          if (layout_.format == PlyFormat::Ascii && cursor.skipToToken ())
+            throw Error (atLine (path_, cursor.line, "data after the last element the header announces (a wrong "
+                                                     "element count?)"));
           const long long num_vertices = vertex_count_ >= 0 ? vertex_count_ : static_cast<long long> (mesh.vertices.size ());
           for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
             for (int k = 0; k < 3; ++k)
