@@ -1041,3 +1041,27 @@ TEST (TiledModelFile, EmptyModelKeepsItsBasisAndChannels)
   EXPECT_EQ (loaded.num_input_vertices, model.num_input_vertices);
   EXPECT_NO_THROW (encodeModel (loaded, options));
 }
+
+TEST (ModelFile, RadiiBeyondTheQuantisedScaleAreRefusedWithTheCause)
+{
+  // One patch of radius 1e20 among radii of 0.1-1 (a mesh with one vertex at 1e20): the log scale of the
+  // radii, as fine as the tolerance needs, has more than 2^32 steps. Said so, with what to do instead.
+  SparseSurfaceModel model = test::makeSyntheticModel (20, 7);
+  model.patches[5].radius = 1e20;
+  ModelWriteOptions options;
+  options.tolerance = 1e-3;
+  try
+  {
+    encodeModel (model, options);
+    FAIL () << "a radius of 1e20 was quantised";
+  }
+  catch (const Error& e)
+  {
+    const std::string message = e.what ();
+    EXPECT_NE (message.find ("1e+20"), std::string::npos) << message;
+    EXPECT_NE (message.find ("a vertex far from the rest"), std::string::npos) << message;
+    EXPECT_NE (message.find ("-tolerance 0"), std::string::npos) << message;
+  }
+  // The lossless file holds it.
+  EXPECT_NO_THROW (encodeModel (model, ModelWriteOptions ()));
+}

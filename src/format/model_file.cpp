@@ -27,6 +27,7 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <sstream>
 
 namespace pcl_sparse
 {
@@ -276,17 +277,28 @@ namespace pcl_sparse
     void
     chooseRadiusScale (const SparseSurfaceModel& model, double tolerance, QuantisationParameters& q)
     {
-      double largest_arm = 0.0;
+      double largest_arm = 0.0, largest_radius = 0.0;
       q.log_radius_min = model.patches.empty () ? 0.0 : std::numeric_limits<double>::infinity ();
       for (const PatchCode& patch : model.patches)
       {
         const double e = maxExtent (patch.footprint);
         const double h = sumAbs (patch.coefficients);
         largest_arm = std::max (largest_arm, patch.radius * std::sqrt (e * e + h * h));
+        largest_radius = std::max (largest_radius, patch.radius);
         q.log_radius_min = std::min (q.log_radius_min, std::log (patch.radius));
       }
       const double relative = kRadiusShare * tolerance / std::max (largest_arm, 1e-300);
       q.log_radius_step = 2.0 * std::log1p (std::min (relative, 1.0));
+      // A vertex far from the rest (one coordinate at 1e20 in a unit mesh) makes one patch's reach dwarf the
+      // tolerance, which comes from the model's error: the scale would need more steps than 32 bits count.
+      if (!model.patches.empty () && !((std::log (largest_radius) - q.log_radius_min) / q.log_radius_step < 4294967295.0))
+      {
+        std::ostringstream message;
+        message << "a quantised file cannot hold patch radii from " << std::exp (q.log_radius_min) << " to "
+                << largest_radius << " on a log scale fine enough for its tolerance (a vertex far from the rest of "
+                << "the surface?); a lossless file (tolerance 0, pcl_sparse_encode -tolerance 0) holds it";
+        throw Error (message.str ());
+      }
     }
 
     /// Step count of \a radius on the log scale of \a q.
