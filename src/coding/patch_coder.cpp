@@ -20,6 +20,14 @@ namespace pcl_sparse
     /// of a rotated CAD part). Double round-off in R^T (p - s) / r_P is about 1e-16.
     constexpr double kRoundOffHeight = 1e-12;
 
+    /// Where the coefficients after the first \a k atoms start in PatchCodingInfo::prefix_coefficients
+    /// (prefixes of 1, 2, ... atoms one after the other; k = 0 has none).
+    std::size_t
+    prefixOffset (std::size_t k)
+    {
+      return k > 0 ? k * (k - 1) / 2 : 0;
+    }
+
     /// With the quadric basis, atoms whose RMS over a patch's samples is below this are not used (their
     /// coefficient would be 100 times the heights they fit), and an atom must bring this fraction of its
     /// squared norm outside the support's span (1 % of its norm): OmpSelection.
@@ -159,7 +167,7 @@ namespace pcl_sparse
     if (info.prefix_coefficients.size () < k * (k + 1) / 2 || info.residual_norms.size () <= k)
       throw Error ("truncatePatchCode: the coding info holds no prefix of " + std::to_string (k) + " atoms");
     code.atoms.resize (k);
-    const auto first = info.prefix_coefficients.begin () + static_cast<std::ptrdiff_t> (k * (k - 1) / 2);
+    const auto first = info.prefix_coefficients.begin () + static_cast<std::ptrdiff_t> (prefixOffset (k));
     code.coefficients.assign (first, first + static_cast<std::ptrdiff_t> (k));
     info.residual_norms.resize (k + 1);
     info.prefix_coefficients.resize (k * (k + 1) / 2);
@@ -175,7 +183,7 @@ namespace pcl_sparse
       return static_cast<int> (n);
     for (std::size_t k = 0; k < n; ++k)
     {
-      const double* prefix = info.prefix_coefficients.data () + (k > 0 ? k * (k - 1) / 2 : 0);
+      const double* prefix = info.prefix_coefficients.data () + prefixOffset (k);
       double change = 0.0;
       for (std::size_t i = 0; i < n; ++i)
         change += std::abs (code.coefficients[i] - (i < k ? prefix[i] : 0.0));

@@ -243,12 +243,15 @@ namespace pcl_sparse
 
     // ---- quantised sections -----------------------------------------------------------------------
 
+    /// Seed and radius step counts are stored in at most 32 bits.
+    constexpr double kMaxStepCount = 4294967295.0;
+
     /// Integer steps of q.seed_step from the smallest corner of coordinate \a i of \a origin.
     std::uint64_t
     seedSteps (const Eigen::Vector3d& origin, int i, const QuantisationParameters& q)
     {
       const double steps = std::round ((origin[i] - q.seed_min[i]) / q.seed_step);
-      if (!(steps < 4294967295.0))
+      if (!(steps < kMaxStepCount))
         throw Error ("encodeModel: tolerance too small for the seed range (more than 2^32 steps)");
       return static_cast<std::uint64_t> (steps);
     }
@@ -291,7 +294,7 @@ namespace pcl_sparse
       q.log_radius_step = 2.0 * std::log1p (std::min (relative, 1.0));
       // A vertex far from the rest (one coordinate at 1e20 in a unit mesh) makes one patch's reach dwarf the
       // tolerance, which comes from the model's error: the scale would need more steps than 32 bits count.
-      if (!model.patches.empty () && !((std::log (largest_radius) - q.log_radius_min) / q.log_radius_step < 4294967295.0))
+      if (!model.patches.empty () && !((std::log (largest_radius) - q.log_radius_min) / q.log_radius_step < kMaxStepCount))
       {
         std::ostringstream message;
         message << "a quantised file cannot hold patch radii from " << std::exp (q.log_radius_min) << " to "
@@ -306,7 +309,7 @@ namespace pcl_sparse
     quantiseRadius (double radius, const QuantisationParameters& q)
     {
       const double radius_steps = std::round ((std::log (radius) - q.log_radius_min) / q.log_radius_step);
-      if (!(radius_steps < 4294967295.0))
+      if (!(radius_steps < kMaxStepCount))
         throw Error ("encodeModel: tolerance too small for the radius range");
       return static_cast<std::uint64_t> (radius_steps);
     }

@@ -10,6 +10,7 @@
 
 #include <pcl/io/pcd_io.h>
 
+#include <algorithm>
 #include <cstring>
 #include <cstdio>
 #include <vector>
@@ -95,36 +96,29 @@ namespace pcl_sparse
       std::FILE* file = std::fopen (path.c_str (), "rb");
       if (!file)
         return false;
-      const std::string marker = "\nDATA ascii\n";
-      std::string tail;  // the last bytes read, to find the marker across buffer boundaries
-      std::size_t lines = 0;
-      bool in_data = false;
-      int last = -1;
-      char buffer[1 << 16];
-      std::size_t n;
-      while ((n = std::fread (buffer, 1, sizeof buffer, file)) > 0)
+      // The header PCL writes (a dozen short lines) lies within the first read, or the file is cut short.
+      static const std::string marker = "\nDATA ascii\n";
+      std::vector<char> buffer (1 << 16);
+      std::size_t n = std::fread (buffer.data (), 1, buffer.size (), file);
+      const auto data = std::search (buffer.begin (), buffer.begin () + n, marker.begin (), marker.end ());
+      if (data == buffer.begin () + n)
       {
-        std::size_t start = 0;
-        if (!in_data)
-        {
-          tail.append (buffer, n);
-          const std::size_t at = tail.find (marker);
-          if (at == std::string::npos)
-          {
-            tail.erase (0, tail.size () > marker.size () ? tail.size () - marker.size () : 0);
-            continue;
-          }
-          in_data = true;
-          start = n - (tail.size () - (at + marker.size ()));
-        }
-        for (std::size_t i = start; i < n; ++i)
-          lines += buffer[i] == '\n';
-        if (start < n)
-          last = static_cast<unsigned char> (buffer[n - 1]);
+        std::fclose (file);
+        return false;
+      }
+      std::size_t lines = 0;
+      char last = '\n';
+      for (auto begin = data + static_cast<std::ptrdiff_t> (marker.size ()); n > 0; begin = buffer.begin ())
+      {
+        const auto end = buffer.begin () + static_cast<std::ptrdiff_t> (n);
+        lines += static_cast<std::size_t> (std::count (begin, end, '\n'));
+        if (begin != end)
+          last = end[-1];
+        n = std::fread (buffer.data (), 1, buffer.size (), file);
       }
       const bool read_all = !std::ferror (file);
       std::fclose (file);
-      return read_all && in_data && lines == points && (points == 0 || last == '\n');
+      return read_all && lines == points && last == '\n';
     }
   } // namespace
 

@@ -80,7 +80,8 @@ namespace pcl_sparse
     /// mesh, on 19 of 22 meshes fewer bytes at equal distance than L = 10 (bench/results/atom_loss.md).
     /// A patch facing another across a knife edge or a thin part keeps the atoms that hold its heights within
     /// a third of resampling's clearance there (PatchOwnershipOptions::opposite_clearance: 0.01 of its radius;
-    /// a code moved further crosses it); scans are left alone (their codes stop at their noise floor). 0 = every code as OMP made it (the default and the `paper` preset).
+    /// a code moved further crosses it); scans are left alone (their codes stop at their noise floor).
+    /// 0 = every code as OMP made it (the default and the `paper` preset).
     double atom_loss_allowance = 0.0;
 
     /// Throws pcl_sparse::Error naming the first option out of range: the patch options, rho > 0,
