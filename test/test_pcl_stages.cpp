@@ -600,3 +600,65 @@ TEST (PclStages, TriangleSoupIsRefusedWithTheRemedy)
   encoder.compute (model);
   EXPECT_GT (model.numNonZeros (), 0u);
 }
+
+// Repeated faces (the same three vertices, in any order or winding) add no surface, but each copy used to be
+// counted again: in area-weighted normals, in Harris neighbourhoods, and as one more patch (3000 copies of one
+// triangle gave 3000 stacked patches and a file 30 times the mesh). Every stage now leaves the copies out.
+TEST (PclStages, RepeatedFacesAreCountedOnce)
+{
+  const auto mesh = std::make_shared<TriangleMesh> (floatExactMesh ());
+  auto repeated = std::make_shared<TriangleMesh> (*mesh);
+  std::size_t copies = 0;
+  for (std::size_t f = 0; f < mesh->triangles.size (); f += 7, ++copies)
+  {
+    const Eigen::Vector3i& t = mesh->triangles[f];
+    // Same winding rotated, reversed winding, and the same face many times over.
+    repeated->triangles.push_back (copies % 3 == 0 ? Eigen::Vector3i (t[1], t[2], t[0])
+                                   : copies % 3 == 1 ? Eigen::Vector3i (t[0], t[2], t[1])
+                                                     : t);
+  }
+  for (int k = 0; k < 200; ++k, ++copies)
+    repeated->triangles.push_back (mesh->triangles[5]);
+  ASSERT_GT (copies, 250u);
+
+  SparseSurfaceEncoder<pcl::PointXYZ> reference;
+  reference.setInputMesh (mesh);
+  SparseSurfaceModel expected;
+  reference.compute (expected);
+  EXPECT_EQ (reference.getDuplicateFaces (), 0u);
+
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputMesh (repeated);
+  // A topology built over the copies is not the one the stage works on: it is rebuilt.
+  encoder.setTopology (std::make_shared<const MeshTopology> (buildMeshTopology (*repeated)));
+  SparseSurfaceModel model;
+  encoder.compute (model);
+  EXPECT_EQ (encoder.getDuplicateFaces (), copies);
+  EXPECT_EQ (encoder.getSurface ()->triangles.size (), mesh->triangles.size ());
+  EXPECT_EQ (model.numPatches (), expected.numPatches ());
+  EXPECT_EQ (modelBytes (model), modelBytes (expected));
+
+  // PCL's input (cloud and polygons) and the other stages alike.
+  MeshNormalEstimation<pcl::PointXYZ> normals;
+  normals.setInputCloud (cloudOf<pcl::PointXYZ> (*repeated));
+  normals.setInputPolygons (polygonsOf (*repeated));
+  pcl::PointCloud<pcl::PointNormal> with_copies;
+  normals.compute (with_copies);
+  EXPECT_EQ (normals.getDuplicateFaces (), copies);
+  normals.setInputPolygons (polygonsOf (*mesh));
+  pcl::PointCloud<pcl::PointNormal> without;
+  normals.compute (without);
+  ASSERT_EQ (with_copies.size (), without.size ());
+  for (std::size_t i = 0; i < without.size (); ++i)
+    ASSERT_EQ (with_copies[i].getNormalVector3fMap (), without[i].getNormalVector3fMap ()) << i;
+
+  HarrisKeypoint3DMesh<pcl::PointXYZ> harris;
+  harris.setInputMesh (repeated);
+  pcl::PointCloud<pcl::PointXYZI> keypoints;
+  harris.compute (keypoints);
+  HarrisKeypoint3DMesh<pcl::PointXYZ> clean_harris;
+  clean_harris.setInputMesh (mesh);
+  pcl::PointCloud<pcl::PointXYZI> clean_keypoints;
+  clean_harris.compute (clean_keypoints);
+  EXPECT_EQ (harris.getKeypointsIndices ()->indices, clean_harris.getKeypointsIndices ()->indices);
+}

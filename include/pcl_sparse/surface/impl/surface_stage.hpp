@@ -4,6 +4,7 @@
 /// types, and by programs that define PCL_NO_PRECOMPILE for others.
 
 #include <pcl_sparse/io/scan_conversion.h>
+#include <pcl_sparse/mesh/mesh_report.h>
 #include <pcl_sparse/mesh/polygon_faces.h>
 #include <pcl_sparse/mesh/sub_mesh.h>
 #include <pcl_sparse/surface/surface_stage.h>
@@ -22,6 +23,7 @@ namespace pcl_sparse
     cloud_surface_.reset ();
     cleaning_report_ = ScanCleaningReport ();
     surface_input_indices_.clear ();
+    duplicate_faces_ = 0;
     const std::string where = "[" + getClassName () + "::compute] ";
     const bool has_indices = this->use_indices_ && this->indices_;
     const bool use_indices = has_indices && index_use_ == IndexUse::CropSurface;
@@ -78,10 +80,33 @@ namespace pcl_sparse
           fail ("setIndices: index " + std::to_string (v) + " out of range (" + std::to_string (num_points) + " points)");
       selected_ = this->indices_;
     }
+    if (!surfaceIsScan ())
+      dropDuplicateFaces ();
     if (surface_->vertices.empty () || surface_->triangles.empty ())
       fail ("no input mesh or an empty one (set a mesh with triangles)");
     if (!surface_topology_)
       surface_topology_ = std::make_shared<const MeshTopology> (buildMeshTopology (*surface_, num_threads_));
+  }
+
+  template <typename PointInT>
+  void
+  SurfaceStage<PointInT>::dropDuplicateFaces ()
+  {
+    const std::vector<int> first_copy = findDuplicateFaces (*surface_);
+    std::size_t copies = 0;
+    for (std::size_t f = 0; f < first_copy.size (); ++f)
+      copies += first_copy[f] != static_cast<int> (f);
+    if (copies == 0)
+      return;
+    auto unique = std::make_shared<TriangleMesh> ();
+    unique->vertices = surface_->vertices;
+    unique->triangles.reserve (first_copy.size () - copies);
+    for (std::size_t f = 0; f < first_copy.size (); ++f)
+      if (first_copy[f] == static_cast<int> (f))
+        unique->triangles.push_back (surface_->triangles[f]);
+    surface_ = std::move (unique);
+    surface_topology_.reset ();  // a topology given with setTopology counts the copies
+    duplicate_faces_ = copies;
   }
 
   template <typename PointInT>
