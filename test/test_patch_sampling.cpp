@@ -306,8 +306,16 @@ TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
   const int nan_vertex = static_cast<int> (mesh.vertices.size ()) - 1;
   mesh.triangles.emplace_back (4, 5, nan_vertex);
   mesh.triangles.emplace_back (5, 4, nan_vertex);
-  const auto patches = sample (mesh);
-  PatchInvariantChecker checker (mesh, PatchOptions ());
+  FeatureAwarePatchSampling<pcl::PointXYZ> stage;
+  stage.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+  stage.setResponses (std::vector<double> (mesh.vertices.size (), 0.0));
+  std::vector<Patch> patches;
+  stage.compute (patches);
+  // The repeated face and the NaN face's reversed copy are left out, so patch faces index the stage's
+  // surface, two faces shorter than the input.
+  EXPECT_EQ (stage.getDuplicateFaces (), 2u);
+  ASSERT_EQ (stage.getSurface ()->triangles.size (), mesh.triangles.size () - 2);
+  PatchInvariantChecker checker (*stage.getSurface (), PatchOptions ());
   EXPECT_TRUE (checker.uncoveredVertices (patches).empty ());
   for (const Patch& p : patches)
     if (p.seed != nan_vertex)

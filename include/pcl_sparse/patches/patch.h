@@ -18,7 +18,9 @@ namespace pcl_sparse
     /// its normal stands for the seed normal, and smooth variation is measured between adjacent faces.
     int seed_face = -1;
     std::vector<int> vertices;                          ///< vertex indices, seed first, in growth order
-    std::vector<int> triangles;                         ///< faces whose three corners are all in the patch
+    /// Faces whose three corners are all in the patch, as indices into the stage's surface (SurfaceStage::
+    /// getSurface: the input mesh, or its indexed part, without the extra copies of repeated faces).
+    std::vector<int> triangles;
     /// The last this many entries of `triangles` were added by face completion (face_completion.h), not by
     /// growth: they keep the cone and no-flip conditions, not smooth variation nor the area bound.
     std::size_t completed_triangles = 0;
