@@ -5,6 +5,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/mesh_stream.h>
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/io/scan_stream.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -237,6 +238,62 @@ TEST (IoBadInput, TextFilesWithMoreRecordsThanTheHeaderAnnounces)
     TriangleMesh mesh;
     ASSERT_NO_THROW (mesh = loadTriangleMesh (path)) << name;
     EXPECT_EQ (mesh.triangles.size (), 2u) << name;
+  }
+}
+
+TEST (IoBadInput, BinaryPlyWithMoreRecordsThanTheHeaderAnnounces)
+{
+  // Two faces under a header announcing one: the second was taken for padding and dropped (exit 0). Zero bytes
+  // and white space after the last record are still padding; whole or streamed, the reader says the same.
+  TempDir dir;
+  std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face COUNT\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string body;
+  for (float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 1.f, 1.f, 0.f})
+    put (body, c);
+  for (const Eigen::Vector3i& face : {Eigen::Vector3i (0, 1, 2), Eigen::Vector3i (1, 3, 2)})
+  {
+    put (body, std::uint8_t (3));
+    for (int k = 0; k < 3; ++k)
+      put (body, std::int32_t (face[k]));
+  }
+  auto withCount = [&] (const std::string& count) {
+    std::string text = header;
+    text.replace (text.find ("COUNT"), 5, count);
+    return text + body;
+  };
+  auto streamedTriangles = [] (const std::string& path) {
+    MeshStreamReader reader (path);
+    EXPECT_TRUE (reader.isStreamed ());
+    std::vector<Eigen::Vector3d> vertices;
+    while (reader.readVertices (vertices, 2))
+      ;
+    std::vector<Eigen::Vector3i> chunk;
+    std::size_t triangles = 0;
+    while (reader.readTriangles (chunk, 1))
+      triangles += chunk.size ();
+    return triangles;
+  };
+  const std::string short_count = dir.file ("short_count.ply");
+  writeBytes (short_count, withCount ("1"));
+  expectRefused (short_count, "data after the last element");
+  try
+  {
+    streamedTriangles (short_count);
+    ADD_FAILURE () << "streamed without error";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("data after the last element"), std::string::npos) << e.what ();
+  }
+  for (const std::string& padding : {std::string (), std::string ("\n"), std::string (7, '\0') + "\r\n "})
+  {
+    const std::string path = dir.file ("padded.ply");
+    writeBytes (path, withCount ("2") + padding);
+    TriangleMesh mesh;
+    ASSERT_NO_THROW (mesh = loadTriangleMesh (path)) << padding.size () << " bytes of padding";
+    EXPECT_EQ (mesh.triangles.size (), 2u);
+    EXPECT_EQ (streamedTriangles (path), 2u);
   }
 }
 

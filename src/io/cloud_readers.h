@@ -163,6 +163,10 @@ namespace pcl_sparse
       std::size_t
       decode (const std::string& data, long long max_records, std::vector<Eigen::Vector3i>& triangles,
               long long& records) const;
+      /// After the last face record: throws unless \a rest, the bytes that follow it, are padding (zero bytes
+      /// or white space) or the file announces more elements after the faces.
+      void
+      checkEnd (const std::string& rest) const;
 
     private:
       struct Layout;

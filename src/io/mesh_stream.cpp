@@ -82,6 +82,8 @@ namespace pcl_sparse
           if (records == 0 && file_.gcount () == 0)
             throw Error (path_ + ": truncated: the file ends in PLY face " + std::to_string (faces_read_) + " of " +
                          std::to_string (face_records_.count ()));
+          if (faces_read_ == face_records_.count ())
+            checkEnd ();
           if (!chunk.empty ())
             return true;
         }
@@ -102,6 +104,22 @@ namespace pcl_sparse
       }
 
     private:
+      /// After the last face: what is left of the file must be padding (PlyFaceRecords::checkEnd).
+      void
+      checkEnd ()
+      {
+        std::string rest = std::move (carry_);
+        carry_.clear ();
+        char block[1 << 16];
+        while (file_.read (block, sizeof (block)) || file_.gcount () > 0)
+        {
+          rest.append (block, static_cast<std::size_t> (file_.gcount ()));
+          face_records_.checkEnd (rest);
+          rest.clear ();
+        }
+        face_records_.checkEnd (rest);
+      }
+
       std::string path_;
       io_detail::PlyVertexRecords vertex_records_;
       io_detail::PlyFaceRecords face_records_;

@@ -9,6 +9,7 @@
 #include "mesh_readers.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -128,6 +129,13 @@ namespace pcl_sparse
         BinaryLittleEndian,
         BinaryBigEndian
       };
+
+      /// Whether the bytes [begin, end) are padding: zero bytes and white space only.
+      bool
+      isPadding (const char* begin, const char* end)
+      {
+        return std::all_of (begin, end, [] (char c) { return c == '\0' || std::isspace (static_cast<unsigned char> (c)); });
+      }
 
       /// Reads one binary value of \a type at \a p (which has at least sizeOf (type) bytes) as double.
       template <bool swap>
@@ -381,11 +389,15 @@ namespace pcl_sparse
                 break;
             }
           }
-          // Trailing bytes after the last element are tolerated in binary (some writers pad); in ascii they
-          // are records the header does not count, dropped silently.
+          // After the last element: in ascii only blank lines; in binary only padding (zero bytes or white
+          // space, which some writers append). Anything else is records the header does not count, which
+          // would be dropped silently.
           if (layout_.format == PlyFormat::Ascii && cursor.skipToToken ())
             throw Error (atLine (path_, cursor.line, "data after the last element the header announces (a wrong "
                                                      "element count?)"));
+          if (layout_.format != PlyFormat::Ascii && !isPadding (p, end))
+            throw Error (path_ + ": " + std::to_string (end - p) +
+                         " bytes of data after the last element the header announces (a wrong element count?)");
           const long long num_vertices = vertex_count_ >= 0 ? vertex_count_ : static_cast<long long> (mesh.vertices.size ());
           for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
             for (int k = 0; k < 3; ++k)
@@ -842,6 +854,7 @@ namespace pcl_sparse
       PlyLayout header;
       std::size_t face = 0;  ///< index of the face element
       bool streamable = false;
+      bool faces_last = false;  ///< no element after the faces has bytes in the body
       std::size_t body_offset = 0;
       long long vertices = 0;
     };
@@ -882,7 +895,17 @@ namespace pcl_sparse
           layout->streamable = false;
       }
       layout->streamable = layout->streamable && stage == 2;
+      layout->faces_last = true;
+      for (std::size_t e = layout->face + 1; e < elements.size (); ++e)
+        layout->faces_last = layout->faces_last && (elements[e].count == 0 || elements[e].properties.empty ());
       layout_ = layout;
+    }
+
+    void
+    PlyFaceRecords::checkEnd (const std::string& rest) const
+    {
+      if (layout_->faces_last && !isPadding (rest.data (), rest.data () + rest.size ()))
+        throw Error (path_ + ": data after the last element the header announces (a wrong element count?)");
     }
 
     bool
