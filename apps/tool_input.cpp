@@ -2,6 +2,8 @@
 
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/io/scan_io.h>
+#include <pcl_sparse/mesh/mesh_cleaning.h>
+#include <pcl_sparse/mesh/vertex_welding.h>
 #include <pcl_sparse/tiles/spilled_tile_source.h>
 
 #include <pcl/console/print.h>
@@ -32,6 +34,26 @@ namespace pcl_sparse
       return isMeshFileExtension (path) || isScanFileExtension (path);
     }
 
+    namespace
+    {
+      /// A file whose faces share no vertex (each repeats its corners, as some writers do) has no topology
+      /// to grow patches on: its corners at equal positions are welded, with a note. Separate triangles
+      /// (no two corners at one position) stay as they are, for each stage to take or refuse.
+      TriangleMesh::ConstPtr
+      weldTriangleSoup (const std::string& path, const TriangleMesh::ConstPtr& soup)
+      {
+        CleaningOptions weld_only{false, false, false, false};
+        weld_only.weld_coincident_vertices = true;
+        auto welded = std::make_shared<TriangleMesh> (cleanMesh (*soup, weld_only).mesh);
+        if (isTriangleSoup (*welded))
+          return soup;
+        pcl::console::print_info ("%s: its faces shared no vertex (a triangle soup): welded its %zu corners into %zu "
+                                  "vertices at equal positions\n",
+                                  path.c_str (), soup->vertices.size (), welded->vertices.size ());
+        return welded;
+      }
+    } // namespace
+
     SurfaceInput
     loadSurfaceInput (const std::string& path)
     {
@@ -48,7 +70,7 @@ namespace pcl_sparse
           for (const Eigen::Vector3d& v : mesh->vertices)
             if (!v.allFinite ())
               return SurfaceInput{std::make_shared<TriangleMesh> (loadTriangleMesh (path)), nullptr};  // its error
-          input.mesh = mesh;
+          input.mesh = isTriangleSoup (*mesh) ? weldTriangleSoup (path, mesh) : mesh;
           return input;
         }
       }

@@ -3,6 +3,7 @@
 #include <pcl_sparse/coding/dct_cosine_dictionary.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/mesh/mesh_cleaning.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
@@ -97,6 +98,34 @@ TEST_F (EncodeTool, JsonAndFiles)
   EXPECT_NEAR (jsonNumber (out, "cr"), (13.0 * patches + nnz) / (3.0 * 642.0), 1e-9);
   EXPECT_LE (jsonNumber (out, "cr"), 1.0);
   EXPECT_LT (rmse, 6e-4);
+}
+
+// A file whose faces repeat their corners (a triangle soup, as some writers make) was refused; the tools weld
+// the corners at equal positions, say so, and code the mesh they make.
+TEST_F (EncodeTool, TriangleSoupIsWeldedWithANote)
+{
+  TriangleMesh soup;
+  for (const Eigen::Vector3i& t : mesh_.triangles)
+  {
+    soup.triangles.emplace_back (soup.vertices.size (), soup.vertices.size () + 1, soup.vertices.size () + 2);
+    for (int k = 0; k < 3; ++k)
+      soup.vertices.push_back (mesh_.vertices[t[k]]);
+  }
+  const std::string soup_path = (dir_ / "soup.obj").string (), welded_path = (dir_ / "welded.off").string ();
+  saveTriangleMesh (soup_path, soup);
+  CleaningOptions weld;
+  weld.weld_coincident_vertices = true;
+  saveTriangleMesh (welded_path, cleanMesh (soup, weld).mesh);
+  std::string out;
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + soup_path + " -o " + (dir_ / "soup.psm").string () + " 2>&1", out), 0) << out;
+  EXPECT_NE (out.find ("soup.obj: its faces shared no vertex (a triangle soup): welded its 3840 corners into 642 vertices"),
+             std::string::npos)
+      << out;
+  ASSERT_EQ (run (welded_path + " -q -o " + (dir_ / "welded.psm").string (), out), 0);
+  EXPECT_EQ (pcl_sparse_test::readBytes ((dir_ / "soup.psm").string ()), pcl_sparse_test::readBytes ((dir_ / "welded.psm").string ()));
+  // Quiet: no note.
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + soup_path + " -q 2>&1 >/dev/null", out), 0);
+  EXPECT_EQ (out, "");
 }
 
 TEST_F (EncodeTool, TableRow)

@@ -4,6 +4,7 @@
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_report.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/mesh/vertex_welding.h>
 
 #include <gtest/gtest.h>
 
@@ -323,6 +324,47 @@ TEST (MeshCleaning, IndexMaps)
   const CleanedMesh nothing = cleanMesh (mesh, CleaningOptions{false, false, false, false});
   EXPECT_EQ (nothing.mesh.numTriangles (), mesh.numTriangles ());
   EXPECT_EQ (nothing.mesh.triangles, mesh.triangles);
+}
+
+TEST (MeshCleaning, WeldingMergesCoincidentVertices)
+{
+  // A square as two faces that repeat their corners, -0 beside +0, a face that welding makes degenerate, an
+  // unreferenced copy, and two NaN vertices (never equal, so never welded).
+  const double nan = std::numeric_limits<double>::quiet_NaN ();
+  TriangleMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {-0.0, 1, 0}, {0, 1, 0}, {nan, 0, 0}, {nan, 0, 0}};
+  mesh.triangles = {{0, 1, 2}, {3, 4, 5}};
+  EXPECT_TRUE (isTriangleSoup (mesh));
+  mesh.triangles.emplace_back (3, 2, 4);  // shares vertices with both: no longer a soup; (0 2 2) once welded
+  EXPECT_FALSE (isTriangleSoup (mesh));
+  EXPECT_EQ (findCoincidentVertices (mesh), (std::vector<int>{0, 1, 2, 0, 2, 5, 5, 7, 8}));
+
+  CleaningOptions weld_only{false, false, false, false};
+  weld_only.weld_coincident_vertices = true;
+  const CleanedMesh welded = cleanMesh (mesh, weld_only);
+  EXPECT_EQ (welded.vertex_to_input, (std::vector<int>{0, 1, 2, 5, 7, 8}));
+  EXPECT_EQ (welded.input_to_vertex, (std::vector<int>{0, 1, 2, 0, 2, 3, 3, 4, 5}));
+  EXPECT_EQ (welded.mesh.triangles, (std::vector<Eigen::Vector3i>{{0, 1, 2}, {0, 2, 3}, {0, 2, 2}}));
+
+  CleaningOptions everything;
+  everything.weld_coincident_vertices = true;
+  const CleanedMesh clean = cleanMesh (mesh, everything);
+  EXPECT_EQ (clean.vertex_to_input, (std::vector<int>{0, 1, 2, 5}));
+  EXPECT_EQ (clean.input_to_vertex, (std::vector<int>{0, 1, 2, 0, 2, 3, 3, -1, -1}));
+  EXPECT_EQ (clean.face_to_input, (std::vector<int>{0, 1}));
+  EXPECT_EQ (clean.mesh.triangles, (std::vector<Eigen::Vector3i>{{0, 1, 2}, {0, 2, 3}}));
+  const MeshReport r = reportOf (clean.mesh);
+  EXPECT_TRUE (r.manifold);
+  EXPECT_EQ (r.boundary_loops, 1u);
+
+  // Without the option nothing is welded: the two faces stay apart.
+  EXPECT_EQ (cleanMesh (mesh).mesh.numVertices (), 6u);
+  // Separate triangles stay a soup: nothing to weld.
+  TriangleMesh apart;
+  apart.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}, {6, 0, 0}, {5, 1, 0}};
+  apart.triangles = {{0, 1, 2}, {3, 4, 5}};
+  EXPECT_TRUE (isTriangleSoup (cleanMesh (apart, everything).mesh));
+  EXPECT_FALSE (isTriangleSoup (TriangleMesh ()));
 }
 
 // ---- the shared real meshes -------------------------------------------------------------------------

@@ -378,17 +378,6 @@ namespace pcl_sparse
     return false;
   }
 
-  bool
-  isTriangleSoup (const MeshTopology& topology, std::size_t num_faces)
-  {
-    if (num_faces < 2)
-      return false;
-    for (std::size_t v = 0; v < topology.numVertices (); ++v)
-      if (topology.facesOf (static_cast<int> (v)).size () > 1)
-        return false;
-    return true;
-  }
-
   std::string
   coordinateRangeProblem (const TriangleMesh& mesh, const Eigen::Vector3d& origin)
   {

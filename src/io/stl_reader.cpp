@@ -5,6 +5,8 @@
 
 #include "mesh_readers.h"
 
+#include <pcl_sparse/mesh/vertex_welding.h>
+
 #include <vector>
 
 namespace pcl_sparse
@@ -13,78 +15,6 @@ namespace pcl_sparse
   {
     namespace
     {
-      /// Welds corners with identical positions (+0 and -0 are the same position; NaN never welds). An
-      /// open-addressing table of vertex indices: several times faster than std::unordered_map here (one
-      /// lookup per corner, 1.2 million for a 400k-triangle file).
-      class Welder
-      {
-      public:
-        Welder (TriangleMesh& mesh, std::size_t expected_corners) : mesh_ (mesh)
-        {
-          // Closed meshes have about corners / 6 distinct vertices; the table grows when half full.
-          std::size_t capacity = 64;
-          while (capacity < expected_corners / 3)
-            capacity *= 2;
-          slots_.assign (capacity, -1);
-        }
-
-        int
-        add (const Eigen::Vector3d& position)
-        {
-          if (2 * (mesh_.vertices.size () + 1) > slots_.size ())
-            grow ();
-          const std::size_t mask = slots_.size () - 1;
-          for (std::size_t slot = hash (position) & mask;; slot = (slot + 1) & mask)
-          {
-            const int index = slots_[slot];
-            if (index < 0)
-            {
-              slots_[slot] = static_cast<int> (mesh_.vertices.size ());
-              mesh_.vertices.push_back (position);
-              return slots_[slot];
-            }
-            if (mesh_.vertices[static_cast<std::size_t> (index)] == position)
-              return index;
-          }
-        }
-
-      private:
-        static std::size_t
-        hash (const Eigen::Vector3d& position)
-        {
-          std::uint64_t h = 0x9e3779b97f4a7c15ull;
-          for (int k = 0; k < 3; ++k)
-          {
-            const double value = position[k] == 0.0 ? 0.0 : position[k];  // -0 hashes like +0
-            std::uint64_t bits;
-            std::memcpy (&bits, &value, sizeof (double));
-            h = (h ^ bits) * 0xff51afd7ed558ccdull;
-            h ^= h >> 32;
-          }
-          return static_cast<std::size_t> (h);
-        }
-
-        void
-        grow ()
-        {
-          std::vector<int> old;
-          old.swap (slots_);
-          slots_.assign (old.size () * 2, -1);
-          const std::size_t mask = slots_.size () - 1;
-          for (int index : old)
-            if (index >= 0)
-            {
-              std::size_t slot = hash (mesh_.vertices[static_cast<std::size_t> (index)]) & mask;
-              while (slots_[slot] >= 0)
-                slot = (slot + 1) & mask;
-              slots_[slot] = index;
-            }
-        }
-
-        TriangleMesh& mesh_;
-        std::vector<int> slots_;
-      };
-
       void
       readBinaryStl (const std::string& data, const std::string& path, TriangleMesh& mesh)
       {
@@ -96,7 +26,7 @@ namespace pcl_sparse
                        " triangles (" + std::to_string (needed) + " bytes) but the file has " +
                        std::to_string (data.size ()) + " bytes");
         mesh.triangles.reserve (count);
-        Welder welder (mesh, 3ull * count);
+        VertexWelder welder (mesh.vertices, 3ull * count);
         const char* p = data.data () + 84;
         for (std::uint32_t t = 0; t < count; ++t, p += 50)
         {
@@ -130,7 +60,7 @@ namespace pcl_sparse
         requireText (data, path, "ascii STL");
         TextCursor cursor (data);
         cursor.skipLine ();  // "solid name"
-        Welder welder (mesh, data.size () / 40);
+        VertexWelder welder (mesh.vertices, data.size () / 40);
         std::vector<int> polygon;
         bool in_facet = false;
         bool ended = false;

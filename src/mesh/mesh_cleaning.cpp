@@ -1,11 +1,26 @@
 #include <pcl_sparse/mesh/mesh_cleaning.h>
 #include <pcl_sparse/mesh/mesh_report.h>
+#include <pcl_sparse/mesh/vertex_welding.h>
 
 namespace pcl_sparse
 {
   CleanedMesh
-  cleanMesh (const TriangleMesh& mesh, const CleaningOptions& options)
+  cleanMesh (const TriangleMesh& input, const CleaningOptions& options)
   {
+    // Welding: faces on the first vertex at each position; the other vertices are dropped below and mapped
+    // to their first one at the end.
+    std::vector<int> first_at;
+    TriangleMesh welded;
+    if (options.weld_coincident_vertices)
+    {
+      first_at = findCoincidentVertices (input);
+      welded.vertices = input.vertices;
+      welded.triangles = input.triangles;
+      for (Eigen::Vector3i& t : welded.triangles)
+        for (int k = 0; k < 3; ++k)
+          t[k] = first_at[t[k]];
+    }
+    const TriangleMesh& mesh = options.weld_coincident_vertices ? welded : input;
     const int num_vertices = static_cast<int> (mesh.vertices.size ());
     const int num_faces = static_cast<int> (mesh.triangles.size ());
 
@@ -38,11 +53,13 @@ namespace pcl_sparse
     out.input_to_vertex.assign (num_vertices, -1);
     for (int v = 0; v < num_vertices; ++v)
     {
-      if (!keep_vertex[v] || (options.drop_unreferenced_vertices && !referenced[v]))
+      if (!keep_vertex[v] || (options.drop_unreferenced_vertices && !referenced[v]) || (!first_at.empty () && first_at[v] != v))
         continue;
       out.input_to_vertex[v] = static_cast<int> (out.vertex_to_input.size ());
       out.vertex_to_input.push_back (v);
     }
+    for (std::size_t v = 0; v < first_at.size (); ++v)
+      out.input_to_vertex[v] = out.input_to_vertex[first_at[v]];
 
     out.mesh.vertices.reserve (out.vertex_to_input.size ());
     for (int v : out.vertex_to_input)

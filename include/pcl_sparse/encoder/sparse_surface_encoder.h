@@ -137,12 +137,6 @@ namespace pcl_sparse
   bool
   hasSurfaceArea (const TriangleMesh& mesh);
 
-  /// \brief Whether \a num_faces > 1 faces share no vertex (every vertex in at most one face).
-  /// \param[in] topology the faces' topology
-  /// \param[in] num_faces the number of faces
-  bool
-  isTriangleSoup (const MeshTopology& topology, std::size_t num_faces);
-
   /// \brief Why \a mesh (placed at \a origin) is outside the scales the encoder handles, or an empty string.
   /// Coordinates beyond 1e30 are refused, as the resampling refuses models there (float clouds), and so
   /// is a bounding-box diagonal under 1e-30: squared lengths of such meshes over- or underflow in double

@@ -1,7 +1,7 @@
 #pragma once
 /// \file mesh_cleaning.h
 /// Removes the defects MeshReport counts (non-finite and unreferenced vertices, degenerate and duplicate
-/// faces) and keeps index maps back to the input, so results on the cleaned mesh can be reported on the
+/// faces), optionally welds coincident vertices, and keeps index maps back to the input, so results on the cleaned mesh can be reported on the
 /// file the user gave.
 
 #include <pcl_sparse/mesh/triangle_mesh.h>
@@ -22,6 +22,10 @@ namespace pcl_sparse
     bool drop_duplicate_faces = true;
     /// Drop vertices with NaN/Inf coordinates together with the faces that use them. Default true.
     bool drop_non_finite_vertices = true;
+    /// Merge each vertex into the first vertex at exactly its position (findCoincidentVertices), before the
+    /// face rules above, so faces this makes degenerate or repeated are dropped by them. Default false: it
+    /// joins what the file kept apart (a triangle soup, but also seams a writer split on purpose).
+    bool weld_coincident_vertices = false;
   };
 
   /// A cleaned mesh with maps to and from the input.
@@ -29,7 +33,8 @@ namespace pcl_sparse
   {
     TriangleMesh mesh;                 ///< the cleaned mesh
     std::vector<int> vertex_to_input;  ///< #V_clean: input index of each cleaned vertex
-    std::vector<int> input_to_vertex;  ///< #V_input: cleaned index of each input vertex, -1 if dropped
+    std::vector<int> input_to_vertex;  ///< #V_input: cleaned index of each input vertex (a welded vertex:
+                                       ///< the one it was merged into), -1 if dropped
     std::vector<int> face_to_input;    ///< #F_clean: input index of each cleaned face
   };
 

@@ -6,6 +6,7 @@
 #include <pcl_sparse/encoder/cloud_vertex_attributes.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/mesh/bounding_box.h>
+#include <pcl_sparse/mesh/vertex_welding.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/surface/impl/surface_stage.hpp>
 
@@ -26,10 +27,11 @@ namespace pcl_sparse
                   " faces are degenerate");
     // Faces that share no vertex: no patch grows past its face (spot.obj through PCL's VTK reader, which
     // splits vertices with per-corner normals, gave 23062 patches without an atom, CR 1.44).
-    if (isTriangleSoup (*this->surface_topology_, this->surface_->triangles.size ()))
+    if (isTriangleSoup (*this->surface_))
       this->fail ("the " + std::to_string (this->surface_->triangles.size ()) +
                   " faces share no vertex (a triangle soup, as PCL's VTK OBJ reader makes of a file with per-corner "
-                  "normals): weld coincident vertices first, e.g. pcl_sparse::loadPolygonMesh");
+                  "normals), so no patch can grow past its face: weld the corners at equal positions first "
+                  "(pcl_sparse::cleanMesh, weld_coincident_vertices) or load the file with pcl_sparse::loadPolygonMesh");
     options_.validate ();
     computeModel (model);
     this->deinitCompute ();
