@@ -131,6 +131,8 @@ main (int argc, char** argv)
   return group.finish (tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
+    if (quiet || json)
+      pcl::console::setVerbosityLevel (pcl::console::L_ERROR);  // notes off, as in the other tools
     args.expectPositional (1, "exactly one input");
     tools::checkPngOptions (args);
     const std::string& path = args.positional ().front ();

@@ -9,6 +9,7 @@
 #include <pcl/console/print.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <sstream>
 
@@ -47,9 +48,11 @@ namespace pcl_sparse
         auto welded = std::make_shared<TriangleMesh> (cleanMesh (*soup, weld_only).mesh);
         if (isTriangleSoup (*welded))
           return soup;
-        pcl::console::print_info ("%s: its faces shared no vertex (a triangle soup): welded its %zu corners into %zu "
-                                  "vertices at equal positions\n",
-                                  path.c_str (), soup->vertices.size (), welded->vertices.size ());
+        // On stderr, so that --json's stdout stays one JSON object; silent with -q and --json (L_ERROR).
+        if (pcl::console::isVerbosityLevelEnabled (pcl::console::L_INFO))
+          std::fprintf (stderr, "%s: its faces shared no vertex (a triangle soup): welded its %zu corners into %zu "
+                                "vertices at equal positions\n",
+                        path.c_str (), soup->vertices.size (), welded->vertices.size ());
         return welded;
       }
     } // namespace

@@ -123,9 +123,17 @@ TEST_F (EncodeTool, TriangleSoupIsWeldedWithANote)
       << out;
   ASSERT_EQ (run (welded_path + " -q -o " + (dir_ / "welded.psm").string (), out), 0);
   EXPECT_EQ (pcl_sparse_test::readBytes ((dir_ / "soup.psm").string ()), pcl_sparse_test::readBytes ((dir_ / "welded.psm").string ()));
-  // Quiet: no note.
-  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + soup_path + " -q 2>&1 >/dev/null", out), 0);
-  EXPECT_EQ (out, "");
+  // The note is on stderr: --json's stdout stays one JSON object. -q and --json silence it.
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + soup_path + " 2>&1 >/dev/null", out), 0);
+  EXPECT_NE (out.find ("welded its 3840 corners"), std::string::npos) << out;
+  for (const char* option : {"-q", "--json"})
+  {
+    ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + soup_path + " " + option + " 2>&1", out), 0);
+    EXPECT_EQ (out.find ("welded"), std::string::npos) << option << ": " << out;
+  }
+  ASSERT_EQ (run (soup_path + " --json", out), 0);
+  EXPECT_EQ (out.front (), '{');
+  EXPECT_NE (out.find ("\"vertices\": 642"), std::string::npos) << out;
 }
 
 TEST_F (EncodeTool, TableRow)
