@@ -262,9 +262,9 @@ main (int argc, char** argv)
       encoder.setProgressCallback (makeConsoleProgress (quiet || json));
       encoder.compute (model);
       peak_after_encode = peakResidentMb ();
-      if (encoder.getDuplicateFaces () > 0 && !quiet && !json)
-        pcl::console::print_info ("%s: left out %zu repeated faces (the same three vertices as an earlier face)\n",
-                                  path.c_str (), encoder.getDuplicateFaces ());
+      if (encoder.getDuplicateFaces () > 0)
+        tools::printNote (tools::format ("%s: left out %zu repeated faces (the same three vertices as an earlier face)",
+                                         path.c_str (), encoder.getDuplicateFaces ()));
     }
 
     timer.tic ();

@@ -9,7 +9,6 @@
 #include <pcl/console/print.h>
 
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <sstream>
 
@@ -48,11 +47,9 @@ namespace pcl_sparse
         auto welded = std::make_shared<TriangleMesh> (cleanMesh (*soup, weld_only).mesh);
         if (isTriangleSoup (*welded))
           return soup;
-        // On stderr, so that --json's stdout stays one JSON object; silent with -q and --json (L_ERROR).
-        if (pcl::console::isVerbosityLevelEnabled (pcl::console::L_INFO))
-          std::fprintf (stderr, "%s: its faces shared no vertex (a triangle soup): welded its %zu corners into %zu "
-                                "vertices at equal positions\n",
-                        path.c_str (), soup->vertices.size (), welded->vertices.size ());
+        printNote (format ("%s: its faces shared no vertex (a triangle soup): welded its %zu corners into %zu vertices "
+                           "at equal positions",
+                           path.c_str (), soup->vertices.size (), welded->vertices.size ()));
         return welded;
       }
     } // namespace

@@ -260,6 +260,13 @@ namespace pcl_sparse
                                   line.description.c_str ());
     }
 
+    void
+    printNote (const std::string& text)
+    {
+      if (pcl::console::isVerbosityLevelEnabled (pcl::console::L_INFO))
+        std::fprintf (stderr, "%s\n", text.c_str ());
+    }
+
     std::string
     format (const char* pattern, ...)
     {

@@ -176,6 +176,11 @@ namespace pcl_sparse
     void
     printHelp (const char* argv0, const ToolDescription& tool);
 
+    /// Prints one note about the input (what the tool did to it) on stderr, so that --json's stdout stays
+    /// one JSON object; nothing when PCL's notes are off (the tools turn them off with -q and --json).
+    void
+    printNote (const std::string& text);
+
     /// printf-style formatting into a string (for help lines showing defaults).
     std::string
     format (const char* pattern, ...) __attribute__ ((format (printf, 1, 2)));

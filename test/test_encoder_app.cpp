@@ -136,6 +136,26 @@ TEST_F (EncodeTool, TriangleSoupIsWeldedWithANote)
   EXPECT_NE (out.find ("\"vertices\": 642"), std::string::npos) << out;
 }
 
+TEST_F (EncodeTool, RepeatedFacesAreNotedOnStderr)
+{
+  TriangleMesh repeated = mesh_;
+  repeated.triangles.push_back (mesh_.triangles[0]);
+  repeated.triangles.emplace_back (mesh_.triangles[1][2], mesh_.triangles[1][1], mesh_.triangles[1][0]);
+  const std::string path = (dir_ / "repeated.off").string ();
+  saveTriangleMesh (path, repeated);
+  std::string out;
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + path + " 2>&1 >/dev/null", out), 0);
+  EXPECT_NE (out.find ("repeated.off: left out 2 repeated faces"), std::string::npos) << out;
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + path + " -q 2>&1 >/dev/null", out), 0);
+  EXPECT_EQ (out, "");
+  // The model is the mesh's: the copies add nothing.
+  std::string with_copies, without;
+  ASSERT_EQ (run (path + " --json", with_copies), 0);
+  ASSERT_EQ (run (input_ + " --json", without), 0);
+  EXPECT_EQ (jsonNumber (with_copies, "patches"), jsonNumber (without, "patches"));
+  EXPECT_EQ (jsonNumber (with_copies, "nnz"), jsonNumber (without, "nnz"));
+}
+
 TEST_F (EncodeTool, TableRow)
 {
   std::string out;
