@@ -1,8 +1,8 @@
 #pragma once
 /// \file mesh_cleaning.h
 /// Removes the defects MeshReport counts (non-finite and unreferenced vertices, degenerate and duplicate
-/// faces), optionally welds coincident vertices, and keeps index maps back to the input, so results on the cleaned mesh can be reported on the
-/// file the user gave.
+/// faces), optionally welds coincident vertices, and keeps index maps back to the input, so results on the
+/// cleaned mesh can be reported on the file the user gave.
 
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
