@@ -36,7 +36,7 @@ if [ "$target" = inputs ]; then
     readers+=("$root/src/io/$name.cpp")
   done
   "$cxx" "${common[@]}" -I/usr/include/pcl-1.13 -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    "${readers[@]}" "$root/src/mesh/bounding_box.cpp" "$root/src/mesh/polygon_faces.cpp" \
+    "${readers[@]}" "$root/src/mesh/bounding_box.cpp" "$root/src/mesh/polygon_faces.cpp" "$root/src/mesh/vertex_welding.cpp" \
     "$root/test/fuzz/fuzz_input_files.cpp" -lpcl_io -lpcl_common -o "$build/fuzz_input_files"
   python3 "$root/test/fuzz/make_input_corpus.py" "$corpus"
   fuzzer=$build/fuzz_input_files
