@@ -46,7 +46,11 @@ namespace pcl_sparse
         weld_only.weld_coincident_vertices = true;
         auto welded = std::make_shared<TriangleMesh> (cleanMesh (*soup, weld_only).mesh);
         if (isTriangleSoup (*welded))
+        {
+          printNote (path + ": its faces share no vertex, not even at equal positions (separate triangles): nothing "
+                            "to weld");
           return soup;
+        }
         printNote (format ("%s: its faces shared no vertex (a triangle soup): welded its %zu corners into %zu vertices "
                            "at equal positions",
                            path.c_str (), soup->vertices.size (), welded->vertices.size ()));

@@ -117,12 +117,13 @@ TEST_F (EncodeTool, TriangleSoupIsWeldedWithANote)
   weld.weld_coincident_vertices = true;
   saveTriangleMesh (welded_path, cleanMesh (soup, weld).mesh);
   std::string out;
-  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + soup_path + " -o " + (dir_ / "soup.psm").string () + " 2>&1", out), 0) << out;
+  const std::string soup_file = (dir_ / "soup.psm").string (), welded_file = (dir_ / "welded.psm").string ();
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + soup_path + " -o " + soup_file + " 2>&1", out), 0) << out;
   EXPECT_NE (out.find ("soup.obj: its faces shared no vertex (a triangle soup): welded its 3840 corners into 642 vertices"),
              std::string::npos)
       << out;
-  ASSERT_EQ (run (welded_path + " -q -o " + (dir_ / "welded.psm").string (), out), 0);
-  EXPECT_EQ (pcl_sparse_test::readBytes ((dir_ / "soup.psm").string ()), pcl_sparse_test::readBytes ((dir_ / "welded.psm").string ()));
+  ASSERT_EQ (run (welded_path + " -q -o " + welded_file, out), 0);
+  EXPECT_EQ (pcl_sparse_test::readBytes (soup_file), pcl_sparse_test::readBytes (welded_file));
   // The note is on stderr: --json's stdout stays one JSON object. -q and --json silence it.
   ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + soup_path + " 2>&1 >/dev/null", out), 0);
   EXPECT_NE (out.find ("welded its 3840 corners"), std::string::npos) << out;
@@ -134,6 +135,15 @@ TEST_F (EncodeTool, TriangleSoupIsWeldedWithANote)
   ASSERT_EQ (run (soup_path + " --json", out), 0);
   EXPECT_EQ (out.front (), '{');
   EXPECT_NE (out.find ("\"vertices\": 642"), std::string::npos) << out;
+  // Separate triangles: nothing to weld; the note says so before the encoder refuses them.
+  TriangleMesh apart = soup;
+  for (std::size_t v = 0; v < apart.vertices.size (); ++v)
+    apart.vertices[v] += Eigen::Vector3d (3.0 * static_cast<double> (v / 3), 0.0, 0.0);
+  const std::string apart_path = (dir_ / "apart.obj").string ();
+  saveTriangleMesh (apart_path, apart);
+  EXPECT_NE (pcl_sparse_test::runShell (tool + " " + apart_path + " 2>&1", out), 0);
+  EXPECT_NE (out.find ("apart.obj: its faces share no vertex, not even at equal positions"), std::string::npos) << out;
+  EXPECT_NE (out.find ("triangle soup"), std::string::npos) << out;
 }
 
 TEST_F (EncodeTool, RepeatedFacesAreNotedOnStderr)
