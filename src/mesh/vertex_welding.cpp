@@ -28,16 +28,10 @@ namespace pcl_sparse
   {
     // Closed meshes have about corners / 6 distinct vertices; the table grows when half full.
     std::size_t capacity = 64;
-    while (capacity < expected_corners / 3 || capacity < 2 * (vertices.size () + 1))
+    while (capacity < expected_corners / 3)
       capacity *= 2;
     slots_.assign (capacity, -1);
-    for (std::size_t v = 0; v < vertices_.size (); ++v)
-    {
-      std::size_t slot = positionHash (vertices_[v]) & (capacity - 1);
-      while (slots_[slot] >= 0)
-        slot = (slot + 1) & (capacity - 1);
-      slots_[slot] = static_cast<int> (v);
-    }
+    vertices_.clear ();
   }
 
   int

@@ -20,8 +20,8 @@ namespace pcl_sparse
   class VertexWelder
   {
   public:
-    /// \param[in,out] vertices          the distinct positions so far; add () appends new ones
-    /// \param[in]     expected_corners  about how many positions will be added (sizes the table)
+    /// \param[out] vertices          the distinct positions: emptied here, add () appends new ones
+    /// \param[in]  expected_corners  about how many positions will be added (sizes the table)
     VertexWelder (std::vector<Eigen::Vector3d>& vertices, std::size_t expected_corners);
 
     /// \brief The index in the vertices of \a position: an earlier equal one's, or a new one's (appended).
