@@ -43,7 +43,9 @@ namespace
     sampling.setNumberOfThreads (threads);
     std::vector<Patch> patches;
     sampling.compute (patches);
-    EXPECT_TRUE (sampling.getUncoveredVertices ().empty ());
+    // On a mesh only the vertices in no face stay uncovered, unless asked to cover them.
+    EXPECT_EQ (sampling.getUncoveredVertices (),
+               options.cover_unreferenced_vertices > 0 ? std::vector<int> () : sampling.getUnreferencedVertices ());
     return patches;
   }
 
@@ -274,24 +276,39 @@ TEST (PatchSampling, UnreferencedAndIsolatedVertices)
   TriangleMesh mesh = makeIcosphere (2);
   mesh.vertices.emplace_back (5.0, 5.0, 5.0);  // in no face
   const int lonely = static_cast<int> (mesh.vertices.size ()) - 1;
+  const auto seededBy = [] (const std::vector<Patch>& patches, int v) {
+    return std::find_if (patches.begin (), patches.end (), [&] (const Patch& p) { return p.seed == v; });
+  };
 
+  // Covered on request: a one-vertex patch with a guarded radius.
   PatchOptions options;
+  options.cover_unreferenced_vertices = 1;
   auto patches = sample (mesh, options);
-  const auto it = std::find_if (patches.begin (), patches.end (), [&] (const Patch& p) { return p.seed == lonely; });
+  const auto it = seededBy (patches, lonely);
   ASSERT_NE (it, patches.end ());
   EXPECT_EQ (it->size (), 1u);
   EXPECT_GT (it->radius, 0.0);
   EXPECT_TRUE (it->local[0].isZero ());
+  const std::size_t covered_count = patches.size ();
 
-  options.cover_unreferenced_vertices = false;
-  FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
-  sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
-  sampling.setOptions (options);
-  sampling.setResponses (std::vector<double> (mesh.vertices.size (), 0.0));
-  sampling.compute (patches);
-  ASSERT_EQ (sampling.getUncoveredVertices ().size (), 1u);
-  EXPECT_EQ (sampling.getUncoveredVertices ()[0], lonely);
-  expectValidPartition (mesh, patches, options, "sphere + lonely vertex");
+  // Left out by default on a mesh (not on its surface) and when asked to, and reported either way.
+  for (int cover : {-1, 0})
+  {
+    options.cover_unreferenced_vertices = cover;
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+    sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+    sampling.setOptions (options);
+    sampling.setResponses (std::vector<double> (mesh.vertices.size (), 0.0));
+    sampling.compute (patches);
+    ASSERT_EQ (sampling.getUncoveredVertices ().size (), 1u) << "cover " << cover;
+    EXPECT_EQ (sampling.getUncoveredVertices ()[0], lonely);
+    EXPECT_EQ (sampling.getUnreferencedVertices (), std::vector<int>{lonely});
+    EXPECT_EQ (seededBy (patches, lonely), patches.end ());
+    EXPECT_EQ (patches.size () + 1, covered_count);
+    expectValidPartition (mesh, patches, options, "sphere + lonely vertex");
+  }
+  options.cover_unreferenced_vertices = 2;
+  EXPECT_THROW (options.validate (), Error);
 }
 
 TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
@@ -323,12 +340,18 @@ TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
     else
       EXPECT_EQ (p.size (), 1u);
 
-  // No faces at all: the sampling itself gives every (unreferenced) vertex its own one-vertex patch; the
-  // stage refuses a surface without faces, naming itself, as every stage does.
+  // No faces at all: asked to (as on a scan), the sampling itself gives every (unreferenced) vertex its own
+  // one-vertex patch; by default (a mesh's) it leaves them uncovered. The stage refuses a surface without
+  // faces, naming itself, as every stage does.
   TriangleMesh cloud;
   cloud.vertices = {Eigen::Vector3d (0, 0, 0), Eigen::Vector3d (1, 0, 0)};
   const MeshTopology cloud_topology = buildMeshTopology (cloud);
-  EXPECT_EQ (sampleFeatureAwarePatches (cloud, cloud_topology, PatchOptions (), {0.0, 0.0}, {}, 0, {}).patches.size (), 2u);
+  PatchOptions cover;
+  cover.cover_unreferenced_vertices = 1;
+  EXPECT_EQ (sampleFeatureAwarePatches (cloud, cloud_topology, cover, {0.0, 0.0}, {}, 0, {}).patches.size (), 2u);
+  const PatchSamplingResult left_out = sampleFeatureAwarePatches (cloud, cloud_topology, PatchOptions (), {0.0, 0.0}, {}, 0, {});
+  EXPECT_TRUE (left_out.patches.empty ());
+  EXPECT_EQ (left_out.uncovered, (std::vector<int>{0, 1}));
   EXPECT_TRUE (sampleFeatureAwarePatches (TriangleMesh (), buildMeshTopology (TriangleMesh ()), PatchOptions (), {}, {}, 0, {})
                  .patches.empty ());
   for (const TriangleMesh& no_faces : {cloud, TriangleMesh ()})
@@ -667,7 +690,9 @@ TEST (PatchSamplingShared, InvariantsOnEverySharedMesh)
     sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
     std::vector<Patch> patches;
     sampling.compute (patches);
-    EXPECT_TRUE (sampling.getUncoveredVertices ().empty ()) << name;
+    // stanford-bunny.obj has 1113 vertices in no face: not on its surface, left out; every other vertex is covered.
+    EXPECT_EQ (sampling.getUncoveredVertices (), sampling.getUnreferencedVertices ()) << name;
+    EXPECT_EQ (sampling.getUnreferencedVertices ().size (), std::string (name) == "stanford-bunny.obj" ? 1113u : 0u) << name;
     expectValidPartition (mesh, patches, sampling.getOptions (), name);
   }
 }

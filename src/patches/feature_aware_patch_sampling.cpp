@@ -531,6 +531,8 @@ namespace pcl_sparse
       runCoveragePass (topology, geometry, order, referenced, target, grower, coverage);
     if (progress)
       progress ("patches", 1.0);
+    // Unresolved (< 0), it is a mesh's: its unreferenced vertices are not on its surface.
+    const bool cover_unreferenced = patchOptionsFor (options, false).cover_unreferenced_vertices > 0;
     Patch patch;
     for (int v = 0; v < num_vertices; ++v)
       if (!referenced[v] && growth.originalOf (v) == v && (seedable.empty () || seedable[v]))
@@ -538,9 +540,9 @@ namespace pcl_sparse
         result.unreferenced.push_back (v);
         // A NaN point no face uses (the holes of a mesh made from an organized cloud) has nothing to code:
         // a patch there had a NaN origin, and the model could be neither saved nor resampled.
-        if (options.cover_unreferenced_vertices && !mesh.vertices[v].allFinite ())
+        if (cover_unreferenced && !mesh.vertices[v].allFinite ())
           result.uncovered.push_back (v);
-        else if (options.cover_unreferenced_vertices)
+        else if (cover_unreferenced)
         {
           grower.grow (v, patch);
           coverage.keep (patch);
@@ -566,7 +568,7 @@ namespace pcl_sparse
     result.frame_kinds = fitFrames (mesh, topology, geometry, steep_frame_angle, threads, result.patches);
     if (growth.is_split)
       mapToInputVertices (growth, num_input, result.patches);
-    if (!options.cover_unreferenced_vertices)
+    if (!cover_unreferenced)
       result.uncovered = result.unreferenced;
     if (!options.cover_all_vertices)
       result.uncovered = verticesInNoPatch (result.patches, num_input);

@@ -24,6 +24,8 @@ namespace pcl_sparse
       fail ("max_fruitless_seeds", max_fruitless_seeds, "max_fruitless_seeds >= -1");
     if (!(tail_pruning_after == -1.0 || (tail_pruning_after >= 0.0 && tail_pruning_after <= 1.0)))
       fail ("tail_pruning_after", tail_pruning_after, "-1 (by surface) or 0 <= tail_pruning_after <= 1");
+    if (cover_unreferenced_vertices < -1 || cover_unreferenced_vertices > 1)
+      fail ("cover_unreferenced_vertices", cover_unreferenced_vertices, "-1 (by surface), 0 or 1");
     if (max_patch_vertices < -1)
       fail ("max_patch_vertices", max_patch_vertices, "max_patch_vertices >= -1");
     if (min_growth_vertices < 0)
@@ -42,7 +44,7 @@ namespace pcl_sparse
     base.cone_angle = M_PI / 2.5;
     base.pairwise_cone = false;
     base.cover_all_vertices = false;
-    base.cover_unreferenced_vertices = false;
+    base.cover_unreferenced_vertices = 0;
     base.complete_faces = false;
     base.drop_redundant_patches = false;
     base.merge_own_elements = 0;

@@ -24,7 +24,8 @@
 /// variation measured between adjacent faces (PatchGrower::growFromFace) and keeps the variant covering
 /// most uncovered vertices. A vertex without a proper face gets a one-vertex patch with a guarded frame
 /// (radius = its mean edge length). Unreferenced vertices get one-vertex patches when
-/// PatchOptions::cover_unreferenced_vertices, else they are reported by getUncoveredVertices; NaN
+/// PatchOptions::cover_unreferenced_vertices (by default on scans only), else they are reported by
+/// getUncoveredVertices; NaN
 /// vertices no face uses (the holes of a mesh made from an organized cloud) always are.
 /// Non-manifold edges and vertices are cut first (non_manifold_split.h), so no patch crosses them.
 ///
@@ -70,7 +71,8 @@ namespace pcl_sparse
   }
 
   /// \brief The options whose defaults depend on the surface (harris_rings, max_fruitless_seeds,
-  /// tail_pruning_after, max_patch_vertices, steep_frame_angle) resolved for a mesh or a scan.
+  /// tail_pruning_after, max_patch_vertices, steep_frame_angle, cover_unreferenced_vertices) resolved for a
+  /// mesh or a scan.
   /// \param[in] options the options as given
   /// \param[in] scan    whether the surface is a scan's neighbourhood surface
   /// \return the options with those fields resolved
@@ -86,6 +88,8 @@ namespace pcl_sparse
       options.max_patch_vertices = scan ? 4096 : 0;
     if (options.steep_frame_angle < 0.0)
       options.steep_frame_angle = scan ? 0.0 : M_PI / 2.5;
+    if (options.cover_unreferenced_vertices < 0)
+      options.cover_unreferenced_vertices = scan ? 1 : 0;
     return options;
   }
 
@@ -162,8 +166,8 @@ namespace pcl_sparse
     const std::vector<double>& getResponses () const { return result_.responses; }
     const std::vector<int>& getKeypoints () const { return result_.keypoints; }
 
-    /// \brief Vertices in no patch after the last compute (unreferenced vertices when
-    /// cover_unreferenced_vertices is false; otherwise empty), ascending.
+    /// \brief Vertices in no patch after the last compute (unreferenced vertices unless
+    /// cover_unreferenced_vertices, which by default holds on scans only; otherwise empty), ascending.
     const std::vector<int>& getUncoveredVertices () const { return result_.uncovered; }
     /// \brief Vertices no face uses (ascending), whatever the option.
     const std::vector<int>& getUnreferencedVertices () const { return result_.unreferenced; }
