@@ -3,12 +3,15 @@
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/mesh/mesh_cleaning.h>
+#include <pcl_sparse/mesh/mesh_report.h>
 #include <pcl_sparse/mesh/vertex_welding.h>
 #include <pcl_sparse/tiles/spilled_tile_source.h>
 
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <sstream>
 
@@ -56,6 +59,29 @@ namespace pcl_sparse
                            path.c_str (), soup->vertices.size (), welded->vertices.size ()));
         return welded;
       }
+
+      /// Elements of a mesh that hold no surface, said once, as the stages leave them out without a word:
+      /// vertices in no face (no patch codes them) and faces without area (no normal, never a patch triangle).
+      void
+      noteElementsWithoutSurface (const std::string& path, const TriangleMesh& mesh)
+      {
+        std::vector<std::uint8_t> in_a_face (mesh.vertices.size (), 0);
+        std::size_t without_area = 0;
+        for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+        {
+          for (int k = 0; k < 3; ++k)
+            in_a_face[mesh.triangles[f][k]] = 1;
+          without_area += isDegenerateFace (mesh, static_cast<int> (f));
+        }
+        const auto in_no_face = static_cast<std::size_t> (std::count (in_a_face.begin (), in_a_face.end (), 0));
+        if (in_no_face > 0)
+          printNote (format ("%s: %zu of its %zu vertices are in no face: no surface there, left out", path.c_str (),
+                             in_no_face, mesh.vertices.size ()));
+        if (without_area > 0)
+          printNote (format ("%s: %zu of its %zu faces have no area (a repeated or collinear corner): no surface there, "
+                             "left out",
+                             path.c_str (), without_area, mesh.triangles.size ()));
+      }
     } // namespace
 
     SurfaceInput
@@ -75,6 +101,7 @@ namespace pcl_sparse
             if (!v.allFinite ())
               return SurfaceInput{std::make_shared<TriangleMesh> (loadTriangleMesh (path)), nullptr};  // its error
           input.mesh = isTriangleSoup (*mesh) ? weldTriangleSoup (path, mesh) : mesh;
+          noteElementsWithoutSurface (path, *input.mesh);
           return input;
         }
       }

@@ -166,6 +166,33 @@ TEST_F (EncodeTool, RepeatedFacesAreNotedOnStderr)
   EXPECT_EQ (jsonNumber (with_copies, "nnz"), jsonNumber (without, "nnz"));
 }
 
+TEST_F (EncodeTool, ElementsWithoutSurfaceAreLeftOutWithANote)
+{
+  // Two vertices in no face (inside the sphere, so that the bounding box stays) and a face repeating a
+  // corner: no surface there. The model is the sphere's, the two vertices are reported uncovered, and
+  // stderr says why, once (silent with -q).
+  TriangleMesh extra = mesh_;
+  extra.vertices.emplace_back (0.0, 0.0, 0.0);
+  extra.vertices.emplace_back (0.5, 0.0, 0.0);
+  extra.triangles.emplace_back (mesh_.triangles[0][0], mesh_.triangles[0][0], mesh_.triangles[0][1]);
+  const std::string path = (dir_ / "extra.obj").string ();
+  saveTriangleMesh (path, extra);
+  std::string out;
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + path + " 2>&1 >/dev/null", out), 0);
+  EXPECT_NE (out.find ("extra.obj: 2 of its 644 vertices are in no face: no surface there, left out"), std::string::npos)
+    << out;
+  EXPECT_NE (out.find ("extra.obj: 1 of its 1281 faces have no area"), std::string::npos) << out;
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + path + " -q 2>&1 >/dev/null", out), 0);
+  EXPECT_EQ (out, "");
+  std::string with_extra, without;
+  ASSERT_EQ (run (path + " --json", with_extra), 0);
+  ASSERT_EQ (run (input_ + " --json", without), 0);
+  EXPECT_EQ (jsonNumber (with_extra, "patches"), jsonNumber (without, "patches"));
+  EXPECT_EQ (jsonNumber (with_extra, "nnz"), jsonNumber (without, "nnz"));
+  EXPECT_EQ (jsonNumber (with_extra, "uncovered"), 2.0);
+  EXPECT_EQ (jsonNumber (without, "uncovered"), 0.0);
+}
+
 TEST_F (EncodeTool, TableRow)
 {
   std::string out;
