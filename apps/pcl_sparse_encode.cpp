@@ -34,6 +34,7 @@
 #include <pcl/console/time.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdint>
 #include <string>
@@ -217,7 +218,20 @@ main (int argc, char** argv)
       SpillOptions spill;
       spill.grid = grid_options;
       spill.progress = makeConsoleProgress (quiet || json || group.rank () != 0);
-      source = spilled_mesh ? TileSource::Ptr (spillMeshIntoTiles (path, spill)) : TileSource::Ptr (spillIntoTiles (path, spill));
+      if (spilled_mesh)
+      {
+        const SpilledMeshTileSource::Ptr mesh_source = spillMeshIntoTiles (path, spill);
+        // Each tile would be refused as a soup; loaded whole, its corners are welded (loadSurfaceInput).
+        if (mesh_source->isTriangleSoup ())
+          throw Error (tools::format ("%s: its faces share no vertex (a triangle soup), and welding its corners at equal "
+                                      "positions needs the whole file in memory: raise -memory to %.0fM (its %zu "
+                                      "points x 1.5 KB) to load it whole and weld it, or weld the file first",
+                                      path.c_str (), std::ceil (static_cast<double> (header_points) * tools::kEncoderBytesPerPoint / 1048576.0),
+                                      header_points));
+        source = mesh_source;
+      }
+      else
+        source = spillIntoTiles (path, spill);
     }
     else if (tiled)
       source = input.mesh ? std::make_shared<MemoryTileSource> (input.mesh, grid_options)

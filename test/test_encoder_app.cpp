@@ -135,6 +135,16 @@ TEST_F (EncodeTool, TriangleSoupIsWeldedWithANote)
   ASSERT_EQ (run (soup_path + " --json", out), 0);
   EXPECT_EQ (out.front (), '{');
   EXPECT_NE (out.find ("\"vertices\": 642"), std::string::npos) << out;
+  // Over -memory, a binary PLY is spilled into tiles unloaded, where the corners cannot be welded: refused,
+  // saying how much -memory loads it whole (3840 points x 1.5 KB = 5.625 MiB), where it is welded.
+  const std::string soup_ply = (dir_ / "soup.ply").string (), spilled_file = (dir_ / "spilled.psm").string ();
+  saveTriangleMesh (soup_ply, soup);
+  EXPECT_NE (pcl_sparse_test::runShell (tool + " " + soup_ply + " -memory 1M -o " + spilled_file + " 2>&1", out), 0);
+  EXPECT_NE (out.find ("soup.ply: its faces share no vertex (a triangle soup)"), std::string::npos) << out;
+  EXPECT_NE (out.find ("raise -memory to 6M"), std::string::npos) << out;
+  EXPECT_FALSE (std::filesystem::exists (spilled_file));
+  ASSERT_EQ (run (soup_ply + " -memory 6M -q -o " + spilled_file, out), 0);
+  EXPECT_EQ (pcl_sparse_test::readBytes (spilled_file), pcl_sparse_test::readBytes (welded_file));
   // Separate triangles: nothing to weld; the note says so before the encoder refuses them.
   TriangleMesh apart = soup;
   for (std::size_t v = 0; v < apart.vertices.size (); ++v)

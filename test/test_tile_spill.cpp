@@ -1015,6 +1015,32 @@ TEST (SpilledMeshTileSource, TilesEqualTheCutOfLoadTriangleMesh)
   }
 }
 
+TEST (SpilledMeshTileSource, SaysWhetherItIsATriangleSoup)
+{
+  // A soup (every face with corners of its own) can grow no patch in any tile: the tools refuse it.
+  TempDir dir;
+  const TriangleMesh sphere = makeIcosphere (2, 1.0);
+  TriangleMesh soup;
+  for (const Eigen::Vector3i& t : sphere.triangles)
+  {
+    const int first = static_cast<int> (soup.vertices.size ());
+    soup.triangles.emplace_back (first, first + 1, first + 2);
+    for (int k = 0; k < 3; ++k)
+      soup.vertices.push_back (sphere.vertices[t[k]]);
+  }
+  TriangleMesh almost = soup;  // one face sharing a corner is enough to be a mesh
+  almost.triangles.back ()[0] = 0;
+  saveTriangleMesh (dir.file ("sphere.ply"), sphere);
+  saveTriangleMesh (dir.file ("soup.ply"), soup);
+  saveTriangleMesh (dir.file ("almost.ply"), almost);
+  for (const auto& [name, is_soup] : {std::pair<const char*, bool>{"sphere.ply", false}, {"soup.ply", true}, {"almost.ply", false}})
+  {
+    SpillOptions options = tilesAlong (3);
+    options.chunk_points = 100;  // the shared corner is in another chunk than its first use
+    EXPECT_EQ (SpilledMeshTileSource (dir.file (name), options).isTriangleSoup (), is_soup) << name;
+  }
+}
+
 TEST (SpilledMeshTileSource, BrokenMeshesThrowAndLeaveNoSpillFiles)
 {
   TempDir dir;

@@ -105,11 +105,21 @@ namespace pcl_sparse
     std::vector<int> ids;
     std::vector<Eigen::Vector3d> positions;
     std::vector<std::size_t> tiles, holding;
+    std::vector<bool> used (vertices_, false);  // a vertex used twice: the faces share vertices, not a soup
+    bool shared = false, any = false;
     while (reader.readTriangles (chunk, options.chunk_points))
     {
       ids.clear ();
       for (const Eigen::Vector3i& triangle : chunk)
+      {
         ids.insert (ids.end (), triangle.data (), triangle.data () + 3);
+        for (int k = 0; k < 3 && !shared; ++k)
+        {
+          shared = used[triangle[k]];
+          used[triangle[k]] = true;
+        }
+        any = true;
+      }
       std::sort (ids.begin (), ids.end ());
       ids.erase (std::unique (ids.begin (), ids.end ()), ids.end ());
       readVertices (vertex_file, ids, positions);
@@ -129,6 +139,7 @@ namespace pcl_sparse
       }
     }
     writer.flush ();
+    soup_ = any && !shared;
     triangles_.resize (grid_.size ());
     for (std::size_t t = 0; t < grid_.size (); ++t)
       triangles_[t] = writer.records (t);

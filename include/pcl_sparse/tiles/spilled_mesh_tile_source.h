@@ -75,6 +75,14 @@ namespace pcl_sparse
       return streamed_;
     }
 
+    /// True when no two faces share a vertex (a triangle soup: each face repeats its corners), which no
+    /// tile can grow a patch on. Welding the corners needs the whole file (loadTriangleMesh, cleanMesh).
+    bool
+    isTriangleSoup () const
+    {
+      return soup_;
+    }
+
   private:
     std::unique_ptr<tiles_detail::SpillDirectory> directory_;
     TileGrid grid_;
@@ -82,6 +90,7 @@ namespace pcl_sparse
     std::vector<std::size_t> core_points_;
     std::vector<std::size_t> triangles_;
     bool streamed_ = true;
+    bool soup_ = false;
   };
 
   /// SpilledMeshTileSource (path, options) as a shared pointer: the file-backed TileSource of a mesh file.
