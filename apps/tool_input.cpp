@@ -60,10 +60,11 @@ namespace pcl_sparse
         return welded;
       }
 
-      /// Elements of a mesh that hold no surface, said once, as the stages leave them out without a word:
-      /// vertices in no face (no patch codes them) and faces without area (no normal, never a patch triangle).
+      /// What the stages leave out of a mesh or cut it at without a word, said once: vertices in no face (no
+      /// patch codes them), faces without area (no normal, never a patch triangle) and edges of more than two
+      /// faces (no patch crosses one).
       void
-      noteElementsWithoutSurface (const std::string& path, const TriangleMesh& mesh)
+      noteMeshDefects (const std::string& path, const TriangleMesh& mesh)
       {
         std::vector<std::uint8_t> in_a_face (mesh.vertices.size (), 0);
         std::size_t without_area = 0;
@@ -81,6 +82,10 @@ namespace pcl_sparse
           printNote (format ("%s: %zu of its %zu faces have no area (a repeated or collinear corner): no surface there, "
                              "left out",
                              path.c_str (), without_area, mesh.triangles.size ()));
+        if (const std::size_t nonmanifold = countNonManifoldEdges (mesh); nonmanifold > 0)
+          printNote (format ("%s: %zu of its edges are shared by more than two faces (non-manifold): the surface is cut "
+                             "along them, no patch crosses one",
+                             path.c_str (), nonmanifold));
       }
     } // namespace
 
@@ -101,7 +106,7 @@ namespace pcl_sparse
             if (!v.allFinite ())
               return SurfaceInput{std::make_shared<TriangleMesh> (loadTriangleMesh (path)), nullptr};  // its error
           input.mesh = isTriangleSoup (*mesh) ? weldTriangleSoup (path, mesh) : mesh;
-          noteElementsWithoutSurface (path, *input.mesh);
+          noteMeshDefects (path, *input.mesh);
           return input;
         }
       }

@@ -201,6 +201,18 @@ TEST_F (EncodeTool, ElementsWithoutSurfaceAreLeftOutWithANote)
   EXPECT_EQ (jsonNumber (with_extra, "nnz"), jsonNumber (without, "nnz"));
   EXPECT_EQ (jsonNumber (with_extra, "uncovered"), 2.0);
   EXPECT_EQ (jsonNumber (without, "uncovered"), 0.0);
+  EXPECT_EQ (out.find ("non-manifold"), std::string::npos) << out;
+
+  // A fin on one edge of the sphere (a third face there): encoded, with a note that the surface is cut there.
+  TriangleMesh fin = mesh_;
+  const Eigen::Vector3i& first = mesh_.triangles[0];
+  fin.vertices.push_back (2.0 * (mesh_.vertices[first[0]] + mesh_.vertices[first[1]]) / 2.0);
+  fin.triangles.emplace_back (first[0], first[1], static_cast<int> (fin.vertices.size ()) - 1);
+  const std::string fin_path = (dir_ / "fin.obj").string ();
+  saveTriangleMesh (fin_path, fin);
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + fin_path + " 2>&1 >/dev/null", out), 0);
+  EXPECT_NE (out.find ("fin.obj: 1 of its edges are shared by more than two faces (non-manifold)"), std::string::npos)
+    << out;
 }
 
 TEST_F (EncodeTool, TableRow)

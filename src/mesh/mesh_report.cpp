@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 namespace pcl_sparse
@@ -120,6 +121,29 @@ namespace pcl_sparse
       return false;
     const double longest2 = std::max ({(b - a).squaredNorm (), (c - b).squaredNorm (), (a - c).squaredNorm ()});
     return (b - a).cross (c - a).norm () <= 1e-12 * longest2;
+  }
+
+  std::size_t
+  countNonManifoldEdges (const TriangleMesh& mesh)
+  {
+    std::vector<std::uint64_t> sides;
+    sides.reserve (3 * mesh.triangles.size ());
+    for (const Eigen::Vector3i& t : mesh.triangles)
+      for (int k = 0; k < 3; ++k)
+      {
+        const auto p = static_cast<std::uint32_t> (t[k]), q = static_cast<std::uint32_t> (t[(k + 1) % 3]);
+        if (p != q)
+          sides.push_back (static_cast<std::uint64_t> (std::min (p, q)) << 32 | std::max (p, q));
+      }
+    std::sort (sides.begin (), sides.end ());
+    std::size_t nonmanifold = 0;
+    for (std::size_t i = 0, j = 0; i < sides.size (); i = j)
+    {
+      while (j < sides.size () && sides[j] == sides[i])
+        ++j;
+      nonmanifold += j - i > 2;
+    }
+    return nonmanifold;
   }
 
   std::vector<int>

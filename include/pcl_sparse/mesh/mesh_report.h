@@ -56,6 +56,13 @@ namespace pcl_sparse
   bool
   isDegenerateFace (const TriangleMesh& mesh, int f);
 
+  /// The number of edges used by more than two faces (MeshReport::nonmanifold_edges, a face using an edge twice
+  /// counting twice) without building the topology: one sort of the 3 #F face sides, O(#F log #F).
+  /// \param[in] mesh  the mesh
+  /// \return the number of non-manifold edges
+  std::size_t
+  countNonManifoldEdges (const TriangleMesh& mesh);
+
   /// For every face, the index of the first face with the same vertex set (itself when it is the first);
   /// orientation is ignored. O(#V + #F log(max valence)).
   /// \param[in] mesh  the mesh
