@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <numeric>
 
 namespace pcl_sparse
@@ -126,22 +125,32 @@ namespace pcl_sparse
   std::size_t
   countNonManifoldEdges (const TriangleMesh& mesh)
   {
-    std::vector<std::uint64_t> sides;
-    sides.reserve (3 * mesh.triangles.size ());
-    for (const Eigen::Vector3i& t : mesh.triangles)
-      for (int k = 0; k < 3; ++k)
-      {
-        const auto p = static_cast<std::uint32_t> (t[k]), q = static_cast<std::uint32_t> (t[(k + 1) % 3]);
-        if (p != q)
-          sides.push_back (static_cast<std::uint64_t> (std::min (p, q)) << 32 | std::max (p, q));
-      }
-    std::sort (sides.begin (), sides.end ());
+    // The face sides bucketed by their smaller end (a counting sort, linear), then each vertex's few larger
+    // ends sorted: a sort of all 3 #F sides took 0.14 s on a 400k-face mesh, this a fraction of it.
+    const std::size_t num_vertices = mesh.vertices.size ();
+    std::vector<int> offsets (num_vertices + 1, 0);
+    const auto forEachSide = [&] (auto&& visit) {
+      for (const Eigen::Vector3i& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k)
+          if (t[k] != t[(k + 1) % 3])
+            visit (std::min (t[k], t[(k + 1) % 3]), std::max (t[k], t[(k + 1) % 3]));
+    };
+    forEachSide ([&] (int low, int) { ++offsets[low + 1]; });
+    std::partial_sum (offsets.begin (), offsets.end (), offsets.begin ());
+    std::vector<int> high (offsets.back ());
+    std::vector<int> fill (offsets.begin (), offsets.end () - 1);
+    forEachSide ([&] (int low, int other) { high[fill[low]++] = other; });
     std::size_t nonmanifold = 0;
-    for (std::size_t i = 0, j = 0; i < sides.size (); i = j)
+    for (std::size_t v = 0; v < num_vertices; ++v)
     {
-      while (j < sides.size () && sides[j] == sides[i])
-        ++j;
-      nonmanifold += j - i > 2;
+      const auto first = high.begin () + offsets[v], last = high.begin () + offsets[v + 1];
+      std::sort (first, last);
+      for (auto i = first, j = first; i != last; i = j)
+      {
+        while (j != last && *j == *i)
+          ++j;
+        nonmanifold += j - i > 2;
+      }
     }
     return nonmanifold;
   }

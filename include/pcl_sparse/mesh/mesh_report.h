@@ -57,7 +57,8 @@ namespace pcl_sparse
   isDegenerateFace (const TriangleMesh& mesh, int f);
 
   /// The number of edges used by more than two faces (MeshReport::nonmanifold_edges, a face using an edge twice
-  /// counting twice) without building the topology: one sort of the 3 #F face sides, O(#F log #F).
+  /// counting twice) without building the topology: the face sides bucketed by vertex, O(#V + #F). Faces must
+  /// index existing vertices.
   /// \param[in] mesh  the mesh
   /// \return the number of non-manifold edges
   std::size_t
