@@ -26,8 +26,13 @@ namespace
   reportOf (const TriangleMesh& mesh)
   {
     const MeshReport report = computeMeshReport (mesh, buildMeshTopology (mesh));
-    // The count without the topology agrees on every mesh of these tests (0, 1 and 3 non-manifold edges).
-    EXPECT_EQ (countNonManifoldEdges (mesh), report.nonmanifold_edges);
+    // The count without the topology agrees wherever no face repeats a corner (which it leaves out, as
+    // the stages do): 0, 1 and 3 non-manifold edges in these tests.
+    const bool repeats_a_corner = std::any_of (mesh.triangles.begin (), mesh.triangles.end (), [] (const Eigen::Vector3i& t) {
+      return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+    });
+    if (!repeats_a_corner)
+      EXPECT_EQ (countNonManifoldEdges (mesh), report.nonmanifold_edges);
     return report;
   }
 
@@ -208,6 +213,19 @@ TEST (MeshReport, NonManifoldEdge)
   EXPECT_EQ (r.components, 1u);
   EXPECT_FALSE (r.manifold);
   EXPECT_EQ (r.genus, -1);
+}
+
+TEST (MeshReport, NonManifoldEdgesAsTheStagesSeeThem)
+{
+  // A face repeating a corner on edge (0, 1) uses it twice: four face sides for the report, but the stages
+  // leave the face out, and countNonManifoldEdges with them. A third proper face makes it non-manifold.
+  TriangleMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  mesh.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 1}};
+  EXPECT_EQ (computeMeshReport (mesh, buildMeshTopology (mesh)).nonmanifold_edges, 1u);
+  EXPECT_EQ (countNonManifoldEdges (mesh), 0u);
+  mesh.triangles.emplace_back (0, 1, 4);
+  EXPECT_EQ (countNonManifoldEdges (mesh), 1u);
 }
 
 TEST (MeshReport, BowTieVertex)

@@ -313,10 +313,16 @@ TEST (PatchSampling, UnreferencedAndIsolatedVertices)
 
 TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
 {
-  // Duplicate face, zero-area face, face with a repeated corner, a NaN vertex in two faces.
+  // Duplicate face, zero-area face, faces with a repeated corner (one on an edge, one joining two vertices
+  // far apart), a NaN vertex in two faces.
   TriangleMesh mesh = makeIcosphere (2);
   mesh.triangles.push_back (mesh.triangles[0]);
   mesh.triangles.emplace_back (0, 1, 1);
+  int antipode = 0;
+  for (int v = 0; v < static_cast<int> (mesh.vertices.size ()); ++v)
+    if (mesh.vertices[v].dot (mesh.vertices[0]) < mesh.vertices[antipode].dot (mesh.vertices[0]))
+      antipode = v;
+  mesh.triangles.emplace_back (antipode, 0, 0);
   mesh.vertices.emplace_back (0.5 * (mesh.vertices[2] + mesh.vertices[3]));
   mesh.triangles.emplace_back (2, 3, static_cast<int> (mesh.vertices.size ()) - 1);
   mesh.vertices.emplace_back (NAN, 0.0, 0.0);
@@ -328,10 +334,15 @@ TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
   stage.setResponses (std::vector<double> (mesh.vertices.size (), 0.0));
   std::vector<Patch> patches;
   stage.compute (patches);
-  // The repeated face and the NaN face's reversed copy are left out, so patch faces index the stage's
-  // surface, two faces shorter than the input.
+  // The repeated face, the NaN face's reversed copy and the two faces repeating a corner are left out, so
+  // patch faces index the stage's surface, four faces shorter than the input. The far one joins no
+  // vertices: 0 and its antipode are not neighbours in the stage's topology.
   EXPECT_EQ (stage.getDuplicateFaces (), 2u);
-  ASSERT_EQ (stage.getSurface ()->triangles.size (), mesh.triangles.size () - 2);
+  EXPECT_EQ (stage.getFacesWithRepeatedCorners (), 2u);
+  ASSERT_EQ (stage.getSurface ()->triangles.size (), mesh.triangles.size () - 4);
+  const MeshTopology surface_topology = buildMeshTopology (*stage.getSurface ());
+  const auto ring = surface_topology.neighborsOf (0);
+  EXPECT_EQ (std::find (ring.begin (), ring.end (), antipode), ring.end ());
   PatchInvariantChecker checker (*stage.getSurface (), PatchOptions ());
   EXPECT_TRUE (checker.uncoveredVertices (patches).empty ());
   for (const Patch& p : patches)
@@ -369,6 +380,44 @@ TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
       EXPECT_NE (std::string (e.what ()).find ("[FeatureAwarePatchSampling::compute]"), std::string::npos) << e.what ();
     }
     EXPECT_TRUE (patches.empty ());
+  }
+}
+
+TEST (PatchSampling, FacesRepeatingACornerAreLeftOut)
+{
+  // A face (a, a, b) between far vertices would join them in the topology: growth and Harris rings took
+  // the shortcut. Left out, the patches are the sphere's.
+  const TriangleMesh sphere = makeIcosphere (2);
+  TriangleMesh with_face = sphere;
+  int antipode = 0;
+  for (int v = 0; v < static_cast<int> (sphere.vertices.size ()); ++v)
+    if (sphere.vertices[v].dot (sphere.vertices[0]) < sphere.vertices[antipode].dot (sphere.vertices[0]))
+      antipode = v;
+  with_face.triangles.emplace_back (0, antipode, 0);
+  const auto expected = sample (sphere);
+  const auto patches = sample (with_face);
+  ASSERT_EQ (patches.size (), expected.size ());
+  for (std::size_t i = 0; i < patches.size (); ++i)
+  {
+    EXPECT_EQ (patches[i].vertices, expected[i].vertices) << i;
+    EXPECT_EQ (patches[i].triangles, expected[i].triangles) << i;
+  }
+
+  // Only such faces: no surface, and the stage says why.
+  TriangleMesh none;
+  none.vertices = {Eigen::Vector3d (0, 0, 0), Eigen::Vector3d (1, 0, 0), Eigen::Vector3d (0, 1, 0)};
+  none.triangles = {Eigen::Vector3i (0, 0, 1), Eigen::Vector3i (1, 2, 2)};
+  FeatureAwarePatchSampling<pcl::PointXYZ> stage;
+  stage.setInputMesh (std::make_shared<TriangleMesh> (none));
+  std::vector<Patch> out;
+  try
+  {
+    stage.compute (out);
+    ADD_FAILURE () << "a mesh of faces repeating a corner was accepted";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("every one of its 2 faces repeats a corner"), std::string::npos) << e.what ();
   }
 }
 

@@ -131,8 +131,8 @@ namespace pcl_sparse
     std::vector<int> offsets (num_vertices + 1, 0);
     const auto forEachSide = [&] (auto&& visit) {
       for (const Eigen::Vector3i& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k)
-          if (t[k] != t[(k + 1) % 3])
+        if (!hasRepeatedIndex (t))
+          for (int k = 0; k < 3; ++k)
             visit (std::min (t[k], t[(k + 1) % 3]), std::max (t[k], t[(k + 1) % 3]));
     };
     forEachSide ([&] (int low, int) { ++offsets[low + 1]; });

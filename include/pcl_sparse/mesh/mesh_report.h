@@ -56,9 +56,10 @@ namespace pcl_sparse
   bool
   isDegenerateFace (const TriangleMesh& mesh, int f);
 
-  /// The number of edges used by more than two faces (MeshReport::nonmanifold_edges, a face using an edge twice
-  /// counting twice) without building the topology: the face sides bucketed by vertex, O(#V + #F). Faces must
-  /// index existing vertices.
+  /// The number of edges used by more than two faces, as the stages see them: faces repeating a corner, which
+  /// they leave out (SurfaceStage::getFacesWithRepeatedCorners), are not counted; otherwise
+  /// MeshReport::nonmanifold_edges. Without building the topology: the face sides bucketed by vertex,
+  /// O(#V + #F). Faces must index existing vertices.
   /// \param[in] mesh  the mesh
   /// \return the number of non-manifold edges
   std::size_t

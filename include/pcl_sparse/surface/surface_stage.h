@@ -125,13 +125,18 @@ namespace pcl_sparse
     void setCleaningOptions (const ScanCleaningOptions& options) { cleaning_options_ = options; }
 
     /// \brief The surface the last compute worked on: the input mesh or its indexed part (without the extra
-    /// copies of repeated faces, see getDuplicateFaces), or a scan's neighbourhood surface (in the scan's local
-    /// frame: world position = getSurfaceOrigin () + vertex).
+    /// copies of repeated faces and the faces repeating a corner, see getDuplicateFaces and
+    /// getFacesWithRepeatedCorners), or a scan's neighbourhood surface (in the scan's local frame: world
+    /// position = getSurfaceOrigin () + vertex).
     const TriangleMesh::ConstPtr& getSurface () const { return surface_; }
     /// \brief After a compute on a mesh: how many faces it left out as extra copies of an earlier face (the
     /// same three vertices, in any order). A copy adds no surface, but every stage would count it again: area
     /// weights, Harris neighbourhoods, one more patch per copy.
     std::size_t getDuplicateFaces () const { return duplicate_faces_; }
+    /// \brief After a compute on a mesh: how many faces it left out for repeating a corner (a, a, b). Such a
+    /// face has no area and no normal, but its side a-b would join a and b in the topology, a shortcut for
+    /// growth, geodesics and Harris rings where b is not a's neighbour.
+    std::size_t getFacesWithRepeatedCorners () const { return repeated_corner_faces_; }
     /// \brief The offset of getSurface ()'s frame in the input's frame (0 but for scans far from the origin).
     const Eigen::Vector3d& getSurfaceOrigin () const { return surface_origin_; }
 
@@ -216,12 +221,14 @@ namespace pcl_sparse
     ScanCleaningReport cleaning_report_;
     std::vector<std::size_t> surface_input_indices_;
     std::size_t duplicate_faces_ = 0;
+    std::size_t repeated_corner_faces_ = 0;
 
   private:
     /// initCompute's part for a scan (setInputScan, or a cloud without polygons).
     void initScanSurface ();
-    /// initCompute's part for a mesh: replaces surface_ by a copy without repeated faces, if it has any.
-    void dropDuplicateFaces ();
+    /// initCompute's part for a mesh: replaces surface_ by a copy without repeated faces and faces repeating
+    /// a corner, if it has any; fails when no face is left.
+    void dropFacesWithoutSurface ();
   };
 
   /// \brief The positions of a cloud's points in double precision, in storage order.

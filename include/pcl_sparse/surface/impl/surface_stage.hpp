@@ -11,6 +11,9 @@
 
 #include <pcl/common/io.h>
 
+#include <cstdint>
+#include <vector>
+
 namespace pcl_sparse
 {
   template <typename PointInT>
@@ -24,6 +27,7 @@ namespace pcl_sparse
     cleaning_report_ = ScanCleaningReport ();
     surface_input_indices_.clear ();
     duplicate_faces_ = 0;
+    repeated_corner_faces_ = 0;
     const std::string where = "[" + getClassName () + "::compute] ";
     const bool has_indices = this->use_indices_ && this->indices_;
     const bool use_indices = has_indices && index_use_ == IndexUse::CropSurface;
@@ -81,7 +85,7 @@ namespace pcl_sparse
       selected_ = this->indices_;
     }
     if (!surfaceIsScan ())
-      dropDuplicateFaces ();
+      dropFacesWithoutSurface ();
     if (surface_->vertices.empty () || surface_->triangles.empty ())
       fail ("no input mesh or an empty one (set a mesh with triangles)");
     if (!surface_topology_)
@@ -90,23 +94,34 @@ namespace pcl_sparse
 
   template <typename PointInT>
   void
-  SurfaceStage<PointInT>::dropDuplicateFaces ()
+  SurfaceStage<PointInT>::dropFacesWithoutSurface ()
   {
     const std::vector<int> first_copy = findDuplicateFaces (*surface_);
-    std::size_t copies = 0;
+    std::vector<std::uint8_t> kept (first_copy.size (), 1);
+    std::size_t copies = 0, repeated_corners = 0;
     for (std::size_t f = 0; f < first_copy.size (); ++f)
-      copies += first_copy[f] != static_cast<int> (f);
-    if (copies == 0)
+    {
+      const Eigen::Vector3i& t = surface_->triangles[f];
+      if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+        ++repeated_corners, kept[f] = 0;
+      else if (first_copy[f] != static_cast<int> (f))
+        ++copies, kept[f] = 0;
+    }
+    if (copies + repeated_corners == 0)
       return;
+    if (copies + repeated_corners == first_copy.size ())
+      fail ("the mesh has no area: every one of its " + std::to_string (first_copy.size ()) +
+            " faces repeats a corner or an earlier face");
     auto unique = std::make_shared<TriangleMesh> ();
     unique->vertices = surface_->vertices;
-    unique->triangles.reserve (first_copy.size () - copies);
+    unique->triangles.reserve (first_copy.size () - copies - repeated_corners);
     for (std::size_t f = 0; f < first_copy.size (); ++f)
-      if (first_copy[f] == static_cast<int> (f))
+      if (kept[f])
         unique->triangles.push_back (surface_->triangles[f]);
     surface_ = std::move (unique);
-    surface_topology_.reset ();  // a topology given with setTopology counts the copies
+    surface_topology_.reset ();  // a topology given with setTopology counts the faces left out
     duplicate_faces_ = copies;
+    repeated_corner_faces_ = repeated_corners;
   }
 
   template <typename PointInT>
