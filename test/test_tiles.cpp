@@ -801,8 +801,11 @@ TEST (TiledEncoding, StatisticsNeedOnlyTheVertexNumbers)
 {
   // Tiles encoded as the measuring encoder holds them (no (x', y'), sent between ranks as bytes), measured
   // against the statistics of the same tiles with their stored (x', y') (reconstructVertices). A support
-  // scale != 1: the stored radius includes it, and (x', y') must be recomputed over it.
+  // scale != 1: the stored radius includes it, and (x', y') must be recomputed over it. Two vertices in no
+  // face are in no tile: uncovered in both.
   const TriangleMesh::Ptr mesh = terrain (60);
+  mesh->vertices.push_back (0.5 * (mesh->vertices[0] + mesh->vertices[100]));
+  mesh->vertices.push_back (0.5 * (mesh->vertices[7] + mesh->vertices[2000]));
   TileGridOptions grid;
   grid.tiles_along_longest = 3;
   const MemoryTileSource source (mesh, grid);
@@ -842,6 +845,7 @@ TEST (TiledEncoding, StatisticsNeedOnlyTheVertexNumbers)
   const ModelStatistics reference = reference_model.model.statistics (mesh->vertices);
   TiledModel held = mergeTileEncodings (source.grid (), source.totalPoints (), numbers_only);
   const ModelStatistics stats = tiledModelStatistics (source, held);
+  EXPECT_EQ (reference.uncovered, 2u);
   EXPECT_EQ (stats.uncovered, reference.uncovered);
   EXPECT_NEAR (stats.rmse, reference.rmse, 1e-9 * reference.rmse);
   EXPECT_NEAR (stats.max_error, reference.max_error, 1e-9 * reference.max_error);

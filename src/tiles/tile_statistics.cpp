@@ -101,7 +101,8 @@ namespace pcl_sparse
     stats.num_patches = model.patches.size ();
     stats.num_nonzeros = model.numNonZeros ();
     stats.compression_ratio = model.compressionRatio ();
-    stats.uncovered = uncovered_;
+    // Tiles hold the faces' vertices only: a mesh's vertices in no face are in no tile, so never measured.
+    stats.uncovered = std::max (uncovered_, total_points > covered_ ? total_points - covered_ : 0);
     stats.max_error = largest_;
     stats.rmse = covered_ > 0 ? std::sqrt (squares_ / static_cast<double> (covered_)) : 0.0;
     const double diagonal = model.bbox_diagonal;

@@ -81,7 +81,9 @@ namespace pcl_sparse
     void
     add (const TileErrors& tile);
 
-    /// \brief The statistics of \a model (the merged model) from the sums.
+    /// \brief The statistics of \a model (the merged model) from the sums. Uncovered: the points of the whole
+    /// input not measured covered, so also those in no tile's input (a mesh's vertices in no face), as the
+    /// untiled SparseSurfaceModel::statistics counts them.
     /// \param[in] model        the whole model (patch and coefficient counts, diagonal)
     /// \param[in] total_points points of the whole input
     ModelStatistics
