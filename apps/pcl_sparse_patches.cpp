@@ -72,7 +72,7 @@ main (int argc, char** argv)
   return tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
-    if (quiet)
+    if (quiet || json)  // as the other tools: --json's stdout is one object, and notes stay off stderr
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
     args.expectPositional (2, "IN and OUT.ply");
     tools::checkPngOptions (args);

@@ -217,7 +217,7 @@ main (int argc, char** argv)
     const Settings s = parseSettings (args);
     if (s.quiet || s.json)
       pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
-    const ProgressCallback progress = makeConsoleProgress (s.quiet);
+    const ProgressCallback progress = makeConsoleProgress (s.quiet || s.json);  // as encode, decode and patches
     pcl::console::TicToc total;
     total.tic ();
 

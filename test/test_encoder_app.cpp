@@ -409,6 +409,30 @@ TEST_F (EncodeTool, VarintLayoutWritesTheSameModel)
   EXPECT_EQ (run (input_ + " -q --varint-layout", out), 1);  // no file to lay out
 }
 
+// --json is for programs: one object on stdout and, on success, nothing on stderr (no progress, no notes),
+// whichever tool. The mesh has a vertex in no face, which the tools otherwise note.
+TEST_F (EncodeTool, JsonRunsLeaveStderrEmpty)
+{
+  const std::string bin = std::string (PCL_SPARSE_BINARY_DIR) + "/apps/";
+  TriangleMesh extra = mesh_;
+  extra.vertices.emplace_back (0.0, 0.0, 0.0);
+  const std::string mesh = (dir_ / "noted.off").string (), model = (dir_ / "noted.psm").string ();
+  const std::string cloud = (dir_ / "noted.pcd").string ();
+  saveTriangleMesh (mesh, extra);
+  std::string err;
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + mesh + " -o " + model + " 2>&1 >/dev/null", err), 0);
+  EXPECT_NE (err.find ("in no face"), std::string::npos) << err;
+  for (const std::string command : {tool + " " + mesh, bin + "pcl_sparse_resample " + mesh + " " + cloud + " -n 20000",
+                                    bin + "pcl_sparse_decode " + model + " " + cloud + " -n 20000",
+                                    bin + "pcl_sparse_patches " + mesh + " " + (dir_ / "patches.ply").string (),
+                                    bin + "pcl_sparse_keypoints " + mesh + " " + (dir_ / "keypoints.pcd").string (),
+                                    bin + "pcl_sparse_render " + mesh + " " + (dir_ / "noted.png").string () + " -size 64x48"})
+  {
+    ASSERT_EQ (pcl_sparse_test::runShell (command + " --json 2>&1 >/dev/null", err), 0) << command;
+    EXPECT_EQ (err, "") << command;
+  }
+}
+
 // -max-slope and -clearance of pcl_sparse_resample and pcl_sparse_decode reach the resampling: the defaults
 // (50 degrees, 0.03) write the default's bytes. On the sphere, 5 degrees (far below the slopes inside its
 // patches) moves places to other patches; on a 20-degree knife, a clearance of 0 keeps the places at its
