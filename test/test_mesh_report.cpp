@@ -28,9 +28,7 @@ namespace
     const MeshReport report = computeMeshReport (mesh, buildMeshTopology (mesh));
     // The count without the topology agrees wherever no face repeats a corner (which it leaves out, as
     // the stages do): 0, 1 and 3 non-manifold edges in these tests.
-    const bool repeats_a_corner = std::any_of (mesh.triangles.begin (), mesh.triangles.end (), [] (const Eigen::Vector3i& t) {
-      return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-    });
+    const bool repeats_a_corner = std::any_of (mesh.triangles.begin (), mesh.triangles.end (), hasRepeatedIndex);
     if (!repeats_a_corner)
       EXPECT_EQ (countNonManifoldEdges (mesh), report.nonmanifold_edges);
     return report;

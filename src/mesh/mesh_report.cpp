@@ -14,12 +14,6 @@ namespace pcl_sparse
 {
   namespace
   {
-    bool
-    hasRepeatedIndex (const Eigen::Vector3i& t)
-    {
-      return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-    }
-
     /// Number of fans the faces around \a v form when glued across the manifold edges at \a v.
     int
     countFans (const TriangleMesh& mesh, const MeshTopology& topo, int v, std::vector<int>& local_parent)

@@ -47,6 +47,13 @@ namespace pcl_sparse
   MeshReport
   computeMeshReport (const TriangleMesh& mesh, const MeshTopology& topology);
 
+  /// Whether a face repeats a corner, (a, a, b) in any order: no area, and a side that is not an edge.
+  inline bool
+  hasRepeatedIndex (const Eigen::Vector3i& t)
+  {
+    return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+  }
+
   /// Whether a triangle repeats a vertex index or has zero area. Zero area means
   /// |(b - a) x (c - a)| <= 1e-12 * (longest edge)^2 (collinear corners up to rounding); a face with a
   /// non-finite corner is not called degenerate here (it is counted by non_finite_vertices).

@@ -102,7 +102,7 @@ namespace pcl_sparse
     for (std::size_t f = 0; f < first_copy.size (); ++f)
     {
       const Eigen::Vector3i& t = surface_->triangles[f];
-      if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      if (hasRepeatedIndex (t))
         ++repeated_corners, kept[f] = 0;
       else if (first_copy[f] != static_cast<int> (f))
         ++copies, kept[f] = 0;
