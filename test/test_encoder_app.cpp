@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "knife_mesh.h"
+#include "mesh_helpers.h"
 #include "test_file_helpers.h"
 
 #include <cstdio>
@@ -200,11 +201,7 @@ TEST_F (EncodeTool, ElementsWithoutSurfaceAreLeftOutWithANote)
   TriangleMesh extra = mesh_;
   extra.vertices.emplace_back (0.0, 0.0, 0.0);
   extra.vertices.emplace_back (0.5, 0.0, 0.0);
-  const int a = mesh_.triangles[0][0];
-  int antipode = 0;
-  for (int v = 0; v < static_cast<int> (mesh_.vertices.size ()); ++v)
-    if (mesh_.vertices[v].dot (mesh_.vertices[a]) < mesh_.vertices[antipode].dot (mesh_.vertices[a]))
-      antipode = v;
+  const int a = mesh_.triangles[0][0], antipode = pcl_sparse_test::antipodeOf (mesh_, a);
   extra.triangles.emplace_back (a, a, mesh_.triangles[0][1]);
   extra.triangles.emplace_back (a, antipode, antipode);
   const std::string path = (dir_ / "extra.obj").string ();

@@ -15,6 +15,7 @@
 #include <pcl_sparse/patches/patch_growth.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 
+#include "mesh_helpers.h"
 #include "model_helpers.h"
 
 #include <gtest/gtest.h>
@@ -318,10 +319,7 @@ TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
   TriangleMesh mesh = makeIcosphere (2);
   mesh.triangles.push_back (mesh.triangles[0]);
   mesh.triangles.emplace_back (0, 1, 1);
-  int antipode = 0;
-  for (int v = 0; v < static_cast<int> (mesh.vertices.size ()); ++v)
-    if (mesh.vertices[v].dot (mesh.vertices[0]) < mesh.vertices[antipode].dot (mesh.vertices[0]))
-      antipode = v;
+  const int antipode = pcl_sparse_test::antipodeOf (mesh, 0);
   mesh.triangles.emplace_back (antipode, 0, 0);
   mesh.vertices.emplace_back (0.5 * (mesh.vertices[2] + mesh.vertices[3]));
   mesh.triangles.emplace_back (2, 3, static_cast<int> (mesh.vertices.size ()) - 1);
@@ -389,11 +387,7 @@ TEST (PatchSampling, FacesRepeatingACornerAreLeftOut)
   // the shortcut. Left out, the patches are the sphere's.
   const TriangleMesh sphere = makeIcosphere (2);
   TriangleMesh with_face = sphere;
-  int antipode = 0;
-  for (int v = 0; v < static_cast<int> (sphere.vertices.size ()); ++v)
-    if (sphere.vertices[v].dot (sphere.vertices[0]) < sphere.vertices[antipode].dot (sphere.vertices[0]))
-      antipode = v;
-  with_face.triangles.emplace_back (0, antipode, 0);
+  with_face.triangles.emplace_back (0, pcl_sparse_test::antipodeOf (sphere, 0), 0);
   const auto expected = sample (sphere);
   const auto patches = sample (with_face);
   ASSERT_EQ (patches.size (), expected.size ());
