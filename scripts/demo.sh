@@ -45,7 +45,9 @@ echo "== $mesh"
 # Step 2: code it as a sparse model (.psm) with the paper's figures (N_V, M, rho, nnz, RMSE, CR), and show
 # what the model file holds.
 echo "== encode"
-"$build/apps/pcl_sparse_encode" "$mesh" -o "$cache/fandisk.psm" -tolerance 1e-3 -q  # surface moves <= 1e-3 x diagonal
+# The default file is quantised at a tolerance derived from the model's own error (it adds at most 10 % to
+# the distance from the mesh); -tolerance T (of the diagonal) trades accuracy for bytes.
+"$build/apps/pcl_sparse_encode" "$mesh" -o "$cache/fandisk.psm" -q
 "$build/apps/pcl_sparse_info" "$cache/fandisk.psm"
 
 # Step 3: resample the model into a point cloud with normals and curvature, at any density.
