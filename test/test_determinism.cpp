@@ -13,6 +13,9 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -20,6 +23,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -180,4 +184,65 @@ TEST (Determinism, ToolsUnderOmpNumThreads)
       EXPECT_TRUE (a == b) << one << " and " << two << " differ";
     }
   fs::remove_all (dir);
+}
+
+namespace
+{
+  /// Threads of this process (entries of /proc/self/task); 0 where there is no /proc.
+  std::size_t
+  processThreadCount ()
+  {
+    std::error_code error;
+    fs::directory_iterator it ("/proc/self/task", error), end;
+    return error ? 0 : static_cast<std::size_t> (std::distance (it, end));
+  }
+} // namespace
+
+// setNumberOfThreads (1) runs on this thread only. Eigen's matrix products parallelise with OpenMP themselves
+// when no team of more than one thread is running, so from inside a one-thread loop each colour Gram product
+// (CosineGram) started a team of all the cores; under load they spun waiting for each other (a 640x480 RGB-D
+// frame's coding 0.7 -> 5.2 s with one core busy). The library is built with EIGEN_DONT_PARALLELIZE. Those
+// teams live only as long as their product, so a watcher thread polls the process's thread count meanwhile.
+TEST (Determinism, OneThreadStartsNoOtherThread)
+{
+  if (omp_get_max_threads () < 2)
+    GTEST_SKIP () << "one core: OpenMP would start no other thread anyway";
+  if (processThreadCount () != 1)
+    GTEST_SKIP () << "the process already runs " << processThreadCount ()
+                  << " threads (run this test on its own, as ctest does)";
+  // A 320 x 240 organized RGB-D frame of a wavy wall with a textured colour, as a sensor gives it.
+  const int width = 320, height = 240;
+  const double f = 250.0;
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZRGB>> (width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+    {
+      pcl::PointXYZRGB& p = cloud->at (x, y);
+      const double z = 2.0 + 0.1 * std::sin (0.05 * x) * std::cos (0.04 * y);
+      p.x = static_cast<float> ((x - 0.5 * width) / f * z);
+      p.y = static_cast<float> ((y - 0.5 * height) / f * z);
+      p.z = static_cast<float> (z);
+      p.r = static_cast<std::uint8_t> (std::lround (128.0 + 100.0 * std::sin (0.3 * x)));
+      p.g = static_cast<std::uint8_t> (std::lround (128.0 + 100.0 * std::cos (0.2 * y + 0.1 * x)));
+      p.b = 50;
+    }
+  std::atomic<bool> done (false);
+  std::atomic<std::size_t> most (0);
+  std::thread watcher ([&] {
+    while (!done)
+    {
+      most = std::max<std::size_t> (most, processThreadCount ());
+      std::this_thread::sleep_for (std::chrono::microseconds (200));
+    }
+  });
+  SparseSurfaceEncoder<pcl::PointXYZRGB> encoder;
+  encoder.setInputCloud (cloud);
+  encoder.setNumberOfThreads (1);
+  SparseSurfaceModel model;
+  encoder.compute (model);
+  done = true;
+  watcher.join ();
+  ASSERT_GE (model.patches.size (), 10u);
+  ASSERT_EQ (model.attribute_channels.size (), 3u);  // coded colour: the Gram products ran
+  EXPECT_EQ (most, 2u) << "this thread and the watcher; more: the encoder started threads of its own";
 }
