@@ -30,6 +30,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <random>
 
@@ -85,9 +86,11 @@ namespace
     return 116 + u32 (104) + u32 (108) + 4;
   }
 
-  /// \a tiled written in the version-2 layout of docs/FORMAT.md (the library writes version 3 only).
+  /// \a tiled written in the version-2 layout of docs/FORMAT.md (the library writes version 3 only). Each
+  /// tile's bytes are its encoded model, or \a tile_bytes given in their place (one per tile).
   std::vector<std::uint8_t>
-  version2File (const TiledModel& tiled, const ModelWriteOptions& options)
+  version2File (const TiledModel& tiled, const ModelWriteOptions& options,
+                std::vector<std::vector<std::uint8_t>> tile_bytes = {})
   {
     auto put = [] (std::vector<std::uint8_t>& out, const void* value, std::size_t size) {
       const auto* bytes = static_cast<const std::uint8_t*> (value);
@@ -103,9 +106,10 @@ namespace
       }
       return c ^ 0xffffffffu;
     };
-    std::vector<std::vector<std::uint8_t>> blobs;
-    for (const TileRange& range : tiled.tiles)
-      blobs.push_back (encodeModel (subModel (tiled.model, range.first_patch, range.num_patches), options));
+    std::vector<std::vector<std::uint8_t>> blobs = std::move (tile_bytes);
+    if (blobs.empty ())
+      for (const TileRange& range : tiled.tiles)
+        blobs.push_back (encodeModel (subModel (tiled.model, range.first_patch, range.num_patches), options));
     std::vector<std::uint8_t> out;
     const std::uint8_t magic[8] = {0x89, 'P', 'S', 'M', '\r', '\n', 0x1a, '\n'};
     put (out, magic, 8);
@@ -592,6 +596,71 @@ TEST (TiledFile, ReadsTheVersion2Layout)
   catch (const Error& e)
   {
     EXPECT_NE (std::string (e.what ()).find ("without a tile, hence without a basis"), std::string::npos) << e.what ();
+  }
+}
+
+TEST (TiledFile, RefusesATileGridOutOfRange)
+{
+  // The tile counts of a header, each at most 2^30, multiplied in 64 bits: 137 x 125400505 x 2^30 =
+  // 2^64 + 2^30 wrapped to 2^30 tiles and passed; a count over 2^30 (here 2^32 - 1) was cut to 2^30.
+  const TriangleMesh::Ptr mesh = terrain (12);
+  TiledModel tiled = encodeTiled (mesh, 1);
+  ModelWriteOptions options;
+  options.tolerance = 1e-5;
+  const std::vector<std::uint8_t> good = version2File (tiled, options);
+  ASSERT_NO_THROW (decodeModel (good.data (), good.size ()));
+  for (const Eigen::Vector3i& counts : {Eigen::Vector3i (137, 125400505, 1 << 30), Eigen::Vector3i (-1, 1, 1)})
+  {
+    tiled.grid.counts = counts;
+    const std::vector<std::uint8_t> bad = version2File (tiled, options);
+    try
+    {
+      decodeModel (bad.data (), bad.size (), "grid.psm");
+      ADD_FAILURE () << "tile counts " << counts.transpose () << " were read";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find ("tile grid out of range"), std::string::npos) << e.what ();
+    }
+  }
+}
+
+TEST (TiledFile, RefusesAVersion2TileThatIsItselfATiledFile)
+{
+  // A version-2 tile is a version-1 file. One that is a tiled file again was decoded as one, so a file of
+  // tiled files nested a few hundred bytes a level ran each reader (loadModel, the region reader, the
+  // inspector) out of stack; one level, which passed every count check, is enough to show the refusal.
+  const TriangleMesh::Ptr mesh = terrain (12);
+  const TiledModel tiled = encodeTiled (mesh, 1);
+  ASSERT_EQ (tiled.tiles.size (), 1u);
+  ModelWriteOptions options;
+  options.tolerance = 1e-5;
+  const std::vector<std::uint8_t> inner = version2File (tiled, options);
+  ASSERT_EQ (decodeModel (inner.data (), inner.size ()).patches.size (), tiled.model.patches.size ());
+  const std::vector<std::uint8_t> nested = version2File (tiled, options, {inner});
+  const pcl_sparse_test::TempDir dir ("pcl_sparse_tiles_nested");
+  const std::string path = dir.file ("nested.psm");
+  {
+    std::ofstream out (path, std::ios::binary);
+    out.write (reinterpret_cast<const char*> (nested.data ()), static_cast<std::streamsize> (nested.size ()));
+  }
+  const Eigen::AlignedBox3d everywhere (Eigen::Vector3d::Constant (-100.0), Eigen::Vector3d::Constant (100.0));
+  const std::vector<std::function<void ()>> readers = {
+    [&] { decodeModel (nested.data (), nested.size (), "nested.psm"); },
+    [&] { loadModel (path); },
+    [&] { loadTiledModelRegion (path, everywhere); },
+    [&] { inspectModelFile (path); }};
+  for (std::size_t r = 0; r < readers.size (); ++r)
+  {
+    try
+    {
+      readers[r] ();
+      ADD_FAILURE () << "reader " << r << " took a tiled file as a version-2 tile";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find ("is itself a tiled file"), std::string::npos) << e.what ();
+    }
   }
 }
 

@@ -240,7 +240,8 @@ namespace pcl_sparse
     {
       if (!index.grid.origin.allFinite () || !(index.grid.edge > 0.0) || !std::isfinite (index.grid.edge) ||
           !(index.grid.margin >= 0.0) || !std::isfinite (index.grid.margin) || index.grid.counts.minCoeff () < 1 ||
-          static_cast<std::uint64_t> (index.grid.size ()) > kMaxTiles || entries > index.grid.size ())
+          index.grid.counts.cast<double> ().prod () > static_cast<double> (kMaxTiles) ||  // size () could wrap
+          entries > index.grid.size ())
         throw Error (name + ": tile grid out of range");
       if (!std::isfinite (index.bbox_diagonal) || index.bbox_diagonal < 0.0 || !std::isfinite (index.tolerance) ||
           index.tolerance < 0.0)
@@ -260,7 +261,10 @@ namespace pcl_sparse
       index.grid.edge = in.getF64 ("tile edge");
       index.grid.margin = in.getF64 ("tile margin");
       for (int a = 0; a < 3; ++a)
-        index.grid.counts[a] = static_cast<int> (std::min<std::uint32_t> (in.getU32 ("tile counts"), 1u << 30));
+      {
+        const std::uint32_t count = in.getU32 ("tile counts");
+        index.grid.counts[a] = count > kMaxTiles ? 0 : static_cast<int> (count);  // 0: checkGrid refuses it
+      }
       index.total_patches = in.getU64 ("number of patches");
     }
 
@@ -356,6 +360,16 @@ namespace pcl_sparse
 
     // ---- version 2 (read only) ----------------------------------------------------------------------
 
+    /// A version-2 tile is a complete version-1 file. A tiled file in its place is refused: decoding it would
+    /// read tiled files inside tiled files without end, each level a few hundred bytes, until the stack ran out.
+    const std::uint8_t*
+    version2Tile (const std::uint8_t* bytes, std::size_t size, const std::string& what)
+    {
+      if (isTiledModelData (bytes, size))
+        throw Error (what + ": a tile of a version-2 file is itself a tiled file (corrupt file)");
+      return bytes;
+    }
+
     /// Version 2: parses and checks the header (\a data holds at least its bytes); returns the number of entries.
     std::size_t
     readHeader2 (const std::uint8_t* data, const std::string& name, TiledModelIndex& index)
@@ -445,7 +459,8 @@ namespace pcl_sparse
         std::vector<std::uint8_t> storage;
         const std::uint8_t* bytes = read (e, storage);
         SparseSurfaceModel tile =
-          index.version == kTiledVersion ? decodeTile (index, e, bytes, what) : decodeModel (bytes, e.size, what);
+          index.version == kTiledVersion ? decodeTile (index, e, bytes, what)
+                                          : decodeModel (version2Tile (bytes, e.size, what), e.size, what);
         if (tile.patches.size () != e.num_patches || tile.num_input_vertices != index.num_input_vertices ||
             tile.bbox_diagonal != index.bbox_diagonal)
           throw Error (what + ": its model does not match the tile index");
@@ -480,7 +495,8 @@ namespace pcl_sparse
           throw Error (name + ": tiled model file (version 2) without a tile, hence without a basis");
         std::vector<std::uint8_t> storage;
         const TileIndexEntry& e = index.entries.front ();
-        const SparseSurfaceModel first = decodeModel (read (e, storage), e.size, name + ": tile " + std::to_string (e.tile));
+        const std::string what = name + ": tile " + std::to_string (e.tile);
+        const SparseSurfaceModel first = decodeModel (version2Tile (read (e, storage), e.size, what), e.size, what);
         tiled.model.basis = first.basis;
         tiled.model.attribute_channels = first.attribute_channels;
         tiled.model.attribute_basis = first.attribute_basis;
@@ -814,7 +830,8 @@ namespace pcl_sparse
       for (std::size_t i = 0; i < count; ++i)
       {
         const TileIndexEntry& e = index.entries[i];
-        const ModelFileInfo tile = inspectModel (data + e.offset, e.size, name + ": tile " + std::to_string (e.tile));
+        const std::string what = name + ": tile " + std::to_string (e.tile);
+        const ModelFileInfo tile = inspectModel (version2Tile (data + e.offset, e.size, what), e.size, what);
         if (i == 0)
         {
           info.basis = tile.basis;
