@@ -370,6 +370,16 @@ TEST (IoBadInput, NonFiniteVertices)
   expectFileRefused (dir, "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 1 has a non-finite coordinate");
   expectFileRefused (dir, "inf.off", "OFF\n3 1 0\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n", "non-finite");
   expectFileRefused (dir, "overflow.off", "OFF\n3 1 0\n0 0 0\n1 1e999 0\n0 1 0\n3 0 1 2\n", "non-finite");
+  // An overflowing number of more than 63 characters: its exponent was cut off and it read as 1.
+  const std::string long_overflow = "1." + std::string (70, '0') + "e999";
+  expectFileRefused (dir, "long_overflow.obj", "v " + long_overflow + " 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n",
+                     "vertex 0 has a non-finite coordinate");
+  {
+    // And a long underflowing one is 0, not 1.
+    const std::string path = dir.file ("long_underflow.obj");
+    std::ofstream (path) << "v 1." << std::string (70, '0') << "e-999 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n";
+    EXPECT_EQ (loadTriangleMesh (path).vertices[0].x (), 0.0);
+  }
   std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                     "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   for (int i = 0; i < 8; ++i)

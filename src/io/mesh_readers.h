@@ -134,12 +134,10 @@ namespace pcl_sparse
         const auto result = std::from_chars (q, end, value);
         if (result.ec == std::errc::result_out_of_range)
         {
-          // Over- or underflow: take strtod's answer (+-HUGE_VAL or a denormal/zero) on a bounded copy.
-          char buffer[64];
-          const std::size_t n = std::min<std::size_t> (static_cast<std::size_t> (result.ptr - q), sizeof (buffer) - 1);
-          std::memcpy (buffer, q, n);
-          buffer[n] = '\0';
-          value = std::strtod (buffer, nullptr);
+          // Over- or underflow: take strtod's answer (+-HUGE_VAL or a denormal/zero) on a copy of the whole
+          // token (a copy cut short drops the exponent: 1.000...0e999 of 76 characters read as 1).
+          const std::string token (q, result.ptr);
+          value = std::strtod (token.c_str (), nullptr);
         }
         else if (result.ec != std::errc ())
           return false;
