@@ -297,6 +297,61 @@ TEST (IoBadInput, BinaryPlyWithMoreRecordsThanTheHeaderAnnounces)
   }
 }
 
+TEST (IoBadInput, StreamedPlyMeshWithLyingCounts)
+{
+  // The streamed mesh reader (tiled tools' spilled input) checks the header's counts against the file size:
+  // 2^62 vertices of 12 bytes wrapped to 0 bytes in a signed product (undefined) and passed. A face list size
+  // the rest of the file cannot hold (2^32 - 1 indices) read the whole rest of the file into memory before
+  // it said "truncated"; it is refused at once.
+  TempDir dir;
+  auto header = [] (const std::string& vertices, const std::string& faces) {
+    return "ply\nformat binary_little_endian 1.0\nelement vertex " + vertices +
+           "\nproperty float x\nproperty float y\nproperty float z\nelement face " + faces +
+           "\nproperty list uint int vertex_indices\nend_header\n";
+  };
+  std::string vertices;
+  for (float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f})
+    put (vertices, c);
+  std::string faces;
+  put (faces, std::uint32_t (3));
+  for (std::int32_t k : {0, 1, 2})
+    put (faces, k);
+  auto streamFaces = [] (const std::string& path) {
+    MeshStreamReader reader (path);
+    std::vector<Eigen::Vector3d> chunk;
+    while (reader.readVertices (chunk, 2))
+      ;
+    std::vector<Eigen::Vector3i> triangles;
+    std::size_t count = 0;
+    while (reader.readTriangles (triangles, 1))
+      count += triangles.size ();
+    return count;
+  };
+  const std::string good = dir.file ("good.ply");
+  writeBytes (good, header ("3", "1") + vertices + faces);
+  ASSERT_EQ (streamFaces (good), 1u);
+  std::string lying_list;
+  put (lying_list, std::uint32_t (0xffffffffu));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    {header ("4611686018427387904", "1") + vertices + faces, "lying header"},
+    {header ("3", "9223372036854775807") + vertices + faces, "lying header"},
+    {header ("3", "2") + vertices + faces + lying_list + std::string (1 << 20, '\0'), "lying list size: PLY face 1"}};
+  for (const auto& [bytes, problem] : cases)
+  {
+    const std::string path = dir.file ("lying.ply");
+    writeBytes (path, bytes);
+    try
+    {
+      streamFaces (path);
+      ADD_FAILURE () << "streamed without error: " << problem;
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find (problem), std::string::npos) << e.what ();
+    }
+  }
+}
+
 TEST (IoBadInput, FaceIndexOutOfRange)
 {
   TempDir dir;

@@ -159,10 +159,12 @@ namespace pcl_sparse
       count () const;
       /// Decodes the complete face records at the start of \a data (at most \a max_records),
       /// fan-triangulated, appending to \a triangles (indices checked against the header's vertex count);
-      /// \a records gets their number. Returns the bytes they take.
+      /// \a records gets their number. Returns the bytes they take. \a next_record_bytes, if given, gets the
+      /// least number of bytes the record after them takes, as far as the list sizes in \a data tell (0 when
+      /// \a max_records were decoded): a reader can refuse a list size the rest of the file cannot hold.
       std::size_t
       decode (const std::string& data, long long max_records, std::vector<Eigen::Vector3i>& triangles,
-              long long& records) const;
+              long long& records, std::size_t* next_record_bytes = nullptr) const;
       /// After the last face record: throws unless \a rest, the bytes that follow it, are padding (zero bytes
       /// or white space) or the file announces more elements after the faces.
       void

@@ -39,10 +39,14 @@ namespace pcl_sparse
                      io_detail::PlyFaceRecords face_records)
       : path_ (path), vertex_records_ (std::move (vertex_records)), face_records_ (std::move (face_records))
       {
-        const long long size = static_cast<long long> (std::filesystem::file_size (path));
-        const long long vertex_bytes = vertex_records_.count () * static_cast<long long> (vertex_records_.recordBytes ());
-        // Every face record takes at least one byte (its list size).
-        if (static_cast<long long> (vertex_records_.bodyOffset ()) + vertex_bytes + face_records_.count () > size)
+        file_size_ = std::filesystem::file_size (path);
+        const long long remaining =
+          static_cast<long long> (file_size_ - std::min<std::uintmax_t> (file_size_, vertex_records_.bodyOffset ()));
+        const long long record = static_cast<long long> (vertex_records_.recordBytes ());
+        // Every face record takes at least one byte (its list size). Divided, not multiplied: the counts are
+        // the header's, up to 2^63 (2^62 records of 12 bytes wrapped to 0 and passed).
+        if ((record > 0 && vertex_records_.count () > remaining / record) ||
+            face_records_.count () > remaining - vertex_records_.count () * record)
           throw Error (path + ": truncated or lying header: the PLY vertex and face elements announce more records than the file can hold");
         if (vertex_records_.count () == 0)
           throw Error (path + ": no vertices");
@@ -76,9 +80,16 @@ namespace pcl_sparse
           file_.read (&carry_[kept], static_cast<std::streamsize> (block));
           carry_.resize (kept + static_cast<std::size_t> (file_.gcount ()));
           long long records = 0;
-          const std::size_t used = face_records_.decode (carry_, face_records_.count () - faces_read_, chunk, records);
+          std::size_t next_record = 0;
+          const std::size_t used =
+            face_records_.decode (carry_, face_records_.count () - faces_read_, chunk, records, &next_record);
           faces_read_ += records;
           carry_.erase (0, used);
+          // A list size the rest of the file cannot hold is refused now, not after reading the rest into carry_.
+          const std::uintmax_t left = carry_.size () + (file_size_ - std::min<std::uintmax_t> (file_size_, offset ()));
+          if (next_record > left)
+            throw Error (path_ + ": truncated or lying list size: PLY face " + std::to_string (faces_read_) + " takes at least " +
+                         std::to_string (next_record) + " bytes, " + std::to_string (left) + " are left in the file");
           if (records == 0 && file_.gcount () == 0)
             throw Error (path_ + ": truncated: the file ends in PLY face " + std::to_string (faces_read_) + " of " +
                          std::to_string (face_records_.count ()));
@@ -127,6 +138,15 @@ namespace pcl_sparse
       std::string bytes_;
       std::string carry_;
       long long faces_read_ = 0;
+      std::uintmax_t file_size_ = 0;
+
+      /// Bytes of the file read so far.
+      std::uintmax_t
+      offset ()
+      {
+        const std::streamoff at = file_.tellg ();
+        return at < 0 ? file_size_ : static_cast<std::uintmax_t> (at);
+      }
     };
 
     /// Any other mesh file: loadTriangleMesh, handed out in chunks.

@@ -928,7 +928,7 @@ namespace pcl_sparse
 
     std::size_t
     PlyFaceRecords::decode (const std::string& data, long long max_records, std::vector<Eigen::Vector3i>& triangles,
-                            long long& records) const
+                            long long& records, std::size_t* next_record_bytes) const
     {
       if (!layout_->streamable)
         throw Error (path_ + ": PLY faces cannot be decoded in chunks");
@@ -939,6 +939,7 @@ namespace pcl_sparse
       const char* end = begin + data.size ();
       const char* p = begin;
       records = 0;
+      std::size_t next_bytes = 0;
       while (records < max_records)
       {
         const char* q = p;
@@ -949,6 +950,7 @@ namespace pcl_sparse
           if (static_cast<std::size_t> (end - q) < bytes)
           {
             complete = false;
+            next_bytes = static_cast<std::size_t> (q - p) + bytes;
             break;
           }
           if (property.is_list)
@@ -961,6 +963,7 @@ namespace pcl_sparse
             if (static_cast<std::size_t> (end - q) < bytes)
             {
               complete = false;
+              next_bytes = static_cast<std::size_t> (q - p) + bytes;
               break;
             }
           }
@@ -971,6 +974,8 @@ namespace pcl_sparse
         p = q;
         ++records;
       }
+      if (next_record_bytes)
+        *next_record_bytes = next_bytes;
       // Those records through the same body reader as the whole file.
       PlyLayout chunk;
       chunk.format = layout_->header.format;
