@@ -2,12 +2,15 @@
 #include <pcl_sparse/coding/dct_cosine_dictionary.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
+#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include "analytic_surfaces.h"
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -203,6 +206,38 @@ TEST (SparseSurfaceEncoder, RejectsBadOptionsAndInput)
     options = SparseSurfaceEncoderOptions ();
     options.coding.footprint_reach_max_tilt_degrees = degrees;
     EXPECT_THROW (options.validate (), Error) << degrees;
+  }
+}
+
+TEST (SparseSurfaceEncoder, NonFiniteVertexInFacesIsLeftUncovered)
+{
+  // A mesh given through the API (the file loaders refuse it) with a NaN vertex that faces use: the sampling's
+  // coverage pass gave it a one-vertex patch with a NaN origin, and the model could be neither saved nor
+  // resampled. The vertex is left uncovered, as a NaN vertex in no face is.
+  TriangleMesh mesh = makeIcosphere (2);
+  const int nan_vertex = 7;
+  mesh.vertices[nan_vertex] = Eigen::Vector3d::Constant (std::nan (""));
+  for (const int threads : {1, 2})
+  {
+    const SparseSurfaceModel model = encode (mesh, SparseSurfaceEncoderOptions (), threads);
+    ASSERT_GT (model.patches.size (), 10u);
+    for (const PatchCode& patch : model.patches)
+      ASSERT_TRUE (patch.origin.allFinite ());
+    const std::vector<std::uint8_t> bytes = encodeModel (model, ModelWriteOptions ());
+    EXPECT_EQ (decodeModel (bytes.data (), bytes.size ()).patches.size (), model.patches.size ());
+    SparseSurfaceResampling<pcl::PointNormal> resampling;
+    resampling.setInputModel (std::make_shared<const SparseSurfaceModel> (model));
+    resampling.setPointCount (2000);
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    resampling.compute (cloud);
+    ASSERT_EQ (cloud.size (), 2000u);
+    // On the coarse icosphere's faces (0.01-0.02 inside the unit sphere), and beside the hole the NaN
+    // vertex's faces leave (the same again at the hole's rim).
+    float worst = 0.0f;
+    for (const pcl::PointNormal& p : cloud)
+      worst = std::max (worst, std::abs (p.getVector3fMap ().norm () - 1.0f));
+    EXPECT_LT (worst, 0.04f);
+    EXPECT_EQ (model.statistics (mesh.vertices).uncovered, 1u);
   }
 }
 

@@ -516,7 +516,10 @@ namespace pcl_sparse
     int target = 0, loop_target = 0;
     for (int v = 0; v < num_vertices; ++v)
     {
-      referenced[v] = topology.facesOf (v).size () > 0;
+      // A non-finite vertex in faces (a mesh given through the API; the loaders refuse it) is not on the
+      // surface either: no growth takes it (its faces have no area), and the coverage pass seeded a patch
+      // with a NaN origin there, which could be neither saved nor resampled.
+      referenced[v] = topology.facesOf (v).size () > 0 && mesh.vertices[v].allFinite ();
       const bool counted = referenced[v] && (seedable.empty () || seedable[v]);
       target += counted;
       loop_target += counted && component_sizes[v] >= options.min_patch_size;
@@ -534,9 +537,15 @@ namespace pcl_sparse
     // Unresolved (< 0), it is a mesh's: its unreferenced vertices are not on its surface.
     const bool cover_unreferenced = patchOptionsFor (options, false).cover_unreferenced_vertices > 0;
     Patch patch;
+    std::vector<int> non_finite_in_faces;  // left uncovered whatever the options
     for (int v = 0; v < num_vertices; ++v)
       if (!referenced[v] && growth.originalOf (v) == v && (seedable.empty () || seedable[v]))
       {
+        if (topology.facesOf (v).size () > 0)
+        {
+          non_finite_in_faces.push_back (v);
+          continue;
+        }
         result.unreferenced.push_back (v);
         // A NaN point no face uses (the holes of a mesh made from an organized cloud) has nothing to code:
         // a patch there had a NaN origin, and the model could be neither saved nor resampled.
@@ -570,6 +579,12 @@ namespace pcl_sparse
       mapToInputVertices (growth, num_input, result.patches);
     if (!cover_unreferenced)
       result.uncovered = result.unreferenced;
+    if (!non_finite_in_faces.empty ())
+    {
+      const std::size_t middle = result.uncovered.size ();
+      result.uncovered.insert (result.uncovered.end (), non_finite_in_faces.begin (), non_finite_in_faces.end ());
+      std::inplace_merge (result.uncovered.begin (), result.uncovered.begin () + middle, result.uncovered.end ());
+    }
     if (!options.cover_all_vertices)
       result.uncovered = verticesInNoPatch (result.patches, num_input);
     return result;
