@@ -11,7 +11,9 @@
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <cstdio>
 #include <vector>
 
@@ -78,7 +80,7 @@ namespace pcl_sparse
     {
       constexpr CloudExtraField extra = cloudExtraFieldOf<PointT> ();
       pcl::PCLPointCloud2 blob = io_detail::doublePositionLayout (cloud.size (), cloud.is_dense, extra);
-      blob.data.resize (static_cast<std::size_t> (blob.row_step));
+      blob.data.resize (cloud.size () * io_detail::binaryRecordSize (true, extra));  // row_step is 32-bit
       char* out = reinterpret_cast<char*> (blob.data.data ());
       for (const PointT& point : cloud)
       {
@@ -136,6 +138,13 @@ namespace pcl_sparse
   {
     const bool doubles = !offset.isZero (0.0);
     const std::string extension = io_detail::lowerCaseExtension (path);
+    // A PCLPointCloud2 counts its bytes in 32 bits (row_step): from 4 GiB (107 million points of 40 bytes)
+    // the double-position blob would wrap. The streamed writer (PointNormalStreamWriter) has no such limit.
+    if (extension == ".pcd" && doubles &&
+        cloud.size () > std::numeric_limits<std::uint32_t>::max () / io_detail::binaryRecordSize (true, cloudExtraFieldOf<PointT> ()))
+      throw Error (path + ": " + std::to_string (cloud.size ()) +
+                   " points with double positions are more than a PCD written whole holds (4 GiB); write it streamed "
+                   "(binary .pcd or .ply)");
     if (extension == ".pcd")
     {
       writeFileAtomically (path, [&] (const std::string& temporary) {
