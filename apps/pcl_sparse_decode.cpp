@@ -85,7 +85,9 @@ namespace
     for (std::size_t i = 0; i < index.entries.size (); ++i)
     {
       const double middle = index.entries[i].first_patch + 0.5 * index.entries[i].num_patches;
-      if (std::min (static_cast<int> (middle / share), group.size () - 1) == group.rank ())
+      // A file of tiles without patches (version 2 allows them) has share 0: all to rank 0, not NaN to int.
+      const int rank = share > 0.0 ? std::min (static_cast<int> (middle / share), group.size () - 1) : 0;
+      if (rank == group.rank ())
         mine.push_back (i);
     }
     std::vector<Eigen::AlignedBox3d> boxes;
