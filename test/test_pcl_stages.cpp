@@ -305,6 +305,34 @@ TEST (PclStages, ScanThenCloudAndIndicesOfAScan)
   EXPECT_NE (errorOf ([&] { encoder.compute (model); }).find ("crop the scan itself"), std::string::npos);
 }
 
+TEST (PclStages, CropIndicesOfEveryPointInAnotherOrder)
+{
+  // A cloud cropped with as many indices as it has points, in another order (here reversed): the surface's
+  // vertices are the indexed points and getSurfaceInputIndices names each. pcl::copyPointCloud copies the
+  // whole cloud unchanged for such indices, and every vertex was mapped to another point.
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      cloud->push_back (pcl::PointXYZ (1.0f + 0.1f * i, 0.1f * j, 0.05f * std::sin (0.3f * i) * std::cos (0.2f * j)));
+  auto reversed = std::make_shared<pcl::Indices> ();
+  for (int v = static_cast<int> (cloud->size ()) - 1; v >= 0; --v)
+    reversed->push_back (v);
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputCloud (cloud);
+  encoder.setIndices (reversed);
+  SparseSurfaceModel model;
+  encoder.compute (model);
+  const std::vector<std::size_t>& from = encoder.getSurfaceInputIndices ();
+  const TriangleMesh& surface = *encoder.getSurface ();
+  ASSERT_EQ (from.size (), surface.vertices.size ());
+  ASSERT_EQ (from.size (), cloud->size ());
+  std::size_t misplaced = 0;
+  for (std::size_t k = 0; k < from.size (); ++k)
+    misplaced += ((surface.vertices[k] + encoder.getSurfaceOrigin ()).cast<float> () - (*cloud)[from[k]].getVector3fMap ())
+                   .norm () > 1e-5f;
+  EXPECT_EQ (misplaced, 0u);
+}
+
 TEST (PclStages, OneErrorPolicyNamingTheClass)
 {
   const TriangleMesh mesh = floatExactMesh ();

@@ -136,12 +136,21 @@ namespace pcl_sparse
       auto built = std::make_shared<ScanCloud> ();
       if (crop)
       {
-        PointCloudIn subset;
         for (const auto v : *this->indices_)
           if (v < 0 || static_cast<std::size_t> (v) >= this->input_->size ())
             fail ("setIndices: index " + std::to_string (v) + " out of range (" + std::to_string (this->input_->size ()) +
                   " points)");
-        pcl::copyPointCloud (*this->input_, *this->indices_, subset);
+        // The points in index order, unorganized. Not pcl::copyPointCloud: given as many indices as points it
+        // copies the whole cloud as it is, whatever their order, and the indices below mapped its points to
+        // other points (an organized cloud's pixels were scrambled).
+        PointCloudIn subset;
+        subset.header = this->input_->header;
+        subset.sensor_origin_ = this->input_->sensor_origin_;
+        subset.sensor_orientation_ = this->input_->sensor_orientation_;
+        subset.resize (this->indices_->size ());
+        for (std::size_t i = 0; i < this->indices_->size (); ++i)
+          subset[i] = (*this->input_)[static_cast<std::size_t> ((*this->indices_)[i])];
+        subset.is_dense = this->input_->is_dense;
         toScanCloud (subset, *built, cleaning_options_);
         for (std::size_t& index : built->indices)
           index = static_cast<std::size_t> ((*this->indices_)[index]);
