@@ -334,6 +334,39 @@ TEST (CloudSurface, KnnSurfaceIsScaleInvariant)
     EXPECT_DOUBLE_EQ (s.spacing / scale, reference.spacing);
     EXPECT_DOUBLE_EQ (s.noise / scale, reference.noise);
   }
+  // Far below, squared lengths underflow: refused with the reason, as the encoder refuses such a mesh.
+  std::vector<Eigen::Vector3d> tiny = unit;
+  for (auto& p : tiny)
+    p *= 1e-300;
+  try
+  {
+    buildCloudSurface (makeScan (tiny));
+    ADD_FAILURE () << "a scan 1e-300 across was taken";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("under 1e-30, where squared lengths underflow"), std::string::npos) << e.what ();
+  }
+}
+
+TEST (CloudSurface, KnnSurfaceInMapCoordinates)
+{
+  // A scan given through the API in map coordinates (not centred, as the loaders centre it): the kd-tree's
+  // float positions were only scaled, which keeps a float's relative precision, and 5.4e6 m off the origin
+  // points 0.5 m apart fell onto the same floats, so neighbours were picked at random among them.
+  std::mt19937 rng (7);
+  std::vector<Eigen::Vector3d> local = noisyPlane (2000, 1.0, 0.002, rng);
+  for (auto& p : local)
+    p *= 128.0;  // a plane 128 m across, points about 3 m apart
+  const CloudSurface reference = buildCloudSurface (makeScan (local));
+  ASSERT_GT (reference.mesh.triangles.size (), 3000u);
+  const Eigen::Vector3d offset (512000.0, 5403000.0, 96.0);
+  std::vector<Eigen::Vector3d> map = local;
+  for (auto& p : map)
+    p += offset;
+  const CloudSurface s = buildCloudSurface (makeScan (map));
+  EXPECT_EQ (s.mesh.triangles, reference.mesh.triangles);
+  EXPECT_NEAR (s.spacing, reference.spacing, 1e-6 * reference.spacing);
 }
 
 TEST (CloudSurface, OutliersAreCountedAndLeftOut)
@@ -560,6 +593,25 @@ TEST (CloudSurface, DepthImageNoTriangleAcrossTheJumpOrTheHoles)
     // 2 triangles per cell of 4 valid pixels: most cells of the 63 x 47 are there.
     EXPECT_GT (s.mesh.triangles.size (), 0.75 * 2 * 63 * 47);
     EXPECT_GT (s.refused_edges, 60u);  // the rectangle's outline: 80 edges, less those at NaN pixels
+  }
+}
+
+TEST (CloudSurface, OrganizedScanWithoutIndicesNeedsEveryPixel)
+{
+  // Without indices point i is pixel i: a depth image whose holes were dropped without recording the
+  // pixels shifted its rows, and the grid joined points of other pixels without a word.
+  std::mt19937 rng (17);
+  ScanCloud scan = depthImage (64, 48, 0.002, rng);
+  ASSERT_LT (scan.size (), 64u * 48u);
+  scan.indices.clear ();
+  try
+  {
+    buildCloudSurface (scan);
+    ADD_FAILURE () << "a grid of " << scan.size () << " points for 64 x 48 pixels was taken";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE (std::string (e.what ()).find ("no indices naming each point's pixel"), std::string::npos) << e.what ();
   }
 }
 

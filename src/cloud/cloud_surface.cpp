@@ -73,6 +73,17 @@ namespace pcl_sparse
                 << ", beyond the 1e30 that float clouds hold (a wrong byte order?)";
         throw Error (message.str ());
       }
+      // As the encoder refuses too, but before the kd-tree and the covariances: under 1e-30 squared lengths
+      // underflow (every normal came out (1, 0, 0)), under 1e-308 the tree's power-of-two scale overflows.
+      const double diagonal = finiteBoundingBox (scan.positions).diagonal ().stableNorm ();
+      if (diagonal > 0.0 && diagonal < 1e-30)
+      {
+        std::ostringstream message;
+        message.precision (3);
+        message << "buildCloudSurface: the scan's bounding-box diagonal is " << diagonal
+                << ", under 1e-30, where squared lengths underflow: rescale the input";
+        throw Error (message.str ());
+      }
       return finite;
     }
 

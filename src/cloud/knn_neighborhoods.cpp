@@ -1,5 +1,6 @@
 #include <pcl_sparse/cloud/knn_neighborhoods.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/io/scan_cloud.h>
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -46,11 +47,15 @@ namespace pcl_sparse
     // (a grid of spacing 1e20 found no neighbour, one of 1e-30 took every point for a duplicate): it gets
     // the points scaled by a power of two, to an extent in [1, 2). A power of two scales every float
     // exactly, so the tree ranks as it did on the unscaled points wherever those fit; neighbours are ranked
-    // and measured on the double positions below. (The loaders centre far-off scans: localFrameOrigin.)
+    // and measured on the double positions below. Positions far off the origin (map coordinates given
+    // through the API; the loaders centre such scans) are moved to their local frame first: scaling keeps a
+    // float's relative precision, and 5e6 m away a float holds 0.5 m, so the tree ranked at random.
     Eigen::AlignedBox3d box;
     for (std::size_t i = 0; i < n; ++i)
       if (searched[i] && positions[i].allFinite ())
         box.extend (positions[i]);
+    const Eigen::Vector3d shift = localFrameOriginOfBox (box);  // 0 near the origin
+    box.translate (-shift);
     double scale = 1.0;
     if (!box.isEmpty ())
     {
@@ -63,7 +68,7 @@ namespace pcl_sparse
     for (std::size_t i = 0; i < n; ++i)
       if (searched[i])
       {
-        const Eigen::Vector3f p = (positions[i] * scale).cast<float> ();
+        const Eigen::Vector3f p = ((positions[i] - shift) * scale).cast<float> ();
         cloud->push_back (pcl::PointXYZ (p.x (), p.y (), p.z ()));
         original.push_back (static_cast<int> (i));
       }

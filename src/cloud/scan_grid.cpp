@@ -13,10 +13,16 @@ namespace pcl_sparse
     if (!scan.indices.empty () && scan.indices.size () != n)
       throw Error ("buildCloudSurface: the scan has " + std::to_string (scan.indices.size ()) + " indices for " +
                    std::to_string (n) + " points");
+    const std::size_t pixels = static_cast<std::size_t> (scan.width) * scan.height;
+    // Without indices point i is pixel i, which only holds for a scan of every pixel: fewer points shifted
+    // the rows, and the grid's triangles joined points of other pixels without a word.
+    if (scan.indices.empty () && n != pixels)
+      throw Error ("buildCloudSurface: the organized scan has " + std::to_string (n) + " points for its " +
+                   std::to_string (scan.width) + " x " + std::to_string (scan.height) +
+                   " pixels and no indices naming each point's pixel");
     ScanGrid grid;
     grid.width = static_cast<int> (scan.width);
     grid.height = static_cast<int> (scan.height);
-    const std::size_t pixels = static_cast<std::size_t> (scan.width) * scan.height;
     grid.cells.assign (pixels, -1);
     for (std::size_t i = 0; i < n; ++i)
     {

@@ -18,7 +18,12 @@ namespace pcl_sparse
   Eigen::Vector3d
   localFrameOrigin (const std::vector<Eigen::Vector3d>& world_positions)
   {
-    const Eigen::AlignedBox3d box = finiteBoundingBox (world_positions);
+    return localFrameOriginOfBox (finiteBoundingBox (world_positions));
+  }
+
+  Eigen::Vector3d
+  localFrameOriginOfBox (const Eigen::AlignedBox3d& box)
+  {
     if (box.isEmpty ())
       return Eigen::Vector3d::Zero ();
     const Eigen::Vector3d& lo = box.min ();

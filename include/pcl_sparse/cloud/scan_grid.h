@@ -26,8 +26,8 @@ namespace pcl_sparse
 
   /// The image grid of an organized scan: point i at pixel scan.indices[i] (row * width + column; i when
   /// indices is empty), for points with placed[i] != 0.
-  /// Throws pcl_sparse::Error if indices has the wrong size, a pixel is outside width x height, or two
-  /// points claim the same pixel.
+  /// Throws pcl_sparse::Error if indices has the wrong size (or is empty for fewer or more points than
+  /// pixels), a pixel is outside width x height, or two points claim the same pixel.
   ScanGrid
   organizedScanGrid (const ScanCloud& scan, const std::vector<std::uint8_t>& placed);
 } // namespace pcl_sparse

@@ -114,6 +114,9 @@ namespace pcl_sparse
   /// and the step), so the local frame loses nothing, for float and double data alike.
   Eigen::Vector3d
   localFrameOrigin (const std::vector<Eigen::Vector3d>& world_positions);
+  /// The same for \a box, the bounding box of the finite positions (empty: none).
+  Eigen::Vector3d
+  localFrameOriginOfBox (const Eigen::AlignedBox3d& box);
 
   /// Moves \a scan to the local frame of localFrameOrigin (worldPositions (scan)): same world positions,
   /// new origin. Non-finite positions stay non-finite.
