@@ -162,7 +162,13 @@ namespace pcl_sparse
     checkPngOptions (const CommandLine& args)
     {
       if (!args.has ("-png"))
+      {
+        // They shape the -png picture only: alone they were accepted and did nothing.
+        for (const char* option : {"-size", "-view"})
+          if (args.has (option))
+            throw Error (std::string ("option ") + option + " shapes the -png picture: give -png OUT.png too");
         return;
+      }
       const std::string path = args.value ("-png");
       if (!hasExtension (path, ".png"))
         throw Error ("option -png: '" + path + "' must end in .png");

@@ -104,9 +104,9 @@ namespace pcl_sparse
     chooseTiling (const CommandLine& args, std::size_t points, TileGridOptions& options)
     {
       options = TileGridOptions ();
+      const std::uint64_t budget = memoryBudget (args);  // checked with -tiles too (-memory abc passed there)
       if (args.integer ("-tiles", options.tiles_along_longest, Range::closed (1, 4096)))
         return true;
-      const std::uint64_t budget = memoryBudget (args);
       if (static_cast<double> (points) * kEncoderBytesPerPoint <= static_cast<double> (budget))
         return false;
       // A tile's input is its core and margins (up to (1 + 2 x 0.1)^2 = 1.44 times its points on a surface),

@@ -160,8 +160,10 @@ TEST_F (RenderTool, OtherToolsDrawWithPng)
         EXPECT_TRUE (!r.out.empty () && r.out.front () == '{' && lines (r.out) == 1) << app << "\n" << r.out;
     }
   // A bad picture option is refused before the tool writes anything.
+  // -size or -view without -png did nothing and exited 0.
   for (const std::string& bad_option : {" -png " + dir_.file ("x.gif"), " -png " + dir_.file ("x.png") + " -size 0x10",
-                                        " -png " + dir_.file ("x.png") + " -view sideways"})
+                                        " -png " + dir_.file ("x.png") + " -view sideways", std::string (" -size 80x60"),
+                                        std::string (" -view top")})
   {
     fs::remove (dir_.file ("never.ply"));
     const ToolRun bad = run (dir_, tool ("patches") + " " + in + " " + dir_.file ("never.ply") + " -q" + bad_option);

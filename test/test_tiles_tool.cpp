@@ -102,6 +102,9 @@ TEST_F (TilesTool, MemoryBudgetTilesAndBoundsThePeak)
   EXPECT_GT (info.num_tiles, 4u);
   EXPECT_NE (run ("pcl_sparse_encode", mesh + " -q -memory 2X", out), 0);
   EXPECT_NE (out.find ("-memory"), std::string::npos) << out;
+  // With -tiles too (the budget was not read there, and a bad value passed).
+  EXPECT_NE (run ("pcl_sparse_encode", mesh + " -q -tiles 2 -memory 2X", out), 0);
+  EXPECT_NE (out.find ("-memory"), std::string::npos) << out;
 }
 
 TEST_F (TilesTool, SpilledPathWritesTheInMemoryPathsFile)
