@@ -86,6 +86,22 @@ namespace
     expectRefused (path, problem);
   }
 
+  /// The triangles of the mesh file at \a path read through MeshStreamReader (vertices, then faces in chunks).
+  std::size_t
+  streamedTriangleCount (const std::string& path)
+  {
+    MeshStreamReader reader (path);
+    EXPECT_TRUE (reader.isStreamed ());
+    std::vector<Eigen::Vector3d> vertices;
+    while (reader.readVertices (vertices, 2))
+      ;
+    std::vector<Eigen::Vector3i> chunk;
+    std::size_t triangles = 0;
+    while (reader.readTriangles (chunk, 1))
+      triangles += chunk.size ();
+    return triangles;
+  }
+
   std::string
   randomBytes (std::size_t size, unsigned seed)
   {
@@ -262,24 +278,12 @@ TEST (IoBadInput, BinaryPlyWithMoreRecordsThanTheHeaderAnnounces)
     text.replace (text.find ("COUNT"), 5, count);
     return text + body;
   };
-  auto streamedTriangles = [] (const std::string& path) {
-    MeshStreamReader reader (path);
-    EXPECT_TRUE (reader.isStreamed ());
-    std::vector<Eigen::Vector3d> vertices;
-    while (reader.readVertices (vertices, 2))
-      ;
-    std::vector<Eigen::Vector3i> chunk;
-    std::size_t triangles = 0;
-    while (reader.readTriangles (chunk, 1))
-      triangles += chunk.size ();
-    return triangles;
-  };
   const std::string short_count = dir.file ("short_count.ply");
   writeBytes (short_count, withCount ("1"));
   expectRefused (short_count, "data after the last element");
   try
   {
-    streamedTriangles (short_count);
+    streamedTriangleCount (short_count);
     ADD_FAILURE () << "streamed without error";
   }
   catch (const Error& e)
@@ -293,7 +297,7 @@ TEST (IoBadInput, BinaryPlyWithMoreRecordsThanTheHeaderAnnounces)
     TriangleMesh mesh;
     ASSERT_NO_THROW (mesh = loadTriangleMesh (path)) << padding.size () << " bytes of padding";
     EXPECT_EQ (mesh.triangles.size (), 2u);
-    EXPECT_EQ (streamedTriangles (path), 2u);
+    EXPECT_EQ (streamedTriangleCount (path), 2u);
   }
 }
 
@@ -316,20 +320,9 @@ TEST (IoBadInput, StreamedPlyMeshWithLyingCounts)
   put (faces, std::uint32_t (3));
   for (std::int32_t k : {0, 1, 2})
     put (faces, k);
-  auto streamFaces = [] (const std::string& path) {
-    MeshStreamReader reader (path);
-    std::vector<Eigen::Vector3d> chunk;
-    while (reader.readVertices (chunk, 2))
-      ;
-    std::vector<Eigen::Vector3i> triangles;
-    std::size_t count = 0;
-    while (reader.readTriangles (triangles, 1))
-      count += triangles.size ();
-    return count;
-  };
   const std::string good = dir.file ("good.ply");
   writeBytes (good, header ("3", "1") + vertices + faces);
-  ASSERT_EQ (streamFaces (good), 1u);
+  ASSERT_EQ (streamedTriangleCount (good), 1u);
   std::string lying_list;
   put (lying_list, std::uint32_t (0xffffffffu));
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -342,7 +335,7 @@ TEST (IoBadInput, StreamedPlyMeshWithLyingCounts)
     writeBytes (path, bytes);
     try
     {
-      streamFaces (path);
+      streamedTriangleCount (path);
       ADD_FAILURE () << "streamed without error: " << problem;
     }
     catch (const Error& e)
