@@ -35,9 +35,9 @@ namespace pcl_sparse
     /// neighbour lists), so the spreading costs O(their neighbourhoods) in all: passes over every grazing
     /// point cost O(passes x points), quadratic on ground seen at a grazing angle from a low sensor (found by
     /// a review: 4.7 s more for 400k points).
-    /// The work is O(points and their grazing points' neighbourhoods), not O(#P): the spanning tree orients
-    /// every flat tree with it, and per-call arrays over the whole cloud made a cloud of many short wires
-    /// quadratic (320k points in 32k wires: 9.3 s).
+    /// With few grazing points the work is O(points and their neighbourhoods), not O(#P): the spanning tree
+    /// orients every flat tree with it, and per-call arrays over the whole cloud made a cloud of many short
+    /// wires quadratic (320k points in 32k wires: 9.3 s).
     /// \a decided, \a waiting: #P zeros, left zero.
     template <typename Direction>
     void
@@ -59,25 +59,41 @@ namespace pcl_sparse
       }
       if (!grazing.empty ())
       {
-        // (j, k) for each grazing point k whose neighbourhood lists j, sorted: who lists j (a pass's
-        // decisions do not depend on the order of its candidates).
+        // Who lists j, among the grazing points: reverse lists over the whole cloud when the grazing points
+        // are many (a low sensor over ground: 2M points 0.5 s, against 1.9 s sorting pairs), else the sorted
+        // (j, k) pairs of the call (a flat tree of a few points in a large cloud). A pass's decisions do not
+        // depend on the order of its candidates, so both give the same normals.
+        const bool whole_cloud = grazing.size () * 16 >= hoods.size ();
+        const PointNeighborhoods reverse = whole_cloud ? reverseNeighborhoods (hoods, grazing) : PointNeighborhoods ();
         std::vector<std::pair<int, int>> listed_by;
-        for (const int k : grazing)
-          for (const int j : hoods.of (k))
-            listed_by.emplace_back (j, k);
-        std::sort (listed_by.begin (), listed_by.end ());
+        if (!whole_cloud)
+        {
+          for (const int k : grazing)
+            for (const int j : hoods.of (k))
+              listed_by.emplace_back (j, k);
+          std::sort (listed_by.begin (), listed_by.end ());
+        }
         for (const int i : grazing)
           waiting[i] = 1;
         std::vector<int> candidates = grazing, now;
         // The waiting grazing points that list i become candidates of the next pass, once each.
+        auto consider = [&] (int k) {
+          if (waiting[k] == 1)
+          {
+            waiting[k] = 2;
+            candidates.push_back (k);
+          }
+        };
         auto listersOf = [&] (int i) {
+          if (whole_cloud)
+          {
+            for (const int k : reverse.of (i))
+              consider (k);
+            return;
+          }
           auto it = std::lower_bound (listed_by.begin (), listed_by.end (), std::make_pair (i, std::numeric_limits<int>::min ()));
           for (; it != listed_by.end () && it->first == i; ++it)
-            if (waiting[it->second] == 1)
-            {
-              waiting[it->second] = 2;
-              candidates.push_back (it->second);
-            }
+            consider (it->second);
         };
         // The first pass looks at every grazing point; later ones at those next to new decisions. Grazing
         // points no decision reaches (a viewpoint in the plane of the surface leaves every point grazing)
