@@ -26,12 +26,47 @@ namespace pcl_sparse
       return tail == extension;
     }
 
+    namespace
+    {
+      /// The length of the well-formed UTF-8 sequence (RFC 3629: no overlong forms, no surrogates, nothing
+      /// past U+10FFFF) starting at \a text[i], a byte >= 0x80; 0 if none starts there.
+      std::size_t
+      utf8SequenceLength (const std::string& text, std::size_t i)
+      {
+        const auto byte = [&text] (std::size_t k) { return static_cast<unsigned char> (text[k]); };
+        const unsigned char lead = byte (i);
+        std::size_t length = 0;
+        unsigned char low = 0x80, high = 0xbf;  // the allowed range of the second byte
+        if (lead >= 0xc2 && lead <= 0xdf)
+          length = 2;
+        else if (lead >= 0xe0 && lead <= 0xef)
+        {
+          length = 3;
+          low = lead == 0xe0 ? 0xa0 : 0x80;
+          high = lead == 0xed ? 0x9f : 0xbf;
+        }
+        else if (lead >= 0xf0 && lead <= 0xf4)
+        {
+          length = 4;
+          low = lead == 0xf0 ? 0x90 : 0x80;
+          high = lead == 0xf4 ? 0x8f : 0xbf;
+        }
+        if (length == 0 || i + length > text.size () || byte (i + 1) < low || byte (i + 1) > high)
+          return 0;
+        for (std::size_t k = 2; k < length; ++k)
+          if (byte (i + k) < 0x80 || byte (i + k) > 0xbf)
+            return 0;
+        return length;
+      }
+    } // namespace
+
     std::string
     jsonString (const std::string& text)
     {
       std::string out = "\"";
-      for (const unsigned char c : text)
+      for (std::size_t i = 0; i < text.size ();)
       {
+        const unsigned char c = static_cast<unsigned char> (text[i]);
         if (c == '"' || c == '\\')
           out += std::string ("\\") + static_cast<char> (c);
         else if (c < 0x20)
@@ -40,8 +75,16 @@ namespace pcl_sparse
           std::snprintf (buffer, sizeof (buffer), "\\u%04x", c);
           out += buffer;
         }
+        else if (c >= 0x80)
+        {
+          const std::size_t length = utf8SequenceLength (text, i);
+          out += length > 0 ? text.substr (i, length) : std::string ("\\ufffd");
+          i += length > 0 ? length : 1;
+          continue;
+        }
         else
           out += static_cast<char> (c);
+        ++i;
       }
       return out + "\"";
     }
@@ -218,14 +261,24 @@ namespace pcl_sparse
       char* end = nullptr;
       errno = 0;
       const double x = std::strtod (text.c_str (), &end);
-      if (text.empty () || end != text.c_str () + text.size () || !std::isfinite (x))
+      // strtod also skips leading spaces and reads hexadecimal ("0x10"): neither is a number of ours.
+      const bool decimal = !text.empty () && (std::isdigit (static_cast<unsigned char> (text[0])) ||
+                                              text[0] == '-' || text[0] == '+' || text[0] == '.') &&
+                           text.find_first_of ("xX") == std::string::npos;
+      if (!decimal || end != text.c_str () + text.size () || !std::isfinite (x))
         throw Error ("option " + name + ": '" + text + "' is not a number");
       if (errno == ERANGE)  // 1e-320 was "not a number"
         throw Error ("option " + name + ": " + text + " is beyond what a double holds");
-      if (!range.contains (x))
-        throw Error ("option " + name + ": " + text + " is not in " + range.str ());
+      checkRange (name, x, range);
       value = x;
       return true;
+    }
+
+    void
+    CommandLine::checkRange (const std::string& name, double x, const Range& range) const
+    {
+      if (!range.contains (x))
+        throw Error ("option " + name + ": " + value (name) + " is not in " + range.str ());
     }
 
     bool
@@ -244,6 +297,9 @@ namespace pcl_sparse
       if (x != std::floor (x) || x < lowest || x >= limit)
         throw Error ("option " + name + ": '" + value (name) + "' is not an integer" +
                      (x == std::floor (x) ? " of this size" : ""));
+      if (std::fabs (x) > std::ldexp (1.0, 53))  // 1.8446744073709551e19 names many integers: ask for digits
+        throw Error ("option " + name + ": '" + value (name) + "' is beyond what a double holds exactly; " +
+                     "write the integer in plain digits");
     }
 
     // ---- help, main ----------------------------------------------------------------------------------

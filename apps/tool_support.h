@@ -6,6 +6,7 @@
 
 #include <pcl_sparse/common/error.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -24,7 +25,9 @@ namespace pcl_sparse
     bool
     hasExtension (const std::string& path, const std::string& extension);
 
-    /// \a text as a JSON string literal, quotes included; quotes, backslashes and control characters escaped.
+    /// \a text as a JSON string literal, quotes included; quotes, backslashes and control characters escaped,
+    /// and each byte that is not part of valid UTF-8 (a file name in Latin-1, say) written as U+FFFD, since
+    /// JSON text must be UTF-8.
     std::string
     jsonString (const std::string& text);
 
@@ -114,22 +117,34 @@ namespace pcl_sparse
       /// All values of option \a name (empty when absent).
       std::vector<std::string> values (const std::string& name) const;
 
-      /// Reads option \a name as a finite number in \a range into \a value; false (value untouched) when
-      /// absent. Throws Error naming the option when the value is malformed or out of range.
+      /// Reads option \a name as a finite decimal number in \a range into \a value (no spaces, no hexadecimal);
+      /// false (value untouched) when absent. Throws Error naming the option when the value is malformed or out of range.
       bool number (const std::string& name, double& value, const Range& range = Range ()) const;
 
       /// Reads option \a name, an angle in degrees within \a degrees, into \a radians (radians untouched
       /// when absent). Throws as number.
       bool angle (const std::string& name, double& radians, const Range& degrees = Range::aboveUpTo (0.0, 180.0)) const;
 
-      /// As number, and the value must be a whole number that \a Integer holds.
+      /// As number, and the value must be a whole number that \a Integer holds. Plain decimal digits (with a
+      /// '-' for signed types) are read exactly, so a 64-bit seed keeps every digit; other spellings of a
+      /// number (1e6) are accepted while a double holds them exactly (up to 2^53).
       template <typename Integer>
       bool
       integer (const std::string& name, Integer& value, const Range& range = Range ()) const
       {
-        double x = 0.0;
-        if (!number (name, x, range))
+        if (!has (name))
           return false;
+        const std::string text = this->value (name);
+        Integer parsed = 0;
+        const std::from_chars_result digits = std::from_chars (text.data (), text.data () + text.size (), parsed);
+        if (digits.ec == std::errc () && digits.ptr == text.data () + text.size ())
+        {
+          checkRange (name, static_cast<double> (parsed), range);
+          value = parsed;
+          return true;
+        }
+        double x = 0.0;
+        number (name, x, range);
         // 2^digits is exact as a double, unlike the largest value of a 64-bit type.
         checkInteger (name, x, static_cast<double> (std::numeric_limits<Integer>::lowest ()),
                       std::ldexp (1.0, std::numeric_limits<Integer>::digits));
@@ -138,8 +153,10 @@ namespace pcl_sparse
       }
 
     private:
-      /// Throws unless \a x is a whole number in [lowest, limit).
+      /// Throws unless \a x is a whole number in [lowest, limit) that a double holds exactly (|x| <= 2^53).
       void checkInteger (const std::string& name, double x, double lowest, double limit) const;
+      /// Throws unless \a range contains \a x.
+      void checkRange (const std::string& name, double x, const Range& range) const;
 
       std::vector<std::string> positional_;
       std::vector<std::pair<std::string, std::vector<std::string>>> given_;  ///< options and switches in order
