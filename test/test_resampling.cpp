@@ -675,6 +675,25 @@ TEST (Resampling, RefusesOptionsOutOfRange)
   }
 }
 
+TEST (Resampling, DensityBelowAPointAPatchKeepsTheArea)
+{
+  // The unit sphere (area 4 pi) in 42 caps of 1.2 units^2: below a point a cap, a patch smaller than a cell
+  // once kept a whole cell of area wherever its middle lay inside (10 points per unit^2: 44 points and an
+  // area of 4.4 per the model, 0.25: 42 points and 168).
+  SparseSurfaceResampling<pcl::PointNormal> resampling;
+  resampling.setInputModel (makeSphereModel ());
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  for (const double density : {0.25, 1.0, 3.0, 10.0, 1000.0})
+  {
+    resampling.setDensity (density);
+    resampling.compute (cloud);
+    const double expected = 4.0 * M_PI * density;
+    EXPECT_NEAR (resampling.getEstimatedArea (), 4.0 * M_PI, 0.04 * 4.0 * M_PI) << "density " << density;
+    // Each patch rounds its expected count up or down at random: the total is within a few standard deviations.
+    EXPECT_NEAR (static_cast<double> (cloud.size ()), expected, 4.0 * std::sqrt (expected) + 1.0) << "density " << density;
+  }
+}
+
 TEST (Resampling, DensityTooLowForTheModelSaysSo)
 {
   // The sphere of tangent discs (about 17 units^2) at 1e-6 points per unit^2: no cell keeps a point. The

@@ -14,6 +14,7 @@
 #include "model_helpers.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -59,6 +60,17 @@ namespace
     return result;
   }
 
+  /// How many points of \a cloud repeat the position of an earlier one.
+  std::size_t
+  repeatedPositions (const pcl::PointCloud<pcl::PointNormal>& cloud)
+  {
+    std::vector<std::array<float, 3>> positions;
+    for (const pcl::PointNormal& point : cloud)
+      positions.push_back ({point.x, point.y, point.z});
+    std::sort (positions.begin (), positions.end ());
+    return static_cast<std::size_t> (positions.end () - std::unique (positions.begin (), positions.end ()));
+  }
+
   void
   checkSurface (const std::string& name, const TriangleMesh::ConstPtr& mesh, const Bounds& bounds)
   {
@@ -69,6 +81,8 @@ namespace
               << ", mean angle " << q.mean_normal_angle << ", flipped " << q.flipped << ", completeness "
               << q.completeness << ", largest gap " << q.largest_gap << ", NN CV " << q.nn_cv << std::endl;
     EXPECT_EQ (r.cloud.size (), count) << name;
+    // A cell with more points than kept places once repeated its candidate (blade: 2 pairs).
+    EXPECT_EQ (repeatedPositions (r.cloud), 0u) << name << ": points written twice";
     EXPECT_EQ (q.invalid, 0u) << name;
     EXPECT_LT (q.rms_distance / q.bbox_diagonal, bounds.rms_over_diagonal) << name;
     EXPECT_LT (q.mean_normal_angle, bounds.mean_angle) << name;
