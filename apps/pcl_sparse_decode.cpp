@@ -347,6 +347,8 @@ main (int argc, char** argv)
       throw Error ("option -box needs -density D (points per unit area: -n counts the whole model's points)");
     if (has_box && args.value ("-stream") == "on")  // it quietly did not stream
       throw Error ("option -stream on: -box keeps the points inside the box, written whole (use -stream auto)");
+    if (has_box && args.has ("-block"))
+      throw Error ("option -block sets the blocks of a streamed cloud; -box keeps the points inside the box, written whole");
     if (has_box && !recon_mesh.empty ())
       throw Error ("options -box and -recon exclude each other");
 
@@ -370,6 +372,10 @@ main (int argc, char** argv)
       return 0;  // rank 0 decodes alone
     if (across)
     {
+      // The ranks' clouds are gathered whole on rank 0: neither option would do anything.
+      if (args.value ("-stream") == "on" || args.has ("-block"))
+        throw Error (std::string ("option ") + (args.has ("-block") ? "-block" : "-stream on") +
+                     ": under mpirun the tiles' clouds are gathered whole on rank 0 (run one process to stream)");
       // The fields from the index, which every rank reads, so that all gather the same point type.
       const TiledModelIndex index = readTiledModelIndex (model_path);
       return tools::withPointTypeOf (tools::resampledExtraField (tiledChannels (index), attributes), [&] (auto* type) {

@@ -218,7 +218,9 @@ main (int argc, char** argv)
     if (args.has ("-ref") && mode != "error")
       throw Error ("option -ref is only used with -color error");
     std::size_t count = 0;
-    args.integer ("-n", count, tools::Range::closed (1, SparseSurfaceResampling<pcl::PointNormal>::max_points));
+    if (args.integer ("-n", count, tools::Range::closed (1, SparseSurfaceResampling<pcl::PointNormal>::max_points)) &&
+        !tools::hasExtension (input, ".psm"))  // a mesh or scan is drawn as it is: -n did nothing
+      throw Error ("option -n resamples a model (.psm); " + input + " is drawn as it is");
 
     pcl::console::TicToc total;
     total.tic ();

@@ -116,9 +116,11 @@ namespace pcl_sparse
       if (mode != "auto" && mode != "on" && mode != "off")
         throw Error ("option -stream: '" + mode + "' is not auto, on or off");
       const bool possible = PointNormalStreamWriter::supports (output, binary) && !png;
+      const std::string whole = png ? "-png needs the whole cloud" : "an ascii .pcd is written whole (use .ply or binary)";
       if (mode == "on" && !possible)
-        throw Error ("option -stream on: " + std::string (png ? "-png needs the whole cloud"
-                                                               : "an ascii .pcd is written whole (use .ply or binary)"));
+        throw Error ("option -stream on: " + whole);
+      if (args.has ("-block") && !(mode != "off" && possible))  // it did nothing, without a word
+        throw Error ("option -block sets the blocks of a streamed cloud; " + (mode == "off" ? "-stream off writes it whole" : whole));
       return mode != "off" && possible;
     }
 

@@ -408,6 +408,18 @@ namespace
       {"resample_model_with_encoder_option", "resample", {"PSM", "OUT.r.pcd", "-rho", "0.01"}},
       {"resample_threads_zero", "resample", {"IN", "OUT.r.pcd", "-threads", "0"}, Expect::Success},
       {"decode_box_stream_on", "decode", {"PSM", "OUT.d.pcd", "-density", "100", "-box", "-1,-1,-1,1,1,1", "-stream", "on"}},
+      // options that did nothing, without a word: -block on a cloud written whole, -viewpoint on a mesh, render -n
+      // on a mesh; and numbers strtod read but no user means (hexadecimal, a leading space)
+      {"resample_block_stream_off", "resample", {"IN", "OUT.r.pcd", "-stream", "off", "-block", "8192"}},
+      {"resample_block_ascii", "resample", {"IN", "OUT.r.pcd", "-ascii", "-block", "8192"}},
+      {"resample_block_streamed", "resample", {"IN", "OUT.r.pcd", "-block", "8192"}, Expect::Success},
+      {"decode_block_stream_off", "decode", {"PSM", "OUT.d.pcd", "-stream", "off", "-block", "8192"}},
+      {"decode_block_box", "decode", {"PSM", "OUT.d.pcd", "-density", "100", "-box", "-1,-1,-1,1,1,1", "-block", "8192"}},
+      {"resample_viewpoint_on_mesh", "resample", {"IN", "OUT.r.pcd", "-viewpoint", "0,0,5"}},
+      {"render_n_on_mesh", "render", {"IN", "OUT.x.png", "-n", "1000"}},
+      {"resample_seed_hexadecimal", "resample", {"IN", "OUT.r.pcd", "-seed", "0x10"}},
+      {"resample_n_leading_space", "resample", {"IN", "OUT.r.pcd", "-n", " 100"}},
+      {"resample_seed_largest", "resample", {"IN", "OUT.r.pcd", "-seed", "18446744073709551615"}, Expect::Success},
       {"render_size_overflow", "render", {"IN", "OUT.x.png", "-size", "4294967297x5"}},
       {"render_size_signed", "render", {"IN", "OUT.x.png", "-size", "8x+5"}},
       {"render_view_huge", "render", {"IN", "OUT.x.png", "-view", "1e200,0,0"}, Expect::Success},

@@ -133,6 +133,13 @@ TEST_F (TilesMpi, SameFilesForOneTwoThreeRanksAndWithout)
     EXPECT_NE (out.find ("\"ranks\": " + std::to_string (ranks)), std::string::npos) << out;
     EXPECT_TRUE (pcl_sparse_test::readBytes (file) == cloud) << ranks << " ranks";
   }
+  // Under mpirun the ranks' clouds are gathered whole: -stream on and -block did nothing, and are refused.
+  for (const char* option : {" -stream on", " -block 8192"})
+  {
+    EXPECT_NE (runCommand (mpirun (2) + decode + dir_.file ("refused.pcd") + " -density 30000 -q" + option, out), 0) << option;
+    EXPECT_NE (out.find ("under mpirun"), std::string::npos) << out;
+    EXPECT_FALSE (std::filesystem::exists (dir_.file ("refused.pcd"))) << option;
+  }
 }
 
 TEST_F (TilesMpi, RanksHoldABandOfTiles)
