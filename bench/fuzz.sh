@@ -4,7 +4,7 @@
 #   TARGET model (default): the .psm loader, built with FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION, which skips
 #          the CRC checks so that mutations reach the decoder (the checks themselves are covered by
 #          test_format's bit-flip test); seeds from make_seed_corpus.cpp
-#   TARGET inputs: the mesh and scan readers (.obj .off .ply .stl .pcd .xyz), linked with Debian's PCL (the
+#   TARGET inputs: the mesh and scan readers (.obj .off .ply .stl .pcd .xyz; meshes also streamed), linked with Debian's PCL (the
 #          PCD data goes through pcl::PCDReader once our header check passed); seeds from make_input_corpus.py
 # Needs clang and libclang-rt-14-dev (Debian bookworm). Findings (crash-*, leak-*, timeout-*) land in
 # BUILD_DIR/findings, the corpus in BUILD_DIR/corpus-TARGET; the exit code is libFuzzer's (0 = no finding).
@@ -31,7 +31,7 @@ sources=("$root"/src/format/*.cpp "$root/src/coding/cosine_dictionary.cpp" "$roo
 if [ "$target" = inputs ]; then
   echo "building $build/fuzz_input_files" >&2
   readers=()
-  for name in mesh_io obj_reader off_reader ply_reader stl_reader pcd_reader xyz_reader scan_io scan_points \
+  for name in mesh_io mesh_stream obj_reader off_reader ply_reader stl_reader pcd_reader xyz_reader scan_io scan_points \
               scan_cleaning scan_cloud polygon_mesh_conversion; do
     readers+=("$root/src/io/$name.cpp")
   done

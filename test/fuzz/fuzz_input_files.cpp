@@ -1,18 +1,22 @@
 /// libFuzzer target for the mesh and scan readers (.obj .off .ply .stl .pcd .xyz): the first byte picks the
 /// format (byte % 6) and a loader option (byte / 6 odd or even), the rest is the file. Any input must
 /// either load or throw pcl_sparse::Error; sanitizers (ASan, UBSan) turn anything else into a finding. A
-/// loaded mesh must index only its own vertices, a loaded scan must number every point. Built by
+/// loaded mesh must index only its own vertices, a loaded scan must number every point. Meshes are read
+/// again by MeshStreamReader in small chunks (the streamed binary PLY reader of tiled inputs): its faces
+/// too must index only its vertices, and where both readers accept a file they give the same counts. Built by
 /// bench/fuzz.sh (target inputs; clang, -fsanitize=fuzzer,address,undefined); seed corpus from
 /// make_input_corpus.py.
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/io/mesh_stream.h>
 #include <pcl_sparse/io/scan_io.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 #include <unistd.h>
 
 namespace
@@ -54,6 +58,44 @@ LLVMFuzzerTestOneInput (const std::uint8_t* data, std::size_t size)
     }
     catch (const pcl_sparse::Error&)
     {
+    }
+  }
+  if (format < 4)
+  {
+    std::size_t vertices = 0, triangles = 0;
+    bool streamed = false;
+    try
+    {
+      pcl_sparse::MeshStreamReader reader (path);
+      std::vector<Eigen::Vector3d> vertex_chunk;
+      while (reader.readVertices (vertex_chunk, 7))
+        vertices += vertex_chunk.size ();
+      if (vertices != reader.numVertices ())
+        std::abort ();
+      std::vector<Eigen::Vector3i> triangle_chunk;
+      while (reader.readTriangles (triangle_chunk, 5))
+      {
+        for (const Eigen::Vector3i& triangle : triangle_chunk)
+          if (triangle.minCoeff () < 0 || static_cast<std::size_t> (triangle.maxCoeff ()) >= vertices)
+            std::abort ();
+        triangles += triangle_chunk.size ();
+      }
+      streamed = true;
+    }
+    catch (const pcl_sparse::Error&)
+    {
+    }
+    if (streamed)
+    {
+      try
+      {
+        const pcl_sparse::TriangleMesh mesh = pcl_sparse::loadTriangleMesh (path);
+        if (mesh.vertices.size () != vertices || mesh.triangles.size () != triangles)
+          std::abort ();
+      }
+      catch (const pcl_sparse::Error&)
+      {
+      }
     }
   }
   {  // the scan loader reads every format, meshes as their vertices

@@ -20,7 +20,8 @@
 /// +1/a on a sphere of radius a with outward normals; this is NOT PCL's surface variation).
 ///
 /// Sampling is stratified by area: each patch lays a grid of cells of one expected point each over its
-/// local plane (cell side 1 / (r_P sqrt(density)) in local units), jitters one candidate per cell, weights
+/// local plane (cell side 1 / (r_P sqrt(density)) in local units; at least 8 cells a side, smaller cells
+/// weighing their share, on a patch of fewer points), jitters one candidate per cell, weights
 /// it by the area element sqrt(1 + h_x^2 + h_y^2), and picks its points by systematic sampling along the
 /// cells in serpentine order. This gives blue-noise-like spacing (nearest-neighbour distance CV 0.2 on
 /// smooth models, about 0.22-0.27 on the shared meshes, against about 0.5 for uniform random points and
