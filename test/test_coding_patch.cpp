@@ -227,6 +227,26 @@ TEST (PatchFootprint, BorderClipPullsInTheRaysOutsideTheTriangles)
       EXPECT_TRUE (footprint.contains (i / 20.0, j / 20.0)) << i << " " << j;
 }
 
+// Three angles (the smallest footprint): a border edge from sector 0 to sector 2 (65 to 242 degrees, under 180)
+// crosses rays 1 and 2. Its arc's first ray was also its last, so only ray 0 was tried: ray 1 crossed no
+// border edge, was clipped to the seed, and the footprint lost the sliver of the triangle along 120 degrees.
+TEST (PatchFootprint, ThreeAnglesBorderEdgeAcrossAllSectors)
+{
+  auto at = [] (double degrees, double r) {
+    return Eigen::Vector3d (r * std::cos (degrees * M_PI / 180.0), r * std::sin (degrees * M_PI / 180.0), 0.0);
+  };
+  TriangleMesh mesh;
+  mesh.vertices = {Eigen::Vector3d::Zero (), at (65.0, 1.0), at (242.0, 1.0), at (0.0, 3.0)};
+  mesh.triangles = {Eigen::Vector3i (0, 1, 2), Eigen::Vector3i (0, 2, 3), Eigen::Vector3i (0, 3, 1)};
+  const Patch patch = wholeMeshPatch (mesh, 1.0);
+  const PatchFootprint footprint = computePatchFootprint (patch, mesh, 3, false, true);
+  // The chord from 65 to 242 degrees passes 0.026 from the seed; along 120 degrees it is 0.031 away.
+  const double chord = std::cos (88.5 * M_PI / 180.0) / std::cos ((153.5 - 120.0) * M_PI / 180.0);
+  EXPECT_NEAR (footprint.extentAt (2.0 * M_PI / 3.0), chord, 1e-4);
+  for (const double r : {0.005, 0.015, 0.025, 0.03})
+    EXPECT_TRUE (footprint.contains (at (120.0, r).x (), at (120.0, r).y ())) << r;
+}
+
 // The compression bound cuts codes to fewer atoms: truncatePatchCode gives, bit for bit, what coding the
 // patch again with that L gives (OMP's first k steps do not depend on L), for every k.
 TEST (PatchCoder, TruncatedCodeIsTheCodeWithFewerAtoms)

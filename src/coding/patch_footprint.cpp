@@ -81,13 +81,13 @@ namespace pcl_sparse
       // Counter-clockwise from a to b if cross > 0.
       const Corner& from = cross > 0.0 ? a : b;
       const Corner& to = cross > 0.0 ? b : a;
-      const int last = margin ? (to.sector + 1) % angles : to.sector;
-      for (int k = margin ? from.sector : (from.sector + 1) % angles;; k = (k + 1) % angles)
-      {
-        visit (k);
-        if (k == last)
-          break;
-      }
+      // Counted rather than run up to the last ray: with 3 angles an arc from sector s to sector s + 2 has
+      // its margin ray (s + 3 = s) as its first, and only that one was visited.
+      const int between = (to.sector - from.sector + angles) % angles;  // rays from.sector + 1 .. to.sector
+      const int count = std::min (angles, margin ? between + 2 : between);
+      const int first = margin ? from.sector : (from.sector + 1) % angles;
+      for (int i = 0; i < count; ++i)
+        visit ((first + i) % angles);
     }
 
     /// Raises sector maxima with the points of segment [a, b] (endpoints are counted by the caller): only
