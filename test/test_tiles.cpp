@@ -854,7 +854,9 @@ TEST (TiledEncoding, FarReachingMeshTilesEncodeAsPhaseByPhase)
   }
   EXPECT_GT (farthest, 1);
   TiledModel by_phases = mergeTileEncodings (source.grid (), source.totalPoints (), tiles);
-  const ModelStatistics stats = tiledModelStatistics (source, by_phases);
+  TiledStatisticsOptions far;
+  far.reach = farthestReach (tiles);
+  const ModelStatistics stats = tiledModelStatistics (source, by_phases, far);
   TiledSurfaceEncoder encoder;
   encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
   encoder.setNumberOfThreads (2);
@@ -864,6 +866,14 @@ TEST (TiledEncoding, FarReachingMeshTilesEncodeAsPhaseByPhase)
   EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (by_phases, ModelWriteOptions (), 1));
   EXPECT_EQ (encoder.getStatistics ().rmse, stats.rmse);
   EXPECT_EQ (encoder.getStatistics ().mean_error_over_diagonal, stats.mean_error_over_diagonal);
+  // The figures are the model's: each vertex measured against every patch that lists it, the far ones too
+  // (measured against the neighbour tiles' patches alone: RMSE 0.02410 and largest error 0.112 for 0.02264
+  // and 0.063).
+  TiledModel whole = mergeTileEncodings (source.grid (), source.totalPoints (), tiles);
+  const ModelStatistics truth = whole.model.statistics (mesh->vertices);
+  EXPECT_NEAR (encoder.getStatistics ().rmse, truth.rmse, 1e-12 * truth.rmse);
+  EXPECT_NEAR (encoder.getStatistics ().max_error, truth.max_error, 1e-12 * truth.max_error);
+  EXPECT_EQ (encoder.getStatistics ().uncovered, truth.uncovered);
 }
 
 TEST (TiledEncoding, StatisticsNeedOnlyTheVertexNumbers)

@@ -31,6 +31,7 @@ namespace pcl_sparse
       for (int a = 0; a < 3; ++a)
         out.putF64 (tile.core_bounds.isEmpty () ? 0.0 : tile.core_bounds.max ()[a]);
       out.putF64 (tile.seconds);
+      out.putVarint (static_cast<std::uint64_t> (std::max (0, tile.reach)));
       out.putVarint (numbers_only ? 1 : 0);
       if (tile.model.patches.empty ())
       {
@@ -70,6 +71,7 @@ namespace pcl_sparse
       if (has_bounds)
         tile.core_bounds = Eigen::AlignedBox3d (lo, hi);
       tile.seconds = in.getF64 ("seconds");
+      tile.reach = static_cast<int> (in.getCount ("reach", std::uint64_t{1} << 20));
       const bool numbers_only = in.getCount ("vertex list kind", 1) == 1;
       const std::uint64_t bytes = in.getCount ("model bytes", size);
       if (bytes > 0)

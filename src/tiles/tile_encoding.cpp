@@ -522,9 +522,13 @@ namespace pcl_sparse
     {
       // A phase-0 tile's patches list points beyond the tiles around it: phase by phase, every phase-1 tile
       // knowing what the whole phase 0 covers, and measured after (every vertex list held till then).
+      // Measured against the tiles as far as any tile's patches reach (the neighbours alone left out the far
+      // patches' listings: a 12 x 12 terrain in 12 tiles had RMSE 0.02410 for 0.02264).
+      std::vector<TileEncoding> by_phase =
+        encodeTilesByPhase (*source_, options, num_threads_, [&] (double fraction) { reportProgress ("tiles", fraction); }, !drop);
       tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);
-      for (TileEncoding& tile : encodeTilesByPhase (*source_, options, num_threads_,
-                                                    [&] (double fraction) { reportProgress ("tiles", fraction); }, !drop))
+      tiles->widen (farthestReach (by_phase));
+      for (TileEncoding& tile : by_phase)
         tiles->add (std::move (tile));
       if (measure_)
         tiles->measureReady ();
@@ -538,6 +542,15 @@ namespace pcl_sparse
     peak_held_tiles_ = tiles->peakHeldTiles ();
     peak_held_vertices_ = tiles->peakHeldVertices ();
     peak_pending_tiles_ = tiles->peakPendingTiles ();
+  }
+
+  int
+  farthestReach (const std::vector<TileEncoding>& tiles)
+  {
+    int reach = 1;
+    for (const TileEncoding& tile : tiles)
+      reach = std::max (reach, tile.reach);
+    return reach;
   }
 
   std::vector<TileEncoding>

@@ -10,13 +10,13 @@
 namespace pcl_sparse
 {
   std::vector<std::size_t>
-  neighbourTiles (const TileGrid& grid, std::size_t t)
+  neighbourTiles (const TileGrid& grid, std::size_t t, int reach)
   {
     const Eigen::Vector3i c = grid.coordinates (t);
     std::vector<std::size_t> tiles;
-    for (int k = std::max (0, c.z () - 1); k <= std::min (grid.counts.z () - 1, c.z () + 1); ++k)
-      for (int j = std::max (0, c.y () - 1); j <= std::min (grid.counts.y () - 1, c.y () + 1); ++j)
-        for (int i = std::max (0, c.x () - 1); i <= std::min (grid.counts.x () - 1, c.x () + 1); ++i)
+    for (int k = std::max (0, c.z () - reach); k <= std::min (grid.counts.z () - 1, c.z () + reach); ++k)
+      for (int j = std::max (0, c.y () - reach); j <= std::min (grid.counts.y () - 1, c.y () + reach); ++j)
+        for (int i = std::max (0, c.x () - reach); i <= std::min (grid.counts.x () - 1, c.x () + reach); ++i)
           tiles.push_back ((static_cast<std::size_t> (k) * grid.counts.y () + j) * grid.counts.x () + i);
     std::sort (tiles.begin (), tiles.end ());
     return tiles;
@@ -127,7 +127,7 @@ namespace pcl_sparse
     std::vector<bool> used (grid.size (), false);
     for (std::size_t t = 0; t < grid.size (); ++t)
       if (source.corePoints (t) > 0)
-        for (const std::size_t u : neighbourTiles (grid, t))
+        for (const std::size_t u : neighbourTiles (grid, t, options.reach))
         {
           last_use[u] = t;
           used[u] = true;
@@ -138,11 +138,11 @@ namespace pcl_sparse
       if (source.corePoints (t) == 0)
         continue;
       std::vector<TilePatches> near;
-      for (const std::size_t u : neighbourTiles (grid, t))
+      for (const std::size_t u : neighbourTiles (grid, t, options.reach))
         if (range_of[u])
           near.push_back ({model.patches.data () + range_of[u]->first_patch, range_of[u]->num_patches, model.basis.get ()});
       sums.addTile (source, t, near);
-      for (const std::size_t u : neighbourTiles (grid, t))
+      for (const std::size_t u : neighbourTiles (grid, t, options.reach))
         if (options.drop_vertices && range_of[u] && used[u] && last_use[u] == t)
           for (std::size_t p = range_of[u]->first_patch; p < range_of[u]->first_patch + range_of[u]->num_patches; ++p)
           {

@@ -1,5 +1,6 @@
 #include <pcl_sparse/tiles/wavefront_measurement.h>
 
+#include <pcl_sparse/common/error.h>
 #include <pcl_sparse/tiles/tile_encoding.h>
 
 #include <algorithm>
@@ -57,18 +58,7 @@ namespace pcl_sparse
     for (std::size_t t = 0; t < n; ++t)
       core[t] = source.corePoints (t);
     order_ = wavefrontMeasuringOrder (grid, core);
-    // The tiles with core points around each tile; the last tile measured that needs each tile's patches
-    // (their vertex lists can go after it), as a position in order_; the tiles in the order their errors are
-    // added (ascending, as tiledModelStatistics adds them: the same bits).
-    near_.resize (n);
-    last_use_.assign (n, 0);
-    for (std::size_t m = 0; m < order_.size (); ++m)
-      for (const std::size_t u : neighbourTiles (grid, order_[m]))
-        if (core[u] > 0)
-        {
-          near_[order_[m]].push_back (u);
-          last_use_[u] = m;
-        }
+    // The tiles in the order their errors are added (ascending, as tiledModelStatistics adds them: the same bits).
     for (std::size_t t = 0; t < n; ++t)
       if (core[t] > 0)
         ascending_.push_back (t);
@@ -76,6 +66,29 @@ namespace pcl_sparse
     in_.assign (n, 0);
     held_.assign (n, 0);
     pending_.resize (n);
+    widen (1);
+  }
+
+  void
+  WavefrontMeasurement::widen (int reach)
+  {
+    if (held_tiles_ > 0 || std::find (in_.begin (), in_.end (), 1) != in_.end ())
+      throw Error ("WavefrontMeasurement::widen: tiles are already in");
+    // The tiles with core points around each tile; the last tile measured that needs each tile's patches
+    // (their vertex lists can go after it), as a position in order_.
+    const TileGrid& grid = source_.grid ();
+    std::vector<char> has_core (grid.size (), 0);
+    for (const std::size_t t : ascending_)
+      has_core[t] = 1;
+    near_.assign (grid.size (), {});
+    last_use_.assign (grid.size (), 0);
+    for (std::size_t m = 0; m < order_.size (); ++m)
+      for (const std::size_t u : neighbourTiles (grid, order_[m], reach))
+        if (has_core[u])
+        {
+          near_[order_[m]].push_back (u);
+          last_use_[u] = m;
+        }
   }
 
   void

@@ -63,6 +63,11 @@ namespace pcl_sparse
   std::vector<std::size_t>
   coveredPoints (const std::vector<const TileEncoding*>& tiles);
 
+  /// \brief The largest TileEncoding::reach of \a tiles, at least 1: how far the tiles to measure each point
+  /// against lie (WavefrontMeasurement::widen, TiledStatisticsOptions::reach).
+  int
+  farthestReach (const std::vector<TileEncoding>& tiles);
+
   /// \brief Encodes tile \a t of \a source (see the file's comment).
   /// \param[in] source       the tiled input
   /// \param[in] t            the tile

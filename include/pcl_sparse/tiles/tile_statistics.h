@@ -23,14 +23,20 @@ namespace pcl_sparse
     /// till then (encodeTile's keep_xy); keep them (false) to write them (--store-vertices) or to
     /// reconstruct the input vertices.
     bool drop_vertices = true;
+    /// How many tiles away a tile's patches may list points (the largest TileEncoding::reach of the tiles):
+    /// 1 (default) unless a mesh's triangles are longer than the tiles' margin. Each point is measured
+    /// against the patches of the tiles this near; a patch farther that lists it would be left out.
+    int reach = 1;
   };
 
-  /// \brief The tiles within one step of tile \a t along each axis (\a t included), ascending: those whose
-  /// patches can list a point of \a t's core (a tile's patches list points of its margin box).
-  /// \param[in] grid the grid
-  /// \param[in] t    the tile
+  /// \brief The tiles within \a reach steps of tile \a t along each axis (\a t included), ascending: within
+  /// one step, those whose patches can list a point of \a t's core when they list points of their margin
+  /// box only (a mesh's long triangles may take them farther: TileEncoding::reach).
+  /// \param[in] grid  the grid
+  /// \param[in] t     the tile
+  /// \param[in] reach steps (default 1: the 26 tiles around \a t and \a t)
   std::vector<std::size_t>
-  neighbourTiles (const TileGrid& grid, std::size_t t);
+  neighbourTiles (const TileGrid& grid, std::size_t t, int reach = 1);
 
   /// Some patches of one tile, and the basis they are coded over (a span of a model's patches).
   struct TilePatches

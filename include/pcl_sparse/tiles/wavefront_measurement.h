@@ -42,6 +42,12 @@ namespace pcl_sparse
     /// \param[in] drop_vertices clear the patches' vertex lists once no tile left to measure needs them
     WavefrontMeasurement (const TileSource& source, bool drop_vertices);
 
+    /// \brief Measures each tile against the patches of the tiles within \a reach steps (default 1: its
+    /// neighbours), for tiles whose patches list points farther (TileEncoding::reach > 1: a mesh's triangles
+    /// longer than the margin). Before the first add; throws Error after.
+    void
+    widen (int reach);
+
     /// \brief Takes the encoding of a tile with core points (each such tile once, in any order).
     void
     add (TileEncoding tile);
