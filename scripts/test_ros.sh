@@ -217,6 +217,24 @@ for s in lamppost.pcd milk_color.pcd fast_gicp_251370668.pcd bun000.ply office1.
 done
 scans+=("$data/fandisk_cloud.pcd")
 
+# The cloud publisher's bad parameters: exit 1 naming the parameter (it published at 1 Hz for _rate:=abc and
+# aborted for _rate:=1e-12).
+for bad in "_rate:=abc" "_rate:=nan" "_rate:=1e-12" "_rate:=-1" "_frame_id:=1"; do
+  # shellcheck disable=SC2086
+  if out=$(timeout 20 "$bin/pcl_sparse_cloud_publisher" __name:=test_bad_publisher "_file:=$data/fandisk_cloud.pcd" $bad 2>&1); then
+    status=0
+  else
+    status=$?
+  fi
+  rosparam delete /test_bad_publisher > /dev/null 2>&1 || true
+  name=${bad%%:=*}
+  if [ "$status" -eq 1 ] && grep -q "parameter ~${name#_}" <<< "$out"; then
+    pass "cloud publisher refuses $bad"
+  else
+    fail "cloud publisher with $bad: exit $status, expected 1 and a message naming the parameter: $out"
+  fi
+done
+
 check_result() {  # adds ros_check.py's RESULT line to the counts
   local line p f s
   line=$(grep '^RESULT ' "$1" | tail -1) || { fail "ros_check.py ended without a RESULT line"; return; }

@@ -8,6 +8,9 @@
 /// Parameters: ~file (required), ~frame_id ("cloud"), ~rate (Hz, default 1; 0 = publish once, latched).
 /// Each message is stamped with the time it is published.
 
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse_ros/parameters.h>
+
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -52,9 +55,22 @@ main (int argc, char** argv)
   std::string file;
   std::string frame_id;
   double rate = 1.0;
-  private_nh.param<std::string> ("frame_id", frame_id, "cloud");
-  private_nh.param ("rate", rate, 1.0);
-  if (!private_nh.getParam ("file", file) || rate < 0.0)
+  try
+  {
+    // roscpp's param () took its fallback silently (_rate:=abc published at 1 Hz), and ros::Rate holds its
+    // period in 32-bit seconds (_rate:=1e-12 or nan aborted the node).
+    frame_id = pcl_sparse_ros::readString (private_nh, "frame_id", "cloud");
+    if (private_nh.hasParam ("rate") && !private_nh.getParam ("rate", rate))
+      throw pcl_sparse::Error ("parameter ~rate must be a number");
+    if (!(rate == 0.0 || (rate >= 1e-6 && rate <= 1e6)))
+      throw pcl_sparse::Error ("parameter ~rate must be 0 (once) or in [1e-6, 1e6] Hz, not " + std::to_string (rate));
+  }
+  catch (const pcl_sparse::Error& e)
+  {
+    ROS_FATAL ("%s", e.what ());
+    return 1;
+  }
+  if (!private_nh.getParam ("file", file))
   {
     ROS_FATAL ("usage: pcl_sparse_cloud_publisher _file:=SCAN.{pcd,ply} [_frame_id:=cloud] [_rate:=Hz, 0 = once]");
     return 1;
