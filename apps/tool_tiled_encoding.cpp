@@ -343,9 +343,7 @@ namespace pcl_sparse
         if (!tiles)
           return seconds;
         seconds += decodeShares (std::move (phase1), phase0);
-        tiles->widen (farthestReach (phase0));  // phase0 holds both phases now
-        for (TileEncoding& tile : phase0)
-          tiles->add (std::move (tile));
+        tiles->addAll (std::move (phase0));  // both phases now
         tiles->measureReady ();
         return seconds;
       }

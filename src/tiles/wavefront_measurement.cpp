@@ -72,7 +72,7 @@ namespace pcl_sparse
   void
   WavefrontMeasurement::widen (int reach)
   {
-    if (held_tiles_ > 0 || std::find (in_.begin (), in_.end (), 1) != in_.end ())
+    if (std::find (in_.begin (), in_.end (), 1) != in_.end ())
       throw Error ("WavefrontMeasurement::widen: tiles are already in");
     // The tiles with core points around each tile; the last tile measured that needs each tile's patches
     // (their vertex lists can go after it), as a position in order_.
@@ -89,6 +89,14 @@ namespace pcl_sparse
           near_[order_[m]].push_back (u);
           last_use_[u] = m;
         }
+  }
+
+  void
+  WavefrontMeasurement::addAll (std::vector<TileEncoding> tiles)
+  {
+    widen (farthestReach (tiles));
+    for (TileEncoding& tile : tiles)
+      add (std::move (tile));
   }
 
   void

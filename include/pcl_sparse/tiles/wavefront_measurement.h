@@ -48,6 +48,11 @@ namespace pcl_sparse
     void
     widen (int reach);
 
+    /// \brief Takes every tile with core points at once (a phase-by-phase encoding), measured against the
+    /// tiles as far as any of their patches reach (widen (farthestReach (tiles))). Before any add.
+    void
+    addAll (std::vector<TileEncoding> tiles);
+
     /// \brief Takes the encoding of a tile with core points (each such tile once, in any order).
     void
     add (TileEncoding tile);
