@@ -539,6 +539,17 @@ TEST (Resampling, RefusesBadSetup)
   EXPECT_THROW (resampling.setDensity (-1.0), Error);
   EXPECT_THROW (resampling.setDensity (std::nan ("")), Error);
   EXPECT_THROW (resampling.setSpacing (0.0), Error);
+  // 1 / spacing^2 overflows to infinity or underflows to 0: the error names the spacing given.
+  for (const auto& [spacing, text] : {std::pair (1e-200, "spacing 1e-200 gives"), std::pair (1e200, "spacing 1e+200 gives")})
+    try
+    {
+      resampling.setSpacing (spacing);
+      ADD_FAILURE () << "spacing " << spacing << " accepted";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find (text), std::string::npos) << e.what ();
+    }
   resampling.setDensity (1e12);  // about 6e12 points
   EXPECT_THROW (resampling.compute (cloud), Error);
   auto empty = std::make_shared<SparseSurfaceModel> ();

@@ -599,7 +599,15 @@ namespace pcl_sparse
   {
     if (!(spacing > 0.0) || !std::isfinite (spacing))
       throw Error (name_ + ": spacing must be a positive length");
-    setDensity (1.0 / (spacing * spacing));
+    // 1e-200 gave an infinite density, 1e200 a zero one, and the error named a density nobody set.
+    const double density = 1.0 / (spacing * spacing);
+    if (!(density > 0.0) || !std::isfinite (density))
+    {
+      std::ostringstream message;
+      message << name_ << ": spacing " << spacing << " gives no usable density (1 / spacing^2 must be a finite number > 0)";
+      throw Error (message.str ());
+    }
+    setDensity (density);
   }
 
   void
