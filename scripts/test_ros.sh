@@ -163,6 +163,7 @@ nodelet=/usr/lib/nodelet/nodelet  # run directly: rosrun would search the source
 # default).
 scan_points=4000 mesh_points=5000 roundtrip_points=2000 decode_slope=30 decode_clearance=0.1
 start resample.log "$bin/pcl_sparse_resample_node" __name:=test_resample "~input:=/scan" _points:=$scan_points
+start resample_default.log "$bin/pcl_sparse_resample_node" __name:=test_resample_default
 start decode.log "$bin/pcl_sparse_decode_node" __name:=test_decode _frame_id:=mesh _points:=$mesh_points \
   _max_slope:=$decode_slope _clearance:=$decode_clearance
 start roundtrip.log "$bin/pcl_sparse_decode_node" __name:=test_roundtrip "~model:=/test_resample/model" \
@@ -176,7 +177,7 @@ start decode_nodelet.log "$nodelet" load pcl_sparse/DecodeNodelet test_manager _
 
 # Bad parameters: the node exits 1 naming the parameter; a nodelet logs it and leaves its manager running.
 for bad in "_points:=0" "_points:=10 _spacing:=0.01" "_preset:=fast" "_preset:=5" "_threads:=abc" "_threads:=2.7" \
-           "_viewpoint:=1,2" "_max_slope:=95" "_clearance:=-1"; do
+           "_viewpoint:=1,2" "_max_slope:=95" "_clearance:=-1" "_spacing:=1e-200"; do
   # shellcheck disable=SC2086
   if out=$(timeout 20 "$bin/pcl_sparse_resample_node" __name:=test_bad_parameter $bad 2>&1); then status=0; else status=$?; fi
   rosparam delete /test_bad_parameter > /dev/null 2>&1 || true
@@ -245,6 +246,7 @@ check=(/usr/bin/python3 "$root/ros/test/ros_check.py" --bin "$bin")
 "${check[@]}" --mesh-model "$data/fandisk.psm" --mesh-reference "$data/fandisk_reference.pcd" \
   --decoders /test_decode /test_decode_nodelet --decode-frame mesh \
   --resamplers /test_resample /test_resample_nodelet --roundtrip /test_roundtrip \
+  --default-resampler /test_resample_default \
   --roundtrip-points $roundtrip_points --points $scan_points --topic /scan --scans "${scans[@]}" \
   2>&1 | tee "$tmp/check.log" || true
 check_result "$tmp/check.log"

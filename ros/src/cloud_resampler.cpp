@@ -47,6 +47,7 @@ namespace pcl_sparse_ros
                               static_cast<float> (settings.viewpoint.z ()));
       auto model = std::make_shared<pcl_sparse::SparseSurfaceModel> ();
       encoder.compute (*model);
+      result.kept_points = encoder.getCleaningReport ().kept;
       return model;
     }
 
@@ -111,7 +112,7 @@ namespace pcl_sparse_ros
     if (want_cloud)
     {
       start = Clock::now ();
-      resample (model, resampling, result.input_points, settings.threads, result.layout.output, result.cloud);
+      resample (model, resampling, result.kept_points, settings.threads, result.layout.output, result.cloud);
       result.cloud.header = input.header;
       result.resample_seconds = secondsSince (start);
       if (on_cloud)
@@ -146,10 +147,6 @@ namespace pcl_sparse_ros
     ros::NodeHandle nh = private_nh;
     settings_ = readEncoderSettings (nh);
     resampling_ = readResamplingSettings (nh);
-    if (settings_.has_viewpoint && !settings_.viewpoint_applied)
-      ROS_WARN ("[%s] ~viewpoint (%g, %g, %g) is read but not used: this encoder has no viewpoint option yet "
-                "(it comes with point-cloud input)", name_.c_str (), settings_.viewpoint.x (), settings_.viewpoint.y (),
-                settings_.viewpoint.z ());
     // Latched, and a subscriber that comes gets the last input encoded for it (serveLastInput).
     const ros::SubscriberStatusCallback on_subscriber = [this] (const ros::SingleSubscriberPublisher&) { serveLastInput (); };
     cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2> ("output", 1, on_subscriber, ros::SubscriberStatusCallback (),
@@ -201,8 +198,8 @@ namespace pcl_sparse_ros
                         (cloud_published ? "; only the resampled cloud published" : "; nothing published"));
       return;
     }
-    ROS_DEBUG ("[%s] %s: %zu points -> %zu patches in %.3f s, resampled in %.3f s, %zu model bytes in %.3f s",
-               name_.c_str (), pointTypeName (result.layout.input), result.input_points, result.patches,
+    ROS_DEBUG ("[%s] %s: %zu points (%zu kept) -> %zu patches in %.3f s, resampled in %.3f s, %zu model bytes in %.3f s",
+               name_.c_str (), pointTypeName (result.layout.input), result.input_points, result.kept_points, result.patches,
                result.encode_seconds, result.resample_seconds, result.model.size (), result.model_seconds);
     if (want_model)
       model_pub_.publish (toModelMessage (std::move (result.model)));

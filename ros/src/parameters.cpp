@@ -105,6 +105,11 @@ namespace pcl_sparse_ros
     if (readNumber (private_nh, "spacing", value))
     {
       requirePositive ("spacing", value);
+      // 1e-200 was taken here, then every cloud failed naming a density: the resampling's density is 1 / spacing^2.
+      const double density = 1.0 / (value * value);
+      if (!(density > 0.0 && std::isfinite (density)))
+        throw pcl_sparse::Error ("parameter ~spacing must be a length whose 1 / spacing^2 is finite and > 0 "
+                                 "(about 1e-154 to 1e154)");
       budget = {PointBudget::Kind::Spacing, value};
       ++given;
     }
@@ -160,16 +165,6 @@ namespace pcl_sparse_ros
     throw pcl_sparse::Error ("parameter ~preset must be \"paper\" or \"default\", not \"" + preset + "\"");
   }
 
-  bool
-  applyViewpoint (const Eigen::Vector3d& viewpoint, pcl_sparse::SparseSurfaceEncoderOptions& options)
-  {
-    // ~viewpoint reaches the encoder as a stage setting (SparseSurfaceEncoder::setViewPoint, in
-    // encodeAs), not as an option: nothing to set here, and it is always applied.
-    (void) viewpoint;
-    (void) options;
-    return true;
-  }
-
   EncoderSettings
   readEncoderSettings (const ros::NodeHandle& private_nh)
   {
@@ -187,7 +182,6 @@ namespace pcl_sparse_ros
       const std::vector<double> xyz = readTriple (private_nh, "viewpoint");
       settings.has_viewpoint = true;
       settings.viewpoint = Eigen::Vector3d (xyz[0], xyz[1], xyz[2]);
-      settings.viewpoint_applied = applyViewpoint (settings.viewpoint, settings.options);
     }
     if (readNumber (private_nh, "model_tolerance", settings.model_tolerance) &&
         !(settings.model_tolerance >= 0.0 && settings.model_tolerance < 1.0))

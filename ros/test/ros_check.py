@@ -17,6 +17,8 @@ publishes inputs and checks what comes back:
            as doubles) are refused by both resamplers with the reason on /rosout; the scans after them
            show that the node and the nodelet's manager live on. Clouds whose intensity cannot be coded
            (beside normals, or UINT16) come out without an intensity field.
+  default  a resample node without ~points gives as many points as a dirty cloud keeps after cleaning
+           (copies, "no return" zeros and NaN dropped).
   demo     (--demo) the launch file's nodes are up, and a cloud it publishes once, before anyone listens,
            reaches /resample/output and /decode/output.
 
@@ -387,6 +389,37 @@ class Checker:
                 self.results.check("%s: no intensity out of a cloud with %s" % (node, label), problems, " ".join(names))
         publisher.unregister()
 
+    # ---- default count: as many points as the cloud has after cleaning ----------------------------------
+    def check_default_count(self):
+        node = self.args.default_resampler
+        name = "%s without ~points: as many points as the cloud keeps after cleaning" % node
+        output = Topic(node + "/output", PointCloud2)
+        publisher = rospy.Publisher(node + "/input", PointCloud2, queue_size=1)
+        if not output.connected(10) or not wait_until(lambda: publisher.get_num_connections() > 0, 10):
+            self.results.check(name, ["no connection to %s" % node])
+            return
+        # 3000 distinct points on a gentle wave, each stored twice, then 800 "no return" zeros and 200 NaN: a
+        # driver's frame. The count was the 6800 finite points (zeros and copies counted); cleaning keeps 3000.
+        kept = 3000
+        grid = [(1.0 + i % 60 * 0.01, i // 60 * 0.01, 0.02 * math.sin(i % 60 * 0.2)) for i in range(kept)]
+        points = [p for p in grid for _ in range(2)] + [(0.0, 0.0, 0.0)] * 800 + [(math.nan,) * 3] * 200
+        fields = [PointField(name=n, offset=4 * i, datatype=7, count=1) for i, n in enumerate("xyz")]
+        message = PointCloud2(height=1, width=len(points), fields=fields, is_bigendian=False, point_step=12,
+                              row_step=12 * len(points), data=b"".join(struct.pack("<3f", *p) for p in points),
+                              is_dense=False)
+        message.header.frame_id = "dirty_scan"
+        message.header.stamp = rospy.Time.now()
+        publisher.publish(message)
+        wait_until(lambda: output.first() is not None or self.node_error(node), 60)
+        error, cloud = self.node_error(node), output.first()
+        if cloud is None:
+            self.results.check(name, [error.msg if error else "no cloud within 60 s"])
+        else:
+            box = bounding_box(grid)
+            self.results.check(name, cloud_problems(cloud, kept, None, "dirty_scan", message.header.stamp, box, grid),
+                               "%d points from %d (%d finite)" % (cloud.width * cloud.height, len(points), 2 * kept + 800))
+        publisher.unregister()
+
     # ---- scans: real clouds through the resample node and nodelet --------------------------------------
     def check_scans(self):
         resamplers = {node: Topic(node + "/output", PointCloud2) for node in self.args.resamplers}
@@ -508,6 +541,7 @@ def main():
     parser.add_argument("--resamplers", nargs="*", default=[], help="resample node / nodelet namespaces")
     parser.add_argument("--roundtrip", help="decode node fed by the first resampler's ~model")
     parser.add_argument("--roundtrip-points", type=int, default=0, help="its ~points")
+    parser.add_argument("--default-resampler", help="a resample node without ~points (fed on its ~input)")
     parser.add_argument("--topic", default="/scan", help="the resamplers' ~input")
     parser.add_argument("--points", type=int, default=0, help="the resamplers' ~points")
     parser.add_argument("--scans", nargs="*", default=[], help=".pcd / .ply files to publish")
@@ -525,6 +559,8 @@ def main():
             checker.check_demo()
         if args.decoders:
             checker.check_decode()
+        if args.default_resampler:
+            checker.check_default_count()
         if args.resamplers:
             checker.check_malformed()
             checker.check_scans()

@@ -31,6 +31,7 @@ namespace pcl_sparse_ros
     sensor_msgs::PointCloud2 cloud;    ///< resampled, with the input's header (empty unless asked)
     std::vector<std::uint8_t> model;   ///< .psm bytes (empty unless asked)
     std::size_t input_points = 0;      ///< finite input points
+    std::size_t kept_points = 0;       ///< points left after the encoder's cleaning (no "no return" zeros, no duplicates)
     std::size_t patches = 0;
     double encode_seconds = 0.0;
     double resample_seconds = 0.0;
@@ -40,7 +41,8 @@ namespace pcl_sparse_ros
   /// \brief The node's work on one message, without ROS transport: encode \a input, then resample into
   /// result.cloud if \a want_cloud and write result.model if \a want_model. Throws pcl_sparse::Error when
   /// the cloud has no x y z, the encoder refuses it, or the budget is out of range.
-  /// \param[in] resampling point count (PointBudget::Kind::Default = the number of finite input points) and
+  /// \param[in] resampling point count (PointBudget::Kind::Default = the points the encoder's cleaning
+  ///                       keeps, as pcl_sparse_resample on a scan: a clean cloud of the same size) and
   ///                       resampling options
   /// \param[in] on_cloud if set, called with result.cloud as soon as it is made, before the model is
   ///                     written: the node publishes it there, so the model costs the cloud no latency

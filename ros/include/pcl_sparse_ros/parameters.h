@@ -59,9 +59,8 @@ namespace pcl_sparse_ros
   {
     std::string preset = "default";                  ///< ~preset
     pcl_sparse::SparseSurfaceEncoderOptions options; ///< the preset's options, then ~rho
-    bool has_viewpoint = false;                      ///< ~viewpoint given
-    Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero ();
-    bool viewpoint_applied = false;                  ///< the encoder took it (applyViewpoint)
+    bool has_viewpoint = false;                      ///< ~viewpoint given: the sensor position normals face
+    Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero ();  ///< (SparseSurfaceEncoder::setViewPoint)
     double model_tolerance = 1e-4;                   ///< ~model_tolerance: .psm tolerance (fraction of bbox diagonal; 0 = lossless)
     int threads = 0;                                 ///< ~threads: OpenMP threads (0 = all); outputs do not depend on it
   };
@@ -74,11 +73,6 @@ namespace pcl_sparse_ros
   /// library's defaults, the quadric and dct atoms) or "paper" (the paper's configuration). Throws for other names.
   pcl_sparse::SparseSurfaceEncoderOptions
   presetOptions (const std::string& preset);
-
-  /// \brief THE one place where ~viewpoint reaches the encoder. Returns whether the encoder took it:
-  /// false for now, as the encoder has no viewpoint option before point-cloud input lands.
-  bool
-  applyViewpoint (const Eigen::Vector3d& viewpoint, pcl_sparse::SparseSurfaceEncoderOptions& options);
 
   /// Reads ~threads (0 = all): a whole number in [0, 1024].
   int
