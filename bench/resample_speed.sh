@@ -3,7 +3,8 @@
 # from the same bench source, run alternately in the same session -> bench/results/resample_speed.md
 #   bench/resample_speed.sh [BUILD_DIR] [BASE_COMMIT]   (defaults: build, the merge base with main)
 # Env: N (points, default 4000000), REPEAT (runs per row, best counts, default 5), MESHES (file names in
-# ../shared/meshes), BASIS (paper, the default here as in the first runs; quadric: the library's default; dct).
+# ../shared/meshes), BASIS (paper, the default here as in the first runs; quadric: the library's default; dct),
+# OUT (the report, default bench/results/resample_speed.md).
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
@@ -22,13 +23,14 @@ if [ ! -x "$base_src/build/bench/bench_resample_speed" ]; then
   rm -rf "$base_src" && mkdir -p "$base_src"
   git -C "$root" archive "$base_commit" | tar -x -C "$base_src"
   cp "$here/bench_resample_speed.cpp" "$base_src/bench/"
-  cmake -S "$base_src" -B "$base_src/build" -DCMAKE_BUILD_TYPE=Release -DPCL_SPARSE_BUILD_SAMPLES=OFF >/dev/null
+  cmake -S "$base_src" -B "$base_src/build" -DCMAKE_BUILD_TYPE=Release -DPCL_SPARSE_BUILD_SAMPLES=OFF \
+    $(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache) >/dev/null
   cmake --build "$base_src/build" --target bench_resample_speed -j2 >/dev/null
 fi
 cp "$here/bench_resample_speed.cpp" "$base_src/bench/"
 cmake --build "$base_src/build" --target bench_resample_speed -j2 >/dev/null
 
-out="$here/results/resample_speed.md"
+out=${OUT:-$here/results/resample_speed.md}
 rows=$(mktemp)
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 for mesh in $meshes; do
