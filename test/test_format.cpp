@@ -19,6 +19,8 @@
 #include <fstream>
 #include <iostream>
 
+#include <unistd.h>
+
 using namespace pcl_sparse;
 using namespace pcl_sparse_test;
 
@@ -528,19 +530,18 @@ TEST (ModelFile, RangeCodedAndVarintLayoutsDecodeToTheSameModel)
              }()));
 }
 
-TEST (ModelFile, PatchesPromisedByTheSeedsAreNotAllocatedBeforeTheyDecode)
+/// A quantised, range-coded version-1 file promising \a m patches of the paper's basis, with byte-plane
+/// seeds (3 m zero bytes) or, with \a coded_seeds, an empty range-coded SEED; m zero radius bytes; FRAM,
+/// FOOT, ATOM and COEF empty.
+std::vector<std::uint8_t>
+fileWithPromisedPatches (std::uint32_t m, bool coded_seeds)
 {
-  // SEED and RADI hold a few bytes a patch (zstd may shrink them 64 times), the range-coded sections less
-  // than a byte: the reader made all M patches (285 bytes each) and unpacked M seed and radius integers
-  // (32 bytes) before decoding the first, so a 280 KB file promising 4 million patches took 1.1 GB before
-  // its empty FOOT section was found (this stored one: 4 MB, 310 MB).
-  const std::uint32_t m = 1u << 20;
   ByteWriter out;
   const std::uint8_t magic[8] = {0x89, 'P', 'S', 'M', '\r', '\n', 0x1a, '\n'};
   out.putBytes (magic, 8);
   out.putU16 (1);
-  out.putU16 (1 | 8);  // quantised, range-coded
-  out.putU8 (1);       // the paper's cosine basis
+  out.putU16 (header_flag::quantised | header_flag::range_coded | (coded_seeds ? header_flag::coded_seeds : 0));
+  out.putU8 (1);  // the paper's cosine basis
   out.putU8 (0);
   out.putU16 (12);
   out.putU32 (m);
@@ -560,7 +561,7 @@ TEST (ModelFile, PatchesPromisedByTheSeedsAreNotAllocatedBeforeTheyDecode)
   quan.putU8 (4);  // extent bits
   quan.putF64 (1e-3);
   quan.putF64 (1e-3);
-  const std::vector<std::uint8_t> seeds (3 * std::size_t (m), 0), radii (m, 0), none;
+  const std::vector<std::uint8_t> seeds (coded_seeds ? 0 : 3 * std::size_t (m), 0), radii (m, 0), none;
   for (const auto& [tag, payload] : std::vector<std::pair<std::string, const std::vector<std::uint8_t>*>> {
          {"QUAN", &quan.bytes ()}, {"SEED", &seeds}, {"FRAM", &none}, {"RADI", &radii}, {"FOOT", &none},
          {"ATOM", &none}, {"COEF", &none}})
@@ -574,13 +575,35 @@ TEST (ModelFile, PatchesPromisedByTheSeedsAreNotAllocatedBeforeTheyDecode)
     out.putU32 (crc32 (out.bytes ().data () + start, 28));
     out.putBytes (payload->data (), payload->size ());
   }
-  const std::vector<std::uint8_t>& bytes = out.bytes ();
+  return out.bytes ();
+}
+
+TEST (ModelFile, PatchesPromisedByTheSeedsAreNotAllocatedBeforeTheyDecode)
+{
+  // SEED and RADI hold a few bytes a patch (zstd may shrink them 64 times), the range-coded sections less
+  // than a byte: the reader made all M patches (285 bytes each) and unpacked M seed and radius integers
+  // (32 bytes) before decoding the first, so a 280 KB file promising 4 million patches took 1.1 GB before
+  // its empty FOOT section was found (this stored one: 4 MB, 310 MB).
+  const std::vector<std::uint8_t> bytes = fileWithPromisedPatches (1u << 20, false);
   if (peakResidentKb (true) < 0)
     GTEST_SKIP () << "no /proc/self/clear_refs to measure the peak";
   const long before = peakResidentKb (false);
   expectErrorContaining (bytes, "section FOOT");
   const long grown = peakResidentKb (false) - before;
   EXPECT_LT (grown, 64 * 1024) << "kB, for a file of " << bytes.size () / 1024 << " kB";
+}
+
+TEST (ModelFile, PatchesThatCannotFitInMemoryAreRefusedBeforeDecoding)
+{
+  // A range-coded patch (coded seeds included) may take less than a byte, and only RADI grows with the
+  // patches (one byte each, zstd may shrink it 64 times): a 155 KB file decoded to 1 GB of patches, so a
+  // few MB could promise more than the machine's memory and end in an OOM kill. 1.2 x what fits (at 285
+  // bytes a patch) is refused before a patch is decoded, naming the memory (its empty sections would fail).
+  const double physical = static_cast<double> (::sysconf (_SC_PHYS_PAGES)) * static_cast<double> (::sysconf (_SC_PAGE_SIZE));
+  const double m = 1.2 * physical / 285.0;
+  if (!(m < 5e8))
+    GTEST_SKIP () << "this machine's " << physical / 1e9 << " GB need a file of more than 500 MB of radii";
+  expectErrorContaining (fileWithPromisedPatches (static_cast<std::uint32_t> (m), true), "more than this machine's");
 }
 
 TEST (ModelFile, DamagedRangeCodedSectionsAreErrorsNotCrashes)

@@ -3,6 +3,7 @@
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/memory_limit.h>
 #include <pcl_sparse/format/attribute_sections.h>
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/crc32.h>
@@ -54,6 +55,8 @@ namespace pcl_sparse
     // compress 1-10x; the writer stores a section uncompressed if it would exceed the bound.
     constexpr std::uint64_t kMaxExpansion = 64;
     constexpr std::uint64_t kExpansionSlack = 4096;
+    // Memory of a decoded patch (PatchCode with its footprint and atoms), measured: 285 bytes.
+    constexpr double kDecodedBytesPerPatch = 285.0;
     // Share of the tolerance given to each quantised quantity, about proportional to how many values
     // of each a model has (3 seed, 3 frame, 1 radius, ~12 coefficient values per patch), which minimises
     // the total bits for a given sum of bounds; the remaining 5 % covers the second-order cross terms
@@ -1212,6 +1215,9 @@ namespace pcl_sparse
     const bool adaptive_footprints = shared.flags & header_flag::adaptive_footprints;
     const bool coded_seeds = shared.flags & header_flag::coded_seeds;
     checkSectionSizes (seed, frame, radius, foot, atom, m, quantised, range_coded, coded_seeds, q);
+    // A range-coded patch may take less than a byte (a 155 KB file decoded to 1 GB of patches): what the
+    // header promises must fit in memory before the first patch is decoded, or a few MB end in an OOM kill.
+    checkFitsInMemory (static_cast<double> (m) * kDecodedBytesPerPatch, name + ": " + std::to_string (m) + " patches");
     // Patches are added as they decode, not made for the m the header promises up front: SEED and RADI
     // hold only a few bytes a patch, which zstd may shrink 64 times (and a range-coded patch may take less
     // than a byte), so a 280 KB file promising 4 million patches had the reader take 1.1 GB (285 bytes a
