@@ -8,6 +8,8 @@
 
 #include <pcl_conversions/pcl_conversions.h>
 
+#include <boost/make_shared.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -101,7 +103,7 @@ namespace pcl_sparse_ros
   ResampleResult
   resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings,
                  const ResamplingSettings& resampling, bool want_cloud, bool want_model,
-                 const std::function<void (const sensor_msgs::PointCloud2&)>& on_cloud)
+                 const std::function<void (const sensor_msgs::PointCloud2::ConstPtr&)>& on_cloud)
   {
     ResampleResult result;
     result.layout = cloudLayoutOf (input);
@@ -112,8 +114,9 @@ namespace pcl_sparse_ros
     if (want_cloud)
     {
       start = Clock::now ();
-      resample (model, resampling, result.kept_points, settings.threads, result.layout.output, result.cloud);
-      result.cloud.header = input.header;
+      result.cloud = boost::make_shared<sensor_msgs::PointCloud2> ();
+      resample (model, resampling, result.kept_points, settings.threads, result.layout.output, *result.cloud);
+      result.cloud->header = input.header;
       result.resample_seconds = secondsSince (start);
       if (on_cloud)
         on_cloud (result.cloud);
@@ -182,7 +185,7 @@ namespace pcl_sparse_ros
     ResampleResult result;
     bool cloud_published = false;
     // The cloud goes out as soon as it is made: the model's bytes (~0.03 s on a 640x480 frame) come after.
-    const auto publish_cloud = [this, &cloud_published] (const sensor_msgs::PointCloud2& cloud) {
+    const auto publish_cloud = [this, &cloud_published] (const sensor_msgs::PointCloud2::ConstPtr& cloud) {
       cloud_pub_.publish (cloud);
       cloud_published = true;
     };
@@ -202,7 +205,7 @@ namespace pcl_sparse_ros
                name_.c_str (), pointTypeName (result.layout.input), result.input_points, result.kept_points, result.patches,
                result.encode_seconds, result.resample_seconds, result.model.size (), result.model_seconds);
     if (want_model)
-      model_pub_.publish (toModelMessage (std::move (result.model)));
+      model_pub_.publish (boost::make_shared<const std_msgs::UInt8MultiArray> (toModelMessage (std::move (result.model))));
   }
 
   void

@@ -7,6 +7,8 @@
 
 #include <pcl_conversions/pcl_conversions.h>
 
+#include <boost/make_shared.hpp>
+
 #include <algorithm>
 #include <memory>
 
@@ -61,10 +63,11 @@ namespace pcl_sparse_ros
       return;
     served_ = true;
     const std_msgs::UInt8MultiArrayConstPtr model = last_model_;
-    sensor_msgs::PointCloud2 cloud;
+    // Shared and not changed after publish: a nodelet in the same manager gets it without a copy.
+    const auto cloud = boost::make_shared<sensor_msgs::PointCloud2> ();
     try
     {
-      cloud = decodeModelMessage (*model, resampling_, threads_);
+      *cloud = decodeModelMessage (*model, resampling_, threads_);
     }
     catch (const std::exception& e)  // not only the library's errors: std::bad_alloc ended the node (and a manager)
     {
@@ -73,8 +76,8 @@ namespace pcl_sparse_ros
         ROS_ERROR ("[%s] cannot decode %zu bytes: %s; nothing published", name_.c_str (), model->data.size (), e.what ());
       return;
     }
-    cloud.header.frame_id = frame_id_;
-    cloud.header.stamp = ros::Time::now ();
+    cloud->header.frame_id = frame_id_;
+    cloud->header.stamp = ros::Time::now ();
     cloud_pub_.publish (cloud);
   }
 } // namespace pcl_sparse_ros

@@ -28,7 +28,9 @@ namespace pcl_sparse_ros
   struct ResampleResult
   {
     CloudLayout layout;
-    sensor_msgs::PointCloud2 cloud;    ///< resampled, with the input's header (empty unless asked)
+    /// Resampled, with the input's header (null unless asked). Shared: published as it is, a nodelet in the
+    /// same manager gets it without a copy or serialisation.
+    sensor_msgs::PointCloud2::Ptr cloud;
     std::vector<std::uint8_t> model;   ///< .psm bytes (empty unless asked)
     std::size_t input_points = 0;      ///< finite input points
     std::size_t kept_points = 0;       ///< points left after the encoder's cleaning (no "no return" zeros, no duplicates)
@@ -49,7 +51,7 @@ namespace pcl_sparse_ros
   ResampleResult
   resampleCloud (const sensor_msgs::PointCloud2& input, const EncoderSettings& settings,
                  const ResamplingSettings& resampling, bool want_cloud, bool want_model,
-                 const std::function<void (const sensor_msgs::PointCloud2&)>& on_cloud = {});
+                 const std::function<void (const sensor_msgs::PointCloud2::ConstPtr&)>& on_cloud = {});
 
   /// The .psm bytes as a std_msgs/UInt8MultiArray (one dimension labelled "psm").
   std_msgs::UInt8MultiArray
