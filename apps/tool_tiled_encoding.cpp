@@ -141,8 +141,9 @@ namespace pcl_sparse
         }
 
         /// Encodes every tile; rank 0 gives them to \a tiles (the other ranks pass none). Returns false, on
-        /// every rank, when a phase-0 tile's patches list points beyond its neighbours (their phase-1 tiles
-        /// may have missed what it covers); throws, on every rank, the error of the lowest rank that failed.
+        /// every rank, when a tile's patches list points beyond its neighbours (wavefrontMustRestart: a phase-0
+        /// tile's phase-1 neighbours may have missed what it covers, and rank 0 measures each tile against its
+        /// neighbours' patches only); throws, on every rank, the error of the lowest rank that failed.
         bool
         run (WavefrontMeasurement* tiles)
         {
@@ -200,7 +201,7 @@ namespace pcl_sparse
           {
             mine = encodeTiles (source_, these, options_, threads_, known, {}, keep_xy_);
             for (const TileEncoding& tile : mine)
-              if (reachesBeyondNeighbours (grid_, tile))
+              if (wavefrontMustRestart (grid_, tile, true))  // rank 0 measures every tile
                 status = StepStatus::far_reaching;
           }
           catch (const std::exception& e)
@@ -406,8 +407,8 @@ namespace pcl_sparse
                          ModelStatistics& stats)
       {
         TiledEncodingReport seconds;
-        // Slab by slab (SlabRun); phase by phase when a phase-0 tile's patches reach beyond its neighbours, as
-        // TiledSurfaceEncoder does.
+        // Slab by slab (SlabRun); phase by phase when a tile's patches reach beyond its neighbours, as
+        // TiledSurfaceEncoder does (wavefrontMustRestart).
         std::unique_ptr<WavefrontMeasurement> tiles;
         if (group.rank () == 0)
           tiles = std::make_unique<WavefrontMeasurement> (source, statistics_options.drop_vertices);

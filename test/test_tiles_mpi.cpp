@@ -171,6 +171,18 @@ TEST_F (TilesMpi, RanksHoldABandOfTiles)
   EXPECT_TRUE (pcl_sparse_test::readBytes (dir_.file ("far_two.psm")) == pcl_sparse_test::readBytes (dir_.file ("far_alone.psm")));
   EXPECT_EQ (figures (out), far_alone);
   EXPECT_EQ (jsonValue (out, "held_tiles"), jsonValue (out, "tiles")) << out;
+  // Only a phase-1 tile's patches reach that far (a long triangle between two phase-1 tiles two apart, as
+  // TiledEncoding.FarReachingPhaseOneTilesAreMeasuredAgainstEveryTileThatFar): rank 0 measured each tile
+  // against its neighbours only, and its figures were not the one process's.
+  TriangleMesh fin = terrain (72);
+  fin.triangles.emplace_back (6 * 73 + 18, 6 * 73 + 42, 7 * 73 + 18);
+  saveTriangleMesh (mesh_, fin);
+  const std::string six = tools + "/pcl_sparse_encode " + mesh_ + " -tiles 6 -threads 1 -q --json";
+  ASSERT_EQ (runCommand (six + " -o " + dir_.file ("fin_alone.psm"), out), 0) << out;
+  const std::string fin_alone = figures (out);
+  ASSERT_EQ (runCommand (mpirun (2) + six + " -o " + dir_.file ("fin_two.psm"), out), 0) << out;
+  EXPECT_TRUE (pcl_sparse_test::readBytes (dir_.file ("fin_two.psm")) == pcl_sparse_test::readBytes (dir_.file ("fin_alone.psm")));
+  EXPECT_EQ (figures (out), fin_alone);
 }
 
 TEST_F (TilesMpi, OneRankFailingStopsThemAll)

@@ -306,7 +306,7 @@ namespace pcl_sparse
 
     /// Encodes (and measures, with \a measure) every tile with core points in the wavefront order (see
     /// TiledSurfaceEncoder::compute) into \a tiles (WavefrontMeasurement); stops early, with far_reaching
-    /// set, if a phase-0 tile's patches list points beyond its neighbours. The threads share one lock: each
+    /// set, if a tile makes it start again phase by phase (wavefrontMustRestart). The threads share one lock: each
     /// measures the next tile when it can (one at a time, in order), else encodes the next tile it can, else
     /// waits.
     class WavefrontRun
@@ -363,7 +363,8 @@ namespace pcl_sparse
         }
       }
 
-      /// Whether a phase-0 tile's patches listed points beyond its neighbours (the run stopped).
+      /// Whether a tile's patches listed points beyond its neighbours where that matters (wavefrontMustRestart:
+      /// a phase-0 tile's, or any tile's when measuring) and the run stopped.
       bool farReaching () const { return far_reaching_; }
 
     private:
@@ -444,7 +445,7 @@ namespace pcl_sparse
           stop_ = true;
         }
         tile.tile = t;
-        if (reachesBeyondNeighbours (grid_, tile))  // a failed tile has no patches (reach 0)
+        if (wavefrontMustRestart (grid_, tile, measure_))  // a failed tile has no patches (reach 0)
           far_reaching_ = stop_ = true;
         tiles_.add (std::move (tile));
         state_[t] = State::done;
@@ -520,8 +521,9 @@ namespace pcl_sparse
     run.run ();
     if (run.farReaching ())
     {
-      // A phase-0 tile's patches list points beyond the tiles around it: phase by phase, every phase-1 tile
-      // knowing what the whole phase 0 covers, and measured after (every vertex list held till then).
+      // A phase-0 tile's patches (or, measuring, any tile's) list points beyond the tiles around it: phase by
+      // phase, every phase-1 tile knowing what the whole phase 0 covers, and measured after (every vertex list
+      // held till then).
       // Measured against the tiles as far as any tile's patches reach (the neighbours alone left out the far
       // patches' listings: a 12 x 12 terrain in 12 tiles had RMSE 0.02410 for 0.02264).
       tiles = std::make_unique<WavefrontMeasurement> (*source_, drop);

@@ -52,6 +52,19 @@ namespace pcl_sparse
     return tilePhase (grid, tile.tile) == 0 && tile.reach > 1;
   }
 
+  /// \brief Whether a wavefront encoding (tiles encoded, and measured, as the tiles around them come in) must
+  /// start again phase by phase on meeting \a tile: reachesBeyondNeighbours, or, when the tiles are measured,
+  /// any tile whose patches list points beyond its neighbours (a tile is measured against its neighbours'
+  /// patches, and a phase-1 tile's far listings were left out of the statistics).
+  /// \param[in] grid      the grid
+  /// \param[in] tile      an encoding of a tile of \a grid
+  /// \param[in] measured  whether the tiles are measured as they come (WavefrontMeasurement)
+  inline bool
+  wavefrontMustRestart (const TileGrid& grid, const TileEncoding& tile, bool measured)
+  {
+    return reachesBeyondNeighbours (grid, tile) || (measured && tile.reach > 1);
+  }
+
   /// \brief The input points (their numbers in the whole input, ascending, distinct) the patches of
   /// \a tiles cover.
   /// \param[in] tiles encodings (of phase 0)
@@ -105,8 +118,8 @@ namespace pcl_sparse
                const std::function<void (std::size_t)>& progress = {}, bool keep_xy = true);
 
   /// \brief Every tile with core points, encoded phase by phase (encodeTiles): the phase-1 tiles knowing what
-  /// the whole phase 0 covers. What TiledSurfaceEncoder falls back to when a phase-0 tile's patches list
-  /// points beyond its neighbours (TileEncoding::reach > 1).
+  /// the whole phase 0 covers. What TiledSurfaceEncoder falls back to when a tile's patches list
+  /// points beyond its neighbours (wavefrontMustRestart).
   /// \param[in] source       the tiled input
   /// \param[in] options      the encoder's options
   /// \param[in] num_threads  OpenMP threads (0 = default)
