@@ -47,6 +47,56 @@ namespace
     }));
   }
 
+  /// Every tile with core points encoded with default options, written out here (not encodeTilesByPhase, the
+  /// encoder's own fallback): phase 0, then phase 1 knowing what phase 0 covers.
+  std::vector<TileEncoding>
+  encodeTilesPhaseByPhase (const TileSource& source)
+  {
+    std::vector<TileEncoding> tiles;
+    std::vector<std::size_t> covered;
+    for (int phase = 0; phase < 2; ++phase)
+    {
+      if (phase == 1)
+        covered = coveredPoints (tiles);
+      for (std::size_t t = 0; t < source.grid ().size (); ++t)
+        if (tilePhase (source.grid (), t) == phase && source.corePoints (t) > 0)
+          tiles.push_back (encodeTile (source, t, SparseSurfaceEncoderOptions (), 1, covered));
+    }
+    return tiles;
+  }
+
+  /// The farthest TileEncoding::reach among the tiles of \a phase.
+  int
+  farthestReachOfPhase (const TileGrid& grid, const std::vector<TileEncoding>& tiles, int phase)
+  {
+    int farthest = 0;
+    for (const TileEncoding& tile : tiles)
+      if (tilePhase (grid, tile.tile) == phase)
+        farthest = std::max (farthest, tile.reach);
+    return farthest;
+  }
+
+  /// Expects the measuring TiledSurfaceEncoder (2 threads) to give \a expected's file and the statistics of
+  /// \a expected's patches over \a vertices, the input's; returns its statistics.
+  ModelStatistics
+  expectMeasuringEncoderGives (const TileSource& source, const std::vector<Eigen::Vector3d>& vertices,
+                               const TiledModel& expected)
+  {
+    TiledSurfaceEncoder encoder;
+    encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
+    encoder.setNumberOfThreads (2);
+    encoder.setMeasurement (true);
+    TiledModel tiled;
+    encoder.compute (tiled);
+    EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (expected, ModelWriteOptions (), 1));
+    const ModelStatistics truth = expected.model.statistics (vertices);
+    const ModelStatistics& measured = encoder.getStatistics ();
+    EXPECT_NEAR (measured.rmse, truth.rmse, 1e-12 * truth.rmse);
+    EXPECT_NEAR (measured.max_error, truth.max_error, 1e-12 * truth.max_error);
+    EXPECT_EQ (measured.uncovered, truth.uncovered);
+    return measured;
+  }
+
   /// The tiled encoding of \a mesh with \a along tiles along its longest side.
   TiledModel
   encodeTiled (const TriangleMesh::Ptr& mesh, int along, int threads = 0)
@@ -837,43 +887,19 @@ TEST (TiledEncoding, FarReachingMeshTilesEncodeAsPhaseByPhase)
   TileGridOptions grid;
   grid.tiles_along_longest = 12;
   const MemoryTileSource source (mesh, grid);
-  std::vector<TileEncoding> tiles;
-  std::vector<std::size_t> covered;
-  int farthest = 0;
-  for (int phase = 0; phase < 2; ++phase)
-  {
-    if (phase == 1)
-      covered = coveredPoints (tiles);
-    for (std::size_t t = 0; t < source.grid ().size (); ++t)
-      if (tilePhase (source.grid (), t) == phase && source.corePoints (t) > 0)
-      {
-        tiles.push_back (encodeTile (source, t, SparseSurfaceEncoderOptions (), 1, covered));
-        if (phase == 0)
-          farthest = std::max (farthest, tiles.back ().reach);
-      }
-  }
-  EXPECT_GT (farthest, 1);
+  const std::vector<TileEncoding> tiles = encodeTilesPhaseByPhase (source);
+  EXPECT_GT (farthestReachOfPhase (source.grid (), tiles, 0), 1);
   TiledModel by_phases = mergeTileEncodings (source.grid (), source.totalPoints (), tiles);
   TiledStatisticsOptions far;
   far.reach = farthestReach (tiles);
   const ModelStatistics stats = tiledModelStatistics (source, by_phases, far);
-  TiledSurfaceEncoder encoder;
-  encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
-  encoder.setNumberOfThreads (2);
-  encoder.setMeasurement (true);
-  TiledModel tiled;
-  encoder.compute (tiled);
-  EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (by_phases, ModelWriteOptions (), 1));
-  EXPECT_EQ (encoder.getStatistics ().rmse, stats.rmse);
-  EXPECT_EQ (encoder.getStatistics ().mean_error_over_diagonal, stats.mean_error_over_diagonal);
   // The figures are the model's: each vertex measured against every patch that lists it, the far ones too
   // (measured against the neighbour tiles' patches alone: RMSE 0.02410 and largest error 0.112 for 0.02264
   // and 0.063).
-  TiledModel whole = mergeTileEncodings (source.grid (), source.totalPoints (), tiles);
-  const ModelStatistics truth = whole.model.statistics (mesh->vertices);
-  EXPECT_NEAR (encoder.getStatistics ().rmse, truth.rmse, 1e-12 * truth.rmse);
-  EXPECT_NEAR (encoder.getStatistics ().max_error, truth.max_error, 1e-12 * truth.max_error);
-  EXPECT_EQ (encoder.getStatistics ().uncovered, truth.uncovered);
+  const ModelStatistics measured =
+    expectMeasuringEncoderGives (source, mesh->vertices, mergeTileEncodings (source.grid (), source.totalPoints (), tiles));
+  EXPECT_EQ (measured.rmse, stats.rmse);
+  EXPECT_EQ (measured.mean_error_over_diagonal, stats.mean_error_over_diagonal);
 }
 
 TEST (TiledEncoding, FarReachingPhaseOneTilesAreMeasuredAgainstEveryTileThatFar)
@@ -887,35 +913,11 @@ TEST (TiledEncoding, FarReachingPhaseOneTilesAreMeasuredAgainstEveryTileThatFar)
   TileGridOptions grid;
   grid.tiles_along_longest = 6;
   const MemoryTileSource source (mesh, grid);
-  std::vector<TileEncoding> tiles;
-  std::vector<std::size_t> covered;
-  int farthest[2] = {0, 0};
-  for (int phase = 0; phase < 2; ++phase)
-  {
-    if (phase == 1)
-      covered = coveredPoints (tiles);
-    for (std::size_t t = 0; t < source.grid ().size (); ++t)
-      if (tilePhase (source.grid (), t) == phase && source.corePoints (t) > 0)
-      {
-        tiles.push_back (encodeTile (source, t, SparseSurfaceEncoderOptions (), 1, covered));
-        farthest[phase] = std::max (farthest[phase], tiles.back ().reach);
-      }
-  }
-  ASSERT_EQ (farthest[0], 1);
-  ASSERT_GT (farthest[1], 1);
-  TiledSurfaceEncoder encoder;
-  encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
-  encoder.setNumberOfThreads (2);
-  encoder.setMeasurement (true);
-  TiledModel tiled;
-  encoder.compute (tiled);
-  TiledModel by_phases = mergeTileEncodings (source.grid (), source.totalPoints (), tiles);
-  EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (by_phases, ModelWriteOptions (), 1));
-  const ModelStatistics truth = by_phases.model.statistics (mesh->vertices);
+  const std::vector<TileEncoding> tiles = encodeTilesPhaseByPhase (source);
+  ASSERT_EQ (farthestReachOfPhase (source.grid (), tiles, 0), 1);
+  ASSERT_GT (farthestReachOfPhase (source.grid (), tiles, 1), 1);
   // Measured against the neighbours' patches alone: RMSE 0.000152378 for the model's 0.000152376.
-  EXPECT_NEAR (encoder.getStatistics ().rmse, truth.rmse, 1e-12 * truth.rmse);
-  EXPECT_NEAR (encoder.getStatistics ().max_error, truth.max_error, 1e-12 * truth.max_error);
-  EXPECT_EQ (encoder.getStatistics ().uncovered, truth.uncovered);
+  expectMeasuringEncoderGives (source, mesh->vertices, mergeTileEncodings (source.grid (), source.totalPoints (), tiles));
 }
 
 TEST (TiledEncoding, StatisticsNeedOnlyTheVertexNumbers)
