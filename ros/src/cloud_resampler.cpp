@@ -36,8 +36,6 @@ namespace pcl_sparse_ros
     {
       auto cloud = std::make_shared<pcl::PointCloud<PointInT>> ();
       pcl::fromROSMsg (input, *cloud);
-      for (const PointInT& p : cloud->points)
-        result.input_points += std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z);
 
       pcl_sparse::SparseSurfaceEncoder<PointInT> encoder;
       encoder.setOptions (settings.options);
@@ -49,6 +47,7 @@ namespace pcl_sparse_ros
                               static_cast<float> (settings.viewpoint.z ()));
       auto model = std::make_shared<pcl_sparse::SparseSurfaceModel> ();
       encoder.compute (*model);
+      result.input_points = encoder.getCleaningReport ().finitePoints ();
       result.kept_points = encoder.getCleaningReport ().kept;
       return model;
     }

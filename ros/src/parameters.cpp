@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -46,6 +47,23 @@ namespace pcl_sparse_ros
       if (xyz.size () != 3 || !Eigen::Vector3d (xyz[0], xyz[1], xyz[2]).allFinite ())
         throw pcl_sparse::Error ("parameter ~" + name + " must be three numbers [x, y, z]");
       return xyz;
+    }
+
+    /// Throws, naming ~\a name, what the resampling stage's own setter says of the value (\a set calls it on a
+    /// stage made for the check): the same bounds at start-up as on every cloud.
+    void
+    requireResamplingAccepts (const std::string& name,
+                              const std::function<void (pcl_sparse::SparseSurfaceResamplingBase&)>& set)
+    {
+      pcl_sparse::SparseSurfaceResampling<pcl::PointNormal> stage;
+      try
+      {
+        set (stage);
+      }
+      catch (const pcl_sparse::Error& e)
+      {
+        throw pcl_sparse::Error ("parameter ~" + name + ": " + e.what ());
+      }
     }
 
     void
@@ -98,18 +116,14 @@ namespace pcl_sparse_ros
     }
     if (readNumber (private_nh, "density", value))
     {
-      requirePositive ("density", value);
+      requireResamplingAccepts ("density", [value] (pcl_sparse::SparseSurfaceResamplingBase& r) { r.setDensity (value); });
       budget = {PointBudget::Kind::Density, value};
       ++given;
     }
     if (readNumber (private_nh, "spacing", value))
     {
-      requirePositive ("spacing", value);
-      // 1e-200 was taken here, then every cloud failed naming a density: the resampling's density is 1 / spacing^2.
-      const double density = 1.0 / (value * value);
-      if (!(density > 0.0 && std::isfinite (density)))
-        throw pcl_sparse::Error ("parameter ~spacing must be a length whose 1 / spacing^2 is finite and > 0 "
-                                 "(about 1e-154 to 1e154)");
+      // 1e-200 was taken here, then every cloud failed naming a density: setSpacing refuses it.
+      requireResamplingAccepts ("spacing", [value] (pcl_sparse::SparseSurfaceResamplingBase& r) { r.setSpacing (value); });
       budget = {PointBudget::Kind::Spacing, value};
       ++given;
     }
