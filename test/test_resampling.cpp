@@ -2,6 +2,7 @@
 // patches and a sphere covered by overlapping caps, both coded over the CosineDictionary by least squares.
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/memory_limit.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
@@ -11,8 +12,6 @@
 #include <pcl/kdtree/kdtree_flann.h>
 
 #include <gtest/gtest.h>
-
-#include <unistd.h>
 
 #include <Eigen/Dense>
 
@@ -505,7 +504,7 @@ TEST (Resampling, SmallCountsAreExact)
 // fandisk ran 16 s, then std::bad_alloc; without a limit, an OOM kill). Blocks stream any count.
 TEST (Resampling, CloudBeyondTheMachinesMemoryIsRefused)
 {
-  const double physical = static_cast<double> (::sysconf (_SC_PHYS_PAGES)) * static_cast<double> (::sysconf (_SC_PAGE_SIZE));
+  const double physical = physicalMemoryBytes ();
   const std::size_t count = SparseSurfaceResampling<pcl::PointNormal>::max_points;
   if (!(physical > 0.0 && physical < 90.0 * static_cast<double> (count)))
     GTEST_SKIP () << "this machine holds 1e9 points (" << physical / 1e9 << " GB)";

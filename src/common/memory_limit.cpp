@@ -7,10 +7,17 @@
 
 namespace pcl_sparse
 {
+  double
+  physicalMemoryBytes ()
+  {
+    const double bytes = static_cast<double> (::sysconf (_SC_PHYS_PAGES)) * static_cast<double> (::sysconf (_SC_PAGE_SIZE));
+    return bytes > 0.0 ? bytes : 0.0;
+  }
+
   void
   checkFitsInMemory (double bytes, const std::string& what, const std::string& remedy)
   {
-    const double physical = static_cast<double> (::sysconf (_SC_PHYS_PAGES)) * static_cast<double> (::sysconf (_SC_PAGE_SIZE));
+    const double physical = physicalMemoryBytes ();
     if (!(physical > 0.0 && bytes > physical))
       return;
     std::ostringstream message;

@@ -8,6 +8,10 @@
 
 namespace pcl_sparse
 {
+  /// \brief This machine's physical memory in bytes (0 when it is unknown).
+  double
+  physicalMemoryBytes ();
+
   /// \brief Throws pcl_sparse::Error ("<what> need about X GB, more than this machine's Y GB[: <remedy>]")
   /// when \a bytes (an estimate) exceed the machine's physical memory; nothing when it is unknown.
   /// \param[in] bytes   the estimated need
