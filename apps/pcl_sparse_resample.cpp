@@ -120,6 +120,8 @@ namespace
     }
     if (given > 1)
       throw Error ("options -n, -density and -spacing exclude each other");
+    if (s.mode == 3)  // refused now by the stage's own setter (1e-200 overflows 1/spacing^2), not after encoding
+      SparseSurfaceResampling<pcl::PointNormal> ().setSpacing (s.spacing);
     s.encoder = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default")));
     args.number ("-rho", s.encoder.patches.rho, Range::aboveUpTo (0.0, 1.0));
     args.number ("-f", s.encoder.coding.nyquist_factor, Range::closed (0.0, 1.0));

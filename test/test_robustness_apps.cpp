@@ -547,6 +547,29 @@ namespace
     fs::remove_all (dir);
   }
 
+  /// A spacing no resampling can use is refused with the options, before the input is read and encoded (it
+  /// failed only after encoding, minutes on a large input): here the input is not even a mesh, and the error
+  /// must name the spacing.
+  TEST (RobustnessAppsPaths, ResampleSpacingIsCheckedBeforeTheInputIsRead)
+  {
+    if (!appsBuilt ())
+      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
+    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_spacing_first";
+    fs::remove_all (dir);
+    fs::create_directories (dir);
+    const std::string broken = (dir / "broken.obj").string ();
+    std::ofstream (broken) << "v 0 0 0\nv 1 0\nf 1 2 3\n";
+    for (const auto& [spacing, printed] : {std::pair<std::string, std::string> {"1e-200", "1e-200"}, {"1e200", "1e+200"}})
+    {
+      const RunResult r = runApp ("resample", {broken, (dir / "o.pcd").string (), "-spacing", spacing, "-q"}, dir);
+      EXPECT_EQ (r.exit_code, 1) << r.err;
+      EXPECT_NE (r.err.find ("spacing " + printed), std::string::npos) << r.err;
+      EXPECT_EQ (r.err.find ("broken.obj"), std::string::npos) << r.err;
+      EXPECT_FALSE (fs::exists (dir / "o.pcd"));
+    }
+    fs::remove_all (dir);
+  }
+
   /// Ctrl-C during a long write removes the temporary (a streamed cloud of 20 M points stayed behind as
   /// OUT.ply.tmpPID, 58 MB and growing when the review stopped it).
   TEST (RobustnessAppsPaths, InterruptedWriteLeavesNoTemporary)
