@@ -66,7 +66,8 @@ namespace
     {
       {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
       {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
-      {"", "when plausible, else consistently oriented, outward on closed surfaces)"},
+      {"", "when plausible, else consistently oriented, outward on closed surfaces; not with tiles yet:"},
+      {"", "-tiles, or an input over -memory, docs/TILES.md)"},
       {"-rho R", "patch size bound A_p / A (default 0.001; paper: 0.005, 0.001, 0.0002)"},
       {"-f F", "Nyquist factor in [0, 1] (default 0.5; 0 = plain OMP)"},
       {"--authors-nyquist", "the authors' cap lambda >= f mu instead of the paper's lambda / 2 > f mu"},
@@ -99,7 +100,7 @@ namespace
       {"", "mean error, lower where that is expected to add over 5 % to the distance, with 5-bit footprint"},
       {"", "extents then (derivedWriteOptions); 0 = lossless)"},
       {"-footprint-steps R", "quantised model file: a patch's footprint keeps 2 opposite angles, and those between where"},
-      {"", "the coded ones stray from it by more than R extent levels summed over the angles (default 2, 4"},
+      {"", "the coded ones stray from it by more than R extent levels summed over the angles (default 2, also"},
       {"", "with 5-bit extents: within 10 % of the lossless model's Chamfer distance on the 25 shared meshes;"},
       {"", "0: the 2 everywhere, smaller, far less near)"},
       {"--exact-footprints", "quantised model file: refine footprints against their exact extents, also where"},
@@ -205,7 +206,9 @@ main (int argc, char** argv)
     if (!bounded && (!tiled || needs_input))
       input_positions = input.worldPositions ();
     if (tiled && has_viewpoint)
-      throw Error ("option -viewpoint is not supported with tiling yet");
+      throw Error ("option -viewpoint is not supported with tiling yet (" +
+                   std::string (args.has ("-tiles") ? "-tiles is given" : "the input is over -memory: raise -memory to encode it whole") +
+                   "; docs/TILES.md)");
     if (tiled && !args.has ("-tiles"))  // tiles sized for the budget, so many side by side at most
       threads = std::min (resolveThreadCount (threads), tools::kBudgetTilesAtOnce);
     if (!tiled && group.rank () != 0)

@@ -67,7 +67,9 @@ namespace pcl_sparse
       const double budget = static_cast<double> (memoryBudget (args));
       std::error_code error;
       const std::uintmax_t bytes = std::filesystem::file_size (path, error);
-      if (error || static_cast<double> (bytes) / 12.0 * kEncoderBytesPerPoint <= budget)
+      // A point takes at least 6 bytes (an ascii "0 0 0\n"; 12 bytes, a binary point's, let an ascii file of
+      // short numbers over the budget be loaded whole).
+      if (error || static_cast<double> (bytes) / 6.0 * kEncoderBytesPerPoint <= budget)
         return false;  // missing (loading says so) or too small to exceed the budget
       if (ply)
       {

@@ -265,6 +265,40 @@ TEST_F (TilesTool, NoTileWithASurfaceIsAnError)
   EXPECT_FALSE (std::filesystem::exists (dir_.file ("t.psm")));
 }
 
+// A given viewpoint does not reach the tiles yet: refused before any work, saying why, on both ways into
+// tiling (the help and docs/TILES.md say so too).
+TEST_F (TilesTool, ViewpointIsRefusedWithTiles)
+{
+  const std::string cloud = dir_.file ("terrain.pcd");
+  pcl_sparse_test::TerrainOptions terrain;
+  terrain.points = 60000;
+  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  std::string out;
+  EXPECT_EQ (run ("pcl_sparse_encode", cloud + " -memory 1M -viewpoint 0,0,5 -o " + dir_.file ("vp.psm"), out), 1);
+  EXPECT_NE (out.find ("-viewpoint is not supported with tiling yet (the input is over -memory"), std::string::npos) << out;
+  EXPECT_EQ (run ("pcl_sparse_encode", cloud + " -tiles 2 -viewpoint 0,0,5 -o " + dir_.file ("vp.psm"), out), 1);
+  EXPECT_NE (out.find ("-viewpoint is not supported with tiling yet (-tiles is given"), std::string::npos) << out;
+  EXPECT_FALSE (std::filesystem::exists (dir_.file ("vp.psm")));
+}
+
+// An ascii PCD of short numbers takes under 12 bytes a point: over -memory it is spilled like any other (the
+// tool skipped opening files under 12 bytes a point of the budget, so this one was loaded whole).
+TEST_F (TilesTool, ShortAsciiPointsOverTheBudgetAreSpilled)
+{
+  std::ostringstream body;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      body << i << ' ' << j << ' ' << (i * j) % 3 << '\n';
+  const std::string cloud = dir_.file ("short.pcd");
+  pcl_sparse_test::writeBytes (cloud, "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                                      "WIDTH 900\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 900\nDATA ascii\n" + body.str ());
+  ASSERT_LT (std::filesystem::file_size (cloud), 900u * 8u);  // 7.5 bytes a point: 900 x 1.5 KB > 1M, the file < 1M / 128
+  std::string out;
+  ASSERT_EQ (run ("pcl_sparse_encode", cloud + " -memory 1M --json -o " + dir_.file ("short.psm"), out), 0) << out;
+  EXPECT_NE (out.find ("\"spilled\": true"), std::string::npos) << out;
+  EXPECT_NE (out.find ("\"kept_points\": 899"), std::string::npos) << out;  // the sensor-origin point dropped
+}
+
 // A binary_compressed PCD (PCL's usual format) cannot be read piece by piece: over -memory it is loaded
 // whole, and says so (it was silent; found by a review). The same points as a binary PCD spill.
 TEST_F (TilesTool, CompressedPcdOverTheBudgetIsLoadedWholeWithAWarning)
