@@ -52,7 +52,7 @@ namespace pcl_sparse
     /// 3-174 % to the Chamfer distance of the lossless model on the shared meshes (footprints clipped at
     /// borders and creases overshoot or cut the surface between 8 rays); at 2 steps it adds at most 10 % on
     /// 23 of 25 (anchor-dense 15 %, fandisk 12.8 %: their 4-bit extents; derivedWriteOptions gives those two
-    /// 5-bit extents at 4 steps: 8.6 %, 7.4 %), 0.2-6.6 % on the others (file_footprints.md; footprint_slack.md
+    /// 5-bit extents at the same 2 steps: 8.0 %, 7.0 %), 0.2-6.6 % on the others (file_footprints.md; footprint_slack.md
     /// with the slack below).
     double footprint_refine_steps = 2.0;
     /// In quantised mode, refine a footprint only where its border must stay put: where a same-side neighbour
@@ -110,7 +110,7 @@ namespace pcl_sparse
     bool range_coded = false;               ///< quantised, with range-coded per-patch fields (ModelWriteOptions::range_coding)
     bool has_vertices = false;              ///< holds the patches' input vertices and their (x', y')
     std::vector<std::string> attributes;    ///< attribute channels ("r", "g", "b", "a", "intensity"); empty: none
-    std::string basis;                      ///< "cosine nxn" (the paper's atoms) or "dct cosine nxn"
+    std::string basis;                      ///< "cosine nxn" (the paper's atoms), "dct cosine nxn" or "quadric + dct cosine nxn"
     std::uint32_t num_patches = 0;          ///< M
     std::uint64_t num_input_vertices = 0;   ///< N_V of the encoded mesh
     double bbox_diagonal = 0.0;             ///< of the encoded mesh

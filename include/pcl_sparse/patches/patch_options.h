@@ -73,7 +73,7 @@ namespace pcl_sparse
     int merge_own_elements = 8;
     /// Unreferenced vertices (in no face): 1 (true): each gets a one-vertex patch, a small disc along its
     /// normal, so that every finite vertex has an estimate (NaN ones are left out either way); 0 (false):
-    /// they are left out and reported by FeatureAwarePatchSampling::getUncoveredVertices. < 0 (default): 1
+    /// they are left out and reported by FeatureAwarePatchSampling::getUncoveredVertices. -1 (default): 1
     /// on a scan, whose points the neighbourhood triangulation left out (at depth edges, thin parts) are
     /// still samples of the surface, and 0 on a mesh, whose faces are its surface: stanford-bunny.obj's 1113
     /// unreferenced vertices took 1113 of its 2476 patches and 11 % of its default file for 0.4 % of its
@@ -87,7 +87,7 @@ namespace pcl_sparse
     /// The sampling loop ends after this many grown seeds in a row covered no new vertex (the coverage
     /// pass covers the rest): on a flat scan one patch can span the whole cloud, and vertices no patch can
     /// take (folded triangles) would otherwise keep every later candidate growing that whole patch again,
-    /// O(N^2). 0 = never (the paper's loop, and the default on meshes); < 0 (default) = 0 on a mesh and
+    /// O(N^2). 0 = never (the paper's loop, and the default on meshes); -1 (default) = 0 on a mesh and
     /// 256 on a scan.
     int max_fruitless_seeds = -1;
     /// Pruned tail of the sampling loop (ours): once this fraction of the vertices to cover is covered, a
@@ -96,10 +96,10 @@ namespace pcl_sparse
     /// vertex count of the patches kept so far)), about twice the edge radius of a disc-shaped patch). The
     /// paper's loop grows them all: on a 640x480 RGB-D frame the last 1.3 % of the points took half of its
     /// 6922 growths. 1 = never (the paper's loop, and the default on meshes, where it saved under 10 %);
-    /// < 0 (default) = 1 on a mesh and 0.9 on a scan.
+    /// -1 (default) = 1 on a mesh and 0.9 on a scan.
     double tail_pruning_after = -1.0;
     /// Growth stops once a patch has this many vertices. 0 = no bound (the paper's, and the default on
-    /// meshes, where eta bounds curved patches and flat ones are cheap); < 0 (default) = 0 on a mesh and
+    /// meshes, where eta bounds curved patches and flat ones are cheap); -1 (default) = 0 on a mesh and
     /// 4096 on a scan, where a flat wall or floor would otherwise make each grown seed cost O(N).
     int max_patch_vertices = -1;
     /// Growth floor (ours): while a patch has fewer than this many vertices the area bound (rho, eta) is
@@ -111,7 +111,7 @@ namespace pcl_sparse
     int min_growth_vertices = 0;
     /// Frame fallback (ours, docs/METHOD.md section 6): a jet whose normal makes the patch's steepest
     /// triangle steeper than this and steeper than the seed's plane does is refused as the frame (the seed's
-    /// plane is used). Radians; 0 = only a jet that flips a triangle is refused (as before); < 0 (default) =
+    /// plane is used). Radians; 0 = only a jet that flips a triangle is refused (as before); -1 (default) =
     /// 72 degrees on a mesh (on a strip of thin triangles a nearly singular jet lay in the strip's plane)
     /// and 0 on a scan, whose noisy triangles are steep for any normal (with it, sensor-facing flipped
     /// normals over the shared scans rose from 45603 to 53481; bench/results/frames.md).
