@@ -570,6 +570,32 @@ namespace
     fs::remove_all (dir);
   }
 
+  /// A write over the file-size limit ends the tool by SIGXFSZ: the temporary goes as on Ctrl-C (it left
+  /// OUT.pcd.tmpPID, 10 MB under `ulimit -f 10000`). SIGPIPE, a cloud piped into a reader that quit, takes the
+  /// same handler; when it comes depends on the reader, so it is not timed here.
+  TEST (RobustnessAppsPaths, FileSizeLimitLeavesNoTemporary)
+  {
+    if (!appsBuilt ())
+      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
+    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_file_size";
+    fs::remove_all (dir);
+    fs::create_directories (dir / "out");
+    const std::string obj = (dir / "c.obj").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    for (const std::string stream : {"on", "off"})
+    {
+      // 2000 blocks of 512 or 1024 bytes: a few MB, under the 1M-point cloud's 28 MB.
+      const std::string command = "ulimit -f 2000; exec " + quote (appPath ("resample")) + " " + quote (obj) + " " +
+                                  quote ((dir / "out" / "big.pcd").string ()) + " -n 1000000 -q -stream " + stream +
+                                  " 2> /dev/null";
+      const int status = std::system (("sh -c " + quote (command)).c_str ());
+      ASSERT_TRUE (WIFEXITED (status)) << status;
+      EXPECT_NE (WEXITSTATUS (status), 0) << "-stream " << stream << ": the cloud cannot fit under the limit";
+      EXPECT_TRUE (filesIn (dir / "out").empty ()) << "-stream " << stream << ": " << filesIn (dir / "out").front ();
+    }
+    fs::remove_all (dir);
+  }
+
   /// Ctrl-C during a long write removes the temporary (a streamed cloud of 20 M points stayed behind as
   /// OUT.ply.tmpPID, 58 MB and growing when the review stopped it).
   TEST (RobustnessAppsPaths, InterruptedWriteLeavesNoTemporary)

@@ -20,7 +20,9 @@ namespace pcl_sparse
     {
       constexpr std::size_t kSlots = 32;       // paths registered at once
       constexpr std::size_t kPathBytes = 4096;
-      constexpr std::array<int, 3> kSignals = {SIGINT, SIGTERM, SIGHUP};
+      // SIGPIPE (a cloud piped into a reader that quit), SIGXFSZ (ulimit -f) and SIGQUIT end a process as surely as
+      // Ctrl-C: each left a temporary of the size written so far.
+      constexpr std::array<int, 6> kSignals = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ};
 
       struct Slot
       {

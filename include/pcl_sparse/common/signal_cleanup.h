@@ -2,7 +2,8 @@
 /// \file signal_cleanup.h
 /// Internal to the library (namespace detail, not API): files and folders that must not outlive this process (spill folders of
 /// tiles, the temporaries of atomic writes and streamed clouds) are removed when it is ended by SIGINT,
-/// SIGTERM or SIGHUP (Ctrl-C, kill, mpirun stopping the other ranks after one failed), where no destructor
+/// SIGTERM, SIGHUP, SIGQUIT, SIGPIPE or SIGXFSZ (Ctrl-C, kill, mpirun stopping the other ranks after one
+/// failed, a pipe whose reader quit, a file over `ulimit -f`), where no destructor
 /// runs: they stayed behind, up to a copy of a large input or a streamed cloud of tens of GB. The handler
 /// uses only async-signal-safe calls, then gives the signal to the handler that was there before (or
 /// the default). A signal the process ignores (nohup) stays ignored.
