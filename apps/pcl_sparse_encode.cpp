@@ -198,6 +198,7 @@ main (int argc, char** argv)
     tools::SurfaceInput input;
     if (!bounded)
       input = tools::loadSurfaceInput (path);
+    tools::refuseViewpointOnMesh (has_viewpoint, bounded ? spilled_mesh : input.mesh != nullptr, path);
     TileGridOptions grid_options;
     const bool tiled = tools::chooseTiling (args, bounded ? header_points : input.points (), grid_options);
     // The whole input's positions, for the untiled statistics and what needs the input (a tiled model is

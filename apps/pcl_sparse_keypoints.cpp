@@ -135,6 +135,7 @@ main (int argc, char** argv)
                                 surface_input.mesh ? "vertices" : "points");
     Eigen::Vector3d viewpoint;
     const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
+    tools::refuseViewpointOnMesh (has_viewpoint, surface_input.mesh != nullptr, input);
 
     pcl::console::TicToc timer;
     timer.tic ();

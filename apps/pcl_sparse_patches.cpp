@@ -106,6 +106,7 @@ main (int argc, char** argv)
     }
 
     const tools::SurfaceInput surface_input = tools::loadSurfaceInput (input);
+    tools::refuseViewpointOnMesh (has_viewpoint, surface_input.mesh != nullptr, input);
     pcl::console::TicToc timer;
     timer.tic ();
     FeatureAwarePatchSampling<pcl::PointXYZ> sampling;

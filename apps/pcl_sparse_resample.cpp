@@ -247,8 +247,7 @@ main (int argc, char** argv)
     {
       input = tools::loadSurfaceInput (s.input);
       load_seconds = timer.toc () / 1000.0;
-      if (input.mesh && s.has_viewpoint)  // a mesh's normals come from its faces: it did nothing
-        throw Error ("option -viewpoint orients a scan's normals; " + s.input + " is a mesh");
+      tools::refuseViewpointOnMesh (s.has_viewpoint, input.mesh != nullptr, s.input);
       // A scan's default count is its kept points (a clean cloud of the same size); a mesh's 4 x its vertices.
       input_vertices = input.points ();
       default_factor = input.mesh ? 4 : 1;

@@ -89,6 +89,13 @@ namespace pcl_sparse
       }
     } // namespace
 
+    void
+    refuseViewpointOnMesh (bool has_viewpoint, bool is_mesh, const std::string& path)
+    {
+      if (has_viewpoint && is_mesh)
+        throw Error ("option -viewpoint orients a scan's normals; " + path + " is a mesh");
+    }
+
     SurfaceInput
     loadSurfaceInput (const std::string& path)
     {

@@ -43,6 +43,11 @@ namespace pcl_sparse
     SurfaceInput
     loadSurfaceInput (const std::string& path);
 
+    /// Throws when -viewpoint is given (\a has_viewpoint) for a mesh (\a is_mesh): a mesh's normals come from its
+    /// faces, so the option would do nothing without a word.
+    void
+    refuseViewpointOnMesh (bool has_viewpoint, bool is_mesh, const std::string& path);
+
     /// Gives \a input to \a stage (setInputMesh or setInputScan).
     template <typename Stage>
     void
