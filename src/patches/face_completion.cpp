@@ -64,4 +64,23 @@ namespace pcl_sparse
     }
     return faces;
   }
+
+  FaceCoverage
+  faceCoverage (const TriangleMesh& mesh, const std::vector<Patch>& patches)
+  {
+    auto area = [&] (std::size_t f) {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      return 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross (mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm ();
+    };
+    const std::vector<int> faces = facesInNoPatch (mesh, patches);
+    double total = 0.0, uncovered = 0.0;
+    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+      total += area (f);
+    for (int f : faces)
+      uncovered += area (static_cast<std::size_t> (f));
+    FaceCoverage coverage;
+    coverage.faces_in_no_patch = faces.size ();
+    coverage.area_fraction = total > 0.0 ? uncovered / total : 0.0;
+    return coverage;
+  }
 } // namespace pcl_sparse

@@ -61,4 +61,17 @@ namespace pcl_sparse
   /// the faces completion has to place, or could not.
   std::vector<int>
   facesInNoPatch (const TriangleMesh& mesh, const std::vector<Patch>& patches);
+
+  /// How much of a mesh's surface is a triangle of no patch (facesInNoPatch), for reports: resampling may
+  /// leave such faces out (a 12-triangle cube encoded by 2 patches on opposite sides had 4 sides without a
+  /// point, and the tool said nothing).
+  struct FaceCoverage
+  {
+    std::size_t faces_in_no_patch = 0;  ///< proper faces that are a triangle of no patch
+    double area_fraction = 0.0;         ///< their area / the mesh's area (0 for a mesh without area)
+  };
+
+  /// \brief FaceCoverage of \a patches over \a mesh (the surface the patches were grown on).
+  FaceCoverage
+  faceCoverage (const TriangleMesh& mesh, const std::vector<Patch>& patches);
 } // namespace pcl_sparse
