@@ -190,6 +190,8 @@ TEST_F (EncodeTool, RepeatedFacesAreNotedOnStderr)
   saveTriangleMesh (path, repeated);
   const std::string notes = notesOf (path);
   EXPECT_NE (notes.find ("repeated.off: left out 2 repeated faces"), std::string::npos) << notes;
+  // The copies cut nothing: their edges are not noted as non-manifold (they were, "the surface is cut along them").
+  EXPECT_EQ (notes.find ("non-manifold"), std::string::npos) << notes;
   expectTheSpheresCode (path);  // the copies add nothing
 }
 
