@@ -77,6 +77,17 @@ namespace
       if (!std::filesystem::exists (tools + "/pcl_sparse_encode") || !std::filesystem::exists (tools + "/pcl_sparse_decode"))
         GTEST_SKIP () << "tools not built";
     }
+    /// A terrain scan of \a points points, written as terrain.pcd in the test's folder; returns its path.
+    std::string
+    terrainCloud (std::size_t points)
+    {
+      const std::string cloud = dir_.file ("terrain.pcd");
+      pcl_sparse_test::TerrainOptions terrain;
+      terrain.points = points;
+      pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+      return cloud;
+    }
+
     pcl_sparse_test::TempDir dir_ {"pcl_sparse_tiles_tool"};
   };
 } // namespace
@@ -110,10 +121,7 @@ TEST_F (TilesTool, MemoryBudgetTilesAndBoundsThePeak)
 TEST_F (TilesTool, SpilledPathWritesTheInMemoryPathsFile)
 {
   // A binary PCD over a small -memory is spilled into tiles on disk instead of loaded: same model file.
-  const std::string cloud = dir_.file ("terrain.pcd");
-  pcl_sparse_test::TerrainOptions terrain;
-  terrain.points = 60000;
-  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  const std::string cloud = terrainCloud (60000);
   std::string out;
   ASSERT_EQ (run ("pcl_sparse_encode", cloud + " -tiles 4 --json -o " + dir_.file ("memory.psm"), out), 0) << out;
   EXPECT_NE (out.find ("\"spilled\": false"), std::string::npos) << out;
@@ -151,10 +159,7 @@ TEST_F (TilesTool, SpilledPathWritesTheInMemoryPathsFile)
 
 TEST_F (TilesTool, SpilledPathPeakBelowTheInMemoryPath)
 {
-  const std::string cloud = dir_.file ("terrain.pcd");
-  pcl_sparse_test::TerrainOptions terrain;
-  terrain.points = 150000;
-  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  const std::string cloud = terrainCloud (150000);
   std::string out;
   // Fast options: the memory, not the model, is measured; 64 tiles of ~2.3k points.
   const std::string options = " -q -tiles 8 -rho 0.01 -L 4 -eps 0.05 -min-samples 16";
@@ -229,10 +234,7 @@ TEST_F (TilesTool, RegionDecodeEqualsTheFullDecodeThereAndReadsLittle)
 // spill folder, up to a copy of the input, stayed in $TMPDIR (found by a review). It is removed now.
 TEST_F (TilesTool, InterruptedSpillLeavesNoFiles)
 {
-  const std::string cloud = dir_.file ("terrain.pcd");
-  pcl_sparse_test::TerrainOptions terrain;
-  terrain.points = 300000;
-  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  const std::string cloud = terrainCloud (300000);
   const std::string spill = dir_.file ("tmp");
   std::filesystem::create_directories (spill);
   const std::string out = dir_.file ("interrupted.psm");
@@ -269,10 +271,7 @@ TEST_F (TilesTool, NoTileWithASurfaceIsAnError)
 // tiling (the help and docs/TILES.md say so too).
 TEST_F (TilesTool, ViewpointIsRefusedWithTiles)
 {
-  const std::string cloud = dir_.file ("terrain.pcd");
-  pcl_sparse_test::TerrainOptions terrain;
-  terrain.points = 60000;
-  pcl_sparse_test::writeTerrainPcd (cloud, terrain);
+  const std::string cloud = terrainCloud (60000);
   std::string out;
   EXPECT_EQ (run ("pcl_sparse_encode", cloud + " -memory 1M -viewpoint 0,0,5 -o " + dir_.file ("vp.psm"), out), 1);
   EXPECT_NE (out.find ("-viewpoint is not supported with tiling yet (the input is over -memory"), std::string::npos) << out;
