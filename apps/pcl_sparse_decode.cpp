@@ -274,6 +274,9 @@ namespace
           if (request.box.contains (local.origin + p.getVector3fMap ().template cast<double> ()))
             local.cloud[kept++] = p;
         local.cloud.resize (kept);
+        if (kept == 0)  // an empty cloud is the right answer, but a box off the model by mistake said nothing
+          tools::printNote (tools::format ("%s: no point of the model lies in the box of -box (the cloud written is empty)",
+                                           request.path.c_str ()));
       }
       decoded.points = local.cloud.size ();
       decoded.resample_seconds = timer.toc () / 1000.0;

@@ -228,6 +228,11 @@ TEST_F (TilesTool, RegionDecodeEqualsTheFullDecodeThereAndReadsLittle)
   EXPECT_NE (out.find ("-density"), std::string::npos) << out;
   EXPECT_NE (run ("pcl_sparse_decode", model + " " + dir_.file ("x.pcd") + " -density 10 -box 1,2,3", out), 0);
   EXPECT_NE (out.find ("-box"), std::string::npos) << out;
+  // A box off the model: an empty cloud, with a note (it said nothing; found by a review).
+  ASSERT_EQ (run ("pcl_sparse_decode", model + " " + dir_.file ("off.pcd") + " -density 10 -box 100,100,100,101,101,101", out), 0)
+    << out;
+  EXPECT_NE (out.find ("no point of the model lies in the box"), std::string::npos) << out;
+  EXPECT_NE (pcl_sparse_test::readBytes (dir_.file ("off.pcd")).find ("\nPOINTS 0\n"), std::string::npos);
 }
 
 // Ctrl-C (or mpirun stopping the ranks after one failed) ends the encoder where no destructor runs: its
