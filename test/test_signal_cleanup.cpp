@@ -86,3 +86,25 @@ TEST (SignalCleanup, PathRegisteredBeforeItExists)
   EXPECT_FALSE (std::filesystem::exists (file));
   EXPECT_FALSE (std::filesystem::exists (folder));
 }
+
+// A write into a pipe whose reader quit (a cloud piped into head) ends the process by SIGPIPE: the temporary
+// goes as on SIGTERM (it stayed, as big as what was written).
+TEST (SignalCleanup, BrokenPipe)
+{
+  const pcl_sparse_test::TempDir dir ("pcl_sparse_signal");
+  const std::string file = dir.file ("piped.tmp");
+  const int status = inChild ([&] {
+    ::signal (SIGPIPE, SIG_DFL);  // as in a shell; a runner that ignores it would hand that on (and it stays ignored)
+    detail::registerRemovalOnSignal (file, detail::RemovedKind::File);
+    std::ofstream (file) << "partial";
+    int ends[2];
+    if (::pipe (ends) != 0)
+      ::_exit (2);
+    ::close (ends[0]);  // no reader
+    const char byte = 'x';
+    (void) ::write (ends[1], &byte, 1);
+    ::_exit (3);  // not reached: SIGPIPE ends the process
+  });
+  EXPECT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGPIPE) << "status " << status;
+  EXPECT_FALSE (std::filesystem::exists (file));
+}
