@@ -102,7 +102,15 @@ main (int argc, char** argv)
     }
     catch (const Error& e)
     {
-      throw Error (std::string (e.what ()) + " (angles are given in degrees)");
+      // The stage names its field; the user gave an option ("-min-size 0" said "(angles are given in degrees)";
+      // -delta and -cone are checked in degrees as they are read).
+      const std::string what = e.what ();
+      const std::pair<const char*, const char*> options_of_fields[] = {
+        {"eta =", "-eta"}, {"sigma =", "-sigma"}, {"min_patch_size =", "-min-size"}, {"rho =", "-rho"}};
+      for (const auto& [field, option] : options_of_fields)
+        if (what.find (field) != std::string::npos)
+          throw Error (what + " (option " + option + ")");
+      throw;
     }
 
     const tools::SurfaceInput surface_input = tools::loadSurfaceInput (input);

@@ -573,6 +573,29 @@ namespace
     fs::remove_all (dir);
   }
 
+  /// pcl_sparse_patches names the option behind a field out of range ("-min-size 0" was refused with
+  /// "(angles are given in degrees)").
+  TEST (RobustnessAppsPaths, PatchesNameTheOptionOutOfRange)
+  {
+    if (!appsBuilt ())
+      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
+    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_patches_options";
+    fs::remove_all (dir);
+    fs::create_directories (dir);
+    const std::string obj = (dir / "c.obj").string (), out = (dir / "p.ply").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    RunResult r = runApp ("patches", {obj, out, "-min-size", "0", "-q"}, dir);
+    EXPECT_EQ (r.exit_code, 1) << r.err;
+    EXPECT_NE (r.err.find ("(option -min-size)"), std::string::npos) << r.err;
+    EXPECT_EQ (r.err.find ("degrees"), std::string::npos) << r.err;
+    r = runApp ("patches", {obj, out, "-eta", "0.5", "-q"}, dir);
+    EXPECT_EQ (r.exit_code, 1) << r.err;
+    EXPECT_NE (r.err.find ("(option -eta)"), std::string::npos) << r.err;
+    EXPECT_EQ (r.err.find ("degrees"), std::string::npos) << r.err;
+    EXPECT_FALSE (fs::exists (out));
+    fs::remove_all (dir);
+  }
+
   /// A write over the file-size limit ends the tool by SIGXFSZ: the temporary goes as on Ctrl-C (it left
   /// OUT.pcd.tmpPID, 10 MB under `ulimit -f 10000`). SIGPIPE, a cloud piped into a reader that quit, takes the
   /// same handler; when it comes depends on the reader, so it is not timed here.
