@@ -1,8 +1,11 @@
 #include <pcl_sparse/patches/face_completion.h>
 
+#include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/patches/face_placement.h>
 
 #include <Eigen/Geometry>
+
+#include <numeric>
 
 namespace pcl_sparse
 {
@@ -68,16 +71,12 @@ namespace pcl_sparse
   FaceCoverage
   faceCoverage (const TriangleMesh& mesh, const std::vector<Patch>& patches)
   {
-    auto area = [&] (std::size_t f) {
-      const Eigen::Vector3i& t = mesh.triangles[f];
-      return 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross (mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm ();
-    };
+    const std::vector<double> areas = computeFaceAreas (mesh);
     const std::vector<int> faces = facesInNoPatch (mesh, patches);
-    double total = 0.0, uncovered = 0.0;
-    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
-      total += area (f);
+    const double total = std::accumulate (areas.begin (), areas.end (), 0.0);
+    double uncovered = 0.0;
     for (int f : faces)
-      uncovered += area (static_cast<std::size_t> (f));
+      uncovered += areas[f];
     FaceCoverage coverage;
     coverage.faces_in_no_patch = faces.size ();
     coverage.area_fraction = total > 0.0 ? uncovered / total : 0.0;
