@@ -84,13 +84,7 @@ namespace pcl_sparse
                              path.c_str (), without_area, mesh.triangles.size ()));
         // Counted as the stages see the mesh, without the extra copies of a face they leave out (a face
         // given twice made its three edges "non-manifold" and the note said the surface was cut there).
-        TriangleMesh distinct;
-        distinct.vertices = mesh.vertices;
-        const std::vector<int> first = findDuplicateFaces (mesh);
-        for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
-          if (first[f] == static_cast<int> (f))
-            distinct.triangles.push_back (mesh.triangles[f]);
-        if (const std::size_t nonmanifold = countNonManifoldEdges (distinct); nonmanifold > 0)
+        if (const std::size_t nonmanifold = countNonManifoldEdges (mesh, findDuplicateFaces (mesh)); nonmanifold > 0)
           printNote (format ("%s: %zu of its edges are shared by more than two faces (non-manifold): the surface is cut "
                              "along them, no patch crosses one",
                              path.c_str (), nonmanifold));

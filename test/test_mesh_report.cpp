@@ -164,6 +164,8 @@ TEST (MeshReport, DuplicatedFace)
   EXPECT_EQ (r.genus, -1);
   const std::vector<int> first = findDuplicateFaces (mesh);
   EXPECT_EQ (first, (std::vector<int>{0, 1, 2, 3, 2, 2}));
+  // Without the copies, as the stages see the mesh: the tetrahedron's edges, two faces each.
+  EXPECT_EQ (countNonManifoldEdges (mesh, first), 0u);
 }
 
 TEST (MeshReport, DegenerateFaces)

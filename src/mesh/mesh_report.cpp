@@ -117,15 +117,16 @@ namespace pcl_sparse
   }
 
   std::size_t
-  countNonManifoldEdges (const TriangleMesh& mesh)
+  countNonManifoldEdges (const TriangleMesh& mesh, const std::vector<int>& first_copy)
   {
     // The face sides bucketed by their smaller end (a counting sort, linear), then each vertex's few larger
     // ends sorted: a sort of all 3 #F sides took 0.14 s on a 400k-face mesh, this a fraction of it.
     const std::size_t num_vertices = mesh.vertices.size ();
     std::vector<int> offsets (num_vertices + 1, 0);
     const auto forEachSide = [&] (auto&& visit) {
-      for (const Eigen::Vector3i& t : mesh.triangles)
-        if (!hasRepeatedIndex (t))
+      for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+        if (const Eigen::Vector3i& t = mesh.triangles[f];
+            !hasRepeatedIndex (t) && (first_copy.empty () || first_copy[f] == static_cast<int> (f)))
           for (int k = 0; k < 3; ++k)
             visit (std::min (t[k], t[(k + 1) % 3]), std::max (t[k], t[(k + 1) % 3]));
     };

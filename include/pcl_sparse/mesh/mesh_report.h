@@ -67,10 +67,12 @@ namespace pcl_sparse
   /// they leave out (SurfaceStage::getFacesWithRepeatedCorners), are not counted; otherwise
   /// MeshReport::nonmanifold_edges. Without building the topology: the face sides bucketed by vertex,
   /// O(#V + #F). Faces must index existing vertices.
-  /// \param[in] mesh  the mesh
+  /// \param[in] mesh        the mesh
+  /// \param[in] first_copy  empty (default), or findDuplicateFaces (mesh): the extra copies of a face, which
+  ///                        the stages leave out too, are then not counted
   /// \return the number of non-manifold edges
   std::size_t
-  countNonManifoldEdges (const TriangleMesh& mesh);
+  countNonManifoldEdges (const TriangleMesh& mesh, const std::vector<int>& first_copy = {});
 
   /// For every face, the index of the first face with the same vertex set (itself when it is the first);
   /// orientation is ignored. O(#V + #F log(max valence)).
