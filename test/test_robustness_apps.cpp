@@ -492,31 +492,51 @@ namespace
   INSTANTIATE_TEST_SUITE_P (Options, RobustnessOptions, ::testing::ValuesIn (optionCases ()),
                             [] (const ::testing::TestParamInfo<OptionCase>& info) { return info.param.label; });
 
+  /// Each test runs the tools in a folder of its own, removed after; skipped when the tools are not built.
+  class RobustnessAppsPaths : public ::testing::Test
+  {
+  protected:
+    void
+    SetUp () override
+    {
+      if (!appsBuilt ())
+        GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
+      dir_ = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_paths" /
+             ::testing::UnitTest::GetInstance ()->current_test_info ()->name ();
+      fs::remove_all (dir_);
+      fs::create_directories (dir_);
+    }
+
+    void
+    TearDown () override
+    {
+      if (!dir_.empty ())
+        fs::remove_all (dir_);
+    }
+
+    fs::path dir_;
+  };
+
   /// Outputs that name an input, another output or a folder that does not exist are refused before any
   /// work, and the input is left as it was (found by a review: "encode c.obj -recon c.obj" replaced the
   /// mesh, "decode m.psm c.ply -recon c.obj c.ply" wrote both outputs to one file).
-  TEST (RobustnessAppsPaths, OutputsNeverOverwriteInputs)
+  TEST_F (RobustnessAppsPaths, OutputsNeverOverwriteInputs)
   {
-    if (!appsBuilt ())
-      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
-    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_paths";
-    fs::remove_all (dir);
-    fs::create_directories (dir);
-    const std::string obj = (dir / "c.obj").string (), ply = (dir / "c.ply").string (), psm = (dir / "c.psm").string ();
+    const std::string obj = (dir_ / "c.obj").string (), ply = (dir_ / "c.ply").string (), psm = (dir_ / "c.psm").string ();
     saveTriangleMesh (obj, baseMesh ());
     saveTriangleMesh (ply, baseMesh ());
-    ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "-q"}, dir).exit_code, 0);
+    ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "-q"}, dir_).exit_code, 0);
     const std::string obj_bytes = readText (obj), ply_bytes = readText (ply), psm_bytes = readText (psm);
-    fs::create_symlink ("c.obj", dir / "link.obj");
-    const std::string same_obj = (dir / "." / "c.obj").string ();
+    fs::create_symlink ("c.obj", dir_ / "link.obj");
+    const std::string same_obj = (dir_ / "." / "c.obj").string ();
     const std::vector<std::pair<std::string, std::vector<std::string>>> runs = {
       {"encode", {obj, "-recon", obj}},
-      {"encode", {(dir / "link.obj").string (), "-recon", same_obj}},
-      {"encode", {obj, "-recon", (dir / "r.ply").string (), "-error", (dir / "r.ply").string ()}},
+      {"encode", {(dir_ / "link.obj").string (), "-recon", same_obj}},
+      {"encode", {obj, "-recon", (dir_ / "r.ply").string (), "-error", (dir_ / "r.ply").string ()}},
       {"resample", {ply, ply, "-n", "100"}},
-      {"decode", {psm, (dir / "o.pcd").string (), "-recon", obj, obj}},
-      {"decode", {psm, (dir / "x.ply").string (), "-recon", obj, (dir / "x.ply").string ()}},
-      {"decode", {psm, (dir / "no_such_folder" / "o.pcd").string ()}},
+      {"decode", {psm, (dir_ / "o.pcd").string (), "-recon", obj, obj}},
+      {"decode", {psm, (dir_ / "x.ply").string (), "-recon", obj, (dir_ / "x.ply").string ()}},
+      {"decode", {psm, (dir_ / "no_such_folder" / "o.pcd").string ()}},
       {"patches", {ply, ply}},
       {"keypoints", {ply, ply}},
     };
@@ -524,7 +544,7 @@ namespace
     {
       std::vector<std::string> quiet (args);
       quiet.push_back ("-q");
-      const RunResult r = runApp (app, quiet, dir);
+      const RunResult r = runApp (app, quiet, dir_);
       EXPECT_EQ (r.exit_code, 1) << r.command;
       EXPECT_EQ (nonEmptyLines (r.err), 1) << r.command << "\n" << r.err;
       EXPECT_TRUE (r.err.find ("refusing to overwrite") != std::string::npos || r.err.find ("same file") != std::string::npos ||
@@ -534,12 +554,12 @@ namespace
     EXPECT_TRUE (readText (ply) == ply_bytes) << "the input PLY changed";
     EXPECT_TRUE (readText (psm) == psm_bytes) << "the input model changed";
     for (const char* left : {"o.pcd", "x.ply", "r.ply"})
-      EXPECT_FALSE (fs::exists (dir / left)) << left;
+      EXPECT_FALSE (fs::exists (dir_ / left)) << left;
 
     // A FIFO is no model (opening it blocked decode forever), and a report lost to a full disk fails.
-    const fs::path fifo = dir / "fifo.psm";
+    const fs::path fifo = dir_ / "fifo.psm";
     ASSERT_EQ (::mkfifo (fifo.c_str (), 0600), 0);
-    const RunResult r = runApp ("decode", {fifo.string (), (dir / "o.pcd").string (), "-q"}, dir);
+    const RunResult r = runApp ("decode", {fifo.string (), (dir_ / "o.pcd").string (), "-q"}, dir_);
     EXPECT_EQ (r.exit_code, 1) << r.err;
     EXPECT_NE (r.err.find ("not a regular file"), std::string::npos) << r.err;
     if (fs::exists ("/dev/full"))
@@ -547,101 +567,78 @@ namespace
       const int status = std::system ((quote (appPath ("info")) + " " + quote (obj) + " --json > /dev/full 2> /dev/null").c_str ());
       EXPECT_TRUE (WIFEXITED (status) && WEXITSTATUS (status) == 1) << status;
     }
-    fs::remove_all (dir);
   }
 
   /// A spacing no resampling can use is refused with the options, before the input is read and encoded (it
   /// failed only after encoding, minutes on a large input): here the input is not even a mesh, and the error
   /// must name the spacing.
-  TEST (RobustnessAppsPaths, ResampleSpacingIsCheckedBeforeTheInputIsRead)
+  TEST_F (RobustnessAppsPaths, ResampleSpacingIsCheckedBeforeTheInputIsRead)
   {
-    if (!appsBuilt ())
-      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
-    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_spacing_first";
-    fs::remove_all (dir);
-    fs::create_directories (dir);
-    const std::string broken = (dir / "broken.obj").string ();
+    const std::string broken = (dir_ / "broken.obj").string ();
     std::ofstream (broken) << "v 0 0 0\nv 1 0\nf 1 2 3\n";
     for (const auto& [spacing, printed] : {std::pair<std::string, std::string> {"1e-200", "1e-200"}, {"1e200", "1e+200"}})
     {
-      const RunResult r = runApp ("resample", {broken, (dir / "o.pcd").string (), "-spacing", spacing, "-q"}, dir);
+      const RunResult r = runApp ("resample", {broken, (dir_ / "o.pcd").string (), "-spacing", spacing, "-q"}, dir_);
       EXPECT_EQ (r.exit_code, 1) << r.err;
       EXPECT_NE (r.err.find ("spacing " + printed), std::string::npos) << r.err;
       EXPECT_EQ (r.err.find ("broken.obj"), std::string::npos) << r.err;
-      EXPECT_FALSE (fs::exists (dir / "o.pcd"));
+      EXPECT_FALSE (fs::exists (dir_ / "o.pcd"));
     }
-    fs::remove_all (dir);
   }
 
   /// pcl_sparse_patches names the option behind a field out of range ("-min-size 0" was refused with
   /// "(angles are given in degrees)").
-  TEST (RobustnessAppsPaths, PatchesNameTheOptionOutOfRange)
+  TEST_F (RobustnessAppsPaths, PatchesNameTheOptionOutOfRange)
   {
-    if (!appsBuilt ())
-      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
-    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_patches_options";
-    fs::remove_all (dir);
-    fs::create_directories (dir);
-    const std::string obj = (dir / "c.obj").string (), out = (dir / "p.ply").string ();
+    const std::string obj = (dir_ / "c.obj").string (), out = (dir_ / "p.ply").string ();
     saveTriangleMesh (obj, baseMesh ());
-    RunResult r = runApp ("patches", {obj, out, "-min-size", "0", "-q"}, dir);
+    RunResult r = runApp ("patches", {obj, out, "-min-size", "0", "-q"}, dir_);
     EXPECT_EQ (r.exit_code, 1) << r.err;
     EXPECT_NE (r.err.find ("(option -min-size)"), std::string::npos) << r.err;
     EXPECT_EQ (r.err.find ("degrees"), std::string::npos) << r.err;
-    r = runApp ("patches", {obj, out, "-eta", "0.5", "-q"}, dir);
+    r = runApp ("patches", {obj, out, "-eta", "0.5", "-q"}, dir_);
     EXPECT_EQ (r.exit_code, 1) << r.err;
     EXPECT_NE (r.err.find ("(option -eta)"), std::string::npos) << r.err;
     EXPECT_EQ (r.err.find ("degrees"), std::string::npos) << r.err;
     EXPECT_FALSE (fs::exists (out));
-    fs::remove_all (dir);
   }
 
   /// A write over the file-size limit ends the tool by SIGXFSZ: the temporary goes as on Ctrl-C (it left
   /// OUT.pcd.tmpPID, 10 MB under `ulimit -f 10000`). SIGPIPE, a cloud piped into a reader that quit, takes the
   /// same handler; when it comes depends on the reader, so it is not timed here.
-  TEST (RobustnessAppsPaths, FileSizeLimitLeavesNoTemporary)
+  TEST_F (RobustnessAppsPaths, FileSizeLimitLeavesNoTemporary)
   {
-    if (!appsBuilt ())
-      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
-    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_file_size";
-    fs::remove_all (dir);
-    fs::create_directories (dir / "out");
-    const std::string obj = (dir / "c.obj").string ();
+    fs::create_directories (dir_ / "out");
+    const std::string obj = (dir_ / "c.obj").string ();
     saveTriangleMesh (obj, baseMesh ());
     for (const std::string stream : {"on", "off"})
     {
       // 2000 blocks of 512 or 1024 bytes: a few MB, under the 1M-point cloud's 28 MB.
       const std::string command = "ulimit -f 2000; exec " + quote (appPath ("resample")) + " " + quote (obj) + " " +
-                                  quote ((dir / "out" / "big.pcd").string ()) + " -n 1000000 -q -stream " + stream +
+                                  quote ((dir_ / "out" / "big.pcd").string ()) + " -n 1000000 -q -stream " + stream +
                                   " 2> /dev/null";
       const int status = std::system (("sh -c " + quote (command)).c_str ());
       ASSERT_TRUE (WIFEXITED (status)) << status;
       EXPECT_NE (WEXITSTATUS (status), 0) << "-stream " << stream << ": the cloud cannot fit under the limit";
-      EXPECT_TRUE (filesIn (dir / "out").empty ()) << "-stream " << stream << ": " << filesIn (dir / "out").front ();
+      EXPECT_TRUE (filesIn (dir_ / "out").empty ()) << "-stream " << stream << ": " << filesIn (dir_ / "out").front ();
     }
-    fs::remove_all (dir);
   }
 
   /// Ctrl-C during a long write removes the temporary (a streamed cloud of 20 M points stayed behind as
   /// OUT.ply.tmpPID, 58 MB and growing when the review stopped it).
-  TEST (RobustnessAppsPaths, InterruptedWriteLeavesNoTemporary)
+  TEST_F (RobustnessAppsPaths, InterruptedWriteLeavesNoTemporary)
   {
-    if (!appsBuilt ())
-      GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR << "/apps";
-    const fs::path dir = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_interrupted";
-    fs::remove_all (dir);
-    fs::create_directories (dir / "out");
-    const std::string obj = (dir / "c.obj").string (), psm = (dir / "c.psm").string ();
+    fs::create_directories (dir_ / "out");
+    const std::string obj = (dir_ / "c.obj").string (), psm = (dir_ / "c.psm").string ();
     saveTriangleMesh (obj, baseMesh ());
-    ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "-q"}, dir).exit_code, 0);
-    auto temporaries = [&] { return filesIn (dir / "out").size (); };
+    ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "-q"}, dir_).exit_code, 0);
+    auto temporaries = [&] { return filesIn (dir_ / "out").size (); };
     const pcl_sparse_test::InterruptedRun run = pcl_sparse_test::interruptOnceReady (
-      {appPath ("decode"), psm, (dir / "out" / "big.ply").string (), "-n", "200000000", "-q"}, [&] { return temporaries () > 0; },
+      {appPath ("decode"), psm, (dir_ / "out" / "big.ply").string (), "-n", "200000000", "-q"}, [&] { return temporaries () > 0; },
       {}, 50000);
     ASSERT_TRUE (run.ready) << "the decoder never made its temporary";
     EXPECT_TRUE (WIFSIGNALED (run.status) && WTERMSIG (run.status) == SIGINT) << "status " << run.status;
-    EXPECT_EQ (temporaries (), 0u) << "left: " << (filesIn (dir / "out").empty () ? "" : filesIn (dir / "out")[0]);
-    fs::remove_all (dir);
+    EXPECT_EQ (temporaries (), 0u) << "left: " << (filesIn (dir_ / "out").empty () ? "" : filesIn (dir_ / "out")[0]);
   }
 } // namespace
 
