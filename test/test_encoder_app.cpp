@@ -229,20 +229,25 @@ TEST_F (EncodeTool, ElementsWithoutSurfaceAreLeftOutWithANote)
     << out;
 }
 
-// A 12-triangle cube is grown into 2 patches on opposite sides; the other four sides' faces lie outside both
-// patches' cones and are a triangle of no patch. Resampling left them without a point and the tool said
-// nothing (found by a review): now --json counts them and stderr says so from 1 % of the area.
+// With -preset paper (no face completion) a 12-triangle cube is grown into 2 patches on opposite sides; the
+// other four sides' faces lie outside both patches' cones and are a triangle of no patch. Resampling left them
+// without a point and the tool said nothing (found by a review): now --json counts them and stderr says so
+// from 1 % of the area. By default each of those sides grows a patch of its own (seed_patches_on_faces).
 TEST_F (EncodeTool, FacesInNoPatchAreReported)
 {
   const std::string cube = (dir_ / "cube.off").string ();
   saveTriangleMesh (cube, makeCube (1));
   std::string json;
-  ASSERT_EQ (run (cube + " --json", json), 0);
+  ASSERT_EQ (run (cube + " --json -preset paper", json), 0);
   EXPECT_EQ (jsonNumber (json, "patches"), 2.0) << json;
   EXPECT_EQ (jsonNumber (json, "faces_in_no_patch"), 8.0) << json;
   EXPECT_NEAR (jsonNumber (json, "area_in_no_patch"), 4.0 / 6.0, 1e-12) << json;
-  const std::string notes = notesOf (cube);
+  const std::string notes = notesOf (cube + " -preset paper");
   EXPECT_NE (notes.find ("cube.off: 8 faces (66.67 % of the area) are a triangle of no patch"), std::string::npos) << notes;
+  ASSERT_EQ (run (cube + " --json", json), 0);  // default: one patch a side, no note
+  EXPECT_EQ (jsonNumber (json, "patches"), 6.0) << json;
+  EXPECT_EQ (jsonNumber (json, "faces_in_no_patch"), 0.0) << json;
+  EXPECT_EQ (notesOf (cube).find ("no patch"), std::string::npos);
   ASSERT_EQ (run (input_ + " --json", json), 0);  // the sphere: every face in a patch, no note
   EXPECT_EQ (jsonNumber (json, "faces_in_no_patch"), 0.0) << json;
   EXPECT_EQ (notesOf (input_).find ("no patch"), std::string::npos);

@@ -141,7 +141,12 @@ TEST (OppositeClearance, PlacesOverTheOtherSideOfAThinPartAreCleared)
   if (!std::ifstream (path).good ())
     GTEST_SKIP () << path << " not found (../shared absent)";
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-  const SparseSurfaceModel::ConstPtr model = pcl_sparse_test::encodeMesh (mesh);
+  // Without patches seeded on the faces completion leaves out: with them, the unclipped footprints that
+  // reached over cheese-cgal's thin parts are clipped and the crossings are gone with either clearance (6
+  // flipped points both ways), so the default model no longer tests the outside clearance.
+  SparseSurfaceEncoderOptions options;
+  options.patches.seed_patches_on_faces = false;
+  const SparseSurfaceModel::ConstPtr model = pcl_sparse_test::encodeMesh (mesh, options);
   PatchOwnershipOptions symmetric;
   symmetric.opposite_outside_clearance = symmetric.opposite_clearance;
   const KnifeCloud before = resampleKnife (mesh, model, symmetric);

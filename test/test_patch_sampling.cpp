@@ -7,6 +7,7 @@
 #include <pcl_sparse/io/scan_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
+#include <pcl_sparse/patches/face_completion.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/patches/non_manifold_split.h>
 #include <pcl_sparse/geometry/quadric_fit.h>
@@ -214,7 +215,8 @@ TEST (PatchSampling, CubePatchesStayOnOneFace)
 TEST (PatchSampling, CoveragePassCoversCreaseOnlyMeshes)
 {
   // A cube with one cell per face: every vertex is a corner whose normal is 54.7 degrees from all its
-  // faces, so the method's growth never leaves its seed. The coverage pass grows from faces instead.
+  // faces, so the method's growth never leaves its seed. The coverage pass grows from faces instead; the
+  // sides it leaves in no patch (their corners are covered) grow patches of their own (seed_patches_on_faces).
   const TriangleMesh cube = makeCube (1);
   FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
   sampling.setInputMesh (std::make_shared<TriangleMesh> (cube));
@@ -224,7 +226,8 @@ TEST (PatchSampling, CoveragePassCoversCreaseOnlyMeshes)
   const PatchOptions options;
   expectValidPartition (cube, patches, options, "cube (1 cell per face)");
   EXPECT_EQ (sampling.getNumCoveragePatches (), patches.size ());
-  EXPECT_LE (patches.size (), 4u);
+  EXPECT_EQ (patches.size (), 6u);  // one a side
+  EXPECT_TRUE (facesInNoPatch (cube, patches).empty ());
   const auto normals = computePatchGrowthGeometry (cube, buildMeshTopology (cube)).face_normals;
   for (const Patch& p : patches)
   {

@@ -563,6 +563,7 @@ namespace pcl_sparse
       // Faces of the seed region only (a face with a seedable corner): a tile's margin is another tile's.
       FaceCompletionResult completion = completePatchFaces (mesh, topology, geometry, options, result.patches, seedable);
       result.num_completed_faces = completion.completed;
+      result.num_coverage_patches += completion.seeded_patches;
       result.uncovered_faces = std::move (completion.uncovered);
     }
     if (options.drop_redundant_patches)

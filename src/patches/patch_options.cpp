@@ -46,6 +46,7 @@ namespace pcl_sparse
     base.cover_all_vertices = false;
     base.cover_unreferenced_vertices = 0;
     base.complete_faces = false;
+    base.seed_patches_on_faces = false;
     base.drop_redundant_patches = false;
     base.merge_own_elements = 0;
     return base;

@@ -14,14 +14,23 @@
 /// order: a patch where the face passes growth's smooth variation test (within delta of the vertex normal
 /// of a corner the patch holds, or of a patch triangle across an edge), the one holding the most corners,
 /// the one whose seed normal is closest to the face normal, the lowest index. The missing corners join the
-/// patch's vertices. No patch is added, so M does not change; the extra vertices and triangles are extra
+/// patch's vertices. No patch is added by this placement; the extra vertices and triangles are extra
 /// samples of the patch's fit and extend its footprint.
 ///
 /// Measured (bench/results/face_completion.md): faces in no patch before / after completion, couplingdown
 /// 1767 / 688 of 3714, cheese-cgal 10696 / 4398 of 17786, blade 9627 / 136 of 16222 (what is left: faces
-/// outside the cone of every patch holding a corner, on strips between creases). The patches at the
-/// corners of a face left out are marked (Patch::beside_uncovered_face): their footprints are not clipped
-/// at their border, whose overshoot covers it.
+/// outside the cone of every patch holding a corner, on strips between creases: a quarter of couplingdown's
+/// and cheese-cgal's area).
+///
+/// Patches seeded on faces (PatchOptions::seed_patches_on_faces, default on): each face left, in ascending
+/// order, grows a patch of its own over faces (PatchGrower::growFromFace: the face's normal is the cone's
+/// axis, smooth variation between adjacent faces), kept unless it is a long strip seen from its seed
+/// (growth radius r with r^2 > 40 x its area), whose star-shaped footprint would span wedges off the strip.
+/// These patches are appended (M grows: they count as coverage patches). Measured on the 25 shared meshes
+/// (bench/results/face_seeded_patches.md): area in no patch couplingdown 24.5 % -> 0, cheese-cgal 27 % ->
+/// 0.04 %, turbine 1.7 % -> 0.0007 %, 0 on 17 meshes; blade keeps its 0.16 % (fillet strips). The patches
+/// at the corners of a face still left out are marked (Patch::beside_uncovered_face): their footprints are
+/// not clipped at their border, whose overshoot covers it.
 
 #include <pcl_sparse/mesh/mesh_topology.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
@@ -41,16 +50,20 @@ namespace pcl_sparse
     std::size_t faces_in_no_patch = 0;  ///< proper faces (area > 0) in no patch before completion
     std::size_t completed = 0;          ///< of those, faces added to a patch
     std::size_t without_smooth_variation = 0;  ///< of those, faces no candidate took with smooth variation
-    std::vector<int> uncovered;         ///< proper faces still in no patch (no patch could take them), ascending
+    /// patches appended, each grown from a face no patch could take (PatchOptions::seed_patches_on_faces)
+    std::size_t seeded_patches = 0;
+    std::vector<int> uncovered;         ///< proper faces still in no patch, ascending
   };
 
-  /// \brief Adds every proper face that is in no patch to a patch holding one of its corners (see the file
-  /// comment), before the frames are fitted (patch.local is not touched).
+  /// \brief Adds every proper face that is in no patch to a patch holding one of its corners, and with
+  /// PatchOptions::seed_patches_on_faces grows patches on the faces that fit none (see the file comment),
+  /// before the frames are fitted (patch.local is not touched).
   /// \param[in]     mesh        the mesh the patches were grown on
   /// \param[in]     topology    its topology
   /// \param[in]     geometry    computePatchGrowthGeometry (mesh, topology, ...): normals of the seeds and faces
-  /// \param[in]     options     cone_angle, pairwise_cone and delta, as the patches were grown with
-  /// \param[in,out] patches     grown patches (seed, seed_face, vertices, triangles); faces and corners appended
+  /// \param[in]     options     the growth options the patches were grown with, and seed_patches_on_faces
+  /// \param[in,out] patches     grown patches (seed, seed_face, vertices, triangles); faces and corners
+  ///                            appended, and the patches seeded on faces after them
   /// \param[in]     must_cover  empty (every face), or #V flags: only faces with a flagged corner are completed
   /// \return counts and the faces left in no patch
   FaceCompletionResult
