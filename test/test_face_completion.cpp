@@ -2,6 +2,7 @@
 // resampling leaves no hole, on generated meshes with long thin faces between patches and on the shared CAD
 // meshes where faces in no patch covered most of the area (couplingdown 85 %, cheese-cgal 70 %, blade 42 %).
 
+#include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -117,6 +118,17 @@ TEST (FaceCompletion, PresetPaperKeepsTheMethod)
 {
   EXPECT_TRUE (PatchOptions ().complete_faces);
   EXPECT_FALSE (encoderPresetOptions (EncoderPreset::Paper).patches.complete_faces);
+  EXPECT_TRUE (PatchOptions ().seed_patches_on_faces);
+  EXPECT_FALSE (encoderPresetOptions (EncoderPreset::Paper).patches.seed_patches_on_faces);
+  EXPECT_NEAR (PatchOptions ().face_steep_frame_angle, 50.0 * M_PI / 180.0, 1e-15);
+  EXPECT_EQ (encoderPresetOptions (EncoderPreset::Paper).patches.face_steep_frame_angle, 0.0);
+  EXPECT_EQ (authorsCodePatchOptions ().face_steep_frame_angle, 0.0);
+  PatchOptions options;
+  for (double angle : {-0.1, 1.6, std::nan ("")})
+  {
+    options.face_steep_frame_angle = angle;
+    EXPECT_THROW (options.validate (), Error) << angle;
+  }
 }
 
 TEST (FaceSeededPatches, CubeSidesBetweenTwoPatchesGetPatchesOfTheirOwn)
@@ -179,7 +191,7 @@ TEST (FaceCompletion, SharedCadMeshes)
     double max_area_in_no_patch;  ///< fraction of the area that is a triangle of no patch
   };
   int found = 0;
-  for (const Case& entry : {Case{"couplingdown.off", 3.0, 2, 0.0}, Case{"cheese-cgal.off", 3.0, 20, 0.001},
+  for (const Case& entry : {Case{"couplingdown.off", 3.0, 2, 0.0}, Case{"cheese-cgal.off", 3.0, 10, 0.001},
                             Case{"blade.off", 1.2, 12, 0.002}})
   {
     const std::string& file = entry.file;
@@ -200,11 +212,14 @@ TEST (FaceCompletion, SharedCadMeshes)
     if (file == "couplingdown.off")
     {
       // Denser than 4 V, the patches' overshoot no longer covered the faces in no patch: 9.8 spacings before.
+      // With every face in a patch 3.17: patches grown from faces whose jets left triangles steeper than
+      // resampling's slope bound (50 degrees) had those places left to overlapping patches, and there were
+      // none; with face_steep_frame_angle 2.03 (bench_meshes' 200k probes).
       const Coverage dense = resampleAndMeasure (mesh, 100000);
       std::cout << file << " at 100000 points: p99 " << dense.p99_spacings << " spacings, within 3 spacings "
                 << dense.within3 << std::endl;
-      EXPECT_LE (dense.p99_spacings, 3.5) << file;
-      EXPECT_GE (dense.within3, 0.98) << file;
+      EXPECT_LE (dense.p99_spacings, 3.0) << file;
+      EXPECT_GE (dense.within3, 0.99) << file;
     }
   }
   if (found == 0)

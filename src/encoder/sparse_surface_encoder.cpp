@@ -406,6 +406,7 @@ namespace pcl_sparse
       options.patches.pairwise_cone = false;
       options.patches.complete_faces = false;
       options.patches.seed_patches_on_faces = false;
+      options.patches.face_steep_frame_angle = 0.0;
       options.patches.drop_redundant_patches = false;
       options.patches.merge_own_elements = 0;
       options.coding.triangle_samples = 0.0;

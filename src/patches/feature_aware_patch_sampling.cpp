@@ -351,10 +351,11 @@ namespace pcl_sparse
       }
     }
 
-    /// Frames (docs/METHOD.md step 6), in parallel: one output per patch.
+    /// Frames (docs/METHOD.md step 6), in parallel: one output per patch. Patches grown from a face refuse
+    /// steep jets from face_steep_frame_angle on (PatchOptions).
     std::vector<PatchFrameKind>
     fitFrames (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
-               double steep_frame_angle, int threads, std::vector<Patch>& patches)
+               double steep_frame_angle, double face_steep_frame_angle, int threads, std::vector<Patch>& patches)
     {
       double global_edge = 0.0;
       if (!topology.edges.empty ())
@@ -374,7 +375,8 @@ namespace pcl_sparse
         const double guard = meanEdgeLength (mesh, topology, p.seed);
         const Eigen::Vector3d& seed_normal =
           p.seed_face >= 0 ? geometry.face_normals[p.seed_face] : geometry.vertex_normals[p.seed];
-        frame_kinds[i] = computePatchFrame (mesh, seed_normal, guard > 0.0 ? guard : global_edge, p, steep_frame_angle);
+        const double steep = p.seed_face >= 0 ? face_steep_frame_angle : steep_frame_angle;
+        frame_kinds[i] = computePatchFrame (mesh, seed_normal, guard > 0.0 ? guard : global_edge, p, steep);
       }
       return frame_kinds;
     }
@@ -575,7 +577,11 @@ namespace pcl_sparse
 
     // Unresolved (< 0), it is a mesh's.
     const double steep_frame_angle = patchOptionsFor (options, false).steep_frame_angle;
-    result.frame_kinds = fitFrames (mesh, topology, geometry, steep_frame_angle, threads, result.patches);
+    const double face_steep_frame_angle = steep_frame_angle > 0.0 && options.face_steep_frame_angle > 0.0
+                                            ? std::min (steep_frame_angle, options.face_steep_frame_angle)
+                                            : steep_frame_angle;
+    result.frame_kinds =
+      fitFrames (mesh, topology, geometry, steep_frame_angle, face_steep_frame_angle, threads, result.patches);
     if (growth.is_split)
       mapToInputVertices (growth, num_input, result.patches);
     if (!cover_unreferenced)

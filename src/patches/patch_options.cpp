@@ -32,6 +32,8 @@ namespace pcl_sparse
       fail ("min_growth_vertices", min_growth_vertices, "min_growth_vertices >= 0");
     if (!(steep_frame_angle == -1.0 || (steep_frame_angle >= 0.0 && steep_frame_angle <= M_PI / 2.0)))
       fail ("steep_frame_angle", steep_frame_angle, "-1 (by surface) or 0 <= steep_frame_angle <= pi / 2");
+    if (!(face_steep_frame_angle >= 0.0 && face_steep_frame_angle <= M_PI / 2.0))
+      fail ("face_steep_frame_angle", face_steep_frame_angle, "0 <= face_steep_frame_angle <= pi / 2");
     if (merge_own_elements < 0)
       fail ("merge_own_elements", merge_own_elements, "merge_own_elements >= 0");
     if (min_patch_size < 1)
@@ -47,6 +49,7 @@ namespace pcl_sparse
     base.cover_unreferenced_vertices = 0;
     base.complete_faces = false;
     base.seed_patches_on_faces = false;
+    base.face_steep_frame_angle = 0.0;
     base.drop_redundant_patches = false;
     base.merge_own_elements = 0;
     return base;

@@ -28,7 +28,7 @@
 /// (growth radius r with r^2 > 40 x its area), whose star-shaped footprint would span wedges off the strip.
 /// These patches are appended (M grows: they count as coverage patches). Measured on the 25 shared meshes
 /// (bench/results/face_seeded_patches.md): area in no patch couplingdown 24.5 % -> 0, cheese-cgal 27 % ->
-/// 0.04 %, turbine 1.7 % -> 0.0007 %, 0 on 17 meshes; blade keeps its 0.16 % (fillet strips). The patches
+/// 0.04 %, turbine 1.7 % -> 0.0007 %, 0 on 16 meshes; blade keeps its 0.16 % (fillet strips). The patches
 /// at the corners of a face still left out are marked (Patch::beside_uncovered_face): their footprints are
 /// not clipped at their border, whose overshoot covers it.
 

@@ -16,7 +16,8 @@ namespace pcl_sparse
     Jet,          ///< the jet's principal directions and normal (the method)
     SeedNormal,   ///< N = the seed's vertex normal, T1 = the jet's max direction projected on its plane:
                   ///< used when the jet normal would flip a patch triangle in projection, or tilt the
-                  ///< steepest one past PatchOptions::steep_frame_angle (72 degrees on meshes) and
+                  ///< steepest one past PatchOptions::steep_frame_angle (72 degrees on meshes; 50 for
+                  ///< patches grown from faces, face_steep_frame_angle) and
                   ///< past its tilt on the seed's plane
     NormalOnly    ///< N = the seed's vertex normal, any tangent basis: fewer than 6 vertices or a
                   ///< degenerate layout (jet underdetermined)
