@@ -23,6 +23,21 @@ namespace pcl_sparse
     /// turbine's; 24 leaves 1 % of cheese-cgal's (bench/results/face_seeded_patches.md).
     constexpr double kMaxFacePatchSpread = 40.0;
 
+    /// The faces of positive area in \a areas (computeFaceAreas) that are a triangle of no patch, ascending.
+    std::vector<int>
+    facesInNoPatch (const TriangleMesh& mesh, const std::vector<Patch>& patches, const std::vector<double>& areas)
+    {
+      std::vector<std::uint8_t> in_patch (mesh.triangles.size (), 0);
+      for (const Patch& p : patches)
+        for (int f : p.triangles)
+          in_patch[f] = 1;
+      std::vector<int> faces;
+      for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+        if (!in_patch[f] && areas[f] > 0.0)
+          faces.push_back (static_cast<int> (f));
+      return faces;
+    }
+
     /// Each face of result.uncovered not in a patch yet, in ascending order, grows a patch over faces
     /// (PatchGrower::growFromFace: its own normal is the cone's axis, smooth variation between adjacent
     /// faces), seeded at its first corner the partition answers for, and kept if it is compact enough
@@ -117,27 +132,14 @@ namespace pcl_sparse
   std::vector<int>
   facesInNoPatch (const TriangleMesh& mesh, const std::vector<Patch>& patches)
   {
-    std::vector<std::uint8_t> in_patch (mesh.triangles.size (), 0);
-    for (const Patch& p : patches)
-      for (int f : p.triangles)
-        in_patch[f] = 1;
-    std::vector<int> faces;
-    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
-    {
-      const Eigen::Vector3i& t = mesh.triangles[f];
-      const double area =
-          (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross (mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm ();
-      if (!in_patch[f] && area > 0.0)
-        faces.push_back (static_cast<int> (f));
-    }
-    return faces;
+    return facesInNoPatch (mesh, patches, computeFaceAreas (mesh));
   }
 
   FaceCoverage
   faceCoverage (const TriangleMesh& mesh, const std::vector<Patch>& patches)
   {
     const std::vector<double> areas = computeFaceAreas (mesh);
-    const std::vector<int> faces = facesInNoPatch (mesh, patches);
+    const std::vector<int> faces = facesInNoPatch (mesh, patches, areas);
     const double total = std::accumulate (areas.begin (), areas.end (), 0.0);
     double uncovered = 0.0;
     for (int f : faces)
