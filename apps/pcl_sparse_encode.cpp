@@ -67,8 +67,7 @@ namespace
     {
       {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
       {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
-      {"", "when plausible, else consistently oriented, outward on closed surfaces; not with tiles yet:"},
-      {"", "-tiles, or an input over -memory, docs/TILES.md)"},
+      {"", "when plausible, else consistently oriented, outward on closed surfaces; tiles too)"},
       {"-rho R", "patch size bound A_p / A (default 0.001; paper: 0.005, 0.001, 0.0002)"},
       {"-f F", "Nyquist factor in [0, 1] (default 0.5; 0 = plain OMP)"},
       {"--authors-nyquist", "the authors' cap lambda >= f mu instead of the paper's lambda / 2 > f mu"},
@@ -207,10 +206,6 @@ main (int argc, char** argv)
     std::vector<Eigen::Vector3d> input_positions;
     if (!bounded && (!tiled || needs_input))
       input_positions = input.worldPositions ();
-    if (tiled && has_viewpoint)
-      throw Error ("option -viewpoint is not supported with tiling yet (" +
-                   std::string (args.has ("-tiles") ? "-tiles is given" : "the input is over -memory: raise -memory to encode it whole") +
-                   "; docs/TILES.md)");
     if (tiled && !args.has ("-tiles"))  // tiles sized for the budget, so many side by side at most
       threads = std::min (resolveThreadCount (threads), tools::kBudgetTilesAtOnce);
     if (!tiled && group.rank () != 0)
@@ -241,6 +236,8 @@ main (int argc, char** argv)
     else if (tiled)
       source = input.mesh ? std::make_shared<MemoryTileSource> (input.mesh, grid_options)
                           : std::make_shared<MemoryTileSource> (input.scan, grid_options);
+    if (source && has_viewpoint)
+      source->setViewPoint (viewpoint.x (), viewpoint.y (), viewpoint.z ());
     const double load_seconds = timer.toc () / 1000.0;
     const double peak_after_load = peakResidentMb ();
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;

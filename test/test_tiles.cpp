@@ -824,6 +824,38 @@ TEST (TiledEncoding, StrayScanPointsDoNotFailTheEncoding)
   EXPECT_GT (tiled.model.patches.size (), 0u);
 }
 
+// TileSource::setViewPoint reaches each tile's encoder: a plane of scan points seen from above or below gets
+// every patch's normal toward the viewpoint (without it, a consistent orientation picks one sign for both).
+TEST (TiledEncoding, ViewPointOfTheSourceOrientsEveryTile)
+{
+  auto scan = std::make_shared<ScanCloud> ();
+  std::mt19937 mt (7);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  for (int i = 0; i < 4000; ++i)
+  {
+    const double x = u (mt), y = u (mt);
+    scan->positions.emplace_back (x, y, 0.05 * std::sin (3.0 * x) * std::cos (2.0 * y));
+  }
+  scan->width = static_cast<std::uint32_t> (scan->positions.size ());
+  scan->height = 1;
+  TileGridOptions grid;
+  grid.tiles_along_longest = 3;
+  for (const float z : {10.0f, -10.0f})
+  {
+    auto source = std::make_shared<MemoryTileSource> (scan, grid);
+    source->setViewPoint (0.2f, -0.1f, z);
+    TiledSurfaceEncoder encoder;
+    encoder.setTileSource (source);
+    TiledModel tiled;
+    encoder.compute (tiled);
+    ASSERT_GE (tiled.model.patches.size (), 9u);  // one at least in each of the 3 x 3 tiles
+    std::size_t facing = 0;
+    for (const PatchCode& patch : tiled.model.patches)
+      facing += patch.frame.col (2).z () * z > 0.0 ? 1 : 0;
+    EXPECT_EQ (facing, tiled.model.patches.size ()) << "viewpoint z " << z;
+  }
+}
+
 TEST (TiledEncoding, WavefrontHoldsVertexListsForABandOfTiles)
 {
   // 103k vertices in 12 x 12 x 2 tiles; fast options (the order and memory are tested, not the model).

@@ -272,17 +272,26 @@ TEST_F (TilesTool, NoTileWithASurfaceIsAnError)
   EXPECT_FALSE (std::filesystem::exists (dir_.file ("t.psm")));
 }
 
-// A given viewpoint does not reach the tiles yet: refused before any work, saying why, on both ways into
-// tiling (the help and docs/TILES.md say so too).
-TEST_F (TilesTool, ViewpointIsRefusedWithTiles)
+// A given viewpoint reaches every tile, on both ways into tiling (it was refused with tiles): seen from far
+// above the terrain every patch's normal points up, from far below every one points down. The file's own
+// VIEWPOINT (0 0 0, a corner of the terrain) would give either sign, so a viewpoint lost on the way fails.
+TEST_F (TilesTool, ViewpointReachesEveryTile)
 {
   const std::string cloud = terrainCloud (60000);
-  std::string out;
-  EXPECT_EQ (run ("pcl_sparse_encode", cloud + " -memory 1M -viewpoint 0,0,5 -o " + dir_.file ("vp.psm"), out), 1);
-  EXPECT_NE (out.find ("-viewpoint is not supported with tiling yet (the input is over -memory"), std::string::npos) << out;
-  EXPECT_EQ (run ("pcl_sparse_encode", cloud + " -tiles 2 -viewpoint 0,0,5 -o " + dir_.file ("vp.psm"), out), 1);
-  EXPECT_NE (out.find ("-viewpoint is not supported with tiling yet (-tiles is given"), std::string::npos) << out;
-  EXPECT_FALSE (std::filesystem::exists (dir_.file ("vp.psm")));
+  for (const std::string tiling : {"-memory 1M", "-tiles 2"})
+    for (const double z : {2000.0, -2000.0})
+    {
+      const std::string model = dir_.file ("vp.psm");
+      std::string out;
+      ASSERT_EQ (run ("pcl_sparse_encode", cloud + " -q " + tiling + " -viewpoint 500,500," + std::to_string (z) + " -o " + model, out), 0)
+        << out;
+      const SparseSurfaceModel m = loadModel (model);
+      ASSERT_GT (m.patches.size (), 100u) << tiling;
+      std::size_t facing = 0;
+      for (const PatchCode& patch : m.patches)
+        facing += patch.frame.col (2).z () * z > 0.0 ? 1 : 0;
+      EXPECT_EQ (facing, m.patches.size ()) << tiling << ", viewpoint z " << z;
+    }
 }
 
 // An ascii PCD of short numbers takes under 12 bytes a point: over -memory it is spilled like any other (the

@@ -127,7 +127,11 @@ namespace pcl_sparse
     tile_options.patches.rho = options.patches.rho * static_cast<double> (source.totalPoints ()) / static_cast<double> (num_points);
     SparseSurfaceEncoder<pcl::PointXYZ> encoder;
     if (input.scan)
+    {
       encoder.setInputScan (input.scan);
+      if (source.hasViewPoint ())
+        encoder.setViewPoint (source.getViewPoint ().x (), source.getViewPoint ().y (), source.getViewPoint ().z ());
+    }
     else
       encoder.setInputMesh (input.mesh);
     encoder.setOptions (tile_options);

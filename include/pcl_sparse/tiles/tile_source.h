@@ -21,6 +21,8 @@
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/tile_grid.h>
 
+#include <Eigen/Core>
+
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -63,5 +65,22 @@ namespace pcl_sparse
     virtual std::size_t corePoints (std::size_t t) const = 0;
     /// The input of tile \a t's margin box. Safe to call from several threads for different tiles.
     virtual TileInput loadTile (std::size_t t) const = 0;
+
+    /// \brief The position a scan's normals face, in the input file's frame, for every tile (encodeTile gives
+    /// it to each tile's encoder: SparseSurfaceEncoder::setViewPoint, as the untiled encoding of the same
+    /// input would get it). Without it a tile's normals face the input's sensor pose (a PCD's VIEWPOINT) when
+    /// plausible, else they are oriented consistently. Meshes ignore it (their normals follow the faces).
+    void
+    setViewPoint (float vpx, float vpy, float vpz)
+    {
+      has_viewpoint_ = true;
+      viewpoint_ = Eigen::Vector3f (vpx, vpy, vpz);
+    }
+    bool hasViewPoint () const { return has_viewpoint_; }
+    const Eigen::Vector3f& getViewPoint () const { return viewpoint_; }
+
+  private:
+    bool has_viewpoint_ = false;
+    Eigen::Vector3f viewpoint_ = Eigen::Vector3f::Zero ();
   };
 } // namespace pcl_sparse
