@@ -43,6 +43,31 @@ using namespace pcl_sparse;
 
 namespace
 {
+  /// -recon takes the faces of \a mesh and the model's positions of its vertices: a mesh with the same vertex
+  /// count but not the one encoded (another mesh, or its vertices in another order) gave a tangle without a
+  /// word. The model puts the encoded mesh's vertices within its coding error of where they were (about
+  /// 1e-4 of the diagonal; quantised files 1e-3), so half of them more than 5 % of the diagonal away is
+  /// another mesh.
+  void
+  checkReconstructionMesh (const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& reconstructed, double diagonal,
+                           const std::string& path)
+  {
+    std::vector<double> distances;
+    distances.reserve (reconstructed.size ());
+    for (std::size_t v = 0; v < reconstructed.size (); ++v)
+      if (reconstructed[v].allFinite ())
+        distances.push_back ((reconstructed[v] - mesh.vertices[v]).norm ());
+    if (distances.empty () || !(diagonal > 0.0))
+      return;
+    auto median = distances.begin () + static_cast<std::ptrdiff_t> (distances.size () / 2);
+    std::nth_element (distances.begin (), median, distances.end ());
+    if (!(*median <= 0.05 * diagonal))
+      throw Error (tools::format ("option -recon: '%s' is not the mesh the model was encoded from: half its vertices lie "
+                                  "%.3g %% of the diagonal or more from where the model puts them (the model's own error "
+                                  "is about 0.01 %%); the same vertex count, but another mesh or another vertex order",
+                                  path.c_str (), 100.0 * *median / diagonal));
+  }
+
   const tools::ToolDescription kTool = {
     "pcl_sparse_decode", "MODEL.psm OUT.{pcd,ply} [options]",
     {
@@ -413,6 +438,7 @@ main (int argc, char** argv)
 
     // Check -recon before writing anything, so that a bad request leaves no output behind.
     TriangleMesh recon;
+    std::vector<Eigen::Vector3d> reconstructed;
     if (!recon_mesh.empty ())
     {
       recon = loadTriangleMesh (recon_mesh);
@@ -424,6 +450,8 @@ main (int argc, char** argv)
         any = any || !patch.vertices.empty ();
       if (!any && !model->patches.empty ())
         throw Error ("option -recon: '" + model_path + "' stores no patch vertices (encode with --store-vertices)");
+      reconstructed = model->reconstructVertices (recon.vertices.size ());
+      checkReconstructionMesh (recon, reconstructed, model->bbox_diagonal, recon_mesh);
     }
 
     const Decoded decoded =
@@ -437,10 +465,9 @@ main (int argc, char** argv)
     timer.tic ();
     if (!recon_mesh.empty ())
     {
-      const std::vector<Eigen::Vector3d> vertices = model->reconstructVertices (recon.vertices.size ());
-      for (std::size_t v = 0; v < vertices.size (); ++v)
-        if (vertices[v].allFinite ())
-          recon.vertices[v] = vertices[v];
+      for (std::size_t v = 0; v < reconstructed.size (); ++v)
+        if (reconstructed[v].allFinite ())
+          recon.vertices[v] = reconstructed[v];
       saveTriangleMesh (recon_out, recon);
     }
     write_seconds += timer.toc () / 1000.0;

@@ -517,6 +517,42 @@ namespace
     fs::path dir_;
   };
 
+  /// decode -recon takes the faces of the mesh given and the model's positions of its vertices: the encoded
+  /// mesh comes back within the model's error; the same mesh with its vertices in another order (same count)
+  /// gave a tangle without a word. It is refused now, before anything is written.
+  TEST_F (RobustnessAppsPaths, DecodeReconNeedsTheEncodedMesh)
+  {
+    const TriangleMesh mesh = baseMesh ();
+    const std::string obj = (dir_ / "c.obj").string (), psm = (dir_ / "c.psm").string ();
+    saveTriangleMesh (obj, mesh);
+    ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "--store-vertices", "-q"}, dir_).exit_code, 0);
+    const std::string recon = (dir_ / "r.obj").string (), cloud = (dir_ / "o.pcd").string ();
+    const RunResult good = runApp ("decode", {psm, cloud, "-recon", obj, recon, "-q"}, dir_);
+    ASSERT_EQ (good.exit_code, 0) << good.err;
+    const TriangleMesh r = loadTriangleMesh (recon);
+    ASSERT_EQ (r.vertices.size (), mesh.vertices.size ());
+    double farthest = 0.0;
+    for (std::size_t v = 0; v < r.vertices.size (); ++v)
+      farthest = std::max (farthest, (r.vertices[v] - mesh.vertices[v]).norm ());
+    EXPECT_LT (farthest, 0.03) << "the icosphere has radius 1 (diagonal 3.46); the default file is quantised";
+
+    // The same surface, vertices numbered backwards (faces follow): every vertex gets another's position.
+    TriangleMesh reversed = mesh;
+    const int n = static_cast<int> (mesh.vertices.size ());
+    std::reverse (reversed.vertices.begin (), reversed.vertices.end ());
+    for (Eigen::Vector3i& t : reversed.triangles)
+      t = Eigen::Vector3i (n - 1 - t[0], n - 1 - t[1], n - 1 - t[2]);
+    const std::string other = (dir_ / "reversed.obj").string ();
+    saveTriangleMesh (other, reversed);
+    fs::remove (cloud);
+    fs::remove (recon);
+    const RunResult bad = runApp ("decode", {psm, cloud, "-recon", other, recon, "-q"}, dir_);
+    EXPECT_EQ (bad.exit_code, 1) << bad.err;
+    EXPECT_NE (bad.err.find ("is not the mesh the model was encoded from"), std::string::npos) << bad.err;
+    EXPECT_FALSE (fs::exists (cloud));
+    EXPECT_FALSE (fs::exists (recon));
+  }
+
   /// Outputs that name an input, another output or a folder that does not exist are refused before any
   /// work, and the input is left as it was (found by a review: "encode c.obj -recon c.obj" replaced the
   /// mesh, "decode m.psm c.ply -recon c.obj c.ply" wrote both outputs to one file).
