@@ -315,25 +315,13 @@ namespace
 
   /// Option -box: six numbers, min corner then max corner.
   Eigen::AlignedBox3d
-  parseBox (const std::string& text)
+  parseBox (const tools::CommandLine& args)
   {
+    const std::string expected = "XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (six finite numbers, min <= max)";
     std::vector<double> v;
-    std::size_t at = 0;
-    while (at <= text.size () && v.size () < 7)
-    {
-      const std::size_t comma = std::min (text.find (',', at), text.size ());
-      const std::string item = text.substr (at, comma - at);
-      char* end = nullptr;
-      const double x = std::strtod (item.c_str (), &end);
-      if (item.empty () || *end != '\0' || !std::isfinite (x))
-        v.push_back (NAN);
-      else
-        v.push_back (x);
-      at = comma + 1;
-    }
-    if (v.size () != 6 || !std::all_of (v.begin (), v.end (), [] (double x) { return std::isfinite (x); }) ||
-        v[0] > v[3] || v[1] > v[4] || v[2] > v[5])
-      throw Error ("option -box: expected XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (six finite numbers, min <= max), got '" + text + "'");
+    args.numbers ("-box", 6, expected, v);
+    if (v[0] > v[3] || v[1] > v[4] || v[2] > v[5])
+      throw Error ("option -box: expected " + expected + ", got '" + args.value ("-box") + "'");
     return Eigen::AlignedBox3d (Eigen::Vector3d (v[0], v[1], v[2]), Eigen::Vector3d (v[3], v[4], v[5]));
   }
 } // namespace
@@ -370,7 +358,7 @@ main (int argc, char** argv)
     const bool stream = tools::chooseStreaming (args, out_path, true, false);
 
     const bool has_box = args.has ("-box");
-    const Eigen::AlignedBox3d box = has_box ? parseBox (args.value ("-box")) : Eigen::AlignedBox3d ();
+    const Eigen::AlignedBox3d box = has_box ? parseBox (args) : Eigen::AlignedBox3d ();
     if (has_box && !has_density)
       throw Error ("option -box needs -density D (points per unit area: -n counts the whole model's points)");
     if (has_box && args.value ("-stream") == "on")  // it quietly did not stream

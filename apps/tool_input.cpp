@@ -12,8 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
-#include <sstream>
+#include <vector>
 
 namespace pcl_sparse
 {
@@ -134,29 +135,15 @@ namespace pcl_sparse
     bool
     parseViewpoint (const CommandLine& args, Eigen::Vector3d& viewpoint)
     {
-      if (!args.has ("-viewpoint"))
+      std::vector<double> v;
+      if (!args.numbers ("-viewpoint", 3, "X,Y,Z (three numbers)", v))
         return false;
-      std::istringstream text (args.value ("-viewpoint"));
-      std::string part;
-      int k = 0;
-      while (std::getline (text, part, ','))
-      {
-        std::size_t used = 0;
-        double value = NAN;
-        try
-        {
-          value = std::stod (part, &used);
-        }
-        catch (const std::exception&)
-        {
-          used = 0;
-        }
-        if (k >= 3 || used != part.size () || !std::isfinite (value))
-          throw Error ("option -viewpoint: expected X,Y,Z (three numbers), got '" + args.value ("-viewpoint") + "'");
-        viewpoint[k++] = value;
-      }
-      if (k != 3 || args.value ("-viewpoint").back () == ',')  // getline drops an empty last part: "1,2,3,"
-        throw Error ("option -viewpoint: expected X,Y,Z (three numbers), got '" + args.value ("-viewpoint") + "'");
+      // The stages take it as floats (as pcl::Feature::setViewPoint): 1e300 became infinite there, refused
+      // by a tile's encoder after the spill, and taken without a word untiled.
+      for (double x : v)
+        if (!(std::abs (x) <= static_cast<double> (std::numeric_limits<float>::max ())))
+          throw Error ("option -viewpoint: " + args.value ("-viewpoint") + " is beyond what a float holds (3.4e38)");
+      viewpoint = Eigen::Vector3d (v[0], v[1], v[2]);
       return true;
     }
 

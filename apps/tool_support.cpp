@@ -252,26 +252,70 @@ namespace pcl_sparse
       return v.empty () ? fallback : v.front ();
     }
 
+    namespace
+    {
+      enum class Decimal { Number, Malformed, OutOfRange };
+
+      /// \a text as a finite decimal number: strtod also skips leading spaces and reads hexadecimal ("0x10"),
+      /// neither of which is a number of ours; 1e-320 and 1e400 are beyond a double (ERANGE).
+      Decimal
+      readDecimal (const std::string& text, double& x)
+      {
+        char* end = nullptr;
+        errno = 0;
+        x = std::strtod (text.c_str (), &end);
+        const bool decimal = !text.empty () && (std::isdigit (static_cast<unsigned char> (text[0])) ||
+                                                text[0] == '-' || text[0] == '+' || text[0] == '.') &&
+                             text.find_first_of ("xX") == std::string::npos;
+        if (!decimal || end != text.c_str () + text.size () || !std::isfinite (x))
+          return Decimal::Malformed;
+        return errno == ERANGE ? Decimal::OutOfRange : Decimal::Number;
+      }
+    } // namespace
+
     bool
     CommandLine::number (const std::string& name, double& value, const Range& range) const
     {
       if (!has (name))
         return false;
       const std::string text = this->value (name);
-      char* end = nullptr;
-      errno = 0;
-      const double x = std::strtod (text.c_str (), &end);
-      // strtod also skips leading spaces and reads hexadecimal ("0x10"): neither is a number of ours.
-      const bool decimal = !text.empty () && (std::isdigit (static_cast<unsigned char> (text[0])) ||
-                                              text[0] == '-' || text[0] == '+' || text[0] == '.') &&
-                           text.find_first_of ("xX") == std::string::npos;
-      if (!decimal || end != text.c_str () + text.size () || !std::isfinite (x))
+      double x = 0.0;
+      const Decimal read = readDecimal (text, x);
+      if (read == Decimal::Malformed)
         throw Error ("option " + name + ": '" + text + "' is not a number");
-      if (errno == ERANGE)  // 1e-320 was "not a number"
+      if (read == Decimal::OutOfRange)  // 1e-320 was "not a number"
         throw Error ("option " + name + ": " + text + " is beyond what a double holds");
       checkRange (name, x, range);
       value = x;
       return true;
+    }
+
+    bool
+    CommandLine::numbers (const std::string& name, std::size_t count, const std::string& expected,
+                          std::vector<double>& values) const
+    {
+      if (!has (name))
+        return false;
+      const std::string text = this->value (name);
+      std::vector<double> read;
+      std::size_t at = 0;
+      while (read.size () <= count)
+      {
+        const std::size_t comma = std::min (text.find (',', at), text.size ());
+        double x = 0.0;
+        if (readDecimal (text.substr (at, comma - at), x) != Decimal::Number)
+          break;
+        read.push_back (x);
+        if (comma == text.size ())
+        {
+          if (read.size () != count)
+            break;
+          values = std::move (read);
+          return true;
+        }
+        at = comma + 1;
+      }
+      throw Error ("option " + name + ": expected " + expected + ", got '" + text + "'");
     }
 
     void

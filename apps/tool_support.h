@@ -121,6 +121,11 @@ namespace pcl_sparse
       /// false (value untouched) when absent. Throws Error naming the option when the value is malformed or out of range.
       bool number (const std::string& name, double& value, const Range& range = Range ()) const;
 
+      /// Reads option \a name as exactly \a count numbers separated by commas ("1,2.5,-3"), each as number reads
+      /// one (decimal, finite, no spaces); false (\a values untouched) when absent. Throws Error naming the
+      /// option and quoting its value, with \a expected ("X,Y,Z (three numbers)") saying what was wanted.
+      bool numbers (const std::string& name, std::size_t count, const std::string& expected, std::vector<double>& values) const;
+
       /// Reads option \a name, an angle in degrees within \a degrees, into \a radians (radians untouched
       /// when absent). Throws as number.
       bool angle (const std::string& name, double& radians, const Range& degrees = Range::aboveUpTo (0.0, 180.0)) const;

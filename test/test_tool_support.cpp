@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tool_input.h"
 #include "tool_support.h"
 
 #include <cstdint>
@@ -91,6 +92,36 @@ TEST (ToolOptions, NoSpacesNoHexadecimal)
   EXPECT_DOUBLE_EQ (number (".5"), 0.5);
   EXPECT_DOUBLE_EQ (number ("-2e-3"), -2e-3);
   EXPECT_DOUBLE_EQ (number ("+3"), 3.0);
+}
+
+namespace
+{
+  /// "tool -viewpoint TEXT" read by tools::parseViewpoint.
+  Eigen::Vector3d
+  viewpoint (const std::string& text)
+  {
+    std::vector<std::string> words = {"tool", "-viewpoint", text};
+    std::vector<char*> argv;
+    for (std::string& word : words)
+      argv.push_back (&word[0]);
+    const CommandLine args (static_cast<int> (argv.size ()), argv.data (), {"-viewpoint"}, {});
+    Eigen::Vector3d v = Eigen::Vector3d::Constant (7.0);
+    EXPECT_TRUE (pcl_sparse::tools::parseViewpoint (args, v));
+    return v;
+  }
+} // namespace
+
+TEST (ToolOptions, NumberListsAsStrictAsOneNumber)
+{
+  EXPECT_TRUE (viewpoint ("1,2.5,-3e2").isApprox (Eigen::Vector3d (1.0, 2.5, -300.0)));
+  EXPECT_TRUE (viewpoint ("+0,.5,-0").isApprox (Eigen::Vector3d (0.0, 0.5, 0.0)));
+  // Each item as -n or -rho: no spaces, no hexadecimal, finite; exactly three, nothing empty.
+  for (const char* bad : {"1,2", "1,2,3,4", "1,2,3,", ",1,2,3", "1,,3", " 1,2,3", "1, 2,3", "0x1,2,3", "1,2,inf",
+                          "1,nan,3", "1;2;3", "", "1,2,1e-400"})
+    EXPECT_THROW (viewpoint (bad), Error) << "'" << bad << "'";
+  // The stages take floats (as pcl::Feature::setViewPoint): 1e300 became infinite inside them.
+  EXPECT_THROW (viewpoint ("1e300,0,0"), Error);
+  EXPECT_NO_THROW (viewpoint ("3e38,0,0"));
 }
 
 TEST (ToolJson, InvalidUtf8BecomesReplacementCharacters)
