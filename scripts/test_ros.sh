@@ -177,7 +177,7 @@ start decode_nodelet.log "$nodelet" load pcl_sparse/DecodeNodelet test_manager _
 
 # Bad parameters: the node exits 1 naming the parameter; a nodelet logs it and leaves its manager running.
 for bad in "_points:=0" "_points:=10 _spacing:=0.01" "_preset:=fast" "_preset:=5" "_threads:=abc" "_threads:=2.7" \
-           "_viewpoint:=1,2" "_max_slope:=95" "_clearance:=-1" "_spacing:=1e-200" "_density:=0"; do
+           "_viewpoint:=1,2" "_viewpoint:=1e300,0,0" "_max_slope:=95" "_clearance:=-1" "_spacing:=1e-200" "_density:=0"; do
   # shellcheck disable=SC2086
   if out=$(timeout 20 "$bin/pcl_sparse_resample_node" __name:=test_bad_parameter $bad 2>&1); then status=0; else status=$?; fi
   rosparam delete /test_bad_parameter > /dev/null 2>&1 || true

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -46,6 +47,10 @@ namespace pcl_sparse_ros
         xyz.clear ();
       if (xyz.size () != 3 || !Eigen::Vector3d (xyz[0], xyz[1], xyz[2]).allFinite ())
         throw pcl_sparse::Error ("parameter ~" + name + " must be three numbers [x, y, z]");
+      // setViewPoint takes floats (as pcl::Feature's): 1e300 became infinite there and failed every cloud.
+      for (double v : xyz)
+        if (!(std::abs (v) <= static_cast<double> (std::numeric_limits<float>::max ())))
+          throw pcl_sparse::Error ("parameter ~" + name + " must be three numbers a float holds (|x| <= 3.4e38)");
       return xyz;
     }
 
