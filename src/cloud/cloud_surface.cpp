@@ -2,6 +2,7 @@
 
 #include <pcl_sparse/cloud/cloud_outliers.h>
 #include <pcl_sparse/cloud/depth_quantization.h>
+#include <pcl_sparse/cloud/depth_steps_removal.h>
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
 #include <pcl_sparse/cloud/grid_triangulation.h>
 #include <pcl_sparse/cloud/knn_neighborhoods.h>
@@ -149,6 +150,33 @@ namespace pcl_sparse
       }
     }
 
+    /// \a input, or a copy with its depth steps taken out (options.remove_depth_steps) in \a storage. Steps
+    /// found and left in go to work.steps for the gap rule (options.bridge_depth_steps).
+    const ScanCloud&
+    withoutDepthSteps (const ScanCloud& input, const CloudSurfaceOptions& options, const std::vector<std::uint8_t>& finite,
+                       Work& work, ScanCloud& storage, CloudSurface& surface)
+    {
+      if (!options.remove_depth_steps || !input.isOrganized () || work.viewpoints.points.size () != 1)
+        return input;
+      const Eigen::Vector3d& viewpoint = work.viewpoints.points[0];
+      DepthQuantization steps = findDepthQuantization (input.positions, finite, viewpoint);
+      const ShadowRule shadow (&work.viewpoints, options.shadow_angle_degrees);
+      std::vector<Eigen::Vector3d> moved;
+      work.grid = organizedScanGrid (input, finite);  // pixels only: the same for the moved points
+      if (!removeDepthSteps (input.positions, finite, work.grid, steps, viewpoint, shadow, options.gap_factor,
+                             options.num_threads, moved))
+      {
+        if (options.bridge_depth_steps)
+          work.steps = std::move (steps);
+        return input;
+      }
+      storage = input;
+      storage.positions = std::move (moved);
+      surface.depth_levels = steps.levels.size ();
+      surface.depth_steps_removed = true;
+      return storage;
+    }
+
     /// Neighbourhoods and edge counts: image grid, lidar rings (already arranged) or kNN.
     void
     buildNeighborhoods (const ScanCloud& scan, const CloudSurfaceOptions& options, const std::vector<std::uint8_t>& finite,
@@ -157,14 +185,17 @@ namespace pcl_sparse
       const int threads = options.num_threads;
       if (scan.isOrganized ())
       {
-        work.grid = organizedScanGrid (scan, finite);
+        if (work.grid.cells.empty ())  // not made yet by withoutDepthSteps
+          work.grid = organizedScanGrid (scan, finite);
         surface.neighborhood = CloudNeighborhood::ImageGrid;
       }
       if (surface.neighborhood != CloudNeighborhood::Knn)
       {
-        if (options.bridge_depth_steps && work.viewpoints.points.size () == 1)
+        if (options.bridge_depth_steps && !surface.depth_steps_removed && !work.steps.active () &&
+            work.viewpoints.points.size () == 1)
           work.steps = findDepthQuantization (scan.positions, finite, work.viewpoints.points[0]);
-        surface.depth_levels = work.steps.levels.size ();
+        if (!surface.depth_steps_removed)
+          surface.depth_levels = work.steps.levels.size ();
         work.edges = classifyGridEdges (work.grid, scan.positions, options.gap_factor, work.shadow, threads, &work.steps);
         countGridEdges (work.edges, surface.candidate_edges, surface.refused_edges, surface.shadowed_edges);
         work.hoods = gridNeighborhoods (work.grid, scan.positions, work.edges, options.window_radius, options.gap_factor,
@@ -345,15 +376,17 @@ namespace pcl_sparse
   } // namespace
 
   CloudSurface
-  buildCloudSurface (const ScanCloud& scan, const CloudSurfaceOptions& options)
+  buildCloudSurface (const ScanCloud& input, const CloudSurfaceOptions& options)
   {
     validateCloudSurfaceOptions (options);
-    const std::vector<std::uint8_t> finite = checkScan (scan, options);
-    const std::size_t n = scan.size ();
+    const std::vector<std::uint8_t> finite = checkScan (input, options);
+    const std::size_t n = input.size ();
     CloudSurface surface;
-    surface.mesh.vertices = scan.positions;
     Work work;
-    surface.orientation = planOrientation (scan, options, work);
+    surface.orientation = planOrientation (input, options, work);
+    ScanCloud without_steps;
+    const ScanCloud& scan = withoutDepthSteps (input, options, finite, work, without_steps, surface);
+    surface.mesh.vertices = scan.positions;
     findLidarRings (scan, options, finite, work, surface);
     if (surface.orientation == NormalOrientation::Viewpoint)
       work.shadow = ShadowRule (&work.viewpoints, options.shadow_angle_degrees);

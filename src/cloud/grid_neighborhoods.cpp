@@ -139,7 +139,8 @@ namespace pcl_sparse
 
   PointNeighborhoods
   gridNeighborhoods (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
-                     int window_radius, double gap_factor, int num_threads, const DepthQuantization* steps)
+                     int window_radius, double gap_factor, int num_threads, const DepthQuantization* steps,
+                     double steps_reached)
   {
     if (steps && !steps->active ())
       steps = nullptr;
@@ -165,9 +166,17 @@ namespace pcl_sparse
         sy = sy > 0.0 ? sy : sx;
         hoods.spacing[i] = std::sqrt (sx * sy);
         int* out = found.data () + static_cast<std::size_t> (i) * stride;
-        for (int dy = -r; dy <= r; ++dy)
-          for (int dx = -r; dx <= r; ++dx)
+        int k = 1;  // pixels between window pixels
+        const int level = steps ? steps->level[i] : -1;
+        if (steps_reached > 0.0 && level >= 0 && level + 1 < static_cast<int> (steps->levels.size ()) && hoods.spacing[i] > 0.0)
+        {
+          const double step = steps->levels[level + 1] - steps->levels[level];
+          k = std::max (1, std::min (12, static_cast<int> (std::ceil (steps_reached * step / hoods.spacing[i] / r))));
+        }
+        for (int ddy = -r; ddy <= r; ++ddy)
+          for (int ddx = -r; ddx <= r; ++ddx)
           {
+            const int dx = ddx * k, dy = ddy * k;
             const int u = x + dx, v = y + dy;
             if ((dx == 0 && dy == 0) || u < 0 || v < 0 || u >= grid.width || v >= grid.height)
               continue;

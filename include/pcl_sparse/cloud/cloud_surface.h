@@ -61,8 +61,11 @@ namespace pcl_sparse
     /// corners' normals (a noise spike or a surface seen edge-on; see windImageTrianglesLikeNormals).
     std::size_t folded_triangles = 0;
     /// Image grid / lidar rings: the number of distinct depths when the depth is stored in steps and
-    /// options.bridge_depth_steps measured lengths over them; 0 otherwise.
+    /// options.remove_depth_steps took them out or options.bridge_depth_steps measured lengths over them; 0
+    /// otherwise.
     std::size_t depth_levels = 0;
+    /// The steps were taken out (options.remove_depth_steps): mesh.vertices are the moved points.
+    bool depth_steps_removed = false;
     /// kNN: boundary loops of up to 12 edges closed after the local triangulation (small_hole_filling.h).
     std::size_t filled_holes = 0;
     CloudNeighborhood neighborhood = CloudNeighborhood::Knn;  ///< which neighbourhood was used

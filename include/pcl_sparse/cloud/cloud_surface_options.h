@@ -74,6 +74,14 @@ namespace pcl_sparse
     /// over one step of depth, so that a slanted surface's staircase is not cut into terraces by the gap
     /// rule.
     bool bridge_depth_steps = true;
+    /// Image grids seen from a viewpoint, depth stored in steps: each point is first moved along its line of
+    /// sight onto the plane of the points within about a step around it, never out of its step's bin
+    /// (depth_steps_removal.h; only where the steps are wider than the sampling), so that normals, noise and
+    /// patches see the surface the staircase samples (ours; office1.pcd: resampled normals more than 10 degrees
+    /// past perpendicular to the line of sight 5516 -> 845, patches 29512 -> 14456; bench/results/scans-notes.md).
+    /// The surface's vertices are then the moved points. Off: the staircase as measured (bridged for the gap
+    /// rule by bridge_depth_steps).
+    bool remove_depth_steps = true;
     /// Outlier rule: a point is an outlier when its distance to the tangent plane of every neighbour
     /// exceeds max (outlier_factor x noise, outlier_spacing x that neighbour's local spacing). > 0.
     double outlier_factor = 6.0;

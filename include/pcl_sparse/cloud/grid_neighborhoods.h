@@ -57,7 +57,11 @@ namespace pcl_sparse
   /// from the medians of its edges). Spacing of a point: sqrt (s_x s_y). (No shadow rule here: these
   /// neighbourhoods serve the normals, and a shadowed neighbour within the gap rule is on the same
   /// surface seen at a grazing angle; the triangles apply it.) Distances over the depth \a steps if given.
+  /// With \a steps and \a steps_reached > 0 the window is a lattice of (2 r + 1)^2 pixels k apart, k (1..12)
+  /// such that it reaches about \a steps_reached depth steps of the pixel's level sideways (r k spacings):
+  /// windows that see a staircase's slope instead of one terrace (depth_steps_removal.h).
   PointNeighborhoods
   gridNeighborhoods (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
-                     int window_radius, double gap_factor, int num_threads, const DepthQuantization* steps = nullptr);
+                     int window_radius, double gap_factor, int num_threads, const DepthQuantization* steps = nullptr,
+                     double steps_reached = 0.0);
 } // namespace pcl_sparse
