@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <random>
 #include <set>
@@ -191,12 +192,12 @@ namespace
   /// A pinhole depth image (sensor at 0 looking along +z, focal f pixels): a plane at depth 2 behind a
   /// rectangle at depth 1 (columns 20..39, rows 15..34), a NaN hole (columns 45..52, rows 5..14) and 3 %
   /// NaN pixels; depth noise sigma.
+  /// A pinhole camera at 0 looking along +z (focal 60 pixels), width x height pixels: pixel (x, y) holds the
+  /// point at depth \a depth (x, y) on its ray, none where that is NaN.
   ScanCloud
-  depthImage (int width, int height, double sigma, std::mt19937& rng)
+  pinholeScan (int width, int height, const std::function<double (int, int)>& depth)
   {
     const double f = 60.0;
-    std::normal_distribution<double> g (0.0, sigma);
-    std::uniform_real_distribution<double> u (0.0, 1.0);
     ScanCloud scan;
     scan.width = width;
     scan.height = height;
@@ -204,14 +205,27 @@ namespace
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x)
       {
-        const bool hole = (x >= 45 && x <= 52 && y >= 5 && y <= 14) || u (rng) < 0.03;
-        if (hole)
+        const double z = depth (x, y);
+        if (std::isnan (z))
           continue;
-        const bool front = x >= 20 && x <= 39 && y >= 15 && y <= 34;
-        const double z = (front ? 1.0 : 2.0) + g (rng);
         scan.positions.emplace_back ((x - 0.5 * width) / f * z, (y - 0.5 * height) / f * z, z);
         scan.indices.push_back (static_cast<std::size_t> (y) * width + x);
       }
+    return scan;
+  }
+
+  ScanCloud
+  depthImage (int width, int height, double sigma, std::mt19937& rng)
+  {
+    std::normal_distribution<double> g (0.0, sigma);
+    std::uniform_real_distribution<double> u (0.0, 1.0);
+    ScanCloud scan = pinholeScan (width, height, [&] (int x, int y) {
+      const bool hole = (x >= 45 && x <= 52 && y >= 5 && y <= 14) || u (rng) < 0.03;
+      if (hole)
+        return std::numeric_limits<double>::quiet_NaN ();
+      const bool front = x >= 20 && x <= 39 && y >= 15 && y <= 34;
+      return (front ? 1.0 : 2.0) + g (rng);
+    });
     scan.report.input_points = static_cast<std::size_t> (width) * height;
     scan.report.kept = scan.positions.size ();
     scan.report.non_finite = scan.report.input_points - scan.report.kept;
@@ -622,21 +636,12 @@ namespace
   ScanCloud
   steppedSlantedPlane ()
   {
-    const int width = 64, height = 48;
-    const double f = 60.0, step = 0.15;
-    ScanCloud scan;
-    scan.width = width;
-    scan.height = height;
-    scan.has_sensor_pose = true;
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x)
-      {
-        const double u = (x - 0.5 * width) / f, v = (y - 0.5 * height) / f;
-        const double z = step * std::round (2.0 / (1.0 - 0.8 * u) / step);  // on the ray (u z, v z, z)
-        scan.positions.emplace_back (u * z, v * z, z);
-        scan.indices.push_back (static_cast<std::size_t> (y) * width + x);
-      }
-    return scan;
+    const int width = 64;
+    const double step = 0.15;
+    return pinholeScan (width, 48, [&] (int x, int) {
+      const double u = (x - 0.5 * width) / 60.0;
+      return step * std::round (2.0 / (1.0 - 0.8 * u) / step);  // the ray (u z, v z, z) meets the plane at 2 / (1 - 0.8 u)
+    });
   }
 
   /// Distance of \a p to the plane z = 2 + 0.8 x.
@@ -645,12 +650,22 @@ namespace
   {
     return std::abs (0.8 * p.x () - p.z () + 2.0) / std::sqrt (1.64);
   }
+
+  /// Angles (degrees) of \a s's normals to the plane's normal toward the sensor.
+  std::vector<double>
+  slantedPlaneNormalAngles (const CloudSurface& s)
+  {
+    const Eigen::Vector3d truth = Eigen::Vector3d (0.8, 0.0, -1.0).normalized ();
+    std::vector<double> angles;
+    for (const auto& n : s.normals)
+      angles.push_back (angleDegrees (n, truth));
+    return angles;
+  }
 } // namespace
 
 TEST (CloudSurface, DepthStepsAreBridged)
 {
   const ScanCloud scan = steppedSlantedPlane ();
-  const Eigen::Vector3d truth = Eigen::Vector3d (0.8, 0.0, -1.0).normalized ();  // toward the sensor
   CloudSurfaceOptions staircase;  // the steps kept, as measured
   staircase.remove_depth_steps = false;
   const CloudSurface bridged = buildCloudSurface (scan, staircase);
@@ -660,17 +675,10 @@ TEST (CloudSurface, DepthStepsAreBridged)
   EXPECT_GT (referencedCount (bridged), 0.95 * scan.size ());
   // Normals: a 5 x 5 window sees one or two treads of 5-pixel terraces, so they lean toward the treads'
   // normal (+-z, 39 degrees from the truth); an 11 x 11 window sees the slope.
-  std::vector<double> angles;
-  for (const auto& n : bridged.normals)
-    angles.push_back (angleDegrees (n, truth));
-  EXPECT_LT (quantile (angles, 0.5), 30.0);
+  EXPECT_LT (quantile (slantedPlaneNormalAngles (bridged), 0.5), 30.0);
   CloudSurfaceOptions wide = staircase;
   wide.window_radius = 5;
-  const CloudSurface smooth = buildCloudSurface (scan, wide);
-  angles.clear ();
-  for (const auto& n : smooth.normals)
-    angles.push_back (angleDegrees (n, truth));
-  EXPECT_LT (quantile (angles, 0.5), 8.0);
+  EXPECT_LT (quantile (slantedPlaneNormalAngles (buildCloudSurface (scan, wide)), 0.5), 8.0);
   CloudSurfaceOptions plain = staircase;
   plain.bridge_depth_steps = false;
   const CloudSurface cut = buildCloudSurface (scan, plain);
@@ -684,15 +692,12 @@ TEST (CloudSurface, DepthStepsAreBridged)
 TEST (CloudSurface, DepthStepsAreRemoved)
 {
   const ScanCloud scan = steppedSlantedPlane ();
-  const Eigen::Vector3d truth = Eigen::Vector3d (0.8, 0.0, -1.0).normalized ();
   const CloudSurface s = buildCloudSurface (scan);
   expectConsistent (scan, s);
   EXPECT_TRUE (s.depth_steps_removed);
   EXPECT_GT (s.depth_levels, 5u);
   EXPECT_GT (referencedCount (s), 0.95 * scan.size ());
-  std::vector<double> angles;
-  for (const auto& n : s.normals)
-    angles.push_back (angleDegrees (n, truth));
+  const std::vector<double> angles = slantedPlaneNormalAngles (s);
   EXPECT_LT (quantile (angles, 0.5), 3.0);   // 2.3 (the staircase kept: over 30, DepthStepsAreBridged)
   EXPECT_LT (quantile (angles, 0.9), 20.0);  // 13.3: the image's borders, where the lattice is one-sided
   double before = 0.0, after = 0.0;
