@@ -18,9 +18,9 @@ namespace pcl_sparse
     constexpr std::size_t kMinNeighbors = 8;
     /// |cos| between the plane's normal and the line of sight below which the plane says little of the depth.
     constexpr double kMinRayCosine = 0.1;
-    /// Steps are taken out only where they are wider than the sampling: at most half a step per pixel (the
-    /// median over horizontally adjacent pixels). Finer steps make no terraces the normals' windows could
-    /// sit on (table_scene_mug_stereo_textured.pcd: 0.65 of a pixel's spacing, milk_cartoon 1.2; office1 5.5).
+    /// Steps are taken out only where they are wider than the sampling: the median step at least this many
+    /// pixel spacings (over horizontally adjacent pixels). Finer steps make no terraces the normals' windows
+    /// could sit on (table_scene_mug_stereo_textured.pcd: 0.65 spacings, milk_cartoon 1.2; office1 5.5).
     constexpr double kMinStepOverSpacing = 2.0;
 
     /// Median over horizontally adjacent pixels of the depth step at the left one over their distance across
