@@ -718,6 +718,37 @@ TEST (CloudSurface, DepthStepsAreRemoved)
   EXPECT_LT (after, 0.4 * before) << "mean distance to the plane " << before / scan.size () << " -> " << after / scan.size ();
 }
 
+// The same frame unorganized (its pixels dropped, as a filter or a tile gives it): neighbours within a step by a
+// radius search instead of the image lattice. office1 unorganized: completeness 0.664 -> 0.963.
+TEST (CloudSurface, DepthStepsAreRemovedFromUnorganizedScans)
+{
+  ScanCloud scan = steppedSlantedPlane ();
+  scan.width = static_cast<std::uint32_t> (scan.size ());
+  scan.height = 1;
+  scan.indices.clear ();
+  const CloudSurface s = buildCloudSurface (scan);
+  EXPECT_EQ (s.neighborhood, CloudNeighborhood::Knn);
+  EXPECT_TRUE (s.depth_steps_removed);
+  double before = 0.0, after = 0.0;
+  std::size_t off_ray = 0, out_of_bin = 0;
+  for (std::size_t i = 0; i < scan.size (); ++i)
+  {
+    const Eigen::Vector3d& p = scan.positions[i];
+    const Eigen::Vector3d& q = s.mesh.vertices[i];
+    before += slantedPlaneDistance (p);
+    after += slantedPlaneDistance (q);
+    off_ray += p.cross (q).norm () > 1e-9 * p.norm () * q.norm () ? 1 : 0;
+    out_of_bin += std::abs (q.z () - p.z ()) > 0.5 * 0.15 * 1.1 ? 1 : 0;
+  }
+  EXPECT_EQ (off_ray, 0u);
+  EXPECT_EQ (out_of_bin, 0u);
+  EXPECT_LT (after, 0.4 * before) << "mean distance to the plane " << before / scan.size () << " -> " << after / scan.size ();
+  EXPECT_LT (quantile (slantedPlaneNormalAngles (s), 0.5), 5.0);
+  CloudSurfaceOptions kept;
+  kept.remove_depth_steps = false;
+  EXPECT_GT (quantile (slantedPlaneNormalAngles (buildCloudSurface (scan, kept)), 0.5), 10.0);
+}
+
 TEST (CloudSurface, ParallelPlanesAndAGapAreNotBridged)
 {
   std::mt19937 rng (19);

@@ -156,15 +156,22 @@ namespace pcl_sparse
     withoutDepthSteps (const ScanCloud& input, const CloudSurfaceOptions& options, const std::vector<std::uint8_t>& finite,
                        Work& work, ScanCloud& storage, CloudSurface& surface)
     {
-      if (!options.remove_depth_steps || !input.isOrganized () || work.viewpoints.points.size () != 1)
+      if (!options.remove_depth_steps || work.viewpoints.points.size () != 1)
         return input;
       const Eigen::Vector3d& viewpoint = work.viewpoints.points[0];
       DepthQuantization steps = findDepthQuantization (input.positions, finite, viewpoint);
-      const ShadowRule shadow (&work.viewpoints, options.shadow_angle_degrees);
       std::vector<Eigen::Vector3d> moved;
-      work.grid = organizedScanGrid (input, finite);  // pixels only: the same for the moved points
-      if (!removeDepthSteps (input.positions, finite, work.grid, steps, viewpoint, shadow, options.gap_factor,
-                             options.num_threads, moved))
+      bool removed = false;
+      if (input.isOrganized ())
+      {
+        const ShadowRule shadow (&work.viewpoints, options.shadow_angle_degrees);
+        work.grid = organizedScanGrid (input, finite);  // pixels only: the same for the moved points
+        removed = removeDepthSteps (input.positions, finite, work.grid, steps, viewpoint, shadow, options.gap_factor,
+                                    options.num_threads, moved);
+      }
+      else
+        removed = removeDepthSteps (input.positions, finite, steps, viewpoint, options.num_threads, moved);
+      if (!removed)
       {
         if (options.bridge_depth_steps)
           work.steps = std::move (steps);

@@ -3,10 +3,15 @@
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
 #include <pcl_sparse/common/thread_count.h>
 
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace pcl_sparse
 {
@@ -15,6 +20,15 @@ namespace pcl_sparse
     /// Half-width of the lattice in lattice steps (7 x 7 pixels, spread), and how many depth steps it reaches.
     constexpr int kLatticeRadius = 3;
     constexpr double kStepsReached = 1.0;
+    /// Unorganized scans: the ball a point's plane is fitted in, in steps. Two, not one: a ball of one step
+    /// around a point on a terrace does not reach the next terrace, a step deeper (the image lattice measures
+    /// over the steps instead). On the stepped slanted plane of test_cloud_surface one step left the normals
+    /// 38.7 degrees off.
+    constexpr double kBallSteps = 2.0;
+    /// Points wanted in such a ball (it is searched among every d-th point, d a power of 2 up to
+    /// kMaxDecimation, for about this many).
+    constexpr double kBallPoints = 48.0;
+    constexpr std::size_t kMaxDecimation = 32;
     constexpr std::size_t kMinNeighbors = 8;
     /// |cos| between the plane's normal and the line of sight below which the plane says little of the depth.
     constexpr double kMinRayCosine = 0.1;
@@ -48,6 +62,42 @@ namespace pcl_sparse
       std::nth_element (ratios.begin (), median, ratios.end ());
       return *median;
     }
+
+    /// Moves point \a i (into \a moved) along its line of sight from \a viewpoint onto the plane (PCA) of it
+    /// and \a around, as far as its step's bin allows; leaves it with fewer than kMinNeighbors around, or
+    /// where its line of sight meets the plane near grazing.
+    template <typename Range>
+    void
+    moveOntoNeighboursPlane (const std::vector<Eigen::Vector3d>& positions, std::size_t i, const Range& around,
+                             const DepthQuantization& steps, const Eigen::Vector3d& viewpoint, Eigen::Vector3d& moved)
+    {
+      const int l = steps.level[i];
+      if (l < 0 || static_cast<std::size_t> (around.size ()) < kMinNeighbors)
+        return;
+      Eigen::Vector3d centroid = positions[i];
+      for (const int j : around)
+        centroid += positions[j];
+      centroid /= static_cast<double> (around.size () + 1);
+      Eigen::Matrix3d scatter = (positions[i] - centroid) * (positions[i] - centroid).transpose ();
+      for (const int j : around)
+        scatter += (positions[j] - centroid) * (positions[j] - centroid).transpose ();
+      const Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> (scatter).eigenvectors ().col (0);
+      const int axis = steps.axis;
+      const Eigen::Vector3d ray = positions[i] - viewpoint;
+      const double along = normal.dot (ray);
+      if (!(std::abs (along) > kMinRayCosine * ray.norm ()) || ray[axis] == 0.0)
+        return;
+      // Where the line of sight meets the plane, as a multiple of the ray, kept within the point's bin.
+      const int levels = static_cast<int> (steps.levels.size ());
+      double t = normal.dot (centroid - viewpoint) / along;
+      const double low = l > 0 ? 0.5 * (steps.levels[l - 1] + steps.levels[l]) : steps.levels[l];
+      const double high = l + 1 < levels ? 0.5 * (steps.levels[l] + steps.levels[l + 1]) : steps.levels[l];
+      const double depth = viewpoint[axis] + t * ray[axis];
+      const double kept = std::min (high, std::max (low, depth));
+      if (kept != depth)
+        t = (kept - viewpoint[axis]) / ray[axis];
+      moved = viewpoint + t * ray;
+    }
   } // namespace
 
   bool
@@ -61,37 +111,113 @@ namespace pcl_sparse
     const GridEdges edges = classifyGridEdges (grid, positions, gap_factor, shadow, num_threads, &steps);
     const PointNeighborhoods hoods =
       gridNeighborhoods (grid, positions, edges, kLatticeRadius, gap_factor, num_threads, &steps, kStepsReached);
-    const int axis = steps.axis;
-    const int levels = static_cast<int> (steps.levels.size ());
 #pragma omp parallel for num_threads(resolveThreadCount (num_threads)) schedule(static)
     for (long p = 0; p < static_cast<long> (positions.size ()); ++p)
     {
       const std::size_t i = static_cast<std::size_t> (p);
+      if (finite[i])
+        moveOntoNeighboursPlane (positions, i, hoods.of (i), steps, viewpoint, moved[i]);
+    }
+    return true;
+  }
+
+  bool
+  removeDepthSteps (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& finite,
+                    const DepthQuantization& steps, const Eigen::Vector3d& viewpoint, int num_threads,
+                    std::vector<Eigen::Vector3d>& moved)
+  {
+    if (!steps.active ())
+      return false;
+    auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+    std::vector<int> original;  // cloud index -> point index
+    for (std::size_t i = 0; i < positions.size (); ++i)
+      if (finite[i] && steps.level[i] >= 0)
+      {
+        const Eigen::Vector3f p = positions[i].cast<float> ();  // local frame: small numbers
+        cloud->push_back (pcl::PointXYZ (p.x (), p.y (), p.z ()));
+        original.push_back (static_cast<int> (i));
+      }
+    if (original.size () < kMinNeighbors + 1)
+      return false;
+    const int threads = resolveThreadCount (num_threads);
+    const int levels = static_cast<int> (steps.levels.size ());
+    auto stepAt = [&] (int i) {
       const int l = steps.level[i];
-      const auto around = hoods.of (i);
-      if (!finite[i] || l < 0 || around.size () < kMinNeighbors)
-        continue;
-      Eigen::Vector3d centroid = positions[i];
-      for (const int j : around)
-        centroid += positions[j];
-      centroid /= static_cast<double> (around.size () + 1);
-      Eigen::Matrix3d scatter = (positions[i] - centroid) * (positions[i] - centroid).transpose ();
-      for (const int j : around)
-        scatter += (positions[j] - centroid) * (positions[j] - centroid).transpose ();
-      const Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> (scatter).eigenvectors ().col (0);
-      const Eigen::Vector3d ray = positions[i] - viewpoint;
-      const double along = normal.dot (ray);
-      if (!(std::abs (along) > kMinRayCosine * ray.norm ()) || ray[axis] == 0.0)
-        continue;
-      // Where the line of sight meets the plane, as a multiple of the ray, kept within the point's bin.
-      double t = normal.dot (centroid - viewpoint) / along;
-      const double low = l > 0 ? 0.5 * (steps.levels[l - 1] + steps.levels[l]) : steps.levels[l];
-      const double high = l + 1 < levels ? 0.5 * (steps.levels[l] + steps.levels[l + 1]) : steps.levels[l];
-      const double depth = viewpoint[axis] + t * ray[axis];
-      const double kept = std::min (high, std::max (low, depth));
-      if (kept != depth)
-        t = (kept - viewpoint[axis]) / ray[axis];
-      moved[i] = viewpoint + t * ray;
+      return l + 1 < levels ? steps.levels[l + 1] - steps.levels[l] : (l > 0 ? steps.levels[l] - steps.levels[l - 1] : 0.0);
+    };
+    // Trees over every d-th point, d = 1, 2, 4, ..., so that a ball of two steps (hundreds of points at 5 m on
+    // office1) is searched where it holds about kBallPoints: every point's ball, 5.6 s longer on office1.
+    std::vector<std::unique_ptr<pcl::search::KdTree<pcl::PointXYZ>>> trees;
+    for (std::size_t d = 1; d <= kMaxDecimation && d * (kMinNeighbors + 1) <= original.size (); d *= 2)
+    {
+      auto decimated = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+      for (std::size_t c = 0; c < original.size (); c += d)
+        decimated->push_back ((*cloud)[c]);
+      trees.push_back (std::make_unique<pcl::search::KdTree<pcl::PointXYZ>> (true));
+      trees.back ()->setInputCloud (decimated);
+    }
+    // Spacing: the mean distance to the 6 nearest; the gate over every 16th point first.
+    const std::ptrdiff_t count = static_cast<std::ptrdiff_t> (original.size ());
+    std::vector<double> spacing (original.size (), 0.0);
+    auto measureSpacing = [&] (std::ptrdiff_t stride, bool skip_measured) {
+#pragma omp parallel num_threads(threads)
+      {
+        pcl::Indices found;
+        std::vector<float> squared;
+#pragma omp for schedule(static)
+        for (std::ptrdiff_t c = 0; c < count; c += stride)
+        {
+          if (skip_measured && c % 16 == 0)
+            continue;
+          trees[0]->nearestKSearch ((*cloud)[c], 7, found, squared);
+          double sum = 0.0;
+          for (std::size_t q = 1; q < found.size (); ++q)
+            sum += (positions[original[found[q]]] - positions[original[c]]).norm ();
+          spacing[c] = found.size () > 1 ? sum / static_cast<double> (found.size () - 1) : 0.0;
+        }
+      }
+    };
+    measureSpacing (16, false);
+    std::vector<double> ratios;
+    for (std::ptrdiff_t c = 0; c < count; c += 16)
+      if (spacing[c] > 0.0)
+        ratios.push_back (stepAt (original[c]) / spacing[c]);
+    if (ratios.empty ())
+      return false;
+    auto median = ratios.begin () + static_cast<std::ptrdiff_t> (ratios.size () / 2);
+    std::nth_element (ratios.begin (), median, ratios.end ());
+    if (*median < kMinStepOverSpacing)
+      return false;
+    measureSpacing (1, true);
+    moved = positions;
+    // Neighbours within two steps (at least 3 spacings), in index order so the sums do not depend on the tree.
+#pragma omp parallel num_threads(threads)
+    {
+      pcl::Indices found;
+      std::vector<float> squared;
+      std::vector<int> around;
+#pragma omp for schedule(dynamic, 256)
+      for (std::ptrdiff_t c = 0; c < count; ++c)
+      {
+        const int i = original[c];
+        if (!(spacing[c] > 0.0))
+          continue;
+        const double radius = std::max (kBallSteps * stepAt (i), 3.0 * spacing[c]);
+        const double expected = M_PI * (radius / spacing[c]) * (radius / spacing[c]);
+        std::size_t level = 0;
+        while (level + 1 < trees.size () && (std::size_t (2) << level) * kBallPoints <= expected)
+          ++level;
+        trees[level]->radiusSearch ((*cloud)[c], radius, found, squared);
+        around.clear ();
+        for (const auto f : found)
+        {
+          const int j = original[static_cast<std::size_t> (f) << level];
+          if (j != i)
+            around.push_back (j);
+        }
+        std::sort (around.begin (), around.end ());
+        moveOntoNeighboursPlane (positions, static_cast<std::size_t> (i), around, steps, viewpoint, moved[i]);
+      }
     }
     return true;
   }

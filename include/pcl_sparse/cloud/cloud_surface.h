@@ -60,9 +60,9 @@ namespace pcl_sparse
     /// Image grid / lidar rings: triangles left out because their geometric normal points against their
     /// corners' normals (a noise spike or a surface seen edge-on; see windImageTrianglesLikeNormals).
     std::size_t folded_triangles = 0;
-    /// Image grid / lidar rings: the number of distinct depths when the depth is stored in steps and
-    /// options.remove_depth_steps took them out or options.bridge_depth_steps measured lengths over them; 0
-    /// otherwise.
+    /// The number of distinct depths when the depth is stored in steps and options.remove_depth_steps took
+    /// them out (any scan) or options.bridge_depth_steps measured lengths over them (image grid / lidar rings);
+    /// 0 otherwise.
     std::size_t depth_levels = 0;
     /// The steps were taken out (options.remove_depth_steps): mesh.vertices are the moved points.
     bool depth_steps_removed = false;

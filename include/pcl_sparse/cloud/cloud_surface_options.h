@@ -74,7 +74,7 @@ namespace pcl_sparse
     /// over one step of depth, so that a slanted surface's staircase is not cut into terraces by the gap
     /// rule.
     bool bridge_depth_steps = true;
-    /// Image grids seen from a viewpoint, depth stored in steps: each point is first moved along its line of
+    /// Scans seen from one viewpoint, depth stored in steps: each point is first moved along its line of
     /// sight onto the plane of the points within about a step around it, never out of its step's bin
     /// (depth_steps_removal.h; only where the steps are wider than the sampling), so that normals, noise and
     /// patches see the surface the staircase samples (ours; office1.pcd: resampled normals more than 10 degrees

@@ -1,6 +1,6 @@
 #pragma once
 /// \file depth_steps_removal.h
-/// Depth stored in steps (depth_quantization.h) taken out of an organized scan before its surface is built.
+/// Depth stored in steps (depth_quantization.h) taken out of a scan before its surface is built.
 /// A Kinect-class camera stores depth in steps of about 0.003 z^2 (office1.pcd: 1 cm at 1.8 m, 7.5 cm at
 /// 5.1 m), so a slanted wall comes as a staircase of terraces several pixels wide: normals from a small
 /// image window follow the terraces and risers, not the wall, and patches grown over them stay small and
@@ -42,4 +42,14 @@ namespace pcl_sparse
   removeDepthSteps (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& finite,
                     const ScanGrid& grid, const DepthQuantization& steps, const Eigen::Vector3d& viewpoint,
                     const ShadowRule& shadow, double gap_factor, int num_threads, std::vector<Eigen::Vector3d>& moved);
+
+  /// \brief The same for an unorganized scan (a frame whose NaNs were dropped, a filtered cloud): the gate
+  /// compares the median step with the mean distance to the 6 nearest points (over every 16th point), and point
+  /// i's plane is fitted to the points within two steps of it (at least 3 spacings; kd-tree radius search: a
+  /// ball of one step does not reach the next terrace, a step deeper).
+  /// \return whether the steps were taken out (\a moved is untouched otherwise)
+  bool
+  removeDepthSteps (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& finite,
+                    const DepthQuantization& steps, const Eigen::Vector3d& viewpoint, int num_threads,
+                    std::vector<Eigen::Vector3d>& moved);
 } // namespace pcl_sparse
