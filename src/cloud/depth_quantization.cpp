@@ -11,8 +11,7 @@ namespace pcl_sparse
     const Eigen::Vector3d d = positions[b] - positions[a];
     if (axis < 0)
       return d.norm ();
-    const int low = std::min (level[a], level[b]);
-    const double step = (low >= 0 && low + 1 < static_cast<int> (levels.size ())) ? levels[low + 1] - levels[low] : 0.0;
+    const double step = stepAbove (std::min (level[a], level[b]));
     const double along = std::abs (d[axis]), reduced = std::max (0.0, along - step);
     return std::sqrt (std::max (0.0, d.squaredNorm () - along * along) + reduced * reduced);
   }

@@ -37,13 +37,23 @@ namespace pcl_sparse
     /// could sit on (table_scene_mug_stereo_textured.pcd: 0.65 spacings, milk_cartoon 1.2; office1 5.5).
     constexpr double kMinStepOverSpacing = 2.0;
 
+    /// The upper median of \a values (reordered), 0 when empty.
+    double
+    upperMedian (std::vector<double>& values)
+    {
+      if (values.empty ())
+        return 0.0;
+      auto median = values.begin () + static_cast<std::ptrdiff_t> (values.size () / 2);
+      std::nth_element (values.begin (), median, values.end ());
+      return *median;
+    }
+
     /// Median over horizontally adjacent pixels of the depth step at the left one over their distance across
     /// the depth axis.
     double
     medianStepOverSpacing (const std::vector<Eigen::Vector3d>& positions, const ScanGrid& grid, const DepthQuantization& steps)
     {
       std::vector<double> ratios;
-      const int levels = static_cast<int> (steps.levels.size ());
       for (int y = 0; y < grid.height; ++y)
         for (int x = 0; x + 1 < grid.width; ++x)
         {
@@ -52,15 +62,11 @@ namespace pcl_sparse
             continue;
           Eigen::Vector3d across = positions[b] - positions[a];
           across[steps.axis] = 0.0;
-          const int l = steps.level[a];
-          if (l >= 0 && l + 1 < levels && across.norm () > 0.0)
-            ratios.push_back ((steps.levels[l + 1] - steps.levels[l]) / across.norm ());
+          const double step = steps.stepAbove (steps.level[a]);
+          if (step > 0.0 && across.norm () > 0.0)
+            ratios.push_back (step / across.norm ());
         }
-      if (ratios.empty ())
-        return 0.0;
-      auto median = ratios.begin () + static_cast<std::ptrdiff_t> (ratios.size () / 2);
-      std::nth_element (ratios.begin (), median, ratios.end ());
-      return *median;
+      return upperMedian (ratios);
     }
 
     /// Moves point \a i (into \a moved) along its line of sight from \a viewpoint onto the plane (PCA) of it
@@ -140,22 +146,22 @@ namespace pcl_sparse
     if (original.size () < kMinNeighbors + 1)
       return false;
     const int threads = resolveThreadCount (num_threads);
-    const int levels = static_cast<int> (steps.levels.size ());
-    auto stepAt = [&] (int i) {
+    auto stepAt = [&] (int i) {  // the top level's step is the one below it
       const int l = steps.level[i];
-      return l + 1 < levels ? steps.levels[l + 1] - steps.levels[l] : (l > 0 ? steps.levels[l] - steps.levels[l - 1] : 0.0);
+      return l + 1 < static_cast<int> (steps.levels.size ()) ? steps.stepAbove (l) : steps.stepAbove (l - 1);
     };
     // Trees over every d-th point, d = 1, 2, 4, ..., so that a ball of two steps (hundreds of points at 5 m on
-    // office1) is searched where it holds about kBallPoints: every point's ball, 5.6 s longer on office1.
+    // office1) is searched where it holds about kBallPoints: every point's ball, 5.6 s longer on office1. The
+    // first (every point) serves the spacing and the gate; the others are made only past the gate.
     std::vector<std::unique_ptr<pcl::search::KdTree<pcl::PointXYZ>>> trees;
-    for (std::size_t d = 1; d <= kMaxDecimation && d * (kMinNeighbors + 1) <= original.size (); d *= 2)
-    {
+    auto addTree = [&] (std::size_t d) {
       auto decimated = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
       for (std::size_t c = 0; c < original.size (); c += d)
         decimated->push_back ((*cloud)[c]);
       trees.push_back (std::make_unique<pcl::search::KdTree<pcl::PointXYZ>> (true));
       trees.back ()->setInputCloud (decimated);
-    }
+    };
+    addTree (1);
     // Spacing: the mean distance to the 6 nearest; the gate over every 16th point first.
     const std::ptrdiff_t count = static_cast<std::ptrdiff_t> (original.size ());
     std::vector<double> spacing (original.size (), 0.0);
@@ -182,12 +188,10 @@ namespace pcl_sparse
     for (std::ptrdiff_t c = 0; c < count; c += 16)
       if (spacing[c] > 0.0)
         ratios.push_back (stepAt (original[c]) / spacing[c]);
-    if (ratios.empty ())
+    if (ratios.empty () || upperMedian (ratios) < kMinStepOverSpacing)
       return false;
-    auto median = ratios.begin () + static_cast<std::ptrdiff_t> (ratios.size () / 2);
-    std::nth_element (ratios.begin (), median, ratios.end ());
-    if (*median < kMinStepOverSpacing)
-      return false;
+    for (std::size_t d = 2; d <= kMaxDecimation && d * (kMinNeighbors + 1) <= original.size (); d *= 2)
+      addTree (d);
     measureSpacing (1, true);
     moved = positions;
     // Neighbours within two steps (at least 3 spacings), in index order so the sums do not depend on the tree.

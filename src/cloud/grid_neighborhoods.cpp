@@ -167,12 +167,9 @@ namespace pcl_sparse
         hoods.spacing[i] = std::sqrt (sx * sy);
         int* out = found.data () + static_cast<std::size_t> (i) * stride;
         int k = 1;  // pixels between window pixels
-        const int level = steps ? steps->level[i] : -1;
-        if (steps_reached > 0.0 && level >= 0 && level + 1 < static_cast<int> (steps->levels.size ()) && hoods.spacing[i] > 0.0)
-        {
-          const double step = steps->levels[level + 1] - steps->levels[level];
+        const double step = steps ? steps->stepAbove (steps->level[i]) : 0.0;
+        if (steps_reached > 0.0 && step > 0.0 && hoods.spacing[i] > 0.0)
           k = std::max (1, std::min (12, static_cast<int> (std::ceil (steps_reached * step / hoods.spacing[i] / r))));
-        }
         for (int ddy = -r; ddy <= r; ++ddy)
           for (int ddx = -r; ddx <= r; ++ddx)
           {

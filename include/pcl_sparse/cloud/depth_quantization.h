@@ -23,6 +23,13 @@ namespace pcl_sparse
 
     bool active () const { return axis >= 0; }
 
+    /// The step from level \a l to the next one up, 0 for the top level or l < 0.
+    double
+    stepAbove (int l) const
+    {
+      return l >= 0 && l + 1 < static_cast<int> (levels.size ()) ? levels[l + 1] - levels[l] : 0.0;
+    }
+
     /// |p_b - p_a|, with the difference along the axis reduced by one step (the step above the lower of
     /// the two levels): adjacent terraces are neighbours, a jump of several steps stays a jump.
     double
