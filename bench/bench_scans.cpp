@@ -26,6 +26,7 @@
 #include <pcl/compression/octree_pointcloud_compression.h>
 #include <pcl/features/normal_3d.h>
 #include <pcl/features/normal_3d_omp.h>
+#include <pcl/filters/filter.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/search/kdtree.h>
@@ -45,6 +46,7 @@
 #include <iostream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -727,6 +729,22 @@ namespace
     std::remove ((tmp + "_d.ply").c_str ());
     return 0;
   }
+  /// Writes the finite points of an organized .pcd as an unorganized one (WIDTH = N, HEIGHT = 1, its
+  /// viewpoint kept): what a frame is after a NaN filter, or as a tile of it, which the encoder takes
+  /// through its kNN surface (and kNN depth-step removal) instead of the image grid.
+  int
+  unorganize (const std::string& in, const std::string& out)
+  {
+    pcl::PointCloud<pcl::PointXYZRGB> organized, unorganized;
+    if (pcl::io::loadPCDFile (in, organized) != 0)
+      throw std::runtime_error ("cannot read " + in);
+    std::vector<int> kept;
+    pcl::removeNaNFromPointCloud (organized, unorganized, kept);
+    if (pcl::io::savePCDFileBinary (out, unorganized) != 0)
+      throw std::runtime_error ("cannot write " + out);
+    std::fprintf (stderr, "%s: %zu of %zu points, unorganized\n", out.c_str (), unorganized.size (), organized.size ());
+    return 0;
+  }
 } // namespace
 
 int
@@ -741,7 +759,9 @@ main (int argc, char** argv)
       return compare (argc, argv);
     if (mode == "rd" && argc >= 3)
       return rateDistortion (argc, argv);
-    std::fprintf (stderr, "usage: bench_scans simulate DIR MESH | compare SCAN [opts] | rd SCAN [opts]\n");
+    if (mode == "unorganize" && argc == 4)
+      return unorganize (argv[2], argv[3]);
+    std::fprintf (stderr, "usage: bench_scans simulate DIR MESH | compare SCAN [opts] | rd SCAN [opts] | unorganize IN.pcd OUT.pcd\n");
     return 1;
   }
   catch (const std::exception& e)
