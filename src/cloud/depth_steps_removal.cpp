@@ -2,10 +2,10 @@
 
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/geometry/point_kd_tree.h>
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/search/kdtree.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -153,13 +153,12 @@ namespace pcl_sparse
     // Trees over every d-th point, d = 1, 2, 4, ..., so that a ball of two steps (hundreds of points at 5 m on
     // office1) is searched where it holds about kBallPoints: every point's ball, 5.6 s longer on office1. The
     // first (every point) serves the spacing and the gate; the others are made only past the gate.
-    std::vector<std::unique_ptr<pcl::search::KdTree<pcl::PointXYZ>>> trees;
+    std::vector<std::unique_ptr<PointKdTree>> trees;
     auto addTree = [&] (std::size_t d) {
-      auto decimated = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+      pcl::PointCloud<pcl::PointXYZ> decimated;
       for (std::size_t c = 0; c < original.size (); c += d)
-        decimated->push_back ((*cloud)[c]);
-      trees.push_back (std::make_unique<pcl::search::KdTree<pcl::PointXYZ>> (true));
-      trees.back ()->setInputCloud (decimated);
+        decimated.push_back ((*cloud)[c]);
+      trees.push_back (std::make_unique<PointKdTree> (decimated));
     };
     addTree (1);
     // Spacing: the mean distance to the 6 nearest; the gate over every 16th point first.
@@ -168,14 +167,14 @@ namespace pcl_sparse
     auto measureSpacing = [&] (std::ptrdiff_t stride, bool skip_measured) {
 #pragma omp parallel num_threads(threads)
       {
-        pcl::Indices found;
+        std::vector<int> found;
         std::vector<float> squared;
 #pragma omp for schedule(static)
         for (std::ptrdiff_t c = 0; c < count; c += stride)
         {
           if (skip_measured && c % 16 == 0)
             continue;
-          trees[0]->nearestKSearch ((*cloud)[c], 7, found, squared);
+          trees[0]->nearestK ((*cloud)[c], 7, found, squared);
           double sum = 0.0;
           for (std::size_t q = 1; q < found.size (); ++q)
             sum += (positions[original[found[q]]] - positions[original[c]]).norm ();
@@ -197,7 +196,7 @@ namespace pcl_sparse
     // Neighbours within two steps (at least 3 spacings), in index order so the sums do not depend on the tree.
 #pragma omp parallel num_threads(threads)
     {
-      pcl::Indices found;
+      std::vector<int> found;
       std::vector<float> squared;
       std::vector<int> around;
 #pragma omp for schedule(dynamic, 256)
@@ -211,7 +210,7 @@ namespace pcl_sparse
         std::size_t level = 0;
         while (level + 1 < trees.size () && (std::size_t (2) << level) * kBallPoints <= expected)
           ++level;
-        trees[level]->radiusSearch ((*cloud)[c], radius, found, squared);
+        trees[level]->radius ((*cloud)[c], radius, found, squared);
         around.clear ();
         for (const auto f : found)
         {

@@ -1,10 +1,10 @@
 #include <pcl_sparse/cloud/knn_neighborhoods.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/geometry/point_kd_tree.h>
 #include <pcl_sparse/io/scan_cloud.h>
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/search/kdtree.h>
 
 #include <Eigen/Geometry>
 
@@ -74,21 +74,20 @@ namespace pcl_sparse
       }
     if (original.size () < 2)
       return graph;
-    pcl::search::KdTree<pcl::PointXYZ> tree (true);
-    tree.setInputCloud (cloud);
+    const PointKdTree tree (*cloud);
     const int wanted = std::min<int> (k + 1, static_cast<int> (original.size ()));
 
     const int threads = resolveThreadCount (num_threads);
 #pragma omp parallel num_threads(threads)
     {
-      pcl::Indices found;
+      std::vector<int> found;
       std::vector<float> squared;
       std::vector<std::pair<double, int>> sorted;
 #pragma omp for schedule(dynamic, 512)
       for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t> (original.size ()); ++c)
       {
         const int i = original[c];
-        tree.nearestKSearch ((*cloud)[c], wanted, found, squared);
+        tree.nearestK ((*cloud)[c], wanted, found, squared);
         sorted.clear ();
         for (const auto f : found)
         {

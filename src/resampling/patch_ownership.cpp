@@ -2,8 +2,9 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/geometry/point_kd_tree.h>
 
-#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
 #include <omp.h>
@@ -67,8 +68,7 @@ namespace pcl_sparse
       seeds->resize (m);
       for (std::size_t p = 0; p < m; ++p)
         (*seeds)[p].getVector3fMap () = (model.patches[p].origin - centre).cast<float> ();
-      pcl::KdTreeFLANN<pcl::PointXYZ> tree (false);
-      tree.setInputCloud (seeds);
+      const PointKdTree tree (*seeds);
       std::vector<std::vector<std::pair<int, int>>> pairs (static_cast<std::size_t> (threads));
 #pragma omp parallel num_threads(threads)
       {
@@ -79,7 +79,7 @@ namespace pcl_sparse
         for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
         {
           const std::size_t p = static_cast<std::size_t> (pi);
-          tree.radiusSearch ((*seeds)[p], static_cast<float> (2.0 * reach[p] * 1.001 + rounding), found, distances);
+          tree.radius ((*seeds)[p], static_cast<float> (2.0 * reach[p] * 1.001 + rounding), found, distances, false);
           for (int q : found)
           {
             const std::size_t uq = static_cast<std::size_t> (q);

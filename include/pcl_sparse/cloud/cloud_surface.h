@@ -33,7 +33,7 @@ namespace pcl_sparse
   {
     ImageGrid,   ///< the organized scan's width x height grid
     LidarRings,  ///< an unorganized spinning-lidar frame arranged as rings x azimuth
-    Knn          ///< the k-nearest-neighbour graph (pcl::search::KdTree)
+    Knn          ///< the k-nearest-neighbour graph (PointKdTree, FLANN)
   };
 
   /// A scan's surface. Every per-point vector has #P entries, in the scan's order.

@@ -38,7 +38,7 @@ namespace pcl_sparse
   /// hold for any unit and any density.
   struct CloudSurfaceOptions
   {
-    /// Unorganized scans: neighbours per point from the kd-tree (pcl::search::KdTree, FLANN), for the
+    /// Unorganized scans: neighbours per point from the kd-tree (PointKdTree, FLANN), for the
     /// normals, the noise, the outliers and the local triangulation. 3..64.
     int k = 16;
     /// Organized scans (and lidar rings): the normals use the (2 r + 1)^2 image window around each pixel.

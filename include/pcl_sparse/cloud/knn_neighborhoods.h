@@ -1,7 +1,7 @@
 #pragma once
 /// \file knn_neighborhoods.h
-/// Neighbourhoods of an unorganized scan: the k nearest neighbours of every point (pcl::search::KdTree,
-/// FLANN), then the gap rule against the local spacing and the shadow rule.
+/// Neighbourhoods of an unorganized scan: the k nearest neighbours of every point (PointKdTree:
+/// FLANN as PCL searches it), then the gap rule against the local spacing and the shadow rule.
 
 #include <pcl_sparse/cloud/edge_rules.h>
 #include <pcl_sparse/cloud/point_neighborhoods.h>
