@@ -1038,6 +1038,7 @@ TEST (CloudSurfaceSharedScans, DualReturnLidarFrame)
   const CloudSurface s = buildCloudSurface (dual);
   const double seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
   expectConsistent (dual, s);
+  EXPECT_EQ (s.neighborhood, CloudNeighborhood::Knn);  // the ring grid abandoned, as the comment says
   EXPECT_LT (seconds, 20.0);
   EXPECT_GT (referencedCount (s), 0.4 * dual.size ());  // the nearer return of each pulse at least
 }

@@ -172,17 +172,16 @@ TEST (Determinism, ToolsUnderOmpNumThreads)
     ASSERT_TRUE (runWithThreads (threads, app ("decode") + " " + psm + " " + (dir / ("d" + t + ".pcd")).string () +
                                             " -n 30000"));
   }
-  for (const std::string& stem : {"m", "q", "r", "d"})
-    for (const std::string& extension : {".psm", ".pcd", ".ply"})
-    {
-      const fs::path one = dir / (stem + "1" + extension), two = dir / (stem + "2" + extension);
-      if (!fs::exists (one))
-        continue;
-      SCOPED_TRACE (one.string ());
-      const std::string a = fileBytes (one), b = fileBytes (two);
-      EXPECT_GT (a.size (), 1000u);
-      EXPECT_TRUE (a == b) << one << " and " << two << " differ";
-    }
+  for (const std::string& name : {"m?.psm", "q?.psm", "r?.pcd", "r?.ply", "d?.pcd"})
+  {
+    const std::size_t at = name.find ('?');
+    const fs::path one = dir / (name.substr (0, at) + "1" + name.substr (at + 1)),
+                   two = dir / (name.substr (0, at) + "2" + name.substr (at + 1));
+    SCOPED_TRACE (one.string ());
+    const std::string a = fileBytes (one), b = fileBytes (two);  // a file not written reads empty
+    EXPECT_GT (a.size (), 1000u);
+    EXPECT_TRUE (a == b) << one << " and " << two << " differ";
+  }
   fs::remove_all (dir);
 }
 

@@ -485,6 +485,7 @@ TEST_F (EncodeTool, ResampleAndDecodePassTheOwnershipOptions)
       for (int k = 0; k < 3; ++k)
       {
         const std::filesystem::path cloud = dir_ / ("ownership" + std::to_string (k) + ".pcd");
+        std::filesystem::remove (cloud);  // the previous command's: each tool must write its own
         const std::string arguments = " " + cloud.string () + " -n 3000 -q" + options[k];
         ASSERT_EQ (pcl_sparse_test::runShell (command + arguments, out), 0) << command;
         clouds[k] = bytes (cloud);

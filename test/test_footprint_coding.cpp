@@ -220,6 +220,7 @@ TEST (FootprintCoding, FootprintsOfThousandsOfAnglesFromAFewAreRefused)
   model.patches.resize (8);
   const std::vector<std::uint8_t> bytes = encodeModel (model, options);
   const SparseSurfaceModel decoded = decodeModel (bytes.data (), bytes.size (), "notched");
+  ASSERT_EQ (decoded.numPatches (), 8u);
   for (const PatchCode& patch : decoded.patches)
   {
     ASSERT_EQ (patch.footprint.extent.size (), 4096u);

@@ -158,6 +158,7 @@ TEST (VertexCurvature, SphereHasUmbilicCurvatureOneOverR)
   double worst = 0.0;
   for (std::size_t v = 0; v < jets.size (); ++v)
   {
+    ASSERT_TRUE (std::isfinite (jets[v].k1) && std::isfinite (jets[v].k2)) << "vertex " << v;  // max () skips NaN
     worst = std::max ({worst, std::abs (jets[v].k1 * r - 1.0), std::abs (jets[v].k2 * r - 1.0)});
     EXPECT_GT (jets[v].normal.dot (mesh.vertices[v] / r), 0.9999);
   }
