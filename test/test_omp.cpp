@@ -243,7 +243,9 @@ TEST (OrthogonalMatchingPursuit, PreferredAtomsFirst)
   for (int k : {3, 7, 21})
     flags[k] = 2;
   flags[5] = 0;
-  const OmpResult plain = orthogonalMatchingPursuit (y, D, std::vector<char> (30, 1), 1e-9, 10);
+  std::vector<char> without_5 (30, 1);  // what preference 1 must reproduce: the same atoms allowed, none preferred
+  without_5[5] = 0;
+  const OmpResult plain = orthogonalMatchingPursuit (y, D, without_5, 1e-9, 10);
   const OmpResult unpreferred = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, OmpSelection{1.0});
   const OmpResult first = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, OmpSelection{0.0});
   ASSERT_EQ (first.atoms.size (), 10u);
@@ -252,8 +254,10 @@ TEST (OrthogonalMatchingPursuit, PreferredAtomsFirst)
   EXPECT_EQ (head, (std::vector<int>{3, 7, 21}));
   for (int a : first.atoms)
     EXPECT_NE (a, 5);
-  if (std::find (plain.atoms.begin (), plain.atoms.end (), 5) == plain.atoms.end ())
-    EXPECT_EQ (unpreferred.atoms, plain.atoms);
+  ASSERT_EQ (plain.atoms.size (), 10u);
+  EXPECT_EQ (unpreferred.atoms, plain.atoms);
+  EXPECT_EQ (unpreferred.coefficients, plain.coefficients);
+  EXPECT_NE (first.atoms, plain.atoms);  // preference 0 did change the order
   // Each preferred step of a preference-0.5 run had a score of at least half the best one's: recompute it.
   const OmpResult half = orthogonalMatchingPursuit (y, D, flags, 1e-9, 10, OmpSelection{0.5});
   const Eigen::VectorXd norms = D.colwise ().squaredNorm ().transpose ();
@@ -389,6 +393,13 @@ TEST (BatchOrthogonalMatchingPursuit, FewerSamplesThanAtoms)
       ASSERT_LE (batch[c].atoms.size (), points.size ());
       ASSERT_EQ (batch[c].coefficients.size (), batch[c].atoms.size ());
       EXPECT_LE (batch[c].residual_norm, Y.col (c).norm () * (1.0 + 1e-12));
+      // A few points and 144 cosines: some atom fits, and the fit is no worse than its best single atom's.
+      ASSERT_FALSE (batch[c].atoms.empty ());
+      double best_single = Y.col (c).norm ();
+      for (Eigen::Index a = 0; a < D.cols (); ++a)
+        if (D.col (a).squaredNorm () > 1e-12)
+          best_single = std::min (best_single, (Y.col (c) - D.col (a) * (D.col (a).dot (Y.col (c)) / D.col (a).squaredNorm ())).norm ());
+      EXPECT_LE (batch[c].residual_norm, best_single * (1.0 + 1e-9) + 1e-12) << "trial " << trial;
       for (double a : batch[c].coefficients)
         ASSERT_TRUE (std::isfinite (a));
     }

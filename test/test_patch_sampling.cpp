@@ -18,6 +18,7 @@
 
 #include "mesh_helpers.h"
 #include "model_helpers.h"
+#include "test_file_helpers.h"
 
 #include <gtest/gtest.h>
 
@@ -697,11 +698,13 @@ TEST (PatchSampling, ToolWritesAColouredMeshAndRefusesBadOptions)
   EXPECT_NE (bytes.find ("property uchar red\nproperty uchar green\nproperty uchar blue\n"), std::string::npos);
 
   std::filesystem::remove (output);
-  EXPECT_NE (std::system ((tool + " " + input + " " + output + " -rho -1 -q 2> /dev/null").c_str ()), 0);
-  EXPECT_NE (std::system ((tool + " " + input + " " + output + " -eta abc -q 2> /dev/null").c_str ()), 0);
-  EXPECT_NE (std::system ((tool + " " + input + " " + output + " -bogus -q 2> /dev/null").c_str ()), 0);
-  EXPECT_NE (std::system ((tool + " " + dir + "/missing.off " + output + " -q 2> /dev/null").c_str ()), 0);
-  EXPECT_NE (std::system ((tool + " " + input + " " + dir + "/out.obj -q 2> /dev/null").c_str ()), 0);
+  // Refused with exit code 1 (a crash would not do).
+  std::string out;
+  EXPECT_EQ (pcl_sparse_test::runShell (tool + " " + input + " " + output + " -rho -1 -q 2> /dev/null", out), 1);
+  EXPECT_EQ (pcl_sparse_test::runShell (tool + " " + input + " " + output + " -eta abc -q 2> /dev/null", out), 1);
+  EXPECT_EQ (pcl_sparse_test::runShell (tool + " " + input + " " + output + " -bogus -q 2> /dev/null", out), 1);
+  EXPECT_EQ (pcl_sparse_test::runShell (tool + " " + dir + "/missing.off " + output + " -q 2> /dev/null", out), 1);
+  EXPECT_EQ (pcl_sparse_test::runShell (tool + " " + input + " " + dir + "/out.obj -q 2> /dev/null", out), 1);
   EXPECT_FALSE (std::filesystem::exists (output));
 }
 
