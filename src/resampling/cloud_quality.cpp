@@ -1,9 +1,10 @@
 #include <pcl_sparse/resampling/cloud_quality.h>
 
+#include <pcl_sparse/geometry/point_kd_tree.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 
-#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/common/io.h>
 
 #include <Eigen/Geometry>
 
@@ -139,8 +140,7 @@ namespace pcl_sparse
       const double tie = 1e-12 * largest;
       std::vector<int> owners;
       const pcl::PointCloud<pcl::PointXYZ>::Ptr cover = coverTriangles (mesh, reach, owners);
-      pcl::KdTreeFLANN<pcl::PointXYZ> cover_tree;
-      cover_tree.setInputCloud (cover);
+      const PointKdTree cover_tree (*cover);
       k = std::max (1, std::min (k, static_cast<int> (cover->size ())));
 
       const std::size_t n = points.size ();
@@ -182,10 +182,10 @@ namespace pcl_sparse
           }
           std::inplace_merge (measured.begin (), measured.begin () + old, measured.end ());
         };
-        cover_tree.nearestKSearch (query, k, index, d2);
+        cover_tree.nearestK (query, k, index, d2);
         measure ();
         const double radius = best + reach + slack;
-        cover_tree.radiusSearch (query, radius, index, d2);
+        cover_tree.radius (query, radius, index, d2);
         measure ();
         distance[i] = best;
         // Where the nearest surface point lies on an edge or corner, every face sharing it is nearest (the
@@ -224,7 +224,7 @@ namespace pcl_sparse
 
     /// Coefficient of variation of the nearest-neighbour distances of the points in \a tree.
     double
-    nearestNeighbourVariation (const pcl::KdTreeFLANN<pcl::PointNormal>& tree, const pcl::PointCloud<pcl::PointNormal>& points)
+    nearestNeighbourVariation (const PointKdTree& tree, const pcl::PointCloud<pcl::PointXYZ>& points)
     {
       const std::size_t n = points.size ();
       std::vector<double> nearest (n);
@@ -233,7 +233,7 @@ namespace pcl_sparse
       {
         std::vector<int> index (2);
         std::vector<float> d2 (2);
-        tree.nearestKSearch (points[i], 2, index, d2);
+        tree.nearestK (points[i], 2, index, d2);
         nearest[i] = std::sqrt (static_cast<double> (d2.back ()));
       }
       double mean = 0.0, square = 0.0;
@@ -246,7 +246,7 @@ namespace pcl_sparse
     }
 
     /// \a count points uniform by area on the mesh (faces of areas \a areas, summing to \a area).
-    std::vector<pcl::PointNormal>
+    std::vector<pcl::PointXYZ>
     sampleProbes (const TriangleMesh& mesh, const std::vector<double>& areas, double area, std::size_t count,
                   std::uint64_t seed)
     {
@@ -254,7 +254,7 @@ namespace pcl_sparse
       std::partial_sum (areas.begin (), areas.end (), cumulative.begin ());
       std::mt19937_64 random (seed);
       std::uniform_real_distribution<double> uniform (0.0, 1.0);
-      std::vector<pcl::PointNormal> probes (count);
+      std::vector<pcl::PointXYZ> probes (count);
       for (auto& probe : probes)
       {
         const std::size_t f = std::min<std::size_t> (
@@ -275,7 +275,7 @@ namespace pcl_sparse
 
     /// Holes: completeness and largest gap of the probes against the points in \a tree (quality.spacing set).
     void
-    measureHoles (const pcl::KdTreeFLANN<pcl::PointNormal>& tree, const std::vector<pcl::PointNormal>& probes,
+    measureHoles (const PointKdTree& tree, const std::vector<pcl::PointXYZ>& probes,
                   double hole_spacings, CloudQuality& quality)
     {
       std::vector<double> gap (probes.size ());
@@ -284,7 +284,7 @@ namespace pcl_sparse
       {
         std::vector<int> index (1);
         std::vector<float> d2 (1);
-        tree.nearestKSearch (probes[i], 1, index, d2);
+        tree.nearestK (probes[i], 1, index, d2);
         gap[i] = std::sqrt (static_cast<double> (d2[0])) / quality.spacing;
       }
       std::size_t covered = 0;
@@ -322,15 +322,16 @@ namespace pcl_sparse
     }
 
     // Spacing uniformity, then holes: probes uniform by area on the mesh.
-    pcl::KdTreeFLANN<pcl::PointNormal> cloud_tree;
-    cloud_tree.setInputCloud (valid);
-    quality.nn_cv = nearestNeighbourVariation (cloud_tree, *valid);
+    pcl::PointCloud<pcl::PointXYZ> positions;
+    pcl::copyPointCloud (*valid, positions);
+    const PointKdTree cloud_tree (positions);
+    quality.nn_cv = nearestNeighbourVariation (cloud_tree, positions);
     const std::vector<double> areas = computeFaceAreas (mesh);
     double area = 0.0;
     for (double a : areas)
       area += a;
     quality.spacing = std::sqrt (area / static_cast<double> (valid->size ()));
-    const std::vector<pcl::PointNormal> probes = sampleProbes (mesh, areas, area, options.probes, options.seed);
+    const std::vector<pcl::PointXYZ> probes = sampleProbes (mesh, areas, area, options.probes, options.seed);
     measureHoles (cloud_tree, probes, options.hole_spacings, quality);
     return quality;
   }
