@@ -6,8 +6,9 @@
 #          test_format's bit-flip test); seeds from make_seed_corpus.cpp
 #   TARGET inputs: the mesh and scan readers (.obj .off .ply .stl .pcd .xyz; meshes also streamed), linked with Debian's PCL (the
 #          PCD data goes through pcl::PCDReader once our header check passed); seeds from make_input_corpus.py
-# Needs clang and libclang-rt-14-dev (Debian bookworm). Findings (crash-*, leak-*, timeout-*) land in
-# BUILD_DIR/findings, the corpus in BUILD_DIR/corpus-TARGET; the exit code is libFuzzer's (0 = no finding).
+# Needs clang and libclang-rt-14-dev (Debian bookworm); the loader's kd-tree (FLANN's headers) needs liblz4.
+# Findings (crash-*, leak-*, timeout-*) land in BUILD_DIR/findings, the corpus in BUILD_DIR/corpus-TARGET; the exit
+# code is libFuzzer's (0 = no finding).
 set -euo pipefail
 seconds=${1:?usage: bench/fuzz.sh SECONDS [BUILD_DIR] [model|inputs]}
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,15 +19,11 @@ corpus=$build/corpus-$target
 mkdir -p "$corpus" "$build/findings"
 cxx=${CXX_FUZZ:-clang++}
 common=(-std=c++17 -g -fopenmp -I"$root/include" -I/usr/include/eigen3 -I/usr/include/pcl-1.13)
-sources=("$root"/src/format/*.cpp "$root/src/coding/cosine_dictionary.cpp" "$root/src/model/sparse_surface_model.cpp" "$root/src/model/vertex_attributes.cpp"
-         "$root/src/mesh/bounding_box.cpp"
-         "$root/src/common/atomic_write.cpp" "$root/src/common/signal_cleanup.cpp" "$root/src/model/tile_grid.cpp"
-         "$root/src/model/tiled_model.cpp"
-         "$root/src/resampling/footprint_slack.cpp" "$root/src/resampling/patch_evaluator.cpp"
-         "$root/src/resampling/patch_ownership.cpp" "$root/src/common/thread_count.cpp"
-         "$root/src/geometry/morton_order.cpp")
-# atomic_write needs signal_cleanup; the writer's footprint slack asks resampling's ownership rule and the coding
-# order sorts seeds along a Morton curve (test/sanitized/CMakeLists.txt lists the same).
+# The loader's sources: src/format and the list test_format_sanitized builds from too.
+sources=("$root"/src/format/*.cpp)
+while read -r path; do
+  sources+=("$root/$path")
+done < <(grep -v '^#' "$root/test/sanitized/loader_sources.txt")
 
 if [ "$target" = inputs ]; then
   echo "building $build/fuzz_input_files" >&2
@@ -43,8 +40,8 @@ if [ "$target" = inputs ]; then
 else
   echo "building $build/fuzz_model_file" >&2
   "$cxx" "${common[@]}" -O1 -DFUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-    "${sources[@]}" "$root/test/fuzz/fuzz_model_file.cpp" -lzstd -lpcl_kdtree -lpcl_common -o "$build/fuzz_model_file"
-  "$cxx" "${common[@]}" -O1 "${sources[@]}" "$root/test/fuzz/make_seed_corpus.cpp" -lzstd -lpcl_kdtree -lpcl_common -o "$build/make_seed_corpus"
+    "${sources[@]}" "$root/test/fuzz/fuzz_model_file.cpp" -lzstd -lpcl_kdtree -lpcl_common -llz4 -o "$build/fuzz_model_file"
+  "$cxx" "${common[@]}" -O1 "${sources[@]}" "$root/test/fuzz/make_seed_corpus.cpp" -lzstd -lpcl_kdtree -lpcl_common -llz4 -o "$build/make_seed_corpus"
   "$build/make_seed_corpus" "$corpus" >&2
   fuzzer=$build/fuzz_model_file
 fi
