@@ -182,8 +182,10 @@ TEST_F (RenderTool, SharedMeshAndScan)
     GTEST_SKIP () << "needs ../shared/meshes/fandisk.off and ../shared/clouds/bun000.ply (not present)";
   const ToolRun m = run (dir_, tool ("render") + " " + mesh + " " + dir_.file ("f.png") + " -size 320x240 -view iso --json");
   EXPECT_EQ (m.code, 0) << m.err;
+  EXPECT_EQ (readBytes (dir_.file ("f.png")).substr (1, 3), "PNG");
   const ToolRun s = run (dir_, tool ("render") + " " + scan + " " + dir_.file ("s.png") + " -size 320x240 --json");
   EXPECT_EQ (s.code, 0) << s.err;
+  EXPECT_EQ (readBytes (dir_.file ("s.png")).substr (1, 3), "PNG");
   // A scan is drawn as touching splats: a good part of the image is covered.
   const std::size_t at = s.out.find ("\"pixels_covered\": ");
   ASSERT_NE (at, std::string::npos) << s.out;

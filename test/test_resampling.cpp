@@ -358,7 +358,9 @@ TEST (Resampling, SphereOnSurfaceNormalsCompleteUniform)
   {
     const Eigen::Vector3d q (p.x, p.y, p.z);
     square += (q.norm () - 1.0) * (q.norm () - 1.0);
-    worst_normal = std::min (worst_normal, Eigen::Vector3d (p.normal_x, p.normal_y, p.normal_z).dot (q.normalized ()));
+    const double cosine = Eigen::Vector3d (p.normal_x, p.normal_y, p.normal_z).dot (q.normalized ());
+    ASSERT_TRUE (std::isfinite (cosine)) << "a NaN normal or position";  // std::min would keep the old value
+    worst_normal = std::min (worst_normal, cosine);
     curvature += p.curvature;
     ++octants[(q.x () > 0) + 2 * (q.y () > 0) + 4 * (q.z () > 0)];
   }
@@ -403,6 +405,7 @@ TEST (Resampling, PointsLieOnTheirPatchCode)
   resampling.setPointCount (3000);
   pcl::PointCloud<pcl::PointNormal> cloud;
   resampling.compute (cloud);
+  ASSERT_EQ (cloud.size (), 3000u);  // an empty cloud would pass the loop below
   ASSERT_EQ (resampling.getPointPatches ().size (), cloud.size ());
   for (std::size_t i = 0; i < cloud.size (); ++i)
   {
@@ -424,8 +427,10 @@ TEST (Resampling, DeterministicForAnyThreadCount)
   const auto two = resample (model, 5000, 2);
   const auto again = resample (model, 5000, 2);
   const auto other_seed = resample (model, 5000, 2, 7);
-  ASSERT_EQ (one->size (), two->size ());
-  ASSERT_EQ (other_seed->size (), two->size ());
+  ASSERT_EQ (one->size (), 5000u);
+  ASSERT_EQ (two->size (), one->size ());
+  ASSERT_EQ (again->size (), one->size ());
+  ASSERT_EQ (other_seed->size (), one->size ());
   bool differs = false;
   for (std::size_t i = 0; i < one->size (); ++i)
   {

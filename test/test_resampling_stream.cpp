@@ -480,6 +480,7 @@ TEST (ResamplingStreamTools, StreamedAndWholeFilesAreTheSameBytes)
   EXPECT_EQ (runTool ("pcl_sparse_resample", psm + " " + dir.file ("a.pcd") + " -n 1000 -ascii -stream on -q"), 1);
   EXPECT_FALSE (std::filesystem::exists (dir.file ("a.pcd")));
   EXPECT_EQ (runTool ("pcl_sparse_resample", psm + " " + dir.file ("a.pcd") + " -n 1000 -ascii -q"), 0);
+  EXPECT_NE (readBytes (dir.file ("a.pcd")).find ("\nPOINTS 1000\nDATA ascii\n"), std::string::npos);
   EXPECT_EQ (runTool ("pcl_sparse_resample", psm + " " + dir.file ("b.pcd") + " -n 1000 -stream maybe -q"), 1);
 }
 
@@ -496,11 +497,19 @@ TEST (ResamplingStreamTools, MemoryIsBoundedByTheBlockNotTheCount)
   saveModel (psm, test::makeSyntheticModel (200, 13));
   long streamed_small = 0, streamed_large = 0, whole = 0;
   const std::string out = dir.file ("m.pcd");
+  // Each run's file checked after it, removed before the next (the 4M run's file passed the 2M run's check).
   ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 500000 -block 32768 -threads 2 -q", &streamed_small), 0);
+  ASSERT_TRUE (std::filesystem::exists (out));
+  EXPECT_GT (std::filesystem::file_size (out), 500000u * 28);
+  std::filesystem::remove (out);
   ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 4000000 -block 32768 -threads 2 -q", &streamed_large), 0);
+  ASSERT_TRUE (std::filesystem::exists (out));
   EXPECT_GT (std::filesystem::file_size (out), 4000000u * 28);
+  std::filesystem::remove (out);
   ASSERT_EQ (runTool ("pcl_sparse_resample", psm + " " + out + " -n 2000000 -stream off -threads 2 -q", &whole), 0);
+  ASSERT_TRUE (std::filesystem::exists (out));
   EXPECT_GT (std::filesystem::file_size (out), 2000000u * 28);
+  EXPECT_LT (std::filesystem::file_size (out), 4000000u * 28);
   std::cout << "peak RSS: streamed 0.5M " << streamed_small / 1024 << " MB, 4M " << streamed_large / 1024
             << " MB; whole 2M " << whole / 1024 << " MB" << std::endl;
   const long cloud_kb = 4000000L * sizeof (pcl::PointNormal) / 1024;

@@ -40,6 +40,7 @@ TEST (Samples, MeshSamplesWritePointsOnTheSphere)
     if (program.empty ())
       GTEST_SKIP () << "the samples are not built";
     std::string out;
+    std::filesystem::remove (dir.file ("cloud.pcd"));  // not the previous sample's cloud
     ASSERT_EQ (pcl_sparse_test::runCommand (program + " " + mesh + " " + dir.file ("cloud.pcd") + " 5000", out), 0)
       << name << ": " << out;
     pcl::PointCloud<pcl::PointNormal> cloud;

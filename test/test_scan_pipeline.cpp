@@ -162,6 +162,9 @@ TEST (ScanPipeline, StanfordScanResamplesOntoTheBunny)
   std::shared_ptr<const CloudSurface> surface;
   const pcl::PointCloud<pcl::PointNormal> out = resample (CosineBasisKind::Paper, surface);
   const pcl::PointCloud<pcl::PointNormal> out_dct = resample (CosineBasisKind::Dct, surface);
+  // The bounds below are per point (a few points could sit anywhere), and flipped < size / 1000.
+  ASSERT_EQ (out.size (), scan->size ());
+  ASSERT_EQ (out_dct.size (), scan->size ());
 
   // The scan's own points with its normals, measured the same way.
   pcl::PointCloud<pcl::PointNormal> own;
@@ -188,6 +191,8 @@ TEST (ScanPipeline, StanfordScanResamplesOntoTheBunny)
   // Measured: resampled 1.21e-4 (paper basis), 1.02e-4 (dct, the default); flipped 2 and 0 of 40256. Patches
   // grown with the scan's PCA normals are large (median 65 points): the paper's even-only atoms cannot code
   // the tilt left between a patch's frame and its points, the dct's can (mean normal angle 17 vs 7.6 degrees).
+  EXPECT_EQ (quality.invalid, 0u);
+  EXPECT_EQ (quality_dct.invalid, 0u);
   EXPECT_LT (scan_quality.mean_distance, 1.2e-4);
   EXPECT_LT (quality.mean_distance, 1.45 * scan_quality.mean_distance);
   EXPECT_LT (quality_dct.mean_distance, 1.15 * scan_quality.mean_distance);
@@ -220,12 +225,15 @@ TEST (ScanPipeline, KinectDepthStepsAreTakenOut)
   resampling.setPointCount (scan->size ());
   pcl::PointCloud<pcl::PointNormal> out;
   resampling.compute (out);
+  ASSERT_EQ (out.size (), scan->size ());  // away < size / 200: a cloud of few points would pass
   const Eigen::Vector3d sensor = scan->sensor_origin;
   std::size_t away = 0;
   for (const pcl::PointNormal& p : out)
   {
     const Eigen::Vector3d to_sensor = (sensor - p.getVector3fMap ().cast<double> ()).normalized ();
-    away += p.getNormalVector3fMap ().cast<double> ().dot (to_sensor) < -0.17 ? 1 : 0;
+    const double cosine = p.getNormalVector3fMap ().cast<double> ().dot (to_sensor);
+    ASSERT_TRUE (std::isfinite (cosine)) << "a NaN point or normal";  // NaN < -0.17 is false: not counted as away
+    away += cosine < -0.17 ? 1 : 0;
   }
   EXPECT_LT (away, out.size () / 200) << away << " of " << out.size () << " normals face away from the sensor";
 }

@@ -81,6 +81,9 @@ TEST_F (ScanTools, SharedScansThroughEveryTool)
     if (!std::filesystem::exists (shared (c.file)))
       GTEST_SKIP () << "the shared scans are absent (" << shared (c.file) << ")";
     std::string out, err;
+    // Every output checked below is this case's: none left from the previous one.
+    for (const char* output : {"out.pcd", "model.psm", "patches.ply", "keypoints.pcd"})
+      std::filesystem::remove (path (output));
     ASSERT_EQ (runTool ("pcl_sparse_resample", shared (c.file) + " " + path ("out.pcd") + " --json -q", out, err), 0)
       << c.file << ": " << err;
     EXPECT_EQ (jsonInteger (out, "input_points"), c.input_points) << c.file;
@@ -104,18 +107,23 @@ TEST_F (ScanTools, SharedScansThroughEveryTool)
     ASSERT_EQ (runTool ("pcl_sparse_encode", shared (c.file) + " -o " + path ("model.psm") + " -tolerance 1e-3 --json -q", out, err), 0)
       << c.file << ": " << err;
     EXPECT_EQ (jsonInteger (out, "vertices"), kept) << c.file;
+    ASSERT_TRUE (std::filesystem::exists (path ("model.psm"))) << c.file;
     EXPECT_LT (std::filesystem::file_size (path ("model.psm")), std::filesystem::file_size (shared (c.file))) << c.file;
     ASSERT_EQ (runTool ("pcl_sparse_patches", shared (c.file) + " " + path ("patches.ply") + " --json -q", out, err), 0)
       << c.file << ": " << err;
     // Meshes: no patch breaks an invariant. Scans: measured 0-0.9 % (lamppost, a thin pole, 7 of 814;
     // samp11 about 20 of 9500): a seed whose face-weighted normal opposes its frame, or a triangle
     // flipping on the seed's plane, where the neighbourhood surface folds.
+    EXPECT_TRUE (std::filesystem::exists (path ("patches.ply"))) << c.file;
+    EXPECT_GT (jsonInteger (out, "patches"), 0) << c.file;
+    EXPECT_GE (jsonInteger (out, "invalid_patches"), 0) << c.file;  // present: -1 (absent) passed the bound
     EXPECT_LE (jsonInteger (out, "invalid_patches"), jsonInteger (out, "patches") / 100) << c.file;
     ASSERT_EQ (runTool ("pcl_sparse_keypoints", shared (c.file) + " " + path ("keypoints.pcd") + " --json -q", out, err), 0)
       << c.file << ": " << err;
     // The default selection: 1 % of the surface's vertices (the kept points), rounded (measured 137, 18, ...).
     EXPECT_EQ (jsonInteger (out, "vertices"), kept) << c.file;
     EXPECT_EQ (jsonInteger (out, "keypoints"), std::llround (0.01 * static_cast<double> (kept))) << c.file;
+    EXPECT_TRUE (std::filesystem::exists (path ("keypoints.pcd"))) << c.file;
   }
 }
 
@@ -273,6 +281,7 @@ TEST_F (ScanTools, ColourAndIntensityAreWrittenWhereTheScanHasThem)
   EXPECT_EQ (jsonText (out, "attributes"), "rgb");
   pcl::PointCloud<pcl::PointXYZRGBNormal> decoded;
   ASSERT_EQ (pcl::io::loadPCDFile (path ("decoded.pcd"), decoded), 0);
+  ASSERT_GT (decoded.size (), 1000u);  // meanAttributeError gives 0 for an empty cloud
   EXPECT_LT (meanAttributeError (decoded, milk, grey), 5.0);  // measured 3.3 (the file's quantised colour)
 
   // Intensity.
@@ -282,6 +291,7 @@ TEST_F (ScanTools, ColourAndIntensityAreWrittenWhereTheScanHasThem)
   EXPECT_EQ (jsonText (out, "attributes"), "intensity");
   pcl::PointCloud<pcl::PointXYZINormal> lidar;
   ASSERT_EQ (pcl::io::loadPCDFile (path ("intensity.pcd"), lidar), 0);
+  ASSERT_EQ (lidar.size (), 69088u - 5032u);  // the frame's kept points; meanAttributeError gives 0 for none
   auto intensity = [] (const auto& p) { return static_cast<double> (p.intensity); };
   // Measured 4.3 against a mean |deviation| of 22.6 from the frame's mean intensity (29.6).
   double mean = 0.0, spread = 0.0;
