@@ -29,6 +29,8 @@
 #include <string>
 #include <vector>
 
+#include "shared_data.h"
+
 using namespace pcl_sparse;
 
 #ifndef PCL_SPARSE_SHARED_CLOUDS
@@ -967,9 +969,8 @@ namespace
 TEST (CloudSurfaceSharedScans, Bun000MatchesTheStanfordBunnyMesh)
 {
   const std::string mesh_path = std::string (PCL_SPARSE_SHARED_MESHES) + "/stanford-bunny.obj";
-  if (!haveSharedClouds () || !std::filesystem::exists (mesh_path))
-    GTEST_SKIP () << "the shared clouds or meshes are not in " << PCL_SPARSE_SHARED_CLOUDS << " / "
-                  << PCL_SPARSE_SHARED_MESHES;
+  PCL_SPARSE_NEED_SHARED_FILE (cloudPath ("bun000.ply"));
+  PCL_SPARSE_NEED_SHARED_FILE (mesh_path);
   ScanCloud scan;
   loadScanCloud (cloudPath ("bun000.ply"), scan);
   const CloudSurface s = buildCloudSurface (scan);

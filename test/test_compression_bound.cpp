@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "model_helpers.h"
+#include "shared_data.h"
 
 #include <fstream>
 #include <iostream>
@@ -224,8 +225,7 @@ TEST (CompressionBound, BunnyNpm1kAtEveryRho)
   // 1.6e-4, 2.6e-4, 5.0e-4. With it: CR <= 1 and RMSE/diag 5.1e-4, 5.1e-4, 5.2e-4; every vertex in a
   // patch and the resampled surface without holes wider than 3 spacings.
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/bunny-npm-1k.obj";
-  if (!std::ifstream (path).good ())
-    GTEST_SKIP () << "shared meshes not found in " << PCL_SPARSE_SHARED_MESHES;
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<const TriangleMesh> (loadTriangleMesh (path));
   for (double rho : {0.0002, 0.001, 0.005})
   {

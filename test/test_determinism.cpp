@@ -3,6 +3,7 @@
 /// omp_set_num_threads, and for the tools through OMP_NUM_THREADS (output files compared byte by byte).
 
 #include "robustness_cases.h"
+#include "shared_data.h"
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
@@ -128,8 +129,7 @@ TEST (Determinism, EncoderAndResamplingGeneratedMesh)
 TEST (Determinism, EncoderAndResamplingFandisk)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
-  if (!fs::exists (path))
-    GTEST_SKIP () << path << " is absent";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   expectThreadIndependent (loadTriangleMesh (path));
 }
 

@@ -8,6 +8,7 @@
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include "analytic_surfaces.h"
+#include "shared_data.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -409,8 +410,7 @@ TEST (SparseSurfaceEncoder, NyquistCapReducesErrorBetweenVertices)
 TEST (SparseSurfaceEncoder, Fandisk)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "shared mesh " << path << " not found";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const TriangleMesh mesh = loadTriangleMesh (path);
   const ModelStatistics stats = encodeStatistics (mesh, encoderPresetOptions (EncoderPreset::Paper));
   EXPECT_EQ (stats.num_vertices, 6475u);
@@ -441,8 +441,7 @@ TEST (SparseSurfaceEncoder, Fandisk)
 TEST (SparseSurfaceEncoder, FootprintsCoverTheirTrianglesOnFandisk)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "shared mesh " << path << " not found";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const TriangleMesh mesh = loadTriangleMesh (path);
   SparseSurfaceEncoder<pcl::PointXYZ> encoder;
   encoder.setInputMesh (std::make_shared<TriangleMesh> (mesh));

@@ -14,6 +14,7 @@
 
 #include "model_helpers.h"
 #include "probe_gaps.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -65,16 +66,13 @@ namespace
     return c;
   }
 
-  TriangleMesh::ConstPtr
-  sharedMesh (const std::string& file)
+  /// \a file's path in ../shared/meshes, or else in ../shared/extra-meshes.
+  std::string
+  sharedMeshPath (const std::string& file)
   {
-    for (const std::string folder : {std::string (PCL_SPARSE_SHARED_MESHES), std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes"})
-    {
-      const std::string path = folder + "/" + file;
-      if (std::ifstream (path).good ())
-        return std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-    }
-    return nullptr;
+    const std::string meshes = std::string (PCL_SPARSE_SHARED_MESHES) + "/" + file;
+    const std::string extra = std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes/" + file;
+    return std::ifstream (extra).good () ? extra : meshes;
   }
 } // namespace
 
@@ -190,15 +188,13 @@ TEST (FaceCompletion, SharedCadMeshes)
     std::size_t max_flipped;
     double max_area_in_no_patch;  ///< fraction of the area that is a triangle of no patch
   };
-  int found = 0;
   for (const Case& entry : {Case{"couplingdown.off", 3.0, 2, 0.0}, Case{"cheese-cgal.off", 3.0, 10, 0.001},
                             Case{"blade.off", 1.2, 12, 0.002}})
   {
     const std::string& file = entry.file;
-    const TriangleMesh::ConstPtr mesh = sharedMesh (file);
-    if (!mesh)
-      continue;
-    ++found;
+    const std::string path = sharedMeshPath (file);
+    PCL_SPARSE_NEED_SHARED_FILE (path);
+    const TriangleMesh::ConstPtr mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
     const PatchSamplingResult with = samplePatches (*mesh, true);
     EXPECT_EQ (facesInNoPatch (*mesh, with.patches).size (), with.uncovered_faces.size ()) << file;
     const double area_in_no_patch = faceCoverage (*mesh, with.patches).area_fraction;
@@ -222,6 +218,4 @@ TEST (FaceCompletion, SharedCadMeshes)
       EXPECT_GE (dense.within3, 0.99) << file;
     }
   }
-  if (found == 0)
-    GTEST_SKIP () << "shared meshes not found in " << PCL_SPARSE_SHARED_MESHES << " nor ../extra-meshes beside it";
 }

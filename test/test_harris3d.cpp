@@ -19,6 +19,8 @@
 #include <numeric>
 #include <random>
 
+#include "shared_data.h"
+
 using namespace pcl_sparse;
 
 namespace
@@ -337,8 +339,7 @@ TEST (Harris3D, TooFewNeighboursGiveNoResponseAndBadInputIsRefused)
 TEST (Harris3D, FandiskTopKeypointsLieOnSharpEdges)
 {
   const std::filesystem::path path = std::filesystem::path (PCL_SPARSE_SHARED_MESHES) / "fandisk.off";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "shared mesh " << path << " not available";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path.string ()));
   ASSERT_EQ (mesh->numVertices (), 6475u);
   const MeshTopology topo = buildMeshTopology (*mesh);

@@ -10,6 +10,7 @@
 #include "knife_mesh.h"
 #include "model_helpers.h"
 #include "probe_gaps.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -108,13 +109,10 @@ TEST (OppositeClearance, SharedMeshesHaveNoFlippedNormal)
   // the quadric basis and plain OMP sword kept one: a tie, on the edge itself (0.00 spacings from the mesh,
   // its own side's face within 3 mean distances: bench_flips -v), which no clearance under the other side
   // can remove; hence at most one.
-  int found = 0;
   for (const auto& [file, min_without] : {std::pair<std::string, std::size_t>{"sword.obj", 30}, {"wingnut.obj", 0}})
   {
     const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/" + file;
-    if (!std::ifstream (path).good ())
-      continue;
-    ++found;
+    PCL_SPARSE_NEED_SHARED_FILE (path);
     const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
     const SparseSurfaceModel::ConstPtr model = pcl_sparse_test::encodeMesh (mesh);
     const KnifeCloud without = resampleKnife (mesh, model, noClearance ());
@@ -126,8 +124,6 @@ TEST (OppositeClearance, SharedMeshesHaveNoFlippedNormal)
     EXPECT_LE (with.flipped, 1u) << file;
     EXPECT_LE (with.p99_spacings, 1.0) << file;
   }
-  if (found == 0)
-    GTEST_SKIP () << "sword.obj and wingnut.obj not found in " << PCL_SPARSE_SHARED_MESHES << " (../shared absent)";
 }
 
 TEST (OppositeClearance, PlacesOverTheOtherSideOfAThinPartAreCleared)
@@ -138,8 +134,7 @@ TEST (OppositeClearance, PlacesOverTheOtherSideOfAThinPartAreCleared)
   // flipped of 34516 points with bench_meshes' yardstick with the cosines alone; 37 -> 30 with the quadric
   // basis, whose codes cross fewer thin parts) without opening a hole (p99 2.55 -> 2.64 spacings).
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes/cheese-cgal.off";
-  if (!std::ifstream (path).good ())
-    GTEST_SKIP () << path << " not found (../shared absent)";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
   // Without patches seeded on the faces completion leaves out: with them, the unclipped footprints that
   // reached over cheese-cgal's thin parts are clipped and the crossings are gone with either clearance (6

@@ -16,6 +16,7 @@
 #include "analytic_surfaces.h"
 #include "model_helpers.h"
 #include "patch_helpers.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -219,8 +220,7 @@ TEST (PatchMerging, SameForAnyThreadCount)
 TEST (PatchMerging, SpotFileAQuarterSmaller)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/spot.obj";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "shared mesh " << path << " not found";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
   SparseSurfaceEncoderOptions merging, none;
   merging.patches.merge_own_elements = 8;

@@ -9,6 +9,7 @@
 #include <pcl_sparse/io/mesh_io.h>
 
 #include "model_helpers.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -125,8 +126,7 @@ TEST (SparseSurfaceEncoder, PatchesFollowTheMortonOrderOfTheirSeedsThoseWithAtom
   // stanford-bunny with its 1113 unreferenced vertices covered: their one-vertex patches, 45 % of its
   // patches, have no atom.
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/stanford-bunny.obj";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << path << " absent";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   SparseSurfaceEncoderOptions options;
   options.patches.cover_unreferenced_vertices = 1;
   const auto model = pcl_sparse_test::encodeMesh (std::make_shared<TriangleMesh> (loadTriangleMesh (path)), options);
@@ -165,8 +165,7 @@ TEST (SparseSurfaceEncoder, KeepsTheSamplingOrderWhereItCodesSmaller)
   // blade: patches of like curvature follow one another in the sampling order (decreasing Harris response),
   // which its file codes 8 % smaller than the Morton order.
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/blade.off";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << path << " absent";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto model = pcl_sparse_test::encodeMesh (std::make_shared<TriangleMesh> (loadTriangleMesh (path)));
   const std::vector<int> morton = seedMortonOrder (*model);
   std::vector<int> identity (model->patches.size ());

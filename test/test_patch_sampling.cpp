@@ -19,6 +19,7 @@
 #include "mesh_helpers.h"
 #include "model_helpers.h"
 #include "test_file_helpers.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -592,8 +593,7 @@ TEST (PatchSampling, PrunedTailKeepsThePaperLoopsPatches)
 TEST (PatchSamplingShared, PrunedTailOnAnRgbdFrame)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_CLOUDS) + "/table_scene_mug_stereo_textured.pcd";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "the shared clouds are not in " << PCL_SPARSE_SHARED_CLOUDS;
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   auto scan = std::make_shared<ScanCloud> ();
   loadScanCloud (path, *scan);
   std::vector<Patch> paper, pruned;
@@ -748,8 +748,7 @@ TEST (PatchSamplingShared, InvariantsOnEverySharedMesh)
 TEST (PatchSamplingShared, FandiskPatchesAreSmallerAtSharpEdges)
 {
   const std::string path = sharedMesh ("fandisk.off");
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "shared mesh not found: " << path;
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const TriangleMesh mesh = loadTriangleMesh (path);
   FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
   sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
@@ -815,8 +814,7 @@ TEST (PatchSamplingShared, FandiskPatchesAreSmallerAtSharpEdges)
 TEST (PatchSamplingShared, SpotPatchCountFallsAsRhoGrows)
 {
   const std::string path = sharedMesh ("spot.obj");
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "shared mesh not found: " << path;
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
   auto topology = std::make_shared<MeshTopology> (buildMeshTopology (*mesh));
   std::vector<double> responses;
@@ -849,8 +847,7 @@ TEST (PatchSamplingShared, VertexSetsDoNotFold)
   // fold, more than 120 degrees from its nearest face. With the pairwise cone, growth and completion now
   // refuse a vertex that would close a face facing away from the seed normal.
   const std::string path = sharedMesh ("../extra-meshes/nefertiti-35k.obj");
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << path << " not found (../shared absent)";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
   FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
   sampling.setInputMesh (mesh);

@@ -12,6 +12,7 @@
 #include "analytic_surfaces.h"
 #include "model_helpers.h"
 #include "patch_helpers.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -163,8 +164,7 @@ TEST (RedundantPatches, ParaboloidCodedWithHalfTheAtoms)
 TEST (RedundantPatches, SpotFileAFifthSmaller)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/spot.obj";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << "shared mesh " << path << " not found";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
   SparseSurfaceEncoderOptions every_patch, dropped;
   every_patch.patches.drop_redundant_patches = false;

@@ -5,6 +5,7 @@
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
 #include "test_file_helpers.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -178,8 +179,8 @@ TEST_F (RenderTool, SharedMeshAndScan)
 {
   const std::string mesh = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
   const std::string scan = std::string (PCL_SPARSE_SHARED_CLOUDS) + "/bun000.ply";
-  if (!fs::exists (mesh) || !fs::exists (scan))
-    GTEST_SKIP () << "needs ../shared/meshes/fandisk.off and ../shared/clouds/bun000.ply (not present)";
+  PCL_SPARSE_NEED_SHARED_FILE (mesh);
+  PCL_SPARSE_NEED_SHARED_FILE (scan);
   const ToolRun m = run (dir_, tool ("render") + " " + mesh + " " + dir_.file ("f.png") + " -size 320x240 -view iso --json");
   EXPECT_EQ (m.code, 0) << m.err;
   EXPECT_EQ (readBytes (dir_.file ("f.png")).substr (1, 3), "PNG");

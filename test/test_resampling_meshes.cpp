@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "model_helpers.h"
+#include "shared_data.h"
 
 #include <algorithm>
 #include <array>
@@ -365,8 +366,7 @@ TEST (ResamplingMeshes, DctNormalsReachTheVertexNormalFloor)
 TEST (ResamplingMeshes, SlopeBoundLeavesEdgesToTheFrontalPatch)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes/cheese-cgal.off";
-  if (!std::ifstream (path).good ())
-    GTEST_SKIP () << path << " not found (the shared meshes are not beside the repository)";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<const TriangleMesh> (loadTriangleMesh (path));
   SparseSurfaceEncoderOptions encoder_options;
   encoder_options.coding.footprint_angles = footprint_angles;

@@ -4,6 +4,7 @@
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
 #include "test_file_helpers.h"
+#include "shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -70,8 +71,7 @@ TEST (Samples, RgbdScanSampleKeepsTheColour)
   if (program.empty ())
     GTEST_SKIP () << "the samples are not built";
   const std::string scan = std::string (PCL_SPARSE_SHARED_CLOUDS) + "/milk_color.pcd";
-  if (!std::filesystem::exists (scan))
-    GTEST_SKIP () << "the shared scans are absent (" << scan << ")";
+  PCL_SPARSE_NEED_SHARED_FILE (scan);
   TempDir dir ("pcl_sparse_samples");
   std::string out;
   ASSERT_EQ (pcl_sparse_test::runCommand (program + " " + scan + " " + dir.file ("cloud.pcd"), out), 0) << out;

@@ -14,6 +14,7 @@
 /// RMSE / diagonal within 10 %.
 
 #include "robustness_cases.h"
+#include "shared_data.h"
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
@@ -123,8 +124,7 @@ TEST (ScaleInvariance, GeneratedMeshWithFeatures)
 TEST (ScaleInvariance, Fandisk)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/fandisk.off";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << path << " is absent";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   expectSameModel (loadTriangleMesh (path), "fandisk");
 }
 

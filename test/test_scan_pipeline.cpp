@@ -20,6 +20,8 @@
 #include <filesystem>
 #include <random>
 
+#include "shared_data.h"
+
 using namespace pcl_sparse;
 
 namespace
@@ -137,8 +139,8 @@ TEST (ScanPipeline, StanfordScanResamplesOntoTheBunny)
 {
   const std::string scan_path = std::string (PCL_SPARSE_SHARED_CLOUDS) + "/bun000.ply";
   const std::string mesh_path = std::string (PCL_SPARSE_SHARED_MESHES) + "/stanford-bunny.obj";
-  if (!std::filesystem::exists (scan_path) || !std::filesystem::exists (mesh_path))
-    GTEST_SKIP () << "the shared scan or mesh is absent (" << scan_path << ", " << mesh_path << ")";
+  PCL_SPARSE_NEED_SHARED_FILE (scan_path);
+  PCL_SPARSE_NEED_SHARED_FILE (mesh_path);
   auto scan = std::make_shared<ScanCloud> ();
   loadScanCloud (scan_path, *scan);
   const TriangleMesh bunny = loadTriangleMesh (mesh_path);
@@ -208,8 +210,7 @@ TEST (ScanPipeline, StanfordScanResamplesOntoTheBunny)
 TEST (ScanPipeline, KinectDepthStepsAreTakenOut)
 {
   const std::string scan_path = std::string (PCL_SPARSE_SHARED_CLOUDS) + "/office1.pcd";
-  if (!std::filesystem::exists (scan_path))
-    GTEST_SKIP () << "the shared scan is absent (" << scan_path << ")";
+  PCL_SPARSE_NEED_SHARED_FILE (scan_path);
   auto scan = std::make_shared<ScanCloud> ();
   loadScanCloud (scan_path, *scan);
   ASSERT_TRUE (scan->has_sensor_pose);

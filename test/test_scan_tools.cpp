@@ -11,6 +11,7 @@
 #include <pcl/point_types.h>
 
 #include "test_file_helpers.h"
+#include "shared_data.h"
 
 #include <cmath>
 #include <cstdio>
@@ -78,8 +79,7 @@ TEST_F (ScanTools, SharedScansThroughEveryTool)
                         {"bun000.ply", 204800, 164544, 0, 0}};
   for (const Case& c : cases)
   {
-    if (!std::filesystem::exists (shared (c.file)))
-      GTEST_SKIP () << "the shared scans are absent (" << shared (c.file) << ")";
+    PCL_SPARSE_NEED_SHARED_FILE (shared (c.file));
     std::string out, err;
     // Every output checked below is this case's: none left from the previous one.
     for (const char* output : {"out.pcd", "model.psm", "patches.ply", "keypoints.pcd"})
@@ -230,8 +230,8 @@ namespace
 TEST_F (ScanTools, ColourAndIntensityAreWrittenWhereTheScanHasThem)
 {
   const std::string colour_scan = shared ("milk_color.pcd"), intensity_scan = shared ("fast_gicp_251370668.pcd");
-  if (!std::filesystem::exists (colour_scan) || !std::filesystem::exists (intensity_scan))
-    GTEST_SKIP () << "the shared scans are absent (" << colour_scan << ")";
+  PCL_SPARSE_NEED_SHARED_FILE (colour_scan);
+  PCL_SPARSE_NEED_SHARED_FILE (intensity_scan);
   pcl::PointCloud<pcl::PointXYZRGBA> milk;
   ASSERT_EQ (pcl::io::loadPCDFile (colour_scan, milk), 0);
   auto grey = [] (const auto& p) { return (static_cast<double> (p.r) + p.g + p.b) / 3.0; };

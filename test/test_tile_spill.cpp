@@ -18,6 +18,7 @@
 
 #include "generated_clouds.h"
 #include "test_file_helpers.h"
+#include "shared_data.h"
 
 #include <filesystem>
 #include <limits>
@@ -661,8 +662,7 @@ TEST (GeneratedClouds, DeterministicTerrainAndCityBlock)
   EXPECT_LT (box.sizes ().z (), 2.5 * terrain.relief);
 
   const std::string mesh_path = std::string (PCL_SPARSE_SHARED_MESHES) + "/spot.obj";
-  if (!std::filesystem::exists (mesh_path))
-    GTEST_SKIP () << "no shared meshes";
+  PCL_SPARSE_NEED_SHARED_FILE (mesh_path);
   const TriangleMesh mesh = loadTriangleMesh (mesh_path);
   pcl_sparse_test::CityBlockOptions block;
   block.copies_x = 3;

@@ -24,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include "test_file_helpers.h"
+#include "shared_data.h"
 
 #include <algorithm>
 #include <chrono>
@@ -762,8 +763,7 @@ TEST (TiledEncoding, SeamsLikeTheInside)
 TEST (TiledEncoding, SharedMeshNearTheUntiledModel)
 {
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/koala-loop1-200k.ply";
-  if (!std::filesystem::exists (path))
-    GTEST_SKIP () << path << " absent";
+  PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
   SparseSurfaceEncoder<pcl::PointXYZ> encoder;
   encoder.setInputMesh (mesh);
@@ -1056,8 +1056,8 @@ TEST (TiledEncoding, CompressionBoundHoldsForTheWholeModel)
 {
   const std::string scan_path = std::string (PCL_SPARSE_SHARED_CLOUDS) + "/fast_gicp_251370668.pcd";
   const std::string mesh_path = std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes/cheese-cgal.off";
-  if (!std::filesystem::exists (scan_path) || !std::filesystem::exists (mesh_path))
-    GTEST_SKIP () << scan_path << " or " << mesh_path << " is absent";
+  PCL_SPARSE_NEED_SHARED_FILE (scan_path);
+  PCL_SPARSE_NEED_SHARED_FILE (mesh_path);
   auto scan = std::make_shared<ScanCloud> ();
   loadScanCloud (scan_path, *scan);
   SparseSurfaceEncoder<pcl::PointXYZ> whole;
