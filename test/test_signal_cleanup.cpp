@@ -22,7 +22,8 @@ using namespace pcl_sparse;
 
 namespace
 {
-  /// Runs \a body in a child process and returns its wait status.
+  /// Runs \a body in a child process and returns its wait status. An exception in the child ends it with
+  /// exit code 6 (it unwound into a second copy of the test runner, which went on with the other tests).
   template <typename Body>
   int
   inChild (Body body)
@@ -30,11 +31,19 @@ namespace
     const pid_t child = ::fork ();
     if (child == 0)
     {
-      body ();
+      try
+      {
+        body ();
+      }
+      catch (...)
+      {
+        ::_exit (6);
+      }
       ::_exit (0);  // not reached when the body raises the signal
     }
+    EXPECT_GT (child, 0) << "fork failed";
     int status = 0;
-    ::waitpid (child, &status, 0);
+    EXPECT_EQ (::waitpid (child, &status, 0), child);
     return status;
   }
 } // namespace
@@ -48,20 +57,26 @@ TEST (SignalCleanup, FolderBeingFilledIsRemoved)
   for (int round = 0; round < 20; ++round)
   {
     const std::string folder = dir.file ("spill" + std::to_string (round));
-    std::filesystem::create_directory (folder);
+    ASSERT_TRUE (std::filesystem::create_directory (folder));
     const int status = inChild ([&] {
       detail::registerRemovalOnSignal (folder, detail::RemovedKind::Folder);
       std::atomic<bool> started{false};
       std::thread writer ([&] {
         for (long i = 0;; ++i)
         {
-          std::ofstream (folder + "/f" + std::to_string (i)) << i;
-          started = true;
+          std::ofstream out (folder + "/f" + std::to_string (i));
+          out << i;
+          if (out.good ())  // a file is in the folder: the handler has something to race with
+            started = true;
         }
       });
       while (!started)
         std::this_thread::yield ();
       ::usleep (1000);
+      // The folder must hold files when the signal comes, else the round tests an empty folder; exit 4 then
+      // (the status check below fails on it).
+      if (std::filesystem::is_empty (folder))
+        ::_exit (4);
       ::raise (SIGTERM);
       writer.join ();  // not reached
     });
@@ -76,15 +91,20 @@ TEST (SignalCleanup, PathRegisteredBeforeItExists)
   const pcl_sparse_test::TempDir dir ("pcl_sparse_signal");
   const std::string folder = dir.file ("not_yet");
   const std::string file = dir.file ("made.tmp");
+  const std::string other = dir.file ("other.tmp");  // not registered: must stay
+  pcl_sparse_test::writeBytes (other, "kept");
   const int status = inChild ([&] {
     detail::registerRemovalOnSignal (folder, detail::RemovedKind::Folder);  // never made
     detail::registerRemovalOnSignal (file, detail::RemovedKind::File);
     std::ofstream (file) << "partial";
+    if (!std::filesystem::exists (file))
+      ::_exit (4);  // nothing to remove: the check below would pass without the handler
     ::raise (SIGTERM);
   });
-  EXPECT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGTERM) << "status " << status;
+  ASSERT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGTERM) << "status " << status;
   EXPECT_FALSE (std::filesystem::exists (file));
   EXPECT_FALSE (std::filesystem::exists (folder));
+  EXPECT_EQ (pcl_sparse_test::readBytes (other), "kept");
 }
 
 // A write into a pipe whose reader quit (a cloud piped into head) ends the process by SIGPIPE: the temporary
@@ -97,6 +117,8 @@ TEST (SignalCleanup, BrokenPipe)
     ::signal (SIGPIPE, SIG_DFL);  // as in a shell; a runner that ignores it would hand that on (and it stays ignored)
     detail::registerRemovalOnSignal (file, detail::RemovedKind::File);
     std::ofstream (file) << "partial";
+    if (!std::filesystem::exists (file))
+      ::_exit (4);  // nothing to remove: the check below would pass without the handler
     int ends[2];
     if (::pipe (ends) != 0)
       ::_exit (2);
@@ -105,6 +127,6 @@ TEST (SignalCleanup, BrokenPipe)
     (void) ::write (ends[1], &byte, 1);
     ::_exit (3);  // not reached: SIGPIPE ends the process
   });
-  EXPECT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGPIPE) << "status " << status;
+  ASSERT_TRUE (WIFSIGNALED (status) && WTERMSIG (status) == SIGPIPE) << "status " << status;
   EXPECT_FALSE (std::filesystem::exists (file));
 }

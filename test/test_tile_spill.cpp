@@ -20,6 +20,8 @@
 #include "test_file_helpers.h"
 #include "shared_data.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -156,6 +158,7 @@ namespace
       EXPECT_EQ (tile.height, 1u);
     }
     EXPECT_EQ (core, whole.size ());
+    EXPECT_GE (total, whole.size ()) << "every point is at least in its own tile";
     return total;
   }
 
@@ -312,7 +315,7 @@ TEST (TileMembership, MarginBoxesAndOwnerExactly)
     EXPECT_LE (tiles.size (), 8u);
     shared += tiles.size () > 1;
   }
-  EXPECT_GT (shared, 1000u);  // margins overlap
+  EXPECT_GT (shared, 3900u);  // margins overlap: measured 5811 of the 20060 probes
   tilesHolding (grid, Eigen::Vector3d (kNaN, 0, 0), tiles);
   EXPECT_TRUE (tiles.empty ());
 }
@@ -337,10 +340,10 @@ TEST (ScanStreamReader, ChunksGiveWhatLoadScanCloudReads)
   organized.height = 25;
   organized.is_dense = false;
   organized.sensor_origin_ = Eigen::Vector4f (0.5f, 0.25f, -1.0f, 0.0f);
-  pcl::io::savePCDFileBinary (dir.file ("binary.pcd"), cloud);
-  pcl::io::savePCDFileASCII (dir.file ("ascii.pcd"), cloud);
-  pcl::io::savePCDFileBinaryCompressed (dir.file ("compressed.pcd"), cloud);
-  pcl::io::savePCDFileBinary (dir.file ("organized.pcd"), organized);
+  ASSERT_EQ (pcl::io::savePCDFileBinary (dir.file ("binary.pcd"), cloud), 0);
+  ASSERT_EQ (pcl::io::savePCDFileASCII (dir.file ("ascii.pcd"), cloud), 0);
+  ASSERT_EQ (pcl::io::savePCDFileBinaryCompressed (dir.file ("compressed.pcd"), cloud), 0);
+  ASSERT_EQ (pcl::io::savePCDFileBinary (dir.file ("organized.pcd"), organized), 0);
 
   for (const char* name : {"binary.pcd", "ascii.pcd", "compressed.pcd", "organized.pcd"})
   {
@@ -350,6 +353,16 @@ TEST (ScanStreamReader, ChunksGiveWhatLoadScanCloudReads)
     ScanLoadOptions raw;
     raw.clean = false;
     loadScanCloud (path, whole, raw);
+    const bool organized = std::string (name) == "organized.pcd";
+    ASSERT_EQ (whole.size (), organized ? 1000u : 2500u);
+    // The attributes of each file are there, so that the comparisons below compare them.
+    ASSERT_EQ (whole.colors.size (), organized ? 0u : 2500u);
+    ASSERT_EQ (whole.normals.size (), organized ? 0u : 2500u);
+    ASSERT_EQ (whole.intensities.size (), organized ? 1000u : 0u);
+    // The layout compared below is the file's, not defaults both readers share.
+    EXPECT_EQ (whole.width, organized ? 40u : 2500u);
+    EXPECT_EQ (whole.height, organized ? 25u : 1u);
+    EXPECT_EQ (whole.sensor_origin, organized ? Eigen::Vector3d (0.5, 0.25, -1.0) : Eigen::Vector3d::Zero ());
     ScanStreamReader reader (path);
     EXPECT_EQ (reader.size (), whole.size ());
     EXPECT_EQ (reader.isStreamed (), std::string (name) != "compressed.pcd");
@@ -438,12 +451,16 @@ TEST (ScanStreamReader, BinaryPlyBothEndiansAndAscii)
     EXPECT_EQ (reader.layout ().fields, whole.fields);
     ScanCloud chunk, all;
     while (reader.read (chunk, 2))
+    {
+      ASSERT_EQ (chunk.colors.size (), chunk.size ());
+      ASSERT_EQ (chunk.intensities.size (), chunk.size ());
       for (std::size_t i = 0; i < chunk.size (); ++i)
       {
         all.positions.push_back (chunk.positions[i]);
         all.colors.push_back (chunk.colors[i]);
         all.intensities.push_back (chunk.intensities[i]);
       }
+    }
     EXPECT_EQ (all.positions, worldPositions (whole));
     EXPECT_EQ (all.colors, whole.colors);
     EXPECT_EQ (all.intensities, whole.intensities);
@@ -516,9 +533,12 @@ TEST (SpilledTileSource, MapCoordinatesInDouble)
   for (std::size_t t = 0; t < source.grid ().size (); ++t)
     records += source.spilledPoints (t);
   EXPECT_EQ (source.spilledBytes (), 28 * records);  // double x y z need 8 bytes each (and a 4-byte index)
-  expectTilesEqualReference (source, whole);
+  // Every spilled record is a point of a tile (57598 for the 40000 points, margins included, measured).
+  EXPECT_EQ (expectTilesEqualReference (source, whole), records);
+  EXPECT_GT (records, whole.size ());
   const TileInput tile = source.loadTile (4);
   ASSERT_TRUE (tile.scan);
+  ASSERT_FALSE (tile.scan->positions.empty ());
   EXPECT_GT (tile.scan->origin.x (), 5e5);                  // its own local frame
   EXPECT_LT (tile.scan->positions.front ().norm (), 200.0);
 }
@@ -532,6 +552,7 @@ TEST (SpilledTileSource, EveryPointInEveryMarginBoxHoldingIt)
   pcl_sparse_test::writeTerrainPcd (dir.file ("terrain.pcd"), terrain);
   ScanCloud whole;
   loadScanCloud (dir.file ("terrain.pcd"), whole);
+  ASSERT_EQ (whole.size (), terrain.points);  // no point dropped: file indices are 0 .. size - 1 below
   const SpilledTileSource source (dir.file ("terrain.pcd"), tilesAlong (4));
   const TileGrid& grid = source.grid ();
   // Brute force, from the boxes themselves: how many tiles each file index must be in.
@@ -539,12 +560,14 @@ TEST (SpilledTileSource, EveryPointInEveryMarginBoxHoldingIt)
   for (std::size_t i = 0; i < whole.size (); ++i)
     for (std::size_t t = 0; t < grid.size (); ++t)
       expected[whole.indices[i]] += grid.marginBox (t).contains (whole.worldPosition (i)) || grid.tileOf (whole.worldPosition (i)) == t;
-  std::size_t in_overlaps = 0;
+  std::size_t in_overlaps = 0, in_tiles = 0;
   for (std::size_t t = 0; t < grid.size (); ++t)
   {
     const TileInput input = source.loadTile (t);
     if (input.empty ())
       continue;
+    ASSERT_TRUE (input.scan);
+    in_tiles += input.scan->size ();
     for (std::size_t i = 0; i < input.scan->size (); ++i)
     {
       EXPECT_TRUE (grid.marginBox (t).contains (input.scan->worldPosition (i)) || grid.tileOf (input.scan->worldPosition (i)) == t);
@@ -556,10 +579,12 @@ TEST (SpilledTileSource, EveryPointInEveryMarginBoxHoldingIt)
     ASSERT_EQ (found[i], expected[i]) << "point " << i;
     in_overlaps += expected[i] > 1;
   }
-  EXPECT_GT (in_overlaps, whole.size () / 10);
+  EXPECT_GT (in_overlaps, whole.size () * 4 / 10);  // measured 11791 of the 20000 points
   std::size_t records = 0;
   for (std::size_t t = 0; t < grid.size (); ++t)
     records += source.spilledPoints (t);
+  EXPECT_EQ (records, in_tiles);  // 39215 measured: with no record, 16 * 0 == 0 passed below
+  EXPECT_GT (records, whole.size ());
   EXPECT_EQ (source.spilledBytes (), 16 * records);  // float x y z and a 4-byte index: 16-byte records
 }
 
@@ -590,7 +615,7 @@ TEST (SpilledTileSource, GridFromTheCountAfterMergingDuplicates)
   EXPECT_EQ (source.grid ().counts, grid.counts);
   EXPECT_EQ (source.grid ().edge, grid.edge);
   EXPECT_EQ (source.totalPoints (), whole.size ());
-  expectTilesEqualReference (source, whole);
+  EXPECT_GT (expectTilesEqualReference (source, whole), whole.size ());  // margin copies: measured 39548 of 30000
 }
 
 TEST (SpilledTileSource, BrokenFilesThrowAndLeaveNoSpillFiles)
@@ -621,10 +646,14 @@ TEST (SpilledTileSource, BrokenFilesThrowAndLeaveNoSpillFiles)
   pcl::io::savePCDFileBinary (dir.file ("nothing.pcd"), nothing);
   pcl_sparse_test::writeBytes (dir.file ("garbage.pcd"), "VERSION 0.7\nFIELDS a b\nDATA binary\n");
 
+  // Each with its own reason ("missing.pcd" and "PCD" were found in the path the message starts with).
   const std::vector<std::pair<std::string, std::string>> cases = {
-    {"truncated.pcd", "truncated PCD data"},     {"short_ascii.pcd", "truncated or bad ascii PCD data"},
-    {"truncated.ply", "truncated"},              {"nothing.pcd", "no point left after cleaning"},
-    {"garbage.pcd", "PCD"},                      {"missing.pcd", "missing.pcd"}};
+    {"truncated.pcd", "truncated PCD data (3000 points of 32 bytes announced"},
+    {"short_ascii.pcd", "truncated or bad ascii PCD data (the file ends after"},
+    {"truncated.ply", "the PLY element 'vertex' announces 100 records, more than the 600 remaining bytes can hold"},
+    {"nothing.pcd", "no point left after cleaning (1 non-finite, 1 at the sensor origin)"},
+    {"garbage.pcd", "bad PCD header (FIELDS, SIZE, TYPE, COUNT disagree)"},
+    {"missing.pcd", "cannot open the file"}};
   expectRefusedWithoutSpillFiles<SpilledTileSource> (dir, cases, parent);
   // A good file spills into the parent, and the spill directory goes with the source.
   {
@@ -633,12 +662,29 @@ TEST (SpilledTileSource, BrokenFilesThrowAndLeaveNoSpillFiles)
     EXPECT_EQ (source.directory ().rfind (parent, 0), 0u);
   }
   EXPECT_TRUE (emptyDirectory (parent));
+  // Bad options: refused with the reason, before anything is spilled.
+  const auto refusal = [&] (const SpillOptions& options) {
+    try
+    {
+      SpilledTileSource source (dir.file ("good.pcd"), options);
+    }
+    catch (const Error& e)
+    {
+      return std::string (e.what ());
+    }
+    ADD_FAILURE () << "no pcl_sparse::Error";
+    return std::string ();
+  };
   SpillOptions bad;
+  bad.directory = parent;
   bad.chunk_points = 0;
-  EXPECT_THROW (SpilledTileSource (dir.file ("good.pcd"), bad), Error);
+  EXPECT_EQ (refusal (bad), "SpilledTileSource: chunk_points and buffer_bytes must be positive");
+  EXPECT_TRUE (emptyDirectory (parent));
   bad = SpillOptions ();
+  bad.directory = parent;
   bad.grid.margin_fraction = 0.7;
-  EXPECT_THROW (SpilledTileSource (dir.file ("good.pcd"), bad), Error);
+  EXPECT_NE (refusal (bad).find ("margin_fraction in [0, 0.5]"), std::string::npos);
+  EXPECT_TRUE (emptyDirectory (parent));
 }
 
 TEST (GeneratedClouds, DeterministicTerrainAndCityBlock)
@@ -658,7 +704,9 @@ TEST (GeneratedClouds, DeterministicTerrainAndCityBlock)
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : scan.positions)
     box.extend (p);
-  EXPECT_NEAR (box.sizes ().x (), terrain.side, 0.01 * terrain.side);
+  EXPECT_NEAR (box.sizes ().x (), terrain.side, 0.01 * terrain.side);  // measured 998.2 of 1000
+  EXPECT_NEAR (box.sizes ().y (), terrain.side, 0.018 * terrain.side);  // measured 988.5 of 1000
+  EXPECT_GT (box.sizes ().z (), 0.5 * terrain.relief);                  // measured 75.5 for relief 40
   EXPECT_LT (box.sizes ().z (), 2.5 * terrain.relief);
 
   const std::string mesh_path = std::string (PCL_SPARSE_SHARED_MESHES) + "/spot.obj";
@@ -723,6 +771,8 @@ TEST (SpilledTileSource, BoundedMemory)
                spilled - base, whole - base, static_cast<long> (terrain.points) * per_point_bytes / 1024);
   EXPECT_GT (whole - base, static_cast<long> (terrain.points) * per_point_bytes / 1024);
 #if !defined(__SANITIZE_ADDRESS__)  // ASan keeps freed blocks (256 MB of quarantine) and its own tables
+  // Measured 23.2 MB spilled, 167 MB loaded whole, run alone as ctest runs it (13.3 MB after the file's other
+  // tests, whose memory the bare child inherits): a third of 32 bytes a point, 31 MB, is 1.35x that.
   EXPECT_LT (spilled - base, static_cast<long> (terrain.points) * per_point_bytes / 1024 / 3);
 #endif
 }
@@ -839,7 +889,7 @@ TEST (ScanStreamReader, DamagedFilesStreamedOrRefusedAsLoadScanCloudDoes)
       }
       std::remove (path.c_str ());
     }
-  EXPECT_GT (refused, 100);
+  EXPECT_GT (refused, 280);  // measured 416 refused and 63 agreed of the 480 variants
   EXPECT_GT (agreed, 50);
 }
 
@@ -859,7 +909,9 @@ TEST (SpilledTileSource, ProgressOfEachPass)
   for (const auto& [stage, fractions] : calls)
   {
     SCOPED_TRACE (stage);
-    EXPECT_GT (fractions.size (), 3u);
+    EXPECT_GT (fractions.size (), 6u);  // measured 10 or 11: one a chunk of 1000 of the 10000 points
+    // Finite: a NaN between sorted values passes is_sorted (its comparisons are false).
+    EXPECT_TRUE (std::all_of (fractions.begin (), fractions.end (), [] (double f) { return std::isfinite (f); }));
     EXPECT_TRUE (std::is_sorted (fractions.begin (), fractions.end ()));
     EXPECT_EQ (fractions.front (), 0.0);
     EXPECT_EQ (fractions.back (), 1.0);
@@ -889,7 +941,9 @@ TEST (SpilledTileSource, LoadTileFromSeveralThreads)
       parallel[t] = input.scan->indices;
       parallel_points[t] = worldPositions (*input.scan);
     }
-  EXPECT_GT (std::count_if (sequential.begin (), sequential.end (), [] (const auto& v) { return !v.empty (); }), 8);
+  // A flat terrain in 4 x 4 tiles: every one holds points (the comparisons compare something).
+  EXPECT_EQ (tiles, 16);
+  EXPECT_EQ (std::count_if (sequential.begin (), sequential.end (), [] (const auto& v) { return !v.empty (); }), tiles);
   EXPECT_EQ (parallel, sequential);
   EXPECT_EQ (parallel_points, sequential_points);
 }
@@ -1056,7 +1110,9 @@ TEST (SpilledMeshTileSource, BrokenMeshesThrowAndLeaveNoSpillFiles)
   std::memcpy (&nan_vertex[quads.find ("end_header\n") + 11 + 8], &nan, 8);
   pcl_sparse_test::writeBytes (dir.file ("nan.ply"), nan_vertex);
   const std::vector<std::pair<std::string, std::string>> cases = {
-    {"cut_faces.ply", "truncated"}, {"bad_index.ply", "out of range"}, {"nan.ply", "non-finite"}};
+    {"cut_faces.ply", "truncated or lying list size: PLY face 398"},
+    {"bad_index.ply", "face index 2130706872 is out of range (the file has 441 vertices)"},
+    {"nan.ply", "vertex 0 has a non-finite coordinate"}};
   for (const auto& [name, message] : cases)
     EXPECT_THROW (loadTriangleMesh (dir.file (name)), Error) << name;
   expectRefusedWithoutSpillFiles<SpilledMeshTileSource> (dir, cases, parent);
@@ -1088,7 +1144,10 @@ TEST (SpilledMeshTileSource, BoundedMemory)
   const long whole = childPeakKb ([&] { loadTriangleMesh (path); }, ok);
   ASSERT_TRUE (ok);
   std::printf ("peak RSS above a bare child: spilled %ld kB, loaded whole %ld kB\n", spilled - base, whole - base);
+  EXPECT_GT (whole - base, 70000L);  // the 35 MB of vertices and 35 MB of triangles at least (measured 137.8 MB)
 #if !defined(__SANITIZE_ADDRESS__)  // ASan keeps freed blocks (256 MB of quarantine) and its own tables
-  EXPECT_LT (spilled - base, (whole - base) / 3);
+  // Measured 25.7 MB spilled, 139 MB loaded whole, run alone as ctest runs it (15.7 MB after the file's
+  // other tests): bounded at a quarter, 35 MB, 1.35x that (a third, 46 MB, was 1.8x).
+  EXPECT_LT (spilled - base, (whole - base) / 4);
 #endif
 }
