@@ -36,8 +36,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -261,6 +262,7 @@ main (int argc, char** argv)
       tiled_timings.total = timer.toc () / 1000.0;
       peak_after_encode = peakResidentMb ();
       tiled_timings.coding = tiled_report.coding;
+      tiled_timings.patches = std::numeric_limits<double>::quiet_NaN ();  // tiles time patches and coding as one
       if (group.rank () != 0)
         return 0;
       // Tiles too small to make a surface are left empty: with all of them so, "success" with no patch (or
@@ -411,8 +413,12 @@ main (int argc, char** argv)
       if (bounded)
         std::printf ("input spilled into tiles on disk (%zu points in the file, more than -memory holds)\n", header_points);
       tools::printScanSummary (tools::cleaningReportOf (input, source.get ()), encoder.getCloudSurface ().get ());
-      std::printf ("seconds: load %.3f, patches %.3f, coding %.3f, statistics %.3f, write %.3f (encode %.3f)\n",
-                   load_seconds, t.patches, t.coding, statistics_seconds, write_seconds, t.total);
+      if (tiled)  // patches and coding as one (printed as "patches 0.000" before)
+        std::printf ("seconds: load %.3f, patches and coding %.3f, statistics %.3f, write %.3f (encode %.3f)\n",
+                     load_seconds, t.coding, statistics_seconds, write_seconds, t.total);
+      else
+        std::printf ("seconds: load %.3f, patches %.3f, coding %.3f, statistics %.3f, write %.3f (encode %.3f)\n",
+                     load_seconds, t.patches, t.coding, statistics_seconds, write_seconds, t.total);
     }
     return 0;
   }));

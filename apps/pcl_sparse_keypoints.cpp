@@ -34,8 +34,8 @@ namespace
     "pcl_sparse_keypoints", "IN OUT.{pcd,ply} [options]",
     {
       {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
-      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face"},
       {"OUT", "keypoints as PointXYZI (intensity = response), decreasing response"},
+      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face"},
       {"-fraction F", "keep F x #vertices 1-ring local maxima (default 0.01)"},
       {"-cluster C", "instead: keep local maxima at least C x bbox diagonal apart"},
       {"-rings K", "fixed K-ring neighbourhoods (the paper's option: 2)"},

@@ -63,7 +63,7 @@ namespace
       {"-stream M", "auto (default): write the cloud block by block as it is made, memory set by"},
       {"", "-block, not N, for binary .pcd and any .ply without -png; on: so, or fail; off: whole"},
       {"", "(the same bytes either way)"},
-      {"-block N", "streamed: N points per block (default 2097152; memory about 200 x N bytes)"},
+      {"-block N", "streamed: N points per block, 4096 to 67108864 (default 2097152; memory about 200 x N bytes)"},
       tools::noAttributesHelpLine (),
       tools::pngHelpLine (),
       {"-q", "quiet: no progress or messages"},

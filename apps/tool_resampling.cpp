@@ -109,9 +109,17 @@ namespace pcl_sparse
       savePointNormalCloud (path, world, binary);
     }
 
+    namespace
+    {
+      /// -block's points: enough for blocks to pay for themselves, few enough for 200 bytes a point in memory.
+      const Range kBlockPoints = Range::closed (4096, 1 << 26);
+    } // namespace
+
     bool
     chooseStreaming (const CommandLine& args, const std::string& output, bool binary, bool png)
     {
+      int block = 0;  // read here too, so that a bad -block is refused before any work (it was after encoding)
+      args.integer ("-block", block, kBlockPoints);
       const std::string mode = args.value ("-stream", "auto");
       if (mode != "auto" && mode != "on" && mode != "off")
         throw Error ("option -stream: '" + mode + "' is not auto, on or off");
@@ -151,7 +159,7 @@ namespace pcl_sparse
     setStreamBlock (const CommandLine& args, SparseSurfaceResamplingBase& resampling)
     {
       ResamplingStreamOptions options;
-      args.integer ("-block", options.block_points, Range::closed (4096, 1 << 26));
+      args.integer ("-block", options.block_points, kBlockPoints);
       options.kept_candidate_bytes = 64 * options.block_points;
       resampling.setStreamOptions (options);
     }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -171,6 +172,18 @@ namespace pcl_sparse
 
     // ---- Range ---------------------------------------------------------------------------------------
 
+    namespace
+    {
+      /// The shortest decimal text that reads back as \a value (%g printed 67108864 as 6.71089e+07).
+      std::string
+      shortestDecimal (double value)
+      {
+        char text[32];
+        const auto result = std::to_chars (text, text + sizeof (text), value);
+        return std::string (text, result.ptr);
+      }
+    } // namespace
+
     bool
     Range::contains (double x) const
     {
@@ -182,7 +195,7 @@ namespace pcl_sparse
     std::string
     Range::str () const
     {
-      return std::string (min_open ? "(" : "[") + format ("%g", min) + ", " + format ("%g", max) +
+      return std::string (min_open ? "(" : "[") + shortestDecimal (min) + ", " + shortestDecimal (max) +
              (max_open ? ")" : "]");
     }
 
@@ -267,9 +280,11 @@ namespace pcl_sparse
         const bool decimal = !text.empty () && (std::isdigit (static_cast<unsigned char> (text[0])) ||
                                                 text[0] == '-' || text[0] == '+' || text[0] == '.') &&
                              text.find_first_of ("xX") == std::string::npos;
-        if (!decimal || end != text.c_str () + text.size () || !std::isfinite (x))
+        if (!decimal || end != text.c_str () + text.size ())
           return Decimal::Malformed;
-        return errno == ERANGE ? Decimal::OutOfRange : Decimal::Number;
+        if (errno == ERANGE)  // before the finiteness check: 1e400 reads as infinity and was "not a number"
+          return Decimal::OutOfRange;
+        return std::isfinite (x) ? Decimal::Number : Decimal::Malformed;
       }
     } // namespace
 

@@ -79,7 +79,7 @@ namespace pcl_sparse
           mesh = true;
           points = reader.numVertices ();
           const bool over = static_cast<double> (points) * kEncoderBytesPerPoint > budget;
-          warnIfLoadedWholeOverBudget (path, !args.has ("-q") && over && !reader.isStreamed (), points, budget);
+          warnIfLoadedWholeOverBudget (path, !args.has ("-q") && !args.has ("--json") && over && !reader.isStreamed (), points, budget);
           return reader.isStreamed () && over;
         }
         catch (const Error&)
@@ -93,7 +93,7 @@ namespace pcl_sparse
         const ScanStreamReader reader (path);
         points = reader.size ();
         const bool over = static_cast<double> (points) * kEncoderBytesPerPoint > budget;
-        warnIfLoadedWholeOverBudget (path, !args.has ("-q") && over && !reader.isStreamed (), points, budget);
+        warnIfLoadedWholeOverBudget (path, !args.has ("-q") && !args.has ("--json") && over && !reader.isStreamed (), points, budget);
         return reader.isStreamed () && over;
       }
       catch (const Error&)

@@ -530,6 +530,14 @@ TEST (PclStages, MisuseIsRefusedWithTheReason)
   options.dictionary_frequencies = 64;
   options.coding.min_samples = 100000;
   EXPECT_NE (errorOf ([&] { options.validate (); }).find ("min samples x atoms"), std::string::npos);
+  // Values in their exact form (std::to_string wrote an int 0 as 0.000000 and 1e-9 as 0.000000).
+  PatchOptions patch_options;
+  patch_options.min_patch_size = 0;
+  EXPECT_EQ (errorOf ([&] { patch_options.validate (); }),
+             "PatchOptions: min_patch_size = 0 is out of range (min_patch_size >= 1)");
+  patch_options = PatchOptions ();
+  patch_options.rho = -1e-9;
+  EXPECT_EQ (errorOf ([&] { patch_options.validate (); }), "PatchOptions: rho = -1e-09 is out of range (rho >= 0, finite)");
 
   // Thread counts out of range are refused by the setter, naming it.
   EXPECT_NE (errorOf ([&] { encoder.setNumberOfThreads (-1); }).find ("[SparseSurfaceEncoder::setNumberOfThreads]"),

@@ -330,9 +330,19 @@ TEST_F (TilesTool, CompressedPcdOverTheBudgetIsLoadedWholeWithAWarning)
   ASSERT_EQ (pcl::io::savePCDFileBinaryCompressed (compressed, cloud), 0);
   ASSERT_EQ (pcl::io::savePCDFileBinary (binary, cloud), 0);
   std::string out;
-  ASSERT_EQ (run ("pcl_sparse_encode", compressed + " -tiles 2 -memory 1M --json", out), 0) << out;
+  ASSERT_EQ (run ("pcl_sparse_encode", compressed + " -tiles 2 -memory 1M", out), 0) << out;
   EXPECT_NE (out.find ("is not read piece by piece: loaded whole"), std::string::npos) << out;
+  // Tiles time patches and coding together: not "patches 0.000" (printed before).
+  EXPECT_NE (out.find ("seconds: load "), std::string::npos) << out;
+  EXPECT_NE (out.find (", patches and coding "), std::string::npos) << out;
+  EXPECT_EQ (out.find ("patches 0.000"), std::string::npos) << out;
+  // --json: one object and nothing on stderr (run () reads both; the warning was printed there).
+  ASSERT_EQ (run ("pcl_sparse_encode", compressed + " -tiles 2 -memory 1M --json", out), 0) << out;
+  EXPECT_EQ (out.find ("loaded whole"), std::string::npos) << out;
+  ASSERT_FALSE (out.empty ());
+  EXPECT_EQ (out.front (), '{') << out;
   EXPECT_NE (out.find ("\"spilled\": false"), std::string::npos) << out;
+  EXPECT_NE (out.find ("\"patches\": null, \"coding\": "), std::string::npos) << out;
   ASSERT_EQ (run ("pcl_sparse_encode", binary + " -tiles 2 -memory 1M --json", out), 0) << out;
   EXPECT_EQ (out.find ("loaded whole"), std::string::npos) << out;
   EXPECT_NE (out.find ("\"spilled\": true"), std::string::npos) << out;

@@ -3,6 +3,7 @@
 /// The one exception type the library throws for bad input (files, meshes, options).
 /// Tools catch it, print its message on one line and exit non-zero.
 
+#include <charconv>
 #include <stdexcept>
 #include <string>
 
@@ -16,10 +17,14 @@ namespace pcl_sparse
     explicit Error (const std::string& message) : std::runtime_error (message) {}
   };
 
-  /// Throws the options structs' validate () error: "<options>: <field> = <value> is out of range (<range>)".
+  /// Throws the options structs' validate () error: "<options>: <field> = <value> is out of range (<range>)",
+  /// the value in its shortest exact decimal form (std::to_string wrote an int 0 as 0.000000, and -1e-9 as
+  /// -0.000000).
   [[noreturn]] inline void
   throwOutOfRange (const std::string& options, const std::string& field, double value, const std::string& range)
   {
-    throw Error (options + ": " + field + " = " + std::to_string (value) + " is out of range (" + range + ")");
+    char text[32];
+    const std::string written (text, std::to_chars (text, text + sizeof (text), value).ptr);
+    throw Error (options + ": " + field + " = " + written + " is out of range (" + range + ")");
   }
 } // namespace pcl_sparse
