@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_message.h"
 #include "test_file_helpers.h"
 
 #include <cstdlib>
@@ -33,15 +34,7 @@ namespace
   std::string
   refusal (const std::string& path, const MeshLoadOptions& options = MeshLoadOptions ())
   {
-    try
-    {
-      loadTriangleMesh (path, options);
-    }
-    catch (const Error& e)
-    {
-      return e.what ();
-    }
-    return "";
+    return pcl_sparse_test::errorMessage ([&] { loadTriangleMesh (path, options); });
   }
 
   /// The message is one line, names the file and contains \a problem.

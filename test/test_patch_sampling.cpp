@@ -16,6 +16,7 @@
 #include <pcl_sparse/patches/patch_growth.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 
+#include "error_message.h"
 #include "mesh_helpers.h"
 #include "model_helpers.h"
 #include "test_file_helpers.h"
@@ -642,17 +643,7 @@ TEST (PatchSampling, BadInputThrows)
   sampling.setResponses (std::vector<double> (3, 0.0));
   EXPECT_THROW (sampling.compute (patches), Error);
   sampling.setResponses (std::vector<double> ());
-  const auto message = [&] {
-    try
-    {
-      sampling.compute (patches);
-    }
-    catch (const Error& e)
-    {
-      return std::string (e.what ());
-    }
-    return std::string ("no error");
-  };
+  const auto message = [&] { return pcl_sparse_test::errorMessage ([&] { sampling.compute (patches); }); };
   sampling.setKeypoints ({-1});
   EXPECT_NE (message ().find ("keypoint -1 out of range"), std::string::npos) << message ();
   auto broken = std::make_shared<TriangleMesh> (*mesh);

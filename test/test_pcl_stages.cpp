@@ -1,5 +1,6 @@
 // The stages as PCL classes (issue 11): every instantiated point type, PCL's input (cloud + polygons) against
 // the library's mesh, setIndices, the error policy, and the output point types of resampling.
+#include "error_message.h"
 #include "robustness_cases.h"
 
 #include <pcl_sparse/common/error.h>
@@ -69,22 +70,6 @@ namespace
   modelBytes (const SparseSurfaceModel& model)
   {
     return encodeModel (model);
-  }
-
-  /// Runs \a compute and returns the message of the pcl_sparse::Error it throws ("" if none).
-  template <typename Compute>
-  std::string
-  errorOf (Compute compute)
-  {
-    try
-    {
-      compute ();
-    }
-    catch (const Error& e)
-    {
-      return e.what ();
-    }
-    return "";
   }
 } // namespace
 
@@ -302,7 +287,7 @@ TEST (PclStages, ScanThenCloudAndIndicesOfAScan)
   encoder.setInputScan (scan);
   encoder.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{0, 1, 2}));
   SparseSurfaceModel model;
-  EXPECT_NE (errorOf ([&] { encoder.compute (model); }).find ("crop the scan itself"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { encoder.compute (model); }).find ("crop the scan itself"), std::string::npos);
 }
 
 TEST (PclStages, CropIndicesOfEveryPointInAnotherOrder)
@@ -339,7 +324,7 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   SparseSurfaceModel model;
 
   SparseSurfaceEncoder<pcl::PointXYZ> no_input;
-  EXPECT_NE (errorOf ([&] { no_input.compute (model); }).find ("[SparseSurfaceEncoder::compute] no input"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { no_input.compute (model); }).find ("[SparseSurfaceEncoder::compute] no input"), std::string::npos);
 
   // A cloud without polygons is a scan; one whose every point is unusable is refused, naming the reason.
   auto unusable = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
@@ -347,7 +332,7 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   unusable->push_back (pcl::PointXYZ (0.0f, 0.0f, 0.0f));  // at the sensor origin: a lidar's "no return"
   SparseSurfaceEncoder<pcl::PointXYZ> no_points;
   no_points.setInputCloud (unusable);
-  EXPECT_NE (errorOf ([&] { no_points.compute (model); }).find ("[SparseSurfaceEncoder::compute] the cloud has no usable point"),
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { no_points.compute (model); }).find ("[SparseSurfaceEncoder::compute] the cloud has no usable point"),
              std::string::npos);
 
   auto bad = polygonsOf (mesh);
@@ -355,7 +340,7 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   SparseSurfaceEncoder<pcl::PointXYZ> out_of_range;
   out_of_range.setInputCloud (cloudOf<pcl::PointXYZ> (mesh));
   out_of_range.setInputPolygons (bad);
-  const std::string out_of_range_error = errorOf ([&] { out_of_range.compute (model); });
+  const std::string out_of_range_error = pcl_sparse_test::errorMessage ([&] { out_of_range.compute (model); });
   EXPECT_EQ (out_of_range_error.rfind ("[SparseSurfaceEncoder::compute] ", 0), 0u) << out_of_range_error;
   EXPECT_NE (out_of_range_error.find ("out of range"), std::string::npos) << out_of_range_error;
 
@@ -365,7 +350,7 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   nan_corner.setInputCloud (nan_cloud);
   nan_corner.setInputPolygons (polygonsOf (mesh));
   pcl::PointCloud<pcl::PointXYZI> keypoints;
-  EXPECT_NE (errorOf ([&] { nan_corner.compute (keypoints); }).find ("[HarrisKeypoint3DMesh::compute] polygon corner"),
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { nan_corner.compute (keypoints); }).find ("[HarrisKeypoint3DMesh::compute] polygon corner"),
              std::string::npos);
 
   auto twice = std::make_shared<pcl::Indices> (pcl::Indices{0, 1, 1});
@@ -373,7 +358,7 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
   sampling.setIndices (twice);
   std::vector<Patch> patches;
-  const std::string twice_error = errorOf ([&] { sampling.compute (patches); });
+  const std::string twice_error = pcl_sparse_test::errorMessage ([&] { sampling.compute (patches); });
   EXPECT_EQ (twice_error.rfind ("[FeatureAwarePatchSampling::compute] ", 0), 0u) << twice_error;
   EXPECT_NE (twice_error.find ("listed twice"), std::string::npos) << twice_error;
 
@@ -381,12 +366,12 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
   ne.setInputMesh (std::make_shared<TriangleMesh> (mesh));
   ne.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{-1}));
   pcl::PointCloud<pcl::Normal> normals;
-  EXPECT_NE (errorOf ([&] { ne.compute (normals); }).find ("[MeshNormalEstimation::compute] setIndices: index -1 out of range"),
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { ne.compute (normals); }).find ("[MeshNormalEstimation::compute] setIndices: index -1 out of range"),
              std::string::npos);
 
   SparseSurfaceResampling<pcl::PointXYZ> resampling;
   pcl::PointCloud<pcl::PointXYZ> cloud;
-  EXPECT_NE (errorOf ([&] { resampling.compute (cloud); }).find ("SparseSurfaceResampling::compute: no input model"),
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { resampling.compute (cloud); }).find ("SparseSurfaceResampling::compute: no input model"),
              std::string::npos);
 }
 
@@ -516,40 +501,40 @@ TEST (PclStages, MisuseIsRefusedWithTheReason)
   SparseCode& code = model->patches[0].attributes[0];
   code.atoms.push_back (model->attribute_basis->size ());
   code.coefficients.push_back (1.0);
-  EXPECT_NE (errorOf ([&] { resampling.compute (out); }).find ("attribute atom 144 outside the basis"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { resampling.compute (out); }).find ("attribute atom 144 outside the basis"), std::string::npos);
   EXPECT_TRUE (out.empty ()) << "a failed compute leaves no stale result";
 
   // Options that gave a model the file format cannot hold.
   SparseSurfaceEncoderOptions options;
   options.coding.footprint_angles = 5000;
-  EXPECT_NE (errorOf ([&] { options.validate (); }).find ("footprint angles must be in [3, 4096]"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { options.validate (); }).find ("footprint angles must be in [3, 4096]"), std::string::npos);
   options = SparseSurfaceEncoderOptions ();
   options.coding.triangle_samples = 1e9;
-  EXPECT_NE (errorOf ([&] { options.validate (); }).find ("triangle samples must be in [0, 16]"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { options.validate (); }).find ("triangle samples must be in [0, 16]"), std::string::npos);
   options = SparseSurfaceEncoderOptions ();
   options.dictionary_frequencies = 64;
   options.coding.min_samples = 100000;
-  EXPECT_NE (errorOf ([&] { options.validate (); }).find ("min samples x atoms"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { options.validate (); }).find ("min samples x atoms"), std::string::npos);
   // Values in their exact form (std::to_string wrote an int 0 as 0.000000 and 1e-9 as 0.000000).
   PatchOptions patch_options;
   patch_options.min_patch_size = 0;
-  EXPECT_EQ (errorOf ([&] { patch_options.validate (); }),
+  EXPECT_EQ (pcl_sparse_test::errorMessage ([&] { patch_options.validate (); }),
              "PatchOptions: min_patch_size = 0 is out of range (min_patch_size >= 1)");
   patch_options = PatchOptions ();
   patch_options.rho = -1e-9;
-  EXPECT_EQ (errorOf ([&] { patch_options.validate (); }), "PatchOptions: rho = -1e-09 is out of range (rho >= 0, finite)");
+  EXPECT_EQ (pcl_sparse_test::errorMessage ([&] { patch_options.validate (); }), "PatchOptions: rho = -1e-09 is out of range (rho >= 0, finite)");
 
   // Thread counts out of range are refused by the setter, naming it.
-  EXPECT_NE (errorOf ([&] { encoder.setNumberOfThreads (-1); }).find ("[SparseSurfaceEncoder::setNumberOfThreads]"),
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { encoder.setNumberOfThreads (-1); }).find ("[SparseSurfaceEncoder::setNumberOfThreads]"),
              std::string::npos);
-  EXPECT_NE (errorOf ([&] { encoder.setNumberOfThreads (100000); }).find ("in [0, 1024]"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { encoder.setNumberOfThreads (100000); }).find ("in [0, 1024]"), std::string::npos);
 
   // Empty crop indices are named as such.
   SparseSurfaceEncoder<pcl::PointXYZ> cropped;
   cropped.setInputMesh (std::make_shared<TriangleMesh> (mesh));
   cropped.setIndices (std::make_shared<pcl::Indices> ());
   SparseSurfaceModel none;
-  EXPECT_NE (errorOf ([&] { cropped.compute (none); }).find ("setIndices: the indices are empty"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { cropped.compute (none); }).find ("setIndices: the indices are empty"), std::string::npos);
 }
 
 // A tiny clustering radius made the grid's int cells overflow (undefined behaviour); the cells are 64-bit
@@ -593,7 +578,7 @@ TEST (PclStages, CloudInTheWrongByteOrderIsRefused)
   SparseSurfaceEncoder<pcl::PointXYZ> encoder;
   encoder.setInputCloud (cloud);
   SparseSurfaceModel model;
-  EXPECT_NE (errorOf ([&] { encoder.compute (model); }).find ("beyond the 1e30 that float clouds hold"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { encoder.compute (model); }).find ("beyond the 1e30 that float clouds hold"), std::string::npos);
 }
 
 // A scan's scale is its surface's: one stray return 1000 away set the model's diagonal, and with it a
@@ -630,7 +615,7 @@ TEST (PclStages, TriangleSoupIsRefusedWithTheRemedy)
   encoder.setInputCloud (cloudOf<pcl::PointXYZ> (soup));
   encoder.setInputPolygons (polygonsOf (soup));
   SparseSurfaceModel model;
-  EXPECT_NE (errorOf ([&] { encoder.compute (model); }).find ("share no vertex (a triangle soup"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { encoder.compute (model); }).find ("share no vertex (a triangle soup"), std::string::npos);
   encoder.setInputCloud (cloudOf<pcl::PointXYZ> (mesh));  // the same faces welded
   encoder.setInputPolygons (polygonsOf (mesh));
   encoder.compute (model);

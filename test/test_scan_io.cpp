@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_message.h"
 #include "shared_data.h"
 #include "test_file_helpers.h"
 
@@ -197,18 +198,7 @@ TEST (ScanCleaning, RefusesAttributesOfTheWrongSize)
   ScanCloud scan;
   scan.positions = {{1, 2, 3}, {4, 5, 6}};
   // Refused with the attribute named and counted, not with some other error (an out-of-range read, say).
-  const auto refusal = [&] {
-    try
-    {
-      cleanScan (scan);
-    }
-    catch (const Error& e)
-    {
-      return std::string (e.what ());
-    }
-    ADD_FAILURE () << "no pcl_sparse::Error";
-    return std::string ();
-  };
+  const auto refusal = [&] { return pcl_sparse_test::errorMessage ([&] { cleanScan (scan); }); };
   scan.colors = {1};
   EXPECT_EQ (refusal (), "ScanCloud: colors has 1 entries for 2 points");
   scan.colors.clear ();

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_message.h"
 #include "tool_input.h"
 #include "tool_support.h"
 
@@ -52,21 +53,12 @@ namespace
     return value;
   }
 
-  /// The message of the pcl_sparse::Error that \a read throws, "" (and a failure) when it throws none.
+  /// The message of the pcl_sparse::Error that \a read throws, "" when it throws none.
   template <typename Read>
   std::string
   refusal (Read read)
   {
-    try
-    {
-      read ();
-    }
-    catch (const Error& e)
-    {
-      return e.what ();
-    }
-    ADD_FAILURE () << "no pcl_sparse::Error";
-    return "";
+    return pcl_sparse_test::errorMessage (read);
   }
 
   /// Expects \a read to throw a pcl_sparse::Error that names \a option ("option -n: ..."): a refusal the
