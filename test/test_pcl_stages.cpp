@@ -290,6 +290,72 @@ TEST (PclStages, ScanThenCloudAndIndicesOfAScan)
   EXPECT_NE (pcl_sparse_test::errorMessage ([&] { encoder.compute (model); }).find ("crop the scan itself"), std::string::npos);
 }
 
+// A scan with every point stored twice (as some drivers write them): cleaning merges each pair, and the
+// point it drops takes the normal of the one it keeps. It was left without a vertex, and half of the
+// normals were NaN (room_scan1.pcd: 56,427 of its 112,586 points).
+TEST (PclStages, DuplicatePointsTakeTheNormalOfTheirTwin)
+{
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (int j = 0; j < 30; ++j)
+    for (int i = 0; i < 30; ++i)
+      cloud->push_back (pcl::PointXYZ (1.0f + 0.1f * i, 0.1f * j, 0.05f * std::sin (0.3f * i) * std::cos (0.2f * j)));
+  const std::size_t once = cloud->size ();
+  for (std::size_t i = 0; i < once; ++i)
+    cloud->push_back ((*cloud)[i]);
+  cloud->push_back (pcl::PointXYZ (std::nanf (""), 0.0f, 0.0f));  // still no normal: it has no place
+  (*cloud)[5].z = -0.0f;  // -0 and 0 are one position; its twin keeps +0
+  (*cloud)[once + 5].z = 0.0f;
+
+  MeshNormalEstimation<pcl::PointXYZ> estimation;
+  estimation.setInputCloud (cloud);
+  pcl::PointCloud<pcl::PointNormal> normals;
+  estimation.compute (normals);
+  ASSERT_EQ (normals.size (), cloud->size ());
+  EXPECT_EQ (estimation.getCleaningReport ().duplicates_merged, once);
+  EXPECT_FALSE (normals.is_dense);
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < once; ++i)
+  {
+    const pcl::PointNormal& first = normals[i];
+    const pcl::PointNormal& second = normals[once + i];
+    finite += std::isfinite (first.normal_z) && std::isfinite (second.normal_z);
+    EXPECT_EQ (first.getNormalVector3fMap (), second.getNormalVector3fMap ()) << i;
+    EXPECT_EQ (first.curvature, second.curvature) << i;
+  }
+  EXPECT_EQ (finite, once);
+  EXPECT_TRUE (std::isnan (normals.back ().normal_x));
+
+  // Selected by index: a duplicate alone gives its twin's normal.
+  estimation.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{static_cast<int> (once + 210), 210}));
+  pcl::PointCloud<pcl::PointNormal> two;
+  estimation.compute (two);
+  ASSERT_EQ (two.size (), 2u);
+  EXPECT_TRUE (two.is_dense);
+  EXPECT_EQ (two[0].getNormalVector3fMap (), normals[210].getNormalVector3fMap ());
+  EXPECT_EQ (two[1].getNormalVector3fMap (), normals[210].getNormalVector3fMap ());
+  EXPECT_GT (std::abs (two[0].normal_z), 0.9f);
+}
+
+// A vertex no face uses is not part of the surface: it set the model's scale (a file's quantisation step and
+// Harris's radius are fractions of it), 1.7e6 instead of 3.46 here, and moved the patches.
+TEST (PclStages, AVertexNoFaceUsesDoesNotSetTheScale)
+{
+  const auto mesh = std::make_shared<TriangleMesh> (floatExactMesh ());
+  auto stray = std::make_shared<TriangleMesh> (*mesh);
+  stray->vertices.push_back (Eigen::Vector3d (1e6, 1e6, 1e6));
+  SparseSurfaceModel without, with;
+  SparseSurfaceEncoder<pcl::PointXYZ> encoder;
+  encoder.setInputMesh (mesh);
+  encoder.compute (without);
+  encoder.setInputMesh (stray);
+  encoder.compute (with);
+  EXPECT_NEAR (without.bbox_diagonal, 2.0 * std::sqrt (3.0), 0.2);
+  EXPECT_EQ (with.bbox_diagonal, without.bbox_diagonal);
+  ASSERT_EQ (with.patches.size (), without.patches.size ());
+  for (std::size_t p = 0; p < with.patches.size (); ++p)
+    EXPECT_EQ (with.patches[p].origin, without.patches[p].origin) << p;
+}
+
 TEST (PclStages, CropIndicesOfEveryPointInAnotherOrder)
 {
   // A cloud cropped with as many indices as it has points, in another order (here reversed): the surface's

@@ -207,7 +207,7 @@ namespace pcl_sparse
         if (!mesh.vertices[v].allFinite ())
           ++report.non_finite_vertices;
       }
-      report.bbox_diagonal = boundingBoxDiagonal (mesh);
+      report.bbox_diagonal = boundingBoxDiagonal (mesh.vertices);  // the file's every vertex
       return referenced;
     }
 

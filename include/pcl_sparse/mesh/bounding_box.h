@@ -31,15 +31,18 @@ namespace pcl_sparse
   double
   boundingBoxDiagonal (const std::vector<Eigen::Vector3d>& points);
 
-  /// Bounding-box diagonal of the mesh's vertices (all of them, referenced by a face or not).
-  inline double
-  boundingBoxDiagonal (const TriangleMesh& mesh)
-  {
-    return boundingBoxDiagonal (mesh.vertices);
-  }
-
   /// Bounding-box diagonal of the finite vertices some face uses (faces with an index out of range are
   /// skipped); 0 when there is none. A scan's surface: its stray points are in no triangle.
   double
   surfaceBoundingBoxDiagonal (const TriangleMesh& mesh);
+
+  /// The mesh's scale: the bounding-box diagonal of the vertices its faces use (surfaceBoundingBoxDiagonal),
+  /// or of all its finite vertices when no face has one. A vertex no face uses (a stray "v 1000 1000 1000"
+  /// in an OBJ) set the model's scale, and with it a file's quantisation step and Harris's radius.
+  inline double
+  boundingBoxDiagonal (const TriangleMesh& mesh)
+  {
+    const double surface = surfaceBoundingBoxDiagonal (mesh);
+    return surface > 0.0 ? surface : boundingBoxDiagonal (mesh.vertices);
+  }
 } // namespace pcl_sparse

@@ -181,9 +181,14 @@ namespace pcl_sparse
     std::vector<int> selectedSurfaceVertices () const;
 
     /// \brief SelectPoints stages: the surface vertex behind each output point (-1: a point cleaning
-    /// dropped). One output per index, or per input point (for a scan: every point of the input cloud, so
-    /// outputs line up with the input as in PCL), or per surface vertex.
+    /// dropped; a duplicate it merged has the vertex of the point it kept). One output per index, or per
+    /// input point (for a scan: every point of the input cloud, so outputs line up with the input as in
+    /// PCL), or per surface vertex.
     std::vector<int> outputVertices () const;
+
+    /// \brief Gives the input points cleaning merged as duplicates (no vertex in \a vertex_of_point) the
+    /// vertex of the point kept at their position.
+    void mapDuplicatesToTheirKeptPoint (std::vector<int>& vertex_of_point) const;
 
     /// \brief Position of output point \a row (vertex \a vertex of outputVertices) in the input's frame:
     /// the input cloud's point for a cloud without polygons, else the surface vertex.

@@ -11,7 +11,11 @@
 
 #include <pcl/common/io.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace pcl_sparse
@@ -204,6 +208,8 @@ namespace pcl_sparse
     std::vector<int> vertex_of_point (this->input_->size (), -1);
     for (std::size_t v = 0; v < surface_input_indices_.size (); ++v)
       vertex_of_point[surface_input_indices_[v]] = static_cast<int> (v);
+    if (cleaning_report_.duplicates_merged > 0)
+      mapDuplicatesToTheirKeptPoint (vertex_of_point);
     if (!selected_)
       return vertex_of_point;
     std::vector<int> rows;
@@ -211,6 +217,36 @@ namespace pcl_sparse
     for (const auto point : *selected_)
       rows.push_back (vertex_of_point[point]);
     return rows;
+  }
+
+  template <typename PointInT>
+  void
+  SurfaceStage<PointInT>::mapDuplicatesToTheirKeptPoint (std::vector<int>& vertex_of_point) const
+  {
+    // Cleaning keeps the first of each run of equal positions; the others stand at the same place, so they
+    // take its vertex (they were left with none, and got NaN normals: half of a scan stored twice).
+    using Position = std::array<float, 3>;
+    std::vector<std::pair<Position, int>> kept;
+    kept.reserve (surface_input_indices_.size ());
+    for (std::size_t v = 0; v < surface_input_indices_.size (); ++v)
+    {
+      const PointInT& p = (*this->input_)[surface_input_indices_[v]];
+      kept.push_back ({Position{p.x, p.y, p.z}, static_cast<int> (v)});
+    }
+    const auto by_position = [] (const std::pair<Position, int>& a, const std::pair<Position, int>& b) {
+      return a.first < b.first;  // -0 and 0 are one position, as in cleaning
+    };
+    std::sort (kept.begin (), kept.end (), by_position);
+    for (std::size_t i = 0; i < vertex_of_point.size (); ++i)
+    {
+      const PointInT& p = (*this->input_)[i];
+      if (vertex_of_point[i] >= 0 || !std::isfinite (p.x) || !std::isfinite (p.y) || !std::isfinite (p.z))
+        continue;
+      const std::pair<Position, int> probe{Position{p.x, p.y, p.z}, -1};
+      const auto twin = std::lower_bound (kept.begin (), kept.end (), probe, by_position);
+      if (twin != kept.end () && !by_position (probe, *twin))
+        vertex_of_point[i] = twin->second;
+    }
   }
 
   template <typename PointInT>
