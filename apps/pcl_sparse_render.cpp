@@ -45,7 +45,7 @@ namespace
       {"-view V", "front (looking along -z, default), side (-x), top (-y), iso, or x,y,z towards the viewer"},
       {"-color C", "plain (grey, default), normal (normal direction as RGB), patch (one colour per patch),"},
       {"", "error (distance to -ref, colour bar in units of its bbox diagonal), height (along the image's"},
-      {"", "up axis), rgb (the scan's colours)"},
+      {"", "up axis), rgb (the scan's or the model's colours)"},
       {"-ref MESH", "reference surface of -color error"},
       {"-n N", "points resampled from a .psm (default 4 x the model's input vertices, at least W x H)"},
       {"--json", "print one JSON object on stdout (seconds, pixels covered)"},
@@ -63,34 +63,52 @@ namespace
     std::size_t patches = 0;
   };
 
+  /// The points of \a model resampled as PointT (pcl::PointNormal, or pcl::PointXYZRGBNormal to carry the
+  /// model's colours into Scene::rgb as a scan's are).
+  template <typename PointT>
   Scene
-  loadModelScene (const std::string& path, std::size_t count, const tools::PictureOptions& picture)
+  resampleModelScene (const SparseSurfaceModel::ConstPtr& model, std::size_t count)
   {
-    auto model = std::make_shared<SparseSurfaceModel> (loadModel (path));
-    SparseSurfaceResampling<pcl::PointNormal> resampling;
-    if (count == 0)
-      count = std::max<std::size_t> (4 * model->num_input_vertices, static_cast<std::size_t> (picture.width) * picture.height);
-    count = std::min (count, SparseSurfaceResampling<pcl::PointNormal>::max_points);
-    // The cloud, then its points, normals and patches again for the picture: about 170 bytes a point.
-    checkFitsInMemory (170.0 * static_cast<double> (count), "the " + std::to_string (count) + " points of the picture (-size, -n)");
+    SparseSurfaceResampling<PointT> resampling;
     resampling.setPointCount (count);
-    const tools::LocalCloud local = tools::resampleInLocalFrame (resampling, model);
+    const tools::LocalCloud<PointT> local = tools::resampleInLocalFrame (resampling, model);
     Scene scene;
-    for (const pcl::PointNormal& p : local.cloud)
+    for (const PointT& p : local.cloud)
     {
-      scene.points.push_back (local.origin + p.getVector3fMap ().cast<double> ());
-      scene.normals.push_back (p.getNormalVector3fMap ().cast<double> ());
+      scene.points.push_back (local.origin + p.getVector3fMap ().template cast<double> ());
+      scene.normals.push_back (p.getNormalVector3fMap ().template cast<double> ());
+      if constexpr (pcl::traits::has_color_v<PointT>)
+        scene.rgb.push_back ({p.r, p.g, p.b});
     }
     scene.point_patches = resampling.getPointPatches ();
     scene.patches = model->numPatches ();
     return scene;
   }
 
+  /// A model's scene; \a colours: with the model's colours (-color rgb), which it must code.
   Scene
-  loadScene (const std::string& path, std::size_t count, const tools::PictureOptions& picture)
+  loadModelScene (const std::string& path, std::size_t count, const tools::PictureOptions& picture, bool colours)
+  {
+    auto model = std::make_shared<SparseSurfaceModel> (loadModel (path));
+    // Colour as pcl_sparse_decode writes it: the model codes r, g and b (resampledExtraField).
+    if (colours && tools::resampledExtraField (model->attribute_channels) != CloudExtraField::Colour)
+      throw Error (path + ": -color rgb: the model has no colour channel (it codes no r g b attributes)");
+    if (count == 0)
+      count = std::max<std::size_t> (4 * model->num_input_vertices, static_cast<std::size_t> (picture.width) * picture.height);
+    count = std::min (count, SparseSurfaceResampling<pcl::PointNormal>::max_points);
+    // The cloud, then its points, normals and patches again for the picture: about 170 bytes a point
+    // (190 with colours: the larger point, and the colours again).
+    checkFitsInMemory ((colours ? 190.0 : 170.0) * static_cast<double> (count),
+                       "the " + std::to_string (count) + " points of the picture (-size, -n)");
+    return colours ? resampleModelScene<pcl::PointXYZRGBNormal> (model, count)
+                   : resampleModelScene<pcl::PointNormal> (model, count);
+  }
+
+  Scene
+  loadScene (const std::string& path, std::size_t count, const tools::PictureOptions& picture, bool colours)
   {
     if (tools::hasExtension (path, ".psm"))
-      return loadModelScene (path, count, picture);
+      return loadModelScene (path, count, picture, colours);
     const tools::SurfaceInput input = tools::loadSurfaceInput (path);
     Scene scene;
     if (input.mesh)
@@ -224,7 +242,7 @@ main (int argc, char** argv)
 
     pcl::console::TicToc total;
     total.tic ();
-    Scene scene = loadScene (input, count, options);
+    Scene scene = loadScene (input, count, options, mode == "rgb");
     tools::Picture picture;
     picture.toward_hint = options.toward;
     colorScene (mode, input, args.value ("-ref"), scene, picture);

@@ -4,13 +4,20 @@
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 
+#include "generated_clouds.h"
 #include "test_file_helpers.h"
 #include "shared_data.h"
 
 #include <gtest/gtest.h>
 
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
+#include <png.h>
+
 #include <sys/wait.h>
 
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -191,4 +198,56 @@ TEST_F (RenderTool, SharedMeshAndScan)
   const std::size_t at = s.out.find ("\"pixels_covered\": ");
   ASSERT_NE (at, std::string::npos) << s.out;
   EXPECT_GT (std::stoul (s.out.substr (at + 18)), 320u * 240u / 10u) << s.out;
+}
+
+// A model's colours: -color rgb refused every .psm ("the input has no colours") because the model was resampled
+// without its colour channel; a model encoded from a red cloud now draws red, and a model without colours is
+// refused saying so.
+TEST_F (RenderTool, ModelColours)
+{
+  double area = 0.0;
+  pcl::PointCloud<pcl::PointXYZRGB> cloud;
+  for (const Eigen::Vector3d& v : pcl_sparse_test::sampleSurface (pcl_sparse::makeIcosphere (3), 4000, 7, area))
+  {
+    pcl::PointXYZRGB p;
+    p.getVector3fMap () = v.cast<float> ();
+    p.r = 255;
+    p.g = p.b = 0;
+    cloud.push_back (p);
+  }
+  ASSERT_EQ (pcl::io::savePCDFileBinary (dir_.file ("red.pcd"), cloud), 0);
+  const ToolRun e = run (dir_, tool ("encode") + " " + dir_.file ("red.pcd") + " -o " + dir_.file ("red.psm") + " -q");
+  ASSERT_EQ (e.code, 0) << e.err;
+  const std::string png = dir_.file ("red.png");
+  const ToolRun r = run (dir_, tool ("render") + " " + dir_.file ("red.psm") + " " + png + " -size 160x120 -color rgb -q");
+  ASSERT_EQ (r.code, 0) << r.err;
+  ASSERT_TRUE (fs::exists (png));
+  png_image read;
+  std::memset (&read, 0, sizeof (read));
+  read.version = PNG_IMAGE_VERSION;
+  ASSERT_TRUE (png_image_begin_read_from_file (&read, png.c_str ())) << read.message;
+  read.format = PNG_FORMAT_RGB;
+  std::vector<std::uint8_t> pixels (PNG_IMAGE_SIZE (read));
+  ASSERT_TRUE (png_image_finish_read (&read, nullptr, pixels.data (), 0, nullptr)) << read.message;
+  ASSERT_EQ (pixels.size (), 160u * 120u * 3u);
+  // The background is white; every covered pixel is the cloud's red, shaded: red dominates it.
+  std::size_t red = 0, other = 0;
+  for (std::size_t i = 0; i < pixels.size (); i += 3)
+  {
+    const int R = pixels[i], G = pixels[i + 1], B = pixels[i + 2];
+    if (R == 255 && G == 255 && B == 255)
+      continue;
+    (R > G + 40 && R > B + 40 ? red : other) += 1;
+  }
+  EXPECT_GT (red, 160u * 120u / 10u);
+  EXPECT_LT (other, red / 10) << red << " red pixels";
+
+  // A model without colours (from the plain sphere) is refused, saying why, with no picture.
+  const ToolRun p = run (dir_, tool ("encode") + " " + dir_.file ("sphere.off") + " -o " + dir_.file ("plain.psm") + " -q");
+  ASSERT_EQ (p.code, 0) << p.err;
+  const ToolRun refused = run (dir_, tool ("render") + " " + dir_.file ("plain.psm") + " " + dir_.file ("plain.png") + " -color rgb -q");
+  EXPECT_EQ (refused.code, 1);
+  EXPECT_EQ (lines (refused.err), 1) << refused.err;
+  EXPECT_NE (refused.err.find ("the model has no colour channel"), std::string::npos) << refused.err;
+  EXPECT_FALSE (fs::exists (dir_.file ("plain.png")));
 }
