@@ -8,8 +8,12 @@
 ///   harris.setInputPolygons (polygons);              // the faces (or setInputMesh (TriangleMesh::ConstPtr))
 ///   pcl::PointCloud<pcl::PointXYZI> keypoints;
 ///   harris.compute (keypoints);                      // vertex positions, intensity = response
-///   const auto& order = harris.getKeypointsIndices ()->indices;
-///   const auto& responses = harris.getResponses ();  // every vertex (NaN: no response)
+///   const auto& order = harris.getKeypointsIndices ()->indices;  // input points
+///   const auto& responses = harris.getResponses ();  // every surface vertex (NaN: no response)
+///
+/// With a mesh the two number the same vertices. With a scan (a cloud without polygons) they do not: the
+/// keypoint indices are the input cloud's points, as in PCL, while the responses follow the scan's surface,
+/// which keeps only its clean points (getSurfaceInputIndices gives the input point of each surface vertex).
 
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -63,10 +67,12 @@ namespace pcl_sparse
     /// \param[out] output keypoints (replaced), strongest first
     void compute (PointCloudOut& output);
 
-    /// \brief Vertex indices of the keypoints of the last compute, in output order.
+    /// \brief Indices of the keypoints of the last compute, in output order: the mesh's vertices, or for a
+    /// scan the input cloud's points (not the rows of getResponses; see getSurfaceInputIndices).
     pcl::PointIndicesConstPtr getKeypointsIndices () const { return keypoints_indices_; }
 
-    /// \brief Response of every vertex of the last compute (#V entries; NaN: no response).
+    /// \brief Response of every surface vertex of the last compute (#V entries; NaN: no response). For a scan
+    /// the surface vertex v stands for input point getSurfaceInputIndices ()[v].
     const std::vector<double>& getResponses () const { return responses_; }
 
   protected:
