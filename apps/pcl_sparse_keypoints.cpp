@@ -18,6 +18,7 @@
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
+#include <pcl/exceptions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 
@@ -69,27 +70,36 @@ namespace
   saveKeypoints (const std::string& path, const pcl::PointCloud<pcl::PointXYZI>& keypoints)
   {
     writeFileAtomically (path, [&] (const std::string& temporary) {
-      if (tools::hasExtension (path, ".pcd"))
+      // PCL's own messages name the temporary file or none ("[pcl::PCDWriter::writeBinary] Error during open!"),
+      // and it says "Input point cloud has no data!" on an empty cloud, a run that succeeded: it is silenced,
+      // and a failure is writeFileAtomically's error, which names the output.
+      const pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel ();
+      pcl::console::setVerbosityLevel (pcl::console::L_ALWAYS);
+      bool written = false;
+      try
       {
-        // PCL writes an empty cloud's header, and says "Input point cloud has no data!" on a run that succeeded.
-        const pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel ();
-        if (keypoints.empty ())
-          pcl::console::setVerbosityLevel (pcl::console::L_ALWAYS);
-        const bool written = pcl::io::savePCDFileBinary (temporary, keypoints) == 0;
-        pcl::console::setVerbosityLevel (level);
-        return written;
+        if (tools::hasExtension (path, ".pcd"))
+          written = pcl::io::savePCDFileBinary (temporary, keypoints) == 0;
+        else if (keypoints.empty ())
+        {
+          // PCL refuses to write an empty cloud; an empty keypoint set is a valid answer, written by hand.
+          FILE* file = std::fopen (temporary.c_str (), "wb");
+          if (file)
+          {
+            const int ok = std::fputs ("ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
+                                       "property float y\nproperty float z\nproperty float intensity\nend_header\n", file);
+            written = std::fclose (file) == 0 && ok >= 0;
+          }
+        }
+        else
+          written = pcl::io::savePLYFileBinary (temporary, keypoints) == 0;
       }
-      // PCL refuses to write an empty cloud; an empty keypoint set is a valid answer, written by hand.
-      if (keypoints.empty ())
+      catch (const pcl::PCLException&)  // PCDWriter throws when it cannot open the file
       {
-        FILE* file = std::fopen (temporary.c_str (), "wb");
-        if (!file)
-          return false;
-        const int ok = std::fputs ("ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
-                                   "property float y\nproperty float z\nproperty float intensity\nend_header\n", file);
-        return std::fclose (file) == 0 && ok >= 0;
+        written = false;
       }
-      return pcl::io::savePLYFileBinary (temporary, keypoints) == 0;
+      pcl::console::setVerbosityLevel (level);
+      return written;
     });
   }
 } // namespace

@@ -613,6 +613,31 @@ namespace
     }
   }
 
+  /// An output name that the folder takes but whose atomic write's temporary (NAME.tmpPID) is longer than a
+  /// file name may be (255 bytes): a portable output that fails only when it is written, after the checks.
+  std::string
+  unwritableName (const std::string& extension)
+  {
+    return std::string (255 - extension.size (), 'w') + extension;
+  }
+
+  /// keypoints names the output it cannot write, as the other tools do; it said "unexpected failure: :
+  /// [pcl::PCDWriter::writeBinary] Error during open!". No temporary stays behind.
+  TEST_F (RobustnessAppsPaths, KeypointsNameTheOutputTheyCannotWrite)
+  {
+    const std::string obj = (dir_ / "c.obj").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    fs::create_directories (dir_ / "out");
+    for (const char* extension : {".pcd", ".ply"})
+    {
+      const std::string output = (dir_ / "out" / unwritableName (extension)).string ();
+      const RunResult r = runApp ("keypoints", {obj, output, "-q"}, dir_);
+      checkRun (r, dir_ / "out", "");
+      EXPECT_EQ (r.exit_code, 1) << r.command;
+      EXPECT_EQ (r.err, "pcl_sparse_keypoints: " + output + ": could not write the file\n") << extension;
+    }
+  }
+
   /// A spacing no resampling can use is refused with the options, before the input is read and encoded (it
   /// failed only after encoding, minutes on a large input): here the input is not even a mesh, and the error
   /// must name the spacing.
