@@ -334,6 +334,8 @@ main (int argc, char** argv)
   return group.finish (tools::runTool (argc, argv, kTool, [&] (const tools::CommandLine& args) {
     const bool json = args.has ("--json");
     const bool quiet = args.has ("-q");
+    if (quiet || json)
+      pcl::console::setVerbosityLevel (pcl::console::L_ERROR);  // notes off, as in the other tools
     args.expectPositional (2, "MODEL.psm and OUT.{pcd,ply}");
     const std::string& model_path = args.positional ()[0];
     const std::string& out_path = args.positional ()[1];

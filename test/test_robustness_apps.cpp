@@ -621,6 +621,28 @@ namespace
     return std::string (255 - extension.size (), 'w') + extension;
   }
 
+  /// decode's notes (here: the box holds no point) stay off stderr under --json and -q, as in the other tools.
+  TEST_F (RobustnessAppsPaths, DecodeNotesAreQuietUnderJsonAndQ)
+  {
+    const std::string obj = (dir_ / "c.obj").string (), psm = (dir_ / "c.psm").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "-q"}, dir_).exit_code, 0);
+    const std::string cloud = (dir_ / "eb.pcd").string ();
+    const std::vector<std::string> empty_box = {psm, cloud, "-box", "5,5,5,6,6,6", "-density", "100"};
+    const RunResult noted = runApp ("decode", empty_box, dir_);
+    EXPECT_EQ (noted.exit_code, 0) << noted.err;
+    EXPECT_NE (noted.err.find ("no point of the model lies in the box"), std::string::npos) << "the note is gone: " << noted.err;
+    for (const char* quiet : {"--json", "-q"})
+    {
+      std::vector<std::string> args (empty_box);
+      args.push_back (quiet);
+      const RunResult r = runApp ("decode", args, dir_);
+      EXPECT_EQ (r.exit_code, 0) << quiet << ": " << r.err;
+      EXPECT_EQ (r.err, "") << quiet;
+      EXPECT_TRUE (fs::exists (cloud)) << quiet;
+    }
+  }
+
   /// keypoints names the output it cannot write, as the other tools do; it said "unexpected failure: :
   /// [pcl::PCDWriter::writeBinary] Error during open!". No temporary stays behind.
   TEST_F (RobustnessAppsPaths, KeypointsNameTheOutputTheyCannotWrite)
