@@ -10,8 +10,11 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
+
+#include <unistd.h>
 
 namespace pcl_sparse
 {
@@ -411,6 +414,22 @@ namespace pcl_sparse
         const fs::path pa = fs::weakly_canonical (a, ec), pb = fs::weakly_canonical (b, ec);
         return ec ? fs::path (a).lexically_normal () == fs::path (b).lexically_normal () : pa == pb;
       }
+
+      /// Throws unless a file can be created in \a folder, the folder of output \a out. A real file is created
+      /// and removed: access (W_OK) says yes to root in a read-only or immutable (chattr +i) folder.
+      void
+      checkFolderTakesFiles (const std::string& out, const std::filesystem::path& folder)
+      {
+        std::string probe = (folder / ".pcl_sparse_write_check_XXXXXX").string ();
+        const int fd = ::mkstemp (&probe[0]);
+        if (fd < 0)
+        {
+          const std::string reason = std::strerror (errno);
+          throw Error ("output '" + out + "': cannot write in the folder '" + folder.string () + "' (" + reason + ")");
+        }
+        ::close (fd);
+        std::remove (probe.c_str ());
+      }
     } // namespace
 
     void
@@ -428,6 +447,7 @@ namespace pcl_sparse
         const fs::path folder = fs::path (out).parent_path ();
         if (!folder.empty () && !fs::is_directory (folder, ec))
           throw Error ("output '" + out + "': the folder '" + folder.string () + "' does not exist");
+        checkFolderTakesFiles (out, folder.empty () ? fs::path (".") : folder);
         for (const std::string& in : inputs)
           if (!in.empty () && sameFile (in, out))
             throw Error ("output '" + out + "' is the input '" + in + "': refusing to overwrite it");

@@ -188,8 +188,8 @@ namespace pcl_sparse
 
     /// Refuses, before any work, outputs that would overwrite an input or another output (the same file,
     /// also through another spelling or a link: "-o c.obj" over the input c.obj replaced the mesh), that are
-    /// a folder, or whose folder does not exist (found only after an encode of hours). Empty paths are
-    /// skipped (options not given).
+    /// a folder, or whose folder does not exist or takes no new file (read-only, immutable, not ours: all
+    /// found only after an encode of hours). Empty paths are skipped (options not given).
     void
     checkOutputPaths (const std::vector<std::string>& inputs, const std::vector<std::string>& outputs);
 

@@ -613,6 +613,41 @@ namespace
     }
   }
 
+  /// An output folder that takes no new file is refused before any work (an encode wrote its model, then
+  /// failed on -recon in the same folder). The folder is made read-only with chmod, or for root, whom chmod
+  /// does not stop, immutable with chattr +i; skipped where neither holds.
+  TEST_F (RobustnessAppsPaths, UnwritableOutputFolderIsRefusedFirst)
+  {
+    const std::string obj = (dir_ / "c.obj").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    const fs::path locked = dir_ / "locked";
+    fs::create_directories (locked);
+    fs::permissions (locked, fs::perms::owner_read | fs::perms::owner_exec);
+    bool immutable = false;
+    if (::access (locked.c_str (), W_OK) == 0)  // root
+      immutable = std::system (("chattr +i " + quote (locked.string ()) + " 2> /dev/null").c_str ()) == 0;
+    struct Unlock
+    {
+      fs::path folder;
+      bool immutable;
+      ~Unlock ()
+      {
+        if (immutable)
+          std::system (("chattr -i " + quote (folder.string ())).c_str ());
+        fs::permissions (folder, fs::perms::owner_all);
+      }
+    } unlock{locked, immutable};
+    if (!immutable && ::access (locked.c_str (), W_OK) == 0)
+      GTEST_SKIP () << "cannot make a folder that refuses files here (root without chattr)";
+    const std::string model = (dir_ / "x.psm").string (), recon = (locked / "r.ply").string ();
+    const RunResult r = runApp ("encode", {obj, "-o", model, "-recon", recon, "-q"}, dir_);
+    EXPECT_EQ (r.exit_code, 1) << r.err;
+    EXPECT_EQ (nonEmptyLines (r.err), 1) << r.err;
+    EXPECT_NE (r.err.find ("output '" + recon + "': cannot write in the folder"), std::string::npos) << r.err;
+    EXPECT_FALSE (fs::exists (model));
+    EXPECT_TRUE (fs::is_empty (locked));
+  }
+
   /// An output name that the folder takes but whose atomic write's temporary (NAME.tmpPID) is longer than a
   /// file name may be (255 bytes): a portable output that fails only when it is written, after the checks.
   std::string
