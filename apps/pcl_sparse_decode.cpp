@@ -460,6 +460,7 @@ main (int argc, char** argv)
         if (reconstructed[v].allFinite ())
           recon.vertices[v] = reconstructed[v];
       saveTriangleMesh (recon_out, recon);
+      tools::removeIfRunFails (recon_out);
     }
     write_seconds += timer.toc () / 1000.0;
 

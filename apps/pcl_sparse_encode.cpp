@@ -321,10 +321,14 @@ main (int argc, char** argv)
     {
       tiled_model.model = std::move (model);
       saveTiledModel (model_path, tiled_model, write_options, threads);
+      tools::removeIfRunFails (model_path);
       model = std::move (tiled_model.model);
     }
     else if (!model_path.empty ())
+    {
       saveModel (model_path, model, write_options);
+      tools::removeIfRunFails (model_path);
+    }
     if (!recon_path.empty () || !error_path.empty () || args.has ("-png"))
     {
       // A scan's reconstruction is its points (its neighbourhood surface is the encoder's, not the file's).
@@ -337,13 +341,17 @@ main (int argc, char** argv)
         if (vertices[v].allFinite ())  // vertices in no patch keep their input position
           reconstructed.vertices[v] = vertices[v];
       if (!recon_path.empty ())
+      {
         saveTriangleMesh (recon_path, reconstructed);
+        tools::removeIfRunFails (recon_path);
+      }
       if (!error_path.empty ())
       {
         std::vector<RgbColor> colors (errors.size ());
         for (std::size_t v = 0; v < errors.size (); ++v)
           colors[v] = errorColor (stats.max_error > 0.0 ? errors[v] / stats.max_error : 0.0);
         saveColoredMesh (error_path, reconstructed, colors);
+        tools::removeIfRunFails (error_path);
       }
       tools::writeErrorPng (args, reconstructed, errors, model.bbox_diagonal);
     }

@@ -163,9 +163,13 @@ main (int argc, char** argv)
       throw Error (input + ": Harris 3D failed on this mesh");
 
     saveKeypoints (output, keypoints);
+    tools::removeIfRunFails (output);
     tools::writeMeshPng (args, *mesh, {}, false, tools::cloudPositions (keypoints));
     if (!responses_path.empty ())
+    {
       saveColoredMesh (responses_path, *mesh, responseColors (harris.getResponses ()));
+      tools::removeIfRunFails (responses_path);
+    }
     const double seconds = total.toc () / 1000.0;
 
     if (json)

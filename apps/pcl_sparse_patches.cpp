@@ -164,6 +164,7 @@ main (int argc, char** argv)
     for (const Patch& p : patches)
       colors[p.seed] = {0, 0, 0};
     saveColoredMesh (output, *mesh, colors);
+    tools::removeIfRunFails (output);
     tools::writeMeshPng (args, *mesh, colors, true);
 
     if (json)

@@ -251,6 +251,7 @@ main (int argc, char** argv)
     picture.normals = scene.normals;
     const tools::RenderedPicture rendered = tools::renderPicture (picture, options);
     savePng (output, rendered.image);
+    tools::removeIfRunFails (output);  // still undone if stdout cannot take the report
     const double seconds = total.toc () / 1000.0;
     const std::size_t items = scene.mesh ? scene.mesh->triangles.size () : scene.points.size ();
     if (json)

@@ -185,6 +185,7 @@ namespace pcl_sparse
         const std::string path = args.value ("-png");
         const RenderedPicture rendered = renderPicture (picture, parsePictureOptions (args));
         savePng (path, rendered.image);
+        removeIfRunFails (path);
         // Not with --json (stdout holds the JSON object alone) or -q.
         if (!args.has ("--json") && !args.has ("-q"))
           pcl::console::print_info ("Wrote %s: %dx%d, %zu pixels covered\n", path.c_str (), rendered.image.width,

@@ -102,11 +102,13 @@ namespace pcl_sparse
       if (local.origin.isZero (0.0) || doublePositions (local.origin, local.cloud.empty (), lo, hi))
       {
         savePointNormalCloud (path, local.cloud, binary, local.origin);
+        removeIfRunFails (path);
         return;
       }
       pcl::PointCloud<PointT> world;
       moveToWorld (local.cloud, local.origin, world);
       savePointNormalCloud (path, world, binary);
+      removeIfRunFails (path);
     }
 
     namespace
@@ -218,6 +220,7 @@ namespace pcl_sparse
       result.resample_seconds = timer.toc () / 1000.0;
       timer.tic ();
       writer->finish ();
+      removeIfRunFails (path);
       result.save_seconds = timer.toc () / 1000.0;
       return result;
     }

@@ -430,7 +430,30 @@ namespace pcl_sparse
         ::close (fd);
         std::remove (probe.c_str ());
       }
+
+      /// The outputs this run has written (removeIfRunFails), removed by runTool when the run fails.
+      std::vector<std::string>&
+      writtenOutputs ()
+      {
+        static std::vector<std::string> paths;
+        return paths;
+      }
+
+      /// Removes the outputs this run has written: after a failure, none of them is the whole answer.
+      void
+      removeWrittenOutputs ()
+      {
+        for (const std::string& path : writtenOutputs ())
+          std::remove (path.c_str ());
+        writtenOutputs ().clear ();
+      }
     } // namespace
+
+    void
+    removeIfRunFails (const std::string& path)
+    {
+      writtenOutputs ().push_back (path);
+    }
 
     void
     checkOutputPaths (const std::vector<std::string>& inputs, const std::vector<std::string>& outputs)
@@ -477,6 +500,8 @@ namespace pcl_sparse
         // A report or JSON object lost to a full disk or a closed pipe is a failure (it exited 0).
         if (std::fflush (stdout) != 0 || std::ferror (stdout))
           throw Error ("cannot write to standard output");
+        if (status != 0)
+          removeWrittenOutputs ();
         return status;
       }
       catch (const Error& e)
@@ -487,6 +512,7 @@ namespace pcl_sparse
       {
         pcl::console::print_error ("%s: unexpected failure: %s\n", tool.program, e.what ());
       }
+      removeWrittenOutputs ();
       return 1;
     }
   } // namespace tools

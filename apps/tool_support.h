@@ -193,6 +193,12 @@ namespace pcl_sparse
     void
     checkOutputPaths (const std::vector<std::string>& inputs, const std::vector<std::string>& outputs);
 
+    /// Records that this run has written the output \a path (complete, renamed into place), so that runTool
+    /// removes it if the run fails afterwards: a tool that fails leaves no output, not the ones written before
+    /// a later one failed. Called by the helpers that finish writing an output.
+    void
+    removeIfRunFails (const std::string& path);
+
     /// Prints "Syntax is: PROGRAM SYNTAX" on stderr (one error line when the tool is called wrongly) and
     /// the aligned help lines on stdout, as PCL's tools do.
     void
@@ -210,7 +216,8 @@ namespace pcl_sparse
     /// The whole main of a tool: prints the help and returns 0 for -h / --help, returns 1 after the help
     /// when there are too few arguments; otherwise parses the command line and runs \a body with it. An
     /// Error or any other exception (from parsing or the body) becomes one line "PROGRAM: message" on
-    /// stderr and exit code 1; otherwise the body's exit code is returned.
+    /// stderr and exit code 1; otherwise the body's exit code is returned. On any failure (also a non-zero
+    /// exit code, or stdout that cannot be written) the outputs given to removeIfRunFails are removed.
     int
     runTool (int argc, char** argv, const ToolDescription& tool, const std::function<int (const CommandLine&)>& body);
   } // namespace tools

@@ -656,6 +656,65 @@ namespace
     return std::string (255 - extension.size (), 'w') + extension;
   }
 
+  /// A run that fails after it has written some of its outputs removes them: a failed run leaves no output
+  /// (the encoded model stayed behind when -recon, -error or -png failed; resample's cloud when -png or
+  /// stdout failed; decode's cloud when -recon failed; keypoints' when -responses failed; patches' when -png
+  /// failed).
+  TEST_F (RobustnessAppsPaths, FailedRunRemovesTheOutputsItWrote)
+  {
+    const std::string obj = (dir_ / "c.obj").string (), psm = (dir_ / "c.psm").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    ASSERT_EQ (runApp ("encode", {obj, "-o", psm, "--store-vertices", "-q"}, dir_).exit_code, 0);
+    const fs::path out = dir_ / "out";
+    auto in_out = [&] (const std::string& name) { return (out / name).string (); };
+    const std::vector<std::pair<std::string, std::vector<std::string>>> runs = {
+      {"encode", {obj, "-o", in_out ("x.psm"), "-recon", in_out (unwritableName (".ply"))}},
+      {"encode", {obj, "-o", in_out ("x.psm"), "-error", in_out (unwritableName (".ply"))}},
+      {"encode", {obj, "-o", in_out ("x.psm"), "-recon", in_out ("r.ply"), "-png", in_out (unwritableName (".png"))}},
+      {"resample", {obj, in_out ("x.pcd"), "-n", "100", "-png", in_out (unwritableName (".png"))}},
+      {"decode", {psm, in_out ("x.pcd"), "-recon", obj, in_out (unwritableName (".off"))}},
+      {"decode", {psm, in_out ("x.pcd"), "-stream", "off", "-recon", obj, in_out (unwritableName (".off"))}},
+      {"keypoints", {obj, in_out ("k.pcd"), "-responses", in_out (unwritableName (".ply"))}},
+      {"keypoints", {obj, in_out ("k.pcd"), "-png", in_out (unwritableName (".png"))}},
+      {"patches", {obj, in_out ("p.ply"), "-png", in_out (unwritableName (".png"))}},
+    };
+    for (const auto& [app, args] : runs)
+    {
+      fs::remove_all (out);
+      fs::create_directories (out);
+      std::vector<std::string> quiet (args);
+      quiet.push_back ("-q");
+      const RunResult r = runApp (app, quiet, dir_);
+      checkRun (r, out, "");
+      EXPECT_EQ (r.exit_code, 1) << r.command;
+      EXPECT_NE (r.err.find ("could not write the file"), std::string::npos) << r.command << "\n" << r.err;
+    }
+
+    // The outputs are complete and the report is lost to a full disk: still a failure, so they go too.
+    if (!fs::exists ("/dev/full"))
+      return;
+    const std::vector<std::pair<std::string, std::vector<std::string>>> full_runs = {
+      {"resample", {obj, in_out ("f.pcd"), "-n", "100"}},
+      {"resample", {obj, in_out ("f.pcd"), "-n", "100", "-stream", "off"}},
+      {"decode", {psm, in_out ("f.pcd"), "-recon", obj, in_out ("r.off")}},
+      {"encode", {obj, "-o", in_out ("f.psm"), "-recon", in_out ("r.ply")}},
+      {"keypoints", {obj, in_out ("k.ply"), "-responses", in_out ("r.ply")}},
+      {"patches", {obj, in_out ("p.ply")}},
+      {"render", {obj, in_out ("r.png")}},
+    };
+    for (const auto& [app, args] : full_runs)
+    {
+      fs::remove_all (out);
+      fs::create_directories (out);
+      std::string command = quote (appPath (app));
+      for (const std::string& a : args)
+        command += " " + quote (a);
+      const int status = std::system ((command + " --json > /dev/full 2> /dev/null").c_str ());
+      EXPECT_TRUE (WIFEXITED (status) && WEXITSTATUS (status) == 1) << command << ": status " << status;
+      EXPECT_TRUE (filesIn (out).empty ()) << command << " left " << (filesIn (out).empty () ? "" : filesIn (out).front ());
+    }
+  }
+
   /// decode's notes (here: the box holds no point) stay off stderr under --json and -q, as in the other tools.
   TEST_F (RobustnessAppsPaths, DecodeNotesAreQuietUnderJsonAndQ)
   {
