@@ -24,6 +24,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,24 @@ namespace
     return colors;
   }
 
+  /// Whether the binary PLY at \a path holds \a points records of x y z intensity (16 bytes) after its
+  /// header: PCL's PLY writer returns success on a full disk, and a cut-short file was kept.
+  bool
+  binaryPlyHoldsItsPoints (const std::string& path, std::size_t points)
+  {
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size (path, error);
+    std::ifstream in (path, std::ios::binary);
+    std::string header, line;
+    while (!error && in && std::getline (in, line))
+    {
+      header += line + '\n';
+      if (line == "end_header")
+        return size >= header.size () + 16 * points;
+    }
+    return false;
+  }
+
   void
   saveKeypoints (const std::string& path, const pcl::PointCloud<pcl::PointXYZI>& keypoints)
   {
@@ -92,7 +112,8 @@ namespace
           }
         }
         else
-          written = pcl::io::savePLYFileBinary (temporary, keypoints) == 0;
+          written = pcl::io::savePLYFileBinary (temporary, keypoints) == 0 &&
+                    binaryPlyHoldsItsPoints (temporary, keypoints.size ());
       }
       catch (const pcl::PCLException&)  // PCDWriter throws when it cannot open the file
       {

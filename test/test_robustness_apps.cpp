@@ -10,6 +10,7 @@
 #include <pcl_sparse/io/cloud_io.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_cleaning.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/vertex_welding.h>
 
 #include <gtest/gtest.h>
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -752,6 +754,35 @@ namespace
       EXPECT_EQ (r.exit_code, 1) << r.command;
       EXPECT_EQ (r.err, "pcl_sparse_keypoints: " + output + ": could not write the file\n") << extension;
     }
+  }
+
+  /// A full disk: PCL's binary PLY writer returned success and the tool kept a cut-short keypoint file (exit
+  /// 0). Needs a 4 kB tmpfs, so root with the right to mount; skipped elsewhere.
+  TEST_F (RobustnessAppsPaths, KeypointsOnAFullDiskFailAndLeaveNoFile)
+  {
+    TriangleMesh bumpy = makeIcosphere (4);  // 2562 vertices, radii jittered: hundreds of local maxima
+    std::uint32_t state = 7;
+    for (Eigen::Vector3d& v : bumpy.vertices)
+    {
+      state = state * 1664525u + 1013904223u;
+      v *= 1.0 + 0.05 * static_cast<double> (state >> 24) / 255.0;
+    }
+    const std::string obj = (dir_ / "bumpy.obj").string ();
+    saveTriangleMesh (obj, bumpy);
+    const std::string roomy = (dir_ / "k.ply").string ();
+    ASSERT_EQ (runApp ("keypoints", {obj, roomy, "-fraction", "1", "-q"}, dir_).exit_code, 0);
+    ASSERT_GT (fs::file_size (roomy), 5000u) << "the keypoints must not fit in the 4 kB disk";  // measured 6653
+    const fs::path full = dir_ / "full";
+    fs::create_directories (full);
+    if (std::system (("mount -t tmpfs -o size=4k tmpfs " + full.string () + " 2> /dev/null").c_str ()) != 0)
+      GTEST_SKIP () << "cannot mount a small tmpfs here (needs root and CAP_SYS_ADMIN)";
+    const std::string output = (full / "k.ply").string ();
+    const RunResult r = runApp ("keypoints", {obj, output, "-fraction", "1", "-q"}, dir_);
+    const bool left = fs::exists (output) || !fs::is_empty (full);
+    std::system (("umount " + full.string ()).c_str ());
+    EXPECT_EQ (r.exit_code, 1) << r.command;
+    EXPECT_EQ (r.err, "pcl_sparse_keypoints: " + output + ": could not write the file\n");
+    EXPECT_FALSE (left) << "a cut-short or temporary file stayed";
   }
 
   /// A spacing no resampling can use is refused with the options, before the input is read and encoded (it
