@@ -5,7 +5,6 @@
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/encoder/cloud_vertex_attributes.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
-#include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/vertex_welding.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/surface/impl/surface_stage.hpp>
@@ -63,10 +62,6 @@ namespace pcl_sparse
     encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,
                                this->num_threads_, this->progress_, model, this->surfaceNormals (),
                                surfaceSeedVertices ());
-    // A scan's scale is its surface's: a stray return 1000 m away (isolated, in no triangle) set the
-    // diagonal, and with it the quantisation step of a file (a fraction of it), 500x too coarse.
-    if (this->surfaceIsScan ())
-      model.bbox_diagonal = surfaceBoundingBoxDiagonal (*this->surface_);
     // A scan is encoded in its local frame: the model and patches go back to the input's frame.
     if (!this->surface_origin_.isZero (0.0))
     {
