@@ -1,11 +1,12 @@
 #include "tool_support.h"
 
+#include <pcl_sparse/common/decimal_text.h>
+
 #include <pcl/console/print.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -174,18 +175,6 @@ namespace pcl_sparse
     }
 
     // ---- Range ---------------------------------------------------------------------------------------
-
-    namespace
-    {
-      /// The shortest decimal text that reads back as \a value (%g printed 67108864 as 6.71089e+07).
-      std::string
-      shortestDecimal (double value)
-      {
-        char text[32];
-        const auto result = std::to_chars (text, text + sizeof (text), value);
-        return std::string (text, result.ptr);
-      }
-    } // namespace
 
     bool
     Range::contains (double x) const

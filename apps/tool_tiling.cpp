@@ -45,14 +45,16 @@ namespace pcl_sparse
     namespace
     {
       /// A file over the budget that cannot be read piece by piece (a binary_compressed PCD, for one)
-      /// was loaded whole without a word, whatever -memory said (found by a review).
+      /// was loaded whole without a word, whatever -memory said (found by a review). A note: off with -q and
+      /// --json, as the tool's other notes.
       void
       warnIfLoadedWholeOverBudget (const std::string& path, bool loaded_whole, std::size_t points, double budget)
       {
         if (loaded_whole)
-          std::fprintf (stderr, "%s: %zu points need about %.0f MB, more than -memory's %.0f MB, but its format (a "
-                        "binary_compressed PCD, for one) is not read piece by piece: loaded whole. A binary or ascii "
-                        "PCD, or a binary PLY, would be spilled into tiles\n", path.c_str (), points, static_cast<double> (points) * kEncoderBytesPerPoint / 1e6, budget / 1e6);
+          printNote (format ("%s: %zu points need about %.0f MB, more than -memory's %.0f MB, but its format (a "
+                             "binary_compressed PCD, for one) is not read piece by piece: loaded whole. A binary or "
+                             "ascii PCD, or a binary PLY, would be spilled into tiles", path.c_str (), points,
+                             static_cast<double> (points) * kEncoderBytesPerPoint / 1e6, budget / 1e6));
       }
     } // namespace
 
@@ -79,7 +81,7 @@ namespace pcl_sparse
           mesh = true;
           points = reader.numVertices ();
           const bool over = static_cast<double> (points) * kEncoderBytesPerPoint > budget;
-          warnIfLoadedWholeOverBudget (path, !args.has ("-q") && !args.has ("--json") && over && !reader.isStreamed (), points, budget);
+          warnIfLoadedWholeOverBudget (path, over && !reader.isStreamed (), points, budget);
           return reader.isStreamed () && over;
         }
         catch (const Error&)
@@ -93,7 +95,7 @@ namespace pcl_sparse
         const ScanStreamReader reader (path);
         points = reader.size ();
         const bool over = static_cast<double> (points) * kEncoderBytesPerPoint > budget;
-        warnIfLoadedWholeOverBudget (path, !args.has ("-q") && !args.has ("--json") && over && !reader.isStreamed (), points, budget);
+        warnIfLoadedWholeOverBudget (path, over && !reader.isStreamed (), points, budget);
         return reader.isStreamed () && over;
       }
       catch (const Error&)

@@ -3,7 +3,8 @@
 /// The one exception type the library throws for bad input (files, meshes, options).
 /// Tools catch it, print its message on one line and exit non-zero.
 
-#include <charconv>
+#include <pcl_sparse/common/decimal_text.h>
+
 #include <stdexcept>
 #include <string>
 
@@ -23,8 +24,6 @@ namespace pcl_sparse
   [[noreturn]] inline void
   throwOutOfRange (const std::string& options, const std::string& field, double value, const std::string& range)
   {
-    char text[32];
-    const std::string written (text, std::to_chars (text, text + sizeof (text), value).ptr);
-    throw Error (options + ": " + field + " = " + written + " is out of range (" + range + ")");
+    throw Error (options + ": " + field + " = " + shortestDecimal (value) + " is out of range (" + range + ")");
   }
 } // namespace pcl_sparse
