@@ -284,6 +284,7 @@ main (int argc, char** argv)
       if (encoder.getDuplicateFaces () > 0)
         tools::printNote (tools::format ("%s: left out %zu repeated faces (the same three vertices as an earlier face)",
                                          path.c_str (), encoder.getDuplicateFaces ()));
+      tools::printAttributeGaps (path, encoder.getAttributeGaps ());
       face_coverage = faceCoverage (*encoder.getSurface (), encoder.getPatches ());
       // From 1 % of the area (fandisk has 7 such faces, 0.07 %, which the patches beside them reach over:
       // Patch::beside_uncovered_face); --json gives every count.

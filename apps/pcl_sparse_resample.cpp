@@ -269,6 +269,7 @@ main (int argc, char** argv)
       encoder.compute (*model);
       encode_seconds = timer.toc () / 1000.0;
       surface = encoder.getCloudSurface ();
+      tools::printAttributeGaps (s.input, encoder.getAttributeGaps ());
       tools::printScanSummary (tools::cleaningReportOf (input, nullptr), surface.get ());
       pcl::console::print_info ("Encoded into %zu patches, %zu coefficients in %.3f s\n", model->numPatches (),
                                 model->numNonZeros (), encode_seconds);

@@ -8,6 +8,7 @@
 #include <pcl_sparse/cloud/cloud_surface.h>
 #include <pcl_sparse/io/scan_cloud.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/model/attribute_gaps.h>
 #include <pcl_sparse/tiles/tile_source.h>
 
 #include <Eigen/Core>
@@ -88,6 +89,11 @@ namespace pcl_sparse
     /// points and noise).
     void
     addInputJson (JsonObject& json, const ScanCleaningReport* report, const CloudSurface* surface);
+
+    /// A note for the attribute values the encoder filled or left out (SparseSurfaceEncoder::getAttributeGaps);
+    /// nothing when there were none.
+    void
+    printAttributeGaps (const std::string& path, const AttributeGaps& gaps);
 
     /// One line on the console describing a scan (\a report non-null) and its surface (nothing for a mesh).
     void

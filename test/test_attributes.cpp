@@ -6,9 +6,12 @@
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/scan_conversion.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/model/attribute_gaps.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include <gtest/gtest.h>
+
+#include "error_message.h"
 
 #include <cmath>
 #include <numeric>
@@ -257,15 +260,110 @@ TEST (Attributes, BadAttributesAreRefused)
   auto wrong_rows = std::make_shared<VertexAttributes> (*attributes);
   wrong_rows->values.conservativeResize (10, 4);
   EXPECT_THROW (encode (sphere, wrong_rows), Error);
-  auto nan = std::make_shared<VertexAttributes> (*attributes);
-  nan->values (3, 3) = std::nanf ("");
-  EXPECT_THROW (encode (sphere, nan), Error);
+  // The stage fills a missing value (MissingValuesTakeTheNearestPointsValue); the mathematics refuses one.
+  VertexAttributes nan = *attributes;
+  nan.values (3, 3) = std::nanf ("");
+  SparseSurfaceModel model;
+  EXPECT_EQ (pcl_sparse_test::errorMessage ([&] {
+               encodeSurface (sphere, nan, buildMeshTopology (sphere), SparseSurfaceEncoderOptions (),
+                              makeCosineBasis (CosineBasisKind::DctQuadric, 12), 1, {}, model);
+             }),
+             "SparseSurfaceEncoder: attribute 'intensity' of vertex 3 is not a number (fillAttributeGaps gives such "
+             "values their nearest vertex's)");
   auto twice = std::make_shared<VertexAttributes> (*attributes);
   twice->channels[1] = AttributeChannel::Red;
   EXPECT_THROW (encode (sphere, twice), Error);
   auto bright = std::make_shared<VertexAttributes> (*attributes);
   bright->values (0, 0) = 300.0f;
   EXPECT_THROW (encode (sphere, bright), Error);
+}
+
+TEST (Attributes, MissingValuesTakeTheNearestPointsValue)
+{
+  // Intensity: vertex 1 is nearer vertex 0 (1) than 2 (1.5); vertex 3 is 1.5 from both 2 and 5 (the lower
+  // number wins); vertex 4 has no position and takes the first value. Red has a value only at vertex 4.
+  const float nan = std::numeric_limits<float>::quiet_NaN ();
+  const std::vector<Eigen::Vector3d> positions = {{0, 0, 0}, {1, 0, 0}, {2.5, 0, 0}, {4, 0, 0},
+                                                  {std::nan (""), 0, 0}, {5.5, 0, 0}};
+  VertexAttributes attributes;
+  attributes.channels = {AttributeChannel::Red, AttributeChannel::Intensity};
+  attributes.values.resize (6, 2);
+  attributes.values.col (0) << nan, nan, nan, nan, 100.0f, nan;
+  attributes.values.col (1) << 10.0f, nan, 30.0f, nan, nan, 60.0f;
+  const AttributeGaps gaps = fillAttributeGaps (attributes, positions);
+  EXPECT_EQ (gaps.filled, 3u);
+  ASSERT_EQ (gaps.dropped.size (), 1u);
+  EXPECT_EQ (gaps.dropped[0], AttributeChannel::Red);
+  ASSERT_EQ (attributes.channels.size (), 1u);
+  EXPECT_EQ (attributes.channels[0], AttributeChannel::Intensity);
+  ASSERT_EQ (attributes.values.cols (), 1);
+  const std::vector<float> expected = {10, 10, 30, 30, 10, 60};
+  for (Eigen::Index v = 0; v < 6; ++v)
+    EXPECT_EQ (attributes.values (v, 0), expected[static_cast<std::size_t> (v)]) << v;
+  EXPECT_THROW (fillAttributeGaps (attributes, {{0, 0, 0}}), Error);  // rows and positions differ
+
+  // Through the stage: a cloud with one NaN intensity codes as the cloud where that point has its nearest
+  // point's intensity; a cloud whose intensities are all NaN codes the geometry alone.
+  const TriangleMesh sphere = makeIcosphere (3);
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> ();
+  auto polygons = std::make_shared<std::vector<pcl::Vertices>> ();
+  for (const Eigen::Vector3d& v : sphere.vertices)
+  {
+    pcl::PointXYZI p;
+    p.getVector3fMap () = v.cast<float> ();
+    p.intensity = static_cast<float> (1000.0 * v.z ());
+    cloud->push_back (p);
+  }
+  for (const Eigen::Vector3i& t : sphere.triangles)
+  {
+    pcl::Vertices polygon;
+    polygon.vertices = {t[0], t[1], t[2]};
+    polygons->push_back (polygon);
+  }
+  const auto encodeCloud = [&] (const pcl::PointCloud<pcl::PointXYZI>::ConstPtr& input, AttributeGaps& found) {
+    SparseSurfaceEncoder<pcl::PointXYZI> encoder;
+    encoder.setInputCloud (input);
+    encoder.setInputPolygons (polygons);
+    SparseSurfaceModel model;
+    encoder.compute (model);
+    found = encoder.getAttributeGaps ();
+    return encodeModel (model);
+  };
+  // A vertex whose nearest vertex is nearer than the second by 1 % (no tie for float rounding to break).
+  std::size_t missing = 0, nearest = 0;
+  for (; missing < sphere.vertices.size (); ++missing)
+  {
+    std::vector<std::pair<double, std::size_t>> by_distance;
+    for (std::size_t v = 0; v < sphere.vertices.size (); ++v)
+      if (v != missing)
+        by_distance.emplace_back ((sphere.vertices[v] - sphere.vertices[missing]).norm (), v);
+    std::partial_sort (by_distance.begin (), by_distance.begin () + 2, by_distance.end ());
+    nearest = by_distance[0].second;
+    if (by_distance[1].first > 1.01 * by_distance[0].first)
+      break;
+  }
+  ASSERT_LT (missing, sphere.vertices.size ());
+  auto with_nan = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> (*cloud);
+  (*with_nan)[missing].intensity = nan;
+  auto filled_by_hand = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> (*cloud);
+  (*filled_by_hand)[missing].intensity = (*cloud)[nearest].intensity;
+  AttributeGaps found, none;
+  EXPECT_EQ (encodeCloud (with_nan, found), encodeCloud (filled_by_hand, none));
+  EXPECT_EQ (found.filled, 1u);
+  EXPECT_TRUE (found.dropped.empty ());
+  EXPECT_EQ (none.filled, 0u);
+
+  auto all_nan = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> (*cloud);
+  for (auto& p : *all_nan)
+    p.intensity = nan;
+  SparseSurfaceEncoder<pcl::PointXYZI> encoder;
+  encoder.setInputCloud (all_nan);
+  encoder.setInputPolygons (polygons);
+  SparseSurfaceModel geometry_only;
+  encoder.compute (geometry_only);
+  EXPECT_FALSE (geometry_only.hasAttributes ());
+  ASSERT_EQ (encoder.getAttributeGaps ().dropped.size (), 1u);
+  EXPECT_EQ (encoder.getAttributeGaps ().dropped[0], AttributeChannel::Intensity);
 }
 
 TEST (Attributes, ModelFileKeepsTheColours)

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -226,6 +227,39 @@ namespace
     return json.substr (begin, json.find ('"', begin) - begin);
   }
 } // namespace
+
+TEST_F (ScanTools, AMissingIntensityTakesItsNeighboursAndIsNamedInANote)
+{
+  // A 40 x 40 grid on a gentle wave, intensity 10 x column; point 300 (column 20) has none.
+  std::ostringstream points;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      points << 0.01 * j << " " << 0.01 * i << " " << 0.02 * std::sin (0.2 * j) << " "
+             << (i * 40 + j == 300 ? std::string ("nan") : std::to_string (10 * j)) << "\n";
+  std::ofstream (path ("gap.pcd")) << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\n"
+                                      "COUNT 1 1 1 1\nWIDTH 1600\nHEIGHT 1\nVIEWPOINT 0 0 1 1 0 0 0\nPOINTS 1600\n"
+                                      "DATA ascii\n"
+                                   << points.str ();
+  std::string out, err;
+  ASSERT_EQ (runTool ("pcl_sparse_encode", path ("gap.pcd") + " -o " + path ("gap.psm"), out, err), 0) << err;
+  EXPECT_NE (err.find ("gap.pcd: 1 colour or intensity value is not a number: it takes the nearest point's"),
+             std::string::npos)
+    << err;
+  ASSERT_EQ (runTool ("pcl_sparse_decode", path ("gap.psm") + " " + path ("gap_out.pcd") + " -q", out, err), 0) << err;
+  pcl::PointCloud<pcl::PointXYZI> decoded;
+  ASSERT_EQ (pcl::io::loadPCDFile (path ("gap_out.pcd"), decoded), 0);
+  ASSERT_GT (decoded.size (), 1000u);
+  double worst = 0.0;
+  for (const auto& p : decoded)
+  {
+    ASSERT_TRUE (std::isfinite (p.intensity));
+    worst = std::max (worst, static_cast<double> (std::abs (p.intensity - 1000.0f * p.x)));
+  }
+  EXPECT_LT (worst, 12.0);  // 8.5 measured, of 0 .. 390: the gap took a neighbour's value (10 away at most)
+  ASSERT_EQ (runTool ("pcl_sparse_resample", path ("gap.pcd") + " " + path ("gap.pcd.out.pcd") + " -q", out, err), 0)
+    << err;
+  EXPECT_EQ (err, "");
+}
 
 TEST_F (ScanTools, ColourAndIntensityAreWrittenWhereTheScanHasThem)
 {

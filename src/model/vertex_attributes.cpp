@@ -42,8 +42,10 @@ namespace pcl_sparse
     for (std::size_t c = 0; c < channels.size (); ++c)
     {
       const auto column = values.col (static_cast<Eigen::Index> (c));
-      if (!column.allFinite ())
-        throw Error (what + ": attribute '" + attributeChannelName (channels[c]) + "' has a non-finite value");
+      for (Eigen::Index v = 0; v < column.size (); ++v)
+        if (!std::isfinite (column[v]))
+          throw Error (what + ": attribute '" + attributeChannelName (channels[c]) + "' of vertex " + std::to_string (v) +
+                       " is not a number (fillAttributeGaps gives such values their nearest vertex's)");
       if (isColourChannel (channels[c]) && column.size () > 0 && (column.minCoeff () < 0.0f || column.maxCoeff () > 255.0f))
         throw Error (what + ": colour channel '" + attributeChannelName (channels[c]) + "' outside 0 .. 255");
     }

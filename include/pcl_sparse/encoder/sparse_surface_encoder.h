@@ -21,6 +21,7 @@
 #include <pcl_sparse/surface/surface_stage.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/model/attribute_gaps.h>
 #include <pcl_sparse/model/vertex_attributes.h>
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_options.h>
@@ -208,6 +209,8 @@ namespace pcl_sparse
     /// (setInputScan) with colours or intensities; a TriangleMesh input has none. With setIndices cropping,
     /// and for the points a scan's cleaning keeps, the rows of the surface's points are used. A pointer to
     /// an empty VertexAttributes codes none (geometry only); an empty pointer goes back to automatic.
+    /// A value that is not a number (a sensor's missing intensity) takes the nearest surface point's, and a
+    /// channel with no value at all is left out (fillAttributeGaps; getAttributeGaps says what changed).
     /// \param[in] attributes one row per input point (cloud), vertex (mesh) or point (setInputScan)
     void setVertexAttributes (const VertexAttributes::ConstPtr& attributes) { attributes_ = attributes; }
     const VertexAttributes::ConstPtr& getVertexAttributes () const { return attributes_; }
@@ -230,6 +233,9 @@ namespace pcl_sparse
     const std::vector<Patch>& getPatches () const { return encoding_.patches; }
     /// \brief Per-patch diagnostics of the last compute, one per model patch.
     const std::vector<PatchCodingInfo>& getCodingInfo () const { return encoding_.coding_info; }
+    /// \brief The attribute values of the last compute that were not numbers and were filled, and the
+    /// channels left out for having none (see setVertexAttributes).
+    const AttributeGaps& getAttributeGaps () const { return attribute_gaps_; }
 
   protected:
     /// \brief The stage proper, on the surface initCompute prepared.
@@ -246,6 +252,7 @@ namespace pcl_sparse
     VertexAttributes::ConstPtr attributes_;
     std::shared_ptr<const std::vector<std::uint8_t>> seed_vertices_;
     SurfaceEncoding encoding_;
+    AttributeGaps attribute_gaps_;
   };
 } // namespace pcl_sparse
 

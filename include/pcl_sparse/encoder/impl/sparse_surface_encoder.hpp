@@ -6,6 +6,7 @@
 #include <pcl_sparse/encoder/cloud_vertex_attributes.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/mesh/vertex_welding.h>
+#include <pcl_sparse/model/attribute_gaps.h>
 #include <pcl_sparse/patches/feature_aware_patch_sampling.h>
 #include <pcl_sparse/surface/impl/surface_stage.hpp>
 
@@ -16,6 +17,7 @@ namespace pcl_sparse
   SparseSurfaceEncoder<PointInT>::compute (SparseSurfaceModel& model)
   {
     encoding_ = SurfaceEncoding ();
+    attribute_gaps_ = AttributeGaps ();
     this->initCompute ();
     const std::string out_of_range = coordinateRangeProblem (*this->surface_, this->surface_origin_);
     if (!out_of_range.empty ())
@@ -58,7 +60,8 @@ namespace pcl_sparse
       options.atom_loss_allowance = 0.0;
     }
     options.patches = patchOptionsFor (options.patches, this->surfaceIsScan ());
-    const VertexAttributes attributes = surfaceAttributes ();
+    VertexAttributes attributes = surfaceAttributes ();
+    attribute_gaps_ = fillAttributeGaps (attributes, this->surface_->vertices);
     encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,
                                this->num_threads_, this->progress_, model, this->surfaceNormals (),
                                surfaceSeedVertices ());
