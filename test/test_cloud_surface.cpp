@@ -930,7 +930,7 @@ TEST (CloudSurface, BadInputIsRefused)
   expectRefused (plane, options, "option k");
   options = CloudSurfaceOptions ();
   options.gap_factor = 0.5;
-  expectRefused (plane, options, "option gap_factor");
+  expectRefused (plane, options, "option gap_factor = 0.5 must be finite and > 1");  // not 0.500000
   options = CloudSurfaceOptions ();
   options.num_threads = -1;
   expectRefused (plane, options, "option num_threads");

@@ -11,6 +11,8 @@
 #include <Eigen/Geometry>
 
 #include <gtest/gtest.h>
+
+#include "error_message.h"
 #include <omp.h>
 
 #include <algorithm>
@@ -334,6 +336,11 @@ TEST (Harris3D, TooFewNeighboursGiveNoResponseAndBadInputIsRefused)
   options = Harris3DOptions ();
   options.adaptive_fraction = 0.0;
   EXPECT_THROW (computeHarris3DResponses (cube, topo, options), Error);
+  // The message names the field and its value as the other options structs' do.
+  options = Harris3DOptions ();
+  options.k = 0.3;
+  EXPECT_EQ (pcl_sparse_test::errorMessage ([&] { computeHarris3DResponses (cube, topo, options); }),
+             "Harris3DOptions: k = 0.3 is out of range (0 <= k <= 0.25)");
 }
 
 TEST (Harris3D, FandiskTopKeypointsLieOnSharpEdges)

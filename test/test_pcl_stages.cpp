@@ -437,7 +437,7 @@ TEST (PclStages, OneErrorPolicyNamingTheClass)
 
   SparseSurfaceResampling<pcl::PointXYZ> resampling;
   pcl::PointCloud<pcl::PointXYZ> cloud;
-  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { resampling.compute (cloud); }).find ("SparseSurfaceResampling::compute: no input model"),
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { resampling.compute (cloud); }).find ("[SparseSurfaceResampling::compute] no input model"),
              std::string::npos);
 }
 
@@ -573,14 +573,24 @@ TEST (PclStages, MisuseIsRefusedWithTheReason)
   // Options that gave a model the file format cannot hold.
   SparseSurfaceEncoderOptions options;
   options.coding.footprint_angles = 5000;
-  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { options.validate (); }).find ("footprint angles must be in [3, 4096]"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { options.validate (); }).find ("coding.footprint_angles = 5000 is out of range"), std::string::npos);
   options = SparseSurfaceEncoderOptions ();
   options.coding.triangle_samples = 1e9;
-  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { options.validate (); }).find ("triangle samples must be in [0, 16]"), std::string::npos);
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { options.validate (); }).find ("coding.triangle_samples = 1e+09 is out of range"), std::string::npos);
   options = SparseSurfaceEncoderOptions ();
   options.dictionary_frequencies = 64;
   options.coding.min_samples = 100000;
   EXPECT_NE (pcl_sparse_test::errorMessage ([&] { options.validate (); }).find ("min samples x atoms"), std::string::npos);
+  options = SparseSurfaceEncoderOptions ();
+  options.patches.rho = 0.0;  // std::to_string wrote "got 0.000000"
+  EXPECT_EQ (pcl_sparse_test::errorMessage ([&] { options.validate (); }),
+             "SparseSurfaceEncoderOptions: patches.rho = 0 is out of range (rho > 0)");
+  options = SparseSurfaceEncoderOptions ();
+  options.coding.tolerance = 1e-12;  // valid: no message
+  EXPECT_EQ (pcl_sparse_test::errorMessage ([&] { options.validate (); }), "");
+  options.coding.noise_level = -1e-9;
+  EXPECT_EQ (pcl_sparse_test::errorMessage ([&] { options.validate (); }),
+             "SparseSurfaceEncoderOptions: coding.noise_level = -1e-09 is out of range (noise_level >= 0, finite)");
   // Values in their exact form (std::to_string wrote an int 0 as 0.000000 and 1e-9 as 0.000000).
   PatchOptions patch_options;
   patch_options.min_patch_size = 0;

@@ -24,13 +24,13 @@ namespace pcl_sparse
     if (options.window_radius < 1 || options.window_radius > 5)
       refuse ("window_radius = " + std::to_string (options.window_radius) + " is out of range (1..5)");
     if (!(options.gap_factor > 1.0) || !std::isfinite (options.gap_factor))
-      refuse ("gap_factor = " + std::to_string (options.gap_factor) + " must be finite and > 1");
+      refuse ("gap_factor = " + shortestDecimal (options.gap_factor) + " must be finite and > 1");
     if (!(options.shadow_angle_degrees >= 0.0 && options.shadow_angle_degrees <= 30.0))
-      refuse ("shadow_angle_degrees = " + std::to_string (options.shadow_angle_degrees) + " is out of range (0..30)");
+      refuse ("shadow_angle_degrees = " + shortestDecimal (options.shadow_angle_degrees) + " is out of range (0..30)");
     if (!(options.outlier_factor > 0.0) || !std::isfinite (options.outlier_factor))
-      refuse ("outlier_factor = " + std::to_string (options.outlier_factor) + " must be finite and > 0");
+      refuse ("outlier_factor = " + shortestDecimal (options.outlier_factor) + " must be finite and > 0");
     if (!(options.outlier_spacing > 0.0) || !std::isfinite (options.outlier_spacing))
-      refuse ("outlier_spacing = " + std::to_string (options.outlier_spacing) + " must be finite and > 0");
+      refuse ("outlier_spacing = " + shortestDecimal (options.outlier_spacing) + " must be finite and > 0");
     if (options.num_threads < 0)
       refuse ("num_threads = " + std::to_string (options.num_threads) + " must be >= 0");
     if (options.has_viewpoint && !options.viewpoint.allFinite ())

@@ -313,53 +313,63 @@ namespace pcl_sparse
   SparseSurfaceEncoderOptions::validate () const
   {
     patches.validate ();
-    require (patches.rho > 0.0, "rho must be > 0, got " + std::to_string (patches.rho));
-    require (coding.nyquist_factor >= 0.0 && coding.nyquist_factor <= 1.0,
-             "Nyquist factor f must be in [0, 1], got " + std::to_string (coding.nyquist_factor));
-    require (coding.quadric_preference >= 0.0 && coding.quadric_preference <= 1.0,
-             "quadric preference must be in [0, 1], got " + std::to_string (coding.quadric_preference));
-    require (coding.max_atoms >= 1, "L (atoms per patch) must be >= 1, got " + std::to_string (coding.max_atoms));
-    require (coding.tolerance > 0.0 && coding.tolerance < 1.0,
-             "eps must be in (0, 1), got " + std::to_string (coding.tolerance));
+    auto fail = [] (const std::string& field, double value, const std::string& range) {
+      throwOutOfRange ("SparseSurfaceEncoderOptions", field, value, range);
+    };
+    const auto finiteIn = [] (double value, double lower, double upper) {
+      return value >= lower && value <= upper;  // false for NaN
+    };
+    if (!(patches.rho > 0.0))
+      fail ("patches.rho", patches.rho, "rho > 0");
+    if (!finiteIn (coding.nyquist_factor, 0.0, 1.0))
+      fail ("coding.nyquist_factor", coding.nyquist_factor, "0 <= f <= 1");
+    if (!finiteIn (coding.quadric_preference, 0.0, 1.0))
+      fail ("coding.quadric_preference", coding.quadric_preference, "0 <= quadric_preference <= 1");
+    if (coding.max_atoms < 1)
+      fail ("coding.max_atoms", coding.max_atoms, "L >= 1");
+    if (!(coding.tolerance > 0.0 && coding.tolerance < 1.0))
+      fail ("coding.tolerance", coding.tolerance, "0 < eps < 1");
     // Each patch codes a samples x atoms matrix: 10^5 samples of 144 atoms are 115 MB a thread; with
     // 64 frequencies (4096 atoms) that many would be 3.3 GB, so the product is bounded too (1 GB).
-    require (coding.min_samples >= 0 && coding.min_samples <= 100000,
-             "min samples must be in [0, 100000], got " + std::to_string (coding.min_samples));
-    require (static_cast<double> (coding.min_samples) * dictionary_frequencies * dictionary_frequencies <= (1 << 27),
-             "min samples x atoms (dictionary frequencies^2) must be at most 2^27, got " +
-               std::to_string (coding.min_samples) + " x " + std::to_string (dictionary_frequencies * dictionary_frequencies));
-    require (coding.triangle_samples >= 0.0 && coding.triangle_samples <= 16.0,
-             "triangle samples must be in [0, 16], got " + std::to_string (coding.triangle_samples));
+    if (coding.min_samples < 0 || coding.min_samples > 100000)
+      fail ("coding.min_samples", coding.min_samples, "0 <= min_samples <= 100000");
+    if (static_cast<double> (coding.min_samples) * dictionary_frequencies * dictionary_frequencies > (1 << 27))
+      fail ("coding.min_samples", coding.min_samples,
+            "min samples x atoms (dictionary frequencies^2 = " +
+              std::to_string (static_cast<long long> (dictionary_frequencies) * dictionary_frequencies) + ") <= 2^27");
+    if (!finiteIn (coding.triangle_samples, 0.0, 16.0))
+      fail ("coding.triangle_samples", coding.triangle_samples, "0 <= triangle_samples <= 16");
     // The file format holds at most 4096 angles: a model with more could be neither saved nor sent.
-    require (coding.footprint_angles >= 3 && coding.footprint_angles <= 4096,
-             "footprint angles must be in [3, 4096], got " + std::to_string (coding.footprint_angles));
-    require (coding.footprint_reach_degrees >= 0.0 && coding.footprint_reach_degrees <= 180.0,
-             "footprint reach must be in [0, 180] degrees, got " + std::to_string (coding.footprint_reach_degrees));
-    require (coding.footprint_reach_max_tilt_degrees >= 0.0 && coding.footprint_reach_max_tilt_degrees <= 180.0,
-             "footprint reach tilt must be in [0, 180] degrees, got " +
-               std::to_string (coding.footprint_reach_max_tilt_degrees));
-    require (coding.support_scale >= 1.0 && std::isfinite (coding.support_scale),
-             "support scale must be >= 1, got " + std::to_string (coding.support_scale));
-    require (coding.noise_level >= 0.0 && std::isfinite (coding.noise_level),
-             "noise level must be >= 0, got " + std::to_string (coding.noise_level));
-    require (dictionary_frequencies >= 1 && dictionary_frequencies <= CosineAtoms::max_frequencies,
-             "dictionary frequencies must be in [1, 64], got " + std::to_string (dictionary_frequencies));
-    require (basis == CosineBasisKind::Paper || basis == CosineBasisKind::Dct || basis == CosineBasisKind::DctQuadric,
-             "basis must be Paper, Dct or DctQuadric, got " + std::to_string (static_cast<int> (basis)));
-    require (attributes.basis == CosineBasisKind::Paper || attributes.basis == CosineBasisKind::Dct,
-             "attribute basis must be Paper or Dct, got " + std::to_string (static_cast<int> (attributes.basis)));
-    require (attributes.max_atoms >= 1,
-             "attribute L (atoms per channel) must be >= 1, got " + std::to_string (attributes.max_atoms));
-    require (attributes.tolerance >= 0.0 && std::isfinite (attributes.tolerance),
-             "attribute tolerance must be >= 0, got " + std::to_string (attributes.tolerance));
-    require (max_compression_ratio >= 0.0 && std::isfinite (max_compression_ratio),
-             "max compression ratio must be >= 0, got " + std::to_string (max_compression_ratio));
+    if (coding.footprint_angles < 3 || coding.footprint_angles > 4096)
+      fail ("coding.footprint_angles", coding.footprint_angles, "3 <= footprint_angles <= 4096, as files hold");
+    if (!finiteIn (coding.footprint_reach_degrees, 0.0, 180.0))
+      fail ("coding.footprint_reach_degrees", coding.footprint_reach_degrees, "0 <= degrees <= 180");
+    if (!finiteIn (coding.footprint_reach_max_tilt_degrees, 0.0, 180.0))
+      fail ("coding.footprint_reach_max_tilt_degrees", coding.footprint_reach_max_tilt_degrees, "0 <= degrees <= 180");
+    if (!(coding.support_scale >= 1.0 && std::isfinite (coding.support_scale)))
+      fail ("coding.support_scale", coding.support_scale, "support_scale >= 1, finite");
+    if (!(coding.noise_level >= 0.0 && std::isfinite (coding.noise_level)))
+      fail ("coding.noise_level", coding.noise_level, "noise_level >= 0, finite");
+    if (dictionary_frequencies < 1 || dictionary_frequencies > CosineAtoms::max_frequencies)
+      fail ("dictionary_frequencies", dictionary_frequencies,
+            "1 <= dictionary_frequencies <= " + std::to_string (CosineAtoms::max_frequencies));
+    if (basis != CosineBasisKind::Paper && basis != CosineBasisKind::Dct && basis != CosineBasisKind::DctQuadric)
+      fail ("basis", static_cast<int> (basis), "Paper, Dct or DctQuadric");
+    if (attributes.basis != CosineBasisKind::Paper && attributes.basis != CosineBasisKind::Dct)
+      fail ("attributes.basis", static_cast<int> (attributes.basis), "Paper or Dct");
+    if (attributes.max_atoms < 1)
+      fail ("attributes.max_atoms", attributes.max_atoms, "L >= 1");
+    if (!(attributes.tolerance >= 0.0 && std::isfinite (attributes.tolerance)))
+      fail ("attributes.tolerance", attributes.tolerance, "tolerance >= 0, finite");
+    if (!(max_compression_ratio >= 0.0 && std::isfinite (max_compression_ratio)))
+      fail ("max_compression_ratio", max_compression_ratio, "0 (no bound) or > 0, finite");
     for (int growth_floor : budget_growth_floors)
-      require (growth_floor >= 0, "budget growth floors must be >= 0, got " + std::to_string (growth_floor));
-    require (budget_sigma >= 0.0 && std::isfinite (budget_sigma),
-             "budget sigma must be >= 0, got " + std::to_string (budget_sigma));
-    require (atom_loss_allowance >= 0.0 && std::isfinite (atom_loss_allowance),
-             "atom loss allowance must be >= 0, got " + std::to_string (atom_loss_allowance));
+      if (growth_floor < 0)
+        fail ("budget_growth_floors", growth_floor, "each >= 0");
+    if (!(budget_sigma >= 0.0 && std::isfinite (budget_sigma)))
+      fail ("budget_sigma", budget_sigma, "budget_sigma >= 0, finite");
+    if (!(atom_loss_allowance >= 0.0 && std::isfinite (atom_loss_allowance)))
+      fail ("atom_loss_allowance", atom_loss_allowance, "atom_loss_allowance >= 0, finite");
   }
 
   bool

@@ -139,25 +139,27 @@ namespace pcl_sparse
   void
   validateHarris3DOptions (const Harris3DOptions& options)
   {
-    auto refuse = [] (const std::string& what) { throw Error ("Harris 3D option " + what); };
+    auto fail = [] (const std::string& field, double value, const std::string& range) {
+      throwOutOfRange ("Harris3DOptions", field, value, range);
+    };
     // Outside [0, 1/4] the response det E - k (tr E)^2 is no longer a corner measure (k > 1/4: never positive)
     // and a large k overflows it to -inf.
     if (!(options.k >= 0.0 && options.k <= 0.25))
-      refuse ("k must be in [0, 0.25]");
+      fail ("k", options.k, "0 <= k <= 0.25");
     if (options.rings < 0)
-      refuse ("rings must be >= 0 (0 = adaptive)");
+      fail ("rings", options.rings, "rings >= 0, 0 = adaptive");
     if (options.rings == 0 && !(options.adaptive_fraction > 0.0 && std::isfinite (options.adaptive_fraction)))
-      refuse ("adaptive_fraction must be > 0");
+      fail ("adaptive_fraction", options.adaptive_fraction, "adaptive_fraction > 0, finite");
     if (options.max_rings < 1)
-      refuse ("max_rings must be >= 1");
+      fail ("max_rings", options.max_rings, "max_rings >= 1");
     if (options.min_neighbors < 0)
-      refuse ("min_neighbors must be >= 0");
+      fail ("min_neighbors", options.min_neighbors, "min_neighbors >= 0");
     if (!(options.selection_fraction > 0.0 && options.selection_fraction <= 1.0))
-      refuse ("selection_fraction must be in (0, 1]");
+      fail ("selection_fraction", options.selection_fraction, "0 < selection_fraction <= 1");
     if (!(options.cluster_fraction >= 0.0 && std::isfinite (options.cluster_fraction)))
-      refuse ("cluster_fraction must be >= 0");
+      fail ("cluster_fraction", options.cluster_fraction, "cluster_fraction >= 0, finite");
     if (options.num_threads < 0)
-      refuse ("num_threads must be >= 0");
+      fail ("num_threads", options.num_threads, "num_threads >= 0");
   }
 
   double

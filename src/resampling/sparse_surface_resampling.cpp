@@ -579,7 +579,7 @@ namespace pcl_sparse
   SparseSurfaceResamplingBase::setPointCount (std::size_t count)
   {
     if (count == 0 || count > max_points)
-      throw Error (name_ + ": point count must be in [1, " + std::to_string (max_points) + "], got " +
+      throw Error ("[" + name_ + "::setPointCount] point count must be in [1, " + std::to_string (max_points) + "], got " +
                    std::to_string (count));
     mode_ = Mode::Count;
     count_ = count;
@@ -589,7 +589,8 @@ namespace pcl_sparse
   SparseSurfaceResamplingBase::setDensity (double density)
   {
     if (!(density > 0.0) || !std::isfinite (density))
-      throw Error (name_ + ": density must be a positive number of points per unit area");
+      throw Error ("[" + name_ + "::setDensity] density must be a positive number of points per unit area, got " +
+                   shortestDecimal (density));
     mode_ = Mode::Density;
     density_ = density;
   }
@@ -598,7 +599,7 @@ namespace pcl_sparse
   SparseSurfaceResamplingBase::setSpacing (double spacing)
   {
     if (!(spacing > 0.0) || !std::isfinite (spacing))
-      throw Error (name_ + ": spacing must be a positive length");
+      throw Error ("[" + name_ + "::setSpacing] spacing must be a positive length, got " + shortestDecimal (spacing));
     // 1e-200 gave an infinite density, 1e200 a zero one, and the error named a density nobody set.
     const double density = 1.0 / (spacing * spacing);
     if (!(density > 0.0) || !std::isfinite (density))
@@ -638,22 +639,22 @@ namespace pcl_sparse
   SparseSurfaceResamplingBase::checkSetup () const
   {
     if (!model_)
-      throw Error (name_ + "::compute: no input model (setInputModel)");
+      throw Error ("[" + name_ + "::compute] no input model (setInputModel)");
     if (!model_->basis)
-      throw Error (name_ + "::compute: the model has no basis");
+      throw Error ("[" + name_ + "::compute] the model has no basis");
     if (model_->patches.empty ())
-      throw Error (name_ + "::compute: the model has no patches");
+      throw Error ("[" + name_ + "::compute] the model has no patches");
     if (mode_ == Mode::None)
-      throw Error (name_ + "::compute: no density given (setPointCount, setDensity or setSpacing)");
+      throw Error ("[" + name_ + "::compute] no density given (setPointCount, setDensity or setSpacing)");
     options_.validate ();
     // A model from a file was checked by its reader; one built in memory is checked here (a NaN seed
     // aborted in the kd-tree, an atom outside the basis wrote past the evaluator's tables).
-    model_->checkPatches (name_ + "::compute: ");
+    model_->checkPatches ("[" + name_ + "::compute] ");
     for (const PatchCode& code : model_->patches)
       if (!(code.origin.cwiseAbs ().maxCoeff () < max_coordinate && code.radius < max_coordinate))
-        throw Error (name_ + "::compute: a patch lies beyond the range of float coordinates (1e30)");
+        throw Error ("[" + name_ + "::compute] a patch lies beyond the range of float coordinates (1e30)");
     if (!patch_numbers_.empty () && patch_numbers_.size () != model_->patches.size ())
-      throw Error (name_ + "::compute: " + std::to_string (patch_numbers_.size ()) + " patch numbers for " +
+      throw Error ("[" + name_ + "::compute] " + std::to_string (patch_numbers_.size ()) + " patch numbers for " +
                    std::to_string (model_->patches.size ()) + " patches");
   }
 
@@ -695,7 +696,7 @@ namespace pcl_sparse
     failure.rethrow ();
     const double area = std::accumulate (areas.begin (), areas.end (), 0.0);
     if (!(area > 0.0))
-      throw Error (name_ + "::compute: the model has no surface area to sample");
+      throw Error ("[" + name_ + "::compute] the model has no surface area to sample");
     return static_cast<double> (count_) / area;
   }
 
@@ -785,7 +786,7 @@ namespace pcl_sparse
         for (const PatchGrid& grid : passes.grids)
           cells += static_cast<std::size_t> (grid.n) * static_cast<std::size_t> (grid.n);
         if (cells > 64 * (count_ + m))
-          throw Error (name_ + "::compute: the model has no surface area to sample (no place of it is kept)");
+          throw Error ("[" + name_ + "::compute] the model has no surface area to sample (no place of it is kept)");
         density *= 4.0;
         continue;
       }
@@ -814,7 +815,7 @@ namespace pcl_sparse
       total += static_cast<double> (counts[p]);
     }
     if (total > static_cast<double> (max_points))
-      throw Error (name_ + "::compute: density gives more than " + std::to_string (max_points) + " points");
+      throw Error ("[" + name_ + "::compute] density gives more than " + std::to_string (max_points) + " points");
     return counts;
   }
 
@@ -992,8 +993,8 @@ namespace pcl_sparse
     const double weight = std::accumulate (passes.weights.begin (), passes.weights.end (), 0.0);
     // weight is the expected number of points: under half a point, the cloud would be empty or one lucky point.
     if (!(weight >= 0.5))
-      throw Error (name_ + "::compute: no point falls on the model's surface at density " + std::to_string (density) +
-                   " points per unit area (" + std::to_string (weight) +
+      throw Error ("[" + name_ + "::compute] no point falls on the model's surface at density " + shortestDecimal (density) +
+                   " points per unit area (" + shortestDecimal (weight) +
                    " expected: too low for the model's size: raise the density or ask for a count)");
     // A cell holds one expected point on flat ground, so weights are areas in units of 1 / density.
     estimated_area_ = weight / density;
