@@ -83,6 +83,35 @@ namespace
     return e;
   }
 
+  /// \a mesh's vertices as a PCL cloud with intensity 1000 z.
+  pcl::PointCloud<pcl::PointXYZI>::Ptr
+  intensityCloud (const TriangleMesh& mesh)
+  {
+    auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> ();
+    for (const Eigen::Vector3d& v : mesh.vertices)
+    {
+      pcl::PointXYZI p;
+      p.getVector3fMap () = v.cast<float> ();
+      p.intensity = static_cast<float> (1000.0 * v.z ());
+      cloud->push_back (p);
+    }
+    return cloud;
+  }
+
+  /// \a mesh's triangles as PCL polygons.
+  std::shared_ptr<std::vector<pcl::Vertices>>
+  cloudPolygons (const TriangleMesh& mesh)
+  {
+    auto polygons = std::make_shared<std::vector<pcl::Vertices>> ();
+    for (const Eigen::Vector3i& t : mesh.triangles)
+    {
+      pcl::Vertices polygon;
+      polygon.vertices = {t[0], t[1], t[2]};
+      polygons->push_back (polygon);
+    }
+    return polygons;
+  }
+
   /// The model without its attributes.
   SparseSurfaceModel
   geometryOf (SparseSurfaceModel model)
@@ -217,21 +246,8 @@ TEST (Attributes, CloudWithColourGivesTheColoursAutomatically)
 TEST (Attributes, IntensityCloudAndMeshWithoutAttributes)
 {
   const TriangleMesh sphere = makeIcosphere (3);
-  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> ();
-  auto polygons = std::make_shared<std::vector<pcl::Vertices>> ();
-  for (const Eigen::Vector3d& v : sphere.vertices)
-  {
-    pcl::PointXYZI p;
-    p.getVector3fMap () = v.cast<float> ();
-    p.intensity = static_cast<float> (1000.0 * v.z ());
-    cloud->push_back (p);
-  }
-  for (const Eigen::Vector3i& t : sphere.triangles)
-  {
-    pcl::Vertices polygon;
-    polygon.vertices = {t[0], t[1], t[2]};
-    polygons->push_back (polygon);
-  }
+  const auto cloud = intensityCloud (sphere);
+  const auto polygons = cloudPolygons (sphere);
   SparseSurfaceEncoder<pcl::PointXYZI> encoder;
   encoder.setInputCloud (cloud);
   encoder.setInputPolygons (polygons);
@@ -305,21 +321,8 @@ TEST (Attributes, MissingValuesTakeTheNearestPointsValue)
   // Through the stage: a cloud with one NaN intensity codes as the cloud where that point has its nearest
   // point's intensity; a cloud whose intensities are all NaN codes the geometry alone.
   const TriangleMesh sphere = makeIcosphere (3);
-  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> ();
-  auto polygons = std::make_shared<std::vector<pcl::Vertices>> ();
-  for (const Eigen::Vector3d& v : sphere.vertices)
-  {
-    pcl::PointXYZI p;
-    p.getVector3fMap () = v.cast<float> ();
-    p.intensity = static_cast<float> (1000.0 * v.z ());
-    cloud->push_back (p);
-  }
-  for (const Eigen::Vector3i& t : sphere.triangles)
-  {
-    pcl::Vertices polygon;
-    polygon.vertices = {t[0], t[1], t[2]};
-    polygons->push_back (polygon);
-  }
+  const auto cloud = intensityCloud (sphere);
+  const auto polygons = cloudPolygons (sphere);
   const auto encodeCloud = [&] (const pcl::PointCloud<pcl::PointXYZI>::ConstPtr& input, AttributeGaps& found) {
     SparseSurfaceEncoder<pcl::PointXYZI> encoder;
     encoder.setInputCloud (input);
@@ -327,7 +330,7 @@ TEST (Attributes, MissingValuesTakeTheNearestPointsValue)
     SparseSurfaceModel model;
     encoder.compute (model);
     found = encoder.getAttributeGaps ();
-    return encodeModel (model);
+    return model;
   };
   // A vertex whose nearest vertex is nearer than the second by 1 % (no tie for float rounding to break).
   std::size_t missing = 0, nearest = 0;
@@ -348,7 +351,7 @@ TEST (Attributes, MissingValuesTakeTheNearestPointsValue)
   auto filled_by_hand = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> (*cloud);
   (*filled_by_hand)[missing].intensity = (*cloud)[nearest].intensity;
   AttributeGaps found, none;
-  EXPECT_EQ (encodeCloud (with_nan, found), encodeCloud (filled_by_hand, none));
+  EXPECT_EQ (encodeModel (encodeCloud (with_nan, found)), encodeModel (encodeCloud (filled_by_hand, none)));
   EXPECT_EQ (found.filled, 1u);
   EXPECT_TRUE (found.dropped.empty ());
   EXPECT_EQ (none.filled, 0u);
@@ -356,14 +359,10 @@ TEST (Attributes, MissingValuesTakeTheNearestPointsValue)
   auto all_nan = std::make_shared<pcl::PointCloud<pcl::PointXYZI>> (*cloud);
   for (auto& p : *all_nan)
     p.intensity = nan;
-  SparseSurfaceEncoder<pcl::PointXYZI> encoder;
-  encoder.setInputCloud (all_nan);
-  encoder.setInputPolygons (polygons);
-  SparseSurfaceModel geometry_only;
-  encoder.compute (geometry_only);
-  EXPECT_FALSE (geometry_only.hasAttributes ());
-  ASSERT_EQ (encoder.getAttributeGaps ().dropped.size (), 1u);
-  EXPECT_EQ (encoder.getAttributeGaps ().dropped[0], AttributeChannel::Intensity);
+  AttributeGaps all;
+  EXPECT_FALSE (encodeCloud (all_nan, all).hasAttributes ());
+  ASSERT_EQ (all.dropped.size (), 1u);
+  EXPECT_EQ (all.dropped[0], AttributeChannel::Intensity);
 }
 
 TEST (Attributes, ModelFileKeepsTheColours)
