@@ -899,6 +899,66 @@ TEST (TiledEncoding, StrayScanPointsDoNotFailTheEncoding)
   EXPECT_LT (stats.max_error, 2.4e-3);
 }
 
+// A scan whose left part has no intensity (NaN): the tiles there leave the channel out (fillAttributeGaps
+// finds no value in them), the others code it, and the merged model has it for every patch; it failed with
+// "mergeTileEncodings: tile 0 has other attribute channels".
+TEST (TiledEncoding, TilesWithoutAnAttributeValueMergeWithTheOthers)
+{
+  auto scan = std::make_shared<ScanCloud> ();
+  std::mt19937 mt (11);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  for (int i = 0; i < 4000; ++i)
+  {
+    const double x = u (mt), y = u (mt);
+    scan->positions.emplace_back (x, y, 0.001 * u (mt));
+    scan->intensities.push_back (x < -0.2 ? std::numeric_limits<float>::quiet_NaN () : static_cast<float> (100.0 + 100.0 * x));
+  }
+  scan->width = static_cast<std::uint32_t> (scan->positions.size ());
+  scan->height = 1;
+  TileGridOptions grid;
+  grid.tiles_along_longest = 4;
+  TiledSurfaceEncoder encoder;
+  encoder.setTileSource (std::make_shared<MemoryTileSource> (scan, grid));
+  TiledModel tiled;
+  ASSERT_NO_THROW (encoder.compute (tiled));
+  ASSERT_EQ (tiled.model.attribute_channels.size (), 1u);
+  EXPECT_EQ (tiled.model.attribute_channels[0].channel, AttributeChannel::Intensity);
+  std::size_t without = 0;
+  for (const PatchCode& patch : tiled.model.patches)
+  {
+    ASSERT_EQ (patch.attributes.size (), 1u);
+    without += patch.attributes[0].atoms.empty () ? 1 : 0;
+  }
+  EXPECT_GT (without, 0u);  // the left tiles' patches
+  const double lower = tiled.model.attribute_channels[0].lower;
+  EXPECT_GE (lower, 80.0 - 1e-3);  // the values given, not a filler's
+  const std::vector<std::uint8_t> bytes = encodeModel (tiled.model);
+  const auto model = std::make_shared<const SparseSurfaceModel> (decodeModel (bytes.data (), bytes.size ()));
+  SparseSurfaceResampling<pcl::PointXYZINormal> resampling;
+  resampling.setInputModel (model);
+  resampling.setPointCount (8000);
+  pcl::PointCloud<pcl::PointXYZINormal> cloud;
+  resampling.compute (cloud);
+  ASSERT_GT (cloud.size (), 7000u);
+  double worst_right = 0.0, worst_left = 0.0;
+  std::size_t right = 0, left = 0;
+  for (const auto& p : cloud)
+    if (p.x > 0.1)
+    {
+      ++right;
+      worst_right = std::max (worst_right, std::abs (p.intensity - (100.0 + 100.0 * p.x)));
+    }
+    else if (p.x < -0.6)
+    {
+      ++left;
+      worst_left = std::max (worst_left, std::abs (p.intensity - lower));
+    }
+  ASSERT_GT (right, 2000u);
+  ASSERT_GT (left, 1000u);
+  EXPECT_LT (worst_right, 8.0);  // 5.2 measured, of 80 .. 200
+  EXPECT_LT (worst_left, 1e-3);
+}
+
 // TileSource::setViewPoint reaches each tile's encoder: a plane of scan points seen from above or below gets
 // every patch's normal toward the viewpoint (without it, a consistent orientation picks one sign for both).
 TEST (TiledEncoding, ViewPointOfTheSourceOrientsEveryTile)

@@ -35,19 +35,45 @@ namespace pcl_sparse
       omp_set_num_threads (1);
     }
 
-    /// Union of two attribute channel lists of the same channels (ranges widened).
-    void
-    widenChannels (std::vector<AttributeChannelInfo>& into, const std::vector<AttributeChannelInfo>& from, std::size_t t)
+    /// The channels of every tile with patches, each once, in channel order, their ranges widened over the
+    /// tiles. A tile may lack a channel others have: the stage leaves out a channel none of its points has a
+    /// value in (fillAttributeGaps), and a tile sees only its part of the input.
+    std::vector<AttributeChannelInfo>
+    unionOfChannels (const std::vector<TileEncoding>& tiles)
     {
-      if (into.size () != from.size ())
-        throw Error ("mergeTileEncodings: tile " + std::to_string (t) + " has other attribute channels");
-      for (std::size_t c = 0; c < into.size (); ++c)
-      {
-        if (into[c].channel != from[c].channel)
-          throw Error ("mergeTileEncodings: tile " + std::to_string (t) + " has other attribute channels");
-        into[c].lower = std::min (into[c].lower, from[c].lower);
-        into[c].upper = std::max (into[c].upper, from[c].upper);
-      }
+      std::vector<AttributeChannelInfo> all;
+      for (const TileEncoding& tile : tiles)
+        if (!tile.model.patches.empty ())
+          for (const AttributeChannelInfo& info : tile.model.attribute_channels)
+          {
+            auto same = std::find_if (all.begin (), all.end (),
+                                      [&] (const AttributeChannelInfo& a) { return a.channel == info.channel; });
+            if (same == all.end ())
+              all.push_back (info);
+            else
+            {
+              same->lower = std::min (same->lower, info.lower);
+              same->upper = std::max (same->upper, info.upper);
+            }
+          }
+      std::sort (all.begin (), all.end (), [] (const AttributeChannelInfo& a, const AttributeChannelInfo& b) {
+        return a.channel < b.channel;
+      });
+      return all;
+    }
+
+    /// \a patch's attribute codes, coded for \a from, in the order of \a to: a channel \a from lacks gets a
+    /// code without atoms (its value is the channel's lower bound, where resampling clamps the 0 it evaluates to).
+    void
+    reorderAttributeCodes (PatchCode& patch, const std::vector<AttributeChannelInfo>& from,
+                           const std::vector<AttributeChannelInfo>& to)
+    {
+      std::vector<SparseCode> codes (to.size ());
+      for (std::size_t c = 0; c < from.size () && c < patch.attributes.size (); ++c)
+        for (std::size_t k = 0; k < to.size (); ++k)
+          if (to[k].channel == from[c].channel)
+            codes[k] = std::move (patch.attributes[c]);
+      patch.attributes = std::move (codes);
     }
 
     /// Whether two bases are the same atoms (same cosine kind and size; another basis: the same object).
@@ -241,6 +267,7 @@ namespace pcl_sparse
     tiled.grid = grid;
     SparseSurfaceModel& model = tiled.model;
     model.num_input_vertices = total_points;
+    model.attribute_channels = unionOfChannels (tiles);
     Eigen::AlignedBox3d bounds;
     bool first = true;
     for (std::size_t i = 0; i < tiles.size (); ++i)
@@ -257,23 +284,22 @@ namespace pcl_sparse
       if (first)
       {
         model.basis = tile.model.basis;
-        model.attribute_channels = tile.model.attribute_channels;
-        model.attribute_basis = tile.model.attribute_basis;
         first = false;
       }
-      else
-      {
-        if (!sameBasis (tile.model.basis, model.basis))
-          throw Error ("mergeTileEncodings: tile " + std::to_string (tile.tile) + " has another basis");
-        widenChannels (model.attribute_channels, tile.model.attribute_channels, tile.tile);
-      }
+      else if (!sameBasis (tile.model.basis, model.basis))
+        throw Error ("mergeTileEncodings: tile " + std::to_string (tile.tile) + " has another basis");
+      if (!model.attribute_basis && !model.attribute_channels.empty ())
+        model.attribute_basis = tile.model.attribute_basis;
       TileRange range;
       range.tile = tile.tile;
       range.first_patch = model.patches.size ();
       range.num_patches = tile.model.patches.size ();
       tiled.tiles.push_back (range);
       for (PatchCode& patch : tile.model.patches)
+      {
+        reorderAttributeCodes (patch, tile.model.attribute_channels, model.attribute_channels);
         model.patches.push_back (std::move (patch));
+      }
     }
     model.bbox_diagonal = bounds.isEmpty () ? 0.0 : bounds.diagonal ().norm ();
     tiled.total_patches = model.patches.size ();

@@ -131,12 +131,14 @@ namespace pcl_sparse
                       const std::function<void (double)>& progress = {}, bool keep_xy = true);
 
   /// \brief The whole model from its tiles' encodings (patches in tile order; whole-input vertex count,
-  /// diagonal and attribute ranges).
+  /// diagonal and attribute ranges). The model's attribute channels are every tile's: a tile whose points
+  /// have no value in a channel (left out by fillAttributeGaps) gives its patches codes without atoms there,
+  /// which resample as the channel's lower bound.
   /// \param[in] grid          the grid
   /// \param[in] total_points  points of the whole input (TileSource::totalPoints)
   /// \param[in] tiles         encodings of every tile with core points, in any order
   /// \return the tiled model
-  /// \throws pcl_sparse::Error for a tile twice, tiles with different bases or attribute channels
+  /// \throws pcl_sparse::Error for a tile twice or tiles with different bases
   TiledModel
   mergeTileEncodings (const TileGrid& grid, std::size_t total_points, std::vector<TileEncoding> tiles);
 
