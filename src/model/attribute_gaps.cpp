@@ -18,10 +18,13 @@ namespace pcl_sparse
       return p.cast<float> ().allFinite ();
     }
 
-    /// Fills channel \a c; returns the number of values filled, or -1 when the channel has no finite value.
+    /// Fills the gaps of one channel's \a column; returns the number of values filled, or -1 when no vertex
+    /// with a position has a value.
     long long
     fillChannel (Eigen::Ref<Eigen::VectorXf> column, const std::vector<Eigen::Vector3d>& positions)
     {
+      if (column.allFinite ())
+        return 0;  // the usual case: no tree to build
       const Eigen::Index n = column.size ();
       std::vector<Eigen::Index> gaps;
       std::vector<Eigen::Index> sources;
@@ -38,8 +41,6 @@ namespace pcl_sparse
           source_points.push_back (pcl::PointXYZ (p.x (), p.y (), p.z ()));
         }
       }
-      if (gaps.empty ())
-        return 0;
       // No placed vertex has a value: the channel says nothing about the surface.
       if (sources.empty ())
         return -1;

@@ -86,10 +86,10 @@ namespace pcl_sparse
     double atom_loss_allowance = 0.0;
 
     /// Throws pcl_sparse::Error naming the first option out of range ("SparseSurfaceEncoderOptions:
-    /// coding.tolerance = 2 is out of range (0 < eps < 1)"): the patch options, rho > 0,
-    /// 0 <= f <= 1, L >= 1, eps in (0, 1), quadric preference in [0, 1], m_min in [0, 100000], footprint
-    /// angles in [3, 4096], triangle samples in [0, 16], n in [1, 64], attribute L >= 1 and tolerance >= 0, max_compression_ratio >= 0, growth
-    /// floors >= 0, budget_sigma >= 0, atom_loss_allowance >= 0.
+    /// coding.tolerance = 2 is out of range (0 < eps < 1)"): the patch options, rho > 0, 0 <= f <= 1,
+    /// L >= 1, eps in (0, 1), quadric preference in [0, 1], m_min in [0, 100000], footprint angles in
+    /// [3, 4096], triangle samples in [0, 16], n in [1, 64], attribute L >= 1 and tolerance >= 0,
+    /// max_compression_ratio >= 0, growth floors >= 0, budget_sigma >= 0, atom_loss_allowance >= 0.
     void validate () const;
   };
 
