@@ -174,7 +174,8 @@ namespace pcl_sparse
           .add ("isolated_points", surface->isolated)
           .add ("unreferenced_points", surface->unreferenced)
           .add ("noise", surface->noise)
-          .add ("spacing", surface->spacing);
+          .add ("spacing", surface->spacing)
+          .add ("default_pose_ignored", surface->default_pose_ignored);
     }
 
     void
@@ -202,6 +203,9 @@ namespace pcl_sparse
         pcl::console::print_info ("; surface: spacing %.4g, noise %.3g, %zu outliers, %zu isolated", surface->spacing,
                                   surface->noise, surface->outliers, surface->isolated);
       pcl::console::print_info ("\n");
+      if (surface && surface->default_pose_ignored)
+        printNote ("the scan's sensor pose is PCL's default (0, 0, 0), but its points do not thin out away from there: "
+                   "no sensor stood there, so the normals are oriented consistently instead (-viewpoint X,Y,Z if one did)");
     }
   } // namespace tools
 } // namespace pcl_sparse

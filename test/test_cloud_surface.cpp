@@ -4,6 +4,7 @@
 // result for 1 and 2 threads, and the real scans of ../shared/clouds.
 
 #include <pcl_sparse/cloud/cloud_surface.h>
+#include <pcl_sparse/cloud/sensor_evidence.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/io/mesh_io.h>
@@ -481,6 +482,96 @@ TEST (CloudSurface, FlatScanWithoutViewpointFacesUp)
   for (const auto& n : s.normals)
     down += n.z () <= 0.0 ? 1 : 0;
   EXPECT_EQ (down, 0u);
+}
+
+namespace
+{
+  /// An airborne-like tile: points on a jittered 1 m grid over 100 x 100 m of gently rolling ground at
+  /// height \a z0 (uniform spacing, whatever the distance from the origin).
+  std::vector<Eigen::Vector3d>
+  airborneTile (double z0, std::mt19937& rng)
+  {
+    std::uniform_real_distribution<double> jitter (-0.3, 0.3);
+    std::vector<Eigen::Vector3d> points;
+    for (int i = -50; i < 50; ++i)
+      for (int j = -50; j < 50; ++j)
+      {
+        const double x = i + jitter (rng), y = j + jitter (rng);
+        points.emplace_back (x, y, z0 + 2.0 * std::sin (0.05 * x) * std::cos (0.07 * y));
+      }
+    return points;
+  }
+
+  /// A sensor at the origin sampling a box room (walls 3-12 m away, floor 1.5 m below, ceiling 1.5 m above)
+  /// at fixed angular steps, as a list of points: the farther, the sparser.
+  std::vector<Eigen::Vector3d>
+  roomSeenFromTheOrigin ()
+  {
+    const Eigen::Vector3d low (-12.0, -3.0, -1.5), high (6.0, 9.0, 1.5);
+    std::vector<Eigen::Vector3d> points;
+    for (int a = 0; a < 360; ++a)
+      for (int e = -60; e <= 60; e += 2)
+      {
+        const double azimuth = a * M_PI / 180.0, elevation = e * M_PI / 180.0;
+        const Eigen::Vector3d ray (std::cos (elevation) * std::cos (azimuth), std::cos (elevation) * std::sin (azimuth),
+                                   std::sin (elevation));
+        double t = std::numeric_limits<double>::infinity ();
+        for (int k = 0; k < 3; ++k)
+          if (ray[k] != 0.0)
+            t = std::min (t, (ray[k] > 0.0 ? high[k] : low[k]) / ray[k]);
+        points.push_back (t * ray);
+      }
+    return points;
+  }
+} // namespace
+
+// PCL writes the pose (0, 0, 0), identity, into every cloud whose sensor nobody set. An airborne tile moved
+// near the origin (to fit float coordinates) had its normals turned toward that "sensor" under its ground:
+// 96 % of samp11-utm.pcd's resampled normals pointed down once moved 5 m above the origin, 61 % with the
+// origin amid its heights.
+TEST (CloudSurface, DefaultPoseWhereNoSensorStoodIsNotUsed)
+{
+  std::mt19937 rng (17);
+  for (const double z0 : {20.0, 0.0})
+  {
+    ScanCloud scan = makeScan (airborneTile (z0, rng));
+    scan.has_sensor_pose = true;  // as PCL's readers and conversions say of every cloud
+    std::vector<std::uint8_t> finite (scan.size (), 1);
+    const SensorSpacingEvidence evidence = sensorSpacingEvidence (scan.positions, finite, Eigen::Vector3d::Zero ());
+    EXPECT_EQ (evidence.sampled, 3334u);  // every 3rd of the 10000, for at most 4096
+    EXPECT_GE (evidence.range_ratio, 2.0) << z0;
+    EXPECT_LT (std::abs (evidence.correlation), 0.15) << z0;
+    EXPECT_FALSE (evidence.consistent);
+    const CloudSurface s = buildCloudSurface (scan);
+    EXPECT_TRUE (s.default_pose_ignored);
+    EXPECT_FALSE (s.has_viewpoint);
+    EXPECT_EQ (s.orientation, NormalOrientation::SpanningTree);
+    std::size_t down = 0;
+    for (const auto& n : s.normals)
+      down += n.z () <= 0.0 ? 1 : 0;
+    EXPECT_EQ (down, 0u) << "ground at " << z0;
+    // A pose someone set is used as given, wherever it is.
+    scan.sensor_origin = Eigen::Vector3d (0.0, 0.0, -1.0);
+    const CloudSurface set = buildCloudSurface (scan);
+    EXPECT_FALSE (set.default_pose_ignored);
+    EXPECT_TRUE (set.has_viewpoint);
+  }
+
+  // A sensor that did stand at the origin keeps it: the room's normals face it (a spanning tree would turn
+  // them outward, as on any closed surface).
+  ScanCloud room = makeScan (roomSeenFromTheOrigin ());
+  room.has_sensor_pose = true;
+  const std::vector<std::uint8_t> finite (room.size (), 1);
+  const SensorSpacingEvidence evidence = sensorSpacingEvidence (room.positions, finite, Eigen::Vector3d::Zero ());
+  EXPECT_GT (evidence.correlation, 0.5);
+  EXPECT_TRUE (evidence.consistent);
+  const CloudSurface s = buildCloudSurface (room);
+  EXPECT_FALSE (s.default_pose_ignored);
+  ASSERT_TRUE (s.has_viewpoint);
+  std::size_t away = 0;
+  for (std::size_t i = 0; i < room.size (); ++i)
+    away += s.normals[i].dot (-room.positions[i]) <= 0.0 ? 1 : 0;
+  EXPECT_LT (away, room.size () / 100);
 }
 
 TEST (CloudSurface, SurfaceFeedsTheEncoder)

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -259,6 +260,44 @@ TEST_F (ScanTools, AMissingIntensityTakesItsNeighboursAndIsNamedInANote)
   ASSERT_EQ (runTool ("pcl_sparse_resample", path ("gap.pcd") + " " + path ("gap.pcd.out.pcd") + " -q", out, err), 0)
     << err;
   EXPECT_EQ (err, "");
+}
+
+TEST_F (ScanTools, ATileMovedNearTheOriginKeepsItsNormalsUp)
+{
+  // An airborne-like tile 20 m above the origin, written with PCL's default VIEWPOINT: the normals face up
+  // untiled, tiled in memory and spilled (they faced the origin, down, before), and --json says why.
+  std::ostringstream points;
+  std::mt19937 mt (23);
+  std::uniform_real_distribution<double> jitter (-0.3, 0.3);
+  for (int i = -40; i < 40; ++i)
+    for (int j = -40; j < 40; ++j)
+    {
+      const double x = i + jitter (mt), y = j + jitter (mt);
+      points << x << " " << y << " " << 20.0 + std::sin (0.1 * x) << "\n";
+    }
+  std::ofstream (path ("tile.pcd")) << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                                       "WIDTH 6400\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 6400\nDATA ascii\n"
+                                    << points.str ();
+  std::string out, err;
+  ASSERT_EQ (runTool ("pcl_sparse_resample", path ("tile.pcd") + " " + path ("whole.pcd") + " --json", out, err), 0) << err;
+  EXPECT_NE (out.find ("\"default_pose_ignored\": true"), std::string::npos) << out;
+  // Tiled in memory and spilled (-memory): the tile sources judge the pose on every point.
+  for (const auto& [tiling, name] : {std::pair ("-tiles 3", "tiled.pcd"), std::pair ("-memory 1M", "spilled.pcd")})
+  {
+    ASSERT_EQ (runTool ("pcl_sparse_encode", path ("tile.pcd") + " -o " + path ("tile.psm") + " " + tiling + " -q", out, err), 0)
+      << err;
+    ASSERT_EQ (runTool ("pcl_sparse_decode", path ("tile.psm") + " " + path (name) + " -q", out, err), 0) << err;
+  }
+  for (const std::string name : {"whole.pcd", "tiled.pcd", "spilled.pcd"})
+  {
+    pcl::PointCloud<pcl::PointNormal> cloud;
+    ASSERT_EQ (pcl::io::loadPCDFile (path (name), cloud), 0) << name;
+    ASSERT_GT (cloud.size (), 6000u);
+    std::size_t down = 0;
+    for (const auto& p : cloud)
+      down += p.normal_z <= 0.0f ? 1 : 0;
+    EXPECT_EQ (down, 0u) << name;
+  }
 }
 
 TEST_F (ScanTools, ColourAndIntensityAreWrittenWhereTheScanHasThem)

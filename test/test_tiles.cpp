@@ -991,6 +991,37 @@ TEST (TiledEncoding, ViewPointOfTheSourceOrientsEveryTile)
   }
 }
 
+// PCL's default pose (0, 0, 0) under an airborne-like tile is judged once on the whole input, by the tile
+// source: a tile's part of the points lies at too narrow a range of distances to tell, and kept the pose.
+TEST (TiledEncoding, DefaultPoseIsJudgedOnTheWholeInput)
+{
+  auto scan = std::make_shared<ScanCloud> ();
+  std::mt19937 mt (19);
+  std::uniform_real_distribution<double> jitter (-0.3, 0.3);
+  for (int i = -50; i < 50; ++i)
+    for (int j = -50; j < 50; ++j)
+    {
+      const double x = i + jitter (mt), y = j + jitter (mt);
+      scan->positions.emplace_back (x, y, 20.0 + 2.0 * std::sin (0.05 * x) * std::cos (0.07 * y));
+    }
+  scan->width = static_cast<std::uint32_t> (scan->positions.size ());
+  scan->height = 1;
+  scan->has_sensor_pose = true;  // PCL's default pose, as every PCD and PCL cloud states
+  TileGridOptions grid;
+  grid.tiles_along_longest = 3;
+  const auto source = std::make_shared<MemoryTileSource> (scan, grid);
+  EXPECT_FALSE (source->loadTile (0).scan->has_sensor_pose);
+  TiledSurfaceEncoder encoder;
+  encoder.setTileSource (source);
+  TiledModel tiled;
+  encoder.compute (tiled);
+  ASSERT_GE (tiled.model.patches.size (), 9u);
+  std::size_t up = 0;
+  for (const PatchCode& patch : tiled.model.patches)
+    up += patch.frame.col (2).z () > 0.0 ? 1 : 0;
+  EXPECT_EQ (up, tiled.model.patches.size ());
+}
+
 TEST (TiledEncoding, WavefrontHoldsVertexListsForABandOfTiles)
 {
   // 103k vertices in 12 x 12 x 2 tiles; fast options (the order and memory are tested, not the model).

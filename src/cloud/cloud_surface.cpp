@@ -10,6 +10,7 @@
 #include <pcl_sparse/cloud/normal_orientation.h>
 #include <pcl_sparse/cloud/pca_normals.h>
 #include <pcl_sparse/cloud/scan_noise.h>
+#include <pcl_sparse/cloud/sensor_evidence.h>
 #include <pcl_sparse/cloud/small_hole_filling.h>
 #include <pcl_sparse/cloud/tangent_triangulation.h>
 #include <pcl_sparse/cloud/triangle_winding.h>
@@ -97,9 +98,12 @@ namespace pcl_sparse
       return v.allFinite () && outside <= 100.0 * box.diagonal ().norm ();
     }
 
-    /// Resolves the orientation mode and the viewpoints (local frame) from the options and the scan.
+    /// Resolves the orientation mode and the viewpoints (local frame) from the options and the scan. A list
+    /// of points (unorganized) stating PCL's default pose keeps it only if its points thin out with their
+    /// distance from it (sensorSpacingEvidence); an organized cloud is a camera's image, taken from its pose.
     NormalOrientation
-    planOrientation (const ScanCloud& scan, const CloudSurfaceOptions& options, Work& work)
+    planOrientation (const ScanCloud& scan, const CloudSurfaceOptions& options, const std::vector<std::uint8_t>& finite,
+                     Work& work, CloudSurface& surface)
     {
       if (!options.point_viewpoints.empty ())
         for (const auto& v : options.point_viewpoints)
@@ -107,7 +111,13 @@ namespace pcl_sparse
       else if (options.has_viewpoint)
         work.viewpoints.points.push_back (options.viewpoint - scan.origin);
       const Eigen::Vector3d sensor = scan.sensor_origin - scan.origin;
-      const bool sensor_ok = scan.has_sensor_pose && plausibleViewpoint (scan, sensor);
+      bool sensor_ok = scan.has_sensor_pose && plausibleViewpoint (scan, sensor);
+      if (sensor_ok && options.point_viewpoints.empty () && !options.has_viewpoint &&
+          defaultPoseIsUnsupported (scan, finite))
+      {
+        sensor_ok = false;
+        surface.default_pose_ignored = true;
+      }
       NormalOrientation mode = options.orientation;
       if (mode == NormalOrientation::Auto)
       {
@@ -390,7 +400,7 @@ namespace pcl_sparse
     const std::size_t n = input.size ();
     CloudSurface surface;
     Work work;
-    surface.orientation = planOrientation (input, options, work);
+    surface.orientation = planOrientation (input, options, finite, work, surface);
     ScanCloud without_steps;
     const ScanCloud& scan = withoutDepthSteps (input, options, finite, work, without_steps, surface);
     surface.mesh.vertices = scan.positions;

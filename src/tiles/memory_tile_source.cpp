@@ -1,5 +1,6 @@
 #include <pcl_sparse/tiles/memory_tile_source.h>
 
+#include <pcl_sparse/cloud/sensor_evidence.h>
 #include <pcl_sparse/common/error.h>
 
 #include <limits>
@@ -23,6 +24,11 @@ namespace pcl_sparse
     if (!scan || scan->size () == 0)
       throw Error ("MemoryTileSource: " + (scan ? scan->report : ScanCleaningReport ()).emptyScanMessage ());
     cut (worldPositions (*scan), options);
+    // Judged once on every point: a tile's part of them cannot tell (its distances vary too little).
+    std::vector<std::uint8_t> finite (scan->size ());
+    for (std::size_t i = 0; i < scan->size (); ++i)
+      finite[i] = scan->positions[i].allFinite () ? 1 : 0;
+    sensor_pose_ = scan->has_sensor_pose && !defaultPoseIsUnsupported (*scan, finite);
   }
 
   MemoryTileSource::MemoryTileSource (const TriangleMesh::ConstPtr& mesh, const TileGridOptions& options) : mesh_ (mesh)
@@ -75,7 +81,8 @@ namespace pcl_sparse
       tile->origin = scan.origin;
       tile->sensor_origin = scan.sensor_origin;
       tile->sensor_orientation = scan.sensor_orientation;
-      tile->has_sensor_pose = scan.has_sensor_pose;
+      tile->has_sensor_pose = sensor_pose_;
+      tile->sensor_pose_checked = true;
       tile->fields = scan.fields;
       for (std::size_t i = 0; i < scan.size (); ++i)
         if (tile_of_[i] == t || inMargin (i, box))

@@ -1,5 +1,7 @@
 #include <pcl_sparse/tiles/spilled_tile_source.h>
 
+#include <pcl_sparse/cloud/sensor_evidence.h>
+
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/scan_stream.h>
 #include <pcl_sparse/tiles/tile_membership.h>
@@ -44,6 +46,7 @@ namespace pcl_sparse
       ScanCleaningReport report;  ///< input_points, non_finite, at_sensor_origin; kept = the rest
       bool float_vectors = true;  ///< every kept point's vectors are floats: 4-byte coordinates in the spill
       ScanCloud like;             ///< the first chunk's attributes (which ones the file has)
+      std::vector<Eigen::Vector3d> sample;       ///< every stride-th kept point (file frame), to judge the pose
       std::vector<std::size_t> dropped_from;     ///< runs of dropped points: first file index
       std::vector<std::size_t> dropped_through;  ///< points dropped up to the end of each run
 
@@ -89,12 +92,32 @@ namespace pcl_sparse
       return true;
     }
 
+    /// defaultPoseIsUnsupported on pass 1's \a sample (file frame, within \a box) of a file of \a layout.
+    bool
+    defaultPoseIsUnsupported (const std::vector<Eigen::Vector3d>& sample, const Eigen::AlignedBox3d& box,
+                              const ScanCloud& layout)
+    {
+      if (sample.empty ())
+        return false;
+      ScanCloud scan;
+      scan.origin = box.center ();  // a local frame, as a loaded scan's, so that float spacings keep their digits
+      for (const Eigen::Vector3d& p : sample)
+        scan.positions.push_back (p - scan.origin);
+      scan.width = static_cast<std::uint32_t> (sample.size ());
+      scan.height = layout.isOrganized () ? 2 : 1;  // an organized file's pose is a camera's: not judged
+      scan.sensor_origin = layout.sensor_origin;
+      scan.sensor_orientation = layout.sensor_orientation;
+      scan.has_sensor_pose = layout.has_sensor_pose;
+      return pcl_sparse::defaultPoseIsUnsupported (scan, std::vector<std::uint8_t> (sample.size (), 1));
+    }
+
     FirstPass
     firstPass (ScanStreamReader& reader, const SpillOptions& options)
     {
       FirstPass pass;
       // cleanScan compares in the local frame, p == sensor_origin - origin; chunks are in the file's frame.
       const Eigen::Vector3d sensor = reader.layout ().sensor_origin;
+      const std::size_t stride = std::max<std::size_t> (1, reader.size () / 4096);
       ScanCloud chunk;
       while (reader.read (chunk, options.chunk_points))
       {
@@ -114,6 +137,8 @@ namespace pcl_sparse
           if (keepsPoint (chunk.positions[i], sensor, options.cleaning, pass.report))
           {
             pass.box.extend (chunk.positions[i]);
+            if ((first + i) % stride == 0)
+              pass.sample.push_back (chunk.positions[i]);
             ++pass.report.kept;
             pass.float_vectors = pass.float_vectors && tiles_detail::SpillRecord::isFloat (chunk, i);
           }
@@ -223,6 +248,7 @@ namespace pcl_sparse
     const FirstPass pass = firstPass (reader, options);
     auto impl = std::make_unique<Impl> ();
     impl->layout = reader.layout ();
+    impl->layout.has_sensor_pose = impl->layout.has_sensor_pose && !defaultPoseIsUnsupported (pass.sample, pass.box, impl->layout);
     impl->record.emplace (pass.like, pass.float_vectors,
                           reader.size () <= static_cast<std::size_t> (std::numeric_limits<std::uint32_t>::max ()));
     impl->cleaning = options.cleaning;
@@ -296,6 +322,7 @@ namespace pcl_sparse
     scan->sensor_origin = layout.sensor_origin;
     scan->sensor_orientation = layout.sensor_orientation;
     scan->has_sensor_pose = layout.has_sensor_pose;
+    scan->sensor_pose_checked = true;  // on pass 1's sample of the whole file
     const std::size_t n = impl_->spilled[t];
     scan->positions.reserve (n);
     scan->indices.reserve (n);

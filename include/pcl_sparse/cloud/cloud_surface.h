@@ -71,6 +71,9 @@ namespace pcl_sparse
     CloudNeighborhood neighborhood = CloudNeighborhood::Knn;  ///< which neighbourhood was used
     NormalOrientation orientation = NormalOrientation::Auto;  ///< how normals were oriented (never Auto)
     bool has_viewpoint = false;        ///< a single viewpoint was used (normals, shadow rule)
+    /// The scan stated PCL's default sensor pose (0, 0, 0), but its points do not thin out with their distance
+    /// from there (sensorSpacingEvidence): no sensor stood there, and the pose was not used.
+    bool default_pose_ignored = false;
     Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero ();     ///< that viewpoint, in the local frame
   };
 

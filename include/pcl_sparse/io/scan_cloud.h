@@ -79,6 +79,9 @@ namespace pcl_sparse
     Eigen::Vector3d sensor_origin = Eigen::Vector3d::Zero ();
     Eigen::Quaterniond sensor_orientation = Eigen::Quaterniond::Identity ();
     bool has_sensor_pose = false;
+    /// The pose was judged on the whole input (a tile's scan, TileSource): defaultPoseIsUnsupported does not
+    /// judge it again from the tile's part of the points.
+    bool sensor_pose_checked = false;
     std::vector<std::string> fields;  ///< the point fields of the file (PCD FIELDS, PLY vertex properties), in order
     ScanCleaningReport report;        ///< what cleaning removed (input_points = kept = #P before cleaning)
 

@@ -48,6 +48,7 @@ namespace pcl_sparse
     bool inMargin (std::size_t i, const Eigen::AlignedBox3d& box) const;
 
     ScanCloud::ConstPtr scan_;
+    bool sensor_pose_ = false;  ///< the scan's pose orients its tiles (stated, and not PCL's default unsupported)
     TriangleMesh::ConstPtr mesh_;
     TileGrid grid_;
     std::vector<std::uint32_t> tile_of_;    ///< tile of each point (vertex)
