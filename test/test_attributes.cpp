@@ -13,7 +13,9 @@
 
 #include "error_message.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 using namespace pcl_sparse;
@@ -267,6 +269,38 @@ TEST (Attributes, IntensityCloudAndMeshWithoutAttributes)
   SparseSurfaceModel plain;
   mesh_encoder.compute (plain);
   EXPECT_FALSE (plain.hasAttributes ());
+}
+
+// A point in no polygon (an organized cloud's invalid pixel, here NaN with a sensor's sentinel intensity)
+// is no part of the surface: it must not set the intensity's range, which scales the coding tolerance.
+TEST (Attributes, PointsInNoFaceDoNotWidenTheIntensityRange)
+{
+  const TriangleMesh sphere = makeIcosphere (3);
+  const auto cloud = intensityCloud (sphere);
+  const float lowest = std::min_element (cloud->begin (), cloud->end (), [] (const auto& a, const auto& b) {
+                         return a.intensity < b.intensity;
+                       })->intensity;
+  const float highest = std::max_element (cloud->begin (), cloud->end (), [] (const auto& a, const auto& b) {
+                          return a.intensity < b.intensity;
+                        })->intensity;
+  pcl::PointXYZI invalid;
+  invalid.x = invalid.y = invalid.z = std::numeric_limits<float>::quiet_NaN ();
+  invalid.intensity = 1e6f;
+  cloud->push_back (invalid);
+  SparseSurfaceEncoder<pcl::PointXYZI> encoder;
+  encoder.setInputCloud (cloud);
+  encoder.setInputPolygons (cloudPolygons (sphere));
+  auto model = std::make_shared<SparseSurfaceModel> ();
+  encoder.compute (*model);
+  ASSERT_EQ (model->attribute_channels.size (), 1u);
+  EXPECT_EQ (model->attribute_channels[0].lower, lowest);
+  EXPECT_EQ (model->attribute_channels[0].upper, highest);
+  // Measured 4.45 (as without the point); the range up to 1e6 coded the intensity away (500, all of it).
+  const auto out = resample<pcl::PointXYZINormal> (model, 5000);
+  double mean = 0.0;
+  for (const auto& point : out)
+    mean += std::abs (point.intensity - 1000.0 * point.z) / out.size ();
+  EXPECT_LT (mean, 6.5);
 }
 
 TEST (Attributes, BadAttributesAreRefused)

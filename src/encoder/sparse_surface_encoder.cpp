@@ -456,7 +456,7 @@ namespace pcl_sparse
     {
       attributes.validate (mesh.vertices.size (), "SparseSurfaceEncoder");
       attribute_input.values = &attributes;
-      attribute_input.channels = attributes.channelInfo ();
+      attribute_input.channels = attributes.channelInfo (mesh.triangles);
       attribute_input.basis = attributeBasis (basis, options);
       attribute_input.nyquist_factor = options.coding.nyquist_factor;
       attribute_input.nyquist_rule = options.coding.nyquist_rule;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pcl_sparse
 {
@@ -52,7 +53,7 @@ namespace pcl_sparse
   }
 
   std::vector<AttributeChannelInfo>
-  VertexAttributes::channelInfo () const
+  VertexAttributes::channelInfo (const std::vector<Eigen::Vector3i>& faces) const
   {
     std::vector<AttributeChannelInfo> info (channels.size ());
     for (std::size_t c = 0; c < channels.size (); ++c)
@@ -61,8 +62,21 @@ namespace pcl_sparse
       if (isColourChannel (channels[c]))
         continue;  // 0 .. 255, the default
       const auto column = values.col (static_cast<Eigen::Index> (c));
-      info[c].lower = column.size () > 0 ? column.minCoeff () : 0.0f;
-      info[c].upper = column.size () > 0 ? column.maxCoeff () : 0.0f;
+      if (faces.empty ())
+      {
+        info[c].lower = column.size () > 0 ? column.minCoeff () : 0.0f;
+        info[c].upper = column.size () > 0 ? column.maxCoeff () : 0.0f;
+        continue;
+      }
+      float lower = std::numeric_limits<float>::infinity (), upper = -lower;
+      for (const Eigen::Vector3i& f : faces)
+        for (int k = 0; k < 3; ++k)
+        {
+          lower = std::min (lower, column[f[k]]);
+          upper = std::max (upper, column[f[k]]);
+        }
+      info[c].lower = lower;
+      info[c].upper = upper;
     }
     return info;
   }

@@ -41,7 +41,7 @@ namespace pcl_sparse
   struct AttributeCodingInput
   {
     const VertexAttributes* values = nullptr;    ///< one row per vertex of the mesh the patches are on
-    std::vector<AttributeChannelInfo> channels;  ///< values->channelInfo (): the ranges the tolerance refers to
+    std::vector<AttributeChannelInfo> channels;  ///< values->channelInfo (faces): the ranges the tolerance refers to
     SurfaceBasis::ConstPtr basis;                ///< the attribute basis (SparseSurfaceModel::attribute_basis)
     double nyquist_factor = 0.5;                 ///< f of the height's coding (SparseCodingOptions)
     NyquistRule nyquist_rule = NyquistRule::Paper;

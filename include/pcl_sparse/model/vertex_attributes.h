@@ -79,6 +79,10 @@ namespace pcl_sparse
     }
 
     /// \brief Each channel with the range a model clamps it to (colour 0 .. 255, intensity its min .. max).
-    std::vector<AttributeChannelInfo> channelInfo () const;
+    /// The range also sets the coding tolerance (AttributeCodingOptions::tolerance), so it is taken over the
+    /// corners of \a faces, the vertices a surface samples: a vertex in no face (an organized cloud's NaN
+    /// point, a stray point) would otherwise widen it without bound and the surface's values coded away.
+    /// \param[in] faces the surface's triangles (indices < values.rows ()); empty: every vertex counts
+    std::vector<AttributeChannelInfo> channelInfo (const std::vector<Eigen::Vector3i>& faces = {}) const;
   };
 } // namespace pcl_sparse
