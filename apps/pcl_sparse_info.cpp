@@ -205,6 +205,15 @@ namespace
     const TileGrid grid = tiled ? readTiledModelIndex (path).grid : TileGrid ();
     const double seconds = timer.toc () / 1000.0;
     const double bits = info.num_input_vertices ? 8.0 * info.file_bytes / info.num_input_vertices : 0.0;
+    // The channels with their ranges: what pcl_sparse_decode writes (rgb or intensity) and where it clamps.
+    tools::JsonObject attributes;
+    std::string attribute_text;
+    for (const AttributeChannelInfo& channel : model.attribute_channels)
+    {
+      attributes.add (attributeChannelName (channel.channel), std::vector<double> {channel.lower, channel.upper});
+      attribute_text += tools::format ("%s%s (%.9g .. %.9g)", attribute_text.empty () ? "" : ", ",
+                                       attributeChannelName (channel.channel), channel.lower, channel.upper);
+    }
     if (json)
     {
       tools::JsonObject sections;
@@ -224,6 +233,7 @@ namespace
         .add ("input_vertices", static_cast<unsigned long long> (info.num_input_vertices))
         .add ("bbox_diagonal", info.bbox_diagonal)
         .add ("vertices_stored", info.has_vertices)
+        .add ("attributes", attributes)
         .add ("bytes", static_cast<unsigned long long> (info.file_bytes))
         .add ("bits_per_input_vertex", bits)
         .add ("sections", sections);
@@ -251,6 +261,7 @@ namespace
     std::printf ("input vertices: %llu\n", static_cast<unsigned long long> (info.num_input_vertices));
     std::printf ("bbox diagonal: %.6g\n", info.bbox_diagonal);
     std::printf ("patch vertices stored: %s\n", info.has_vertices ? "yes" : "no");
+    std::printf ("attributes: %s\n", attribute_text.empty () ? "none" : attribute_text.c_str ());
     std::printf ("bytes: %llu (%.3f bits per input vertex)\n", static_cast<unsigned long long> (info.file_bytes), bits);
     if (tiled)
       std::printf ("tile grid: %d x %d x %d tiles of edge %.9g from (%.9g, %.9g, %.9g), %zu with patches\n", grid.counts.x (),

@@ -19,6 +19,7 @@
 #include <fstream>
 #include <memory>
 #include <random>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -373,4 +374,31 @@ TEST_F (ScanTools, ColourAndIntensityAreWrittenWhereTheScanHasThem)
   for (const auto& p : frame)
     spread += std::abs (p.intensity - mean) / frame.size ();
   EXPECT_LT (meanAttributeError (lidar, frame, intensity), 0.3 * spread);
+}
+
+TEST_F (ScanTools, InfoNamesTheModelsAttributeChannels)
+{
+  // pcl_sparse_info reported a model's attribute sections' bytes only: which channels it codes (what
+  // pcl_sparse_decode writes) and their ranges (where it clamps) were nowhere.
+  std::ostringstream points;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      points << 0.01 * j << " " << 0.01 * i << " " << 0.02 * std::sin (0.2 * j) << " " << 10 * j - 100 << "\n";
+  std::ofstream (path ("wave.pcd")) << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\n"
+                                       "COUNT 1 1 1 1\nWIDTH 1600\nHEIGHT 1\nVIEWPOINT 0 0 1 1 0 0 0\nPOINTS 1600\n"
+                                       "DATA ascii\n"
+                                    << points.str ();
+  std::string out, err;
+  ASSERT_EQ (runTool ("pcl_sparse_encode", path ("wave.pcd") + " -o " + path ("wave.psm") + " -q", out, err), 0) << err;
+  ASSERT_EQ (runTool ("pcl_sparse_info", path ("wave.psm") + " --json", out, err), 0) << err;
+  EXPECT_NE (out.find ("\"attributes\": {\"intensity\": [-100, 290]}"), std::string::npos) << out;
+  ASSERT_EQ (runTool ("pcl_sparse_info", path ("wave.psm"), out, err), 0) << err;
+  EXPECT_NE (out.find ("\nattributes: intensity (-100 .. 290)\n"), std::string::npos) << out;
+  // A model without attributes says so.
+  std::ofstream (path ("plain.xyz")) << std::regex_replace (points.str (), std::regex (" [^ ]+\n"), "\n");
+  ASSERT_EQ (runTool ("pcl_sparse_encode", path ("plain.xyz") + " -o " + path ("plain.psm") + " -q", out, err), 0) << err;
+  ASSERT_EQ (runTool ("pcl_sparse_info", path ("plain.psm") + " --json", out, err), 0) << err;
+  EXPECT_NE (out.find ("\"attributes\": {}"), std::string::npos) << out;
+  ASSERT_EQ (runTool ("pcl_sparse_info", path ("plain.psm"), out, err), 0) << err;
+  EXPECT_NE (out.find ("\nattributes: none\n"), std::string::npos) << out;
 }
