@@ -21,6 +21,22 @@
 
 namespace pcl_sparse_test
 {
+  /// An airborne-like tile: points on a jittered 1 m grid over 2 half x 2 half m of gently rolling ground at
+  /// height \a z0, as evenly spaced far from the origin as near it (no sensor at the origin sampled them).
+  inline std::vector<Eigen::Vector3d>
+  airborneTile (int half, double z0, std::mt19937& rng)
+  {
+    std::uniform_real_distribution<double> jitter (-0.3, 0.3);
+    std::vector<Eigen::Vector3d> points;
+    for (int i = -half; i < half; ++i)
+      for (int j = -half; j < half; ++j)
+      {
+        const double x = i + jitter (rng), y = j + jitter (rng);
+        points.emplace_back (x, y, z0 + 2.0 * std::sin (0.05 * x) * std::cos (0.07 * y));
+      }
+    return points;
+  }
+
   /// Points drawn uniformly by area on \a mesh, seeded; \a area gets the mesh's area.
   inline std::vector<Eigen::Vector3d>
   sampleSurface (const pcl_sparse::TriangleMesh& mesh, std::size_t n, std::uint64_t seed, double& area)

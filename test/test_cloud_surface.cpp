@@ -17,6 +17,8 @@
 
 #include <gtest/gtest.h>
 
+#include "generated_clouds.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -486,22 +488,6 @@ TEST (CloudSurface, FlatScanWithoutViewpointFacesUp)
 
 namespace
 {
-  /// An airborne-like tile: points on a jittered 1 m grid over 100 x 100 m of gently rolling ground at
-  /// height \a z0 (uniform spacing, whatever the distance from the origin).
-  std::vector<Eigen::Vector3d>
-  airborneTile (double z0, std::mt19937& rng)
-  {
-    std::uniform_real_distribution<double> jitter (-0.3, 0.3);
-    std::vector<Eigen::Vector3d> points;
-    for (int i = -50; i < 50; ++i)
-      for (int j = -50; j < 50; ++j)
-      {
-        const double x = i + jitter (rng), y = j + jitter (rng);
-        points.emplace_back (x, y, z0 + 2.0 * std::sin (0.05 * x) * std::cos (0.07 * y));
-      }
-    return points;
-  }
-
   /// A sensor at the origin sampling a box room (walls 3-12 m away, floor 1.5 m below, ceiling 1.5 m above)
   /// at fixed angular steps, as a list of points: the farther, the sparser.
   std::vector<Eigen::Vector3d>
@@ -534,7 +520,7 @@ TEST (CloudSurface, DefaultPoseWhereNoSensorStoodIsNotUsed)
   std::mt19937 rng (17);
   for (const double z0 : {20.0, 0.0})
   {
-    ScanCloud scan = makeScan (airborneTile (z0, rng));
+    ScanCloud scan = makeScan (pcl_sparse_test::airborneTile (50, z0, rng));
     scan.has_sensor_pose = true;  // as PCL's readers and conversions say of every cloud
     std::vector<std::uint8_t> finite (scan.size (), 1);
     const SensorSpacingEvidence evidence = sensorSpacingEvidence (scan.positions, finite, Eigen::Vector3d::Zero ());

@@ -23,6 +23,7 @@
 
 #include <gtest/gtest.h>
 
+#include "generated_clouds.h"
 #include "test_file_helpers.h"
 #include "shared_data.h"
 
@@ -46,6 +47,47 @@ namespace
     return std::make_shared<TriangleMesh> (makeHeightFieldGrid (cells, cells, 1.0, 1.0, [] (double x, double y) {
       return 0.06 * std::sin (9.0 * x) * std::cos (8.0 * y) + 0.05 * x * y;
     }));
+  }
+
+  /// \a n points drawn uniformly over [-1, 1]^2 (seed \a seed) at heights height (x, y, draw), draw () giving
+  /// the next uniform number in [-1, 1] (for noise).
+  template <typename Height>
+  std::vector<Eigen::Vector3d>
+  squarePoints (int n, unsigned seed, Height height)
+  {
+    std::mt19937 mt (seed);
+    std::uniform_real_distribution<double> u (-1.0, 1.0);
+    std::vector<Eigen::Vector3d> points;
+    for (int i = 0; i < n; ++i)
+    {
+      const double x = u (mt), y = u (mt);
+      points.emplace_back (x, y, height (x, y, [&] { return u (mt); }));
+    }
+    return points;
+  }
+
+  /// An unorganized scan of \a points (local frame = file frame, no sensor pose unless set after).
+  std::shared_ptr<ScanCloud>
+  listScan (const std::vector<Eigen::Vector3d>& points)
+  {
+    auto scan = std::make_shared<ScanCloud> ();
+    scan->positions = points;
+    scan->width = static_cast<std::uint32_t> (points.size ());
+    scan->height = 1;
+    return scan;
+  }
+
+  /// \a scan encoded in tiles (TiledSurfaceEncoder over a MemoryTileSource, default options).
+  TiledModel
+  encodeInTiles (const std::shared_ptr<ScanCloud>& scan, int tiles_along_longest)
+  {
+    TileGridOptions grid;
+    grid.tiles_along_longest = tiles_along_longest;
+    TiledSurfaceEncoder encoder;
+    encoder.setTileSource (std::make_shared<MemoryTileSource> (scan, grid));
+    TiledModel tiled;
+    encoder.compute (tiled);
+    return tiled;
   }
 
   /// Every tile with core points encoded with default options, written out here (not encodeTilesByPhase, the
@@ -882,12 +924,8 @@ TEST (TiledEncoding, StrayScanPointsDoNotFailTheEncoding)
     scan->positions.emplace_back (0.9 + 0.01 * i, 0.9, 1.9);
   scan->width = static_cast<std::uint32_t> (scan->positions.size ());
   scan->height = 1;
-  TileGridOptions grid;
-  grid.tiles_along_longest = 4;
-  TiledSurfaceEncoder encoder;
-  encoder.setTileSource (std::make_shared<MemoryTileSource> (scan, grid));
   TiledModel tiled;
-  ASSERT_NO_THROW (encoder.compute (tiled));
+  ASSERT_NO_THROW (tiled = encodeInTiles (scan, 4));
   const ModelStatistics stats = tiled.model.statistics (worldPositions (*scan));
   // The three strays are left out, every point of the plane is covered (measured: 3 uncovered, 16 patches).
   EXPECT_EQ (stats.uncovered, 3u);
@@ -904,23 +942,12 @@ TEST (TiledEncoding, StrayScanPointsDoNotFailTheEncoding)
 // "mergeTileEncodings: tile 0 has other attribute channels".
 TEST (TiledEncoding, TilesWithoutAnAttributeValueMergeWithTheOthers)
 {
-  auto scan = std::make_shared<ScanCloud> ();
-  std::mt19937 mt (11);
-  std::uniform_real_distribution<double> u (-1.0, 1.0);
-  for (int i = 0; i < 4000; ++i)
-  {
-    const double x = u (mt), y = u (mt);
-    scan->positions.emplace_back (x, y, 0.001 * u (mt));
-    scan->intensities.push_back (x < -0.2 ? std::numeric_limits<float>::quiet_NaN () : static_cast<float> (100.0 + 100.0 * x));
-  }
-  scan->width = static_cast<std::uint32_t> (scan->positions.size ());
-  scan->height = 1;
-  TileGridOptions grid;
-  grid.tiles_along_longest = 4;
-  TiledSurfaceEncoder encoder;
-  encoder.setTileSource (std::make_shared<MemoryTileSource> (scan, grid));
+  const std::vector<Eigen::Vector3d> points = squarePoints (4000, 11, [] (double, double, auto draw) { return 0.001 * draw (); });
+  auto scan = listScan (points);
+  for (const Eigen::Vector3d& p : points)
+    scan->intensities.push_back (p.x () < -0.2 ? std::numeric_limits<float>::quiet_NaN () : static_cast<float> (100.0 + 100.0 * p.x ()));
   TiledModel tiled;
-  ASSERT_NO_THROW (encoder.compute (tiled));
+  ASSERT_NO_THROW (tiled = encodeInTiles (scan, 4));
   ASSERT_EQ (tiled.model.attribute_channels.size (), 1u);
   EXPECT_EQ (tiled.model.attribute_channels[0].channel, AttributeChannel::Intensity);
   std::size_t without = 0;
@@ -963,16 +990,9 @@ TEST (TiledEncoding, TilesWithoutAnAttributeValueMergeWithTheOthers)
 // every patch's normal toward the viewpoint (without it, a consistent orientation picks one sign for both).
 TEST (TiledEncoding, ViewPointOfTheSourceOrientsEveryTile)
 {
-  auto scan = std::make_shared<ScanCloud> ();
-  std::mt19937 mt (7);
-  std::uniform_real_distribution<double> u (-1.0, 1.0);
-  for (int i = 0; i < 4000; ++i)
-  {
-    const double x = u (mt), y = u (mt);
-    scan->positions.emplace_back (x, y, 0.05 * std::sin (3.0 * x) * std::cos (2.0 * y));
-  }
-  scan->width = static_cast<std::uint32_t> (scan->positions.size ());
-  scan->height = 1;
+  const auto scan = listScan (squarePoints (4000, 7, [] (double x, double y, auto) {
+    return 0.05 * std::sin (3.0 * x) * std::cos (2.0 * y);
+  }));
   TileGridOptions grid;
   grid.tiles_along_longest = 3;
   for (const float z : {10.0f, -10.0f})
@@ -995,17 +1015,8 @@ TEST (TiledEncoding, ViewPointOfTheSourceOrientsEveryTile)
 // source: a tile's part of the points lies at too narrow a range of distances to tell, and kept the pose.
 TEST (TiledEncoding, DefaultPoseIsJudgedOnTheWholeInput)
 {
-  auto scan = std::make_shared<ScanCloud> ();
   std::mt19937 mt (19);
-  std::uniform_real_distribution<double> jitter (-0.3, 0.3);
-  for (int i = -50; i < 50; ++i)
-    for (int j = -50; j < 50; ++j)
-    {
-      const double x = i + jitter (mt), y = j + jitter (mt);
-      scan->positions.emplace_back (x, y, 20.0 + 2.0 * std::sin (0.05 * x) * std::cos (0.07 * y));
-    }
-  scan->width = static_cast<std::uint32_t> (scan->positions.size ());
-  scan->height = 1;
+  auto scan = listScan (pcl_sparse_test::airborneTile (50, 20.0, mt));
   scan->has_sensor_pose = true;  // PCL's default pose, as every PCD and PCL cloud states
   TileGridOptions grid;
   grid.tiles_along_longest = 3;
