@@ -399,6 +399,29 @@ TEST (Attributes, MissingValuesTakeTheNearestPointsValue)
   EXPECT_EQ (all.dropped[0], AttributeChannel::Intensity);
 }
 
+// A channel of one huge value: the quantised file's budget was 1e-4 of a unit, and writing failed
+// ("coefficient too large for the tolerance"); it is never finer than the values' float precision now.
+TEST (Attributes, AHugeConstantIntensityIsWrittenQuantised)
+{
+  const TriangleMesh sphere = makeIcosphere (2);
+  for (const float value : {1e30f, -3e38f})
+  {
+    auto attributes = std::make_shared<VertexAttributes> ();
+    attributes->channels = {AttributeChannel::Intensity};
+    attributes->values = Eigen::MatrixXf::Constant (static_cast<Eigen::Index> (sphere.vertices.size ()), 1, value);
+    const SparseSurfaceModel::Ptr model = encode (sphere, attributes);
+    ModelWriteOptions options;
+    options.tolerance = 1e-4;
+    std::vector<std::uint8_t> bytes;
+    ASSERT_NO_THROW (bytes = encodeModel (*model, options)) << value;
+    const auto decoded = std::make_shared<const SparseSurfaceModel> (decodeModel (bytes.data (), bytes.size ()));
+    const auto cloud = resample<pcl::PointXYZINormal> (decoded, 1000);
+    ASSERT_EQ (cloud.size (), 1000u);
+    for (const auto& p : cloud)
+      ASSERT_NEAR (p.intensity / value, 1.0f, 1e-6f) << value;
+  }
+}
+
 TEST (Attributes, ModelFileKeepsTheColours)
 {
   const TriangleMesh sphere = makeIcosphere (4);

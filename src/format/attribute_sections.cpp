@@ -23,12 +23,15 @@ namespace pcl_sparse
       std::vector<double> budgets;  ///< quantised: largest change of a value, per channel
     };
 
-    /// Largest change of channel \a info's values a tolerance allows (the range, 1 for a constant channel).
+    /// Largest change of channel \a info's values a tolerance allows: of the range (1 for a constant channel),
+    /// and never finer than the values' own float precision (2^-24 of the largest magnitude), which a channel
+    /// of one huge value asked for (intensity 1e30 everywhere: 1e34 steps, "coefficient too large").
     double
     channelBudget (const AttributeChannelInfo& info, double tolerance)
     {
       const double range = info.upper - info.lower;
-      return tolerance * (range > 0.0 ? range : 1.0);
+      const double magnitude = std::max (std::abs (info.lower), std::abs (info.upper));
+      return tolerance * std::max (range > 0.0 ? range : 1.0, std::ldexp (magnitude, -24));
     }
 
     /// The model's attribute basis; throws unless it is a cosine one.
