@@ -182,11 +182,11 @@ namespace pcl_sparse
     printAttributeGaps (const std::string& path, const AttributeGaps& gaps)
     {
       if (gaps.filled > 0)
-        printNote (format (gaps.filled == 1 ? "%s: %zu colour or intensity value is not a number: it takes the nearest point's"
-                                            : "%s: %zu colour or intensity values are not numbers: each takes the nearest point's",
+        printNote (format (gaps.filled == 1 ? "%s: %zu colour or intensity value is NaN or infinite: it takes the nearest point's"
+                                            : "%s: %zu colour or intensity values are NaN or infinite: each takes the nearest point's",
                            path.c_str (), gaps.filled));
       for (AttributeChannel channel : gaps.dropped)
-        printNote (format ("%s: no point has a number in its '%s' field: the channel is left out", path.c_str (),
+        printNote (format ("%s: no point has a finite value in its '%s' field: the channel is left out", path.c_str (),
                            attributeChannelName (channel)));
     }
 

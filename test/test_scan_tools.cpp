@@ -244,7 +244,7 @@ TEST_F (ScanTools, AMissingIntensityTakesItsNeighboursAndIsNamedInANote)
                                    << points.str ();
   std::string out, err;
   ASSERT_EQ (runTool ("pcl_sparse_encode", path ("gap.pcd") + " -o " + path ("gap.psm"), out, err), 0) << err;
-  EXPECT_NE (err.find ("gap.pcd: 1 colour or intensity value is not a number: it takes the nearest point's"),
+  EXPECT_NE (err.find ("gap.pcd: 1 colour or intensity value is NaN or infinite: it takes the nearest point's"),
              std::string::npos)
     << err;
   ASSERT_EQ (runTool ("pcl_sparse_decode", path ("gap.psm") + " " + path ("gap_out.pcd") + " -q", out, err), 0) << err;

@@ -63,7 +63,7 @@ namespace pcl_sparse
     }
 
     /// \a patch's attribute codes, coded for \a from, in the order of \a to: a channel \a from lacks gets a
-    /// code without atoms (its value is the channel's lower bound, where resampling clamps the 0 it evaluates to).
+    /// code without atoms (it evaluates to 0, which resampling clamps to the channel's range).
     void
     reorderAttributeCodes (PatchCode& patch, const std::vector<AttributeChannelInfo>& from,
                            const std::vector<AttributeChannelInfo>& to)

@@ -133,7 +133,7 @@ namespace pcl_sparse
   /// \brief The whole model from its tiles' encodings (patches in tile order; whole-input vertex count,
   /// diagonal and attribute ranges). The model's attribute channels are every tile's: a tile whose points
   /// have no value in a channel (left out by fillAttributeGaps) gives its patches codes without atoms there,
-  /// which resample as the channel's lower bound.
+  /// which resample as 0 clamped to the channel's range (its lower bound when every value is positive).
   /// \param[in] grid          the grid
   /// \param[in] total_points  points of the whole input (TileSource::totalPoints)
   /// \param[in] tiles         encodings of every tile with core points, in any order
