@@ -270,6 +270,9 @@ main (int argc, char** argv)
       if (tiled_model.model.patches.empty ())
         throw Error (path + ": no tile made a surface, all are too small to code (uncovered points: " +
                      std::to_string (tiled_stats.uncovered) + "): use fewer tiles (-tiles) or none");
+      // Each tile's encoder fills its own (fillAttributeGaps); the count comes from reading the input.
+      if (const ScanCleaningReport* cleaning = tools::cleaningReportOf (input, source.get ()))
+        tools::printIntensityGaps (path, *cleaning);
     }
     else
     {

@@ -168,7 +168,8 @@ namespace pcl_sparse
         .add ("dropped_non_finite", report.non_finite)
         .add ("dropped_at_sensor_origin", report.at_sensor_origin)
         .add ("dropped_duplicates", report.duplicates_merged)
-        .add ("kept_points", report.kept);
+        .add ("kept_points", report.kept)
+        .add ("non_finite_intensities", report.non_finite_intensities);
       if (surface)
         json.add ("outliers", surface->outliers)
           .add ("isolated_points", surface->isolated)
@@ -188,6 +189,19 @@ namespace pcl_sparse
       for (AttributeChannel channel : gaps.dropped)
         printNote (format ("%s: no point has a finite value in its '%s' field: the channel is left out", path.c_str (),
                            attributeChannelName (channel)));
+    }
+
+    void
+    printIntensityGaps (const std::string& path, const ScanCleaningReport& report)
+    {
+      if (report.non_finite_intensities == 0)
+        return;
+      AttributeGaps gaps;
+      if (report.non_finite_intensities >= report.kept)
+        gaps.dropped.push_back (AttributeChannel::Intensity);
+      else
+        gaps.filled = report.non_finite_intensities;
+      printAttributeGaps (path, gaps);
     }
 
     void

@@ -95,6 +95,11 @@ namespace pcl_sparse
     void
     printAttributeGaps (const std::string& path, const AttributeGaps& gaps);
 
+    /// The same for a tiled encoding, from what reading the scan counted (ScanCleaningReport::
+    /// non_finite_intensities): each tile's encoder fills its part.
+    void
+    printIntensityGaps (const std::string& path, const ScanCleaningReport& report);
+
     /// One line on the console describing a scan (\a report non-null) and its surface (nothing for a mesh).
     void
     printScanSummary (const ScanCleaningReport* report, const CloudSurface* surface);

@@ -261,6 +261,17 @@ TEST_F (ScanTools, AMissingIntensityTakesItsNeighboursAndIsNamedInANote)
   ASSERT_EQ (runTool ("pcl_sparse_resample", path ("gap.pcd") + " " + path ("gap.pcd.out.pcd") + " -q", out, err), 0)
     << err;
   EXPECT_EQ (err, "");
+  // Tiled in memory and spilled: each tile fills its part, the note comes from reading the scan.
+  for (const std::string tiling : {"-tiles 4", "-memory 1M"})
+  {
+    ASSERT_EQ (runTool ("pcl_sparse_encode", path ("gap.pcd") + " -o " + path ("gap.psm") + " " + tiling, out, err), 0)
+      << err;
+    EXPECT_NE (err.find ("gap.pcd: 1 colour or intensity value is NaN or infinite: it takes the nearest point's"),
+               std::string::npos)
+      << tiling << ": " << err;
+    ASSERT_EQ (runTool ("pcl_sparse_encode", path ("gap.pcd") + " " + tiling + " --json -q", out, err), 0) << err;
+    EXPECT_EQ (jsonInteger (out, "non_finite_intensities"), 1) << tiling << ": " << out;
+  }
 }
 
 TEST_F (ScanTools, ATileMovedNearTheOriginKeepsItsNormalsUp)

@@ -3,6 +3,7 @@
 #include <pcl_sparse/common/error.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace pcl_sparse
@@ -103,6 +104,8 @@ namespace pcl_sparse
     keepFlagged (scan.intensities, keep);
     keepFlagged (scan.indices, keep);
     report.kept = scan.positions.size ();
+    report.non_finite_intensities = static_cast<std::size_t> (
+      std::count_if (scan.intensities.begin (), scan.intensities.end (), [] (float v) { return !std::isfinite (v); }));
     scan.report = report;
     return report;
   }

@@ -1,7 +1,6 @@
 #include <pcl_sparse/tiles/spilled_tile_source.h>
 
 #include <pcl_sparse/cloud/sensor_evidence.h>
-
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/scan_stream.h>
 #include <pcl_sparse/tiles/tile_membership.h>
@@ -9,6 +8,7 @@
 #include "spill_files.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 
@@ -139,6 +139,8 @@ namespace pcl_sparse
             pass.box.extend (chunk.positions[i]);
             if ((first + i) % stride == 0)
               pass.sample.push_back (chunk.positions[i]);
+            if (i < chunk.intensities.size () && !std::isfinite (chunk.intensities[i]))
+              ++pass.report.non_finite_intensities;
             ++pass.report.kept;
             pass.float_vectors = pass.float_vectors && tiles_detail::SpillRecord::isFloat (chunk, i);
           }

@@ -27,6 +27,9 @@ namespace pcl_sparse
     std::size_t at_sensor_origin = 0;   ///< dropped: exactly at the sensor position ("no return" of lidar drivers)
     std::size_t duplicates_merged = 0;  ///< dropped: exactly the position of an earlier kept point
     std::size_t kept = 0;               ///< points left
+    /// Kept points whose intensity is NaN or infinite (not dropped: the encoder gives them the nearest point's,
+    /// fillAttributeGaps). A spilled scan counts them before exact duplicates are merged.
+    std::size_t non_finite_intensities = 0;
 
     /// Points with finite coordinates (input_points - non_finite).
     std::size_t
