@@ -94,8 +94,8 @@ namespace pcl_sparse
 
     /// defaultPoseIsUnsupported on pass 1's \a sample (file frame, within \a box) of a file of \a layout.
     bool
-    defaultPoseIsUnsupported (const std::vector<Eigen::Vector3d>& sample, const Eigen::AlignedBox3d& box,
-                              const ScanCloud& layout)
+    sampleDisprovesDefaultPose (const std::vector<Eigen::Vector3d>& sample, const Eigen::AlignedBox3d& box,
+                                const ScanCloud& layout)
     {
       if (sample.empty ())
         return false;
@@ -108,7 +108,7 @@ namespace pcl_sparse
       scan.sensor_origin = layout.sensor_origin;
       scan.sensor_orientation = layout.sensor_orientation;
       scan.has_sensor_pose = layout.has_sensor_pose;
-      return pcl_sparse::defaultPoseIsUnsupported (scan, std::vector<std::uint8_t> (sample.size (), 1));
+      return defaultPoseIsUnsupported (scan, std::vector<std::uint8_t> (sample.size (), 1));
     }
 
     FirstPass
@@ -250,7 +250,7 @@ namespace pcl_sparse
     const FirstPass pass = firstPass (reader, options);
     auto impl = std::make_unique<Impl> ();
     impl->layout = reader.layout ();
-    impl->layout.has_sensor_pose = impl->layout.has_sensor_pose && !defaultPoseIsUnsupported (pass.sample, pass.box, impl->layout);
+    impl->layout.has_sensor_pose = impl->layout.has_sensor_pose && !sampleDisprovesDefaultPose (pass.sample, pass.box, impl->layout);
     impl->record.emplace (pass.like, pass.float_vectors,
                           reader.size () <= static_cast<std::size_t> (std::numeric_limits<std::uint32_t>::max ()));
     impl->cleaning = options.cleaning;

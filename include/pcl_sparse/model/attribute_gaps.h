@@ -21,8 +21,8 @@ namespace pcl_sparse
 
   /// \brief Gives every non-finite value of \a attributes the value of the nearest vertex (Euclidean, over
   /// \a positions) with a finite value in the same channel; ties go to the lower vertex number. Vertices
-  /// without a finite position take the first placed vertex's value (they are in no face, so nothing samples
-  /// them, but they bound an intensity channel's range). A channel with no finite value at a vertex with a
+  /// without a finite position take the first placed vertex's value (they are in no face: nothing samples
+  /// them, and the channel's range is taken over faces, VertexAttributes::channelInfo). A channel with no finite value at a vertex with a
   /// position is removed. Rows of \a attributes and \a positions must match.
   /// \param[in,out] attributes one row per vertex
   /// \param[in] positions      the vertices' positions
