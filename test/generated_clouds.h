@@ -1,9 +1,11 @@
 #pragma once
-// Large test clouds made by the tests and benches themselves (issue 16 point 5; never committed): a
-// terrain-like height field (as a cloud or a mesh), a shared mesh sampled with noise, and many noisy copies
-// of it laid out on a grid like a city block. Written as binary PCD a row at a time, so even 10^8 points need little memory.
+// Test clouds made by the tests and benches themselves (issue 16 point 5; never committed): pinhole depth
+// images (a stepped slanted plane), an airborne-like tile, a terrain-like height field (as a cloud or a
+// mesh), a shared mesh sampled with noise, and many noisy copies of it laid out on a grid like a city block.
+// Large ones are written as binary PCD a row at a time, so even 10^8 points need little memory.
 // Deterministic: the same options and seed give the same file, byte for byte.
 
+#include <pcl_sparse/io/scan_cloud.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <Eigen/Core>
@@ -14,6 +16,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -21,6 +24,42 @@
 
 namespace pcl_sparse_test
 {
+  /// A pinhole camera at 0 looking along +z (focal 60 pixels), width x height pixels: pixel (x, y) holds the
+  /// point at depth \a depth (x, y) on its ray, none where that is NaN.
+  inline pcl_sparse::ScanCloud
+  pinholeScan (int width, int height, const std::function<double (int, int)>& depth)
+  {
+    const double f = 60.0;
+    pcl_sparse::ScanCloud scan;
+    scan.width = width;
+    scan.height = height;
+    scan.has_sensor_pose = true;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+      {
+        const double z = depth (x, y);
+        if (std::isnan (z))
+          continue;
+        scan.positions.emplace_back ((x - 0.5 * width) / f * z, (y - 0.5 * height) / f * z, z);
+        scan.indices.push_back (static_cast<std::size_t> (y) * width + x);
+      }
+    return scan;
+  }
+
+  /// A Kinect-like camera (pinholeScan, 64 pixels wide) sees the slanted plane z = 2 + 0.8 x with depth
+  /// stored in steps of 0.15, 4.5 pixel spacings: a staircase whose risers the plain gap rule refuses.
+  /// \param[in] height rows of pixels (the plane does not slant along them)
+  inline pcl_sparse::ScanCloud
+  steppedSlantedPlane (int height = 48)
+  {
+    const int width = 64;
+    const double step = 0.15;
+    return pinholeScan (width, height, [&] (int x, int) {
+      const double u = (x - 0.5 * width) / 60.0;
+      return step * std::round (2.0 / (1.0 - 0.8 * u) / step);  // the ray (u z, v z, z) meets the plane at 2 / (1 - 0.8 u)
+    });
+  }
+
   /// An airborne-like tile: points on a jittered 1 m grid over 2 half x 2 half m of gently rolling ground at
   /// height \a z0, as evenly spaced far from the origin as near it (no sensor at the origin sampled them).
   inline std::vector<Eigen::Vector3d>

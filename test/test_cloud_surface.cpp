@@ -35,6 +35,8 @@
 #include "shared_data.h"
 
 using namespace pcl_sparse;
+using pcl_sparse_test::pinholeScan;
+using pcl_sparse_test::steppedSlantedPlane;
 
 #ifndef PCL_SPARSE_SHARED_CLOUDS
 #define PCL_SPARSE_SHARED_CLOUDS ""
@@ -197,28 +199,6 @@ namespace
   /// A pinhole depth image (sensor at 0 looking along +z, focal f pixels): a plane at depth 2 behind a
   /// rectangle at depth 1 (columns 20..39, rows 15..34), a NaN hole (columns 45..52, rows 5..14) and 3 %
   /// NaN pixels; depth noise sigma.
-  /// A pinhole camera at 0 looking along +z (focal 60 pixels), width x height pixels: pixel (x, y) holds the
-  /// point at depth \a depth (x, y) on its ray, none where that is NaN.
-  ScanCloud
-  pinholeScan (int width, int height, const std::function<double (int, int)>& depth)
-  {
-    const double f = 60.0;
-    ScanCloud scan;
-    scan.width = width;
-    scan.height = height;
-    scan.has_sensor_pose = true;
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x)
-      {
-        const double z = depth (x, y);
-        if (std::isnan (z))
-          continue;
-        scan.positions.emplace_back ((x - 0.5 * width) / f * z, (y - 0.5 * height) / f * z, z);
-        scan.indices.push_back (static_cast<std::size_t> (y) * width + x);
-      }
-    return scan;
-  }
-
   ScanCloud
   depthImage (int width, int height, double sigma, std::mt19937& rng)
   {
@@ -710,19 +690,6 @@ TEST (CloudSurface, OrganizedScanWithoutIndicesNeedsEveryPixel)
 
 namespace
 {
-  /// A Kinect-like camera sees the slanted plane z = 2 + 0.8 x with depth stored in steps of 0.15, 4.5 pixel
-  /// spacings: a staircase whose risers the plain gap rule refuses.
-  ScanCloud
-  steppedSlantedPlane ()
-  {
-    const int width = 64;
-    const double step = 0.15;
-    return pinholeScan (width, 48, [&] (int x, int) {
-      const double u = (x - 0.5 * width) / 60.0;
-      return step * std::round (2.0 / (1.0 - 0.8 * u) / step);  // the ray (u z, v z, z) meets the plane at 2 / (1 - 0.8 u)
-    });
-  }
-
   /// Distance of \a p to the plane z = 2 + 0.8 x.
   double
   slantedPlaneDistance (const Eigen::Vector3d& p)

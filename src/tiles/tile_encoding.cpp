@@ -129,11 +129,15 @@ namespace pcl_sparse
     if (!input.point_numbers.empty () && input.point_numbers.size () != num_points)
       throw Error ("encodeTile: tile " + std::to_string (t) + " has " + std::to_string (input.point_numbers.size ()) +
                    " point numbers for " + std::to_string (num_points) + " points");
+    // Where point i lies in the input (a scan's encoder may move it: depth steps).
+    auto positionOf = [&] (std::size_t i) -> Eigen::Vector3d {
+      return input.scan ? input.scan->worldPosition (i) : input.mesh->vertices[i];
+    };
     auto seeds = std::make_shared<std::vector<std::uint8_t>> (num_points, 0);
     bool any = false;
     for (std::size_t i = 0; i < num_points; ++i)
     {
-      const Eigen::Vector3d p = input.scan ? input.scan->worldPosition (i) : input.mesh->vertices[i];
+      const Eigen::Vector3d p = positionOf (i);
       if (grid.tileOf (p) == t)
       {
         result.core_bounds.extend (p);
@@ -175,20 +179,29 @@ namespace pcl_sparse
         return result;
       throw Error ("tile " + std::to_string (t) + ": " + e.what ());
     }
-    // Every patch is seeded in the core (setSeedVertices); the test guards the ownership rule.
+    // Every patch is seeded at a core point (setSeedVertices); the test guards the ownership rule. It asks
+    // where the seed lies in the input, not where the patch's origin is: a scan's encoder may move its points
+    // (depth steps taken out), and a patch seeded a few centimetres inside the core was dropped when its
+    // origin crossed the border, leaving the points only it covered in no patch (office1.pcd -tiles 4: 113
+    // patches, 154 points).
+    const std::vector<Patch>& grown = encoder.getPatches ();
+    if (grown.size () != result.model.patches.size ())
+      throw Error ("encodeTile: tile " + std::to_string (t) + " has " + std::to_string (grown.size ()) +
+                   " patches for " + std::to_string (result.model.patches.size ()) + " codes");
     std::vector<PatchCode> owned;
     owned.reserve (result.model.patches.size ());
     const Eigen::Vector3i here = grid.coordinates (t);
     result.reach = 1;
-    for (PatchCode& patch : result.model.patches)
-      if (grid.tileOf (patch.origin) == t)
+    for (std::size_t k = 0; k < grown.size (); ++k)
+      if (grown[k].seed >= 0 && static_cast<std::size_t> (grown[k].seed) < num_points &&
+          grid.tileOf (positionOf (static_cast<std::size_t> (grown[k].seed))) == t)
       {
+        PatchCode& patch = result.model.patches[k];
         // How far the points it lists lie (TiledSurfaceEncoder relies on phase-0 patches listing points of
         // the neighbours' cores only).
         for (const int v : patch.vertices)
         {
-          const std::size_t i = static_cast<std::size_t> (v);
-          const Eigen::Vector3d p = input.scan ? input.scan->worldPosition (i) : input.mesh->vertices[i];
+          const Eigen::Vector3d p = positionOf (static_cast<std::size_t> (v));
           result.reach = std::max (result.reach, (grid.coordinates (grid.tileOf (p)) - here).cwiseAbs ().maxCoeff ());
         }
         for (int& v : patch.vertices)
