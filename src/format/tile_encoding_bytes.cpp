@@ -6,9 +6,54 @@
 #include <pcl_sparse/format/model_sections.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// TileEncoding::moved: the count, then each number's step from the last (ascending) and its offset.
+    void
+    putMovedPoints (ByteWriter& out, const TileEncoding& tile, std::size_t total_points)
+    {
+      const MovedPoints& moved = tile.moved;
+      out.putVarint (moved.numbers.size ());
+      for (std::size_t k = 0; k < moved.numbers.size (); ++k)
+      {
+        if (moved.numbers[k] >= total_points || (k > 0 && moved.numbers[k] <= moved.numbers[k - 1]) ||
+            moved.offsets.size () != moved.numbers.size ())
+          throw Error ("encodeTileEncodings: tile " + std::to_string (tile.tile) +
+                       "'s moved points are not ascending numbers of the input with an offset each");
+        out.putVarint (k == 0 ? moved.numbers[k] : moved.numbers[k] - moved.numbers[k - 1]);
+        for (int a = 0; a < 3; ++a)
+          out.putF32 (moved.offsets[k][a]);
+      }
+    }
+
+    void
+    getMovedPoints (ByteReader& in, TileEncoding& tile)
+    {
+      // A tile without patches has no model to bound the numbers; each takes 13 bytes at least.
+      const std::uint64_t total = tile.model.patches.empty () ? std::numeric_limits<std::uint64_t>::max ()
+                                                              : tile.model.num_input_vertices;
+      const std::uint64_t count = in.getCount ("moved points", std::min<std::uint64_t> (total, in.remaining () / 13));
+      tile.moved.numbers.reserve (count);
+      tile.moved.offsets.reserve (count);
+      for (std::uint64_t k = 0; k < count; ++k)
+      {
+        const std::uint64_t step = in.getVarint ("moved point");
+        const std::uint64_t number = k == 0 ? step : tile.moved.numbers.back () + step;
+        if ((k > 0 && step == 0) || number >= total || number < step)
+          in.fail ("tile " + std::to_string (tile.tile) + ": moved point out of range");
+        tile.moved.numbers.push_back (static_cast<std::size_t> (number));
+        Eigen::Vector3f offset;
+        for (int a = 0; a < 3; ++a)
+          offset[a] = in.getF32 ("moved offset");
+        tile.moved.offsets.push_back (offset);
+      }
+    }
+  } // namespace
+
   std::vector<std::uint8_t>
   encodeTileEncodings (const std::vector<TileEncoding>& tiles, std::size_t total_points)
   {
@@ -36,6 +81,7 @@ namespace pcl_sparse
       if (tile.model.patches.empty ())
       {
         out.putVarint (0);
+        putMovedPoints (out, tile, total_points);
         continue;
       }
       // The header's count bounds the vertex numbers the receiver reads.
@@ -49,6 +95,7 @@ namespace pcl_sparse
       if (numbers_only)
         for (const PatchCode& patch : tile.model.patches)
           putVertexNumbers (out, patch.vertices, total_points);
+      putMovedPoints (out, tile, total_points);
     }
     return std::move (out.bytes ());
   }
@@ -79,6 +126,7 @@ namespace pcl_sparse
       if (numbers_only)
         for (std::size_t p = 0; p < tile.model.patches.size (); ++p)
           getVertexNumbers (in, tile.model.num_input_vertices, 0, p, tile.model.patches[p].vertices);
+      getMovedPoints (in, tile);
       tiles.push_back (std::move (tile));
     }
     in.expectEnd ();

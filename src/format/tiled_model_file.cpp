@@ -470,7 +470,7 @@ namespace pcl_sparse
           tiled.model.attribute_channels = tile.attribute_channels;
           tiled.model.attribute_basis = tile.attribute_basis;
         }
-        tiled.tiles.push_back ({e.tile, e.first_patch, e.num_patches});
+        tiled.tiles.push_back ({e.tile, e.first_patch, e.num_patches, {}});
         for (PatchCode& patch : tile.patches)
           tiled.model.patches.push_back (std::move (patch));
       }
@@ -790,7 +790,7 @@ namespace pcl_sparse
     tiled.grid = makeTileGrid (box, 1, TileGridOptions ());
     tiled.total_patches = tiled.model.patches.size ();
     if (tiled.total_patches > 0)
-      tiled.tiles.push_back ({0, 0, tiled.total_patches});
+      tiled.tiles.push_back ({0, 0, tiled.total_patches, {}});
     return tiled;
   }
 } // namespace pcl_sparse

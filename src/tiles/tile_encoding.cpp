@@ -76,6 +76,28 @@ namespace pcl_sparse
       patch.attributes = std::move (codes);
     }
 
+    /// The points of the tile scan flagged in \a listed whose position on \a surface (the one the scan's
+    /// encoder worked on, in the scan's local frame) is not the scan's: the depth steps were taken out.
+    MovedPoints
+    movedListedPoints (const ScanCloud& scan, const TriangleMesh& surface, const std::vector<std::size_t>& point_numbers,
+                       const std::vector<std::uint8_t>& listed)
+    {
+      std::vector<std::pair<std::size_t, Eigen::Vector3f>> moved;
+      for (std::size_t i = 0; i < scan.size () && i < surface.vertices.size (); ++i)
+        if (listed[i] && surface.vertices[i] != scan.positions[i])
+          moved.emplace_back (point_numbers[i], (surface.vertices[i] - scan.positions[i]).cast<float> ());
+      std::sort (moved.begin (), moved.end (), [] (const auto& a, const auto& b) { return a.first < b.first; });
+      MovedPoints result;
+      result.numbers.reserve (moved.size ());
+      result.offsets.reserve (moved.size ());
+      for (const auto& [number, offset] : moved)
+      {
+        result.numbers.push_back (number);
+        result.offsets.push_back (offset);
+      }
+      return result;
+    }
+
     /// Whether two bases are the same atoms (same cosine kind and size; another basis: the same object).
     bool
     sameBasis (const SurfaceBasis::ConstPtr& a, const SurfaceBasis::ConstPtr& b)
@@ -190,6 +212,7 @@ namespace pcl_sparse
                    " patches for " + std::to_string (result.model.patches.size ()) + " codes");
     std::vector<PatchCode> owned;
     owned.reserve (result.model.patches.size ());
+    std::vector<std::uint8_t> listed (num_points, 0);  // by the owned patches
     const Eigen::Vector3i here = grid.coordinates (t);
     result.reach = 1;
     for (std::size_t k = 0; k < grown.size (); ++k)
@@ -201,6 +224,7 @@ namespace pcl_sparse
         // the neighbours' cores only).
         for (const int v : patch.vertices)
         {
+          listed[static_cast<std::size_t> (v)] = 1;
           const Eigen::Vector3d p = positionOf (static_cast<std::size_t> (v));
           result.reach = std::max (result.reach, (grid.coordinates (grid.tileOf (p)) - here).cwiseAbs ().maxCoeff ());
         }
@@ -217,6 +241,8 @@ namespace pcl_sparse
         owned.push_back (std::move (patch));
       }
     result.model.patches = std::move (owned);
+    if (input.scan && !input.point_numbers.empty ())
+      result.moved = movedListedPoints (*input.scan, *encoder.getSurface (), input.point_numbers, listed);
     result.model.num_input_vertices = source.totalPoints ();  // the vertex numbers are the whole input's
     result.seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
     return result;
@@ -307,7 +333,8 @@ namespace pcl_sparse
       range.tile = tile.tile;
       range.first_patch = model.patches.size ();
       range.num_patches = tile.model.patches.size ();
-      tiled.tiles.push_back (range);
+      range.moved = std::move (tile.moved);
+      tiled.tiles.push_back (std::move (range));
       for (PatchCode& patch : tile.model.patches)
       {
         reorderAttributeCodes (patch, tile.model.attribute_channels, model.attribute_channels);

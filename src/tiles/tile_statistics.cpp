@@ -22,6 +22,21 @@ namespace pcl_sparse
     return tiles;
   }
 
+  namespace
+  {
+    /// Where the encoder of \a moved's tile coded point \a number, at \a position in the input.
+    Eigen::Vector3d
+    codedPosition (const MovedPoints* moved, std::size_t number, const Eigen::Vector3d& position)
+    {
+      if (!moved)
+        return position;
+      const auto at = std::lower_bound (moved->numbers.begin (), moved->numbers.end (), number);
+      if (at == moved->numbers.end () || *at != number)
+        return position;
+      return position + moved->offsets[static_cast<std::size_t> (at - moved->numbers.begin ())].cast<double> ();
+    }
+  } // namespace
+
   TileErrors
   TiledErrorSums::measureTile (const TileSource& source, std::size_t t, const std::vector<TilePatches>& near)
   {
@@ -53,6 +68,10 @@ namespace pcl_sparse
     std::vector<Eigen::Vector3d> sum (numbers.size (), Eigen::Vector3d::Zero ());
     std::vector<int> count (numbers.size (), 0);
     for (const TilePatches& span : near)
+    {
+      if (span.moved && span.moved->offsets.size () != span.moved->numbers.size ())
+        throw Error ("tiledModelStatistics: " + std::to_string (span.moved->offsets.size ()) + " offsets for " +
+                     std::to_string (span.moved->numbers.size ()) + " moved points");
       for (const PatchCode* code = span.first; code != span.first + span.count; ++code)
       {
         for (const int vertex : code->vertices)
@@ -61,14 +80,16 @@ namespace pcl_sparse
           if (at == numbers.end () || *at != static_cast<std::size_t> (vertex))
             continue;
           const std::size_t v = static_cast<std::size_t> (at - numbers.begin ());
-          // (x', y') from the point, as the encoder made them (Patch::toLocal over the radius codePatch stores,
-          // support_scale included): the same up to the last bits, so held vertex lists need not keep them.
-          const Eigen::Vector2d xy = code->toLocal (positions[v]).head<2> ();
+          // (x', y') from the point where the patch's tile coded it, as the encoder made them (Patch::toLocal
+          // over the radius codePatch stores, support_scale included): the same up to the last bits, so held
+          // vertex lists need not keep them.
+          const Eigen::Vector2d xy = code->toLocal (codedPosition (span.moved, numbers[v], positions[v])).head<2> ();
           const double h = span.basis ? span.basis->evaluateCodeValue (code->atoms, code->coefficients, xy.x (), xy.y ()) : 0.0;
           sum[v] += code->toWorld (Eigen::Vector3d (xy.x (), xy.y (), h));
           ++count[v];
         }
       }
+    }
     for (std::size_t v = 0; v < numbers.size (); ++v)
       if (count[v] == 0)
         ++result.uncovered;
@@ -119,8 +140,8 @@ namespace pcl_sparse
     if (grid.size () != tiled.grid.size () || grid.origin != tiled.grid.origin || grid.edge != tiled.grid.edge)
       throw Error ("tiledModelStatistics: the model's grid is not the source's");
     SparseSurfaceModel& model = tiled.model;
-    std::vector<const TileRange*> range_of (grid.size (), nullptr);
-    for (const TileRange& range : tiled.tiles)
+    std::vector<TileRange*> range_of (grid.size (), nullptr);
+    for (TileRange& range : tiled.tiles)
       range_of.at (range.tile) = &range;
     // The last tile measured that needs each tile's patches: their vertex lists can go after it.
     std::vector<std::size_t> last_use (grid.size (), 0);
@@ -140,15 +161,19 @@ namespace pcl_sparse
       std::vector<TilePatches> near;
       for (const std::size_t u : neighbourTiles (grid, t, options.reach))
         if (range_of[u])
-          near.push_back ({model.patches.data () + range_of[u]->first_patch, range_of[u]->num_patches, model.basis.get ()});
+          near.push_back ({model.patches.data () + range_of[u]->first_patch, range_of[u]->num_patches, model.basis.get (),
+                           &range_of[u]->moved});
       sums.addTile (source, t, near);
       for (const std::size_t u : neighbourTiles (grid, t, options.reach))
         if (options.drop_vertices && range_of[u] && used[u] && last_use[u] == t)
+        {
           for (std::size_t p = range_of[u]->first_patch; p < range_of[u]->first_patch + range_of[u]->num_patches; ++p)
           {
             std::vector<int> ().swap (model.patches[p].vertices);
             std::vector<Eigen::Vector2d> ().swap (model.patches[p].vertex_xy);
           }
+          range_of[u]->moved = MovedPoints ();
+        }
     }
     return sums.statistics (model, source.totalPoints ());
   }

@@ -133,7 +133,8 @@ namespace pcl_sparse
     near.clear ();
     for (const std::size_t u : near_[t])
       if (!tiles_[u].model.patches.empty ())
-        near.push_back ({tiles_[u].model.patches.data (), tiles_[u].model.patches.size (), tiles_[u].model.basis.get ()});
+        near.push_back ({tiles_[u].model.patches.data (), tiles_[u].model.patches.size (), tiles_[u].model.basis.get (),
+                         &tiles_[u].moved});
     return true;
   }
 
@@ -160,6 +161,7 @@ namespace pcl_sparse
             std::vector<int> ().swap (patch.vertices);
             std::vector<Eigen::Vector2d> ().swap (patch.vertex_xy);
           }
+          tiles_[u].moved = MovedPoints ();
           --held_tiles_;
           held_vertices_ -= held_[u];
           held_[u] = 0;

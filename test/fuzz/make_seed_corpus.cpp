@@ -46,7 +46,7 @@ main (int argc, char** argv)
         for (std::size_t t = 0, first = 0; t < 3 && first < patches; ++t)
         {
           const std::size_t count = t < 2 ? std::max<std::size_t> (1, patches / 3) : patches - first;
-          tiled.tiles.push_back ({t, first, count});
+          tiled.tiles.push_back ({t, first, count, {}});
           first += count;
         }
         for (const auto& bytes : {pcl_sparse::encodeModel (model, options), pcl_sparse::encodeTiledModel (tiled, options, 1)})

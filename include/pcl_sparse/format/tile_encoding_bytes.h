@@ -4,7 +4,7 @@
 /// number, core bounds and seconds, and its model as a lossless version-1 model with its vertices, so the
 /// receiver gets every double bit for bit and the merged model does not depend on where a tile was encoded.
 /// Vertex lists held for the statistics only (no PatchCode::vertex_xy, encodeTile) go as their numbers
-/// alone, after the model, and come back so.
+/// alone, after the model, and come back so; then the tile's moved points (TileEncoding::moved).
 
 #include <pcl_sparse/model/tiled_model.h>
 

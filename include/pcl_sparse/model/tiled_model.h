@@ -15,12 +15,23 @@
 
 namespace pcl_sparse
 {
+  /// Input points an encoder coded elsewhere than the input holds them: a scan whose depth steps it took out
+  /// (depth_steps_removal.h) moves them along their lines of sight, by up to half a step.
+  struct MovedPoints
+  {
+    std::vector<std::size_t> numbers;     ///< their numbers in the whole input, ascending
+    std::vector<Eigen::Vector3f> offsets; ///< coded world position - input world position (a few cm: float)
+  };
+
   /// The patches one tile owns: model.patches[first_patch, first_patch + num_patches).
   struct TileRange
   {
     std::size_t tile = 0;         ///< tile number in the grid
     std::size_t first_patch = 0;  ///< number of its first patch in the whole model
     std::size_t num_patches = 0;  ///< patches whose seed lies in the tile's core box
+    /// The points they list that the tile's encoder coded elsewhere (TileEncoding::moved), for
+    /// tiledModelStatistics, which drops them with the vertex lists; empty in a loaded model.
+    MovedPoints moved;
   };
 
   /// One encoded tile (tile_encoding.h).
@@ -34,6 +45,10 @@ namespace pcl_sparse
     /// Tiles, along any axis, from this tile to the farthest one whose core holds a point its patches list:
     /// 1 (its neighbours) unless a mesh's triangles are longer than the margin; 0 when not known (decoded).
     int reach = 0;
+    /// The points its patches list that its encoder coded elsewhere than the input holds them (with point
+    /// numbers only), for the statistics, which evaluate each patch where it coded them, as an untiled
+    /// encoding does (TilePatches::moved); dropped with the vertex lists.
+    MovedPoints moved;
   };
 
   /// A tiled model, or the part of one that was loaded (a region: some tiles only).

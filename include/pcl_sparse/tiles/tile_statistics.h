@@ -44,6 +44,11 @@ namespace pcl_sparse
     const PatchCode* first = nullptr;     ///< the first patch
     std::size_t count = 0;                ///< number of patches
     const SurfaceBasis* basis = nullptr;  ///< their basis (null: heights 0)
+    /// The points they list that their tile's encoder coded elsewhere (TileEncoding::moved; null: none):
+    /// each patch is evaluated where it coded the point, the error taken to the input's point, as the
+    /// untiled statistics do. Evaluated at the input's position instead, a patch extrapolated its code
+    /// beyond its disk (office1.pcd in 4 tiles, depth steps taken out: a point 2.2 radii out, 49 m off).
+    const MovedPoints* moved = nullptr;
   };
 
   /// The errors of one tile's core points, summed over them in point-number order, to be added to
@@ -105,11 +110,13 @@ namespace pcl_sparse
   /// Each point is reconstructed as reconstructVertices does (the mean over the patches listing it, in model
   /// order) from the patches of its own tile and of the 26 tiles around it (a tile's patches list only points
   /// of its margin box), and its error is taken in its own tile (TileGrid::tileOf), so every point counts
-  /// once. Each tile's points are summed in input order, then the tiles' sums in tile order: the figures equal
+  /// once; each patch is evaluated where its tile's encoder coded the point (TileRange::moved). Each tile's
+  /// points are summed in input order, then the tiles' sums in tile order: the figures equal
   /// SparseSurfaceModel::statistics against the whole input up to rounding, and do not depend on the tile
   /// source (MemoryTileSource or a spilled one give the same bits) or on the number of threads.
   /// \param[in] source     the tiled input, with point numbers (TileInput::point_numbers)
-  /// \param[in,out] tiled  the tiled model (its patches list point numbers); vertex lists cleared if asked
+  /// \param[in,out] tiled  the tiled model (its patches list point numbers); vertex lists (and TileRange::moved)
+  ///                       cleared if asked
   /// \param[in] options    options
   /// \return the statistics (num_vertices = source.totalPoints ())
   /// \throws pcl_sparse::Error if a tile with patches has no point numbers or the grids differ

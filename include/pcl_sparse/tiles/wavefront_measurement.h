@@ -85,7 +85,8 @@ namespace pcl_sparse
     next (std::size_t& t, std::vector<TilePatches>& near) const;
 
     /// \brief Records the errors of the tile next gave (measured meanwhile, perhaps without the lock), adds
-    /// what can be added in tile order and drops the vertex lists no tile left needs.
+    /// what can be added in tile order and drops the vertex lists no tile left needs (with their tiles'
+    /// TileEncoding::moved).
     /// \param[in] errors  TiledErrorSums::measureTile of the tile
     /// \param[in] seconds the time it took
     void
