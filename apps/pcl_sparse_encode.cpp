@@ -416,7 +416,10 @@ main (int argc, char** argv)
       std::printf ("%10zu %7zu %8g %8zu %11.4e %10.3e %6.3f\n", stats.num_vertices, stats.num_patches,
                    options.patches.rho, stats.num_nonzeros, stats.rmse, stats.rmse_over_diagonal,
                    stats.compression_ratio);
-      if (stats.uncovered > 0)
+      if (stats.uncovered > 0 && tools::cleaningReportOf (input, source.get ()))  // a scan
+        std::printf ("uncovered points (not in the RMSE): %zu, in no triangle (beside the surface, whose patches "
+                     "resample there, or strays)\n", stats.uncovered);
+      else if (stats.uncovered > 0)
         std::printf ("uncovered vertices (not in the RMSE): %zu\n", stats.uncovered);
       if (tiled)
         std::printf ("tiles: %zu with patches of %zu (%d x %d x %d, edge %.4g), %d process%s\n", tiled_model.tiles.size (),

@@ -318,6 +318,50 @@ TEST (PatchSampling, UnreferencedAndIsolatedVertices)
   EXPECT_THROW (options.validate (), Error);
 }
 
+// Asked to cover them (as on a scan), an unreferenced vertex next to the faces gets no patch of its own: the
+// surface's patches resample its neighbourhood already (PatchOptions::unreferenced_patch_spacings, 3 mean
+// edge lengths of the nearest vertex of a face). One farther away (a thin part, a stray return) keeps its own.
+TEST (PatchSampling, UnreferencedVerticesNextToTheFacesGetNoPatch)
+{
+  TriangleMesh mesh = makeIcosphere (2);  // unit sphere, edges about 0.3
+  mesh.vertices.push_back (1.2 * mesh.vertices[0]);  // 0.2 outside vertex 0: next to the faces
+  const int near = static_cast<int> (mesh.vertices.size ()) - 1;
+  mesh.vertices.emplace_back (5.0, 5.0, 5.0);  // 7.7 away
+  const int far = near + 1;
+  const auto seeds = [&] (const PatchOptions& options, std::vector<int>& uncovered) {
+    FeatureAwarePatchSampling<pcl::PointXYZ> sampling;
+    sampling.setInputMesh (std::make_shared<TriangleMesh> (mesh));
+    sampling.setOptions (options);
+    sampling.setResponses (std::vector<double> (mesh.vertices.size (), 0.0));
+    std::vector<Patch> patches;
+    sampling.compute (patches);
+    uncovered = sampling.getUncoveredVertices ();
+    EXPECT_EQ (sampling.getUnreferencedVertices (), (std::vector<int>{near, far}));
+    std::vector<int> seeds;
+    for (const Patch& p : patches)
+      seeds.push_back (p.seed);
+    return seeds;
+  };
+  PatchOptions options;
+  options.cover_unreferenced_vertices = 1;
+  std::vector<int> uncovered;
+  std::vector<int> seeded = seeds (options, uncovered);
+  EXPECT_EQ (uncovered, std::vector<int>{near});
+  EXPECT_EQ (std::count (seeded.begin (), seeded.end (), near), 0);
+  EXPECT_EQ (std::count (seeded.begin (), seeded.end (), far), 1);
+  // 0: every unreferenced vertex gets its patch; 0.5 edge lengths: the vertex 0.2 away is not next to them.
+  for (const double spacings : {0.0, 0.5})
+  {
+    options.unreferenced_patch_spacings = spacings;
+    seeded = seeds (options, uncovered);
+    EXPECT_TRUE (uncovered.empty ()) << spacings;
+    EXPECT_EQ (std::count (seeded.begin (), seeded.end (), near), 1) << spacings;
+    EXPECT_EQ (std::count (seeded.begin (), seeded.end (), far), 1) << spacings;
+  }
+  options.unreferenced_patch_spacings = -1.0;
+  EXPECT_THROW (options.validate (), Error);
+}
+
 TEST (PatchSampling, DegenerateInputDoesNotBreakIt)
 {
   // Duplicate face, zero-area face, faces with a repeated corner (one on an edge, one joining two vertices
@@ -558,7 +602,10 @@ namespace
     sampling.setOptions (options);
     sampling.setNumberOfThreads (threads);
     sampling.compute (patches);
-    EXPECT_TRUE (sampling.getUncoveredVertices ().empty ());
+    // Every vertex of a face is covered (a scan's points in no face next to them are left out).
+    const std::vector<int>& uncovered = sampling.getUncoveredVertices ();
+    const std::vector<int>& unreferenced = sampling.getUnreferencedVertices ();
+    EXPECT_TRUE (std::includes (unreferenced.begin (), unreferenced.end (), uncovered.begin (), uncovered.end ()));
     return sampling.getNumGrownSeeds ();
   }
 } // namespace

@@ -3,6 +3,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
+#include <pcl_sparse/geometry/point_kd_tree.h>
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_components.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -30,6 +31,58 @@ namespace pcl_sparse
     /// on meshes of at least this many vertices (below, the loop takes milliseconds).
     constexpr int kMaxGrowthHelpers = 3;
     constexpr std::size_t kMinVerticesForHelpers = 20000;
+
+    /// How near a point lies to the vertices of faces, in their local spacing (PatchOptions::
+    /// unreferenced_patch_spacings). The tree is built on the first question: most meshes never ask.
+    class NearestFaceVertex
+    {
+    public:
+      NearestFaceVertex (const TriangleMesh& mesh, const MeshTopology& topology, const std::vector<std::uint8_t>& in_faces)
+        : mesh_ (mesh), topology_ (topology), in_faces_ (in_faces) {}
+
+      /// Whether \a p lies within \a spacings mean edge lengths of the nearest vertex of a face (of its
+      /// edges), from that vertex.
+      bool
+      within (const Eigen::Vector3d& p, double spacings) const
+      {
+        if (!tree_)
+        {
+          pcl::PointCloud<pcl::PointXYZ> points;
+          for (std::size_t w = 0; w < in_faces_.size (); ++w)
+            if (in_faces_[w])
+            {
+              vertices_.push_back (static_cast<int> (w));
+              const Eigen::Vector3f q = mesh_.vertices[w].cast<float> ();
+              points.push_back (pcl::PointXYZ (q.x (), q.y (), q.z ()));
+            }
+          tree_ = std::make_unique<PointKdTree> (points);
+        }
+        if (tree_->size () == 0)
+          return false;
+        std::vector<int> nearest;
+        std::vector<float> squared;
+        const Eigen::Vector3f q = p.cast<float> ();
+        tree_->nearestK (pcl::PointXYZ (q.x (), q.y (), q.z ()), 1, nearest, squared);
+        const int w = vertices_[static_cast<std::size_t> (nearest[0])];
+        double length = 0.0;
+        int edges = 0;
+        for (const int f : topology_.facesOf (w))
+          for (int k = 0; k < 3; ++k)
+            if (mesh_.triangles[f][k] != w)
+            {
+              length += (mesh_.vertices[mesh_.triangles[f][k]] - mesh_.vertices[w]).norm ();
+              ++edges;
+            }
+        return edges > 0 && (p - mesh_.vertices[w]).norm () <= spacings * length / edges;
+      }
+
+    private:
+      const TriangleMesh& mesh_;
+      const MeshTopology& topology_;
+      const std::vector<std::uint8_t>& in_faces_;
+      mutable std::unique_ptr<PointKdTree> tree_;
+      mutable std::vector<int> vertices_;
+    };
 
     /// Candidate order: \a keypoints first, then the other vertices; each part in the order of
     /// orderVerticesByResponse (decreasing response, ties by increasing index, no response last).
@@ -448,6 +501,46 @@ namespace pcl_sparse
       num_sampled -= sampled_dropped;
       return num_dropped;
     }
+    /// The vertices of the seed region in no face, added to \a result.unreferenced: when asked
+    /// (PatchOptions::cover_unreferenced_vertices), each gets a one-vertex patch but NaN ones and those next
+    /// to the faces (unreferenced_patch_spacings), which go to \a result.uncovered, as all go when not asked.
+    /// Returns the non-finite vertices in faces, left uncovered whatever the options.
+    std::vector<int>
+    coverUnreferencedVertices (const GrowthMesh& growth, const std::vector<std::uint8_t>& referenced,
+                               const std::vector<std::uint8_t>& seedable, const PatchOptions& options, PatchGrower& grower,
+                               Coverage& coverage, PatchSamplingResult& result)
+    {
+      const TriangleMesh& mesh = *growth.mesh;
+      const MeshTopology& topology = *growth.topology;
+      // Unresolved (< 0), it is a mesh's: its unreferenced vertices are not on its surface.
+      const bool cover = patchOptionsFor (options, false).cover_unreferenced_vertices > 0;
+      const NearestFaceVertex next_to_faces (mesh, topology, referenced);
+      Patch patch;
+      std::vector<int> non_finite_in_faces;
+      for (int v = 0; v < static_cast<int> (mesh.vertices.size ()); ++v)
+        if (!referenced[v] && growth.originalOf (v) == v && (seedable.empty () || seedable[v]))
+        {
+          if (topology.facesOf (v).size () > 0)
+          {
+            non_finite_in_faces.push_back (v);
+            continue;
+          }
+          result.unreferenced.push_back (v);
+          // A NaN point no face uses (the holes of a mesh made from an organized cloud) has nothing to code:
+          // a patch there had a NaN origin, and the model could be neither saved nor resampled.
+          if (!cover || !mesh.vertices[v].allFinite () ||
+              (options.unreferenced_patch_spacings > 0.0 &&
+               next_to_faces.within (mesh.vertices[v], options.unreferenced_patch_spacings)))
+            result.uncovered.push_back (v);
+          else
+          {
+            grower.grow (v, patch);
+            coverage.keep (patch);
+          }
+        }
+      return non_finite_in_faces;
+    }
+
   } // namespace
 
   void
@@ -536,29 +629,8 @@ namespace pcl_sparse
       runCoveragePass (topology, geometry, order, referenced, target, grower, coverage);
     if (progress)
       progress ("patches", 1.0);
-    // Unresolved (< 0), it is a mesh's: its unreferenced vertices are not on its surface.
-    const bool cover_unreferenced = patchOptionsFor (options, false).cover_unreferenced_vertices > 0;
-    Patch patch;
-    std::vector<int> non_finite_in_faces;  // left uncovered whatever the options
-    for (int v = 0; v < num_vertices; ++v)
-      if (!referenced[v] && growth.originalOf (v) == v && (seedable.empty () || seedable[v]))
-      {
-        if (topology.facesOf (v).size () > 0)
-        {
-          non_finite_in_faces.push_back (v);
-          continue;
-        }
-        result.unreferenced.push_back (v);
-        // A NaN point no face uses (the holes of a mesh made from an organized cloud) has nothing to code:
-        // a patch there had a NaN origin, and the model could be neither saved nor resampled.
-        if (cover_unreferenced && !mesh.vertices[v].allFinite ())
-          result.uncovered.push_back (v);
-        else if (cover_unreferenced)
-        {
-          grower.grow (v, patch);
-          coverage.keep (patch);
-        }
-      }
+    const std::vector<int> non_finite_in_faces =
+      coverUnreferencedVertices (growth, referenced, seedable, options, grower, coverage, result);
     result.num_coverage_patches = result.patches.size () - num_sampled;
     if (options.complete_faces)
     {
@@ -584,8 +656,6 @@ namespace pcl_sparse
       fitFrames (mesh, topology, geometry, steep_frame_angle, face_steep_frame_angle, threads, result.patches);
     if (growth.is_split)
       mapToInputVertices (growth, num_input, result.patches);
-    if (!cover_unreferenced)
-      result.uncovered = result.unreferenced;
     if (!non_finite_in_faces.empty ())
     {
       const std::size_t middle = result.uncovered.size ();

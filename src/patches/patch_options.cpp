@@ -26,6 +26,8 @@ namespace pcl_sparse
       fail ("tail_pruning_after", tail_pruning_after, "-1 (by surface) or 0 <= tail_pruning_after <= 1");
     if (cover_unreferenced_vertices < -1 || cover_unreferenced_vertices > 1)
       fail ("cover_unreferenced_vertices", cover_unreferenced_vertices, "-1 (by surface), 0 or 1");
+    if (!(unreferenced_patch_spacings >= 0.0) || !std::isfinite (unreferenced_patch_spacings))
+      fail ("unreferenced_patch_spacings", unreferenced_patch_spacings, "unreferenced_patch_spacings >= 0, finite");
     if (max_patch_vertices < -1)
       fail ("max_patch_vertices", max_patch_vertices, "max_patch_vertices >= -1");
     if (min_growth_vertices < 0)

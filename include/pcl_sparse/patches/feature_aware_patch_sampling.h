@@ -24,8 +24,8 @@
 /// variation measured between adjacent faces (PatchGrower::growFromFace) and keeps the variant covering
 /// most uncovered vertices. A vertex without a proper face gets a one-vertex patch with a guarded frame
 /// (radius = its mean edge length). Unreferenced vertices get one-vertex patches when
-/// PatchOptions::cover_unreferenced_vertices (by default on scans only), else they are reported by
-/// getUncoveredVertices; NaN
+/// PatchOptions::cover_unreferenced_vertices (by default on scans only) and they lie farther from the faces
+/// than PatchOptions::unreferenced_patch_spacings, else they are reported by getUncoveredVertices; NaN
 /// vertices no face uses (the holes of a mesh made from an organized cloud) always are.
 /// Non-manifold edges and vertices are cut first (non_manifold_split.h), so no patch crosses them.
 ///
@@ -167,7 +167,8 @@ namespace pcl_sparse
     const std::vector<int>& getKeypoints () const { return result_.keypoints; }
 
     /// \brief Vertices in no patch after the last compute (unreferenced vertices unless
-    /// cover_unreferenced_vertices, which by default holds on scans only; otherwise empty), ascending.
+    /// cover_unreferenced_vertices, which by default holds on scans only, and then those next to the faces,
+    /// unreferenced_patch_spacings), ascending.
     const std::vector<int>& getUncoveredVertices () const { return result_.uncovered; }
     /// \brief Vertices no face uses (ascending), whatever the option.
     const std::vector<int>& getUnreferencedVertices () const { return result_.unreferenced; }
