@@ -119,22 +119,30 @@ namespace
     return farthest;
   }
 
+  /// \a source encoded by the measuring TiledSurfaceEncoder (2 threads) into \a tiled; returns its statistics.
+  ModelStatistics
+  encodeMeasuring (const TileSource& source, const SparseSurfaceEncoderOptions& options, TiledModel& tiled)
+  {
+    TiledSurfaceEncoder encoder;
+    encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
+    encoder.setOptions (options);
+    encoder.setNumberOfThreads (2);
+    encoder.setMeasurement (true);
+    encoder.compute (tiled);
+    return encoder.getStatistics ();
+  }
+
   /// Expects the measuring TiledSurfaceEncoder (2 threads) to give \a expected's file and the statistics of
   /// \a expected's patches over \a vertices, the input's; returns its statistics.
   ModelStatistics
   expectMeasuringEncoderGives (const TileSource& source, const std::vector<Eigen::Vector3d>& vertices,
                                const TiledModel& expected)
   {
-    TiledSurfaceEncoder encoder;
-    encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
-    encoder.setNumberOfThreads (2);
-    encoder.setMeasurement (true);
     TiledModel tiled;
-    encoder.compute (tiled);
+    const ModelStatistics measured = encodeMeasuring (source, SparseSurfaceEncoderOptions (), tiled);
     EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (expected, ModelWriteOptions (), 1));
     const ModelStatistics truth = expected.model.statistics (vertices);
     EXPECT_GT (truth.rmse, 0.0);  // else the relative tolerances below are 0 and NaN passes nothing, but 0 == 0 does
-    const ModelStatistics& measured = encoder.getStatistics ();
     EXPECT_NEAR (measured.rmse, truth.rmse, 1e-12 * truth.rmse);
     EXPECT_NEAR (measured.max_error, truth.max_error, 1e-12 * truth.max_error);
     EXPECT_EQ (measured.uncovered, truth.uncovered);
@@ -1020,18 +1028,15 @@ TEST (TiledEncoding, PatchesOfMovedScanPointsStayWithTheirSeedsTile)
   const auto scan = std::make_shared<ScanCloud> (pcl_sparse_test::steppedSlantedPlane (144));
   TileGridOptions grid;
   grid.tiles_along_longest = 8;  // 29 tiles, 10 of which take the steps out (the others see too few)
-  TiledSurfaceEncoder encoder;
-  encoder.setTileSource (std::make_shared<MemoryTileSource> (scan, grid));
-  encoder.setMeasurement (true);
   TiledModel tiled;
-  encoder.compute (tiled);
+  const ModelStatistics stats = encodeMeasuring (MemoryTileSource (scan, grid), SparseSurfaceEncoderOptions (), tiled);
   ASSERT_GE (tiled.tiles.size (), 4u);
   std::size_t across = 0;
   for (const TileRange& range : tiled.tiles)
     for (std::size_t p = range.first_patch; p < range.first_patch + range.num_patches; ++p)
       across += tiled.grid.tileOf (tiled.model.patches[p].origin) != range.tile ? 1 : 0;
   EXPECT_GT (across, 0u) << "no origin crossed a border: the case is not tested";
-  EXPECT_EQ (encoder.getStatistics ().uncovered, 0u);  // 803 when the origin decided
+  EXPECT_EQ (stats.uncovered, 0u);  // 803 when the origin decided
 }
 
 // The same wall's statistics: each patch is evaluated where its tile's encoder coded the point (its depth
@@ -1072,14 +1077,10 @@ TEST (TiledEncoding, StatisticsOfMovedScanPointsAreTakenWhereTheyWereCoded)
   for (const TileRange& range : merged.tiles)
     EXPECT_TRUE (range.moved.numbers.empty ()) << "tile " << range.tile << " still holds its moved points";
   // The measuring encoder, which drops each tile's moved points with its vertex lists, gives the same.
-  TiledSurfaceEncoder encoder;
-  encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
-  encoder.setNumberOfThreads (2);
-  encoder.setMeasurement (true);
   TiledModel measured;
-  encoder.compute (measured);
-  EXPECT_EQ (encoder.getStatistics ().rmse, stats.rmse);
-  EXPECT_EQ (encoder.getStatistics ().max_error, stats.max_error);
+  const ModelStatistics measured_stats = encodeMeasuring (source, SparseSurfaceEncoderOptions (), measured);
+  EXPECT_EQ (measured_stats.rmse, stats.rmse);
+  EXPECT_EQ (measured_stats.max_error, stats.max_error);
 }
 
 // PCL's default pose (0, 0, 0) under an airborne-like tile is judged once on the whole input, by the tile
@@ -1267,15 +1268,10 @@ TEST (TiledEncoding, StatisticsNeedOnlyTheVertexNumbers)
   EXPECT_NEAR (stats.mean_error_over_diagonal, reference.mean_error_over_diagonal, 1e-9 * reference.mean_error_over_diagonal);
   EXPECT_GT (reference.rmse, 0.0);
   // The measuring encoder (which holds its tiles so) gives the same figures and the same model.
-  TiledSurfaceEncoder encoder;
-  encoder.setTileSource (std::shared_ptr<const TileSource> (&source, [] (const TileSource*) {}));
-  encoder.setOptions (options);
-  encoder.setNumberOfThreads (2);
-  encoder.setMeasurement (true);
   TiledModel tiled;
-  encoder.compute (tiled);
-  EXPECT_EQ (encoder.getStatistics ().rmse, stats.rmse);
-  EXPECT_EQ (encoder.getStatistics ().max_error, stats.max_error);
+  const ModelStatistics measured = encodeMeasuring (source, options, tiled);
+  EXPECT_EQ (measured.rmse, stats.rmse);
+  EXPECT_EQ (measured.max_error, stats.max_error);
   EXPECT_TRUE (encodeTiledModel (tiled, ModelWriteOptions (), 1) == encodeTiledModel (reference_model, ModelWriteOptions (), 1));
 }
 
