@@ -92,6 +92,8 @@ namespace
       {"-merge-patches K", "merge each patch with at most K vertices and triangles of its own into its neighbours"},
       {"", "(default 8: up to a third off the file, bench/results/patch_merging.md; 0: none;"},
       {"", "-preset paper 0)"},
+      {"-point-patches S", "scans: a point in no triangle gets a patch of its own only farther than S mean edge"},
+      {"", "lengths from the triangles (default 3; 0: every such point)"},
       {"-seed S", "seed of the extra samples (default 42)"},
       {"-threads N", "OpenMP threads (default: all; the model does not depend on it)"},
       {"-recon RECON", "write the reconstructed mesh (input vertex order and faces)"},
@@ -122,7 +124,8 @@ namespace
     },
     1,
     {"-rho", "-f", "-L", "-eps", "-atom-loss", "-min-samples", "-sigma", "-cone", "-footprint-reach", "-seed", "-threads", "-basis", "-recon", "-error", "-o", "-tolerance",
-     "-footprint-steps", "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory", "-merge-patches"},
+     "-footprint-steps", "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory", "-merge-patches",
+     "-point-patches"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices", "--varint-layout", "--exact-footprints",
      "--keep-redundant-patches"}};
 } // namespace
@@ -156,6 +159,7 @@ main (int argc, char** argv)
     if (args.has ("--keep-redundant-patches"))
       options.patches.drop_redundant_patches = false;
     args.integer ("-merge-patches", options.patches.merge_own_elements, tools::Range::atLeast (0));
+    args.number ("-point-patches", options.patches.unreferenced_patch_spacings, tools::Range::atLeast (0.0));
     if (args.has ("-basis"))
       options.basis = cosineBasisKindFromName (args.value ("-basis"));
     int threads = 0;
@@ -417,8 +421,9 @@ main (int argc, char** argv)
                    options.patches.rho, stats.num_nonzeros, stats.rmse, stats.rmse_over_diagonal,
                    stats.compression_ratio);
       if (stats.uncovered > 0 && tools::cleaningReportOf (input, source.get ()))  // a scan
-        std::printf ("uncovered points (not in the RMSE): %zu, in no triangle (beside the surface, whose patches "
-                     "resample there, or strays)\n", stats.uncovered);
+        std::printf ("uncovered points (not in the RMSE): %zu, in no triangle beside the surface, whose patches resample "
+                     "there (-point-patches 0: a patch each)%s\n",
+                     stats.uncovered, tiled ? ", or in tiles too small to make a surface" : "");
       else if (stats.uncovered > 0)
         std::printf ("uncovered vertices (not in the RMSE): %zu\n", stats.uncovered);
       if (tiled)

@@ -58,11 +58,14 @@ namespace
       {"", "patches; default: dropped, PatchOptions::drop_redundant_patches)"},
       {"-merge-patches K", tools::format ("merge each patch with at most K vertices and triangles of its own into its"
                                           " neighbours (default %d; 0: none)", kDefaults.merge_own_elements)},
+      {"-point-patches S", tools::format ("scans: a point in no triangle gets a patch of its own only farther than S"
+                                          " mean edge lengths from the triangles (default %g; 0: every such point)",
+                                          kDefaults.unreferenced_patch_spacings)},
       {"--json", "print one JSON object on stdout"},
       {"-q", "quiet (no progress, no messages besides the report and errors)"},
     },
     1, {"-rho", "-delta", "-cone", "-eta", "-sigma", "-min-size", "-viewpoint", "-preset", "-png", "-size", "-view",
-        "-merge-patches"},
+        "-merge-patches", "-point-patches"},
     {"--json", "-q", "--authors", "--keep-redundant-patches"}};
 } // namespace
 
@@ -94,6 +97,7 @@ main (int argc, char** argv)
     if (args.has ("--keep-redundant-patches"))
       options.drop_redundant_patches = false;
     args.integer ("-merge-patches", options.merge_own_elements, tools::Range::atLeast (0));
+    args.number ("-point-patches", options.unreferenced_patch_spacings, tools::Range::atLeast (0.0));
     Eigen::Vector3d viewpoint;
     const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
     try

@@ -335,6 +335,8 @@ namespace
       {"encode_nan_sigma", "encode", {"IN", "-o", "OUT.m.psm", "-sigma", "nan"}},
       {"encode_negative_merge", "encode", {"IN", "-o", "OUT.m.psm", "-merge-patches", "-1"}},
       {"encode_fractional_merge", "encode", {"IN", "-o", "OUT.m.psm", "-merge-patches", "2.5"}},
+      {"encode_negative_point_patches", "encode", {"IN", "-o", "OUT.m.psm", "-point-patches", "-1"}},
+      {"patches_nan_point_patches", "patches", {"IN", "OUT.p.ply", "-point-patches", "nan"}},
       {"encode_negative_atom_loss", "encode", {"IN", "-o", "OUT.m.psm", "-atom-loss", "-0.1"}},
       {"encode_nan_atom_loss", "encode", {"IN", "-o", "OUT.m.psm", "-atom-loss", "nan"}},
       {"encode_negative_threads", "encode", {"IN", "-o", "OUT.m.psm", "-threads", "-1"}},
