@@ -32,58 +32,6 @@ namespace pcl_sparse
     constexpr int kMaxGrowthHelpers = 3;
     constexpr std::size_t kMinVerticesForHelpers = 20000;
 
-    /// How near a point lies to the vertices of faces, in their local spacing (PatchOptions::
-    /// unreferenced_patch_spacings). The tree is built on the first question: most meshes never ask.
-    class NearestFaceVertex
-    {
-    public:
-      NearestFaceVertex (const TriangleMesh& mesh, const MeshTopology& topology, const std::vector<std::uint8_t>& in_faces)
-        : mesh_ (mesh), topology_ (topology), in_faces_ (in_faces) {}
-
-      /// Whether \a p lies within \a spacings mean edge lengths of the nearest vertex of a face (of its
-      /// edges), from that vertex.
-      bool
-      within (const Eigen::Vector3d& p, double spacings) const
-      {
-        if (!tree_)
-        {
-          pcl::PointCloud<pcl::PointXYZ> points;
-          for (std::size_t w = 0; w < in_faces_.size (); ++w)
-            if (in_faces_[w])
-            {
-              vertices_.push_back (static_cast<int> (w));
-              const Eigen::Vector3f q = mesh_.vertices[w].cast<float> ();
-              points.push_back (pcl::PointXYZ (q.x (), q.y (), q.z ()));
-            }
-          tree_ = std::make_unique<PointKdTree> (points);
-        }
-        if (tree_->size () == 0)
-          return false;
-        std::vector<int> nearest;
-        std::vector<float> squared;
-        const Eigen::Vector3f q = p.cast<float> ();
-        tree_->nearestK (pcl::PointXYZ (q.x (), q.y (), q.z ()), 1, nearest, squared);
-        const int w = vertices_[static_cast<std::size_t> (nearest[0])];
-        double length = 0.0;
-        int edges = 0;
-        for (const int f : topology_.facesOf (w))
-          for (int k = 0; k < 3; ++k)
-            if (mesh_.triangles[f][k] != w)
-            {
-              length += (mesh_.vertices[mesh_.triangles[f][k]] - mesh_.vertices[w]).norm ();
-              ++edges;
-            }
-        return edges > 0 && (p - mesh_.vertices[w]).norm () <= spacings * length / edges;
-      }
-
-    private:
-      const TriangleMesh& mesh_;
-      const MeshTopology& topology_;
-      const std::vector<std::uint8_t>& in_faces_;
-      mutable std::unique_ptr<PointKdTree> tree_;
-      mutable std::vector<int> vertices_;
-    };
-
     /// Candidate order: \a keypoints first, then the other vertices; each part in the order of
     /// orderVerticesByResponse (decreasing response, ties by increasing index, no response last).
     std::vector<int>
@@ -127,6 +75,49 @@ namespace pcl_sparse
       }
       return count > 0 ? sum / count : 0.0;
     }
+
+    /// How near a point lies to the vertices of faces, in their local spacing (PatchOptions::
+    /// unreferenced_patch_spacings). The tree is built on the first question: most meshes never ask.
+    class NearestFaceVertex
+    {
+    public:
+      NearestFaceVertex (const TriangleMesh& mesh, const MeshTopology& topology, const std::vector<std::uint8_t>& in_faces)
+        : mesh_ (mesh), topology_ (topology), in_faces_ (in_faces) {}
+
+      /// Whether \a p lies within \a spacings mean edge lengths (meanEdgeLength) of the nearest vertex of a
+      /// face from that vertex.
+      bool
+      within (const Eigen::Vector3d& p, double spacings) const
+      {
+        if (!tree_)
+        {
+          pcl::PointCloud<pcl::PointXYZ> points;
+          for (std::size_t w = 0; w < in_faces_.size (); ++w)
+            if (in_faces_[w])
+            {
+              vertices_.push_back (static_cast<int> (w));
+              const Eigen::Vector3f q = mesh_.vertices[w].cast<float> ();
+              points.push_back (pcl::PointXYZ (q.x (), q.y (), q.z ()));
+            }
+          tree_ = std::make_unique<PointKdTree> (points);
+        }
+        if (tree_->size () == 0)
+          return false;
+        std::vector<int> nearest;
+        std::vector<float> squared;
+        const Eigen::Vector3f q = p.cast<float> ();
+        tree_->nearestK (pcl::PointXYZ (q.x (), q.y (), q.z ()), 1, nearest, squared);
+        const int w = vertices_[static_cast<std::size_t> (nearest[0])];
+        return (p - mesh_.vertices[w]).norm () <= spacings * meanEdgeLength (mesh_, topology_, w);
+      }
+
+    private:
+      const TriangleMesh& mesh_;
+      const MeshTopology& topology_;
+      const std::vector<std::uint8_t>& in_faces_;
+      mutable std::unique_ptr<PointKdTree> tree_;
+      mutable std::vector<int> vertices_;
+    };
 
     /// Throws Error ("[FeatureAwarePatchSampling::compute] " + message) unless \a condition.
     void
@@ -501,6 +492,7 @@ namespace pcl_sparse
       num_sampled -= sampled_dropped;
       return num_dropped;
     }
+
     /// The vertices of the seed region in no face, added to \a result.unreferenced: when asked
     /// (PatchOptions::cover_unreferenced_vertices), each gets a one-vertex patch but NaN ones and those next
     /// to the faces (unreferenced_patch_spacings), which go to \a result.uncovered, as all go when not asked.
@@ -540,7 +532,6 @@ namespace pcl_sparse
         }
       return non_finite_in_faces;
     }
-
   } // namespace
 
   void

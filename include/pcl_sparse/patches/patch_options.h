@@ -91,8 +91,8 @@ namespace pcl_sparse
     /// this many mean edge lengths of the nearest vertex of a face from that vertex (3, default): next to
     /// the triangulated surface (a depth edge's points, a lidar ring's whose edges were refused) the surface's
     /// patches resample its neighbourhood already: such discs, up to 59 % of a scan's patches, took up to 15 %
-    /// of its default file for at most 0.2 % completeness of clouds resampled to 1x or 4x its points
-    /// (room_scan1.pcd: 5324 of 9000 patches; bench/results/unreferenced_points.md). Such a vertex is left
+    /// of its default file for at most 0.1 % completeness of clouds resampled to 1x or 4x its points
+    /// (room_scan1.pcd: 9000 -> 3677 patches; bench/results/unreferenced_points.md). Such a vertex is left
     /// uncovered. Points farther (thin parts, stray returns) keep theirs. 0: every one gets its patch.
     double unreferenced_patch_spacings = 3.0;
     /// Harris 3D neighbourhoods of the default candidate order: 0 (default) = the paper's adaptive rings
