@@ -34,6 +34,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "cloud_measures.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -299,17 +301,7 @@ namespace
         v -= s.scan->origin;
     }
     s.tree.setInputCloud (s.points);
-    s.local_spacing.resize (s.points->size ());
-    std::vector<int> k_indices;
-    std::vector<float> k_squared;
-    for (std::size_t i = 0; i < s.points->size (); ++i)
-    {
-      const int found = s.tree.nearestKSearch ((*s.points)[i], 7, k_indices, k_squared);
-      double sum = 0.0;
-      for (int k = 1; k < found; ++k)
-        sum += std::sqrt (k_squared[k]);
-      s.local_spacing[i] = static_cast<float> (found > 1 ? sum / (found - 1) : 0.0);
-    }
+    s.local_spacing = pcl_sparse_bench::localSpacings (*s.points, s.tree);
   }
 
   /// Encoder options for a scan: defaults, the viewpoint when known.
@@ -457,15 +449,8 @@ namespace
       m.nn_cv = std::sqrt (std::max (0.0, sum2 / n - mean * mean)) / mean;
     }
     // Completeness: kept input points (up to 100k) with an output point within 3 of their local spacings.
-    {
-      const std::size_t stride = std::max<std::size_t> (1, s.points->size () / 100000);
-      std::size_t covered = 0, n = 0;
-      for (std::size_t i = 0; i < s.points->size (); i += stride, ++n)
-        if (tree.nearestKSearch ((*s.points)[i], 1, k_indices, k_squared) == 1 &&
-            std::sqrt (k_squared[0]) <= 3.0f * s.local_spacing[i])
-          ++covered;
-      m.completeness = static_cast<double> (covered) / n;
-    }
+    m.completeness = pcl_sparse_bench::completeness (*s.points, s.local_spacing, tree,
+                                                    std::max<std::size_t> (1, s.points->size () / 100000));
     // Invented surface: output points farther than 3 local spacings (of the nearest input point) from
     // every input point.
     for (const pcl::PointXYZ& p : *xyz)

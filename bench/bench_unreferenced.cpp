@@ -7,6 +7,7 @@
 ///   bench_unreferenced SPACINGS SCAN...   one Markdown row per scan (SPACINGS: the option's value)
 
 #include "bench_main.h"
+#include "cloud_measures.h"
 
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/file_tolerance.h>
@@ -34,30 +35,10 @@ namespace
     return cloud;
   }
 
-  /// Mean distance of each input point to its 6 nearest input points.
-  std::vector<double>
-  localSpacings (const pcl::PointCloud<pcl::PointXYZ>::Ptr& input)
-  {
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-    tree.setInputCloud (input);
-    std::vector<double> spacing (input->size ());
-    std::vector<int> indices;
-    std::vector<float> squared;
-    for (std::size_t i = 0; i < input->size (); ++i)
-    {
-      tree.nearestKSearch ((*input)[i], 7, indices, squared);
-      double sum = 0.0;
-      for (std::size_t k = 1; k < squared.size (); ++k)
-        sum += std::sqrt (squared[k]);
-      spacing[i] = squared.size () > 1 ? sum / static_cast<double> (squared.size () - 1) : 0.0;
-    }
-    return spacing;
-  }
-
-  /// Fraction of input points with a point of \a model resampled to \a count within 3 local spacings.
+  /// Completeness (cloud_measures.h) of \a model resampled to \a count points.
   double
-  completeness (const SparseSurfaceModel::ConstPtr& model, std::size_t count, const pcl::PointCloud<pcl::PointXYZ>::Ptr& input,
-                const std::vector<double>& spacing)
+  completenessAt (const SparseSurfaceModel::ConstPtr& model, std::size_t count, const pcl::PointCloud<pcl::PointXYZ>& input,
+                  const std::vector<float>& spacing)
   {
     SparseSurfaceResampling<pcl::PointNormal> resampling;
     resampling.setInputModel (model);
@@ -69,15 +50,7 @@ namespace
       points->push_back (pcl::PointXYZ (p.x, p.y, p.z));
     pcl::KdTreeFLANN<pcl::PointXYZ> tree;
     tree.setInputCloud (points);
-    std::vector<int> indices;
-    std::vector<float> squared;
-    std::size_t complete = 0;
-    for (std::size_t i = 0; i < input->size (); ++i)
-    {
-      tree.nearestKSearch ((*input)[i], 1, indices, squared);
-      complete += std::sqrt (squared[0]) <= 3.0 * spacing[i] ? 1 : 0;
-    }
-    return static_cast<double> (complete) / static_cast<double> (input->size ());
+    return pcl_sparse_bench::completeness (input, spacing, tree);
   }
 
   int
@@ -111,12 +84,14 @@ namespace
       for (const Patch& patch : encoder.getPatches ())
         unreferenced += patch.triangles.empty () ? 1 : 0;
       const pcl::PointCloud<pcl::PointXYZ>::Ptr input = toCloud (positions);
-      const std::vector<double> spacing = localSpacings (input);
+      pcl::KdTreeFLANN<pcl::PointXYZ> input_tree;
+      input_tree.setInputCloud (input);
+      const std::vector<float> spacing = pcl_sparse_bench::localSpacings (*input, input_tree);
       const std::string name = std::string (argv[a]).substr (std::string (argv[a]).find_last_of ('/') + 1);
       std::printf ("| %s | %g | %zu | %zu | %zu | %zu | %zu | %.4e | %.4f | %.4f | %.2f |\n", name.c_str (),
                    options.patches.unreferenced_patch_spacings, scan->size (), stats.num_patches, unreferenced,
-                   stats.uncovered, bytes, stats.rmse, completeness (model, scan->size (), input, spacing),
-                   completeness (model, 4 * scan->size (), input, spacing), seconds);
+                   stats.uncovered, bytes, stats.rmse, completenessAt (model, scan->size (), *input, spacing),
+                   completenessAt (model, 4 * scan->size (), *input, spacing), seconds);
       std::fflush (stdout);
     }
     return 0;
