@@ -177,7 +177,11 @@ namespace
       if (!appsBuilt ())
         GTEST_SKIP () << "the tools are not built in " << PCL_SPARSE_BINARY_DIR
                       << "/apps (build all targets, as scripts/test.sh does)";
-      dir_ = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_apps" / GetParam ().name;
+      // One folder per test, not per case: ctest -j runs each tool's test of a case at once, and one's
+      // SetUp emptied the folder another was writing to (empty_file failed now and then).
+      std::string test = ::testing::UnitTest::GetInstance ()->current_test_info ()->name ();
+      std::replace (test.begin (), test.end (), '/', '_');
+      dir_ = fs::path (PCL_SPARSE_BINARY_DIR) / "robustness_apps" / test;
       fs::remove_all (dir_);
       fs::create_directories (dir_ / "out");
       input_ = (dir_ / (GetParam ().name + ".obj")).string ();
