@@ -90,10 +90,12 @@ namespace
     return tiled;
   }
 
-  /// Every tile with core points encoded with default options, written out here (not encodeTilesByPhase, the
-  /// encoder's own fallback): phase 0, then phase 1 knowing what phase 0 covers.
+  /// Every tile with core points encoded with \a options, written out here (not encodeTilesByPhase, the
+  /// encoder's own fallback): phase 0, then phase 1 knowing what phase 0 covers. TiledSurfaceEncoder encodes
+  /// without the compression bound first and applies it only when the whole model exceeds it; a tile that
+  /// exceeds it on its own is trimmed here with default options and not there.
   std::vector<TileEncoding>
-  encodeTilesPhaseByPhase (const TileSource& source)
+  encodeTilesPhaseByPhase (const TileSource& source, const SparseSurfaceEncoderOptions& options = SparseSurfaceEncoderOptions ())
   {
     std::vector<TileEncoding> tiles;
     std::vector<std::size_t> covered;
@@ -103,7 +105,7 @@ namespace
         covered = coveredPoints (tiles);
       for (std::size_t t = 0; t < source.grid ().size (); ++t)
         if (tilePhase (source.grid (), t) == phase && source.corePoints (t) > 0)
-          tiles.push_back (encodeTile (source, t, SparseSurfaceEncoderOptions (), 1, covered));
+          tiles.push_back (encodeTile (source, t, options, 1, covered));
     }
     return tiles;
   }
@@ -1027,7 +1029,7 @@ TEST (TiledEncoding, PatchesOfMovedScanPointsStayWithTheirSeedsTile)
 {
   const auto scan = std::make_shared<ScanCloud> (pcl_sparse_test::steppedSlantedPlane (144));
   TileGridOptions grid;
-  grid.tiles_along_longest = 8;  // 29 tiles, 10 of which take the steps out (the others see too few)
+  grid.tiles_along_longest = 8;  // 29 tiles
   TiledModel tiled;
   const ModelStatistics stats = encodeMeasuring (MemoryTileSource (scan, grid), SparseSurfaceEncoderOptions (), tiled);
   ASSERT_GE (tiled.tiles.size (), 4u);
@@ -1054,7 +1056,9 @@ TEST (TiledEncoding, StatisticsOfMovedScanPointsAreTakenWhereTheyWereCoded)
   std::vector<Eigen::Vector3d> input;
   for (std::size_t i = 0; i < scan->size (); ++i)
     input.push_back (scan->worldPosition (i));
-  const std::vector<TileEncoding> tiles = encodeTilesPhaseByPhase (source);
+  SparseSurfaceEncoderOptions unbounded;  // as the encoder's first pass: tile 30 alone exceeds CR 1
+  unbounded.max_compression_ratio = 0.0;
+  const std::vector<TileEncoding> tiles = encodeTilesPhaseByPhase (source, unbounded);
   const ModelStatistics reference =
     mergeTileEncodings (source.grid (), source.totalPoints (), tiles).model.statistics (input);  // (x', y') stored
   EXPECT_EQ (reference.uncovered, 0u);

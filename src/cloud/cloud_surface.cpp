@@ -169,7 +169,7 @@ namespace pcl_sparse
       if (!options.remove_depth_steps || work.viewpoints.points.size () != 1)
         return input;
       const Eigen::Vector3d& viewpoint = work.viewpoints.points[0];
-      DepthQuantization steps = findDepthQuantization (input.positions, finite, viewpoint);
+      DepthQuantization steps = findDepthQuantization (input.positions, finite, viewpoint, input.stepped_axes);
       std::vector<Eigen::Vector3d> moved;
       bool removed = false;
       if (input.isOrganized ())
@@ -210,7 +210,7 @@ namespace pcl_sparse
       {
         if (options.bridge_depth_steps && !surface.depth_steps_removed && !work.steps.active () &&
             work.viewpoints.points.size () == 1)
-          work.steps = findDepthQuantization (scan.positions, finite, work.viewpoints.points[0]);
+          work.steps = findDepthQuantization (scan.positions, finite, work.viewpoints.points[0], scan.stepped_axes);
         if (!surface.depth_steps_removed)
           surface.depth_levels = work.steps.levels.size ();
         work.edges = classifyGridEdges (work.grid, scan.positions, options.gap_factor, work.shadow, threads, &work.steps);

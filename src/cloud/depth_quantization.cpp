@@ -18,7 +18,7 @@ namespace pcl_sparse
 
   DepthQuantization
   findDepthQuantization (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& used,
-                         const Eigen::Vector3d& viewpoint)
+                         const Eigen::Vector3d& viewpoint, std::optional<std::uint8_t> stepped_axes)
   {
     DepthQuantization q;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero ();
@@ -33,7 +33,7 @@ namespace pcl_sparse
       return q;
     mean /= static_cast<double> (count);
     int axis;
-    if (!(mean.cwiseAbs ().maxCoeff (&axis) >= 0.7))
+    if (!(mean.cwiseAbs ().maxCoeff (&axis) >= 0.7) || (stepped_axes && !(*stepped_axes >> axis & 1)))
       return q;
     std::vector<double> values;
     values.reserve (count);
@@ -42,7 +42,7 @@ namespace pcl_sparse
         values.push_back (positions[i][axis]);
     std::sort (values.begin (), values.end ());
     values.erase (std::unique (values.begin (), values.end ()), values.end ());
-    if (values.size () < 2 || values.size () >= count / 100)
+    if (values.size () < 2 || (!stepped_axes && values.size () >= count / 100))
       return q;
     q.axis = axis;
     q.levels = values;
@@ -51,5 +51,26 @@ namespace pcl_sparse
       if (used[i])
         q.level[i] = static_cast<int> (std::lower_bound (values.begin (), values.end (), positions[i][axis]) - values.begin ());
     return q;
+  }
+
+  void
+  SteppedAxes::add (const Eigen::Vector3d& p)
+  {
+    for (int a = 0; a < 3; ++a)
+      if (!continuous_[a] && values_[a].insert (p[a]).second && values_[a].size () > cap_)
+      {
+        continuous_[a] = true;
+        values_[a] = std::unordered_set<double> ();
+      }
+  }
+
+  std::uint8_t
+  SteppedAxes::judge (std::size_t points) const
+  {
+    std::uint8_t bits = 0;
+    for (int a = 0; a < 3; ++a)
+      if (!continuous_[a] && values_[a].size () >= 2 && values_[a].size () < points / 100)
+        bits |= static_cast<std::uint8_t> (1u << a);
+    return bits;
   }
 } // namespace pcl_sparse

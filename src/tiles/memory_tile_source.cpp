@@ -1,5 +1,7 @@
 #include <pcl_sparse/tiles/memory_tile_source.h>
 
+#include <pcl_sparse/cloud/depth_quantization.h>
+#include <pcl_sparse/cloud/scan_grid.h>
 #include <pcl_sparse/cloud/sensor_evidence.h>
 #include <pcl_sparse/common/error.h>
 
@@ -29,6 +31,10 @@ namespace pcl_sparse
     for (std::size_t i = 0; i < scan->size (); ++i)
       finite[i] = scan->positions[i].allFinite () ? 1 : 0;
     sensor_pose_ = scan->has_sensor_pose && !defaultPoseIsUnsupported (*scan, finite);
+    SteppedAxes steps (scan->size ());
+    for (std::size_t i = 0; i < scan->size (); ++i)
+      steps.add (scan->worldPosition (i));
+    stepped_axes_ = steps.judge (scan->size ());
   }
 
   MemoryTileSource::MemoryTileSource (const TriangleMesh::ConstPtr& mesh, const TileGridOptions& options) : mesh_ (mesh)
@@ -83,6 +89,7 @@ namespace pcl_sparse
       tile->sensor_orientation = scan.sensor_orientation;
       tile->has_sensor_pose = sensor_pose_;
       tile->sensor_pose_checked = true;
+      tile->stepped_axes = stepped_axes_;
       tile->fields = scan.fields;
       for (std::size_t i = 0; i < scan.size (); ++i)
         if (tile_of_[i] == t || inMargin (i, box))
@@ -97,6 +104,8 @@ namespace pcl_sparse
         }
       tile->width = static_cast<std::uint32_t> (tile->size ());
       tile->height = 1;
+      if (scan.isOrganized ())  // a camera frame's tile keeps the frame's image grid, as the untiled scan
+        cropToPixelWindow (*tile, scan.width, scan.height);
       tile->report.input_points = tile->report.kept = tile->size ();
       // In the tile's own frame, as a spilled tile is (tile_source.h): the encoding depends on the frame
       // in its last bits, and the file must not depend on -memory (found by a review).

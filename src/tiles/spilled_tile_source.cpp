@@ -1,5 +1,7 @@
 #include <pcl_sparse/tiles/spilled_tile_source.h>
 
+#include <pcl_sparse/cloud/depth_quantization.h>
+#include <pcl_sparse/cloud/scan_grid.h>
 #include <pcl_sparse/cloud/sensor_evidence.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/scan_stream.h>
@@ -24,6 +26,7 @@ namespace pcl_sparse
     /// and the points dropped before the run's end (prefix sums), for pointNumber.
     std::vector<std::size_t> dropped_from, dropped_through;
     std::vector<std::size_t> duplicates;  ///< file indices of the duplicates cleaning removes, ascending
+    std::uint8_t stepped_axes = 0;        ///< the coordinates stored in steps, judged on every kept point
 
     /// The rank in the cleaned input of the kept point at file index \a index: the index less the points
     /// dropped or merged before it.
@@ -47,6 +50,7 @@ namespace pcl_sparse
       bool float_vectors = true;  ///< every kept point's vectors are floats: 4-byte coordinates in the spill
       ScanCloud like;             ///< the first chunk's attributes (which ones the file has)
       std::vector<Eigen::Vector3d> sample;       ///< every stride-th kept point (file frame), to judge the pose
+      std::optional<SteppedAxes> steps;          ///< every kept point's coordinates, to judge the depth steps
       std::vector<std::size_t> dropped_from;     ///< runs of dropped points: first file index
       std::vector<std::size_t> dropped_through;  ///< points dropped up to the end of each run
 
@@ -118,6 +122,7 @@ namespace pcl_sparse
       // cleanScan compares in the local frame, p == sensor_origin - origin; chunks are in the file's frame.
       const Eigen::Vector3d sensor = reader.layout ().sensor_origin;
       const std::size_t stride = std::max<std::size_t> (1, reader.size () / 4096);
+      pass.steps.emplace (reader.size ());
       ScanCloud chunk;
       while (reader.read (chunk, options.chunk_points))
       {
@@ -137,6 +142,7 @@ namespace pcl_sparse
           if (keepsPoint (chunk.positions[i], sensor, options.cleaning, pass.report))
           {
             pass.box.extend (chunk.positions[i]);
+            pass.steps->add (chunk.positions[i]);
             if ((first + i) % stride == 0)
               pass.sample.push_back (chunk.positions[i]);
             if (i < chunk.intensities.size () && !std::isfinite (chunk.intensities[i]))
@@ -274,6 +280,7 @@ namespace pcl_sparse
         break;
       grid_ = exact;
     }
+    impl->stepped_axes = pass.steps->judge (report_.kept);  // duplicates merged, as a scan in memory
     impl_ = std::move (impl);
   }
 
@@ -325,6 +332,7 @@ namespace pcl_sparse
     scan->sensor_orientation = layout.sensor_orientation;
     scan->has_sensor_pose = layout.has_sensor_pose;
     scan->sensor_pose_checked = true;  // on pass 1's sample of the whole file
+    scan->stepped_axes = impl_->stepped_axes;
     const std::size_t n = impl_->spilled[t];
     scan->positions.reserve (n);
     scan->indices.reserve (n);
@@ -341,6 +349,8 @@ namespace pcl_sparse
     input.point_numbers.resize (scan->size ());
     for (std::size_t i = 0; i < scan->size (); ++i)
       input.point_numbers[i] = impl_->pointNumber (scan->indices[i]);
+    if (layout.isOrganized ())  // the file indices are pixels: a camera frame's tile keeps the frame's image grid
+      cropToPixelWindow (*scan, layout.width, layout.height);
     centreScan (*scan);
     input.scan = std::move (scan);
     return input;

@@ -8,8 +8,11 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <unordered_set>
 #include <vector>
 
 namespace pcl_sparse
@@ -38,8 +41,33 @@ namespace pcl_sparse
 
   /// Finds depth steps seen from \a viewpoint: the axis is the coordinate most aligned with the mean
   /// direction from the viewpoint to the points (|component| >= 0.7, so a camera looking along it), and it
-  /// counts as stepped when the used points take fewer distinct values along it than 1 % of their number.
+  /// counts as stepped when the used points take fewer distinct values along it than 1 % of their number,
+  /// or, given \a stepped_axes (SteppedAxes::judge on a whole input of which \a positions are a part), when
+  /// its bit is set there: a tile of a frame may hold a few hundred points over 20 steps.
   DepthQuantization
   findDepthQuantization (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& used,
-                         const Eigen::Vector3d& viewpoint);
+                         const Eigen::Vector3d& viewpoint, std::optional<std::uint8_t> stepped_axes = std::nullopt);
+
+  /// Judges which coordinates of a whole input are stored in steps, as findDepthQuantization does on one
+  /// scan, from points given one at a time (a file streamed in chunks as well as a scan in memory): bit a
+  /// of the result is set when coordinate a takes at least 2 and fewer than points / 100 distinct values.
+  class SteppedAxes
+  {
+  public:
+    /// \a max_points: at least the number of points that will be added; an axis with more than
+    /// max_points / 100 or 65536 distinct values is continuous and stops being counted, so memory stays
+    /// at most 65536 values per axis however large the input (a camera's depth takes a few hundred levels:
+    /// office1.pcd 125, milk_cartoon_all_small_clorox.pcd 508).
+    explicit SteppedAxes (std::size_t max_points) : cap_ (std::min<std::size_t> (max_points / 100, 65536)) {}
+
+    void add (const Eigen::Vector3d& p);
+
+    /// The stepped coordinates' bits, for an input of \a points points (those added, duplicates merged).
+    std::uint8_t judge (std::size_t points) const;
+
+  private:
+    std::size_t cap_;
+    std::unordered_set<double> values_[3];
+    bool continuous_[3] = {false, false, false};
+  };
 } // namespace pcl_sparse

@@ -30,4 +30,13 @@ namespace pcl_sparse
   /// pixels), a pixel is outside width x height, or two points claim the same pixel.
   ScanGrid
   organizedScanGrid (const ScanCloud& scan, const std::vector<std::uint8_t>& placed);
+
+  /// Makes \a part, some points of an organized scan of \a width x \a height pixels whose indices name each
+  /// point's pixel (row * width + column), an organized scan itself: its width, height and indices become
+  /// those of the smallest window of the image that holds its points, with at least two rows where the image
+  /// has them (one row would be read as a list of points). A tile of a camera frame keeps the frame's image
+  /// grid this way, in memory proportional to its own window. Throws pcl_sparse::Error if indices has the
+  /// wrong size or names a pixel outside the image.
+  void
+  cropToPixelWindow (ScanCloud& part, std::uint32_t width, std::uint32_t height);
 } // namespace pcl_sparse

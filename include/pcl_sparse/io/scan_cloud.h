@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,10 @@ namespace pcl_sparse
     /// The pose was judged on the whole input (a tile's scan, TileSource): defaultPoseIsUnsupported does not
     /// judge it again from the tile's part of the points.
     bool sensor_pose_checked = false;
+    /// The coordinates stored in steps, judged on the whole input (a tile's scan, TileSource; SteppedAxes in
+    /// depth_quantization.h): a tile's part of a camera frame may be too few points to show its depth
+    /// steps. Unset: buildCloudSurface judges the scan's own points.
+    std::optional<std::uint8_t> stepped_axes;
     std::vector<std::string> fields;  ///< the point fields of the file (PCD FIELDS, PLY vertex properties), in order
     ScanCleaningReport report;        ///< what cleaning removed (input_points = kept = #P before cleaning)
 

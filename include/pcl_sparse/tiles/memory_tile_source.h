@@ -49,6 +49,7 @@ namespace pcl_sparse
 
     ScanCloud::ConstPtr scan_;
     bool sensor_pose_ = false;  ///< the scan's pose orients its tiles (stated, and not PCL's default unsupported)
+    std::uint8_t stepped_axes_ = 0;  ///< the scan's coordinates stored in steps (SteppedAxes), for its tiles
     TriangleMesh::ConstPtr mesh_;
     TileGrid grid_;
     std::vector<std::uint32_t> tile_of_;    ///< tile of each point (vertex)
