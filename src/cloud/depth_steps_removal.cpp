@@ -48,25 +48,31 @@ namespace pcl_sparse
       return *median;
     }
 
-    /// Median over horizontally adjacent pixels of the depth step at the left one over their distance across
-    /// the depth axis.
-    double
-    medianStepOverSpacing (const std::vector<Eigen::Vector3d>& positions, const ScanGrid& grid, const DepthQuantization& steps)
+    /// Per depth level, whether its steps are wider than the sampling: the upper median, over horizontally
+    /// adjacent pixels whose left one is at the level, of the step above it over their distance across the
+    /// depth axis, at least kMinStepOverSpacing. Per level, not over the frame: the steps grow with the
+    /// square of the depth and the spacing only with the depth, so a frame's far part may be terraced where
+    /// its near part, most of its pixels, is not (milk_cartoon_all_small_clorox.pcd: 1.2 over the frame).
+    std::vector<std::uint8_t>
+    wideLevels (const std::vector<Eigen::Vector3d>& positions, const ScanGrid& grid, const DepthQuantization& steps)
     {
-      std::vector<double> ratios;
+      std::vector<std::vector<double>> ratios (steps.levels.size ());
       for (int y = 0; y < grid.height; ++y)
         for (int x = 0; x + 1 < grid.width; ++x)
         {
           const int a = grid.at (x, y), b = grid.at (x + 1, y);
-          if (a < 0 || b < 0)
+          if (a < 0 || b < 0 || steps.level[a] < 0)
             continue;
           Eigen::Vector3d across = positions[b] - positions[a];
           across[steps.axis] = 0.0;
           const double step = steps.stepAbove (steps.level[a]);
           if (step > 0.0 && across.norm () > 0.0)
-            ratios.push_back (step / across.norm ());
+            ratios[steps.level[a]].push_back (step / across.norm ());
         }
-      return upperMedian (ratios);
+      std::vector<std::uint8_t> wide (ratios.size ());
+      for (std::size_t l = 0; l < ratios.size (); ++l)
+        wide[l] = upperMedian (ratios[l]) >= kMinStepOverSpacing ? 1 : 0;
+      return wide;
     }
 
     /// Moves point \a i (into \a moved) along its line of sight from \a viewpoint onto the plane (PCA) of it
@@ -111,7 +117,10 @@ namespace pcl_sparse
                     const ScanGrid& grid, const DepthQuantization& steps, const Eigen::Vector3d& viewpoint,
                     const ShadowRule& shadow, double gap_factor, int num_threads, std::vector<Eigen::Vector3d>& moved)
   {
-    if (!steps.active () || medianStepOverSpacing (positions, grid, steps) < kMinStepOverSpacing)
+    if (!steps.active ())
+      return false;
+    const std::vector<std::uint8_t> wide = wideLevels (positions, grid, steps);
+    if (std::find (wide.begin (), wide.end (), 1) == wide.end ())
       return false;
     moved = positions;
     const GridEdges edges = classifyGridEdges (grid, positions, gap_factor, shadow, num_threads, &steps);
@@ -121,7 +130,7 @@ namespace pcl_sparse
     for (long p = 0; p < static_cast<long> (positions.size ()); ++p)
     {
       const std::size_t i = static_cast<std::size_t> (p);
-      if (finite[i])
+      if (finite[i] && steps.level[i] >= 0 && wide[steps.level[i]])
         moveOntoNeighboursPlane (positions, i, hoods.of (i), steps, viewpoint, moved[i]);
     }
     return true;

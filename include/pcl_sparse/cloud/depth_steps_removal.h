@@ -20,11 +20,11 @@
 
 namespace pcl_sparse
 {
-  /// \brief An organized scan's positions with its depth steps taken out, where the steps are wider than the
-  /// sampling (the median step over the distance between horizontally adjacent pixels at least 2: finer steps
-  /// make no terraces, and the scan is left as it is).
+  /// \brief An organized scan's positions with its depth steps taken out at the depth levels whose steps are
+  /// wider than the sampling (per level, the median step over the distance between horizontally adjacent
+  /// pixels at least 2: finer steps make no terraces, and the points of such levels stay where they are).
   /// \param[in] positions  the points (local frame)
-  /// \param[in] finite     #P flags: the points to move (the others stay)
+  /// \param[in] finite     #P flags: the points that may move (the others stay)
   /// \param[in] grid       the scan's image grid
   /// \param[in] steps      the depth steps
   /// \param[in] viewpoint  the sensor (local frame): points move along their lines of sight from it
@@ -37,7 +37,7 @@ namespace pcl_sparse
   ///                       (gridNeighborhoods); i moves to where its line of sight meets that plane, clamped to
   ///                       its bin (halfway to the levels below and above). A point with fewer than 8 such
   ///                       neighbours, or whose line of sight meets its plane within 6 degrees of grazing, stays.
-  /// \return whether the steps were taken out (\a moved is untouched otherwise)
+  /// \return whether the steps were taken out at some level (\a moved is untouched otherwise)
   bool
   removeDepthSteps (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& finite,
                     const ScanGrid& grid, const DepthQuantization& steps, const Eigen::Vector3d& viewpoint,
