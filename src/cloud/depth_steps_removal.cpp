@@ -48,6 +48,23 @@ namespace pcl_sparse
       return *median;
     }
 
+    /// Per level, whether the upper median of its step-over-spacing \a ratios (reordered) is at least
+    /// kMinStepOverSpacing; false for a level without any.
+    std::vector<std::uint8_t>
+    levelsAtLeastTheGate (std::vector<std::vector<double>>& ratios)
+    {
+      std::vector<std::uint8_t> wide (ratios.size ());
+      for (std::size_t l = 0; l < ratios.size (); ++l)
+        wide[l] = upperMedian (ratios[l]) >= kMinStepOverSpacing ? 1 : 0;
+      return wide;
+    }
+
+    bool
+    anyLevel (const std::vector<std::uint8_t>& wide)
+    {
+      return std::find (wide.begin (), wide.end (), 1) != wide.end ();
+    }
+
     /// Per depth level, whether its steps are wider than the sampling: the upper median, over horizontally
     /// adjacent pixels whose left one is at the level, of the step above it over their distance across the
     /// depth axis, at least kMinStepOverSpacing. Per level, not over the frame: the steps grow with the
@@ -69,10 +86,7 @@ namespace pcl_sparse
           if (step > 0.0 && across.norm () > 0.0)
             ratios[steps.level[a]].push_back (step / across.norm ());
         }
-      std::vector<std::uint8_t> wide (ratios.size ());
-      for (std::size_t l = 0; l < ratios.size (); ++l)
-        wide[l] = upperMedian (ratios[l]) >= kMinStepOverSpacing ? 1 : 0;
-      return wide;
+      return levelsAtLeastTheGate (ratios);
     }
 
     /// Moves point \a i (into \a moved) along its line of sight from \a viewpoint onto the plane (PCA) of it
@@ -120,7 +134,7 @@ namespace pcl_sparse
     if (!steps.active ())
       return false;
     const std::vector<std::uint8_t> wide = wideLevels (positions, grid, steps);
-    if (std::find (wide.begin (), wide.end (), 1) == wide.end ())
+    if (!anyLevel (wide))
       return false;
     moved = positions;
     const GridEdges edges = classifyGridEdges (grid, positions, gap_factor, shadow, num_threads, &steps);
@@ -191,16 +205,24 @@ namespace pcl_sparse
         }
       }
     };
+    // The gate per depth level, as for an organized scan (wideLevels): over every 16th point first, so that a
+    // scan whose steps are fine everywhere (table_scene_mug) costs no spacing of every point.
+    auto wideOver = [&] (std::ptrdiff_t stride) {
+      std::vector<std::vector<double>> ratios (steps.levels.size ());
+      for (std::ptrdiff_t c = 0; c < count; c += stride)
+        if (spacing[c] > 0.0)
+          ratios[steps.level[original[c]]].push_back (stepAt (original[c]) / spacing[c]);
+      return levelsAtLeastTheGate (ratios);
+    };
     measureSpacing (16, false);
-    std::vector<double> ratios;
-    for (std::ptrdiff_t c = 0; c < count; c += 16)
-      if (spacing[c] > 0.0)
-        ratios.push_back (stepAt (original[c]) / spacing[c]);
-    if (ratios.empty () || upperMedian (ratios) < kMinStepOverSpacing)
+    if (!anyLevel (wideOver (16)))
       return false;
     for (std::size_t d = 2; d <= kMaxDecimation && d * (kMinNeighbors + 1) <= original.size (); d *= 2)
       addTree (d);
     measureSpacing (1, true);
+    const std::vector<std::uint8_t> wide = wideOver (1);
+    if (!anyLevel (wide))
+      return false;
     moved = positions;
     // Neighbours within two steps (at least 3 spacings), in index order so the sums do not depend on the tree.
 #pragma omp parallel num_threads(threads)
@@ -212,7 +234,7 @@ namespace pcl_sparse
       for (std::ptrdiff_t c = 0; c < count; ++c)
       {
         const int i = original[c];
-        if (!(spacing[c] > 0.0))
+        if (!(spacing[c] > 0.0) || !wide[steps.level[i]])
           continue;
         const double radius = std::max (kBallSteps * stepAt (i), 3.0 * spacing[c]);
         const double expected = M_PI * (radius / spacing[c]) * (radius / spacing[c]);
