@@ -767,7 +767,7 @@ TEST (CloudSurface, DepthStepsAreRemoved)
 // A floor receding from 0.8 to 7.5 m seen by a camera that stores disparity in steps (depth steps of z^2 / 90,
 // pixels z / 60 apart): its steps are 0.55 pixel spacings near and 5 far, under 2 over most of the frame.
 // Judged per depth level, the far terraces are taken out (organized: mean distance to the floor 0.0158 ->
-// 0.0042 beyond 3.5 m, the normals' median 1.3 -> 0.3 degrees) and the near points, whose steps make no
+// 0.0043 beyond 3.5 m, the normals' median 1.3 -> 0.3 degrees) and the near points, whose steps make no
 // terraces, stay. Judged over the frame, as before, the median was under 2 and nothing moved (so
 // milk_cartoon_all_small_clorox.pcd: 1.31 % of its resampled normals facing away from the sensor, 0.41 % judged
 // per level). The same frame unorganized likewise, by radius neighbourhoods.
@@ -807,12 +807,26 @@ TEST (CloudSurface, DepthStepsAreRemovedWhereWiderThanTheSampling)
     }
     ASSERT_GT (far, scan->size () / 10);
     EXPECT_EQ (near_moved, 0.0);
-    // Organized 0.0158 -> 0.0042 and 0.3 degrees; unorganized (radius neighbourhoods) 0.0158 -> 0.0073 and
-    // 1.5 degrees, where judged over the frame the terraces stayed and the median normal was 38.7 degrees off.
+    // Organized 0.0158 -> 0.0043 and 0.3 degrees; unorganized (radius neighbourhoods; its spacing, the mean
+    // distance to the 6 nearest, is wider than a pixel's, so fewer levels pass) 0.0158 -> 0.0100 and 1.5
+    // degrees, where judged over the frame the terraces stayed and the median normal was 38.7 degrees off.
     const bool grid = scan->isOrganized ();
-    EXPECT_LT (far_after, (grid ? 0.4 : 0.6) * far_before) << far_before / far << " -> " << far_after / far;
+    EXPECT_LT (far_after, (grid ? 0.4 : 0.75) * far_before) << far_before / far << " -> " << far_after / far;
     EXPECT_LT (quantile (far_angles, 0.5), grid ? 0.6 : 3.0) << "median normal angle beyond 3.5 m";
   }
+}
+
+// A level of a few stray points whose steps happen to be wide does not set the removal off for the frame
+// (table_scene_mug_stereo_textured.pcd: 27 such points on 4 levels cost a tenth of a second of its encoding).
+TEST (CloudSurface, AFewStrayPointsDoNotTakeOutSteps)
+{
+  const ScanCloud scan = pinholeScan (160, 120, [] (int x, int y) {
+    const double z = y == 100 && x >= 70 && x < 80 ? 6.0 : 0.8 + 0.005 * y;  // 10 far pixels: steps 4 spacings
+    return 90.0 / std::round (90.0 / z);                                    // near: under 1 spacing
+  });
+  const CloudSurface s = buildCloudSurface (scan);
+  EXPECT_GT (s.depth_levels, 5u);
+  EXPECT_FALSE (s.depth_steps_removed);
 }
 
 // The same frame unorganized (its pixels dropped, as a filter or a tile gives it): neighbours within a step by a

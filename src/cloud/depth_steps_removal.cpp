@@ -36,6 +36,11 @@ namespace pcl_sparse
     /// pixel spacings (over horizontally adjacent pixels). Finer steps make no terraces the normals' windows
     /// could sit on (table_scene_mug_stereo_textured.pcd: 0.65 spacings, milk_cartoon 1.2; office1 5.5).
     constexpr double kMinStepOverSpacing = 2.0;
+    /// Fewest ratios (pixel pairs, or points of an unorganized scan) a level's median is taken over: stray
+    /// levels of a few points pass by chance (table_scene_mug_stereo_textured.pcd: 4 levels of 2-17 points
+    /// among sparse far ones, and moving those 27 points cost a tenth of a second of its encoding), terraced
+    /// ones hold more (office1's nearest levels 32-60 points each, milk_cartoon's 75 and more).
+    constexpr std::size_t kMinLevelRatios = 32;
 
     /// The upper median of \a values (reordered), 0 when empty.
     double
@@ -48,15 +53,25 @@ namespace pcl_sparse
       return *median;
     }
 
-    /// Per level, whether the upper median of its step-over-spacing \a ratios (reordered) is at least
-    /// kMinStepOverSpacing; false for a level without any.
+    /// Per level, whether the upper median of its step-over-spacing \a ratios (reordered), at least
+    /// \a min_count of them, is at least kMinStepOverSpacing.
     std::vector<std::uint8_t>
-    levelsAtLeastTheGate (std::vector<std::vector<double>>& ratios)
+    levelsAtLeastTheGate (std::vector<std::vector<double>>& ratios, std::size_t min_count)
     {
       std::vector<std::uint8_t> wide (ratios.size ());
       for (std::size_t l = 0; l < ratios.size (); ++l)
-        wide[l] = upperMedian (ratios[l]) >= kMinStepOverSpacing ? 1 : 0;
+        wide[l] = ratios[l].size () >= min_count && upperMedian (ratios[l]) >= kMinStepOverSpacing ? 1 : 0;
       return wide;
+    }
+
+    /// The depth step at level \a l for the gate: the smaller of those above and below it (one where the other
+    /// is missing). A gap in the levels is no step: the top level of a near surface has the whole gap to a few
+    /// stray far points above it (table_scene_mug_stereo_textured.pcd: medians of 126 spacings).
+    double
+    gateStep (const DepthQuantization& steps, int l)
+    {
+      const double above = steps.stepAbove (l), below = steps.stepAbove (l - 1);
+      return above > 0.0 && below > 0.0 ? std::min (above, below) : std::max (above, below);
     }
 
     bool
@@ -66,10 +81,11 @@ namespace pcl_sparse
     }
 
     /// Per depth level, whether its steps are wider than the sampling: the upper median, over horizontally
-    /// adjacent pixels whose left one is at the level, of the step above it over their distance across the
-    /// depth axis, at least kMinStepOverSpacing. Per level, not over the frame: the steps grow with the
-    /// square of the depth and the spacing only with the depth, so a frame's far part may be terraced where
-    /// its near part, most of its pixels, is not (milk_cartoon_all_small_clorox.pcd: 1.2 over the frame).
+    /// adjacent pixels whose left one is at the level (kMinLevelRatios pairs at least), of the level's step
+    /// (gateStep) over their distance across the depth axis, at least kMinStepOverSpacing. Per level, not
+    /// over the frame: the steps grow with the square of the depth and the spacing only with the depth, so
+    /// a frame's far part may be terraced where its near part, most of its pixels, is not
+    /// (milk_cartoon_all_small_clorox.pcd: 1.2 over the frame).
     std::vector<std::uint8_t>
     wideLevels (const std::vector<Eigen::Vector3d>& positions, const ScanGrid& grid, const DepthQuantization& steps)
     {
@@ -82,11 +98,11 @@ namespace pcl_sparse
             continue;
           Eigen::Vector3d across = positions[b] - positions[a];
           across[steps.axis] = 0.0;
-          const double step = steps.stepAbove (steps.level[a]);
+          const double step = gateStep (steps, steps.level[a]);
           if (step > 0.0 && across.norm () > 0.0)
             ratios[steps.level[a]].push_back (step / across.norm ());
         }
-      return levelsAtLeastTheGate (ratios);
+      return levelsAtLeastTheGate (ratios, kMinLevelRatios);
     }
 
     /// Moves point \a i (into \a moved) along its line of sight from \a viewpoint onto the plane (PCA) of it
@@ -211,8 +227,9 @@ namespace pcl_sparse
       std::vector<std::vector<double>> ratios (steps.levels.size ());
       for (std::ptrdiff_t c = 0; c < count; c += stride)
         if (spacing[c] > 0.0)
-          ratios[steps.level[original[c]]].push_back (stepAt (original[c]) / spacing[c]);
-      return levelsAtLeastTheGate (ratios);
+          ratios[steps.level[original[c]]].push_back (gateStep (steps, steps.level[original[c]]) / spacing[c]);
+      const std::size_t every = static_cast<std::size_t> (stride);  // every 16th point first: 2 of them
+      return levelsAtLeastTheGate (ratios, (kMinLevelRatios + every - 1) / every);
     };
     measureSpacing (16, false);
     if (!anyLevel (wideOver (16)))
