@@ -807,12 +807,12 @@ TEST (CloudSurface, DepthStepsAreRemovedWhereWiderThanTheSampling)
     }
     ASSERT_GT (far, scan->size () / 10);
     EXPECT_EQ (near_moved, 0.0);
-    // Organized 0.0158 -> 0.0043 and 0.3 degrees; unorganized (radius neighbourhoods; its spacing, the mean
-    // distance to the 6 nearest, is wider than a pixel's, so fewer levels pass) 0.0158 -> 0.0100 and 1.5
-    // degrees, where judged over the frame the terraces stayed and the median normal was 38.7 degrees off.
+    // Organized 0.0158 -> 0.0043 and 0.3 degrees; unorganized (radius neighbourhoods) 0.0158 -> 0.0054 and
+    // 1.0 degree (0.0100 and 1.8 with the mean distance to the 6 nearest as the gate's pitch), where judged
+    // over the frame the terraces stayed and the median normal was 38.7 degrees off.
     const bool grid = scan->isOrganized ();
-    EXPECT_LT (far_after, (grid ? 0.4 : 0.75) * far_before) << far_before / far << " -> " << far_after / far;
-    EXPECT_LT (quantile (far_angles, 0.5), grid ? 0.6 : 3.0) << "median normal angle beyond 3.5 m";
+    EXPECT_LT (far_after, (grid ? 0.4 : 0.5) * far_before) << far_before / far << " -> " << far_after / far;
+    EXPECT_LT (quantile (far_angles, 0.5), grid ? 0.6 : 1.5) << "median normal angle beyond 3.5 m";
   }
 }
 

@@ -200,9 +200,11 @@ namespace pcl_sparse
       trees.push_back (std::make_unique<PointKdTree> (decimated));
     };
     addTree (1);
-    // Spacing: the mean distance to the 6 nearest; the gate over every 16th point first.
+    // Spacing: the mean distance to the 6 nearest (the neighbourhoods' radius). The gate's pitch: the
+    // distance to the nearest across the depth axis, as between adjacent pixels of a grid (the 6 nearest
+    // on a terrace reach along it, twice as far: milk_cartoon with its NaNs dropped had no level passing).
     const std::ptrdiff_t count = static_cast<std::ptrdiff_t> (original.size ());
-    std::vector<double> spacing (original.size (), 0.0);
+    std::vector<double> spacing (original.size (), 0.0), pitch (original.size (), 0.0);
     auto measureSpacing = [&] (std::ptrdiff_t stride, bool skip_measured) {
 #pragma omp parallel num_threads(threads)
       {
@@ -218,6 +220,12 @@ namespace pcl_sparse
           for (std::size_t q = 1; q < found.size (); ++q)
             sum += (positions[original[found[q]]] - positions[original[c]]).norm ();
           spacing[c] = found.size () > 1 ? sum / static_cast<double> (found.size () - 1) : 0.0;
+          if (found.size () > 1)
+          {
+            Eigen::Vector3d across = positions[original[found[1]]] - positions[original[c]];
+            across[steps.axis] = 0.0;
+            pitch[c] = across.norm ();
+          }
         }
       }
     };
@@ -226,8 +234,8 @@ namespace pcl_sparse
     auto wideOver = [&] (std::ptrdiff_t stride) {
       std::vector<std::vector<double>> ratios (steps.levels.size ());
       for (std::ptrdiff_t c = 0; c < count; c += stride)
-        if (spacing[c] > 0.0)
-          ratios[steps.level[original[c]]].push_back (gateStep (steps, steps.level[original[c]]) / spacing[c]);
+        if (pitch[c] > 0.0)
+          ratios[steps.level[original[c]]].push_back (gateStep (steps, steps.level[original[c]]) / pitch[c]);
       const std::size_t every = static_cast<std::size_t> (stride);  // every 16th point first: 2 of them
       return levelsAtLeastTheGate (ratios, (kMinLevelRatios + every - 1) / every);
     };

@@ -44,10 +44,10 @@ namespace pcl_sparse
                     const ShadowRule& shadow, double gap_factor, int num_threads, std::vector<Eigen::Vector3d>& moved);
 
   /// \brief The same for an unorganized scan (a frame whose NaNs were dropped, a filtered cloud): the gate
-  /// compares each level's median step with the mean distance of its points to their 6 nearest (over every
-  /// 16th point first: no level passing there, the scan is left as it is), and point i's plane is fitted to
-  /// the points within two steps of it (at least 3 spacings; kd-tree radius search: a ball of one step does
-  /// not reach the next terrace, a step deeper).
+  /// compares each level's median step with the distance of its points to their nearest across the depth
+  /// axis (over every 16th point first: no level passing there, the scan is left as it is), and point i's
+  /// plane is fitted to the points within two steps of it (at least 3 spacings, the mean distance to the 6
+  /// nearest; kd-tree radius search: a ball of one step does not reach the next terrace, a step deeper).
   /// \return whether the steps were taken out at some level (\a moved is untouched otherwise)
   bool
   removeDepthSteps (const std::vector<Eigen::Vector3d>& positions, const std::vector<std::uint8_t>& finite,
