@@ -5,6 +5,17 @@
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// The rule of steps: a coordinate that \a points take at least 2 and fewer than points / 100 distinct
+    /// values of (findDepthQuantization on one scan, SteppedAxes on a whole input).
+    bool
+    fewEnoughValues (std::size_t distinct, std::size_t points)
+    {
+      return distinct >= 2 && distinct < points / 100;
+    }
+  } // namespace
+
   double
   DepthQuantization::effectiveLength (const std::vector<Eigen::Vector3d>& positions, int a, int b) const
   {
@@ -42,7 +53,7 @@ namespace pcl_sparse
         values.push_back (positions[i][axis]);
     std::sort (values.begin (), values.end ());
     values.erase (std::unique (values.begin (), values.end ()), values.end ());
-    if (values.size () < 2 || (!stepped_axes && values.size () >= count / 100))
+    if (values.size () < 2 || (!stepped_axes && !fewEnoughValues (values.size (), count)))
       return q;
     q.axis = axis;
     q.levels = values;
@@ -69,7 +80,7 @@ namespace pcl_sparse
   {
     std::uint8_t bits = 0;
     for (int a = 0; a < 3; ++a)
-      if (!continuous_[a] && values_[a].size () >= 2 && values_[a].size () < points / 100)
+      if (!continuous_[a] && fewEnoughValues (values_[a].size (), points))
         bits |= static_cast<std::uint8_t> (1u << a);
     return bits;
   }
