@@ -47,8 +47,9 @@ scans=(
   "sim_plane.pcd|$work/sim_plane.pcd|-truth $work/sim_plane_truth.obj|"
   "sim_sphere.pcd|$work/sim_sphere.pcd|-truth $work/sim_sphere_truth.obj|"
   "sim_spot.pcd|$work/sim_spot.pcd|-truth $meshes/spot.obj|"
+  "sim_lidar_street.pcd|$work/sim_lidar_street.pcd|-truth $work/sim_lidar_street_truth.obj|"
 )
-read -r -a rd_scans <<< "${SCANS_RD:-bun000.ply sim_plane_organized.pcd sim_sphere_organized.pcd sim_plane.pcd sim_sphere.pcd sim_spot.pcd office1.pcd table_scene_mug_stereo_textured.pcd milk_cartoon_all_small_clorox.pcd}"
+read -r -a rd_scans <<< "${SCANS_RD:-bun000.ply sim_plane_organized.pcd sim_sphere_organized.pcd sim_plane.pcd sim_sphere.pcd sim_spot.pcd sim_lidar_street.pcd office1.pcd table_scene_mug_stereo_textured.pcd milk_cartoon_all_small_clorox.pcd}"
 
 tsv=$out/scans.tsv
 : > "$tsv.tmp"

@@ -52,7 +52,9 @@ L += ['# Scans: our encoder + resampling against PCL (MLS, NormalEstimationOMP),
       'the sensor dropped); every method gets the same kept points in the scan\'s local frame. Simulated scans (seeded, known truth):',
       'a tilted plane and a sphere (r 0.8 at 3 m) ray-cast from a 320 x 240 camera (organized, noise 3 mm along the ray), the same',
       'plane and sphere sampled unorganized (60k points, noise 3 mm along the normal, the sphere\'s side facing the sensor), and',
-      'spot.obj sampled by area on its faces facing a sensor 2 diagonals away (100k points, noise 0.001 diagonal, no occlusion test).',
+      'spot.obj sampled by area on its faces facing a sensor 2 diagonals away (100k points, noise 0.001 diagonal, no occlusion test),',
+      'and a spinning lidar in a street (sim_lidar_street: 32 rings 1.33 degrees apart, 0.17-degree azimuth steps as the shared HDL-32E',
+      'frames, 1.8 m above the road of an 18 x 80 m street between 12 m walls, a parked car as a box, range noise 1 cm; unorganized).',
       'Truth: bun000 against stanford-bunny.obj (which includes the registration offset of the ten scans, about 9e-5 m), and the',
       'simulated scans against their generating surfaces. Viewpoint: the file\'s VIEWPOINT (Kinect/stereo frames, Velodyne, room),',
       '1 m above the centroid for the bunny scans (the scanner looked along -z), 1000 m above for the airborne samp11, the origin for',
@@ -270,17 +272,19 @@ for s in order:
     t3 = [x for x in e if x['method'] == 'ours' and x['param'] == '0.001'][0]
     dr_b, drf = bytes_at(env['draco'], t3['dist'])
     ratio = ours_b / draco_b if ours_b else None
-    if e[0]['against'] == 'truth' and ratio:
-        truth_ratios.append((s, ratio, of))
+    if e[0]['against'] == 'truth':
+        truth_ratios.append((s, ratio, of))  # ratio None: our files never get that close
     L.append('| %s | %s | %.3g | %d | %s | %s | %s | %s | %s, %.3g | %s | %s |' % (
         s, e[0]['against'], d, draco_b, '%s%.0f' % (of, ours_b) if ours_b else 'never', '%s%.2f' % (of, ratio) if ratio else '-',
         '%s%.0f' % (octf, oct_b) if oct_b else 'never', '%s%.2f' % (of, ours_b / oct_b) if ours_b and oct_b else '-',
         t3['bytes'], t3['dist'], '%s%.0f' % (drf, dr_b) if dr_b else 'never (floor %.3g)' % env['draco'][0][0],
         '%.2f' % (int(t3['bytes']) / dr_b) if dr_b else '-'))
 if truth_ratios:
-    worst = max(truth_ratios, key=lambda x: x[1])
+    met = all(r is not None and r <= 0.5 for _, r, _ in truth_ratios)
     summary.append(('quantised model at most 0.5x Draco\'s point-cloud bytes at equal distance to the truth',
-                    target(worst[1] <= 0.5, 'at Draco qp 11\'s distance, ours / Draco: %s' % ', '.join('%s %s%.2f' % (s, f, r) for s, r, f in truth_ratios))))
+                    target(met, 'at Draco qp 11\'s distance, ours / Draco: %s' % ', '.join(
+                        '%s %s%.2f' % (s, f, r) if r is not None else '%s never (no file of ours that close)' % s
+                        for s, r, f in truth_ratios))))
 
 head = ['', '## Targets', '', '| target | result |', '|---|---|'] + ['| %s | %s |' % (a, b) for a, b in summary]
 # insert the summary after the setup paragraphs
