@@ -42,7 +42,8 @@ namespace
       {"", "seeds black"},
       {"-viewpoint X,Y,Z", "scans: the sensor position the normals face"},
       {"-rho R", tools::format ("size bound A_p / A (default %g)", kDefaults.rho)},
-      {"-delta D", tools::format ("smooth variation angle in degrees (default %g)", kDefaults.delta * 180.0 / M_PI)},
+      {"-delta D", tools::format ("smooth variation angle in degrees (default %g; %g on a lidar frame's rings)",
+                                  kDefaults.delta * 180.0 / M_PI, kDefaults.lidar_delta * 180.0 / M_PI)},
       {"-cone C",
        tools::format ("normal cone angle in degrees (default %g, the authors' code's; paper 90)", kDefaults.cone_angle * 180.0 / M_PI)},
       {"-eta E", tools::format ("flatness bound A_p / A_p^proj (default %g)", kDefaults.eta)},
@@ -90,6 +91,8 @@ main (int argc, char** argv)
       options = authorsCodePatchOptions (options);
     args.number ("-rho", options.rho, tools::Range::aboveUpTo (0.0, 1.0));
     args.angle ("-delta", options.delta);
+    if (args.has ("-delta"))  // everywhere, lidar rings too
+      options.lidar_delta = 0.0;
     args.angle ("-cone", options.cone_angle);
     args.number ("-eta", options.eta);
     args.number ("-sigma", options.sigma);

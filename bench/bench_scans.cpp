@@ -36,6 +36,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "cloud_measures.h"
+#include "generated_clouds.h"
 
 #include <unistd.h>
 
@@ -83,21 +84,6 @@ namespace
     pcl::io::savePCDFileBinaryCompressed (path, cloud);
   }
 
-  /// Turns each triangle to face away from \a inside (outward) or toward it (a viewpoint).
-  void
-  orientTriangles (const std::vector<Eigen::Vector3d>& v, std::vector<Eigen::Vector3i>& t, const Eigen::Vector3d& inside,
-                   bool outward, std::size_t first = 0)
-  {
-    for (std::size_t i = first; i < t.size (); ++i)
-    {
-      Eigen::Vector3i& tri = t[i];
-      const Eigen::Vector3d n = (v[tri[1]] - v[tri[0]]).cross (v[tri[2]] - v[tri[0]]);
-      const Eigen::Vector3d c = (v[tri[0]] + v[tri[1]] + v[tri[2]]) / 3.0;
-      if ((n.dot (c - inside) < 0.0) == outward)
-        std::swap (tri[1], tri[2]);
-    }
-  }
-
   void
   writeObj (const std::string& path, const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& t)
   {
@@ -109,110 +95,31 @@ namespace
       f << "f " << tri[0] + 1 << ' ' << tri[1] + 1 << ' ' << tri[2] + 1 << '\n';
   }
 
+  /// Writes the triangles turned away from \a inside (outward) or toward it (a viewpoint).
   void
   writeObj (const std::string& path, const std::vector<Eigen::Vector3d>& v, std::vector<Eigen::Vector3i> t,
             const Eigen::Vector3d& inside, bool outward)
   {
-    orientTriangles (v, t, inside, outward);
+    for (auto& tri : t)
+    {
+      const Eigen::Vector3d n = (v[tri[1]] - v[tri[0]]).cross (v[tri[2]] - v[tri[0]]);
+      const Eigen::Vector3d c = (v[tri[0]] + v[tri[1]] + v[tri[2]]) / 3.0;
+      if ((n.dot (c - inside) < 0.0) == outward)
+        std::swap (tri[1], tri[2]);
+    }
     writeObj (path, v, t);
   }
 
-  /// Adds the box [lo, hi] to a truth mesh: its faces as two triangles each, the bottom left out when
-  /// \a open_bottom, and with \a open_top the top, turned toward \a inside (a street seen from within) or away
-  /// from the box's centre.
+  /// The lidar street of generated_clouds.h: DIR/sim_lidar_street.pcd and its truth.
   void
-  addBox (const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, bool open_bottom, bool open_top, const Eigen::Vector3d* inside,
-          std::vector<Eigen::Vector3d>& v, std::vector<Eigen::Vector3i>& t)
+  simulateLidarStreet (const std::string& dir)
   {
-    const int base = static_cast<int> (v.size ());
-    for (int k = 0; k < 8; ++k)
-      v.emplace_back (k & 1 ? hi.x () : lo.x (), k & 2 ? hi.y () : lo.y (), k & 4 ? hi.z () : lo.z ());
-    const std::size_t first = t.size ();
-    // Faces by their four corners (bits: x 1, y 2, z 4).
-    const int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
-    for (int f = 0; f < 6; ++f)
-    {
-      if ((f == 0 && open_bottom) || (f == 1 && open_top))
-        continue;
-      t.emplace_back (base + faces[f][0], base + faces[f][1], base + faces[f][2]);
-      t.emplace_back (base + faces[f][0], base + faces[f][2], base + faces[f][3]);
-    }
-    orientTriangles (v, t, inside ? *inside : Eigen::Vector3d (0.5 * (lo + hi)), inside == nullptr, first);
-  }
-
-  /// Ray from \a o along \a d against the box [lo, hi]: the entry distance (> 0) and the entered face's outward
-  /// normal, or the exit distance seen from inside (the box is then a room around \a o) and the inward normal.
-  bool
-  rayBox (const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-          double& t, Eigen::Vector3d& normal)
-  {
-    double near = -std::numeric_limits<double>::infinity (), far = std::numeric_limits<double>::infinity ();
-    int near_axis = -1, far_axis = -1;
-    for (int a = 0; a < 3; ++a)
-    {
-      if (d[a] == 0.0)
-      {
-        if (o[a] < lo[a] || o[a] > hi[a])
-          return false;
-        continue;
-      }
-      double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
-      if (t0 > t1)
-        std::swap (t0, t1);
-      if (t0 > near)
-        near = t0, near_axis = a;
-      if (t1 < far)
-        far = t1, far_axis = a;
-    }
-    if (near > far || far <= 0.0)
-      return false;
-    const bool inside = near <= 0.0;
-    const int axis = inside ? far_axis : near_axis;
-    t = inside ? far : near;
-    normal = Eigen::Vector3d::Zero ();
-    normal[axis] = d[axis] > 0.0 ? -1.0 : 1.0;  // against the ray: toward the sensor
-    return true;
-  }
-
-  /// A spinning lidar in a street: 32 rings from -30.67 to +10.67 degrees (1.33 apart) and 0.17-degree
-  /// azimuth steps, as the shared HDL-32E frames, 1.8 m above the road of a street 18 m wide and 80 m long
-  /// between walls 12 m high (open sky: no return), with a parked car (a 4.5 x 1.8 x 1.5 m box); range noise
-  /// sigma 1 cm. Points in firing order, unorganized, as the shared frames are written. Truth: the street's
-  /// faces (toward the sensor) and the car's (outward).
-  void
-  simulateLidarStreet (const std::string& dir, std::mt19937& random)
-  {
-    std::normal_distribution<double> gauss (0.0, 0.01);
-    const Eigen::Vector3d sensor (0.0, 0.0, 1.8);
-    const Eigen::Vector3d street_lo (-40.0, -8.0, 0.0), street_hi (40.0, 10.0, 12.0);
-    const Eigen::Vector3d car_lo (6.0, -6.5, 0.0), car_hi (10.5, -4.7, 1.5);
+    const pcl_sparse_test::LidarStreet street = pcl_sparse_test::lidarStreet ();
     pcl::PointCloud<pcl::PointXYZ> cloud;
-    const int columns = 2118;  // 360 / 0.17
-    for (int column = 0; column < columns; ++column)
-      for (int ring = 0; ring < 32; ++ring)
-      {
-        const double azimuth = 2.0 * M_PI * column / columns - M_PI, elevation = (-30.67 + 1.33 * ring) * M_PI / 180.0;
-        const Eigen::Vector3d d (std::cos (elevation) * std::cos (azimuth), std::cos (elevation) * std::sin (azimuth),
-                                 std::sin (elevation));
-        double t_street = 0.0, t_car = 0.0;
-        Eigen::Vector3d n_street, n_car;
-        if (!rayBox (sensor, d, street_lo, street_hi, t_street, n_street))
-          continue;
-        double t = t_street;
-        Eigen::Vector3d n = n_street;
-        if (rayBox (sensor, d, car_lo, car_hi, t_car, n_car) && t_car < t)
-          t = t_car, n = n_car;
-        if (n.z () < 0.0)  // the street's top: sky
-          continue;
-        const Eigen::Vector3d q = sensor + (t + gauss (random)) * d;
-        cloud.push_back (pcl::PointXYZ (q.x (), q.y (), q.z ()));
-      }
-    savePcd (dir + "/sim_lidar_street.pcd", cloud, sensor);
-    std::vector<Eigen::Vector3d> v;
-    std::vector<Eigen::Vector3i> t;
-    addBox (street_lo, street_hi, false, true, &sensor, v, t);
-    addBox (car_lo, car_hi, true, false, nullptr, v, t);
-    writeObj (dir + "/sim_lidar_street_truth.obj", v, t);
+    for (const Eigen::Vector3d& p : street.scan.positions)
+      cloud.push_back (pcl::PointXYZ (p.x (), p.y (), p.z ()));
+    savePcd (dir + "/sim_lidar_street.pcd", cloud, street.scan.sensor_origin);
+    writeObj (dir + "/sim_lidar_street_truth.obj", street.truth.vertices, street.truth.triangles);
   }
 
   int
@@ -343,7 +250,7 @@ namespace
       base = base.substr (0, base.find_last_of ('.'));
       savePcd (dir + "/sim_" + base + ".pcd", cloud, eye);
     }
-    simulateLidarStreet (dir, random);
+    simulateLidarStreet (dir);
     return 0;
   }
 

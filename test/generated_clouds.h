@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -44,6 +45,115 @@ namespace pcl_sparse_test
         scan.indices.push_back (static_cast<std::size_t> (y) * width + x);
       }
     return scan;
+  }
+
+  /// A spinning lidar in a street, with the truth it samples.
+  struct LidarStreet
+  {
+    pcl_sparse::ScanCloud scan;  ///< unorganized, in firing order, sensor pose set
+    pcl_sparse::TriangleMesh truth;  ///< the street's faces (toward the sensor) and the car's (outward)
+  };
+
+  namespace detail
+  {
+    /// Ray from \a o along \a d against the box [lo, hi]: the distance to where it enters, or, from inside,
+    /// leaves it, and the face's normal against the ray.
+    inline bool
+    rayBox (const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+            double& t, Eigen::Vector3d& normal)
+    {
+      double near = -std::numeric_limits<double>::infinity (), far = std::numeric_limits<double>::infinity ();
+      int near_axis = -1, far_axis = -1;
+      for (int a = 0; a < 3; ++a)
+      {
+        if (d[a] == 0.0)
+        {
+          if (o[a] < lo[a] || o[a] > hi[a])
+            return false;
+          continue;
+        }
+        double t0 = (lo[a] - o[a]) / d[a], t1 = (hi[a] - o[a]) / d[a];
+        if (t0 > t1)
+          std::swap (t0, t1);
+        if (t0 > near)
+          near = t0, near_axis = a;
+        if (t1 < far)
+          far = t1, far_axis = a;
+      }
+      if (near > far || far <= 0.0)
+        return false;
+      const int axis = near <= 0.0 ? far_axis : near_axis;
+      t = near <= 0.0 ? far : near;
+      normal = Eigen::Vector3d::Zero ();
+      normal[axis] = d[axis] > 0.0 ? -1.0 : 1.0;
+      return true;
+    }
+
+    /// The faces of the box [lo, hi] (two triangles each; the bottom left out when \a open_bottom, the top
+    /// when \a open_top), turned toward \a inside (a street seen from within) or, without it, outward.
+    inline void
+    addBox (const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, bool open_bottom, bool open_top,
+            const Eigen::Vector3d* inside, pcl_sparse::TriangleMesh& mesh)
+    {
+      const int base = static_cast<int> (mesh.vertices.size ());
+      for (int k = 0; k < 8; ++k)  // corner bits: x 1, y 2, z 4
+        mesh.vertices.emplace_back (k & 1 ? hi.x () : lo.x (), k & 2 ? hi.y () : lo.y (), k & 4 ? hi.z () : lo.z ());
+      const int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+      const Eigen::Vector3d centre = 0.5 * (lo + hi);
+      for (int f = 0; f < 6; ++f)
+      {
+        if ((f == 0 && open_bottom) || (f == 1 && open_top))
+          continue;
+        for (const auto& tri : {Eigen::Vector3i (base + faces[f][0], base + faces[f][1], base + faces[f][2]),
+                                Eigen::Vector3i (base + faces[f][0], base + faces[f][2], base + faces[f][3])})
+        {
+          const Eigen::Vector3d& a = mesh.vertices[tri[0]];
+          const Eigen::Vector3d n = (mesh.vertices[tri[1]] - a).cross (mesh.vertices[tri[2]] - a);
+          const bool toward = inside ? n.dot (*inside - a) > 0.0 : n.dot (a - centre) > 0.0;
+          mesh.triangles.push_back (toward ? tri : Eigen::Vector3i (tri[0], tri[2], tri[1]));
+        }
+      }
+    }
+  } // namespace detail
+
+  /// A spinning lidar 1.8 m above the road of a street 18 m wide and 80 m long between walls 12 m high (open
+  /// sky: no return), with a parked car (a 4.5 x 1.8 x 1.5 m box): 32 rings from -30.67 degrees up, 1.33
+  /// apart, and 0.17-degree azimuth steps, as the shared HDL-32E frames; range noise sigma \a noise.
+  inline LidarStreet
+  lidarStreet (std::uint32_t seed = 12, double noise = 0.01)
+  {
+    std::mt19937 random (seed);
+    std::normal_distribution<double> gauss (0.0, noise);
+    const Eigen::Vector3d sensor (0.0, 0.0, 1.8);
+    const Eigen::Vector3d street_lo (-40.0, -8.0, 0.0), street_hi (40.0, 10.0, 12.0);
+    const Eigen::Vector3d car_lo (6.0, -6.5, 0.0), car_hi (10.5, -4.7, 1.5);
+    LidarStreet street;
+    pcl_sparse::ScanCloud& scan = street.scan;
+    const int columns = 2118;  // 360 / 0.17
+    for (int column = 0; column < columns; ++column)
+      for (int ring = 0; ring < 32; ++ring)
+      {
+        const double azimuth = 2.0 * M_PI * column / columns - M_PI, elevation = (-30.67 + 1.33 * ring) * M_PI / 180.0;
+        const Eigen::Vector3d d (std::cos (elevation) * std::cos (azimuth), std::cos (elevation) * std::sin (azimuth),
+                                 std::sin (elevation));
+        double t = 0.0, t_car = 0.0;
+        Eigen::Vector3d n, n_car;
+        if (!detail::rayBox (sensor, d, street_lo, street_hi, t, n))
+          continue;
+        if (detail::rayBox (sensor, d, car_lo, car_hi, t_car, n_car) && t_car < t)
+          t = t_car, n = n_car;
+        if (n.z () < 0.0)  // the street's top: sky
+          continue;
+        scan.positions.push_back (sensor + (t + gauss (random)) * d);
+      }
+    scan.width = static_cast<std::uint32_t> (scan.positions.size ());
+    scan.height = 1;
+    scan.sensor_origin = sensor;
+    scan.has_sensor_pose = true;
+    scan.report.input_points = scan.report.kept = scan.positions.size ();
+    detail::addBox (street_lo, street_hi, false, true, &sensor, street.truth);
+    detail::addBox (car_lo, car_hi, true, false, nullptr, street.truth);
+    return street;
   }
 
   /// A Kinect-like camera (pinholeScan, 64 pixels wide) sees the slanted plane z = 2 + 0.8 x with depth

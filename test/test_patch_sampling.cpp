@@ -994,3 +994,25 @@ TEST (PatchSampling, StrayTriangleDoesNotKeepTheLoopGoing)
       covered[v] = 1;
   EXPECT_EQ (std::count (covered.begin (), covered.end (), 0), 0);
 }
+
+// PatchOptions::lidar_delta replaces delta on a lidar frame's rings only, and not in the paper's or the
+// authors' configurations; 0 keeps delta there too (test_scan_pipeline: LidarStreetResamplesNearTheTruth).
+TEST (PatchSampling, LidarDeltaOnlyOnLidarRings)
+{
+  const PatchOptions options;
+  EXPECT_NEAR (options.lidar_delta, 10.0 * M_PI / 180.0, 1e-15);
+  EXPECT_EQ (patchOptionsFor (options, true, true).delta, options.lidar_delta);
+  EXPECT_EQ (patchOptionsFor (options, true, false).delta, options.delta);
+  EXPECT_EQ (patchOptionsFor (options, false).delta, options.delta);
+  PatchOptions plain = options;
+  plain.lidar_delta = 0.0;
+  EXPECT_EQ (patchOptionsFor (plain, true, true).delta, options.delta);
+  EXPECT_EQ (encoderPresetOptions (EncoderPreset::Paper).patches.lidar_delta, 0.0);
+  EXPECT_EQ (authorsCodePatchOptions ().lidar_delta, 0.0);
+  for (double bad : {-0.1, 3.2, std::nan ("")})
+  {
+    PatchOptions wrong;
+    wrong.lidar_delta = bad;
+    EXPECT_THROW (wrong.validate (), Error) << bad;
+  }
+}

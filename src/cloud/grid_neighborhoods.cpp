@@ -8,6 +8,8 @@ namespace pcl_sparse
 {
   namespace
   {
+    const long kMaxColumnStride = 8;  // window columns at most 8 azimuth steps apart (rings 16 steps apart)
+
     /// Lengths of the horizontal (dx = 1) or vertical (dy = 1) edges, -1 where missing.
     std::vector<float>
     edgeLengths (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, int dx, int dy, int threads,
@@ -145,7 +147,20 @@ namespace pcl_sparse
     if (steps && !steps->active ())
       steps = nullptr;
     const std::size_t n = positions.size ();
-    const int r = window_radius, stride = (2 * r + 1) * (2 * r + 1) - 1;
+    const int r = window_radius;
+    // Lidar rings: besides its 2 r + 1 adjacent columns the window takes the columns c s apart (c = 1 .. r),
+    // s half a ring step in azimuth steps (4 on the HDL-32E frames), so that it reaches half as far along the
+    // ring as across rings. With the adjacent columns alone it saw a strip 8 times higher than wide, whose
+    // normal the noise across the strip turned (on walls facing the sensor, along the line of sight); a
+    // whole ring step blurred corners (bench/results/scans-notes.md).
+    const int column_stride = static_cast<int> (std::clamp (std::lround (0.5 * grid.row_to_column_angle), 1l, kMaxColumnStride));
+    std::vector<int> columns;  // window columns in units of k (below)
+    for (int c = -r; c <= r; ++c)
+      columns.push_back (c);
+    for (int c = 1; c <= r; ++c)
+      if (c * column_stride > r)  // not one of the adjacent columns
+        columns.push_back (-c * column_stride), columns.push_back (c * column_stride);
+    const int stride = (2 * r + 1) * static_cast<int> (columns.size ()) - 1;
     PointNeighborhoods hoods;
     hoods.spacing.assign (n, 0.0);
     std::vector<int> found (n * static_cast<std::size_t> (stride), -1);
@@ -171,7 +186,7 @@ namespace pcl_sparse
         if (steps_reached > 0.0 && step > 0.0 && hoods.spacing[i] > 0.0)
           k = std::max (1, std::min (12, static_cast<int> (std::ceil (steps_reached * step / hoods.spacing[i] / r))));
         for (int ddy = -r; ddy <= r; ++ddy)
-          for (int ddx = -r; ddx <= r; ++ddx)
+          for (const int ddx : columns)
           {
             const int dx = ddx * k, dy = ddy * k;
             const int u = x + dx, v = y + dy;

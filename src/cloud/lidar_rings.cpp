@@ -76,6 +76,18 @@ namespace pcl_sparse
       return *middle;
     }
 
+    /// Median elevation step between consecutive rings (their centres).
+    double
+    medianRingStep (const std::vector<Ring>& rings)
+    {
+      std::vector<double> steps;
+      for (std::size_t r = 1; r < rings.size (); ++r)
+        steps.push_back (0.5 * (rings[r].low + rings[r].high - rings[r - 1].low - rings[r - 1].high));
+      auto middle = steps.begin () + steps.size () / 2;
+      std::nth_element (steps.begin (), middle, steps.end ());
+      return *middle;
+    }
+
     /// A full turn ends one column before it starts again: the first used column, repeated after the last
     /// used one, closes the grid behind the sensor, where a crack of one column was never triangulated
     /// (found by a review). Only when the two are exactly a turn apart: a sweep short of a full turn stays
@@ -175,6 +187,7 @@ namespace pcl_sparse
     }
     if (placed < 0.9 * candidates)
       return false;
+    result.row_to_column_angle = medianRingStep (rings) / step;
     closeTheTurn (result, step);
     unplaced = candidates - placed;
     grid = std::move (result);

@@ -419,6 +419,7 @@ namespace pcl_sparse
       options.patches.face_steep_frame_angle = 0.0;
       options.patches.drop_redundant_patches = false;
       options.patches.merge_own_elements = 0;
+      options.patches.lidar_delta = 0.0;
       options.coding.triangle_samples = 0.0;
       options.coding.clip_footprints_at_border = false;
       options.max_compression_ratio = 0.0;

@@ -12,6 +12,8 @@ namespace pcl_sparse
     };
     if (!(delta > 0.0 && delta <= M_PI))
       fail ("delta", delta, "0 < delta <= pi");
+    if (!(lidar_delta >= 0.0 && lidar_delta <= M_PI))
+      fail ("lidar_delta", lidar_delta, "0 <= lidar_delta <= pi");
     if (!(cone_angle > 0.0 && cone_angle <= M_PI))
       fail ("cone_angle", cone_angle, "0 < cone_angle <= pi");
     if (!(eta >= 1.0) || !std::isfinite (eta))
@@ -54,6 +56,7 @@ namespace pcl_sparse
     base.face_steep_frame_angle = 0.0;
     base.drop_redundant_patches = false;
     base.merge_own_elements = 0;
+    base.lidar_delta = 0.0;
     return base;
   }
 } // namespace pcl_sparse

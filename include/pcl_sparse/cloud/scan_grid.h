@@ -20,6 +20,11 @@ namespace pcl_sparse
     /// A column repeating another's points, or -1: a lidar frame's full turn closed behind the sensor (the
     /// first column again after the last). Edges and triangles use it; loops over the points skip it.
     int wrap_column = -1;
+    /// The angle between rows over the angle between columns as the sensor sees them: 1 for a camera's image;
+    /// a spinning lidar's rings lie several times further apart than its columns (the shared HDL-32E frames:
+    /// 1.33 against 0.17 degrees), and the normals' window reaches along a ring half as far as across rings
+    /// (gridNeighborhoods).
+    double row_to_column_angle = 1.0;
 
     int at (int x, int y) const { return cells[static_cast<std::size_t> (y) * width + x]; }
   };

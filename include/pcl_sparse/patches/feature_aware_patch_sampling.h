@@ -72,13 +72,16 @@ namespace pcl_sparse
 
   /// \brief The options whose defaults depend on the surface (harris_rings, max_fruitless_seeds,
   /// tail_pruning_after, max_patch_vertices, steep_frame_angle, cover_unreferenced_vertices) resolved for a
-  /// mesh or a scan.
+  /// mesh or a scan, and delta replaced by lidar_delta on a lidar frame's rings.
   /// \param[in] options the options as given
   /// \param[in] scan    whether the surface is a scan's neighbourhood surface
+  /// \param[in] lidar_rings  whether that surface joins a spinning lidar's rings (CloudNeighborhood::LidarRings)
   /// \return the options with those fields resolved
   inline PatchOptions
-  patchOptionsFor (PatchOptions options, bool scan)
+  patchOptionsFor (PatchOptions options, bool scan, bool lidar_rings = false)
   {
+    if (lidar_rings && options.lidar_delta > 0.0)
+      options.delta = options.lidar_delta;
     options.harris_rings = harrisRingsFor (options.harris_rings, scan);
     if (options.max_fruitless_seeds < 0)
       options.max_fruitless_seeds = scan ? 256 : 0;

@@ -197,6 +197,12 @@ namespace pcl_sparse
     /// \brief Whether the current compute works on a scan (setInputScan, or a cloud without polygons).
     bool surfaceIsScan () const { return static_cast<bool> (cloud_surface_); }
 
+    /// \brief Whether that scan is a spinning lidar frame arranged on its rings (PatchOptions::lidar_delta).
+    bool surfaceIsLidarRings () const
+    {
+      return cloud_surface_ && cloud_surface_->neighborhood == CloudNeighborhood::LidarRings;
+    }
+
     /// \brief Per-vertex normals the stages should grow and frame patches with: a scan's oriented PCA
     /// normals (smooth where the triangulation of noisy points is not), empty for a mesh (its own normals).
     const std::vector<Eigen::Vector3d>& surfaceNormals () const

@@ -59,7 +59,7 @@ namespace pcl_sparse
       // (bench/results/atom_loss.md).
       options.atom_loss_allowance = 0.0;
     }
-    options.patches = patchOptionsFor (options.patches, this->surfaceIsScan ());
+    options.patches = patchOptionsFor (options.patches, this->surfaceIsScan (), this->surfaceIsLidarRings ());
     VertexAttributes attributes = surfaceAttributes ();
     attribute_gaps_ = fillAttributeGaps (attributes, this->surface_->vertices);
     encoding_ = encodeSurface (*this->surface_, attributes, *this->surface_topology_, options, basis,

@@ -22,7 +22,7 @@ namespace pcl_sparse
   void
   FeatureAwarePatchSampling<PointInT>::computePatches (std::vector<Patch>& patches)
   {
-    const PatchOptions options = patchOptionsFor (options_, this->surfaceIsScan ());
+    const PatchOptions options = patchOptionsFor (options_, this->surfaceIsScan (), this->surfaceIsLidarRings ());
     result_ = sampleFeatureAwarePatches (*this->surface_, *this->surface_topology_, options, responses_, keypoints_,
                                          this->num_threads_, this->progress_, this->surfaceNormals ());
     patches = std::move (result_.patches);
