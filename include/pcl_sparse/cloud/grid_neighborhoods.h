@@ -60,9 +60,8 @@ namespace pcl_sparse
   /// With \a steps and \a steps_reached > 0 the window is a lattice of (2 r + 1)^2 pixels k apart, k (1..12)
   /// such that it reaches about \a steps_reached depth steps of the pixel's level sideways (r k spacings):
   /// windows that see a staircase's slope instead of one terrace (depth_steps_removal.h).
-  /// On lidar rings (grid.row_to_column_angle s > 2) the window also takes the columns c round (s / 2) apart,
-  /// c = 1 .. r (at most 8 r): besides the adjacent columns it reaches half as far along the ring as across
-  /// rings.
+  /// On lidar rings the window also takes the columns c t apart, c = 1 .. r, t = round (grid.row_to_column_angle
+  /// / 2) at most 8, those beyond the adjacent ones: it reaches half as far along the ring as across rings.
   PointNeighborhoods
   gridNeighborhoods (const ScanGrid& grid, const std::vector<Eigen::Vector3d>& positions, const GridEdges& edges,
                      int window_radius, double gap_factor, int num_threads, const DepthQuantization* steps = nullptr,
