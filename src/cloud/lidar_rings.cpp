@@ -16,6 +16,17 @@ namespace pcl_sparse
       double low, high;         // elevation range
     };
 
+    /// The upper median of \a values (reordered), 0 when empty.
+    double
+    upperMedian (std::vector<double>& values)
+    {
+      if (values.empty ())
+        return 0.0;
+      const auto middle = values.begin () + values.size () / 2;
+      std::nth_element (values.begin (), middle, values.end ());
+      return *middle;
+    }
+
     /// Splits the elevation-sorted points into rings; returns false when they are not a lidar's rings.
     bool
     findRings (const std::vector<double>& elevation, const std::vector<int>& by_elevation, std::vector<Ring>& rings)
@@ -69,11 +80,7 @@ namespace pcl_sparse
           if (ring_azimuths[a] - ring_azimuths[a - 1] > 0.05 * mean_step)
             steps.push_back (ring_azimuths[a] - ring_azimuths[a - 1]);
       }
-      if (steps.empty ())
-        return 0.0;
-      auto middle = steps.begin () + steps.size () / 2;
-      std::nth_element (steps.begin (), middle, steps.end ());
-      return *middle;
+      return upperMedian (steps);
     }
 
     /// Median elevation step between consecutive rings (their centres).
@@ -83,9 +90,7 @@ namespace pcl_sparse
       std::vector<double> steps;
       for (std::size_t r = 1; r < rings.size (); ++r)
         steps.push_back (0.5 * (rings[r].low + rings[r].high - rings[r - 1].low - rings[r - 1].high));
-      auto middle = steps.begin () + steps.size () / 2;
-      std::nth_element (steps.begin (), middle, steps.end ());
-      return *middle;
+      return upperMedian (steps);
     }
 
     /// A full turn ends one column before it starts again: the first used column, repeated after the last
