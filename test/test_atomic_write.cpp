@@ -1,10 +1,12 @@
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/cloud_io.h>
+#include <pcl_sparse/io/cloud_stream_writer.h>
 
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <csignal>
 
@@ -140,4 +142,48 @@ TEST (AtomicWrite, AFullDiskFailsEveryCloudFormat)
       pcl_sparse::loadPointCloud (path.string (), back);
       EXPECT_EQ (back.size (), cloud.size ()) << name << (binary ? " binary" : " ascii");
     }
+}
+
+TEST (AtomicWrite, LongFileNamesAreWritten)
+{
+  // The temporary was the name + ".tmp" + the pid: a file name of 250 bytes, which the file system takes
+  // (it allows 255), was refused with "could not write the file".
+  const fs::path dir = freshScratchDirectory ();
+  const std::string pid = std::to_string (::getpid ());
+  const std::string short_path = (dir / "a.bin").string ();
+  EXPECT_EQ (pcl_sparse::temporaryPathFor (short_path), short_path + ".tmp" + pid);
+  EXPECT_EQ (pcl_sparse::temporaryPathFor ("a.bin"), "a.bin.tmp" + pid);  // no folder: the working one
+  const std::string long_a = (dir / (std::string (246, 'x') + "a.bin")).string ();
+  const std::string long_b = (dir / (std::string (246, 'x') + "b.bin")).string ();
+  const fs::path temporary_a = pcl_sparse::temporaryPathFor (long_a);
+  EXPECT_EQ (temporary_a.parent_path (), dir);
+  EXPECT_LE (temporary_a.filename ().string ().size (), 255u);
+  EXPECT_EQ (temporary_a.filename ().string ().substr (0, 200), std::string (200, 'x'));
+  EXPECT_NE (temporary_a, fs::path (pcl_sparse::temporaryPathFor (long_b)));  // same start, other names
+  for (const std::size_t length : {250u, 255u})
+  {
+    const fs::path path = dir / (std::string (length - 4, 'y') + ".bin");
+    ASSERT_EQ (path.filename ().string ().size (), length);
+    pcl_sparse::writeBytesAtomically (path.string (), "xy", 2);
+    EXPECT_EQ (readFile (path), "xy") << length;
+  }
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  cloud.resize (3);
+  for (const char* extension : {".pcd", ".ply"})
+  {
+    const fs::path saved = dir / (std::string (246, 's') + extension);
+    pcl_sparse::savePointNormalCloud (saved.string (), cloud, true);
+    const fs::path streamed = dir / (std::string (246, 'w') + extension);
+    pcl_sparse::PointNormalStreamWriter writer (streamed.string (), cloud.size ());
+    writer.write (cloud);
+    writer.finish ();
+    for (const fs::path& path : {saved, streamed})
+    {
+      pcl::PointCloud<pcl::PointXYZ> back;
+      pcl_sparse::loadPointCloud (path.string (), back);
+      EXPECT_EQ (back.size (), 3u) << path.filename ().string ().substr (240);
+    }
+  }
+  for (const auto& entry : fs::directory_iterator (dir))
+    EXPECT_EQ (entry.path ().filename ().string ().find (".tmp"), std::string::npos) << "left behind";
 }

@@ -621,6 +621,29 @@ namespace
     }
   }
 
+  /// Output names of 250 bytes (the file system takes 255) were refused: the temporary they are written
+  /// through added ".tmp" and the pid. Every output of encode and resample is written through one.
+  TEST_F (RobustnessAppsPaths, LongOutputNamesAreWritten)
+  {
+    const std::string obj = (dir_ / "c.obj").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    const std::string stem = (dir_ / std::string (246, 'n')).string ();
+    const std::vector<std::pair<std::string, std::vector<std::string>>> runs = {
+      {"encode", {obj, "-o", stem + ".psm", "-recon", stem + ".obj", "-q"}},
+      {"resample", {obj, stem + ".pcd", "-n", "500", "-q"}},
+      {"resample", {obj, stem + ".ply", "-n", "500", "-q"}},
+    };
+    for (const auto& [app, args] : runs)
+    {
+      const RunResult r = runApp (app, args, dir_);
+      EXPECT_EQ (r.exit_code, 0) << r.command << "\n" << r.err;
+    }
+    for (const char* extension : {".psm", ".obj", ".pcd", ".ply"})
+      EXPECT_TRUE (fs::exists (stem + extension)) << extension;
+    for (const std::string& name : filesIn (dir_))
+      EXPECT_EQ (name.find (".tmp"), std::string::npos) << name;
+  }
+
   /// An output folder that takes no new file is refused before any work (an encode wrote its model, then
   /// failed on -recon in the same folder). The folder is made read-only with chmod, or for root, whom chmod
   /// does not stop, immutable with chattr +i; skipped where neither holds.

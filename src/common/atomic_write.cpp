@@ -5,16 +5,30 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <unistd.h>
 
 namespace pcl_sparse
 {
+  std::string
+  temporaryPathFor (const std::string& path)
+  {
+    constexpr std::size_t kMaxFileName = 255;  // NAME_MAX of Linux's file systems, in bytes
+    const std::string suffix = ".tmp" + std::to_string (::getpid ());
+    const std::size_t name_start = path.find_last_of ('/') + 1;  // 0 without a folder
+    const std::size_t name_length = path.size () - name_start;
+    if (name_length + suffix.size () <= kMaxFileName)
+      return path + suffix;
+    char hash[17];
+    std::snprintf (hash, sizeof (hash), "%016zx", std::hash<std::string> () (path.substr (name_start)));
+    const std::string tail = std::string (".") + hash + suffix;
+    return path.substr (0, name_start + kMaxFileName - tail.size ()) + tail;
+  }
+
   void
   writeFileAtomically (const std::string& path, const std::function<bool (const std::string&)>& write)
   {
-    // Same directory as the target, so rename() stays within one file system; the pid keeps
-    // concurrent writers from sharing a temporary.
-    const std::string temporary = path + ".tmp" + std::to_string (::getpid ());
+    const std::string temporary = temporaryPathFor (path);
     const detail::RemovedOnSignal on_signal (temporary, detail::RemovedKind::File);  // Ctrl-C left it behind
     bool ok = false;
     try

@@ -1,5 +1,6 @@
 #include <pcl_sparse/io/cloud_stream_writer.h>
 
+#include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/signal_cleanup.h>
 
@@ -191,7 +192,7 @@ namespace pcl_sparse
     if (total > static_cast<std::size_t> (std::numeric_limits<int>::max () - 1))
       throw Error (path + ": too many points for one file (" + std::to_string (total) + ")");
     w.path = path;
-    w.temporary = path + ".tmp" + std::to_string (::getpid ());  // as writeFileAtomically
+    w.temporary = temporaryPathFor (path);
     w.total = total;
     w.binary = binary;
     w.doubles = !offset.isZero (0.0);

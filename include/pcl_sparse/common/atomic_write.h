@@ -8,6 +8,13 @@
 
 namespace pcl_sparse
 {
+  /// \brief The temporary file a write of \a path goes through: in the same folder (so the rename stays on
+  /// one file system), named after \a path's file name, ".tmp" and the process id (concurrent writers do
+  /// not share it). A file name too long for that suffix (file names end at 255 bytes) keeps its first
+  /// bytes and a hash of the whole name instead, so any name the file system takes can be written.
+  std::string
+  temporaryPathFor (const std::string& path);
+
   /// Writes a file through a temporary one: calls \a write with a temporary path next to \a path, then
   /// renames it onto \a path (atomic on POSIX file systems).
   /// \param[in] path   the file to write
