@@ -17,6 +17,7 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
+#include <pcl_sparse/common/upper_median.h>
 #include <pcl_sparse/format/attribute_sections.h>
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/model_file.h>
@@ -59,13 +60,12 @@ namespace
         distances.push_back ((reconstructed[v] - mesh.vertices[v]).norm ());
     if (distances.empty () || !(diagonal > 0.0))
       return;
-    auto median = distances.begin () + static_cast<std::ptrdiff_t> (distances.size () / 2);
-    std::nth_element (distances.begin (), median, distances.end ());
-    if (!(*median <= 0.05 * diagonal))
+    const double median = upperMedian (distances);
+    if (!(median <= 0.05 * diagonal))
       throw Error (tools::format ("option -recon: '%s' is not the mesh the model was encoded from: half its vertices lie "
                                   "%.3g %% of the diagonal or more from where the model puts them (the model's own error "
                                   "is about 0.01 %%); the same vertex count, but another mesh or another vertex order",
-                                  path.c_str (), 100.0 * *median / diagonal));
+                                  path.c_str (), 100.0 * median / diagonal));
   }
 
   const tools::ToolDescription kTool = {

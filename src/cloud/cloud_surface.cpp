@@ -15,6 +15,7 @@
 #include <pcl_sparse/cloud/tangent_triangulation.h>
 #include <pcl_sparse/cloud/triangle_winding.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/upper_median.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 
 #include <algorithm>
@@ -234,11 +235,7 @@ namespace pcl_sparse
       for (std::size_t i = 0; i < hoods.size (); ++i)
         if (usable[i] && hoods.spacing[i] > 0.0)
           values.push_back (hoods.spacing[i]);
-      if (values.empty ())
-        return 0.0;
-      auto middle = values.begin () + values.size () / 2;
-      std::nth_element (values.begin (), middle, values.end ());
-      return *middle;
+      return upperMedian (values);
     }
 
     /// PCA normals, or the given ones where asked and present; returns the points whose normal was

@@ -2,6 +2,7 @@
 
 #include <pcl_sparse/cloud/grid_neighborhoods.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/common/upper_median.h>
 #include <pcl_sparse/geometry/point_kd_tree.h>
 
 #include <pcl/point_cloud.h>
@@ -41,17 +42,6 @@ namespace pcl_sparse
     /// among sparse far ones, and moving those 27 points cost a tenth of a second of its encoding), terraced
     /// ones hold more (office1's nearest levels 32-60 points each, milk_cartoon's 75 and more).
     constexpr std::size_t kMinLevelRatios = 32;
-
-    /// The upper median of \a values (reordered), 0 when empty.
-    double
-    upperMedian (std::vector<double>& values)
-    {
-      if (values.empty ())
-        return 0.0;
-      auto median = values.begin () + static_cast<std::ptrdiff_t> (values.size () / 2);
-      std::nth_element (values.begin (), median, values.end ());
-      return *median;
-    }
 
     /// Per level, whether the upper median of its step-over-spacing \a ratios (reordered), at least
     /// \a min_count of them, is at least kMinStepOverSpacing.

@@ -1,5 +1,6 @@
 #include <pcl_sparse/cloud/knn_neighborhoods.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/common/upper_median.h>
 #include <pcl_sparse/geometry/point_kd_tree.h>
 #include <pcl_sparse/io/scan_cloud.h>
 
@@ -132,8 +133,7 @@ namespace pcl_sparse
         for (int m = 0; m < k; ++m)
           if (graph.neighbors[i * k + m] >= 0)
             values.push_back (raw[graph.neighbors[i * k + m]]);
-        std::nth_element (values.begin (), values.begin () + values.size () / 2, values.end ());
-        hoods.spacing[i] = values[values.size () / 2];
+        hoods.spacing[i] = upperMedian (values);
       }
     }
     // Accepted neighbours per point in place (k slots), then compacted in point order.

@@ -1,4 +1,5 @@
 #include <pcl_sparse/cloud/lidar_rings.h>
+#include <pcl_sparse/common/upper_median.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,17 +16,6 @@ namespace pcl_sparse
       std::size_t first, last;  // range in the elevation-sorted order
       double low, high;         // elevation range
     };
-
-    /// The upper median of \a values (reordered), 0 when empty.
-    double
-    upperMedian (std::vector<double>& values)
-    {
-      if (values.empty ())
-        return 0.0;
-      const auto middle = values.begin () + values.size () / 2;
-      std::nth_element (values.begin (), middle, values.end ());
-      return *middle;
-    }
 
     /// Splits the elevation-sorted points into rings; returns false when they are not a lidar's rings.
     bool

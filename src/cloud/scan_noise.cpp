@@ -1,6 +1,7 @@
 #include <pcl_sparse/cloud/scan_noise.h>
 
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/common/upper_median.h>
 #include <pcl_sparse/geometry/quadric_fit.h>
 
 #include <Eigen/Cholesky>
@@ -91,10 +92,6 @@ namespace pcl_sparse
     }
     residuals.erase (std::remove_if (residuals.begin (), residuals.end (), [] (double r) { return r < 0.0; }),
                      residuals.end ());
-    if (residuals.empty ())
-      return 0.0;
-    auto middle = residuals.begin () + residuals.size () / 2;
-    std::nth_element (residuals.begin (), middle, residuals.end ());
-    return *middle / 0.6744897501960817;
+    return upperMedian (residuals) / 0.6744897501960817;
   }
 } // namespace pcl_sparse

@@ -1,4 +1,5 @@
 #include <pcl_sparse/coding/patch_footprint.h>
+#include <pcl_sparse/common/upper_median.h>
 
 #include "patch_local_index.h"
 
@@ -155,8 +156,7 @@ namespace pcl_sparse
       lengths.reserve (edges.size ());
       for (const auto& e : edges)
         lengths.push_back ((corners[e[0]].p - corners[e[1]].p).norm ());
-      std::nth_element (lengths.begin (), lengths.begin () + lengths.size () / 2, lengths.end ());
-      median_length = lengths[lengths.size () / 2];
+      median_length = upperMedian (lengths);
       std::vector<BorderEdge> border;
       for (std::size_t i = 0; i < edges.size ();)
       {

@@ -1,5 +1,7 @@
 #include <pcl_sparse/geometry/quadric_fit.h>
 
+#include <pcl_sparse/common/upper_median.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -88,9 +90,7 @@ namespace pcl_sparse
       const double leverage = row.dot (ldlt.solve (row));
       standardized.push_back (std::abs (p.z () - row.dot (c)) / std::sqrt (std::max (1.0 - leverage, 1e-3)));
     }
-    auto middle = standardized.begin () + standardized.size () / 2;
-    std::nth_element (standardized.begin (), middle, standardized.end ());
-    return *middle / 0.6745;
+    return upperMedian (standardized) / 0.6745;
   }
 
   MongeJet

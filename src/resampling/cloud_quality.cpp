@@ -1,5 +1,6 @@
 #include <pcl_sparse/resampling/cloud_quality.h>
 
+#include <pcl_sparse/common/upper_median.h>
 #include <pcl_sparse/geometry/point_kd_tree.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
@@ -127,8 +128,7 @@ namespace pcl_sparse
         longest[f] = std::max ({ab.norm (), ac.norm (), (ac - ab).norm ()});
         area += 0.5 * ab.cross (ac).norm ();
       }
-      std::nth_element (longest.begin (), longest.begin () + longest.size () / 2, longest.end ());
-      double reach = std::max (longest[longest.size () / 2], std::sqrt (2.0 * area / static_cast<double> (mesh.numTriangles ())));
+      double reach = std::max (upperMedian (longest), std::sqrt (2.0 * area / static_cast<double> (mesh.numTriangles ())));
       if (!(reach > 0.0))
         reach = 1.0;
       // Float cover points and queries are off by up to about 1e-7 of the coordinates' size.
