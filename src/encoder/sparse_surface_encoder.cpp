@@ -416,6 +416,7 @@ namespace pcl_sparse
       options.patches.pairwise_cone = false;
       options.patches.complete_faces = false;
       options.patches.seed_patches_on_faces = false;
+      options.patches.hidden_triangle_gap = 0.0;
       options.patches.face_steep_frame_angle = 0.0;
       options.patches.drop_redundant_patches = false;
       options.patches.merge_own_elements = 0;

@@ -2,10 +2,13 @@
 
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/patches/face_placement.h>
+#include <pcl_sparse/patches/hidden_triangles.h>
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <numeric>
+#include <utility>
 
 namespace pcl_sparse
 {
@@ -85,6 +88,70 @@ namespace pcl_sparse
           left.push_back (f);
       result.uncovered = std::move (left);
     }
+    /// A face released from a patch (hidden_triangles.h) and the patch it left.
+    struct ReleasedFace
+    {
+      int face;
+      int patch;
+    };
+
+    /// Removes every patch's hidden triangles (PatchOptions::hidden_triangle_gap); those no other patch
+    /// holds join result.uncovered (ascending), to grow patches of their own.
+    std::vector<ReleasedFace>
+    releaseHiddenTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                            double min_gap, std::vector<Patch>& patches, std::vector<std::uint8_t>& in_patch,
+                            FaceCompletionResult& result)
+    {
+      std::vector<ReleasedFace> released;
+      for (std::size_t p = 0; p < patches.size (); ++p)
+      {
+        const std::vector<int> hidden = hiddenPatchTriangles (mesh, topology, geometry, patches[p], min_gap);
+        if (hidden.empty ())
+          continue;
+        removePatchTriangles (mesh, hidden, patches[p]);
+        for (int f : hidden)
+          released.push_back ({f, static_cast<int> (p)});
+      }
+      if (released.empty ())
+        return released;
+      for (const ReleasedFace& r : released)
+        in_patch[r.face] = 0;
+      for (const Patch& p : patches)
+        for (int f : p.triangles)
+          in_patch[f] = 1;
+      for (const ReleasedFace& r : released)
+        if (!in_patch[r.face])
+          result.uncovered.push_back (r.face);
+      std::sort (result.uncovered.begin (), result.uncovered.end ());
+      result.uncovered.erase (std::unique (result.uncovered.begin (), result.uncovered.end ()), result.uncovered.end ());
+      return released;
+    }
+
+    /// Gives each released face no patch took back to the patch it left, with its corners.
+    void
+    restoreReleasedFaces (const TriangleMesh& mesh, const std::vector<ReleasedFace>& released, std::vector<Patch>& patches,
+                          std::vector<std::uint8_t>& in_patch, FaceCompletionResult& result)
+    {
+      for (const ReleasedFace& r : released)
+      {
+        if (in_patch[r.face] == 1)
+        {
+          ++result.released_faces;
+          continue;
+        }
+        Patch& patch = patches[r.patch];
+        patch.triangles.push_back (r.face);
+        for (int k = 0; k < 3; ++k)
+        {
+          const int v = mesh.triangles[r.face][k];
+          if (std::find (patch.vertices.begin (), patch.vertices.end (), v) == patch.vertices.end ())
+            patch.vertices.push_back (v);
+        }
+        in_patch[r.face] = 1;
+        result.uncovered.erase (std::remove (result.uncovered.begin (), result.uncovered.end (), r.face),
+                                result.uncovered.end ());
+      }
+    }
   } // namespace
 
   FaceCompletionResult
@@ -118,8 +185,12 @@ namespace pcl_sparse
       ++result.completed;
       result.without_smooth_variation += !placement.smooth_variation;
     }
+    std::vector<ReleasedFace> released;
+    if (options.seed_patches_on_faces && options.hidden_triangle_gap > 0.0)
+      released = releaseHiddenTriangles (mesh, topology, geometry, options.hidden_triangle_gap, patches, in_patch, result);
     if (options.seed_patches_on_faces)
       seedPatchesOnFaces (mesh, topology, geometry, options, must_cover, in_patch, patches, result);
+    restoreReleasedFaces (mesh, released, patches, in_patch, result);
     // Faces left in no patch: the patches at their corners (as grown) keep their footprints' full reach,
     // which is what covers such a face (PatchCode footprint, clip_footprints_at_border).
     for (int f : result.uncovered)

@@ -38,6 +38,8 @@ namespace pcl_sparse
       fail ("steep_frame_angle", steep_frame_angle, "-1 (by surface) or 0 <= steep_frame_angle <= pi / 2");
     if (!(face_steep_frame_angle >= 0.0 && face_steep_frame_angle <= M_PI / 2.0))
       fail ("face_steep_frame_angle", face_steep_frame_angle, "0 <= face_steep_frame_angle <= pi / 2");
+    if (!(hidden_triangle_gap >= 0.0) || !std::isfinite (hidden_triangle_gap))
+      fail ("hidden_triangle_gap", hidden_triangle_gap, "hidden_triangle_gap >= 0, finite");
     if (merge_own_elements < 0)
       fail ("merge_own_elements", merge_own_elements, "merge_own_elements >= 0");
     if (min_patch_size < 1)
@@ -53,6 +55,7 @@ namespace pcl_sparse
     base.cover_unreferenced_vertices = 0;
     base.complete_faces = false;
     base.seed_patches_on_faces = false;
+    base.hidden_triangle_gap = 0.0;
     base.face_steep_frame_angle = 0.0;
     base.drop_redundant_patches = false;
     base.merge_own_elements = 0;

@@ -52,6 +52,9 @@ namespace pcl_sparse
     std::size_t without_smooth_variation = 0;  ///< of those, faces no candidate took with smooth variation
     /// patches appended, each grown from a face no patch could take (PatchOptions::seed_patches_on_faces)
     std::size_t seeded_patches = 0;
+    /// faces released from a patch whose seed does not see them (PatchOptions::hidden_triangle_gap) and
+    /// taken by a patch seeded on faces
+    std::size_t released_faces = 0;
     std::vector<int> uncovered;         ///< proper faces still in no patch, ascending
   };
 
