@@ -150,8 +150,8 @@ TEST (HiddenTriangles, BladeBayLeavesItsPatch)
   // blade.off's patch 298 (seeded at vertex 631) is a comb of long thin triangles whose far arm lies
   // across a bay with no surface of its side; its footprint spanned the bay, where the code ran 1.7 spacings
   // off the mesh with 5 flipped normals at 4 V points (bench/results/flips.md). Released, those triangles
-  // grow patches of their own: no flipped point, and a smaller mean distance (2.44e-5 -> 2.33e-5 of the
-  // diagonal in bench_flips).
+  // grow patches of their own: no flipped point, and a smaller mean distance (2.44e-5 -> 2.38e-5 of the
+  // diagonal in bench_flips; 13 hidden faces in 2 patches -> 1, given back to its patch).
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/blade.off";
   PCL_SPARSE_NEED_SHARED_FILE (path);
   const TriangleMesh::ConstPtr mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
@@ -180,7 +180,7 @@ TEST (HiddenTriangles, BladeBayLeavesItsPatch)
   EXPECT_LT (hidden[1], hidden[0]) << "a face no new patch takes goes back to its patch";
   EXPECT_GE (flipped[0], 3u);
   EXPECT_EQ (flipped[1], 0u);
-  EXPECT_LT (mean_distance[1], 0.98 * mean_distance[0]);
+  EXPECT_LT (mean_distance[1], 0.99 * mean_distance[0]);
 }
 
 TEST (HiddenTriangles, OptionPresetsAndRange)

@@ -98,7 +98,7 @@ namespace pcl_sparse
     /// Removes every patch's hidden triangles (PatchOptions::hidden_triangle_gap); those no other patch
     /// holds join result.uncovered (ascending), to grow patches of their own.
     std::vector<ReleasedFace>
-    releaseHiddenTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+    removeHiddenTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
                             double min_gap, std::vector<Patch>& patches, std::vector<std::uint8_t>& in_patch,
                             FaceCompletionResult& result)
     {
@@ -185,18 +185,32 @@ namespace pcl_sparse
       ++result.completed;
       result.without_smooth_variation += !placement.smooth_variation;
     }
-    std::vector<ReleasedFace> released;
-    if (options.seed_patches_on_faces && options.hidden_triangle_gap > 0.0)
-      released = releaseHiddenTriangles (mesh, topology, geometry, options.hidden_triangle_gap, patches, in_patch, result);
     if (options.seed_patches_on_faces)
       seedPatchesOnFaces (mesh, topology, geometry, options, must_cover, in_patch, patches, result);
-    restoreReleasedFaces (mesh, released, patches, in_patch, result);
     // Faces left in no patch: the patches at their corners (as grown) keep their footprints' full reach,
     // which is what covers such a face (PatchCode footprint, clip_footprints_at_border).
     for (int f : result.uncovered)
       for (int k = 0; k < 3; ++k)
         for (int p : placer.holdersOf (mesh.triangles[f][k]))
           patches[p].beside_uncovered_face = true;
+    return result;
+  }
+
+  FaceCompletionResult
+  releaseHiddenPatchTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                               const PatchOptions& options, std::vector<Patch>& patches,
+                               const std::vector<std::uint8_t>& must_cover)
+  {
+    FaceCompletionResult result;
+    if (!(options.hidden_triangle_gap > 0.0))
+      return result;
+    std::vector<std::uint8_t> in_patch (mesh.triangles.size (), 0);
+    const std::vector<ReleasedFace> released =
+      removeHiddenTriangles (mesh, topology, geometry, options.hidden_triangle_gap, patches, in_patch, result);
+    if (released.empty ())
+      return result;
+    seedPatchesOnFaces (mesh, topology, geometry, options, must_cover, in_patch, patches, result);
+    restoreReleasedFaces (mesh, released, patches, in_patch, result);
     return result;
   }
 

@@ -19,6 +19,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <memory>
 #include <numeric>
 
@@ -637,6 +638,20 @@ namespace pcl_sparse
       result.num_merged = dropPatches (
         mergeSmallPatches (mesh, topology, geometry, options, options.merge_own_elements, result.patches, seedable),
         num_sampled, result);
+    if (options.complete_faces && options.seed_patches_on_faces)
+    {
+      const std::size_t seeded =
+        releaseHiddenPatchTriangles (mesh, topology, geometry, options, result.patches, seedable).seeded_patches;
+      result.num_coverage_patches += seeded;
+      if (seeded > 0)  // the new patches grow over faces completion left in no patch too
+      {
+        const std::vector<int> left = facesInNoPatch (mesh, result.patches);
+        std::vector<int> still;
+        std::set_intersection (result.uncovered_faces.begin (), result.uncovered_faces.end (), left.begin (), left.end (),
+                               std::back_inserter (still));
+        result.uncovered_faces = std::move (still);
+      }
+    }
 
     // Unresolved (< 0), it is a mesh's.
     const double steep_frame_angle = patchOptionsFor (options, false).steep_frame_angle;

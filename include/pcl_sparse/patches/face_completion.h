@@ -73,6 +73,24 @@ namespace pcl_sparse
   completePatchFaces (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
                       const PatchOptions& options, std::vector<Patch>& patches, const std::vector<std::uint8_t>& must_cover = {});
 
+  /// \brief Releases the patches' hidden triangles (hidden_triangles.h, PatchOptions::hidden_triangle_gap):
+  /// each leaves its patch, with the corners no other triangle of the patch has; the released faces no other
+  /// patch holds grow patches of their own from a face, in ascending order, as completion's faces do
+  /// (appended); a released face no new patch takes goes back to its patch. Run on the final partition
+  /// (after redundant patches are dropped and small ones merged: merging hands faces to neighbours, which can
+  /// hide them again).
+  /// \param[in]     mesh        the mesh the patches were grown on
+  /// \param[in]     topology    its topology
+  /// \param[in]     geometry    computePatchGrowthGeometry (mesh, topology, ...)
+  /// \param[in]     options     hidden_triangle_gap (0: nothing happens) and the growth options
+  /// \param[in,out] patches     the partition (before the frames); patches appended
+  /// \param[in]     must_cover  as for completePatchFaces: the seed of a new patch is a flagged corner
+  /// \return seeded_patches and released_faces (released and taken by a new patch); uncovered is empty
+  FaceCompletionResult
+  releaseHiddenPatchTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                               const PatchOptions& options, std::vector<Patch>& patches,
+                               const std::vector<std::uint8_t>& must_cover = {});
+
   /// The proper faces (area > 0) of \a mesh that are a triangle of no patch (Patch::triangles), ascending:
   /// the faces completion has to place, or could not.
   std::vector<int>

@@ -72,11 +72,11 @@ namespace pcl_sparse
     /// true (default); false: such faces stay in no patch and the patches at their corners cover them with
     /// unclipped footprints (EncoderPreset::Paper has no completion at all).
     bool seed_patches_on_faces = true;
-    /// Hidden triangles released (ours, with seed_patches_on_faces; hidden_triangles.h): after completion, a
-    /// patch's triangles that its seed sees only across more than this x R of its tangent plane without
-    /// surface on its side (R: the patch's reach) leave it and grow patches of their own from a face, so
-    /// its star-shaped footprint does not span the bay between (blade's patch 298: 5 flipped normals). A
-    /// released face no new patch takes goes back to its patch. 0.2 (default); 0: none released.
+    /// Hidden triangles released (ours, with seed_patches_on_faces; hidden_triangles.h): on the final
+    /// partition, a patch's triangles that its seed sees only across more than this x R of its tangent plane
+    /// without surface on its side (R: the patch's reach) leave it and grow patches of their own from a face,
+    /// so its star-shaped footprint does not span the bay between (blade's patch 298: 5 flipped normals). A
+    /// released face no new patch takes goes back to its patch. 0.3 (default); 0: none released.
     double hidden_triangle_gap = 0.3;
     /// Redundant patches (ours; redundant_patches.h): after face completion, drop the patches whose every
     /// vertex and triangle other patches also hold (up to 27 % of the patches of the shared meshes), each of which
