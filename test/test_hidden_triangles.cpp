@@ -185,10 +185,15 @@ TEST (HiddenTriangles, BladeBayLeavesItsPatch)
 
 TEST (HiddenTriangles, OptionPresetsAndRange)
 {
-  EXPECT_EQ (PatchOptions ().hidden_triangle_gap, 0.3);
+  EXPECT_EQ (PatchOptions ().hidden_triangle_gap, -1.0);
+  EXPECT_EQ (patchOptionsFor (PatchOptions (), false).hidden_triangle_gap, 0.3) << "on a mesh";
+  EXPECT_EQ (patchOptionsFor (PatchOptions (), true).hidden_triangle_gap, 0.0) << "on a scan";
+  PatchOptions given;
+  given.hidden_triangle_gap = 0.5;
+  EXPECT_EQ (patchOptionsFor (given, true).hidden_triangle_gap, 0.5) << "a value given holds on scans too";
   EXPECT_EQ (encoderPresetOptions (EncoderPreset::Paper).patches.hidden_triangle_gap, 0.0);
   EXPECT_EQ (authorsCodePatchOptions ().hidden_triangle_gap, 0.0);
-  for (double bad : {-0.1, std::nan (""), std::numeric_limits<double>::infinity ()})
+  for (double bad : {-0.1, -2.0, std::nan (""), std::numeric_limits<double>::infinity ()})
   {
     PatchOptions wrong;
     wrong.hidden_triangle_gap = bad;

@@ -88,6 +88,7 @@ namespace pcl_sparse
           left.push_back (f);
       result.uncovered = std::move (left);
     }
+
     /// A face released from a patch (hidden_triangles.h) and the patch it left.
     struct ReleasedFace
     {
@@ -95,8 +96,9 @@ namespace pcl_sparse
       int patch;
     };
 
-    /// Removes every patch's hidden triangles (PatchOptions::hidden_triangle_gap); those no other patch
-    /// holds join result.uncovered (ascending), to grow patches of their own.
+    /// Removes every patch's hidden triangles (PatchOptions::hidden_triangle_gap), marks in \a in_patch (all
+    /// 0) the faces the patches hold afterwards; the released faces no other patch holds join result.uncovered
+    /// (ascending), to grow patches of their own.
     std::vector<ReleasedFace>
     removeHiddenTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
                             double min_gap, std::vector<Patch>& patches, std::vector<std::uint8_t>& in_patch,
@@ -114,8 +116,6 @@ namespace pcl_sparse
       }
       if (released.empty ())
         return released;
-      for (const ReleasedFace& r : released)
-        in_patch[r.face] = 0;
       for (const Patch& p : patches)
         for (int f : p.triangles)
           in_patch[f] = 1;
@@ -127,7 +127,8 @@ namespace pcl_sparse
       return released;
     }
 
-    /// Gives each released face no patch took back to the patch it left, with its corners.
+    /// Gives each released face no patch took back to the patch it left, with its corners, at the end of its
+    /// triangles (counted with completion's: it keeps the cone and no-flip conditions it was taken under).
     void
     restoreReleasedFaces (const TriangleMesh& mesh, const std::vector<ReleasedFace>& released, std::vector<Patch>& patches,
                           std::vector<std::uint8_t>& in_patch, FaceCompletionResult& result)
@@ -141,6 +142,7 @@ namespace pcl_sparse
         }
         Patch& patch = patches[r.patch];
         patch.triangles.push_back (r.face);
+        ++patch.completed_triangles;
         for (int k = 0; k < 3; ++k)
         {
           const int v = mesh.triangles[r.face][k];

@@ -38,8 +38,8 @@ namespace pcl_sparse
       fail ("steep_frame_angle", steep_frame_angle, "-1 (by surface) or 0 <= steep_frame_angle <= pi / 2");
     if (!(face_steep_frame_angle >= 0.0 && face_steep_frame_angle <= M_PI / 2.0))
       fail ("face_steep_frame_angle", face_steep_frame_angle, "0 <= face_steep_frame_angle <= pi / 2");
-    if (!(hidden_triangle_gap >= 0.0) || !std::isfinite (hidden_triangle_gap))
-      fail ("hidden_triangle_gap", hidden_triangle_gap, "hidden_triangle_gap >= 0, finite");
+    if (!(hidden_triangle_gap == -1.0 || hidden_triangle_gap >= 0.0) || !std::isfinite (hidden_triangle_gap))
+      fail ("hidden_triangle_gap", hidden_triangle_gap, "-1 (by surface) or hidden_triangle_gap >= 0, finite");
     if (merge_own_elements < 0)
       fail ("merge_own_elements", merge_own_elements, "merge_own_elements >= 0");
     if (min_patch_size < 1)

@@ -71,7 +71,8 @@ namespace pcl_sparse
   }
 
   /// \brief The options whose defaults depend on the surface (harris_rings, max_fruitless_seeds,
-  /// tail_pruning_after, max_patch_vertices, steep_frame_angle, cover_unreferenced_vertices) resolved for a
+  /// tail_pruning_after, max_patch_vertices, steep_frame_angle, cover_unreferenced_vertices,
+  /// hidden_triangle_gap) resolved for a
   /// mesh or a scan, and delta replaced by lidar_delta on a lidar frame's rings.
   /// \param[in] options the options as given
   /// \param[in] scan    whether the surface is a scan's neighbourhood surface
@@ -93,6 +94,8 @@ namespace pcl_sparse
       options.steep_frame_angle = scan ? 0.0 : M_PI / 2.5;
     if (options.cover_unreferenced_vertices < 0)
       options.cover_unreferenced_vertices = scan ? 1 : 0;
+    if (options.hidden_triangle_gap < 0.0)
+      options.hidden_triangle_gap = scan ? 0.0 : 0.3;
     return options;
   }
 
