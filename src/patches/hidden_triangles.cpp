@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <utility>
 
 namespace pcl_sparse
