@@ -164,9 +164,19 @@ TEST (HiddenTriangles, BladeBayLeavesItsPatch)
     SparseSurfaceEncoderOptions options;
     if (!released)
       options.patches.hidden_triangle_gap = 0.0;
-    const PatchSamplingResult sampling = sampleFeatureAwarePatches (*mesh, topology, options.patches, {}, {}, 0, nullptr);
+    const PatchSamplingResult sampling = sampleFeatureAwarePatches (*mesh, topology, options.patches, {}, {}, 2, nullptr);
     for (const Patch& p : sampling.patches)
       hidden[released] += hiddenPatchTriangles (*mesh, topology, geometry, p, 0.3).size ();
+    if (released)  // the release looks at the patches in parallel: the same partition with one thread
+    {
+      const PatchSamplingResult one = sampleFeatureAwarePatches (*mesh, topology, options.patches, {}, {}, 1, nullptr);
+      ASSERT_EQ (one.patches.size (), sampling.patches.size ());
+      for (std::size_t p = 0; p < one.patches.size (); ++p)
+      {
+        EXPECT_EQ (one.patches[p].triangles, sampling.patches[p].triangles) << "patch " << p;
+        EXPECT_EQ (one.patches[p].vertices, sampling.patches[p].vertices) << "patch " << p;
+      }
+    }
     const pcl::PointCloud<pcl::PointNormal> cloud =
       pcl_sparse_test::resampleModel (pcl_sparse_test::encodeMesh (mesh, options), 4 * mesh->numVertices ());
     const CloudQuality q = evaluateCloudQuality (*mesh, cloud, CloudQualityOptions ());

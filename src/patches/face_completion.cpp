@@ -1,5 +1,6 @@
 #include <pcl_sparse/patches/face_completion.h>
 
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/patches/face_placement.h>
 #include <pcl_sparse/patches/hidden_triangles.h>
@@ -101,18 +102,27 @@ namespace pcl_sparse
     /// (ascending), to grow patches of their own.
     std::vector<ReleasedFace>
     removeHiddenTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
-                            double min_gap, std::vector<Patch>& patches, std::vector<std::uint8_t>& in_patch,
-                            FaceCompletionResult& result)
+                           double min_gap, int num_threads, std::vector<Patch>& patches, std::vector<std::uint8_t>& in_patch,
+                           FaceCompletionResult& result)
     {
-      std::vector<ReleasedFace> released;
-      for (std::size_t p = 0; p < patches.size (); ++p)
+      // Each patch is looked at on its own, so in parallel; the removals follow in patch order.
+      const int num_patches = static_cast<int> (patches.size ());
+      std::vector<std::vector<int>> hidden (patches.size ());
+#pragma omp parallel num_threads(resolveThreadCount (num_threads))
       {
-        const std::vector<int> hidden = hiddenPatchTriangles (mesh, topology, geometry, patches[p], min_gap);
-        if (hidden.empty ())
+        HiddenTriangleFinder finder (mesh, topology, geometry);
+#pragma omp for schedule(dynamic, 64)
+        for (int p = 0; p < num_patches; ++p)
+          hidden[p] = finder.find (patches[p], min_gap);
+      }
+      std::vector<ReleasedFace> released;
+      for (int p = 0; p < num_patches; ++p)
+      {
+        if (hidden[p].empty ())
           continue;
-        removePatchTriangles (mesh, hidden, patches[p]);
-        for (int f : hidden)
-          released.push_back ({f, static_cast<int> (p)});
+        removePatchTriangles (mesh, hidden[p], patches[p]);
+        for (int f : hidden[p])
+          released.push_back ({f, p});
       }
       if (released.empty ())
         return released;
@@ -201,14 +211,14 @@ namespace pcl_sparse
   FaceCompletionResult
   releaseHiddenPatchTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
                                const PatchOptions& options, std::vector<Patch>& patches,
-                               const std::vector<std::uint8_t>& must_cover)
+                               const std::vector<std::uint8_t>& must_cover, int num_threads)
   {
     FaceCompletionResult result;
     if (!(options.hidden_triangle_gap > 0.0))
       return result;
     std::vector<std::uint8_t> in_patch (mesh.triangles.size (), 0);
-    const std::vector<ReleasedFace> released =
-      removeHiddenTriangles (mesh, topology, geometry, options.hidden_triangle_gap, patches, in_patch, result);
+    const std::vector<ReleasedFace> released = removeHiddenTriangles (mesh, topology, geometry, options.hidden_triangle_gap,
+                                                                      num_threads, patches, in_patch, result);
     if (released.empty ())
       return result;
     seedPatchesOnFaces (mesh, topology, geometry, options, must_cover, in_patch, patches, result);

@@ -643,7 +643,7 @@ namespace pcl_sparse
       PatchOptions release = options;  // unresolved (< 0), it is a mesh's
       release.hidden_triangle_gap = patchOptionsFor (options, false).hidden_triangle_gap;
       const std::size_t seeded =
-        releaseHiddenPatchTriangles (mesh, topology, geometry, release, result.patches, seedable).seeded_patches;
+        releaseHiddenPatchTriangles (mesh, topology, geometry, release, result.patches, seedable, threads).seeded_patches;
       result.num_coverage_patches += seeded;
       if (seeded > 0)  // the new patches grow over faces completion left in no patch too
       {

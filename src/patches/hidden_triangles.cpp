@@ -9,96 +9,94 @@
 
 namespace pcl_sparse
 {
-  namespace
+  HiddenTriangleFinder::HiddenTriangleFinder (const TriangleMesh& mesh, const MeshTopology& topology,
+                                              const PatchGrowthGeometry& geometry)
+    : mesh_ (mesh), topology_ (topology), geometry_ (geometry), slot_ (mesh.triangles.size (), -1)
   {
-    /// Per patch triangle, whether it is edge-connected (through patch triangles) to a triangle at the seed.
-    std::vector<std::uint8_t>
-    connectedToSeed (const TriangleMesh& mesh, const MeshTopology& topology, const Patch& patch)
+  }
+
+  std::vector<std::uint8_t>
+  HiddenTriangleFinder::connectedToSeed (const Patch& patch)
+  {
+    const std::vector<int>& faces = patch.triangles;
+    for (std::size_t i = 0; i < faces.size (); ++i)
+      slot_[faces[i]] = static_cast<int> (i);
+    std::vector<std::uint8_t> reached (faces.size (), 0);
+    std::vector<int> stack;
+    for (std::size_t i = 0; i < faces.size (); ++i)
     {
-      const std::vector<int>& faces = patch.triangles;
-      std::vector<int> order (faces.size ());
-      for (std::size_t i = 0; i < faces.size (); ++i)
-        order[i] = static_cast<int> (i);
-      std::sort (order.begin (), order.end (), [&] (int a, int b) { return faces[a] < faces[b]; });
-      auto indexOf = [&] (int f) {
-        const auto it = std::lower_bound (order.begin (), order.end (), f, [&] (int i, int g) { return faces[i] < g; });
-        return it != order.end () && faces[*it] == f ? *it : -1;
-      };
-      std::vector<std::uint8_t> reached (faces.size (), 0);
-      std::vector<int> stack;
-      for (std::size_t i = 0; i < faces.size (); ++i)
+      const Eigen::Vector3i& t = mesh_.triangles[faces[i]];
+      if (t[0] == patch.seed || t[1] == patch.seed || t[2] == patch.seed || faces[i] == patch.seed_face)
       {
-        const Eigen::Vector3i& t = mesh.triangles[faces[i]];
-        if (t[0] == patch.seed || t[1] == patch.seed || t[2] == patch.seed || faces[i] == patch.seed_face)
-        {
-          reached[i] = 1;
-          stack.push_back (static_cast<int> (i));
-        }
+        reached[i] = 1;
+        stack.push_back (static_cast<int> (i));
       }
-      if (stack.empty () && !faces.empty ())  // no triangle at the seed: the first one stands for it
-      {
-        reached[0] = 1;
-        stack.push_back (0);
-      }
-      while (!stack.empty ())
-      {
-        const int i = stack.back ();
-        stack.pop_back ();
-        for (int k = 0; k < 3; ++k)
-        {
-          const int j = topology.face_neighbors[faces[i]][k] >= 0 ? indexOf (topology.face_neighbors[faces[i]][k]) : -1;
-          if (j >= 0 && !reached[j])
-          {
-            reached[j] = 1;
-            stack.push_back (j);
-          }
-        }
-      }
-      return reached;
     }
-  } // namespace
+    if (stack.empty () && !faces.empty ())  // no triangle at the seed: the first one stands for it
+    {
+      reached[0] = 1;
+      stack.push_back (0);
+    }
+    while (!stack.empty ())
+    {
+      const int i = stack.back ();
+      stack.pop_back ();
+      for (int k = 0; k < 3; ++k)
+      {
+        const int g = topology_.face_neighbors[faces[i]][k];
+        const int j = g >= 0 ? slot_[g] : -1;
+        if (j >= 0 && !reached[j])
+        {
+          reached[j] = 1;
+          stack.push_back (j);
+        }
+      }
+    }
+    for (int f : faces)
+      slot_[f] = -1;
+    return reached;
+  }
 
   std::vector<int>
-  hiddenPatchTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
-                        const Patch& patch, double min_gap)
+  HiddenTriangleFinder::find (const Patch& patch, double min_gap)
   {
     std::vector<int> hidden;
-    const std::vector<std::uint8_t> connected = connectedToSeed (mesh, topology, patch);
+    const std::vector<std::uint8_t> connected = connectedToSeed (patch);
     if (std::all_of (connected.begin (), connected.end (), [] (std::uint8_t c) { return c != 0; }))
       return hidden;
 
     const Eigen::Vector3d& ns =
-      patch.seed_face >= 0 ? geometry.face_normals[patch.seed_face] : geometry.vertex_normals[patch.seed];
+      patch.seed_face >= 0 ? geometry_.face_normals[patch.seed_face] : geometry_.vertex_normals[patch.seed];
     const Eigen::Vector3d e1 = ns.unitOrthogonal (), e2 = ns.cross (e1);
-    const Eigen::Vector3d& s = mesh.vertices[patch.seed];
+    const Eigen::Vector3d& s = mesh_.vertices[patch.seed];
     auto onPlane = [&] (int v) {
-      const Eigen::Vector3d d = mesh.vertices[v] - s;
+      const Eigen::Vector3d d = mesh_.vertices[v] - s;
       return Eigen::Vector2d (d.dot (e1), d.dot (e2));
     };
     double reach = 0.0;
     for (int f : patch.triangles)
       for (int k = 0; k < 3; ++k)
-        reach = std::max (reach, onPlane (mesh.triangles[f][k]).norm ());
+        reach = std::max (reach, onPlane (mesh_.triangles[f][k]).norm ());
 
     // What the segments may cross: the patch's triangles and the faces at its vertices on the seed's side.
     std::vector<int> cover (patch.triangles);
     for (int v : patch.vertices)
-      for (int g : topology.facesOf (v))
-        if (geometry.face_areas[g] > 0.0 && geometry.face_normals[g].dot (ns) > 0.0)
+      for (int g : topology_.facesOf (v))
+        if (geometry_.face_areas[g] > 0.0 && geometry_.face_normals[g].dot (ns) > 0.0)
           cover.push_back (g);
     std::sort (cover.begin (), cover.end ());
     cover.erase (std::unique (cover.begin (), cover.end ()), cover.end ());
     std::vector<std::array<Eigen::Vector2d, 3>> corners (cover.size ());
     for (std::size_t i = 0; i < cover.size (); ++i)
       for (int k = 0; k < 3; ++k)
-        corners[i][k] = onPlane (mesh.triangles[cover[i]][k]);
+        corners[i][k] = onPlane (mesh_.triangles[cover[i]][k]);
 
     std::vector<std::pair<double, double>> spans;
     for (std::size_t i = 0; i < patch.triangles.size (); ++i)
     {
       if (connected[i])
         continue;
-      const Eigen::Vector3i& t = mesh.triangles[patch.triangles[i]];
+      const Eigen::Vector3i& t = mesh_.triangles[patch.triangles[i]];
       const Eigen::Vector2d centroid = (onPlane (t[0]) + onPlane (t[1]) + onPlane (t[2])) / 3.0;
       const double length = centroid.norm ();
       if (!(length > 0.0))
@@ -140,6 +138,13 @@ namespace pcl_sparse
         hidden.push_back (patch.triangles[i]);
     }
     return hidden;
+  }
+
+  std::vector<int>
+  hiddenPatchTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
+                        const Patch& patch, double min_gap)
+  {
+    return HiddenTriangleFinder (mesh, topology, geometry).find (patch, min_gap);
   }
 
   void

@@ -85,11 +85,13 @@ namespace pcl_sparse
   /// \param[in]     options     hidden_triangle_gap (0: nothing happens) and the growth options
   /// \param[in,out] patches     the partition (before the frames); patches appended
   /// \param[in]     must_cover  as for completePatchFaces: the seed of a new patch is a flagged corner
+  /// \param[in]     num_threads OpenMP threads for finding the hidden triangles (0: all; the result does not
+  ///                            depend on it)
   /// \return seeded_patches and released_faces (released and taken by a new patch); uncovered is empty
   FaceCompletionResult
   releaseHiddenPatchTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
                                const PatchOptions& options, std::vector<Patch>& patches,
-                               const std::vector<std::uint8_t>& must_cover = {});
+                               const std::vector<std::uint8_t>& must_cover = {}, int num_threads = 0);
 
   /// The proper faces (area > 0) of \a mesh that are a triangle of no patch (Patch::triangles), ascending:
   /// the faces completion has to place, or could not.

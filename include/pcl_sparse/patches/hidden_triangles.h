@@ -25,18 +25,43 @@
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_growth.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace pcl_sparse
 {
-  /// \brief The hidden triangles of \a patch (see the file comment), in the order of patch.triangles.
-  /// O(T) for a patch of T triangles when none is detached from the seed's, O(D x (T + F)) otherwise (D
-  /// detached triangles, F faces at the patch's vertices).
-  /// \param[in] mesh      the mesh the patch was grown on
-  /// \param[in] topology  its topology
-  /// \param[in] geometry  computePatchGrowthGeometry (mesh, topology, ...): face and seed normals, areas
-  /// \param[in] patch     the patch (seed, seed_face, origin, vertices, triangles)
-  /// \param[in] min_gap   the gap, in units of R, beyond which a triangle is hidden
+  /// Finds the hidden triangles of patches on one mesh. Its scratch (one slot per face) is sized once and
+  /// only the entries a patch touched are reset, so a patch of T triangles none of which is detached from
+  /// the seed's costs O(T); D detached triangles add O(D x (T + F)), F the faces at the patch's vertices. Not
+  /// thread-safe: one object per thread.
+  class HiddenTriangleFinder
+  {
+  public:
+    /// All arguments must outlive the finder.
+    /// \param[in] mesh      the mesh the patches were grown on
+    /// \param[in] topology  its topology
+    /// \param[in] geometry  computePatchGrowthGeometry (mesh, topology, ...): face and seed normals, areas
+    HiddenTriangleFinder (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry);
+
+    /// \brief The hidden triangles of \a patch (see the file comment), in the order of patch.triangles.
+    /// \param[in] patch    the patch (seed, seed_face, vertices, triangles)
+    /// \param[in] min_gap  the gap, in units of R, beyond which a triangle is hidden
+    std::vector<int>
+    find (const Patch& patch, double min_gap);
+
+  private:
+    /// Per patch triangle, whether it is edge-connected (through patch triangles) to a triangle at the seed.
+    std::vector<std::uint8_t>
+    connectedToSeed (const Patch& patch);
+
+    const TriangleMesh& mesh_;
+    const MeshTopology& topology_;
+    const PatchGrowthGeometry& geometry_;
+    std::vector<int> slot_;  ///< #F: the face's index in the current patch's triangles, -1 if none
+  };
+
+  /// \brief The hidden triangles of \a patch (HiddenTriangleFinder::find, with a finder of its own: for one
+  /// patch; a loop over patches keeps one finder).
   std::vector<int>
   hiddenPatchTriangles (const TriangleMesh& mesh, const MeshTopology& topology, const PatchGrowthGeometry& geometry,
                         const Patch& patch, double min_gap);
