@@ -412,15 +412,7 @@ namespace pcl_sparse
     if (preset == EncoderPreset::Paper)
     {
       options.basis = CosineBasisKind::Paper;
-      options.patches.cone_angle = M_PI / 2.0;
-      options.patches.pairwise_cone = false;
-      options.patches.complete_faces = false;
-      options.patches.seed_patches_on_faces = false;
-      options.patches.hidden_triangle_gap = 0.0;
-      options.patches.face_steep_frame_angle = 0.0;
-      options.patches.drop_redundant_patches = false;
-      options.patches.merge_own_elements = 0;
-      options.patches.lidar_delta = 0.0;
+      options.patches = paperPatchOptions (options.patches);
       options.coding.triangle_samples = 0.0;
       options.coding.clip_footprints_at_border = false;
       options.max_compression_ratio = 0.0;

@@ -47,12 +47,10 @@ namespace pcl_sparse
   }
 
   PatchOptions
-  authorsCodePatchOptions (PatchOptions base)
+  paperPatchOptions (PatchOptions base)
   {
-    base.cone_angle = M_PI / 2.5;
+    base.cone_angle = M_PI / 2.0;
     base.pairwise_cone = false;
-    base.cover_all_vertices = false;
-    base.cover_unreferenced_vertices = 0;
     base.complete_faces = false;
     base.seed_patches_on_faces = false;
     base.hidden_triangle_gap = 0.0;
@@ -60,6 +58,16 @@ namespace pcl_sparse
     base.drop_redundant_patches = false;
     base.merge_own_elements = 0;
     base.lidar_delta = 0.0;
+    return base;
+  }
+
+  PatchOptions
+  authorsCodePatchOptions (PatchOptions base)
+  {
+    base = paperPatchOptions (base);
+    base.cone_angle = M_PI / 2.5;
+    base.cover_all_vertices = false;
+    base.cover_unreferenced_vertices = 0;
     return base;
   }
 } // namespace pcl_sparse

@@ -159,10 +159,17 @@ namespace pcl_sparse
     double face_steep_frame_angle = 50.0 * M_PI / 180.0;
 
     /// Checks the ranges: angles in (0, pi] (lidar_delta [0, pi]), eta >= 1, rho >= 0, sigma >= 0, min_patch_size >= 1,
-    /// min_growth_vertices >= 0, face_steep_frame_angle in [0, pi / 2].
+    /// min_growth_vertices >= 0, face_steep_frame_angle in [0, pi / 2], hidden_triangle_gap -1 or >= 0.
     /// \throws pcl_sparse::Error naming the first out-of-range field
     void validate () const;
   };
+
+  /// The paper's patch steps (EncoderPreset::Paper): the 90-degree cone and none of ours (pairwise cone, face
+  /// completion, patches seeded on faces, hidden triangles released, steep face frames refused, redundant
+  /// patches dropped, small ones merged, lidar_delta); every other field as \a base.
+  /// \param[in] base the other conditions (rho, delta, eta, coverage pass, ...)
+  PatchOptions
+  paperPatchOptions (PatchOptions base = PatchOptions ());
 
   /// The patch conditions of the authors' code (gproshan) as far as they are options: the 72-degree cone,
   /// no pairwise cone, no coverage pass (vertices no patch takes stay uncovered, unreferenced ones too), no
