@@ -13,19 +13,6 @@ source "$(dirname "$0")/bench_setup.sh"
 file_tools
 IFS=';' read -r -a sets <<< "${PCL_SPARSE_ATOM_LOSS_SETS:--atom-loss 0;-atom-loss 0.2;-L 10}"
 out="$here/results/atom_loss.md"
-# draco_ratio MESH BYTES CHAMFER: BYTES over Draco's bytes at CHAMFER, interpolated over meshes.tsv's Draco points
-# as bench/meshes.sh's report does (meshes_report.loglog; "*" extrapolated, - too far out).
-draco_ratio () {
-  python3 - "$here" "$@" <<'PY'
-import csv, sys
-sys.path.insert(0, sys.argv[1])
-from meshes_report import loglog
-rows = csv.DictReader(open(sys.argv[1] + '/results/meshes.tsv'), delimiter='\t')
-points = [(float(r['chamfer']), float(r['bytes'])) for r in rows if r['mesh'] == sys.argv[2] and r['config'] == 'draco']
-draco, extrapolated = loglog(points, float(sys.argv[4]), envelope=True)
-print('%.2f%s' % (int(sys.argv[3]) / draco, '*' if extrapolated else '') if draco else '-')
-PY
-}
 {
   echo "# Atoms left out for their error: file bytes, Chamfer distance, bytes against Draco, holes, flipped normals"
   echo

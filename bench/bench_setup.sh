@@ -47,3 +47,16 @@ vertex_count () {
   "$format" convert "$1" "$work/mesh.obj" > /dev/null
   grep -c '^v ' "$work/mesh.obj"
 }
+# draco_ratio MESH BYTES CHAMFER: BYTES over Draco's bytes at CHAMFER, interpolated over the Draco points of
+# bench/results/meshes.tsv as bench/meshes.sh's report does (meshes_report.loglog; "*" extrapolated, - too far out).
+draco_ratio () {
+  python3 - "$here" "$@" <<'PY'
+import csv, sys
+sys.path.insert(0, sys.argv[1])
+from meshes_report import loglog
+rows = csv.DictReader(open(sys.argv[1] + '/results/meshes.tsv'), delimiter='\t')
+points = [(float(r['chamfer']), float(r['bytes'])) for r in rows if r['mesh'] == sys.argv[2] and r['config'] == 'draco']
+draco, extrapolated = loglog(points, float(sys.argv[4]), envelope=True)
+print('%.2f%s' % (int(sys.argv[3]) / draco, '*' if extrapolated else '') if draco else '-')
+PY
+}
