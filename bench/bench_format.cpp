@@ -19,10 +19,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
-#include <pcl_sparse/resampling/sparse_surface_resampling.h>
-
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_types.h>
+#include <pcl_sparse/resampling/model_mesh_distance.h>
 
 #include <chrono>
 #include <cmath>
@@ -35,166 +32,6 @@ using namespace pcl_sparse;
 
 namespace
 {
-  /// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection, 5.1.5).
-  Eigen::Vector3d
-  closestOnTriangle (const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
-  {
-    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot (ap), d2 = ac.dot (ap);
-    if (d1 <= 0 && d2 <= 0)
-      return a;
-    const Eigen::Vector3d bp = p - b;
-    const double d3 = ab.dot (bp), d4 = ac.dot (bp);
-    if (d3 >= 0 && d4 <= d3)
-      return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0)
-      return a + d1 / (d1 - d3) * ab;
-    const Eigen::Vector3d cp = p - c;
-    const double d5 = ab.dot (cp), d6 = ac.dot (cp);
-    if (d6 >= 0 && d5 <= d6)
-      return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0)
-      return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-      return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-  }
-
-  /// \a n points uniformly by area on \a mesh, with the triangle each lies on.
-  void
-  sampleMesh (const TriangleMesh& mesh, std::size_t n, unsigned seed, std::vector<Eigen::Vector3d>& points,
-              std::vector<int>* triangles = nullptr)
-  {
-    std::vector<double> cumulative (mesh.triangles.size ());
-    double total = 0.0;
-    for (std::size_t t = 0; t < mesh.triangles.size (); ++t)
-    {
-      const auto& f = mesh.triangles[t];
-      total += 0.5 * (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross (mesh.vertices[f[2]] - mesh.vertices[f[0]]).norm ();
-      cumulative[t] = total;
-    }
-    std::mt19937 rng (seed);
-    std::uniform_real_distribution<double> uniform (0.0, 1.0);
-    points.resize (n);
-    if (triangles)
-      triangles->resize (n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const int t = static_cast<int> (std::lower_bound (cumulative.begin (), cumulative.end (), uniform (rng) * total) -
-                                      cumulative.begin ());
-      const auto& f = mesh.triangles[std::min<std::size_t> (t, mesh.triangles.size () - 1)];
-      double u = uniform (rng), v = uniform (rng);
-      if (u + v > 1.0)
-      {
-        u = 1.0 - u;
-        v = 1.0 - v;
-      }
-      points[i] = mesh.vertices[f[0]] + u * (mesh.vertices[f[1]] - mesh.vertices[f[0]]) +
-                  v * (mesh.vertices[f[2]] - mesh.vertices[f[0]]);
-      if (triangles)
-        (*triangles)[i] = t;
-    }
-  }
-
-  pcl::PointCloud<pcl::PointXYZ>::Ptr
-  toCloud (const std::vector<Eigen::Vector3d>& points)
-  {
-    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud (new pcl::PointCloud<pcl::PointXYZ>);
-    for (const auto& p : points)
-      cloud->push_back (pcl::PointXYZ (static_cast<float> (p.x ()), static_cast<float> (p.y ()), static_cast<float> (p.z ())));
-    return cloud;
-  }
-
-  /// Exact point-to-mesh distance, candidate triangles from the k nearest of a dense sampling.
-  class MeshDistance
-  {
-  public:
-    explicit MeshDistance (const TriangleMesh& mesh) : mesh_ (mesh)
-    {
-      std::vector<Eigen::Vector3d> points;
-      sampleMesh (mesh, 10 * mesh.triangles.size () + 200000, 7, points, &sample_triangle_);
-      tree_.setInputCloud (toCloud (points));
-    }
-
-    double
-    operator() (const Eigen::Vector3d& p) const
-    {
-      std::vector<int> indices (16);
-      std::vector<float> distances (16);
-      tree_.nearestKSearch (pcl::PointXYZ (static_cast<float> (p.x ()), static_cast<float> (p.y ()), static_cast<float> (p.z ())),
-                            16, indices, distances);
-      double best = std::numeric_limits<double>::infinity ();
-      for (int i : indices)
-      {
-        const auto& f = mesh_.triangles[sample_triangle_[i]];
-        best = std::min (best, (p - closestOnTriangle (p, mesh_.vertices[f[0]], mesh_.vertices[f[1]], mesh_.vertices[f[2]])).norm ());
-      }
-      return best;
-    }
-
-  private:
-    const TriangleMesh& mesh_;
-    std::vector<int> sample_triangle_;
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree_;
-  };
-
-  /// Distance to the surface of a model: nearest patch holding the projection (first order).
-  class ModelDistance
-  {
-  public:
-    ModelDistance (const SparseSurfaceModel& model, const std::vector<Eigen::Vector3d>& resampled) : model_ (model)
-    {
-      std::vector<Eigen::Vector3d> seeds;
-      for (const PatchCode& patch : model.patches)
-      {
-        seeds.push_back (patch.origin);
-        double e = 1.0;
-        for (float x : patch.footprint.extent)
-          e = std::max (e, static_cast<double> (x));
-        reach_ = std::max (reach_, 1.5 * patch.radius * e);
-      }
-      seeds_.setInputCloud (toCloud (seeds));
-      points_ = resampled;
-      cloud_.setInputCloud (toCloud (resampled));
-    }
-
-    double
-    operator() (const Eigen::Vector3d& p) const
-    {
-      std::vector<int> indices;
-      std::vector<float> distances;
-      const pcl::PointXYZ q (static_cast<float> (p.x ()), static_cast<float> (p.y ()), static_cast<float> (p.z ()));
-      seeds_.radiusSearch (q, reach_, indices, distances);
-      double best = std::numeric_limits<double>::infinity ();
-      for (int i : indices)
-      {
-        const PatchCode& patch = model_.patches[i];
-        const Eigen::Vector3d local = patch.frame.transpose () * (p - patch.origin) / patch.radius;
-        if (!patch.footprint.contains (local.x (), local.y ()))
-          continue;
-        const HeightSample h = model_.evaluate (i, local.x (), local.y ());
-        best = std::min (best, std::abs (local.z () - h.value) * patch.radius / std::sqrt (1.0 + h.gradient.squaredNorm ()));
-      }
-      // A patch across a thin part can contain the projection of p and report the part's thickness, so
-      // the nearest resampled point (an upper bound: it lies on the decoded surface) always caps it.
-      std::vector<int> nearest (1);
-      std::vector<float> squared (1);
-      cloud_.nearestKSearch (q, 1, nearest, squared);
-      return std::min (best, (p - points_[nearest[0]]).norm ());
-    }
-
-  private:
-    const SparseSurfaceModel& model_;
-    double reach_ = 0.0;
-    pcl::KdTreeFLANN<pcl::PointXYZ> seeds_;
-    pcl::KdTreeFLANN<pcl::PointXYZ> cloud_;
-    std::vector<Eigen::Vector3d> points_;
-  };
-
   double
   diagonal (const TriangleMesh& mesh)
   {
@@ -206,24 +43,6 @@ namespace
         hi = hi.cwiseMax (mesh.vertices[f[k]]);
       }
     return (hi - lo).norm ();
-  }
-
-  template <typename Distance>
-  void
-  meanAndMax (const std::vector<Eigen::Vector3d>& points, const Distance& distance, double& mean, double& max)
-  {
-    std::vector<double> d (points.size ());
-#pragma omp parallel for schedule(dynamic, 1024)
-    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (points.size ()); ++i)
-      d[i] = distance (points[i]);
-    mean = 0.0;
-    max = 0.0;
-    for (double x : d)
-    {
-      mean += x;
-      max = std::max (max, x);
-    }
-    mean /= std::max<std::size_t> (d.size (), 1);
   }
 
   std::size_t
@@ -271,39 +90,39 @@ main (int argc, char** argv)
     const TriangleMesh original = loadTriangleMesh (argv[2]);
     const double diag = diagonal (original);
     std::vector<Eigen::Vector3d> on_original;
-    sampleMesh (original, n, 11, on_original);
-    const MeshDistance to_original (original);
+    sampleMeshSurface (original, n, 11, on_original);
+    const MeshSurfaceDistance to_original (original, 10 * original.triangles.size () + 200000);
 
-    std::vector<Eigen::Vector3d> on_decoded;
-    double decoded_to_original = 0, original_to_decoded = 0, max_a = 0, max_b = 0, decode_seconds = 0;
+    std::size_t decoded_points = 0;
+    double decoded_to_original = 0, original_to_decoded = 0, largest = 0, decode_seconds = 0;
     if (std::string (argv[1]) == "mesh")
     {
       const TriangleMesh decoded = loadTriangleMesh (argv[3]);
-      sampleMesh (decoded, n, 13, on_decoded);
-      const MeshDistance to_decoded (decoded);
-      meanAndMax (on_decoded, to_original, decoded_to_original, max_a);
-      meanAndMax (on_original, to_decoded, original_to_decoded, max_b);
+      std::vector<Eigen::Vector3d> on_decoded;
+      sampleMeshSurface (decoded, n, 13, on_decoded);
+      decoded_points = on_decoded.size ();
+      const MeshSurfaceDistance to_decoded (decoded, 10 * decoded.triangles.size () + 200000);
+      double max_a = 0, max_b = 0;
+      meanAndLargestDistance (on_decoded, to_original, decoded_to_original, max_a);
+      meanAndLargestDistance (on_original, to_decoded, original_to_decoded, max_b);
+      largest = std::max (max_a, max_b);
     }
     else
     {
       const auto start = std::chrono::steady_clock::now ();
       const auto model = std::make_shared<const SparseSurfaceModel> (loadModel (argv[3]));
-      SparseSurfaceResampling<pcl::PointNormal> resampling;
-      resampling.setInputModel (model);
-      resampling.setPointCount (n);
-      pcl::PointCloud<pcl::PointNormal> cloud;
-      resampling.compute (cloud);
-      decode_seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-      for (const auto& p : cloud)
-        on_decoded.emplace_back (p.x, p.y, p.z);
-      const ModelDistance to_decoded (*model, on_decoded);
-      meanAndMax (on_decoded, to_original, decoded_to_original, max_a);
-      meanAndMax (on_original, to_decoded, original_to_decoded, max_b);
+      const double load_seconds = std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+      const ChamferDistance chamfer = modelChamferDistance (model, to_original, on_original, n);
+      decoded_points = chamfer.model_points;
+      decoded_to_original = chamfer.model_to_mesh;
+      original_to_decoded = chamfer.mesh_to_model;
+      largest = chamfer.largest;
+      decode_seconds = load_seconds + chamfer.resample_seconds;
     }
     std::printf ("{\"points\": %zu, \"diagonal\": %.9g, \"chamfer\": %.6e, \"decoded_to_original\": %.6e, "
                  "\"original_to_decoded\": %.6e, \"hausdorff\": %.6e, \"decode_seconds\": %.4f}\n",
-                 on_decoded.size (), diag, 0.5 * (decoded_to_original + original_to_decoded) / diag,
-                 decoded_to_original / diag, original_to_decoded / diag, std::max (max_a, max_b) / diag, decode_seconds);
+                 decoded_points, diag, 0.5 * (decoded_to_original + original_to_decoded) / diag,
+                 decoded_to_original / diag, original_to_decoded / diag, largest / diag, decode_seconds);
   }
   catch (const std::exception& e)
   {

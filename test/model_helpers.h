@@ -4,6 +4,7 @@
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/file_tolerance.h>
 #include <pcl_sparse/format/model_file.h>
+#include <pcl_sparse/resampling/model_mesh_distance.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include <cstdint>
@@ -27,9 +28,9 @@ namespace pcl_sparse_test
     return model;
   }
 
-  /// The bytes of \a model's default file, as `pcl_sparse_encode -o` writes it: quantised at the options
-  /// derivedWriteOptions takes from the model's errors at \a vertices (its input's); those statistics in
-  /// \a stats if given.
+  /// The bytes of \a model's file quantised at the options derivedWriteOptions takes from the model's errors at
+  /// \a vertices (its input's): the file `pcl_sparse_encode -o` starts from before it measures smaller ones
+  /// (measuredWriteOptions); those statistics in \a stats if given.
   inline std::vector<std::uint8_t>
   defaultFileBytes (const pcl_sparse::SparseSurfaceModel& model, const std::vector<Eigen::Vector3d>& vertices,
                     pcl_sparse::ModelStatistics* stats = nullptr)
@@ -53,5 +54,16 @@ namespace pcl_sparse_test
     pcl::PointCloud<pcl::PointNormal> cloud;
     resampling.compute (cloud);
     return cloud;
+  }
+
+  /// The Chamfer distance (world units) between \a model and \a mesh with \a points points a side, sampled as
+  /// bench/bench_format samples them.
+  inline double
+  chamferOf (const pcl_sparse::SparseSurfaceModel::ConstPtr& model, const pcl_sparse::TriangleMesh& mesh, std::size_t points)
+  {
+    const pcl_sparse::MeshSurfaceDistance to_mesh (mesh, 10 * mesh.triangles.size () + 200000);
+    std::vector<Eigen::Vector3d> on_mesh;
+    pcl_sparse::sampleMeshSurface (mesh, points, 11, on_mesh);
+    return pcl_sparse::modelChamferDistance (model, to_mesh, on_mesh, points).value ();
   }
 } // namespace pcl_sparse_test

@@ -1,0 +1,117 @@
+#pragma once
+/// \file model_mesh_distance.h
+/// The Chamfer distance between a sparse surface model and the mesh it codes: the mean distance from points
+/// resampled on the model to the mesh, and from points drawn on the mesh to the model's surface, averaged.
+/// bench/bench_format measures the files against Draco with it (200k points a side), and measuredWriteOptions
+/// (encoder/measured_write_options.h) chooses the default file with it (fewer points).
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/model/sparse_surface_model.h>
+#include <pcl_sparse/resampling/sparse_surface_resampling.h>
+
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_types.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace pcl_sparse
+{
+  /// \brief \a n points drawn uniformly by area on \a mesh (std::mt19937 seeded with \a seed), and the
+  /// triangle each lies on when \a triangles is given. O(T + n log T).
+  void
+  sampleMeshSurface (const TriangleMesh& mesh, std::size_t n, unsigned seed, std::vector<Eigen::Vector3d>& points,
+                     std::vector<int>* triangles = nullptr);
+
+  /// Distance from a point to a mesh: the nearest of the triangles under the \a k nearest points of a dense
+  /// sampling of it (exact to those triangles; where the sampling is dense against the triangles, the
+  /// nearest triangle is among them). Build O(S log S) for S samples, a query O(log S + k).
+  class MeshSurfaceDistance
+  {
+  public:
+    /// \param[in] mesh     the surface (kept by reference: it must outlive this)
+    /// \param[in] samples  points drawn on it (bench/bench_format: 10 per triangle + 200000)
+    /// \param[in] seed     of the sampling
+    /// \param[in] k        nearest samples whose triangles are measured
+    MeshSurfaceDistance (const TriangleMesh& mesh, std::size_t samples, unsigned seed = 7, int k = 16);
+
+    /// Distance from \a p to the mesh. Thread-safe.
+    double operator() (const Eigen::Vector3d& p) const;
+
+  private:
+    const TriangleMesh& mesh_;
+    int k_;
+    std::vector<int> sample_triangle_;
+    pcl::KdTreeFLANN<pcl::PointXYZ> tree_;
+  };
+
+  /// Distance from a point to a model's surface: over the patches whose footprint holds its projection (looked
+  /// for among those whose seed lies within 1.5 x radius x largest extent of it), the height difference to the
+  /// code, to first order (|z - h| r / sqrt (1 + |grad h|^2)), capped by the distance to the nearest of a
+  /// cloud resampled from the model (a patch across a thin part can hold the projection and report the
+  /// part's thickness; a resampled point lies on the surface).
+  class ModelSurfaceDistance
+  {
+  public:
+    /// \param[in] model      the model (kept by reference)
+    /// \param[in] resampled  points resampled from it (kept)
+    ModelSurfaceDistance (const SparseSurfaceModel& model, const std::vector<Eigen::Vector3d>& resampled);
+
+    /// Distance from \a p to the model's surface. Thread-safe.
+    double operator() (const Eigen::Vector3d& p) const;
+
+  private:
+    const SparseSurfaceModel& model_;
+    double reach_ = 0.0;                        ///< the largest reach of the patches in seeds_
+    pcl::KdTreeFLANN<pcl::PointXYZ> seeds_;     ///< the seeds of the patches within reach_
+    std::vector<int> small_;                    ///< their patches, in seeds_' order
+    std::vector<std::pair<int, double>> large_; ///< the patches of a larger reach, and their reach
+    pcl::KdTreeFLANN<pcl::PointXYZ> cloud_;
+    std::vector<Eigen::Vector3d> points_;
+  };
+
+  /// Both halves of a Chamfer distance (world units).
+  struct ChamferDistance
+  {
+    double model_to_mesh = 0.0;      ///< mean distance of the model's resampled points to the mesh
+    double mesh_to_model = 0.0;      ///< mean distance of the points drawn on the mesh to the model
+    double largest = 0.0;            ///< the largest of both (a Hausdorff estimate)
+    std::size_t model_points = 0;    ///< points resampled from the model
+    double resample_seconds = 0.0;   ///< time taken to resample the model
+    /// The Chamfer distance: the two means averaged.
+    double value () const { return 0.5 * (model_to_mesh + mesh_to_model); }
+  };
+
+  /// \brief Mean and largest of \a distance (a callable double (const Eigen::Vector3d&), thread-safe) over
+  /// \a points (OpenMP); both 0 without points.
+  template <typename Distance>
+  void
+  meanAndLargestDistance (const std::vector<Eigen::Vector3d>& points, const Distance& distance, double& mean, double& largest)
+  {
+    std::vector<double> d (points.size ());
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (points.size ()); ++i)
+      d[i] = distance (points[i]);
+    mean = 0.0;
+    largest = 0.0;
+    for (double x : d)
+    {
+      mean += x;
+      largest = std::max (largest, x);
+    }
+    mean /= static_cast<double> (std::max<std::size_t> (d.size (), 1));
+  }
+
+  /// \brief The Chamfer distance between \a model and a mesh: \a points points resampled from the model
+  /// (SparseSurfaceResampling with \a resampling, \a num_threads) measured by \a to_mesh, and \a on_mesh
+  /// (points drawn on the mesh, e.g. by sampleMeshSurface) measured by ModelSurfaceDistance.
+  ChamferDistance
+  modelChamferDistance (const SparseSurfaceModel::ConstPtr& model, const MeshSurfaceDistance& to_mesh,
+                        const std::vector<Eigen::Vector3d>& on_mesh, std::size_t points,
+                        const SparseSurfaceResamplingOptions& resampling = SparseSurfaceResamplingOptions (),
+                        int num_threads = 0);
+} // namespace pcl_sparse

@@ -1,0 +1,65 @@
+// The Chamfer distance between a model and the mesh it codes (resampling/model_mesh_distance.h), which
+// bench/bench_format and the default file's choice measure with.
+#include "model_helpers.h"
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/resampling/model_mesh_distance.h>
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+using namespace pcl_sparse;
+using namespace pcl_sparse_test;
+
+TEST (ModelMeshDistance, KnownDistancesToAPlaneAndASphere)
+{
+  // A unit square at z = 0: points above it are their height away, points beside it their distance to the edge.
+  const TriangleMesh square = makePlaneGrid (4, 0.5);
+  const MeshSurfaceDistance to_square (square, 20000);
+  EXPECT_NEAR (to_square (Eigen::Vector3d (0.1, -0.2, 0.3)), 0.3, 1e-12);
+  EXPECT_NEAR (to_square (Eigen::Vector3d (0.1, -0.2, -0.05)), 0.05, 1e-12);
+  EXPECT_NEAR (to_square (Eigen::Vector3d (0.9, 0.0, 0.0)), 0.4, 1e-12);
+  std::vector<Eigen::Vector3d> samples;
+  std::vector<int> triangles;
+  sampleMeshSurface (square, 1000, 3, samples, &triangles);
+  ASSERT_EQ (samples.size (), 1000u);
+  ASSERT_EQ (triangles.size (), 1000u);
+  for (const Eigen::Vector3d& p : samples)
+  {
+    EXPECT_LE (p.cwiseAbs ().maxCoeff (), 0.5 + 1e-12);
+    EXPECT_EQ (p.z (), 0.0);
+  }
+
+  // A sphere of radius 1 coded by the encoder: a point at radius 1.2 is 0.2 from the model, to the model's error.
+  const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (3));
+  const SparseSurfaceModel::ConstPtr model = encodeMesh (sphere);
+  std::vector<Eigen::Vector3d> resampled;
+  for (const pcl::PointNormal& p : resampleModel (model, 20000))
+    resampled.emplace_back (p.x, p.y, p.z);
+  const ModelSurfaceDistance to_model (*model, resampled);
+  for (const Eigen::Vector3d& direction : {Eigen::Vector3d (1, 0, 0), Eigen::Vector3d (0.3, -0.5, 0.8).normalized ()})
+  {
+    EXPECT_NEAR (to_model (1.2 * direction), 0.2, 0.01);
+    EXPECT_NEAR (to_model (0.9 * direction), 0.1, 0.01);
+  }
+  // The model's Chamfer distance to its own mesh is its coding error: far below a sphere's size, far above 0
+  // (the icosphere's flat faces against the codes' curved patches).
+  const double chamfer = chamferOf (model, *sphere, 20000);
+  EXPECT_GT (chamfer, 1e-5);
+  EXPECT_LT (chamfer, 5e-3);
+  // Against a sphere 1 % larger, the distance grows by about 0.01.
+  TriangleMesh larger = *sphere;
+  for (Eigen::Vector3d& v : larger.vertices)
+    v *= 1.01;
+  EXPECT_NEAR (chamferOf (model, larger, 20000), 0.01, 0.003);
+}
+
+TEST (ModelMeshDistance, EmptyInputsAreRefused)
+{
+  EXPECT_THROW (MeshSurfaceDistance (TriangleMesh (), 100), Error);
+  SparseSurfaceModel empty;
+  EXPECT_THROW (ModelSurfaceDistance (empty, {Eigen::Vector3d::Zero ()}), Error);
+}
