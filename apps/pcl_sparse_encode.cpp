@@ -22,6 +22,7 @@
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/file_tolerance.h>
+#include <pcl_sparse/encoder/measured_write_options.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
@@ -101,7 +102,9 @@ namespace
       {"-o MODEL.psm", "write the model file (docs/FORMAT.md)"},
       {"-tolerance T", "model file: largest surface displacement / bbox diagonal (default: 3 x the model's"},
       {"", "mean error, lower where that is expected to add over 5 % to the distance, with 5-bit footprint"},
-      {"", "extents then (derivedWriteOptions); 0 = lossless)"},
+      {"", "extents then (derivedWriteOptions); from a mesh, the smallest of that file and a few coarser and"},
+      {"", "finer ones whose Chamfer distance to the mesh is within 8 % of the lossless model's, measured"},
+      {"", "(measuredWriteOptions: 1-3 s more); 0 = lossless)"},
       {"-footprint-steps R", "quantised model file: a patch's footprint keeps 2 opposite angles, and those between where"},
       {"", "the coded ones stray from it by more than R extent levels summed over the angles (default 2, also"},
       {"", "with 5-bit extents: within 10 % of the lossless model's Chamfer distance on the 25 shared meshes;"},
@@ -325,6 +328,19 @@ main (int argc, char** argv)
     }
 
     timer.tic ();
+    MeasuredWriteChoice file_choice;
+    if (!tolerance_given && !tiled && input.mesh && !model_path.empty () && write_options.tolerance > 0.0)
+    {
+      // A mesh's default file: the smallest of a few coarser ones that stays within the distance allowed
+      // (measured_write_options.h). Scans and tiled models keep the bound's file.
+      MeasuredWriteOptions measure;
+      measure.num_threads = threads;
+      if (steps_given)
+        for (WriteCandidate& candidate : measure.candidates)
+          candidate.refine_steps = write_options.footprint_refine_steps;
+      file_choice = measuredWriteOptions (model, *encoder.getSurface (), write_options, measure);
+      write_options = file_choice.options;
+    }
     if (!model_path.empty () && tiled)
     {
       tiled_model.model = std::move (model);
@@ -383,6 +399,8 @@ main (int argc, char** argv)
         .add ("cone_degrees", options.patches.cone_angle * 180.0 / M_PI)
         .add ("file_tolerance", model_path.empty () ? 0.0 : write_options.tolerance)
         .add ("file_extent_bits", model_path.empty () || write_options.tolerance == 0.0 ? 0 : write_options.extent_bits)
+        .add ("file_refine_steps", model_path.empty () || write_options.tolerance == 0.0 ? 0.0 : write_options.footprint_refine_steps)
+        .add ("file_candidates_measured", file_choice.measured)
         .add ("nnz", stats.num_nonzeros)
         .add ("cr", stats.compression_ratio)
         .add ("rmse", stats.rmse)

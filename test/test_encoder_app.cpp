@@ -334,8 +334,9 @@ TEST_F (EncodeTool, BasisReachesTheModelFile)
   EXPECT_NE (run (input_ + " -q --json -preset authors", out), 0);  // unknown preset: refused
 }
 
-// -o without -tolerance: the quantised file, with a tolerance of 3 x the model's mean vertex error, so that the
-// file adds at most 10 % to the distance of the resampled surface to the input (issue 13).
+// -o without -tolerance: the quantised file, chosen by measuring files around 3 x the model's mean vertex error
+// against the mesh, so that the file adds at most 10 % to the distance of the resampled surface to the input
+// (issue 13).
 TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
 {
   const std::string quantised = (dir_ / "default.psm").string (), lossless = (dir_ / "lossless.psm").string ();
@@ -344,8 +345,11 @@ TEST_F (EncodeTool, DefaultFileAddsAtMostTenPercentToTheDistance)
   const std::size_t at = out.find ("\"file_tolerance\": ");
   ASSERT_NE (at, std::string::npos) << out;
   const double tolerance = std::stod (out.substr (at + 18));
+  // From a mesh the file was chosen by measuring (measuredWriteOptions): at least the bound's file measured.
+  EXPECT_GE (jsonNumber (out, "file_candidates_measured"), 1.0) << out;
   ASSERT_EQ (run (input_ + " -q --json -tolerance 0 -o " + lossless, out), 0);
   EXPECT_NE (out.find ("\"file_tolerance\": 0"), std::string::npos) << out;
+  EXPECT_EQ (jsonNumber (out, "file_candidates_measured"), 0.0) << out;  // a given tolerance is written as given
   EXPECT_GT (tolerance, 0.0);
   EXPECT_LT (std::filesystem::file_size (quantised), std::filesystem::file_size (lossless) / 2);
 

@@ -1,0 +1,116 @@
+// The default file chosen by measuring candidate files against the mesh (encoder/measured_write_options.h).
+#include "model_helpers.h"
+#include "shared_data.h"
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/encoder/measured_write_options.h>
+#include <pcl_sparse/io/mesh_io.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace pcl_sparse;
+using namespace pcl_sparse_test;
+
+namespace
+{
+  /// \a model written with \a options and read back.
+  SparseSurfaceModel::ConstPtr
+  roundTrip (const SparseSurfaceModel& model, const ModelWriteOptions& options)
+  {
+    const std::vector<std::uint8_t> bytes = encodeModel (model, options);
+    return std::make_shared<const SparseSurfaceModel> (decodeModel (bytes.data (), bytes.size ()));
+  }
+
+  /// derivedWriteOptions of \a model against its input \a mesh (what -o started from before measuring).
+  ModelWriteOptions
+  boundOptions (const SparseSurfaceModel& model, const TriangleMesh& mesh)
+  {
+    std::vector<double> errors;
+    const ModelStatistics stats = model.statistics (mesh.vertices, &errors);
+    return derivedWriteOptions (stats, errors, model.bbox_diagonal);
+  }
+} // namespace
+
+TEST (MeasuredWriteOptions, ChoosesTheSmallestFileWithinTheAllowance)
+{
+  const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (3));
+  const SparseSurfaceModel::Ptr model = encodeMesh (sphere);
+  const ModelWriteOptions start = boundOptions (*model, *sphere);
+  const MeasuredWriteChoice choice = measuredWriteOptions (*model, *sphere, start);
+  EXPECT_EQ (choice.start_bytes, encodeModel (*model, start).size ());
+  EXPECT_EQ (choice.bytes, encodeModel (*model, choice.options).size ());
+  EXPECT_GT (choice.lossless_distance, 0.0);
+  EXPECT_GE (choice.measured, 1u);
+  EXPECT_LE (choice.distance, 1.08 * choice.lossless_distance);
+  // With no allowance to speak of, every file is measured and fails, and the nearest wins.
+  MeasuredWriteOptions strict;
+  strict.max_increase = 1e-9;
+  const MeasuredWriteChoice nearest = measuredWriteOptions (*model, *sphere, start, strict);
+  EXPECT_EQ (nearest.measured, strict.candidates.size () + 1);
+  EXPECT_LE (nearest.distance, choice.distance);
+  EXPECT_EQ (nearest.lossless_distance, choice.lossless_distance);
+  EXPECT_GE (nearest.bytes, choice.bytes);
+  // The same choice on one thread as on two.
+  MeasuredWriteOptions one_thread, two_threads;
+  one_thread.num_threads = 1;
+  two_threads.num_threads = 2;
+  const MeasuredWriteChoice a = measuredWriteOptions (*model, *sphere, start, one_thread);
+  const MeasuredWriteChoice b = measuredWriteOptions (*model, *sphere, start, two_threads);
+  EXPECT_EQ (a.bytes, b.bytes);
+  EXPECT_EQ (a.distance, b.distance);
+  EXPECT_EQ (a.lossless_distance, b.lossless_distance);
+}
+
+TEST (MeasuredWriteOptions, BadOptionsAreRefused)
+{
+  const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (2));
+  const SparseSurfaceModel::Ptr model = encodeMesh (sphere);
+  ModelWriteOptions lossless;
+  EXPECT_THROW (measuredWriteOptions (*model, *sphere, lossless), Error);
+  const ModelWriteOptions start = boundOptions (*model, *sphere);
+  for (double bad : {0.0, -0.1, 1.5, std::nan ("")})
+  {
+    MeasuredWriteOptions options;
+    options.max_increase = bad;
+    EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, options), Error) << bad;
+  }
+  MeasuredWriteOptions few;
+  few.points = 10;
+  EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, few), Error);
+  MeasuredWriteOptions bad_candidate;
+  bad_candidate.candidates = {{0.0, 0, 2.0}};
+  EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, bad_candidate), Error);
+  bad_candidate.candidates = {{2.0, -7, 2.0}};
+  EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, bad_candidate), Error);
+  bad_candidate.candidates = {{2.0, -1, -1.0}};
+  EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, bad_candidate), Error);
+}
+
+// On a real mesh the measured file is smaller than the bound's, and bench_format's Chamfer distance (200k points a
+// side) of it stays within issue 13's 10 % of the lossless model's; wingnut, a CAD part whose coarser files cost
+// more than that, keeps a file within it too.
+TEST (MeasuredWriteOptions, SharedMeshesStayWithinTenPercent)
+{
+  for (const char* name : {"spot.obj", "wingnut.obj"})
+  {
+    const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/" + name;
+    PCL_SPARSE_NEED_SHARED_FILE (path);
+    const auto mesh = std::make_shared<const TriangleMesh> (loadTriangleMesh (path));
+    const SparseSurfaceModel::Ptr model = encodeMesh (mesh);
+    const ModelWriteOptions start = boundOptions (*model, *mesh);
+    const MeasuredWriteChoice choice = measuredWriteOptions (*model, *mesh, start);
+    const double lossless = chamferOf (model, *mesh, 200000);
+    const double chosen = chamferOf (roundTrip (*model, choice.options), *mesh, 200000);
+    std::cout << "  " << name << ": " << choice.start_bytes << " -> " << choice.bytes << " bytes, Chamfer "
+              << chosen / lossless << " x the lossless model's, " << choice.measured << " measured" << std::endl;
+    EXPECT_LE (chosen, 1.1 * lossless) << name;
+    if (std::string (name) == "spot.obj")
+      EXPECT_LT (choice.bytes, 0.9 * choice.start_bytes);  // 23929 -> 20048 bytes when measured (3-bit extents)
+  }
+}
