@@ -20,9 +20,9 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/encoder/measured_write_options.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/file_tolerance.h>
-#include <pcl_sparse/encoder/measured_write_options.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/tiled_model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
@@ -331,8 +331,9 @@ main (int argc, char** argv)
     MeasuredWriteChoice file_choice;
     if (!tolerance_given && !tiled && input.mesh && !model_path.empty () && write_options.tolerance > 0.0)
     {
-      // A mesh's default file: the smallest of a few coarser ones that stays within the distance allowed
-      // (measured_write_options.h). Scans and tiled models keep the bound's file.
+      // A mesh's default file: the smallest of the bound's file and a few coarser and finer ones that stays
+      // within the distance allowed, measured against the mesh (measured_write_options.h). Scans and tiled
+      // models keep the bound's file.
       MeasuredWriteOptions measure;
       measure.num_threads = threads;
       if (steps_given)

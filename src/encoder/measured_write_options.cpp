@@ -39,14 +39,13 @@ namespace pcl_sparse
     {
       ModelWriteOptions options;
       std::vector<std::uint8_t> bytes;
-      bool is_start = false;
     };
     std::vector<Tried> tried;
-    tried.push_back ({start, encodeModel (model, start), true});
+    tried.push_back ({start, encodeModel (model, start)});
     choice.start_bytes = choice.bytes = tried.front ().bytes.size ();
     for (const WriteCandidate& c : options.candidates)
     {
-      Tried t{start, {}, false};
+      Tried t{start, {}};
       t.options.tolerance = std::clamp (start.tolerance * c.tolerance_scale, 1e-7, 0.1);
       t.options.extent_bits = std::clamp (start.extent_bits + c.extent_bits_change, 2, 8);
       t.options.footprint_refine_steps = c.refine_steps;
