@@ -6,6 +6,7 @@
 // Deterministic: the same options and seed give the same file, byte for byte.
 
 #include <pcl_sparse/io/scan_cloud.h>
+#include <pcl_sparse/mesh/surface_sampling.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <Eigen/Core>
@@ -190,33 +191,9 @@ namespace pcl_sparse_test
   inline std::vector<Eigen::Vector3d>
   sampleSurface (const pcl_sparse::TriangleMesh& mesh, std::size_t n, std::uint64_t seed, double& area)
   {
-    std::vector<double> cumulative (mesh.numTriangles ());
-    area = 0.0;
-    for (std::size_t t = 0; t < mesh.numTriangles (); ++t)
-    {
-      const Eigen::Vector3i& f = mesh.triangles[t];
-      area += 0.5 * (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross (mesh.vertices[f[2]] - mesh.vertices[f[0]]).norm ();
-      cumulative[t] = area;
-    }
     std::mt19937_64 rng (seed);
-    std::uniform_real_distribution<double> uniform (0.0, 1.0);
     std::vector<Eigen::Vector3d> probes;
-    probes.reserve (n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const double pick = uniform (rng) * area;
-      const std::size_t t = std::min<std::size_t> (
-        mesh.numTriangles () - 1, std::lower_bound (cumulative.begin (), cumulative.end (), pick) - cumulative.begin ());
-      double u = uniform (rng), v = uniform (rng);
-      if (u + v > 1.0)
-      {
-        u = 1.0 - u;
-        v = 1.0 - v;
-      }
-      const Eigen::Vector3i& f = mesh.triangles[t];
-      probes.push_back (mesh.vertices[f[0]] + u * (mesh.vertices[f[1]] - mesh.vertices[f[0]]) +
-                        v * (mesh.vertices[f[2]] - mesh.vertices[f[0]]));
-    }
+    pcl_sparse::sampleMeshSurfaceWith (mesh, n, rng, probes, nullptr, &area);
     return probes;
   }
 

@@ -4,6 +4,7 @@
 #include <pcl_sparse/geometry/point_kd_tree.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
+#include <pcl_sparse/mesh/surface_sampling.h>
 
 #include <pcl/common/io.h>
 
@@ -245,31 +246,16 @@ namespace pcl_sparse
       return mean > 0.0 ? std::sqrt (square / n) / mean : 0.0;
     }
 
-    /// \a count points uniform by area on the mesh (faces of areas \a areas, summing to \a area).
+    /// \a count points uniform by area on the mesh (sampleMeshSurfaceWith, std::mt19937_64 seeded with \a seed).
     std::vector<pcl::PointXYZ>
-    sampleProbes (const TriangleMesh& mesh, const std::vector<double>& areas, double area, std::size_t count,
-                  std::uint64_t seed)
+    sampleProbes (const TriangleMesh& mesh, std::size_t count, std::uint64_t seed)
     {
-      std::vector<double> cumulative (areas.size ());
-      std::partial_sum (areas.begin (), areas.end (), cumulative.begin ());
       std::mt19937_64 random (seed);
-      std::uniform_real_distribution<double> uniform (0.0, 1.0);
-      std::vector<pcl::PointXYZ> probes (count);
-      for (auto& probe : probes)
-      {
-        const std::size_t f = std::min<std::size_t> (
-          std::lower_bound (cumulative.begin (), cumulative.end (), uniform (random) * area) - cumulative.begin (), areas.size () - 1);
-        double u = uniform (random), v = uniform (random);
-        if (u + v > 1.0)
-        {
-          u = 1.0 - u;
-          v = 1.0 - v;
-        }
-        const Eigen::Vector3i& t = mesh.triangles[f];
-        const Eigen::Vector3d q = mesh.vertices[t[0]] + u * (mesh.vertices[t[1]] - mesh.vertices[t[0]]) +
-                                  v * (mesh.vertices[t[2]] - mesh.vertices[t[0]]);
-        probe.getVector3fMap () = q.cast<float> ();
-      }
+      std::vector<Eigen::Vector3d> points;
+      sampleMeshSurfaceWith (mesh, count, random, points);
+      std::vector<pcl::PointXYZ> probes (points.size ());
+      for (std::size_t i = 0; i < points.size (); ++i)
+        probes[i].getVector3fMap () = points[i].cast<float> ();
       return probes;
     }
 
@@ -331,7 +317,7 @@ namespace pcl_sparse
     for (double a : areas)
       area += a;
     quality.spacing = std::sqrt (area / static_cast<double> (valid->size ()));
-    const std::vector<pcl::PointXYZ> probes = sampleProbes (mesh, areas, area, options.probes, options.seed);
+    const std::vector<pcl::PointXYZ> probes = sampleProbes (mesh, options.probes, options.seed);
     measureHoles (cloud_tree, probes, options.hole_spacings, quality);
     return quality;
   }

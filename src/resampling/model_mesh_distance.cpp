@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <random>
 
 namespace pcl_sparse
 {
@@ -30,46 +29,6 @@ namespace pcl_sparse
       return pcl::PointXYZ (static_cast<float> (p.x ()), static_cast<float> (p.y ()), static_cast<float> (p.z ()));
     }
   } // namespace
-
-  void
-  sampleMeshSurface (const TriangleMesh& mesh, std::size_t n, unsigned seed, std::vector<Eigen::Vector3d>& points,
-                     std::vector<int>* triangles)
-  {
-    points.clear ();
-    if (triangles)
-      triangles->clear ();
-    if (mesh.triangles.empty ())
-      return;
-    std::vector<double> cumulative (mesh.triangles.size ());
-    double total = 0.0;
-    for (std::size_t t = 0; t < mesh.triangles.size (); ++t)
-    {
-      const auto& f = mesh.triangles[t];
-      total += 0.5 * (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross (mesh.vertices[f[2]] - mesh.vertices[f[0]]).norm ();
-      cumulative[t] = total;
-    }
-    std::mt19937 rng (seed);
-    std::uniform_real_distribution<double> uniform (0.0, 1.0);
-    points.resize (n);
-    if (triangles)
-      triangles->resize (n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const int t = static_cast<int> (std::lower_bound (cumulative.begin (), cumulative.end (), uniform (rng) * total) -
-                                      cumulative.begin ());
-      const auto& f = mesh.triangles[std::min<std::size_t> (t, mesh.triangles.size () - 1)];
-      double u = uniform (rng), v = uniform (rng);
-      if (u + v > 1.0)
-      {
-        u = 1.0 - u;
-        v = 1.0 - v;
-      }
-      points[i] = mesh.vertices[f[0]] + u * (mesh.vertices[f[1]] - mesh.vertices[f[0]]) +
-                  v * (mesh.vertices[f[2]] - mesh.vertices[f[0]]);
-      if (triangles)
-        (*triangles)[i] = t;
-    }
-  }
 
   MeshSurfaceDistance::MeshSurfaceDistance (const TriangleMesh& mesh, std::size_t samples, unsigned seed, int k)
     : mesh_ (mesh), k_ (std::max (1, k))

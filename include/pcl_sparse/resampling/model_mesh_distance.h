@@ -5,6 +5,7 @@
 /// bench/bench_format measures the files against Draco with it (200k points a side), and measuredWriteOptions
 /// (encoder/measured_write_options.h) chooses the default file with it (fewer points).
 
+#include <pcl_sparse/mesh/surface_sampling.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
@@ -21,12 +22,6 @@
 
 namespace pcl_sparse
 {
-  /// \brief \a n points drawn uniformly by area on \a mesh (std::mt19937 seeded with \a seed), and the
-  /// triangle each lies on when \a triangles is given. O(T + n log T).
-  void
-  sampleMeshSurface (const TriangleMesh& mesh, std::size_t n, unsigned seed, std::vector<Eigen::Vector3d>& points,
-                     std::vector<int>* triangles = nullptr);
-
   /// Distance from a point to a mesh: the nearest of the triangles under the \a k nearest points of a dense
   /// sampling of it (exact to those triangles; where the sampling is dense against the triangles, the
   /// nearest triangle is among them). Build O(S log S) for S samples, a query O(log S + k).
