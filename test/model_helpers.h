@@ -28,18 +28,26 @@ namespace pcl_sparse_test
     return model;
   }
 
-  /// The bytes of \a model's file quantised at the options derivedWriteOptions takes from the model's errors at
-  /// \a vertices (its input's): the file `pcl_sparse_encode -o` starts from before it measures smaller ones
-  /// (measuredWriteOptions); those statistics in \a stats if given.
-  inline std::vector<std::uint8_t>
-  defaultFileBytes (const pcl_sparse::SparseSurfaceModel& model, const std::vector<Eigen::Vector3d>& vertices,
-                    pcl_sparse::ModelStatistics* stats = nullptr)
+  /// The options derivedWriteOptions takes from \a model's errors at \a vertices (its input's): the bound's
+  /// file, which `pcl_sparse_encode -o` starts from before it measures others (measuredWriteOptions); those
+  /// statistics in \a stats if given.
+  inline pcl_sparse::ModelWriteOptions
+  boundWriteOptions (const pcl_sparse::SparseSurfaceModel& model, const std::vector<Eigen::Vector3d>& vertices,
+                     pcl_sparse::ModelStatistics* stats = nullptr)
   {
     std::vector<double> errors;
     const pcl_sparse::ModelStatistics statistics = model.statistics (vertices, &errors);
     if (stats)
       *stats = statistics;
-    return pcl_sparse::encodeModel (model, pcl_sparse::derivedWriteOptions (statistics, errors, model.bbox_diagonal));
+    return pcl_sparse::derivedWriteOptions (statistics, errors, model.bbox_diagonal);
+  }
+
+  /// The bytes of \a model's file written with boundWriteOptions; the statistics in \a stats if given.
+  inline std::vector<std::uint8_t>
+  defaultFileBytes (const pcl_sparse::SparseSurfaceModel& model, const std::vector<Eigen::Vector3d>& vertices,
+                    pcl_sparse::ModelStatistics* stats = nullptr)
+  {
+    return pcl_sparse::encodeModel (model, boundWriteOptions (model, vertices, stats));
   }
 
   /// \a count points resampled from \a model with \a options (default: the default resampling options).

@@ -26,22 +26,13 @@ namespace
     const std::vector<std::uint8_t> bytes = encodeModel (model, options);
     return std::make_shared<const SparseSurfaceModel> (decodeModel (bytes.data (), bytes.size ()));
   }
-
-  /// derivedWriteOptions of \a model against its input \a mesh (what -o started from before measuring).
-  ModelWriteOptions
-  boundOptions (const SparseSurfaceModel& model, const TriangleMesh& mesh)
-  {
-    std::vector<double> errors;
-    const ModelStatistics stats = model.statistics (mesh.vertices, &errors);
-    return derivedWriteOptions (stats, errors, model.bbox_diagonal);
-  }
 } // namespace
 
 TEST (MeasuredWriteOptions, ChoosesTheSmallestFileWithinTheAllowance)
 {
   const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (3));
   const SparseSurfaceModel::Ptr model = encodeMesh (sphere);
-  const ModelWriteOptions start = boundOptions (*model, *sphere);
+  const ModelWriteOptions start = boundWriteOptions (*model, sphere->vertices);
   const MeasuredWriteChoice choice = measuredWriteOptions (*model, *sphere, start);
   EXPECT_EQ (choice.start_bytes, encodeModel (*model, start).size ());
   EXPECT_EQ (choice.bytes, encodeModel (*model, choice.options).size ());
@@ -73,7 +64,7 @@ TEST (MeasuredWriteOptions, BadOptionsAreRefused)
   const SparseSurfaceModel::Ptr model = encodeMesh (sphere);
   ModelWriteOptions lossless;
   EXPECT_THROW (measuredWriteOptions (*model, *sphere, lossless), Error);
-  const ModelWriteOptions start = boundOptions (*model, *sphere);
+  const ModelWriteOptions start = boundWriteOptions (*model, sphere->vertices);
   for (double bad : {0.0, -0.1, 1.5, std::nan ("")})
   {
     MeasuredWriteOptions options;
@@ -103,7 +94,7 @@ TEST (MeasuredWriteOptions, SharedMeshesStayWithinTenPercent)
     PCL_SPARSE_NEED_SHARED_FILE (path);
     const auto mesh = std::make_shared<const TriangleMesh> (loadTriangleMesh (path));
     const SparseSurfaceModel::Ptr model = encodeMesh (mesh);
-    const ModelWriteOptions start = boundOptions (*model, *mesh);
+    const ModelWriteOptions start = boundWriteOptions (*model, mesh->vertices);
     const MeasuredWriteChoice choice = measuredWriteOptions (*model, *mesh, start);
     const double lossless = chamferOf (model, *mesh, 200000);
     const double chosen = chamferOf (roundTrip (*model, choice.options), *mesh, 200000);

@@ -65,7 +65,9 @@ namespace pcl_sparse
     auto distanceOf = [&] (const SparseSurfaceModel::ConstPtr& m) {
       return modelChamferDistance (m, to_surface, on_surface, options.points, resampling, options.num_threads).value ();
     };
-    choice.lossless_distance = distanceOf (std::make_shared<const SparseSurfaceModel> (model));
+    // The model itself, not a copy: a pointer that owns nothing (shared_ptr's aliasing constructor), which
+    // the resampling holds only while it measures.
+    choice.lossless_distance = distanceOf (SparseSurfaceModel::ConstPtr (SparseSurfaceModel::ConstPtr (), &model));
     if (!(choice.lossless_distance > 0.0) || !std::isfinite (choice.lossless_distance))
       return choice;  // an exact model: no increase is measurable against it, keep the bound's file
     // The first within the allowance; none: the nearest.
@@ -74,7 +76,7 @@ namespace pcl_sparse
     {
       const double distance = distanceOf (std::make_shared<const SparseSurfaceModel> (decodeModel (t.bytes.data (), t.bytes.size ())));
       ++choice.measured;
-      if (distance < nearest)
+      if (distance < nearest)  // a file that passes is nearer than every one measured before it (they failed)
       {
         nearest = distance;
         choice.options = t.options;
@@ -82,12 +84,7 @@ namespace pcl_sparse
         choice.distance = distance;
       }
       if (distance <= (1.0 + options.max_increase) * choice.lossless_distance)
-      {
-        choice.options = t.options;
-        choice.bytes = t.bytes.size ();
-        choice.distance = distance;
         break;
-      }
     }
     return choice;
   }
