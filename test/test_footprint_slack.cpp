@@ -206,6 +206,14 @@ TEST (FootprintSlack, SmallerFilesAsNearTheSurface)
   ModelWriteOptions options;
   options.tolerance = 1e-4;
   const std::vector<std::uint8_t> with = encodeModel (model, options);
+  // The slack found beforehand (a writer trying several options finds it once) gives the same bytes; one that is
+  // not the model's is refused.
+  EXPECT_EQ (encodeModel (model, options, slack), with);
+  std::vector<FootprintSlack> short_slack (slack.begin (), slack.end () - 1);
+  EXPECT_THROW (encodeModel (model, options, short_slack), Error);
+  std::vector<FootprintSlack> wrong_angles = slack;
+  wrong_angles[0].upper.pop_back ();
+  EXPECT_THROW (encodeModel (model, options, wrong_angles), Error);
   options.footprint_slack = false;
   const std::vector<std::uint8_t> without = encodeModel (model, options);
   const SparseSurfaceModel a = decodeModel (with.data (), with.size ()), b = decodeModel (without.data (), without.size ());

@@ -36,6 +36,7 @@ TEST (MeasuredWriteOptions, ChoosesTheSmallestFileWithinTheAllowance)
   const MeasuredWriteChoice choice = measuredWriteOptions (*model, *sphere, start);
   EXPECT_EQ (choice.start_bytes, encodeModel (*model, start).size ());
   EXPECT_EQ (choice.bytes, encodeModel (*model, choice.options).size ());
+  EXPECT_EQ (choice.file, encodeModel (*model, choice.options));  // the bytes to write, as saveModel encodes them
   EXPECT_GT (choice.lossless_distance, 0.0);
   EXPECT_GE (choice.measured, 1u);
   EXPECT_LE (choice.distance, 1.08 * choice.lossless_distance);

@@ -4,10 +4,13 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/model_mesh_distance.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -57,9 +60,31 @@ TEST (ModelMeshDistance, KnownDistancesToAPlaneAndASphere)
   EXPECT_NEAR (chamferOf (model, larger, 20000), 0.01, 0.003);
 }
 
+TEST (ModelMeshDistance, MeshDistanceIsTheNearestFaceAmongTheNearestSamples)
+{
+  // Against every face, exactly: a point off a curved surface, where the k nearest samples hold a face several
+  // times (a face measured once is the same minimum).
+  const TriangleMesh sphere = makeIcosphere (2);
+  const MeshSurfaceDistance to_sphere (sphere, 2 * sphere.triangles.size () + 5000);
+  std::vector<Eigen::Vector3d> probes;
+  sampleMeshSurface (sphere, 200, 5, probes);
+  for (std::size_t i = 0; i < probes.size (); ++i)
+  {
+    const Eigen::Vector3d p = probes[i] * (i % 2 ? 1.05 : 0.97);
+    double exact = std::numeric_limits<double>::infinity ();
+    for (const Eigen::Vector3i& f : sphere.triangles)
+      exact = std::min (exact, pointTriangleDistance (p, sphere.vertices[f[0]], sphere.vertices[f[1]], sphere.vertices[f[2]]));
+    EXPECT_EQ (to_sphere (p), exact) << i;
+  }
+}
+
 TEST (ModelMeshDistance, EmptyInputsAreRefused)
 {
   EXPECT_THROW (MeshSurfaceDistance (TriangleMesh (), 100), Error);
+  // A face with a non-finite corner (a mesh given through the API; the loaders refuse it) has no distance.
+  TriangleMesh broken = makePlaneGrid (2, 0.5);
+  broken.vertices[0].x () = std::nan ("");
+  EXPECT_THROW (MeshSurfaceDistance (broken, 100), Error);
   SparseSurfaceModel empty;
   EXPECT_THROW (ModelSurfaceDistance (empty, {Eigen::Vector3d::Zero ()}), Error);
 }

@@ -1,6 +1,7 @@
 #include <pcl_sparse/encoder/measured_write_options.h>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/resampling/footprint_slack.h>
 #include <pcl_sparse/resampling/model_mesh_distance.h>
 
 #include <algorithm>
@@ -40,16 +41,19 @@ namespace pcl_sparse
       ModelWriteOptions options;
       std::vector<std::uint8_t> bytes;
     };
+    // The footprints' slack depends on the model only: found once for every candidate.
+    const std::vector<FootprintSlack> slack = start.footprint_slack ? footprintSlack (model) : std::vector<FootprintSlack> ();
     std::vector<Tried> tried;
-    tried.push_back ({start, encodeModel (model, start)});
+    tried.push_back ({start, encodeModel (model, start, slack)});
     choice.start_bytes = choice.bytes = tried.front ().bytes.size ();
+    choice.file = tried.front ().bytes;
     for (const WriteCandidate& c : options.candidates)
     {
       Tried t{start, {}};
       t.options.tolerance = std::clamp (start.tolerance * c.tolerance_scale, 1e-7, 0.1);
       t.options.extent_bits = std::clamp (start.extent_bits + c.extent_bits_change, 2, 8);
       t.options.footprint_refine_steps = c.refine_steps;
-      t.bytes = encodeModel (model, t.options);
+      t.bytes = encodeModel (model, t.options, slack);
       tried.push_back (std::move (t));
     }
     // Smallest first; equal sizes in the candidates' order, the start before them.
@@ -81,6 +85,7 @@ namespace pcl_sparse
         nearest = distance;
         choice.options = t.options;
         choice.bytes = t.bytes.size ();
+        choice.file = t.bytes;
         choice.distance = distance;
       }
       if (distance <= (1.0 + options.max_increase) * choice.lossless_distance)

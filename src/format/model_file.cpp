@@ -1022,7 +1022,8 @@ namespace pcl_sparse
 
   ModelSections
   encodeModelSections (const SparseSurfaceModel& model, const ModelWriteOptions& options,
-                       const std::vector<std::pair<std::size_t, std::size_t>>& runs)
+                       const std::vector<std::pair<std::size_t, std::size_t>>& runs,
+                       const std::vector<FootprintSlack>* model_slack)
   {
     const CosineAtoms& cosine = cosineBasis (model);
     const int frequencies = cosine.frequencies ();
@@ -1047,6 +1048,15 @@ namespace pcl_sparse
     for (const auto& run : runs)
       if (run.first > model.patches.size () || run.second > model.patches.size () - run.first)
         throw Error ("encodeModel: a run of patches lies outside the model");
+    if (model_slack)
+    {
+      bool fits = model_slack->size () == model.patches.size ();
+      for (std::size_t i = 0; fits && i < model_slack->size (); ++i)
+        fits = (*model_slack)[i].lower.size () == model.patches[i].footprint.extent.size () &&
+               (*model_slack)[i].upper.size () == model.patches[i].footprint.extent.size ();
+      if (!fits)
+        throw Error ("encodeModel: the footprint slack given is not the model's (one per patch, one per footprint angle)");
+    }
 
     ModelSections out;
     SharedModelFields& shared = out.shared;
@@ -1076,7 +1086,9 @@ namespace pcl_sparse
       // the whole model's (a 100 M-point terrain has half a million patches).
       std::vector<FootprintSlack> slack;
       if (quantised && options.footprint_slack && options.footprint_refine_steps > 0.0)
-        slack = footprintSlack (model, first, count);
+        slack = model_slack ? std::vector<FootprintSlack> (model_slack->begin () + static_cast<std::ptrdiff_t> (first),
+                                                           model_slack->begin () + static_cast<std::ptrdiff_t> (first + count))
+                            : footprintSlack (model, first, count);
       std::vector<std::vector<std::uint8_t>> sections =
         quantised ? encodeQuantisedRun (model, first, count, q, options, frequencies, cosine.monomials (), slack)
                   : encodeLosslessRun (model, first, count);
@@ -1110,7 +1122,13 @@ namespace pcl_sparse
   std::vector<std::uint8_t>
   encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options)
   {
-    ModelSections parts = encodeModelSections (model, options, {{0, model.patches.size ()}});
+    return encodeModel (model, options, {});
+  }
+
+  std::vector<std::uint8_t>
+  encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options, const std::vector<FootprintSlack>& slack)
+  {
+    ModelSections parts = encodeModelSections (model, options, {{0, model.patches.size ()}}, slack.empty () ? nullptr : &slack);
     const SharedModelFields& shared = parts.shared;
     const bool quantised = shared.flags & header_flag::quantised;
     std::vector<Section> sections;

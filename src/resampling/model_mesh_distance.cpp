@@ -37,19 +37,28 @@ namespace pcl_sparse
     sampleMeshSurface (mesh, std::max<std::size_t> (samples, 1), seed, points, &sample_triangle_);
     if (points.empty ())
       throw Error ("MeshSurfaceDistance: the mesh has no triangle");
-    tree_.setInputCloud (toCloud (points));
+    for (const auto& p : points)
+      if (!p.allFinite ())
+        throw Error ("MeshSurfaceDistance: the mesh has a face with a non-finite vertex");
+    tree_ = std::make_unique<PointKdTree> (*toCloud (points));
   }
 
   double
   MeshSurfaceDistance::operator() (const Eigen::Vector3d& p) const
   {
-    std::vector<int> indices (k_);
-    std::vector<float> distances (k_);
-    tree_.nearestKSearch (toPoint (p), k_, indices, distances);
+    // Per thread: a query allocates nothing. A face drawn several times among the k samples is measured once.
+    thread_local std::vector<int> indices, faces;
+    thread_local std::vector<float> squared;
+    tree_->nearestK (toPoint (p), k_, indices, squared);
+    faces.clear ();
     double best = std::numeric_limits<double>::infinity ();
     for (int i : indices)
     {
-      const auto& f = mesh_.triangles[sample_triangle_[i]];
+      const int t = sample_triangle_[i];
+      if (std::find (faces.begin (), faces.end (), t) != faces.end ())
+        continue;
+      faces.push_back (t);
+      const auto& f = mesh_.triangles[t];
       best = std::min (best, pointTriangleDistance (p, mesh_.vertices[f[0]], mesh_.vertices[f[1]], mesh_.vertices[f[2]]));
     }
     return best;
@@ -85,8 +94,8 @@ namespace pcl_sparse
         small_.push_back (static_cast<int> (i));
       }
     if (!seeds.empty ())
-      seeds_.setInputCloud (toCloud (seeds));
-    cloud_.setInputCloud (toCloud (resampled));
+      seeds_ = std::make_unique<PointKdTree> (*toCloud (seeds));
+    cloud_ = std::make_unique<PointKdTree> (*toCloud (resampled));
   }
 
   double
@@ -102,11 +111,12 @@ namespace pcl_sparse
       const HeightSample h = model_.evaluate (i, local.x (), local.y ());
       best = std::min (best, std::abs (local.z () - h.value) * patch.radius / std::sqrt (1.0 + h.gradient.squaredNorm ()));
     };
-    if (!small_.empty ())
+    // Per thread: a query allocates nothing. The nearest of the patches is taken, so in any order.
+    thread_local std::vector<int> indices;
+    thread_local std::vector<float> squared;
+    if (seeds_)
     {
-      std::vector<int> indices;
-      std::vector<float> distances;
-      seeds_.radiusSearch (q, reach_, indices, distances);
+      seeds_->radius (q, reach_, indices, squared, false);
       for (int i : indices)
         measure (small_[i]);
     }
@@ -115,10 +125,8 @@ namespace pcl_sparse
         measure (i);
     // A patch across a thin part can contain the projection of p and report the part's thickness, so the
     // nearest resampled point (an upper bound: it lies on the decoded surface) always caps it.
-    std::vector<int> nearest (1);
-    std::vector<float> squared (1);
-    cloud_.nearestKSearch (q, 1, nearest, squared);
-    return std::min (best, (p - points_[nearest[0]]).norm ());
+    cloud_->nearestK (q, 1, indices, squared);
+    return std::min (best, (p - points_[indices[0]]).norm ());
   }
 
   ChamferDistance

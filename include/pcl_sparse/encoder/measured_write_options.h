@@ -60,6 +60,7 @@ namespace pcl_sparse
   {
     ModelWriteOptions options;       ///< the chosen file's options
     std::size_t bytes = 0;           ///< its size
+    std::vector<std::uint8_t> file;  ///< its bytes (encodeModel (model, options)), to write as they are
     std::size_t start_bytes = 0;     ///< the start's size
     double lossless_distance = 0.0;  ///< the lossless model's Chamfer distance to the surface
     double distance = 0.0;           ///< the chosen file's (0 when nothing was measured: an exact model)
@@ -70,7 +71,7 @@ namespace pcl_sparse
   /// Chamfer distance to \a surface (modelChamferDistance) is at most (1 + max_increase) x the lossless
   /// model's. Each is encoded in memory (encodeModel), then decoded, resampled and measured, smallest first,
   /// until one passes; none passing gives the nearest. Deterministic (seeded), whatever the thread count.
-  /// Cost: one encoding per candidate; a sampling of \a surface (2 points per triangle + 50000) in a k-d tree;
+  /// Cost: one encoding per candidate (the footprints' slack found once for all); a sampling of \a surface (2 points per triangle + 50000) in a k-d tree;
   /// per measured candidate (and the lossless model) a decoding, a resampling and 2 x points distances.
   /// \param[in] model    the model (not tiled: its patches' codes as the encoder made them)
   /// \param[in] surface  the surface it was encoded from (SparseSurfaceEncoder::getSurface)

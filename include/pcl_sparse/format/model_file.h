@@ -26,6 +26,8 @@
 
 namespace pcl_sparse
 {
+  struct FootprintSlack;  // resampling/footprint_slack.h
+
   /// Options for saveModel / encodeModel.
   struct ModelWriteOptions
   {
@@ -129,6 +131,16 @@ namespace pcl_sparse
   ///         of range
   std::vector<std::uint8_t>
   encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options = ModelWriteOptions ());
+
+  /// encodeModel with the footprints' slack found beforehand: a writer that tries several options on one model
+  /// (measuredWriteOptions) finds it once. The same bytes as encodeModel (model, options).
+  /// \param[in] model    the model
+  /// \param[in] options  as for encodeModel
+  /// \param[in] slack    footprintSlack (model) (resampling/footprint_slack.h), one per patch; empty: found here
+  ///                     where the options take it
+  /// \throws pcl_sparse::Error as encodeModel, or for a slack that is not the model's (counts of patches or angles)
+  std::vector<std::uint8_t>
+  encodeModel (const SparseSurfaceModel& model, const ModelWriteOptions& options, const std::vector<FootprintSlack>& slack);
 
   /// Decodes the bytes of a .psm file; a tiled file (version 2 or 3, tiled_model_file.h) gives its tiles' patches
   /// merged into one model.

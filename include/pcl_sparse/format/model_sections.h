@@ -19,6 +19,8 @@
 
 namespace pcl_sparse
 {
+  struct FootprintSlack;  // resampling/footprint_slack.h
+
   /// The header's flag bits (docs/FORMAT.md), the same in version-1 and tiled files.
   namespace header_flag
   {
@@ -108,11 +110,14 @@ namespace pcl_sparse
   /// \param[in] model    the model
   /// \param[in] options  as for encodeModel (zstd_level unused)
   /// \param[in] runs     (first patch, count) of each run; runs may be in any order
+  /// \param[in] slack    the whole model's footprintSlack (resampling/footprint_slack.h) if found beforehand;
+  ///                     null: each run's is found where the options take it
   /// \return the shared fields and each run's sections
-  /// \throws pcl_sparse::Error as encodeModel, or for runs outside the model
+  /// \throws pcl_sparse::Error as encodeModel, or for runs outside the model or a slack not the model's
   ModelSections
   encodeModelSections (const SparseSurfaceModel& model, const ModelWriteOptions& options,
-                       const std::vector<std::pair<std::size_t, std::size_t>>& runs);
+                       const std::vector<std::pair<std::size_t, std::size_t>>& runs,
+                       const std::vector<FootprintSlack>* slack = nullptr);
 
   /// \brief Checks the shared fields as the version-1 reader checks its header (flags, basis, counts,
   /// tolerance; QUAN and ACHN are checked by decodeModelSections).

@@ -10,13 +10,13 @@
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_types.h>
+#include <pcl_sparse/geometry/point_kd_tree.h>
 
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -41,7 +41,7 @@ namespace pcl_sparse
     const TriangleMesh& mesh_;
     int k_;
     std::vector<int> sample_triangle_;
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree_;
+    std::unique_ptr<PointKdTree> tree_;  ///< over the samples
   };
 
   /// Distance from a point to a model's surface: over the patches whose footprint holds its projection (looked
@@ -62,10 +62,10 @@ namespace pcl_sparse
   private:
     const SparseSurfaceModel& model_;
     double reach_ = 0.0;                        ///< the largest reach of the patches in seeds_
-    pcl::KdTreeFLANN<pcl::PointXYZ> seeds_;     ///< the seeds of the patches within reach_
+    std::unique_ptr<PointKdTree> seeds_;        ///< the seeds of the patches within reach_ (none: null)
     std::vector<int> small_;                    ///< their patches, in seeds_' order
     std::vector<std::pair<int, double>> large_; ///< the patches of a larger reach, and their reach
-    pcl::KdTreeFLANN<pcl::PointXYZ> cloud_;
+    std::unique_ptr<PointKdTree> cloud_;        ///< over the resampled points
     std::vector<Eigen::Vector3d> points_;
   };
 
