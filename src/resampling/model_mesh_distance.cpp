@@ -74,13 +74,17 @@ namespace pcl_sparse
     // by one. One search as wide as the largest reach took 2 s for 50k points on turbine, whose reaches
     // spread over 10x (the largest 8x the median).
     std::vector<double> reach (model.patches.size ());
+    beyond_.resize (model.patches.size ());
     for (std::size_t i = 0; i < model.patches.size (); ++i)
     {
       const PatchCode& patch = model.patches[i];
-      double e = 1.0;
+      double e = 0.0;
       for (float x : patch.footprint.extent)
         e = std::max (e, static_cast<double> (x));
-      reach[i] = 1.5 * patch.radius * e;
+      reach[i] = 1.5 * patch.radius * std::max (e, 1.0);
+      // The footprint's extents interpolate between its largest and smallest: a point whose projection lies
+      // farther from the seed than the largest (and a margin for rounding) lies outside it.
+      beyond_[i] = std::pow (1.000001 * e, 2);
     }
     std::vector<double> sorted = reach;
     reach_ = 2.0 * upperMedian (sorted);
@@ -106,7 +110,7 @@ namespace pcl_sparse
     auto measure = [&] (int i) {
       const PatchCode& patch = model_.patches[i];
       const Eigen::Vector3d local = patch.frame.transpose () * (p - patch.origin) / patch.radius;
-      if (!patch.footprint.contains (local.x (), local.y ()))
+      if (local.head<2> ().squaredNorm () > beyond_[i] || !patch.footprint.contains (local.x (), local.y ()))
         return;
       const HeightSample h = model_.evaluate (i, local.x (), local.y ());
       best = std::min (best, std::abs (local.z () - h.value) * patch.radius / std::sqrt (1.0 + h.gradient.squaredNorm ()));

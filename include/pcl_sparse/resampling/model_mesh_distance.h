@@ -62,6 +62,7 @@ namespace pcl_sparse
   private:
     const SparseSurfaceModel& model_;
     double reach_ = 0.0;                        ///< the largest reach of the patches in seeds_
+    std::vector<double> beyond_;                ///< per patch: squared local distances past its footprint
     std::unique_ptr<PointKdTree> seeds_;        ///< the seeds of the patches within reach_ (none: null)
     std::vector<int> small_;                    ///< their patches, in seeds_' order
     std::vector<std::pair<int, double>> large_; ///< the patches of a larger reach, and their reach
