@@ -43,6 +43,7 @@ TEST (MeasuredWriteOptions, ChoosesTheSmallestFileWithinTheAllowance)
   // With no allowance to speak of, every file is measured and fails, and the nearest wins.
   MeasuredWriteOptions strict;
   strict.max_increase = 1e-9;
+  strict.confirm_points = 0;  // no second look with more points either
   const MeasuredWriteChoice nearest = measuredWriteOptions (*model, *sphere, start, strict);
   EXPECT_EQ (nearest.measured, strict.candidates.size () + 1);
   EXPECT_LE (nearest.distance, choice.distance);
@@ -75,6 +76,15 @@ TEST (MeasuredWriteOptions, BadOptionsAreRefused)
   MeasuredWriteOptions few;
   few.points = 10;
   EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, few), Error);
+  MeasuredWriteOptions confirm;
+  confirm.confirm_points = 10;
+  EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, confirm), Error);
+  confirm = MeasuredWriteOptions ();
+  confirm.confirm_band = 0.5 * confirm.max_increase;
+  EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, confirm), Error);
+  confirm = MeasuredWriteOptions ();
+  confirm.confirm_max_increase = 0.0;
+  EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, confirm), Error);
   MeasuredWriteOptions bad_candidate;
   bad_candidate.candidates = {{0.0, 0, 2.0}};
   EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, bad_candidate), Error);
@@ -100,9 +110,17 @@ TEST (MeasuredWriteOptions, SharedMeshesStayWithinTenPercent)
     const double lossless = chamferOf (model, *mesh, 200000);
     const double chosen = chamferOf (roundTrip (*model, choice.options), *mesh, 200000);
     std::cout << "  " << name << ": " << choice.start_bytes << " -> " << choice.bytes << " bytes, Chamfer "
-              << chosen / lossless << " x the lossless model's, " << choice.measured << " measured" << std::endl;
+              << chosen / lossless << " x the lossless model's, " << choice.measured << " measured, "
+              << choice.confirmed << " confirmed" << std::endl;
     EXPECT_LE (chosen, 1.1 * lossless) << name;
     if (std::string (name) == "spot.obj")
-      EXPECT_LT (choice.bytes, 0.9 * choice.start_bytes);  // 23929 -> 20048 bytes when measured (3-bit extents)
+    {
+      // Twice the tolerance reads +10.8 % with 30k points and +7.3 % with 200k (bench_format +7.8 %): let through
+      // by the confirmation. 23929 -> 20048 bytes (21128 without it).
+      EXPECT_TRUE (choice.chosen_by_confirmation);
+      EXPECT_LT (choice.bytes, 0.85 * choice.start_bytes);
+    }
+    else
+      EXPECT_FALSE (choice.chosen_by_confirmation);  // wingnut's coarser files read +15 % and more
   }
 }

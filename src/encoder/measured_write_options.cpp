@@ -19,6 +19,12 @@ namespace pcl_sparse
       throw Error ("MeasuredWriteOptions: max_increase must be in (0, 1], got " + std::to_string (max_increase));
     if (points < 1000)
       throw Error ("MeasuredWriteOptions: points must be at least 1000, got " + std::to_string (points));
+    if (confirm_points > 0 && confirm_points < 1000)
+      throw Error ("MeasuredWriteOptions: confirm_points must be 0 or at least 1000, got " + std::to_string (confirm_points));
+    if (!(confirm_max_increase > 0.0 && confirm_max_increase <= 1.0) || !(confirm_band >= max_increase) ||
+        !std::isfinite (confirm_band))
+      throw Error ("MeasuredWriteOptions: confirm_max_increase must be in (0, 1] and confirm_band finite and at least "
+                   "max_increase");
     for (const WriteCandidate& c : candidates)
       if (!(c.tolerance_scale > 0.0 && c.tolerance_scale <= 100.0) || c.extent_bits_change < -6 ||
           c.extent_bits_change > 6 || !(c.refine_steps >= 0.0) || !std::isfinite (c.refine_steps))
@@ -40,6 +46,7 @@ namespace pcl_sparse
     {
       ModelWriteOptions options;
       std::vector<std::uint8_t> bytes;
+      double distance = -1.0;  ///< measured with options.points (-1: not measured)
     };
     // The footprints' slack depends on the model only: found once for every candidate.
     const std::vector<FootprintSlack> slack = start.footprint_slack ? footprintSlack (model) : std::vector<FootprintSlack> ();
@@ -66,30 +73,66 @@ namespace pcl_sparse
     sampleMeshSurface (surface, options.points, static_cast<unsigned> (options.seed), on_surface);
     SparseSurfaceResamplingOptions resampling;
     resampling.seed = options.seed;
-    auto distanceOf = [&] (const SparseSurfaceModel::ConstPtr& m) {
-      return modelChamferDistance (m, to_surface, on_surface, options.points, resampling, options.num_threads).value ();
+    std::vector<Eigen::Vector3d> on_surface_confirm;
+    auto distanceOf = [&] (const SparseSurfaceModel::ConstPtr& m, bool confirm = false) {
+      return modelChamferDistance (m, to_surface, confirm ? on_surface_confirm : on_surface,
+                                   confirm ? options.confirm_points : options.points, resampling, options.num_threads)
+        .value ();
+    };
+    auto decoded = [] (const Tried& t) {
+      return std::make_shared<const SparseSurfaceModel> (decodeModel (t.bytes.data (), t.bytes.size ()));
     };
     // The model itself, not a copy: a pointer that owns nothing (shared_ptr's aliasing constructor), which
     // the resampling holds only while it measures.
-    choice.lossless_distance = distanceOf (SparseSurfaceModel::ConstPtr (SparseSurfaceModel::ConstPtr (), &model));
+    const SparseSurfaceModel::ConstPtr lossless (SparseSurfaceModel::ConstPtr (), &model);
+    choice.lossless_distance = distanceOf (lossless);
     if (!(choice.lossless_distance > 0.0) || !std::isfinite (choice.lossless_distance))
       return choice;  // an exact model: no increase is measurable against it, keep the bound's file
+    auto choose = [&] (const Tried& t, double distance) {
+      choice.options = t.options;
+      choice.bytes = t.bytes.size ();
+      choice.file = t.bytes;
+      choice.distance = distance;
+    };
     // The first within the allowance; none: the nearest.
     double nearest = std::numeric_limits<double>::infinity ();
-    for (const Tried& t : tried)
+    std::size_t chosen = 0;
+    for (std::size_t i = 0; i < tried.size (); ++i)
     {
-      const double distance = distanceOf (std::make_shared<const SparseSurfaceModel> (decodeModel (t.bytes.data (), t.bytes.size ())));
+      Tried& t = tried[i];
+      t.distance = distanceOf (decoded (t));
       ++choice.measured;
-      if (distance < nearest)  // a file that passes is nearer than every one measured before it (they failed)
+      if (t.distance < nearest)  // a file that passes is nearer than every one measured before it (they failed)
       {
-        nearest = distance;
-        choice.options = t.options;
-        choice.bytes = t.bytes.size ();
-        choice.file = t.bytes;
-        choice.distance = distance;
+        nearest = t.distance;
+        chosen = i;
+        choose (t, t.distance);
       }
-      if (distance <= (1.0 + options.max_increase) * choice.lossless_distance)
+      if (t.distance <= (1.0 + options.max_increase) * choice.lossless_distance)
         break;
+    }
+    // Smaller files that read just over the allowance, measured again with as many points as the bench.
+    if (options.confirm_points == 0)
+      return choice;
+    double lossless_confirmed = -1.0;
+    for (std::size_t i = 0; i < chosen; ++i)
+    {
+      const Tried& t = tried[i];
+      if (!(t.distance > 0.0) || t.distance > (1.0 + options.confirm_band) * choice.lossless_distance)
+        continue;
+      if (lossless_confirmed < 0.0)
+      {
+        sampleMeshSurface (surface, options.confirm_points, static_cast<unsigned> (options.seed), on_surface_confirm);
+        lossless_confirmed = distanceOf (lossless, true);
+      }
+      const double distance = distanceOf (decoded (t), true);
+      ++choice.confirmed;
+      if (distance <= (1.0 + options.confirm_max_increase) * lossless_confirmed)
+      {
+        choose (t, choice.lossless_distance * distance / lossless_confirmed);  // on the first measurement's scale
+        choice.chosen_by_confirmation = true;
+        break;
+      }
     }
     return choice;
   }
