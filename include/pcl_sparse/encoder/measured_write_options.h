@@ -48,11 +48,12 @@ namespace pcl_sparse
     std::vector<WriteCandidate> candidates = {
       {2.0, -1, 3.0}, {1.5, -1, 2.0}, {1.0, -1, 2.0}, {1.0, 1, 2.0}};
     /// Files smaller than the one chosen whose increase read over max_increase but at most confirm_band with
-    /// \a points points are measured again, as is the lossless model, with confirm_points points a side
-    /// (bench_format's count), smallest first: the first within confirm_max_increase is chosen instead. With
-    /// 30k points the smooth meshes' increases read 1-2 points high (places outside every footprint are
-    /// measured to the nearest of fewer resampled points); 200k points read them as the bench does, and
-    /// the CAD parts' heavy tails (a few points far off along creases) too. 0: no confirmation.
+    /// \a points points are measured again, as is the lossless model, as bench_format measures (confirm_points
+    /// points a side, the surface sampled 10 times per triangle + 200000), smallest first: the first within
+    /// confirm_max_increase is chosen instead. With 30k points the smooth meshes' increases read 1-3 points
+    /// high (places outside every footprint are measured to the nearest of fewer resampled points); 200k
+    /// read them as the bench does, and the CAD parts' heavy tails (a few points far off along creases) too.
+    /// 0: no confirmation.
     std::size_t confirm_points = 200000;
     double confirm_band = 0.11;           ///< see confirm_points; at least max_increase
     double confirm_max_increase = 0.08;   ///< see confirm_points; in (0, 1]
