@@ -44,7 +44,7 @@ namespace pcl_sparse
     /// tolerance), and a finer one for a start that adds more than the allowance (turbine's bound file added
     /// 10.1 %). Measured with the start in the order of their bytes, smallest first, until one passes. Twice
     /// the tolerance (with refinement 3) sits at the allowance on the smooth meshes, where 30k points read it
-    /// 1-2 points high (bench/results/file_coarsening.md): it passes by the confirmation below.
+    /// 1-3 points high (bench/results/file_coarsening.md): it passes by the confirmation below.
     std::vector<WriteCandidate> candidates = {
       {2.0, -1, 3.0}, {1.5, -1, 2.0}, {1.0, -1, 2.0}, {1.0, 1, 2.0}};
     /// Files smaller than the one chosen whose increase read over max_increase but at most confirm_band with
