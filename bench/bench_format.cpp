@@ -91,7 +91,7 @@ main (int argc, char** argv)
     const double diag = diagonal (original);
     std::vector<Eigen::Vector3d> on_original;
     sampleMeshSurface (original, n, 11, on_original);
-    const MeshSurfaceDistance to_original (original, 10 * original.triangles.size () + 200000);
+    const MeshSurfaceDistance to_original (original, denseSurfaceSamples (original));
 
     std::size_t decoded_points = 0;
     double decoded_to_original = 0, original_to_decoded = 0, largest = 0, decode_seconds = 0;
@@ -101,7 +101,7 @@ main (int argc, char** argv)
       std::vector<Eigen::Vector3d> on_decoded;
       sampleMeshSurface (decoded, n, 13, on_decoded);
       decoded_points = on_decoded.size ();
-      const MeshSurfaceDistance to_decoded (decoded, 10 * decoded.triangles.size () + 200000);
+      const MeshSurfaceDistance to_decoded (decoded, denseSurfaceSamples (decoded));
       double max_a = 0, max_b = 0;
       meanAndLargestDistance (on_decoded, to_original, decoded_to_original, max_a);
       meanAndLargestDistance (on_original, to_decoded, original_to_decoded, max_b);

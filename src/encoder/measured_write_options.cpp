@@ -67,20 +67,26 @@ namespace pcl_sparse
     std::stable_sort (tried.begin (), tried.end (),
                       [] (const Tried& a, const Tried& b) { return a.bytes.size () < b.bytes.size (); });
 
-    // Both halves of the Chamfer distance, as bench/bench_format measures it, with fewer points.
-    const MeshSurfaceDistance to_surface (surface, 2 * surface.triangles.size () + 50000);
-    std::vector<Eigen::Vector3d> on_surface;
-    sampleMeshSurface (surface, options.points, static_cast<unsigned> (options.seed), on_surface);
+    // Both halves of the Chamfer distance, as bench/bench_format measures it: first with fewer points and a
+    // sparser sampling of the surface; the confirmation as the bench does (denseSurfaceSamples: on dense meshes
+    // a sparser sampling misses the nearest triangle often enough to add to every distance alike, which reads a
+    // file's increase low, kitten-53k +6.9 % for +10.7 %).
+    struct Yardstick
+    {
+      std::unique_ptr<MeshSurfaceDistance> to_surface;
+      std::vector<Eigen::Vector3d> on_surface;  ///< as many points as are resampled from each model
+    };
+    auto yardstick = [&] (std::size_t surface_samples, std::size_t points) {
+      Yardstick y{std::make_unique<MeshSurfaceDistance> (surface, surface_samples), {}};
+      sampleMeshSurface (surface, points, static_cast<unsigned> (options.seed), y.on_surface);
+      return y;
+    };
+    const Yardstick quick = yardstick (2 * surface.triangles.size () + 50000, options.points);
+    Yardstick confirm;  // made for the first confirmation
     SparseSurfaceResamplingOptions resampling;
     resampling.seed = options.seed;
-    // The confirmation measures as bench_format does, the surface sampled more densely too (10 per triangle +
-    // 200000): on dense meshes the nearest of 16 samples of a sparser sampling misses the nearest triangle often
-    // enough to add to every distance alike, which reads a file's increase low (kitten-53k +6.9 % for +10.7 %).
-    std::unique_ptr<MeshSurfaceDistance> to_surface_confirm;
-    std::vector<Eigen::Vector3d> on_surface_confirm;
-    auto distanceOf = [&] (const SparseSurfaceModel::ConstPtr& m, bool confirm = false) {
-      return modelChamferDistance (m, confirm ? *to_surface_confirm : to_surface, confirm ? on_surface_confirm : on_surface,
-                                   confirm ? options.confirm_points : options.points, resampling, options.num_threads)
+    auto distanceOf = [&] (const SparseSurfaceModel::ConstPtr& m, const Yardstick& y) {
+      return modelChamferDistance (m, *y.to_surface, y.on_surface, y.on_surface.size (), resampling, options.num_threads)
         .value ();
     };
     auto decoded = [] (const Tried& t) {
@@ -89,7 +95,7 @@ namespace pcl_sparse
     // The model itself, not a copy: a pointer that owns nothing (shared_ptr's aliasing constructor), which
     // the resampling holds only while it measures.
     const SparseSurfaceModel::ConstPtr lossless (SparseSurfaceModel::ConstPtr (), &model);
-    choice.lossless_distance = distanceOf (lossless);
+    choice.lossless_distance = distanceOf (lossless, quick);
     if (!(choice.lossless_distance > 0.0) || !std::isfinite (choice.lossless_distance))
       return choice;  // an exact model: no increase is measurable against it, keep the bound's file
     auto choose = [&] (const Tried& t, double distance) {
@@ -104,7 +110,7 @@ namespace pcl_sparse
     for (std::size_t i = 0; i < tried.size (); ++i)
     {
       Tried& t = tried[i];
-      t.distance = distanceOf (decoded (t));
+      t.distance = distanceOf (decoded (t), quick);
       ++choice.measured;
       if (t.distance < nearest)  // a file that passes is nearer than every one measured before it (they failed)
       {
@@ -126,13 +132,12 @@ namespace pcl_sparse
         continue;
       if (lossless_confirmed < 0.0)
       {
-        to_surface_confirm = std::make_unique<MeshSurfaceDistance> (surface, 10 * surface.triangles.size () + 200000);
-        sampleMeshSurface (surface, options.confirm_points, static_cast<unsigned> (options.seed), on_surface_confirm);
-        lossless_confirmed = distanceOf (lossless, true);
+        confirm = yardstick (denseSurfaceSamples (surface), options.confirm_points);
+        lossless_confirmed = distanceOf (lossless, confirm);
         if (!(lossless_confirmed > 0.0) || !std::isfinite (lossless_confirmed))
           break;  // nothing to measure an increase against
       }
-      const double distance = distanceOf (decoded (t), true);
+      const double distance = distanceOf (decoded (t), confirm);
       ++choice.confirmed;
       if (distance <= (1.0 + options.confirm_max_increase) * lossless_confirmed)
       {
