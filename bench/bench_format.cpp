@@ -9,8 +9,8 @@
 ///                                               prints the encode seconds
 ///
 /// Distance: A = N points drawn uniformly by area on the decoded surface, B = N points on the original
-/// mesh. d(a, original) is the exact point-to-triangle distance (candidate triangles from a dense sampling
-/// of the original); d(b, decoded) is the exact point-to-triangle distance for a decoded mesh, and for a
+/// mesh. d(a, original) is the exact point-to-triangle distance (the nearest triangle of the original, found
+/// in a TriangleTree); d(b, decoded) is the exact point-to-triangle distance for a decoded mesh, and for a
 /// model the distance to the nearest patch whose footprint holds b's projection, |z - h(x, y)| r /
 /// sqrt(1 + |grad h|^2) (first order), falling back to the nearest resampled point. Prints one JSON line:
 /// chamfer = (mean_A d + mean_B d) / 2 / diagonal (diagonal of the original's bounding box), both means,
@@ -91,7 +91,7 @@ main (int argc, char** argv)
     const double diag = diagonal (original);
     std::vector<Eigen::Vector3d> on_original;
     sampleMeshSurface (original, n, 11, on_original);
-    const MeshSurfaceDistance to_original (original, denseSurfaceSamples (original));
+    const MeshSurfaceDistance to_original (original);
 
     std::size_t decoded_points = 0;
     double decoded_to_original = 0, original_to_decoded = 0, largest = 0, decode_seconds = 0;
@@ -101,7 +101,7 @@ main (int argc, char** argv)
       std::vector<Eigen::Vector3d> on_decoded;
       sampleMeshSurface (decoded, n, 13, on_decoded);
       decoded_points = on_decoded.size ();
-      const MeshSurfaceDistance to_decoded (decoded, denseSurfaceSamples (decoded));
+      const MeshSurfaceDistance to_decoded (decoded);
       double max_a = 0, max_b = 0;
       meanAndLargestDistance (on_decoded, to_original, decoded_to_original, max_a);
       meanAndLargestDistance (on_original, to_decoded, original_to_decoded, max_b);

@@ -69,7 +69,7 @@ namespace pcl_sparse_test
   inline double
   chamferOf (const pcl_sparse::SparseSurfaceModel::ConstPtr& model, const pcl_sparse::TriangleMesh& mesh, std::size_t points)
   {
-    const pcl_sparse::MeshSurfaceDistance to_mesh (mesh, pcl_sparse::denseSurfaceSamples (mesh));
+    const pcl_sparse::MeshSurfaceDistance to_mesh (mesh);
     std::vector<Eigen::Vector3d> on_mesh;
     pcl_sparse::sampleMeshSurface (mesh, points, 11, on_mesh);
     return pcl_sparse::modelChamferDistance (model, to_mesh, on_mesh, points).value ();

@@ -21,7 +21,7 @@ TEST (ModelMeshDistance, KnownDistancesToAPlaneAndASphere)
 {
   // A unit square at z = 0: points above it are their height away, points beside it their distance to the edge.
   const TriangleMesh square = makePlaneGrid (4, 0.5);
-  const MeshSurfaceDistance to_square (square, 20000);
+  const MeshSurfaceDistance to_square (square);
   EXPECT_NEAR (to_square (Eigen::Vector3d (0.1, -0.2, 0.3)), 0.3, 1e-12);
   EXPECT_NEAR (to_square (Eigen::Vector3d (0.1, -0.2, -0.05)), 0.05, 1e-12);
   EXPECT_NEAR (to_square (Eigen::Vector3d (0.9, 0.0, 0.0)), 0.4, 1e-12);
@@ -60,12 +60,13 @@ TEST (ModelMeshDistance, KnownDistancesToAPlaneAndASphere)
   EXPECT_NEAR (chamferOf (model, larger, 20000), 0.01, 0.003);
 }
 
-TEST (ModelMeshDistance, MeshDistanceIsTheNearestFaceAmongTheNearestSamples)
+TEST (ModelMeshDistance, MeshDistanceIsTheNearestFace)
 {
-  // Against every face, exactly: a point off a curved surface, where the k nearest samples hold a face several
-  // times (a face measured once is the same minimum).
+  // Against every face, exactly: points off a curved surface, measured exactly and among the triangles of the
+  // nearest samples of a sampling (where the k nearest samples hold a face several times, a face measured once
+  // is the same minimum).
   const TriangleMesh sphere = makeIcosphere (2);
-  const MeshSurfaceDistance to_sphere (sphere, 2 * sphere.triangles.size () + 5000);
+  const MeshSurfaceDistance to_sphere (sphere), sampled (sphere, 2 * sphere.triangles.size () + 5000);
   std::vector<Eigen::Vector3d> probes;
   sampleMeshSurface (sphere, 200, 5, probes);
   for (std::size_t i = 0; i < probes.size (); ++i)
@@ -75,15 +76,18 @@ TEST (ModelMeshDistance, MeshDistanceIsTheNearestFaceAmongTheNearestSamples)
     for (const Eigen::Vector3i& f : sphere.triangles)
       exact = std::min (exact, pointTriangleDistance (p, sphere.vertices[f[0]], sphere.vertices[f[1]], sphere.vertices[f[2]]));
     EXPECT_EQ (to_sphere (p), exact) << i;
+    EXPECT_EQ (sampled (p), exact) << i;
   }
 }
 
 TEST (ModelMeshDistance, EmptyInputsAreRefused)
 {
-  EXPECT_THROW (MeshSurfaceDistance (TriangleMesh (), 100), Error);
+  EXPECT_THROW (MeshSurfaceDistance {TriangleMesh ()}, Error);
   // A face with a non-finite corner (a mesh given through the API; the loaders refuse it) has no distance.
   TriangleMesh broken = makePlaneGrid (2, 0.5);
   broken.vertices[0].x () = std::nan ("");
+  EXPECT_THROW (MeshSurfaceDistance {broken}, Error);
+  EXPECT_THROW (MeshSurfaceDistance (TriangleMesh (), 100), Error);
   EXPECT_THROW (MeshSurfaceDistance (broken, 100), Error);
   SparseSurfaceModel empty;
   EXPECT_THROW (ModelSurfaceDistance (empty, {Eigen::Vector3d::Zero ()}), Error);

@@ -68,20 +68,20 @@ namespace pcl_sparse
                       [] (const Tried& a, const Tried& b) { return a.bytes.size () < b.bytes.size (); });
 
     // Both halves of the Chamfer distance, as bench/bench_format measures it: first with fewer points and a
-    // sparser sampling of the surface; the confirmation as the bench does (denseSurfaceSamples: on dense meshes
-    // a sparser sampling misses the nearest triangle often enough to add to every distance alike, which reads a
-    // file's increase low, kitten-53k +6.9 % for +10.7 %).
+    // sampling of the surface (a nearest triangle found among those of the nearest samples); the confirmation
+    // as the bench does (as many points, the distance to the surface exact).
     struct Yardstick
     {
       std::unique_ptr<MeshSurfaceDistance> to_surface;
       std::vector<Eigen::Vector3d> on_surface;  ///< as many points as are resampled from each model
     };
-    auto yardstick = [&] (std::size_t surface_samples, std::size_t points) {
-      Yardstick y{std::make_unique<MeshSurfaceDistance> (surface, surface_samples), {}};
-      sampleMeshSurface (surface, points, static_cast<unsigned> (options.seed), y.on_surface);
-      return y;
+    auto pointsOn = [&] (std::size_t points) {
+      std::vector<Eigen::Vector3d> on_surface;
+      sampleMeshSurface (surface, points, static_cast<unsigned> (options.seed), on_surface);
+      return on_surface;
     };
-    const Yardstick quick = yardstick (2 * surface.triangles.size () + 50000, options.points);
+    const Yardstick quick{std::make_unique<MeshSurfaceDistance> (surface, 2 * surface.triangles.size () + 50000),
+                          pointsOn (options.points)};
     Yardstick confirm;  // made for the first confirmation
     SparseSurfaceResamplingOptions resampling;
     resampling.seed = options.seed;
@@ -132,7 +132,7 @@ namespace pcl_sparse
         continue;
       if (lossless_confirmed < 0.0)
       {
-        confirm = yardstick (denseSurfaceSamples (surface), options.confirm_points);
+        confirm = {std::make_unique<MeshSurfaceDistance> (surface), pointsOn (options.confirm_points)};
         lossless_confirmed = distanceOf (lossless, confirm);
         if (!(lossless_confirmed > 0.0) || !std::isfinite (lossless_confirmed))
           break;  // nothing to measure an increase against

@@ -30,6 +30,11 @@ namespace pcl_sparse
     }
   } // namespace
 
+  MeshSurfaceDistance::MeshSurfaceDistance (const TriangleMesh& mesh)
+    : mesh_ (mesh), triangles_ (std::make_unique<TriangleTree> (mesh))
+  {
+  }
+
   MeshSurfaceDistance::MeshSurfaceDistance (const TriangleMesh& mesh, std::size_t samples, unsigned seed, int k)
     : mesh_ (mesh), k_ (std::max (1, k))
   {
@@ -40,16 +45,18 @@ namespace pcl_sparse
     for (const auto& p : points)
       if (!p.allFinite ())
         throw Error ("MeshSurfaceDistance: the mesh has a face with a non-finite vertex");
-    tree_ = std::make_unique<PointKdTree> (*toCloud (points));
+    samples_ = std::make_unique<PointKdTree> (*toCloud (points));
   }
 
   double
   MeshSurfaceDistance::operator() (const Eigen::Vector3d& p) const
   {
+    if (triangles_)
+      return triangles_->nearest (p).distance;
     // Per thread: a query allocates nothing. A face drawn several times among the k samples is measured once.
     thread_local std::vector<int> indices, faces;
     thread_local std::vector<float> squared;
-    tree_->nearestK (toPoint (p), k_, indices, squared);
+    samples_->nearestK (toPoint (p), k_, indices, squared);
     faces.clear ();
     double best = std::numeric_limits<double>::infinity ();
     for (int i : indices)

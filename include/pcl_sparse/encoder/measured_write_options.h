@@ -49,7 +49,7 @@ namespace pcl_sparse
       {2.0, -1, 3.0}, {1.5, -1, 2.0}, {1.0, -1, 2.0}, {1.0, 1, 2.0}};
     /// Files smaller than the one chosen whose increase read over max_increase but at most confirm_band with
     /// \a points points are measured again, as is the lossless model, as bench_format measures (confirm_points
-    /// points a side, the surface sampled 10 times per triangle + 200000), smallest first: the first within
+    /// points a side, the distance to the surface exact), smallest first: the first within
     /// confirm_max_increase is chosen instead. With 30k points the smooth meshes' increases read 1-3 points
     /// high (places outside every footprint are measured to the nearest of fewer resampled points); 200k
     /// read them as the bench does, and the CAD parts' heavy tails (a few points far off along creases) too.
@@ -89,7 +89,8 @@ namespace pcl_sparse
   /// then measured again with more points (confirm_points). Deterministic (seeded), whatever the thread count.
   /// Cost: one encoding per candidate (the footprints' slack found once for all); a sampling of \a surface (2
   /// points per triangle + 50000) in a k-d tree; per measured candidate (and the lossless model) a decoding, a
-  /// resampling and 2 x points distances; per confirmed one (and then the lossless model) 2 x confirm_points.
+  /// resampling and 2 x points distances; per confirmed one (and then the lossless model) 2 x confirm_points, and
+  /// for the first a TriangleTree over \a surface.
   /// \param[in] model    the model (not tiled: its patches' codes as the encoder made them)
   /// \param[in] surface  the surface it was encoded from (SparseSurfaceEncoder::getSurface)
   /// \param[in] start    a quantised file's options (tolerance > 0, e.g. derivedWriteOptions'); its other

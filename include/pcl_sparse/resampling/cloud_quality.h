@@ -4,6 +4,7 @@
 /// flipped normals, holes, spacing uniformity. Used by the resampling tests and bench/bench_resample, and
 /// handy for comparing resamplers (e.g. against pcl::MovingLeastSquares).
 
+#include <pcl_sparse/geometry/point_triangle_distance.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <pcl/point_cloud.h>
@@ -63,11 +64,4 @@ namespace pcl_sparse
   CloudQuality
   evaluateCloudQuality (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& cloud,
                         const CloudQualityOptions& options = CloudQualityOptions ());
-
-  /// Exact distance from a point to a triangle (Ericson's closest point on a triangle).
-  /// \param[in] p        the point
-  /// \param[in] a, b, c  the triangle's corners
-  /// \return the distance
-  double
-  pointTriangleDistance (const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 } // namespace pcl_sparse

@@ -11,6 +11,7 @@
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
 #include <pcl_sparse/geometry/point_kd_tree.h>
+#include <pcl_sparse/geometry/triangle_tree.h>
 
 #include <Eigen/Core>
 
@@ -22,25 +23,25 @@
 
 namespace pcl_sparse
 {
-  /// The samples of \a mesh bench/bench_format measures its distances with, and the default file's confirmation
-  /// (encoder/measured_write_options.h): 10 per triangle + 200000. Sparser samplings miss the nearest triangle
-  /// of dense meshes often enough to add to every distance.
-  inline std::size_t
-  denseSurfaceSamples (const TriangleMesh& mesh)
-  {
-    return 10 * mesh.triangles.size () + 200000;
-  }
-
-  /// Distance from a point to a mesh: the nearest of the triangles under the \a k nearest points of a dense
-  /// sampling of it (exact to those triangles; where the sampling is dense against the triangles, the
-  /// nearest triangle is among them). Build O(S log S) for S samples, a query O(log S + k).
+  /// Distance from a point to a mesh: exact, the nearest of its triangles (TriangleTree), as bench/bench_format
+  /// measures; or, built from a sampling of the mesh, the nearest of the triangles under the \a k nearest samples
+  /// of a point: exact to those triangles, a little long where the sampling misses the nearest one (sparse
+  /// samplings of dense meshes), which adds to every distance alike. measuredWriteOptions' first pass measures
+  /// that way (its allowance is set by the readings it gives, bench/results/file_coarsening.md).
   class MeshSurfaceDistance
   {
   public:
+    /// \brief Exact. Build O(T log T) for T triangles.
+    /// \param[in] mesh  the surface (its triangles copied)
+    /// \throws pcl_sparse::Error for a mesh without triangles or with a non-finite corner
+    explicit MeshSurfaceDistance (const TriangleMesh& mesh);
+
+    /// \brief From \a samples points drawn on \a mesh. Build O(S log S) for S samples, a query O(log S + k).
     /// \param[in] mesh     the surface (kept by reference: it must outlive this)
-    /// \param[in] samples  points drawn on it (bench/bench_format: denseSurfaceSamples)
+    /// \param[in] samples  points drawn on it
     /// \param[in] seed     of the sampling
     /// \param[in] k        nearest samples whose triangles are measured
+    /// \throws pcl_sparse::Error for a mesh without triangles or with a non-finite corner
     MeshSurfaceDistance (const TriangleMesh& mesh, std::size_t samples, unsigned seed = 7, int k = 16);
 
     /// Distance from \a p to the mesh. Thread-safe.
@@ -48,9 +49,10 @@ namespace pcl_sparse
 
   private:
     const TriangleMesh& mesh_;
-    int k_;
+    std::unique_ptr<TriangleTree> triangles_;  ///< exact (null: sampled)
+    int k_ = 0;
     std::vector<int> sample_triangle_;
-    std::unique_ptr<PointKdTree> tree_;  ///< over the samples
+    std::unique_ptr<PointKdTree> samples_;     ///< over the samples (null: exact)
   };
 
   /// Distance from a point to a model's surface: over the patches whose footprint holds its projection (looked

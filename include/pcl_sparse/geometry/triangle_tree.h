@@ -1,0 +1,55 @@
+#pragma once
+/// \file triangle_tree.h
+/// Exact nearest-triangle queries on a mesh: a bounding-box tree over its triangles (median splits along the
+/// longest side of the centroids' box, up to 4 triangles a leaf), searched nearest box first and pruned by the
+/// distance found so far. Build O(T log T); a query visits O(log T) boxes on meshes of evenly sized triangles.
+/// Unlike a k-d tree over points drawn on the triangles, it needs no sampling and misses no triangle, however
+/// long and thin: the distance is exact.
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace pcl_sparse
+{
+  class TriangleTree
+  {
+  public:
+    /// The nearest triangle of a query.
+    struct Nearest
+    {
+      double distance = 0.0;  ///< exact distance to it
+      int triangle = -1;      ///< its index in the mesh (the first found among equally near ones)
+    };
+
+    /// \brief Builds the tree over \a mesh's triangles (their corners copied).
+    /// \throws pcl_sparse::Error for a mesh without triangles, a corner index out of range or a non-finite corner
+    explicit TriangleTree (const TriangleMesh& mesh);
+
+    /// Number of triangles.
+    std::size_t size () const { return triangle_.size (); }
+
+    /// \brief The triangle nearest \a p and its distance. Thread-safe; deterministic (the same triangle for the
+    /// same point, whatever the thread).
+    Nearest nearest (const Eigen::Vector3d& p) const;
+
+  private:
+    struct Node
+    {
+      Eigen::Vector3d lo, hi;  ///< the box of the node's triangles
+      int first = 0;           ///< leaf: first triangle in corners_; inner: index of the first child
+      int count = 0;           ///< leaf: number of triangles; 0 for an inner node (children first, first + 1)
+    };
+
+    /// Fills node \a node (already allocated) over order[begin, end), allocating and filling its children.
+    void build (int node, int begin, int end, const std::vector<Eigen::Vector3d>& centroids, std::vector<int>& order);
+
+    std::vector<Node> nodes_;
+    std::vector<std::array<Eigen::Vector3d, 3>> corners_;  ///< the triangles in leaf order
+    std::vector<int> triangle_;                            ///< their indices in the mesh
+  };
+} // namespace pcl_sparse

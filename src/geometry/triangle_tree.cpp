@@ -1,0 +1,146 @@
+#include <pcl_sparse/geometry/triangle_tree.h>
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/geometry/point_triangle_distance.h>
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <utility>
+
+namespace pcl_sparse
+{
+  namespace
+  {
+    constexpr int kLeafSize = 4;
+
+    /// Squared distance from \a p to the box [lo, hi] (0 inside).
+    double
+    boxSquaredDistance (const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
+    {
+      return (lo - p).cwiseMax (p - hi).cwiseMax (0.0).squaredNorm ();
+    }
+  } // namespace
+
+  TriangleTree::TriangleTree (const TriangleMesh& mesh)
+  {
+    const std::size_t count = mesh.triangles.size ();
+    if (count == 0)
+      throw Error ("TriangleTree: the mesh has no triangle");
+    if (count > static_cast<std::size_t> (std::numeric_limits<int>::max () / 2))
+      throw Error ("TriangleTree: too many triangles");
+    const int vertices = static_cast<int> (mesh.vertices.size ());
+    corners_.resize (count);
+    std::vector<Eigen::Vector3d> centroids (count);
+    for (std::size_t f = 0; f < count; ++f)
+    {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      for (int c = 0; c < 3; ++c)
+      {
+        if (t[c] < 0 || t[c] >= vertices)
+          throw Error ("TriangleTree: triangle " + std::to_string (f) + " has a corner index out of range");
+        corners_[f][c] = mesh.vertices[t[c]];
+        if (!corners_[f][c].allFinite ())
+          throw Error ("TriangleTree: triangle " + std::to_string (f) + " has a non-finite corner");
+      }
+      centroids[f] = (corners_[f][0] + corners_[f][1] + corners_[f][2]) / 3.0;
+    }
+    std::vector<int> order (count);
+    std::iota (order.begin (), order.end (), 0);
+    nodes_.reserve (2 * (count / kLeafSize + 1));
+    nodes_.emplace_back ();
+    build (0, 0, static_cast<int> (count), centroids, order);
+    // The triangles in leaf order, so that a leaf reads consecutive corners.
+    std::vector<std::array<Eigen::Vector3d, 3>> ordered (count);
+    for (std::size_t i = 0; i < count; ++i)
+      ordered[i] = corners_[order[i]];
+    corners_ = std::move (ordered);
+    triangle_ = std::move (order);
+  }
+
+  void
+  TriangleTree::build (int node, int begin, int end, const std::vector<Eigen::Vector3d>& centroids, std::vector<int>& order)
+  {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
+    Eigen::Vector3d hi = -lo, centre_lo = lo, centre_hi = hi;
+    for (int i = begin; i < end; ++i)
+    {
+      for (const Eigen::Vector3d& corner : corners_[order[i]])
+      {
+        lo = lo.cwiseMin (corner);
+        hi = hi.cwiseMax (corner);
+      }
+      centre_lo = centre_lo.cwiseMin (centroids[order[i]]);
+      centre_hi = centre_hi.cwiseMax (centroids[order[i]]);
+    }
+    nodes_[node].lo = lo;
+    nodes_[node].hi = hi;
+    if (end - begin <= kLeafSize)
+    {
+      nodes_[node].first = begin;
+      nodes_[node].count = end - begin;
+      return;
+    }
+    // Halves by the median centroid along the longest side (ties by triangle index: the same tree every time).
+    int axis = 0;
+    (centre_hi - centre_lo).maxCoeff (&axis);
+    const int middle = begin + (end - begin) / 2;
+    std::nth_element (order.begin () + begin, order.begin () + middle, order.begin () + end, [&] (int a, int b) {
+      return centroids[a][axis] < centroids[b][axis] || (centroids[a][axis] == centroids[b][axis] && a < b);
+    });
+    const int first = static_cast<int> (nodes_.size ());  // both children next to each other
+    nodes_[node].first = first;
+    nodes_.resize (nodes_.size () + 2);
+    build (first, begin, middle, centroids, order);
+    build (first + 1, middle, end, centroids, order);
+  }
+
+  TriangleTree::Nearest
+  TriangleTree::nearest (const Eigen::Vector3d& p) const
+  {
+    Nearest best;
+    best.distance = std::numeric_limits<double>::infinity ();
+    double best_squared = best.distance;
+    // Nodes still to visit and their squared box distances; the tree is at most 31 levels deep (median
+    // splits of fewer than 2^31 triangles) and a level pushes at most 2.
+    std::array<std::pair<int, double>, 64> stack;
+    int size = 0;
+    stack[size++] = {0, boxSquaredDistance (p, nodes_[0].lo, nodes_[0].hi)};
+    while (size > 0)
+    {
+      const auto [index, squared] = stack[--size];
+      if (squared >= best_squared)
+        continue;
+      const Node& node = nodes_[index];
+      if (node.count > 0)
+      {
+        for (int i = node.first; i < node.first + node.count; ++i)
+        {
+          const double d = pointTriangleDistance (p, corners_[i][0], corners_[i][1], corners_[i][2]);
+          if (d < best.distance)
+          {
+            best.distance = d;
+            best.triangle = triangle_[i];
+            best_squared = d * d;
+          }
+        }
+        continue;
+      }
+      // The nearer child last, so that it is searched first and prunes the other.
+      const double a = boxSquaredDistance (p, nodes_[node.first].lo, nodes_[node.first].hi);
+      const double b = boxSquaredDistance (p, nodes_[node.first + 1].lo, nodes_[node.first + 1].hi);
+      if (a <= b)
+      {
+        stack[size++] = {node.first + 1, b};
+        stack[size++] = {node.first, a};
+      }
+      else
+      {
+        stack[size++] = {node.first, a};
+        stack[size++] = {node.first + 1, b};
+      }
+    }
+    return best;
+  }
+} // namespace pcl_sparse

@@ -1,0 +1,116 @@
+// Exact nearest-triangle queries (geometry/triangle_tree.h), against every triangle measured one by one.
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/geometry/point_triangle_distance.h>
+#include <pcl_sparse/geometry/triangle_tree.h>
+#include <pcl_sparse/mesh/mesh_primitives.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+using namespace pcl_sparse;
+
+namespace
+{
+  /// The nearest triangle by measuring every one (the first of equally near ones).
+  TriangleTree::Nearest
+  bruteForce (const TriangleMesh& mesh, const Eigen::Vector3d& p)
+  {
+    TriangleTree::Nearest best;
+    best.distance = std::numeric_limits<double>::infinity ();
+    for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+    {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      const double d = pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+      if (d < best.distance)
+        best = {d, static_cast<int> (f)};
+    }
+    return best;
+  }
+
+  /// A fan of long slivers: a hub and many rim vertices far out on a circle (triangles 100 times longer than
+  /// wide), and a small bumpy grid beside it. A k-d tree over points drawn on the triangles misses slivers like these.
+  TriangleMesh
+  sliversAndGrid ()
+  {
+    TriangleMesh mesh;
+    mesh.vertices.emplace_back (0.0, 0.0, 0.0);
+    const int rim = 300;
+    for (int i = 0; i < rim; ++i)
+    {
+      const double a = 2.0 * M_PI * i / rim;
+      mesh.vertices.emplace_back (10.0 * std::cos (a), 10.0 * std::sin (a), 0.3 * std::sin (3.0 * a));
+    }
+    for (int i = 0; i < rim; ++i)
+      mesh.triangles.emplace_back (0, 1 + i, 1 + (i + 1) % rim);
+    const TriangleMesh grid = makePlaneGrid (20, 0.05);
+    const int offset = static_cast<int> (mesh.vertices.size ());
+    for (const Eigen::Vector3d& v : grid.vertices)
+      mesh.vertices.push_back (v + Eigen::Vector3d (12.0, 0.0, 0.02 * std::sin (20.0 * v.x ())));
+    for (const Eigen::Vector3i& t : grid.triangles)
+      mesh.triangles.push_back (t + Eigen::Vector3i::Constant (offset));
+    return mesh;
+  }
+} // namespace
+
+TEST (TriangleTree, NearestIsExactOnASphereAndOnSlivers)
+{
+  std::mt19937 random (11);
+  for (const TriangleMesh& mesh : {makeIcosphere (4), sliversAndGrid ()})
+  {
+    const TriangleTree tree (mesh);
+    ASSERT_EQ (tree.size (), mesh.triangles.size ());
+    // Points near the surface, off it, inside and far away, and the corners themselves.
+    std::uniform_real_distribution<double> u (-13.0, 14.0);
+    std::vector<Eigen::Vector3d> probes;
+    for (int i = 0; i < 600; ++i)
+      probes.emplace_back (u (random), u (random) / (i % 3 ? 1.0 : 10.0), u (random) / (i % 2 ? 20.0 : 1.0));
+    for (std::size_t v = 0; v < mesh.vertices.size (); v += 7)
+      probes.push_back (mesh.vertices[v]);
+    probes.emplace_back (1e6, -1e6, 3.0);
+    for (const Eigen::Vector3d& p : probes)
+    {
+      const TriangleTree::Nearest expected = bruteForce (mesh, p);
+      const TriangleTree::Nearest found = tree.nearest (p);
+      ASSERT_EQ (found.distance, expected.distance) << p.transpose ();
+      const Eigen::Vector3i& t = mesh.triangles[found.triangle];
+      EXPECT_EQ (pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]), found.distance);
+    }
+  }
+}
+
+TEST (TriangleTree, KnownDistancesAndDegenerateTriangles)
+{
+  // A unit square at z = 0 with a zero-area triangle and a duplicated one added: heights above it, distances
+  // beside it to the edge.
+  TriangleMesh square = makePlaneGrid (4, 0.5);
+  square.triangles.push_back (square.triangles.front ());
+  square.triangles.emplace_back (0, 0, 1);
+  const TriangleTree tree (square);
+  EXPECT_NEAR (tree.nearest (Eigen::Vector3d (0.1, -0.2, 0.3)).distance, 0.3, 1e-15);
+  EXPECT_NEAR (tree.nearest (Eigen::Vector3d (0.1, -0.2, -0.05)).distance, 0.05, 1e-15);
+  EXPECT_NEAR (tree.nearest (Eigen::Vector3d (0.9, 0.0, 0.0)).distance, 0.4, 1e-15);
+  EXPECT_NEAR (tree.nearest (Eigen::Vector3d (0.9, 0.9, 0.0)).distance, std::sqrt (0.32), 1e-15);
+  // One triangle: a tree of one leaf.
+  TriangleMesh one;
+  one.vertices = {Eigen::Vector3d (0, 0, 0), Eigen::Vector3d (1, 0, 0), Eigen::Vector3d (0, 1, 0)};
+  one.triangles = {Eigen::Vector3i (0, 1, 2)};
+  EXPECT_EQ (TriangleTree (one).nearest (Eigen::Vector3d (0.25, 0.25, -2.0)).distance, 2.0);
+  EXPECT_EQ (TriangleTree (one).nearest (Eigen::Vector3d (0.25, 0.25, -2.0)).triangle, 0);
+}
+
+TEST (TriangleTree, BadMeshesAreRefused)
+{
+  EXPECT_THROW (TriangleTree {TriangleMesh ()}, Error);
+  TriangleMesh broken = makePlaneGrid (2, 0.5);
+  broken.vertices[0].x () = std::nan ("");
+  EXPECT_THROW (TriangleTree {broken}, Error);
+  TriangleMesh out_of_range = makePlaneGrid (2, 0.5);
+  out_of_range.triangles[1][2] = static_cast<int> (out_of_range.vertices.size ());
+  EXPECT_THROW (TriangleTree {out_of_range}, Error);
+  out_of_range.triangles[1][2] = -1;
+  EXPECT_THROW (TriangleTree {out_of_range}, Error);
+}
