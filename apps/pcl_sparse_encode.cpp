@@ -105,7 +105,7 @@ namespace
       {"", "mean error, lower where that is expected to add over 5 % to the distance, with 5-bit footprint"},
       {"", "extents then (derivedWriteOptions); from a mesh, the smallest of that file and a few coarser and"},
       {"", "finer ones whose Chamfer distance to the mesh is within 8 % of the lossless model's, measured"},
-      {"", "(measuredWriteOptions: 0.3-1.3 s more); 0 = lossless)"},
+      {"", "(measuredWriteOptions: 0.3-3 s more); 0 = lossless)"},
       {"-footprint-steps R", "quantised model file: a patch's footprint keeps 2 opposite angles, and those between where"},
       {"", "the coded ones stray from it by more than R extent levels summed over the angles (default 2, also"},
       {"", "with 5-bit extents: within 10 % of the lossless model's Chamfer distance on the 25 shared meshes;"},
