@@ -48,7 +48,7 @@ namespace pcl_sparse
     }
     std::vector<int> order (count);
     std::iota (order.begin (), order.end (), 0);
-    nodes_.reserve (2 * (count / kLeafSize + 1));
+    nodes_.reserve (count);  // a split leaves at least 2 triangles a leaf: fewer than count nodes
     nodes_.emplace_back ();
     build (0, 0, static_cast<int> (count), centroids, order);
     // The triangles in leaf order, so that a leaf reads consecutive corners.
