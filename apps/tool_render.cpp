@@ -6,7 +6,7 @@
 #include <pcl_sparse/render/png_file.h>
 #include <pcl_sparse/render/render_camera.h>
 #include <pcl_sparse/render/surface_renderer.h>
-#include <pcl_sparse/resampling/cloud_quality.h>
+#include <pcl_sparse/geometry/triangle_tree.h>
 
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
@@ -109,24 +109,11 @@ namespace pcl_sparse
     {
       if (reference.empty ())
         throw Error ("the reference surface has no triangle");
-      pcl::PointCloud<pcl::PointNormal> cloud;
-      std::vector<std::size_t> finite;
+      const TriangleTree tree (reference);
+      std::vector<double> distances (points.size (), std::nan (""));
       for (std::size_t i = 0; i < points.size (); ++i)
         if (points[i].allFinite ())
-        {
-          pcl::PointNormal p;
-          p.getVector3fMap () = points[i].cast<float> ();
-          p.getNormalVector3fMap () = Eigen::Vector3f::UnitZ ();  // any valid normal: only distances are used
-          cloud.push_back (p);
-          finite.push_back (i);
-        }
-      CloudQualityOptions options;
-      options.probes = 1;  // the hole probes are not needed here
-      options.keep_per_point = true;
-      const CloudQuality quality = evaluateCloudQuality (reference, cloud, options);
-      std::vector<double> distances (points.size (), std::nan (""));
-      for (std::size_t k = 0; k < finite.size () && k < quality.point_distances.size (); ++k)
-        distances[finite[k]] = quality.point_distances[k];
+          distances[i] = tree.nearest (points[i]).distance;
       return distances;
     }
 

@@ -68,7 +68,7 @@ namespace pcl_sparse
     RenderedPicture
     renderPicture (const Picture& picture, const PictureOptions& options);
 
-    /// Distance of each point to a triangle mesh (its exact nearest triangle, evaluateCloudQuality).
+    /// Distance of each point to a triangle mesh (its exact nearest triangle, TriangleTree); NaN for a non-finite point.
     std::vector<double>
     distancesToSurface (const std::vector<Eigen::Vector3d>& points, const TriangleMesh& reference);
 

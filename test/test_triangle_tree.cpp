@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -80,6 +81,55 @@ TEST (TriangleTree, NearestIsExactOnASphereAndOnSlivers)
       EXPECT_EQ (pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]), found.distance);
     }
   }
+}
+
+TEST (TriangleTree, WithinFindsEveryTriangleInTheRadius)
+{
+  std::mt19937 random (5);
+  for (const TriangleMesh& mesh : {makeIcosphere (3), sliversAndGrid ()})
+  {
+    const TriangleTree tree (mesh);
+    std::uniform_real_distribution<double> u (-12.0, 13.0), r (0.0, 3.0);
+    std::vector<TriangleTree::Nearest> found;
+    std::size_t total = 0;
+    for (int i = 0; i < 300; ++i)
+    {
+      const Eigen::Vector3d p (u (random), u (random) / 5.0, u (random) / 20.0);
+      const double radius = tree.nearest (p).distance + r (random) * (i % 2 ? 1.0 : 0.01);
+      tree.within (p, radius, found);
+      std::vector<int> expected, got;
+      for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+      {
+        const Eigen::Vector3i& t = mesh.triangles[f];
+        if (pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= radius)
+          expected.push_back (static_cast<int> (f));
+      }
+      for (const TriangleTree::Nearest& face : found)
+      {
+        got.push_back (face.triangle);
+        const Eigen::Vector3i& t = mesh.triangles[face.triangle];
+        EXPECT_EQ (face.distance, pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]));
+      }
+      std::sort (got.begin (), got.end ());
+      ASSERT_EQ (got, expected) << p.transpose () << " radius " << radius;
+      total += got.size ();
+    }
+    EXPECT_GT (total, 600u);  // the radii reach past the nearest triangle, not only to it
+  }
+  // The corner of a fan: every triangle sharing the corner is at distance 0, none else.
+  const TriangleMesh sphere = makeIcosphere (2);
+  const TriangleTree tree (sphere);
+  std::vector<TriangleTree::Nearest> found;
+  tree.within (sphere.vertices[0] * 1.5, tree.nearest (sphere.vertices[0] * 1.5).distance + 1e-12, found);
+  std::size_t sharing = 0;
+  for (const Eigen::Vector3i& t : sphere.triangles)
+    sharing += (t.array () == 0).any () ? 1 : 0;
+  EXPECT_EQ (found.size (), sharing);
+  EXPECT_EQ (sharing, 5u);  // an icosahedron's original corner
+  tree.within (Eigen::Vector3d::Zero (), 0.5, found);  // inside the unit sphere, nothing within 0.5
+  EXPECT_TRUE (found.empty ());
+  tree.within (Eigen::Vector3d::Zero (), -1.0, found);
+  EXPECT_TRUE (found.empty ());
 }
 
 TEST (TriangleTree, KnownDistancesAndDegenerateTriangles)

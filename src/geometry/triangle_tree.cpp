@@ -143,4 +143,34 @@ namespace pcl_sparse
     }
     return best;
   }
+
+  void
+  TriangleTree::within (const Eigen::Vector3d& p, double radius, std::vector<Nearest>& found) const
+  {
+    found.clear ();
+    const double radius_squared = radius * radius;
+    if (!(radius >= 0.0) || boxSquaredDistance (p, nodes_[0].lo, nodes_[0].hi) > radius_squared)
+      return;
+    // As in nearest: at most 31 levels, each pushing at most 2.
+    std::array<int, 64> stack;
+    int size = 0;
+    stack[size++] = 0;
+    while (size > 0)
+    {
+      const Node& node = nodes_[stack[--size]];
+      if (node.count > 0)
+      {
+        for (int i = node.first; i < node.first + node.count; ++i)
+        {
+          const double d = pointTriangleDistance (p, corners_[i][0], corners_[i][1], corners_[i][2]);
+          if (d <= radius)
+            found.push_back ({d, triangle_[i]});
+        }
+        continue;
+      }
+      for (int child = node.first; child < node.first + 2; ++child)
+        if (boxSquaredDistance (p, nodes_[child].lo, nodes_[child].hi) <= radius_squared)
+          stack[size++] = child;
+    }
+  }
 } // namespace pcl_sparse

@@ -37,6 +37,15 @@ namespace pcl_sparse
     /// same point, whatever the thread).
     Nearest nearest (const Eigen::Vector3d& p) const;
 
+    /// \brief Every triangle within \a radius of \a p (distance <= radius) and its exact distance, in the
+    /// tree's order (the same for the same point). With radius = nearest (p).distance + a rounding margin it
+    /// gives every triangle tied at the nearest distance: those sharing the edge or corner nearest \a p.
+    /// Thread-safe.
+    /// \param[in] p       the query point
+    /// \param[in] radius  the largest distance found (none for a negative or NaN radius)
+    /// \param[out] found  the triangles, cleared first
+    void within (const Eigen::Vector3d& p, double radius, std::vector<Nearest>& found) const;
+
   private:
     struct Node
     {

@@ -22,9 +22,6 @@ namespace pcl_sparse
     std::size_t probes = 50000;
     /// A probe is covered if a cloud point lies within this many spacings, spacing = sqrt(area / #points).
     double hole_spacings = 3.0;
-    /// Nearest points of a cover of the triangles tried first per point for the distance to the surface;
-    /// the search then completes exactly, so the nearest triangle does not depend on it (only the time).
-    int nearest_triangles = 16;
     /// Seed of the probes.
     std::uint64_t seed = 1;
     /// Keep the per-point distances and normal angles in CloudQuality (for diagnostics).
@@ -59,8 +56,10 @@ namespace pcl_sparse
   /// Measures a point cloud with normals against the mesh it samples.
   /// \param[in] mesh     the reference surface
   /// \param[in] cloud    the points; those with a non-finite position or normal count as invalid
-  /// \param[in] options  probes, hole threshold, search size, seed
-  /// \return distances, normal errors, flipped and invalid points, completeness, spacing uniformity
+  /// \param[in] options  probes, hole threshold, seed
+  /// \return distances (exact, to the nearest triangle), normal errors, flipped and invalid points, completeness,
+  /// spacing uniformity; all zero for a mesh without vertices or triangles
+  /// \throws pcl_sparse::Error for a triangle with a non-finite corner or a corner index out of range
   CloudQuality
   evaluateCloudQuality (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& cloud,
                         const CloudQualityOptions& options = CloudQualityOptions ());
