@@ -803,6 +803,29 @@ TEST (CloudQuality, NearestFaceIsExactNextToLargeTriangles)
   EXPECT_LT (quality.mean_normal_angle, 1e-3);
 }
 
+TEST (CloudQuality, BrokenMeshesAreRefusedAndEmptyOnesGiveZeros)
+{
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  pcl::PointNormal point;
+  point.x = point.y = point.z = 0.25f;
+  point.normal_x = point.normal_y = 0.0f;
+  point.normal_z = 1.0f;
+  cloud.push_back (point);
+  TriangleMesh nan_corner = makePlaneGrid (3, 0.5);
+  nan_corner.vertices[4].z () = std::nan ("");
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { evaluateCloudQuality (nan_corner, cloud); }).find ("non-finite corner"),
+             std::string::npos);
+  TriangleMesh out_of_range = makePlaneGrid (3, 0.5);
+  out_of_range.triangles[2][0] = 1000;
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { evaluateCloudQuality (out_of_range, cloud); }).find ("out of range"),
+             std::string::npos);
+  const CloudQuality empty = evaluateCloudQuality (TriangleMesh (), cloud);
+  EXPECT_EQ (empty.max_distance, 0.0);
+  EXPECT_EQ (empty.flipped, 0u);
+  // The same point over a sound grid: a quarter above it.
+  EXPECT_NEAR (evaluateCloudQuality (makePlaneGrid (3, 0.5), cloud).max_distance, 0.25, 1e-7);
+}
+
 TEST (CloudQuality, PointPastAKnifeEdgeMatchesEitherFace)
 {
   // A 20-degree wedge: two faces meet at the edge x = 0 (along y), their normals 160 degrees apart. A
