@@ -340,7 +340,8 @@ main (int argc, char** argv)
       if (steps_given)
         for (WriteCandidate& candidate : measure.candidates)
           candidate.refine_steps = write_options.footprint_refine_steps;
-      file_choice = measuredWriteOptions (model, *encoder.getSurface (), write_options, measure);
+      file_choice = measuredWriteOptions (model, *encoder.getSurface (), write_options, measure,
+                                          makeConsoleProgress (quiet || json));
       write_options = file_choice.options;
     }
     if (!model_path.empty () && tiled)

@@ -437,7 +437,8 @@ TEST_F (EncodeTool, VarintLayoutWritesTheSameModel)
 }
 
 // --json is for programs: one object on stdout and, on success, nothing on stderr (no progress, no notes),
-// whichever tool. The mesh has a vertex in no face, which the tools otherwise note.
+// whichever tool. The mesh has a vertex in no face, which the tools otherwise note; the encoder's progress
+// runs on through the default file's measurement, and -q silences it.
 TEST_F (EncodeTool, JsonRunsLeaveStderrEmpty)
 {
   const std::string bin = std::string (PCL_SPARSE_BINARY_DIR) + "/apps/";
@@ -449,7 +450,10 @@ TEST_F (EncodeTool, JsonRunsLeaveStderrEmpty)
   std::string err;
   ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + mesh + " -o " + model + " 2>&1 >/dev/null", err), 0);
   EXPECT_NE (err.find ("in no face"), std::string::npos) << err;
-  for (const std::string command : {tool + " " + mesh, bin + "pcl_sparse_resample " + mesh + " " + cloud + " -n 20000",
+  EXPECT_NE (err.find ("file: 100%"), std::string::npos) << err;  // the default file's measurement shows progress
+  ASSERT_EQ (pcl_sparse_test::runShell (tool + " " + mesh + " -o " + model + " -q 2>&1 >/dev/null", err), 0);
+  EXPECT_EQ (err.find ("%"), std::string::npos) << err;  // -q: no progress
+  for (const std::string command : {tool + " " + mesh + " -o " + model, bin + "pcl_sparse_resample " + mesh + " " + cloud + " -n 20000",
                                     bin + "pcl_sparse_decode " + model + " " + cloud + " -n 20000",
                                     bin + "pcl_sparse_patches " + mesh + " " + (dir_ / "patches.ply").string (),
                                     bin + "pcl_sparse_keypoints " + mesh + " " + (dir_ / "keypoints.pcd").string (),

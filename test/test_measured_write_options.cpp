@@ -60,6 +60,37 @@ TEST (MeasuredWriteOptions, ChoosesTheSmallestFileWithinTheAllowance)
   EXPECT_EQ (a.lossless_distance, b.lossless_distance);
 }
 
+TEST (MeasuredWriteOptions, ReportsProgressPerMeasurement)
+{
+  const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (3));
+  const SparseSurfaceModel::Ptr model = encodeMesh (sphere);
+  const ModelWriteOptions start = boundWriteOptions (*model, sphere->vertices);
+  MeasuredWriteOptions strict;  // every file measured, nothing confirmed: the most the first pass can take
+  strict.max_increase = 1e-9;
+  strict.confirm_points = 0;
+  for (const MeasuredWriteOptions& options : {MeasuredWriteOptions (), strict})
+  {
+    std::vector<double> fractions;
+    const MeasuredWriteChoice choice = measuredWriteOptions (*model, *sphere, start, options, [&] (const std::string& stage, double f) {
+      EXPECT_EQ (stage, "file");
+      fractions.push_back (f);
+    });
+    // 0 first, then one per measurement (the lossless model, each file, with a confirmation the lossless model
+    // again and each confirmed file), then 1; never backwards.
+    const std::size_t lossless = 1 + (choice.confirmed > 0 ? 1 : 0);
+    ASSERT_EQ (fractions.size (), 2 + lossless + choice.measured + choice.confirmed);
+    EXPECT_EQ (fractions.front (), 0.0);
+    EXPECT_EQ (fractions.back (), 1.0);
+    for (std::size_t i = 1; i < fractions.size (); ++i)
+      EXPECT_GE (fractions[i], fractions[i - 1]);
+    EXPECT_GT (fractions[1], 0.0);
+  }
+  // The strict run measured everything there was to measure without a confirmation: its last measurement is 1.
+  std::vector<double> fractions;
+  measuredWriteOptions (*model, *sphere, start, strict, [&] (const std::string&, double f) { fractions.push_back (f); });
+  EXPECT_EQ (fractions[fractions.size () - 2], 1.0);
+}
+
 TEST (MeasuredWriteOptions, BadOptionsAreRefused)
 {
   const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (2));

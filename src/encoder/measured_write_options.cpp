@@ -12,6 +12,38 @@
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// A file measuredWriteOptions tries.
+    struct Tried
+    {
+      ModelWriteOptions options;
+      std::vector<std::uint8_t> bytes;
+      double distance = -1.0;  ///< measured with MeasuredWriteOptions::points (-1: not measured)
+    };
+
+    /// The file of \a start, then those of the \a candidates, in that order.
+    std::vector<Tried>
+    encodeCandidates (const SparseSurfaceModel& model, const ModelWriteOptions& start,
+                      const std::vector<WriteCandidate>& candidates)
+    {
+      // The footprints' slack depends on the model only: found once for every candidate.
+      const std::vector<FootprintSlack> slack = start.footprint_slack ? footprintSlack (model) : std::vector<FootprintSlack> ();
+      std::vector<Tried> tried;
+      tried.push_back ({start, encodeModel (model, start, slack)});
+      for (const WriteCandidate& c : candidates)
+      {
+        Tried t{start, {}};
+        t.options.tolerance = std::clamp (start.tolerance * c.tolerance_scale, 1e-7, 0.1);
+        t.options.extent_bits = std::clamp (start.extent_bits + c.extent_bits_change, 2, 8);
+        t.options.footprint_refine_steps = c.refine_steps;
+        t.bytes = encodeModel (model, t.options, slack);
+        tried.push_back (std::move (t));
+      }
+      return tried;
+    }
+  } // namespace
+
   void
   MeasuredWriteOptions::validate () const
   {
@@ -34,7 +66,7 @@ namespace pcl_sparse
 
   MeasuredWriteChoice
   measuredWriteOptions (const SparseSurfaceModel& model, const TriangleMesh& surface, const ModelWriteOptions& start,
-                        const MeasuredWriteOptions& options)
+                        const MeasuredWriteOptions& options, const ProgressCallback& progress)
   {
     options.validate ();
     if (!(start.tolerance > 0.0))
@@ -42,27 +74,9 @@ namespace pcl_sparse
     MeasuredWriteChoice choice;
     choice.options = start;
 
-    struct Tried
-    {
-      ModelWriteOptions options;
-      std::vector<std::uint8_t> bytes;
-      double distance = -1.0;  ///< measured with options.points (-1: not measured)
-    };
-    // The footprints' slack depends on the model only: found once for every candidate.
-    const std::vector<FootprintSlack> slack = start.footprint_slack ? footprintSlack (model) : std::vector<FootprintSlack> ();
-    std::vector<Tried> tried;
-    tried.push_back ({start, encodeModel (model, start, slack)});
+    std::vector<Tried> tried = encodeCandidates (model, start, options.candidates);
     choice.start_bytes = choice.bytes = tried.front ().bytes.size ();
     choice.file = tried.front ().bytes;
-    for (const WriteCandidate& c : options.candidates)
-    {
-      Tried t{start, {}};
-      t.options.tolerance = std::clamp (start.tolerance * c.tolerance_scale, 1e-7, 0.1);
-      t.options.extent_bits = std::clamp (start.extent_bits + c.extent_bits_change, 2, 8);
-      t.options.footprint_refine_steps = c.refine_steps;
-      t.bytes = encodeModel (model, t.options, slack);
-      tried.push_back (std::move (t));
-    }
     // Smallest first; equal sizes in the candidates' order, the start before them.
     std::stable_sort (tried.begin (), tried.end (),
                       [] (const Tried& a, const Tried& b) { return a.bytes.size () < b.bytes.size (); });
@@ -95,9 +109,27 @@ namespace pcl_sparse
     // The model itself, not a copy: a pointer that owns nothing (shared_ptr's aliasing constructor), which
     // the resampling holds only while it measures.
     const SparseSurfaceModel::ConstPtr lossless (SparseSurfaceModel::ConstPtr (), &model);
+    // Progress: measurements done of the most there can be (the lossless model and every file; with a
+    // confirmation, the lossless model again and every file but the largest), each a resampling and its distances.
+    const double most = static_cast<double> (1 + tried.size () + (options.confirm_points > 0 ? tried.size () : 0));
+    std::size_t measurements = 0;
+    auto measured = [&] () {
+      if (progress)
+        progress ("file", std::min (1.0, static_cast<double> (++measurements) / most));
+    };
+    auto finished = [&] () {  // the stage ends at 1 whichever way it returns
+      if (progress)
+        progress ("file", 1.0);
+    };
+    if (progress)
+      progress ("file", 0.0);
     choice.lossless_distance = distanceOf (lossless, quick);
+    measured ();
     if (!(choice.lossless_distance > 0.0) || !std::isfinite (choice.lossless_distance))
+    {
+      finished ();
       return choice;  // an exact model: no increase is measurable against it, keep the bound's file
+    }
     auto choose = [&] (const Tried& t, double distance) {
       choice.options = t.options;
       choice.bytes = t.bytes.size ();
@@ -111,6 +143,7 @@ namespace pcl_sparse
     {
       Tried& t = tried[i];
       t.distance = distanceOf (decoded (t), quick);
+      measured ();
       ++choice.measured;
       if (t.distance < nearest)  // a file that passes is nearer than every one measured before it (they failed)
       {
@@ -123,7 +156,10 @@ namespace pcl_sparse
     }
     // Smaller files that read just over the allowance, measured again with as many points as the bench.
     if (options.confirm_points == 0)
+    {
+      finished ();
       return choice;
+    }
     double lossless_confirmed = -1.0;
     for (std::size_t i = 0; i < chosen; ++i)
     {
@@ -134,10 +170,12 @@ namespace pcl_sparse
       {
         confirm = {std::make_unique<MeshSurfaceDistance> (surface), pointsOn (options.confirm_points)};
         lossless_confirmed = distanceOf (lossless, confirm);
+        measured ();
         if (!(lossless_confirmed > 0.0) || !std::isfinite (lossless_confirmed))
           break;  // nothing to measure an increase against
       }
       const double distance = distanceOf (decoded (t), confirm);
+      measured ();
       ++choice.confirmed;
       if (distance <= (1.0 + options.confirm_max_increase) * lossless_confirmed)
       {
@@ -146,6 +184,7 @@ namespace pcl_sparse
         break;
       }
     }
+    finished ();
     return choice;
   }
 } // namespace pcl_sparse

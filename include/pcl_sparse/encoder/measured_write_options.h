@@ -12,6 +12,7 @@
 /// (bench/results/file_coarsening.md). So each candidate file is encoded in memory, decoded, resampled and
 /// measured against the input (model_mesh_distance.h), smallest first, and the first within the allowance wins.
 
+#include <pcl_sparse/common/progress.h>
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
@@ -96,8 +97,11 @@ namespace pcl_sparse
   /// \param[in] start    a quantised file's options (tolerance > 0, e.g. derivedWriteOptions'); its other
   ///                     fields are kept by every candidate
   /// \param[in] options  the candidates and the measurement
+  /// \param[in] progress called with stage "file" after each measurement, the fraction done of the most there can
+  ///                     be (every candidate, then every smaller one confirmed), and 1 at the end (may be empty)
   /// \throws pcl_sparse::Error for start.tolerance <= 0 or options out of range (and what encodeModel throws)
   MeasuredWriteChoice
   measuredWriteOptions (const SparseSurfaceModel& model, const TriangleMesh& surface, const ModelWriteOptions& start,
-                        const MeasuredWriteOptions& options = MeasuredWriteOptions ());
+                        const MeasuredWriteOptions& options = MeasuredWriteOptions (),
+                        const ProgressCallback& progress = ProgressCallback ());
 } // namespace pcl_sparse
