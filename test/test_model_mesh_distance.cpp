@@ -9,6 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -91,4 +94,27 @@ TEST (ModelMeshDistance, EmptyInputsAreRefused)
   EXPECT_THROW (MeshSurfaceDistance (broken, 100), Error);
   SparseSurfaceModel empty;
   EXPECT_THROW (ModelSurfaceDistance (empty, {Eigen::Vector3d::Zero ()}), Error);
+}
+
+// The distances run on the threads asked for: 1 means one (the encoder's -threads 1 ran them on every core),
+// and the mean and largest do not depend on the count.
+TEST (ModelMeshDistance, DistancesRunOnTheThreadsAskedFor)
+{
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 20000; ++i)
+    points.emplace_back (0.001 * i, 0.0, 0.0);
+  for (const int threads : {1, 2})
+  {
+    int widest = 0;
+    auto distance = [&] (const Eigen::Vector3d& p) {
+#pragma omp critical
+      widest = std::max (widest, omp_get_num_threads ());
+      return p.x ();
+    };
+    double mean = 0.0, largest = 0.0;
+    meanAndLargestDistance (points, distance, mean, largest, threads);
+    EXPECT_EQ (widest, threads);
+    EXPECT_NEAR (mean, 0.001 * 19999 / 2.0, 1e-9);
+    EXPECT_DOUBLE_EQ (largest, 19.999);
+  }
 }

@@ -22,13 +22,14 @@ namespace pcl_sparse
       double distance = -1.0;  ///< measured with MeasuredWriteOptions::points (-1: not measured)
     };
 
-    /// The file of \a start, then those of the \a candidates, in that order.
+    /// The file of \a start, then those of the \a candidates, in that order (the footprints' slack on \a num_threads).
     std::vector<Tried>
     encodeCandidates (const SparseSurfaceModel& model, const ModelWriteOptions& start,
-                      const std::vector<WriteCandidate>& candidates)
+                      const std::vector<WriteCandidate>& candidates, int num_threads)
     {
       // The footprints' slack depends on the model only: found once for every candidate.
-      const std::vector<FootprintSlack> slack = start.footprint_slack ? footprintSlack (model) : std::vector<FootprintSlack> ();
+      const std::vector<FootprintSlack> slack =
+        start.footprint_slack ? footprintSlack (model, FootprintSlackOptions (), num_threads) : std::vector<FootprintSlack> ();
       std::vector<Tried> tried;
       tried.push_back ({start, encodeModel (model, start, slack)});
       for (const WriteCandidate& c : candidates)
@@ -74,7 +75,7 @@ namespace pcl_sparse
     MeasuredWriteChoice choice;
     choice.options = start;
 
-    std::vector<Tried> tried = encodeCandidates (model, start, options.candidates);
+    std::vector<Tried> tried = encodeCandidates (model, start, options.candidates, options.num_threads);
     choice.start_bytes = choice.bytes = tried.front ().bytes.size ();
     choice.file = tried.front ().bytes;
     // Smallest first; equal sizes in the candidates' order, the start before them.

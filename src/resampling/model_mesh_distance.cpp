@@ -162,8 +162,8 @@ namespace pcl_sparse
       on_model.emplace_back (p.x, p.y, p.z);
     const ModelSurfaceDistance to_model (*model, on_model);
     double max_a = 0.0, max_b = 0.0;
-    meanAndLargestDistance (on_model, to_mesh, result.model_to_mesh, max_a);
-    meanAndLargestDistance (on_mesh, to_model, result.mesh_to_model, max_b);
+    meanAndLargestDistance (on_model, to_mesh, result.model_to_mesh, max_a, num_threads);
+    meanAndLargestDistance (on_mesh, to_model, result.mesh_to_model, max_b, num_threads);
     result.largest = std::max (max_a, max_b);
     return result;
   }

@@ -58,7 +58,8 @@ namespace pcl_sparse
     std::size_t confirm_points = 200000;
     double confirm_band = 0.11;           ///< see confirm_points; at least max_increase
     double confirm_max_increase = 0.08;   ///< see confirm_points; in (0, 1]
-    /// OpenMP threads of the resampling (0: all); the choice does not depend on it.
+    /// OpenMP threads of the footprints' slack, the resampling and the distances (0: all); the choice does not
+    /// depend on it.
     int num_threads = 0;
 
     /// \throws pcl_sparse::Error for max_increase or confirm_max_increase not in (0, 1], points < 1000,

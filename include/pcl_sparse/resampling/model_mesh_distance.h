@@ -5,6 +5,7 @@
 /// bench/bench_format measures the files against Draco with it (200k points a side), and measuredWriteOptions
 /// (encoder/measured_write_options.h) chooses the default file with it (fewer points).
 
+#include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/mesh/surface_sampling.h>
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
@@ -95,13 +96,15 @@ namespace pcl_sparse
   };
 
   /// \brief Mean and largest of \a distance (a callable double (const Eigen::Vector3d&), thread-safe) over
-  /// \a points (OpenMP); both 0 without points.
+  /// \a points on \a num_threads OpenMP threads (0: OpenMP's default, resolveThreadCount); both 0 without points.
   template <typename Distance>
   void
-  meanAndLargestDistance (const std::vector<Eigen::Vector3d>& points, const Distance& distance, double& mean, double& largest)
+  meanAndLargestDistance (const std::vector<Eigen::Vector3d>& points, const Distance& distance, double& mean, double& largest,
+                          int num_threads = 0)
   {
     std::vector<double> d (points.size ());
-#pragma omp parallel for schedule(dynamic, 1024)
+    const int threads = resolveThreadCount (num_threads);
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (points.size ()); ++i)
       d[i] = distance (points[i]);
     mean = 0.0;
@@ -116,7 +119,8 @@ namespace pcl_sparse
 
   /// \brief The Chamfer distance between \a model and a mesh: \a points points resampled from the model
   /// (SparseSurfaceResampling with \a resampling, \a num_threads) measured by \a to_mesh, and \a on_mesh
-  /// (points drawn on the mesh, e.g. by sampleMeshSurface) measured by ModelSurfaceDistance.
+  /// (points drawn on the mesh, e.g. by sampleMeshSurface) measured by ModelSurfaceDistance; both halves on
+  /// \a num_threads threads as well.
   ChamferDistance
   modelChamferDistance (const SparseSurfaceModel::ConstPtr& model, const MeshSurfaceDistance& to_mesh,
                         const std::vector<Eigen::Vector3d>& on_mesh, std::size_t points,
