@@ -76,9 +76,10 @@ namespace pcl_sparse
     const SparseSurfaceModel& model_;
     double reach_ = 0.0;                        ///< the largest reach of the patches in seeds_
     std::vector<double> beyond_;                ///< per patch: squared local distances past its footprint
+    std::vector<double> reach_squared_;         ///< per patch: its reach squared (world units)
     std::unique_ptr<PointKdTree> seeds_;        ///< the seeds of the patches within reach_ (none: null)
     std::vector<int> small_;                    ///< their patches, in seeds_' order
-    std::vector<std::pair<int, double>> large_; ///< the patches of a larger reach, and their reach
+    std::vector<int> large_;                    ///< the patches of a larger reach
     std::unique_ptr<PointKdTree> cloud_;        ///< over the resampled points
     std::vector<Eigen::Vector3d> points_;
   };
