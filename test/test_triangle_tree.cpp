@@ -163,4 +163,10 @@ TEST (TriangleTree, BadMeshesAreRefused)
   EXPECT_THROW (TriangleTree {out_of_range}, Error);
   out_of_range.triangles[1][2] = -1;
   EXPECT_THROW (TriangleTree {out_of_range}, Error);
+  // Coordinates whose distances overflow a double: refused, where the queries found no nearest triangle.
+  TriangleMesh huge = makePlaneGrid (2, 1e80);
+  EXPECT_THROW (TriangleTree {huge}, Error);
+  const TriangleTree tree (makePlaneGrid (2, 1e70));
+  EXPECT_GE (tree.nearest (Eigen::Vector3d (0.0, 0.0, 1e70)).triangle, 0);
+  EXPECT_EQ (tree.nearest (Eigen::Vector3d (0.0, 0.0, std::nan (""))).triangle, -1);
 }

@@ -14,6 +14,9 @@ namespace pcl_sparse
   namespace
   {
     constexpr int kLeafSize = 4;
+    /// pointTriangleDistance multiplies four coordinates (Ericson's barycentric tests): past this they overflow
+    /// a double, the distance is NaN and no triangle is the nearest.
+    constexpr double kLargestCoordinate = 1e75;
 
     /// Squared distance from \a p to the box [lo, hi] (0 inside).
     double
@@ -43,6 +46,9 @@ namespace pcl_sparse
         corners_[f][c] = mesh.vertices[t[c]];
         if (!corners_[f][c].allFinite ())
           throw Error ("TriangleTree: triangle " + std::to_string (f) + " has a non-finite corner");
+        if (corners_[f][c].cwiseAbs ().maxCoeff () > kLargestCoordinate)
+          throw Error ("TriangleTree: triangle " + std::to_string (f) + " has a corner coordinate over 1e75 "
+                       "(distances to it overflow)");
       }
       centroids[f] = (corners_[f][0] + corners_[f][1] + corners_[f][2]) / 3.0;
     }

@@ -23,11 +23,13 @@ namespace pcl_sparse
     struct Nearest
     {
       double distance = 0.0;  ///< exact distance to it
-      int triangle = -1;      ///< its index in the mesh (the first found among equally near ones)
+      int triangle = -1;      ///< its index in the mesh (the first found among equally near ones); -1 for a
+                              ///< query whose distances are not finite (a coordinate NaN, infinite or over 1e75)
     };
 
     /// \brief Builds the tree over \a mesh's triangles (their corners copied).
-    /// \throws pcl_sparse::Error for a mesh without triangles, a corner index out of range or a non-finite corner
+    /// \throws pcl_sparse::Error for a mesh without triangles, a corner index out of range, a non-finite corner
+    ///         or a corner coordinate over 1e75 in magnitude (distances to it overflow a double)
     explicit TriangleTree (const TriangleMesh& mesh);
 
     /// Number of triangles.

@@ -59,7 +59,8 @@ namespace pcl_sparse
   /// \param[in] options  probes, hole threshold, seed
   /// \return distances (exact, to the nearest triangle), normal errors, flipped and invalid points, completeness,
   /// spacing uniformity; all zero for a mesh without vertices or triangles
-  /// \throws pcl_sparse::Error for a triangle with a non-finite corner or a corner index out of range
+  /// \throws pcl_sparse::Error for a triangle with a non-finite corner, a corner index out of range or a coordinate
+  ///         over 1e75 (TriangleTree)
   CloudQuality
   evaluateCloudQuality (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& cloud,
                         const CloudQualityOptions& options = CloudQualityOptions ());
