@@ -40,8 +40,8 @@ namespace pcl_sparse
     measureSurfaceError (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& points,
                          std::vector<double>& distance, std::vector<double>& angle)
     {
+      const TriangleTree tree (mesh);  // first: it refuses corner indices out of range, which the normals would read
       const std::vector<Eigen::Vector3d> face_normals = computeFaceNormals (mesh);
-      const TriangleTree tree (mesh);
       // Two faces' distances to their shared edge differ by rounding only (double arithmetic).
       double largest = 0.0;
       for (const Eigen::Vector3d& v : mesh.vertices)
