@@ -256,6 +256,11 @@ namespace pcl_sparse
     if (std::abs (z) > std::min (other.height_bound, options_.max_height) + outside)
       return false;
     const double x = other.t1.dot (d), y = other.t2.dot (d);
+    // And the centrality in `other` is at least |(x, y)| / its largest extent (as in heldByAnother; a margin for
+    // the rounding of the interpolated extent): most facing-away patches of a sector hold the place nowhere near.
+    const double reach = other.max_extent * (1.0 + 1e-9);
+    if (x * x + y * y > reach * reach)
+      return false;
     return evaluator_.centrality (other.patch, x, y) <= 1.0 && liesOnSurface (other, x, y, z, below, outside);
   }
 
