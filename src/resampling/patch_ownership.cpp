@@ -246,20 +246,25 @@ namespace pcl_sparse
   PatchOwnership::nearSurface (const Contender& other, const Eigen::Vector3d& q, double radius) const
   {
     const Eigen::Vector3d d = q - other.origin;
+    // Cheap bounds first, before the clearances' scale (a square root): the two sides of a thin part are
+    // usually farther apart than the heights of a code plus the widest clearance (the scale is at most 1),
+    // and the centrality in `other` is at least |(x, y)| / its largest extent (as in heldByAnother; a margin
+    // for the rounding of the interpolated extent): most facing-away patches of a sector are nowhere near.
+    const double z = other.n.dot (d);
+    const double height = std::min (other.height_bound, options_.max_height);
+    const double widest = std::max (options_.opposite_clearance, options_.opposite_outside_clearance);
+    if (std::abs (z) > height + widest)
+      return false;
+    const double x = other.t1.dot (d), y = other.t2.dot (d);
+    const double reach = other.max_extent * (1.0 + 1e-9);
+    if (x * x + y * y > reach * reach)
+      return false;
     // The clearances are in the smaller radius of the two: a large Q (one that took a merged patch's
     // triangles) would otherwise clear a band along the edge wider than a small P holds.
     const double scale = std::min (1.0, radius * other.n.norm ());
     const double below = options_.opposite_clearance * scale;
-    const double outside = std::max (options_.opposite_clearance, options_.opposite_outside_clearance) * scale;
-    // Cheap bound first: the two sides of a thin part are usually farther apart than the heights of a code.
-    const double z = other.n.dot (d);
-    if (std::abs (z) > std::min (other.height_bound, options_.max_height) + outside)
-      return false;
-    const double x = other.t1.dot (d), y = other.t2.dot (d);
-    // And the centrality in `other` is at least |(x, y)| / its largest extent (as in heldByAnother; a margin for
-    // the rounding of the interpolated extent): most facing-away patches of a sector hold the place nowhere near.
-    const double reach = other.max_extent * (1.0 + 1e-9);
-    if (x * x + y * y > reach * reach)
+    const double outside = widest * scale;
+    if (std::abs (z) > height + outside)
       return false;
     return evaluator_.centrality (other.patch, x, y) <= 1.0 && liesOnSurface (other, x, y, z, below, outside);
   }
