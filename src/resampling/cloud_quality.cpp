@@ -51,20 +51,23 @@ namespace pcl_sparse
       const std::size_t n = points.size ();
       distance.resize (n);
       angle.resize (n);
-#pragma omp parallel for schedule(dynamic, 256)
-      for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
+#pragma omp parallel
       {
-        std::vector<TriangleTree::Nearest> tied;
-        const pcl::PointNormal& point = points[i];
-        const Eigen::Vector3d p = point.getVector3fMap ().cast<double> ();
-        const TriangleTree::Nearest nearest = tree.nearest (p);
-        tree.within (p, nearest.distance + tie, tied);
-        const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
-        double cosine = normal.dot (face_normals[nearest.triangle]);
-        for (const TriangleTree::Nearest& face : tied)
-          cosine = std::max (cosine, normal.dot (face_normals[face.triangle]));
-        distance[i] = nearest.distance;
-        angle[i] = std::acos (std::clamp (cosine, -1.0, 1.0)) * 180.0 / M_PI;
+        std::vector<TriangleTree::Nearest> tied;  // per thread: a point allocates nothing
+#pragma omp for schedule(dynamic, 256)
+        for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
+        {
+          const pcl::PointNormal& point = points[i];
+          const Eigen::Vector3d p = point.getVector3fMap ().cast<double> ();
+          const TriangleTree::Nearest nearest = tree.nearest (p);
+          tree.within (p, nearest.distance + tie, tied);
+          const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
+          double cosine = normal.dot (face_normals[nearest.triangle]);
+          for (const TriangleTree::Nearest& face : tied)
+            cosine = std::max (cosine, normal.dot (face_normals[face.triangle]));
+          distance[i] = nearest.distance;
+          angle[i] = std::acos (std::clamp (cosine, -1.0, 1.0)) * 180.0 / M_PI;
+        }
       }
     }
 
