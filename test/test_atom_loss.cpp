@@ -3,6 +3,7 @@
 /// most the allowance.
 
 #include <pcl_sparse/coding/atom_budget.h>
+#include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
@@ -56,17 +57,26 @@ TEST (AtomLoss, StopsOnceWhatIsLeftOutIsWithinTheAllowance)
 TEST (AtomLoss, ShortestPrefixWithinBoundsTheHeightsChange)
 {
   // Coefficients 1, 0.5, 0.02; OMP's prefixes (0.9), (1, 0.48), then the code. Cut to k atoms the heights
-  // move by at most 1.52, 0.62, 0.04 and 0 for k = 0, 1, 2, 3 (the atoms are bounded by 1).
+  // move by at most 1.52, 0.62, 0.04 and 0 for k = 0, 1, 2, 3 (these cosines are bounded by 1).
   PatchCode code;
   code.atoms = {0, 3, 7};
   code.coefficients = {1.0, 0.5, 0.02};
   PatchCodingInfo info;
   info.prefix_coefficients = {0.9, 1.0, 0.48, 1.0, 0.5, 0.02};
-  EXPECT_EQ (shortestPrefixWithin (code, info, 2.0), 0);
-  EXPECT_EQ (shortestPrefixWithin (code, info, 1.0), 1);
-  EXPECT_EQ (shortestPrefixWithin (code, info, 0.05), 2);
-  EXPECT_EQ (shortestPrefixWithin (code, info, 0.01), 3);
-  EXPECT_EQ (shortestPrefixWithin (code, PatchCodingInfo (), 2.0), 3);  // no prefixes: the whole code
+  const SurfaceBasis::ConstPtr basis = makeCosineBasis (CosineBasisKind::DctQuadric, 12);
+  EXPECT_EQ (shortestPrefixWithin (code, *basis, info, 2.0), 0);
+  EXPECT_EQ (shortestPrefixWithin (code, *basis, info, 1.0), 1);
+  EXPECT_EQ (shortestPrefixWithin (code, *basis, info, 0.05), 2);
+  EXPECT_EQ (shortestPrefixWithin (code, *basis, info, 0.01), 3);
+  EXPECT_EQ (shortestPrefixWithin (code, *basis, PatchCodingInfo (), 2.0), 3);  // no prefixes: the whole code
+
+  // The second atom x^2 (the quadric's) on a footprint reaching 1.5: it moves heights by up to 2.25 times its
+  // coefficient's change, so cut to two atoms they move by up to 0.02 x 2.25 + 0.02 = 0.065, not 0.04.
+  code.atoms = {0, 144 + 2, 7};
+  code.footprint.extent.assign (8, 1.5f);
+  EXPECT_EQ (shortestPrefixWithin (code, *basis, info, 0.05), 3);
+  code.footprint.extent.assign (8, 1.0f);
+  EXPECT_EQ (shortestPrefixWithin (code, *basis, info, 0.05), 2);
 }
 
 TEST (AtomLoss, FewerAtomsForAtMostTheAllowedError)

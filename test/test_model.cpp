@@ -1,8 +1,10 @@
+#include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/coding/cosine_dictionary.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace pcl_sparse;
@@ -87,4 +89,40 @@ TEST (PatchFootprint, ContainsAndExtent)
   EXPECT_TRUE (f.contains (0.9, 0.0));
   EXPECT_FALSE (f.contains (0.0, 0.6));
   EXPECT_TRUE (f.contains (0.0, -0.4));
+}
+
+TEST (PatchCode, HeightBoundHoldsOverAFootprintReachingBeyondTheSquare)
+{
+  // The quadric's monomials exceed 1 where a footprint reaches past the unit square (merged patches): x^2 is
+  // 2.56 at x = 1.6, so the sum of the coefficients' magnitudes is no bound there.
+  const SurfaceBasis::ConstPtr basis = makeCosineBasis (CosineBasisKind::DctQuadric, 12);
+  const int x2 = 144 + 2, xy = 144 + 3, y2 = 144 + 4;
+  EXPECT_DOUBLE_EQ (basis->atomBound (x2, 1.6), 1.6 * 1.6);
+  EXPECT_DOUBLE_EQ (basis->atomBound (144, 1.6), 1.6);  // x
+  EXPECT_DOUBLE_EQ (basis->atomBound (5, 1.6), 1.0);    // a cosine
+  PatchCode code;
+  code.atoms = {0, x2, xy, y2, 13};
+  code.coefficients = {0.1, 0.8, -0.3, 0.5, 0.2};
+  code.footprint.extent.assign (16, 1.6f);
+  const double bound = code.heightBound (*basis);
+  double largest = 0.0, sum = 0.0;
+  for (double c : code.coefficients)
+    sum += std::abs (c);
+  for (int i = -40; i <= 40; ++i)
+    for (int j = -40; j <= 40; ++j)
+    {
+      const double x = 1.6 * i / 40.0, y = 1.6 * j / 40.0;
+      if (code.footprint.contains (x, y))
+        largest = std::max (largest, std::abs (basis->evaluateCodeValue (code.atoms, code.coefficients, x, y)));
+    }
+  EXPECT_GT (largest, sum);  // the old bound fails here
+  EXPECT_LE (largest, bound);
+  EXPECT_LE (bound, 2.5 * largest);  // and not far off
+
+  // Cosines alone, a footprint within the square: the sum of the magnitudes.
+  PatchCode cosines;
+  cosines.atoms = {0, 13, 27};
+  cosines.coefficients = {0.4, -0.25, 0.1};
+  cosines.footprint.extent.assign (8, 0.7f);
+  EXPECT_DOUBLE_EQ (cosines.heightBound (*basis), 0.75);
 }

@@ -248,7 +248,7 @@ namespace
       Eigen::AlignedBox3d reach;
       const SparseSurfaceModel decoded = decodeModel (blobs[i].data (), blobs[i].size ());
       for (const PatchCode& patch : decoded.patches)
-        reach.extend (patchReachBox (patch));
+        reach.extend (patchReachBox (patch, *decoded.basis));
       const Eigen::Vector3d lo = reach.min ().array () - options.tolerance * tiled.model.bbox_diagonal;
       const Eigen::Vector3d hi = reach.max ().array () + options.tolerance * tiled.model.bbox_diagonal;
       put (out, lo.data (), 24);

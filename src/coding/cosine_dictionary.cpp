@@ -136,6 +136,16 @@ namespace pcl_sparse
     return m == 0 ? std::numeric_limits<double>::infinity () : 2.0 / (scale_ * m);
   }
 
+  double
+  CosineAtoms::atomBound (int atom, double half_width) const
+  {
+    if (!isMonomial (atom))
+      return 1.0;
+    int p, q;
+    monomialExponents (atom - n_ * n_, p, q);
+    return std::pow (std::abs (half_width), p + q);
+  }
+
   namespace
   {
     /// Per-axis tables: cx (p, k) = cos(k pi s(x_p)), cy (p, k) = cos(k pi s(y_p)), k < count, with

@@ -176,17 +176,22 @@ namespace pcl_sparse
   }
 
   int
-  shortestPrefixWithin (const PatchCode& code, const PatchCodingInfo& info, double max_change)
+  shortestPrefixWithin (const PatchCode& code, const SurfaceBasis& basis, const PatchCodingInfo& info,
+                        double max_change)
   {
     const std::size_t n = code.atoms.size ();
     if (info.prefix_coefficients.size () < n * (n + 1) / 2)
       return static_cast<int> (n);
+    const double half_width = code.boundHalfWidth ();
+    std::vector<double> bounds (n);
+    for (std::size_t i = 0; i < n; ++i)
+      bounds[i] = basis.atomBound (code.atoms[i], half_width);
     for (std::size_t k = 0; k < n; ++k)
     {
       const double* prefix = info.prefix_coefficients.data () + prefixOffset (k);
       double change = 0.0;
       for (std::size_t i = 0; i < n; ++i)
-        change += std::abs (code.coefficients[i] - (i < k ? prefix[i] : 0.0));
+        change += std::abs (code.coefficients[i] - (i < k ? prefix[i] : 0.0)) * bounds[i];
       if (change <= max_change)
         return static_cast<int> (k);
     }

@@ -161,7 +161,7 @@ namespace pcl_sparse
       for (std::size_t p = 0; p < counts.size (); ++p)
       {
         if (!ownership.oppositeDisks (p).empty ())
-          counts[p] = std::max (counts[p], shortestPrefixWithin (model.patches[p], encoding.coding_info[p],
+          counts[p] = std::max (counts[p], shortestPrefixWithin (model.patches[p], *model.basis, encoding.coding_info[p],
                                                                  ownership_options.opposite_clearance / 3.0));
         truncatePatchCode (counts[p], model.patches[p], encoding.coding_info[p]);
       }

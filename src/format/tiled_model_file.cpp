@@ -641,7 +641,7 @@ namespace pcl_sparse
         const SparseSurfaceModel decoded =
           decodeModelSections (index.shared, e.num_patches, spans (sections.runs[i]), "tile");
         for (const PatchCode& patch : decoded.patches)
-          e.reach.extend (patchReachBox (patch));
+          e.reach.extend (patchReachBox (patch, *decoded.basis));
         e.reach.min ().array () -= reach_margin;
         e.reach.max ().array () += reach_margin;
       }
@@ -722,7 +722,7 @@ namespace pcl_sparse
     std::vector<Eigen::AlignedBox3d> reaches;
     for (const PatchCode& patch : near.model.patches)
     {
-      const Eigen::AlignedBox3d reach = patchReachBox (patch);
+      const Eigen::AlignedBox3d reach = patchReachBox (patch, *near.model.basis);
       if (meets (reach, boxes))
         reaches.push_back (reach);
     }

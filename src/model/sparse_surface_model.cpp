@@ -70,11 +70,21 @@ namespace pcl_sparse
 namespace pcl_sparse
 {
   double
-  PatchCode::heightBound () const
+  PatchCode::boundHalfWidth () const
   {
+    double half_width = 1.0;
+    for (float e : footprint.extent)
+      half_width = std::max (half_width, static_cast<double> (e));
+    return half_width;
+  }
+
+  double
+  PatchCode::heightBound (const SurfaceBasis& basis) const
+  {
+    const double half_width = boundHalfWidth ();
     double bound = 0.0;
-    for (double c : coefficients)
-      bound += std::abs (c);
+    for (std::size_t k = 0; k < atoms.size () && k < coefficients.size (); ++k)
+      bound += std::abs (coefficients[k]) * basis.atomBound (atoms[k], half_width);
     return bound;
   }
 

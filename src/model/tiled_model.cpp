@@ -31,12 +31,12 @@ namespace pcl_sparse
   }
 
   Eigen::AlignedBox3d
-  patchReachBox (const PatchCode& patch)
+  patchReachBox (const PatchCode& patch, const SurfaceBasis& basis)
   {
     double extent = 0.0;
     for (float e : patch.footprint.extent)
       extent = std::max (extent, static_cast<double> (e));
-    const double height = patch.heightBound ();
+    const double height = patch.heightBound (basis);
     // Surface points have |h| <= max_height (1 by default, PatchOwnershipOptions) where resampling keeps
     // them, and a place competed for lies within the height tolerance (0.1) of one: 0.25 covers it.
     const double z = std::min (height, 1.0) + 0.25;

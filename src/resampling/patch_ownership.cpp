@@ -159,7 +159,7 @@ namespace pcl_sparse
       // A code well inside both bounds on the grid is taken as valid everywhere: the validity test of
       // contenders (a full evaluation) is skipped for it.
       tame[p] = h_max <= 0.5 * options.max_height && slope_max <= 0.25 * max_slope_squared_;
-      height_bound[p] = model.patches[p].heightBound ();
+      height_bound[p] = model.patches[p].heightBound (*model.basis);
       // Places above max_height are never the patch's (see beats), which also bounds the reach.
       h_max = std::min (h_max * 1.5 + 0.05, options.max_height);
       reach[p] = model.patches[p].radius * std::sqrt (e * e + h_max * h_max) * 1.01;
@@ -296,7 +296,7 @@ namespace pcl_sparse
     // p's places lie within its height bound of its plane; each facing-away patch within a ball around its
     // seed holding its footprint and its clearance band. A ball reaching that slab clears at most the disk
     // where it crosses the slab's nearer face.
-    const double self_height = std::min (self.heightBound (), options_.max_height);
+    const double self_height = std::min (self.heightBound (*evaluator_.model ().basis), options_.max_height);
     const double outside = std::max (options_.opposite_clearance, options_.opposite_outside_clearance);
     for (std::size_t k = opposite_patch_begin_[p]; k < opposite_patch_begin_[p + 1]; ++k)
     {

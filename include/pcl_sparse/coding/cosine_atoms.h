@@ -94,6 +94,8 @@ namespace pcl_sparse
     /// 2 / max(i, j) (Paper) or 4 / max(i, j) (Dct) for atom (i, j); +infinity for the constant atom and
     /// the monomials.
     double wavelength (int atom) const override;
+    /// 1 for a cosine (bounded everywhere); half_width^(p + q) for the monomial x^p y^q.
+    double atomBound (int atom, double half_width) const override;
 
     /// Values of every atom at every point.
     /// \param[in]  points  #points local positions (x, y)

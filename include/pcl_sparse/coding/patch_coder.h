@@ -123,9 +123,15 @@ namespace pcl_sparse
   truncatePatchCode (int max_atoms, PatchCode& code, PatchCodingInfo& info);
 
   /// The fewest atoms \a code, coded with \a info by codePatch, can be cut to (truncatePatchCode) while its
-  /// heights move by at most \a max_change anywhere, in local units: the atoms being bounded by 1, the
-  /// change is at most the sum of the coefficients' changes (the dropped atoms' whole coefficients).
+  /// heights move by at most \a max_change over its footprint, in local units: at most the sum of the
+  /// coefficients' changes (the dropped atoms' whole coefficients), each times its atom's bound there (as
+  /// PatchCode::heightBound: 1 for a cosine, more for the quadric's monomials past the unit square).
+  /// \param[in] code        the code
+  /// \param[in] basis       the basis it is over
+  /// \param[in] info        its coding info (OMP's prefixes)
+  /// \param[in] max_change  the largest change allowed (local units)
   /// \return a count in [0, code.atoms.size ()]; the whole code where \a info holds no prefixes
   int
-  shortestPrefixWithin (const PatchCode& code, const PatchCodingInfo& info, double max_change);
+  shortestPrefixWithin (const PatchCode& code, const SurfaceBasis& basis, const PatchCodingInfo& info,
+                        double max_change);
 } // namespace pcl_sparse

@@ -57,9 +57,15 @@ namespace pcl_sparse
     Eigen::Vector3d toWorld (const Eigen::Vector3d& local) const { return origin + radius * (frame * local); }
     /// Local point R^T (p - s) / r_P of the world point \a p, as Patch::toLocal (r_P includes the support scale).
     Eigen::Vector3d toLocal (const Eigen::Vector3d& p) const { return frame.transpose () * (p - origin) / radius; }
-    /// Bound on the code's |h| anywhere (local units): the sum of its coefficients' magnitudes, the atoms
-    /// being bounded by 1.
-    double heightBound () const;
+    /// Bound on the code's |h| (local units) over the patch square [-1, 1]^2 and its footprint: the sum of
+    /// its coefficients' magnitudes, each times its atom's bound (SurfaceBasis::atomBound) over the square
+    /// |x|, |y| <= max (1, largest extent). Not just the sum: the quadric's x^2 reaches e^2 > 1 where a
+    /// footprint reaches e > 1 (merged patches).
+    /// \param[in] basis the basis the code is over (SparseSurfaceModel::basis)
+    double heightBound (const SurfaceBasis& basis) const;
+    /// max (1, largest footprint extent): the half-width of the square around the seed that holds the patch
+    /// square and its footprint, over which heightBound bounds the atoms.
+    double boundHalfWidth () const;
   };
 
   /// Figures of a model against its input mesh (docs/METHOD.md step 11).

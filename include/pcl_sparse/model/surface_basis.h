@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -33,6 +34,16 @@ namespace pcl_sparse
     /// Shortest wavelength of atom \a atom in local units (2 / max(i, j) for the paper's cosines,
     /// 4 / max(i, j) for the half-period ones), +infinity for a constant atom. The Nyquist cap of OMP compares it with the patch's sample spacing.
     virtual double wavelength (int atom) const = 0;
+
+    /// Largest |value| of atom \a atom over the square |x|, |y| <= \a half_width (local units): what bounds
+    /// a code's height (PatchCode::heightBound). A basis that knows none gives +infinity (the default).
+    virtual double
+    atomBound (int atom, double half_width) const
+    {
+      (void) atom;
+      (void) half_width;
+      return std::numeric_limits<double>::infinity ();
+    }
 
     /// Values of every atom at every point: \a values is #points by size().
     virtual void evaluate (const std::vector<Eigen::Vector2d>& points, Eigen::MatrixXd& values) const = 0;

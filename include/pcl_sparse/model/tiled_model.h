@@ -76,9 +76,10 @@ namespace pcl_sparse
   /// \brief A box holding every point patch \a patch can give in resampling and every place it can compete
   /// for there (with the default PatchOwnershipOptions, or any with max_height <= 1 and height_tolerance <=
   /// 0.25): s + r R (x, y, z) with (x, y) in the disk of its largest footprint extent and |z| at most
-  /// min (sum of its coefficients' magnitudes, 1) + 0.25 (atoms are bounded by 1).
+  /// min (PatchCode::heightBound, 1) + 0.25.
   /// \param[in] patch the patch (frame orthonormal)
+  /// \param[in] basis the basis its code is over (the model's)
   /// \return the box
   Eigen::AlignedBox3d
-  patchReachBox (const PatchCode& patch);
+  patchReachBox (const PatchCode& patch, const SurfaceBasis& basis);
 } // namespace pcl_sparse

@@ -173,7 +173,7 @@ namespace pcl_sparse
     {
       Eigen::Vector3d origin, t1, t2, n;  ///< s; T1 / r, T2 / r, N / r
       double max_extent;
-      double height_bound;  ///< bound on |h| anywhere: the sum of its coefficients' magnitudes (local units)
+      double height_bound;  ///< bound on |h| over its footprint (PatchCode::heightBound, local units)
       std::size_t patch;
       bool tame;  ///< its code stays well inside the validity bounds: no need to test them
     };
