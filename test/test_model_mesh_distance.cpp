@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <random>
 #include <vector>
 
 using namespace pcl_sparse;
@@ -116,5 +117,51 @@ TEST (ModelMeshDistance, DistancesRunOnTheThreadsAskedFor)
     EXPECT_EQ (widest, threads);
     EXPECT_NEAR (mean, 0.001 * 19999 / 2.0, 1e-9);
     EXPECT_DOUBLE_EQ (largest, 19.999);
+  }
+}
+
+// Every patch is measured within its own reach, however its reach compares with the others' (patches found
+// by a grid of the reach balls): the same distances as measuring every patch, on a model whose reaches spread
+// over 5x (a tenth of the patches with footprints 5 times as wide).
+TEST (ModelMeshDistance, ModelDistanceMeasuresEveryPatchWithinItsReach)
+{
+  const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (3));
+  auto model = std::make_shared<SparseSurfaceModel> (*encodeMesh (sphere));
+  for (std::size_t p = 0; p < model->patches.size (); p += 10)
+    for (float& e : model->patches[p].footprint.extent)
+      e *= 5.0f;
+  std::vector<Eigen::Vector3d> resampled;
+  for (const pcl::PointNormal& p : resampleModel (model, 5000))
+    resampled.emplace_back (p.x, p.y, p.z);
+  const ModelSurfaceDistance to_model (*model, resampled);
+  // Every patch, as the class documents it: within 1.5 r max (1, largest extent) of its seed, the projection in
+  // its footprint, the first-order height difference; capped by the nearest resampled point.
+  auto everyPatch = [&] (const Eigen::Vector3d& q) {
+    double best = std::numeric_limits<double>::infinity ();
+    for (std::size_t i = 0; i < model->patches.size (); ++i)
+    {
+      const PatchCode& patch = model->patches[i];
+      double e = 1.0;
+      for (float x : patch.footprint.extent)
+        e = std::max (e, static_cast<double> (x));
+      if ((q - patch.origin).norm () > 1.5 * patch.radius * e)
+        continue;
+      const Eigen::Vector3d local = patch.toLocal (q);
+      if (!patch.footprint.contains (local.x (), local.y ()))
+        continue;
+      const HeightSample h = model->evaluate (i, local.x (), local.y ());
+      best = std::min (best, std::abs (local.z () - h.value) * patch.radius / std::sqrt (1.0 + h.gradient.squaredNorm ()));
+    }
+    for (const Eigen::Vector3d& r : resampled)
+      best = std::min (best, (q - r).norm ());
+    return best;
+  };
+  std::mt19937 random (11);
+  std::uniform_real_distribution<double> unit (-1.0, 1.0), radius (0.7, 1.4);
+  for (int k = 0; k < 400; ++k)
+  {
+    const Eigen::Vector3d q = radius (random) * Eigen::Vector3d (unit (random), unit (random), unit (random)).normalized ();
+    const double expected = everyPatch (q);
+    EXPECT_NEAR (to_model (q), expected, 1e-9 + 1e-6 * expected);
   }
 }

@@ -11,6 +11,7 @@
 #include <pcl_sparse/model/sparse_surface_model.h>
 #include <pcl_sparse/resampling/sparse_surface_resampling.h>
 
+#include <pcl_sparse/geometry/ball_grid.h>
 #include <pcl_sparse/geometry/point_kd_tree.h>
 #include <pcl_sparse/geometry/triangle_tree.h>
 
@@ -58,7 +59,8 @@ namespace pcl_sparse
   };
 
   /// Distance from a point to a model's surface: over the patches whose footprint holds its projection (looked
-  /// for among those whose seed lies within 1.5 x radius x largest extent of it), the height difference to the
+  /// for among those whose seed lies within 1.5 x radius x largest extent of it, their reach, found in a
+  /// BallGrid), the height difference to the
   /// code, to first order (|z - h| r / sqrt (1 + |grad h|^2)), capped by the distance to the nearest of a
   /// cloud resampled from the model (a patch across a thin part can hold the projection and report the
   /// part's thickness; a resampled point lies on the surface).
@@ -74,12 +76,9 @@ namespace pcl_sparse
 
   private:
     const SparseSurfaceModel& model_;
-    double reach_ = 0.0;                        ///< the largest reach of the patches in seeds_
     std::vector<double> beyond_;                ///< per patch: squared local distances past its footprint
     std::vector<double> reach_squared_;         ///< per patch: its reach squared (world units)
-    std::unique_ptr<PointKdTree> seeds_;        ///< the seeds of the patches within reach_ (none: null)
-    std::vector<int> small_;                    ///< their patches, in seeds_' order
-    std::vector<int> large_;                    ///< the patches of a larger reach
+    std::unique_ptr<BallGrid> reaches_;         ///< the patches' reach balls around their seeds
     std::unique_ptr<PointKdTree> cloud_;        ///< over the resampled points
     std::vector<Eigen::Vector3d> points_;
   };
