@@ -88,8 +88,11 @@ namespace pcl_sparse
             filed.emplace_back (cellKey (x, y, z), static_cast<int> (i));
     }
     std::sort (filed.begin (), filed.end ());  // by cell, then ball index
+    std::size_t occupied = 0;
+    for (std::size_t k = 0; k < filed.size (); ++k)
+      occupied += k == 0 || filed[k].first != filed[k - 1].first;
     balls_.reserve (filed.size ());
-    ranges_.reserve (filed.size ());
+    ranges_.reserve (occupied);
     for (std::size_t k = 0; k < filed.size ();)
     {
       const std::uint64_t key = filed[k].first;
