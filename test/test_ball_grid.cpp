@@ -79,4 +79,7 @@ TEST (BallGrid, BadInputIsRefused)
   EXPECT_THROW (BallGrid ({Eigen::Vector3d (std::numeric_limits<double>::infinity (), 0, 0)}, {1.0}, 1.0), Error);
   EXPECT_THROW (BallGrid ({Eigen::Vector3d::Zero ()}, {1.0}, 0.0), Error);
   EXPECT_THROW (BallGrid ({Eigen::Vector3d::Zero ()}, {1.0}, std::numeric_limits<double>::quiet_NaN ()), Error);
+  // Finite centres and radii whose boxes are not (it looped for ever, doubling an infinite cell).
+  const double big = std::numeric_limits<double>::max ();
+  EXPECT_THROW (BallGrid ({Eigen::Vector3d (big, 0, 0), Eigen::Vector3d (-big, 0, 0)}, {big, big}, 1.0), Error);
 }

@@ -51,6 +51,8 @@ namespace pcl_sparse
     }
     if (boxes.empty ())
       return;
+    if (!all.sizes ().allFinite ())  // centres and radii finite, their sum not: no grid can count its cells
+      throw Error ("BallGrid: the balls span more than a double holds");
     low_ = all.min ();
     cell_ = cell;
     auto span = [this] (const Eigen::AlignedBox3d& b, int a) {  // cells the box meets along axis a

@@ -22,8 +22,8 @@ namespace pcl_sparse
     /// \param[in] centres  the balls' centres (finite)
     /// \param[in] radii    their radii (finite, >= 0), as many
     /// \param[in] cell     the cells' side asked for (> 0): about the typical radius
-    /// \throws pcl_sparse::Error for counts that differ, a non-finite centre or radius, a negative radius or a
-    ///         cell that is not positive and finite
+    /// \throws pcl_sparse::Error for counts that differ, a non-finite centre or radius, a negative radius, balls
+    ///         spanning more than a double holds or a cell that is not positive and finite
     BallGrid (const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& radii, double cell);
 
     /// \brief The balls whose bounding box meets the cell of \a p, in increasing index: every ball holding
