@@ -157,15 +157,6 @@ namespace pcl_sparse
       return s;
     }
 
-    double
-    maxExtent (const PatchFootprint& footprint)
-    {
-      double m = 0.0;
-      for (float e : footprint.extent)
-        m = std::max (m, static_cast<double> (e));
-      return m;
-    }
-
     /// Bound on |(x, y, h(x, y))| over a decoded patch's footprint, from decoded values only, so that
     /// the encoder and the decoder derive the same frame step (docs/FORMAT.md).
     double
@@ -287,7 +278,7 @@ namespace pcl_sparse
       q.log_radius_min = model.patches.empty () ? 0.0 : std::numeric_limits<double>::infinity ();
       for (const PatchCode& patch : model.patches)
       {
-        const double e = maxExtent (patch.footprint);
+        const double e = patch.footprint.largestExtent ();
         const double h = sumAbs (patch.coefficients);
         largest_arm = std::max (largest_arm, patch.radius * std::sqrt (e * e + h * h));
         largest_radius = std::max (largest_radius, patch.radius);
@@ -431,7 +422,7 @@ namespace pcl_sparse
       // Extents: a common scale, (2^bits - 1) levels.
       q.extent_max = 0.0;
       for (const PatchCode& patch : model.patches)
-        q.extent_max = std::max (q.extent_max, maxExtent (patch.footprint));
+        q.extent_max = std::max (q.extent_max, patch.footprint.largestExtent ());
       if (!(q.extent_max > 0.0))
         q.extent_max = 1.0;
       chooseRadiusScale (model, tolerance, q);

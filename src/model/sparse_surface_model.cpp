@@ -31,6 +31,15 @@ namespace pcl_sparse
     return r <= extentAt (std::atan2 (y, x));
   }
 
+  double
+  PatchFootprint::largestExtent () const
+  {
+    double largest = 0.0;
+    for (float e : extent)
+      largest = std::max (largest, static_cast<double> (e));
+    return largest;
+  }
+
   std::size_t
   SparseSurfaceModel::numNonZeros () const
   {
@@ -72,10 +81,7 @@ namespace pcl_sparse
   double
   PatchCode::boundHalfWidth () const
   {
-    double half_width = 1.0;
-    for (float e : footprint.extent)
-      half_width = std::max (half_width, static_cast<double> (e));
-    return half_width;
+    return std::max (1.0, footprint.largestExtent ());
   }
 
   double

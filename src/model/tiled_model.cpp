@@ -33,9 +33,7 @@ namespace pcl_sparse
   Eigen::AlignedBox3d
   patchReachBox (const PatchCode& patch, const SurfaceBasis& basis)
   {
-    double extent = 0.0;
-    for (float e : patch.footprint.extent)
-      extent = std::max (extent, static_cast<double> (e));
+    const double extent = patch.footprint.largestExtent ();
     const double height = patch.heightBound (basis);
     // Surface points have |h| <= max_height (1 by default, PatchOwnershipOptions) where resampling keeps
     // them, and a place competed for lies within the height tolerance (0.1) of one: 0.25 covers it.

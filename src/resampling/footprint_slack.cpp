@@ -94,9 +94,7 @@ namespace pcl_sparse
     double
     reachBound (const PatchCode& code, double max_height)
     {
-      double extent = code.footprint.extent.empty () ? 1.0 : 0.0;
-      for (float e : code.footprint.extent)
-        extent = std::max (extent, static_cast<double> (e));
+      const double extent = code.footprint.extent.empty () ? 1.0 : code.footprint.largestExtent ();
       return code.radius * std::sqrt (extent * extent + max_height * max_height) * 1.02;
     }
   } // namespace

@@ -87,10 +87,8 @@ namespace pcl_sparse
     for (std::size_t i = 0; i < model.patches.size (); ++i)
     {
       const PatchCode& patch = model.patches[i];
-      double e = 0.0;
-      for (float x : patch.footprint.extent)
-        e = std::max (e, static_cast<double> (x));
-      reach[i] = 1.5 * patch.radius * std::max (e, 1.0);
+      const double e = patch.footprint.largestExtent ();
+      reach[i] = 1.5 * patch.radius * patch.boundHalfWidth ();
       // The footprint's extents interpolate between its largest and smallest: a point whose projection lies
       // farther from the seed than the largest (and a margin for rounding) lies outside it.
       beyond_[i] = std::pow (1.000001 * e, 2);

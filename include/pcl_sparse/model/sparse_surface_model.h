@@ -26,6 +26,8 @@ namespace pcl_sparse
     double extentAt (double angle) const;
     /// Whether (x, y) lies inside the footprint.
     bool contains (double x, double y) const;
+    /// The largest extent (0 without extents): every point of the footprint lies within it of the seed.
+    double largestExtent () const;
   };
 
   /// A sparse code over a model's basis: sum_k coefficients[k] * atom_{atoms[k]}.
