@@ -72,6 +72,10 @@ TEST (SparseSurfaceEncoder, SphereCylinderParaboloid)
   cosines.basis = CosineBasisKind::Dct;
   cosines.patches.drop_redundant_patches = false;
   cosines.patches.merge_own_elements = 0;
+  // The radii as the patches have them: on this regular grid every patch is alike, and the radius grid's
+  // up to 2.2 % larger support takes the cosines' paraboloid from 1.5e-4 to 2.5e-4 at once (support 1.015: 1.57e-4,
+  // 1.02: 2.53e-4; the sphere's goes down, 1.84e-4 -> 1.70e-4, and the quadric's moves by 3 %).
+  cosines.coding.radius_on_grid = false;
   SparseSurfaceEncoderOptions quadric;
   quadric.patches.drop_redundant_patches = false;
   quadric.patches.merge_own_elements = 0;
@@ -133,6 +137,7 @@ TEST (SparseSurfaceEncoder, DctBasisOnEvenCaps)
   paper.coding.clip_footprints_at_border = dct.coding.clip_footprints_at_border;
   dct.patches.drop_redundant_patches = paper.patches.drop_redundant_patches;  // the paper's patches, all kept
   dct.patches.merge_own_elements = paper.patches.merge_own_elements;
+  dct.coding.radius_on_grid = paper.coding.radius_on_grid;  // false: the patches' own radii (as above)
   const SparseSurfaceModel model = encode (sphere, dct);
   EXPECT_NE (dynamic_cast<const DctCosineDictionary*> (model.basis.get ()), nullptr);
   const ModelStatistics sphere_paper = encodeStatistics (sphere, paper), sphere_dct = encodeStatistics (sphere, dct);
@@ -459,9 +464,11 @@ TEST (SparseSurfaceEncoder, FootprintsCoverTheirTrianglesOnFandisk)
       for (const Eigen::Vector3d& b : {Eigen::Vector3d (1, 0, 0), Eigen::Vector3d (0.5, 0.5, 0),
                                        Eigen::Vector3d (0.2, 0.3, 0.5), Eigen::Vector3d (0.05, 0.9, 0.05)})
       {
-        Eigen::Vector3d q = Eigen::Vector3d::Zero ();
+        Eigen::Vector3d world = Eigen::Vector3d::Zero ();
         for (int c = 0; c < 3; ++c)
-          q += b[c] * patches[p].local[index.at (mesh.triangles[f][c])];
+          world += b[c] * mesh.vertices[mesh.triangles[f][c]];
+        // In the code's (x', y'): its radius is the patch's on the radius grid (coding/radius_grid.h).
+        const Eigen::Vector3d q = model.patches[p].toLocal (world);
         ++checked;
         outside += !model.patches[p].footprint.contains (q.x (), q.y ());
       }

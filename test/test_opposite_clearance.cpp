@@ -93,8 +93,12 @@ TEST (OppositeClearance, KnifeEdgeHasNoFlippedNormalAndNoHole)
     // The cosines on the default (merged) patches keep one point at 30 degrees: a tie on the edge itself, 0.08
     // spacings from the mesh and its own side's face within a quarter spacing, just outside the other side's
     // footprint (centrality 1.002), so no clearance reaches it (bench_flips -basis dct -v); as on sword.
+    // On every patch with atoms left out, since the radii are on their grid (coding/radius_grid.h), one at 10
+    // degrees: on the knife's tip corner (0.997, -1.002), 0.05 spacings off the mesh, where the two sides' faces
+    // are 170 degrees apart. The quadric, the default basis, flips none.
     const bool merged_cosines = basis == CosineBasisKind::Dct && !keep_redundant;
-    EXPECT_LE (with.flipped, merged_cosines ? 1u : 0u) << wedge;
+    const bool lossy_cosines = basis == CosineBasisKind::Dct && allowance > 0.0;
+    EXPECT_LE (with.flipped, merged_cosines || lossy_cosines ? 1u : 0u) << wedge;
     EXPECT_LE (with.p99_spacings, 1.0) << wedge;
     EXPECT_NEAR (static_cast<double> (with.points), static_cast<double> (without.points), 0.001 * without.points) << wedge;
   }

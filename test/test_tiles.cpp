@@ -914,11 +914,13 @@ TEST (TiledEncoding, SharedMeshNearTheUntiledModel)
   // the 2 % is missed; at issue 16's scale (bench/results/tiled_vs_untiled.md) the tiled file was smaller.
   // Merged (2026-12-02): untiled 62953 bytes, the tiled model's patches 64245 (+2.1 %, the patches the tiles
   // could not merge across their borders), the tiled file 66408 (+5.5 %). Measured again in the review of
-  // the tests: 62871, 64409 (+2.4 %) and 66592 bytes (+5.9 %); 1512 patches untiled, 1560 tiled.
+  // the tests: 62871, 64409 (+2.4 %) and 66592 bytes (+5.9 %); 1512 patches untiled, 1560 tiled. With the radii on
+  // their grid (coding/radius_grid.h, 2026-12-06) each patch takes about 15 bits less, the framing the same:
+  // 60051, 61767 (+2.9 %) and 63812 bytes (+6.3 %).
   const std::size_t patch_bytes = encodeModel (tiled.model, options).size ();
   std::printf ("the tiled model's patches as one run: %zu bytes\n", patch_bytes);
-  EXPECT_LT (static_cast<double> (patch_bytes), 1.03 * whole_bytes);
-  EXPECT_LT (static_cast<double> (tiled_bytes), 1.06 * whole_bytes);
+  EXPECT_LT (static_cast<double> (patch_bytes), 1.035 * whole_bytes);
+  EXPECT_LT (static_cast<double> (tiled_bytes), 1.07 * whole_bytes);
   EXPECT_LT (tiled_bytes, 75000u) << "the tiled file of 2026-12-01 was 87684 bytes";
 }
 

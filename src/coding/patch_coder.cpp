@@ -4,6 +4,7 @@
 #include <pcl_sparse/coding/patch_coder.h>
 #include <pcl_sparse/coding/patch_footprint.h>
 #include <pcl_sparse/coding/patch_samples.h>
+#include <pcl_sparse/coding/radius_grid.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/geometry/quadric_fit.h>
 
@@ -58,15 +59,19 @@ namespace pcl_sparse
              const std::vector<double>& mean_ring_edge_lengths, const SurfaceBasis& basis, const SparseCodingOptions& options, PatchCodingInfo* info,
              const AttributeCodingInput* attributes, const MeshTopology* topology)
   {
-    // A support scale s > 1 is the same patch with radius s r_P (local coordinates divided by s).
+    // A support scale s > 1 is the same patch with radius s r_P (local coordinates divided by s); the radius
+    // on its grid is one more such scale.
+    const double supported = input_patch.radius * (options.support_scale > 0.0 ? options.support_scale : 1.0);
+    const double radius = options.radius_on_grid ? radiusOnGrid (supported) : supported;
+    const double scale = radius / input_patch.radius;
     Patch scaled;
-    const bool rescale = options.support_scale != 1.0 && options.support_scale > 0.0;
+    const bool rescale = radius != input_patch.radius && scale > 0.0 && std::isfinite (scale);
     if (rescale)
     {
       scaled = input_patch;
-      scaled.radius *= options.support_scale;
+      scaled.radius = radius;
       for (Eigen::Vector3d& p : scaled.local)
-        p /= options.support_scale;
+        p /= scale;
     }
     const Patch& patch = rescale ? scaled : input_patch;
 

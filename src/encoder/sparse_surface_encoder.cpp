@@ -415,6 +415,7 @@ namespace pcl_sparse
       options.patches = paperPatchOptions (options.patches);
       options.coding.triangle_samples = 0.0;
       options.coding.clip_footprints_at_border = false;
+      options.coding.radius_on_grid = false;
       options.max_compression_ratio = 0.0;
       options.atom_loss_allowance = 0.0;
     }

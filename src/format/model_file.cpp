@@ -1,6 +1,7 @@
 #include <pcl_sparse/format/model_file.h>
 
 #include <pcl_sparse/coding/cosine_dictionary.h>
+#include <pcl_sparse/coding/radius_grid.h>
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/memory_limit.h>
@@ -286,6 +287,23 @@ namespace pcl_sparse
       }
       const double relative = kRadiusShare * tolerance / std::max (largest_arm, 1e-300);
       q.log_radius_step = 2.0 * std::log1p (std::min (relative, 1.0));
+      // Radii on the encoder's grid (coding/radius_grid.h) are held exactly by its step, or a multiple of it
+      // where the tolerance allows one: a few bits a patch instead of the tolerance's fine step.
+      std::int64_t smallest_step = std::numeric_limits<std::int64_t>::max (), step = 0;
+      bool on_grid = !model.patches.empty ();
+      for (const PatchCode& patch : model.patches)
+      {
+        on_grid = on_grid && radiusGridStep (patch.radius, step);
+        if (!on_grid)
+          break;
+        smallest_step = std::min (smallest_step, step);
+      }
+      if (on_grid)
+      {
+        const double grid = std::log (2.0) / kRadiusStepsPerOctave;
+        q.log_radius_min = grid * static_cast<double> (smallest_step);
+        q.log_radius_step = grid * std::max (1.0, std::floor (q.log_radius_step / grid));
+      }
       // A vertex far from the rest (one coordinate at 1e20 in a unit mesh) makes one patch's reach dwarf the
       // tolerance, which comes from the model's error: the scale would need more steps than 32 bits count.
       if (!model.patches.empty () && !((std::log (largest_radius) - q.log_radius_min) / q.log_radius_step < kMaxStepCount))

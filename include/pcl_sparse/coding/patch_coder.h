@@ -48,6 +48,10 @@ namespace pcl_sparse
     /// radius is support_scale r_P. Paper and authors' code: 1 (the patch touches the square's sides, where
     /// every cosine atom has zero slope, which costs accuracy on curved patches); > 1 is our option.
     double support_scale = 1.0;
+    /// Round the stored radius support_scale r_P up to the grid 2^(k / 32) (radiusOnGrid; local coordinates
+    /// divided by at most 2^(1/32) more), so that a quantised file codes it exactly in a few bits
+    /// (coding/radius_grid.h). Ours; false in EncoderPreset::Paper (the paper's r_P).
+    bool radius_on_grid = true;
     /// Noise level of the input, in world units (standard deviation; 0 = none, the meshes' case). OMP also
     /// stops once the residual's RMS over the patch's samples is at most this (in the patch's local units),
     /// so that the code smooths sensor noise instead of coding it (ours, for scans).
