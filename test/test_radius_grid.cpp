@@ -133,3 +133,30 @@ TEST (RadiusGrid, QuantisedFileHoldsGridRadiiExactlyInOneBytePlane)
     }
   }
 }
+
+// Radii a hair off the grid (within radiusGridStep's round-off allowance) are taken as on it only where that
+// hair is within the tolerance's own half step: at a fine enough tolerance the file keeps them as they are.
+TEST (RadiusGrid, RadiiOffTheGridByMoreThanTheToleranceKeepTheirOwnStep)
+{
+  const auto sphere = std::make_shared<TriangleMesh> (makeIcosphere (2));
+  SparseSurfaceModel model = *encodeMesh (sphere);
+  for (PatchCode& patch : model.patches)
+    patch.radius *= 1.0 + 2e-8;  // 32 log2 moves by 9e-7: still "on the grid" within round-off
+  for (const double tolerance : {1e-4, 1e-9})
+  {
+    ModelWriteOptions write;
+    write.tolerance = tolerance;
+    const std::vector<std::uint8_t> file = encodeModel (model, write);
+    const SparseSurfaceModel decoded = decodeModel (file.data (), file.size ());
+    double largest_change = 0.0;
+    for (std::size_t p = 0; p < model.numPatches (); ++p)
+      largest_change = std::max (largest_change, std::abs (decoded.patches[p].radius / model.patches[p].radius - 1.0));
+    if (tolerance > 1e-6)
+    {
+      EXPECT_NEAR (largest_change, 2e-8, 1e-9) << "snapped to the grid, well within the tolerance's step";
+      EXPECT_EQ (rawSectionBytes (file, "RADI"), model.numPatches ());
+    }
+    else
+      EXPECT_LT (largest_change, 5e-9) << "the tolerance's own step (about 5e-9 here)";
+  }
+}

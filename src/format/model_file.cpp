@@ -289,18 +289,20 @@ namespace pcl_sparse
       q.log_radius_step = 2.0 * std::log1p (std::min (relative, 1.0));
       // Radii on the encoder's grid (coding/radius_grid.h) are held exactly by its step, or a multiple of it
       // where the tolerance allows one: a few bits a patch instead of the tolerance's fine step.
+      // A radius counts as on it only within half the tolerance's step (the file's bound holds either way).
+      const double grid = std::log (2.0) / kRadiusStepsPerOctave;
       std::int64_t smallest_step = std::numeric_limits<std::int64_t>::max (), step = 0;
       bool on_grid = !model.patches.empty ();
       for (const PatchCode& patch : model.patches)
       {
-        on_grid = on_grid && radiusGridStep (patch.radius, step);
+        on_grid = on_grid && radiusGridStep (patch.radius, step) &&
+                  std::abs (std::log (patch.radius) - grid * static_cast<double> (step)) <= 0.5 * q.log_radius_step;
         if (!on_grid)
           break;
         smallest_step = std::min (smallest_step, step);
       }
       if (on_grid)
       {
-        const double grid = std::log (2.0) / kRadiusStepsPerOctave;
         q.log_radius_min = grid * static_cast<double> (smallest_step);
         q.log_radius_step = grid * std::max (1.0, std::floor (q.log_radius_step / grid));
       }
