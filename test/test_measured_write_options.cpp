@@ -146,9 +146,9 @@ TEST (MeasuredWriteOptions, SharedMeshesStayWithinTenPercent)
     EXPECT_LE (chosen, 1.1 * lossless) << name;
     if (std::string (name) == "spot.obj")
     {
-      // Twice the tolerance reads over 8 % with 30k points and +7.6 % with the confirmation's 200k (the radii on
-      // their grid, 2026-12-06; +8.3 % before): confirmed, 23025 -> 19189 bytes. A confirmation allowing 7 %
-      // refuses it and keeps a larger file.
+      // Twice the tolerance reads 8-11 % over with 30k points (the band that asks for confirmation) and +7.6 % with
+      // the confirmation's 200k (the radii on their grid, 2026-12-06; +8.3 % before): confirmed, 23025 -> 19189
+      // bytes. A confirmation allowing 7 % refuses it and keeps a larger file.
       EXPECT_EQ (choice.confirmed, 1u);
       EXPECT_TRUE (choice.chosen_by_confirmation);
       EXPECT_LT (choice.bytes, 0.85 * choice.start_bytes);

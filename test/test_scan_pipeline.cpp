@@ -191,14 +191,14 @@ TEST (ScanPipeline, StanfordScanResamplesOntoTheBunny)
             << quality_dct.mean_normal_angle << ") degrees" << std::endl;
   // The scan lies on the mesh up to its noise and the registration of the ten scans the mesh was zippered
   // from (measured 9.0e-5, 0.04 % of the diagonal): that offset is not noise and no smoothing removes it.
-  // Measured: resampled 1.21e-4 (paper basis), 1.02e-4 (dct, the default); flipped 2 and 0 of 40256. Since the
-  // radii are on their grid (2026-12-06): 1.031e-4 both (default and dct), 1.150 x the scan's. Patches
+  // Measured: resampled 1.21e-4 (paper basis), 1.02e-4 (dct, then the default); flipped 2 and 0 of 40256. Measured
+  // again 2026-12-06: 1.031e-4 with the default basis and with dct, 1.150 x the scan's (1.149 x just before the
+  // radii went on their grid, coding/radius_grid.h). Patches
   // grown with the scan's PCA normals are large (median 65 points): the paper's even-only atoms cannot code
   // the tilt left between a patch's frame and its points, the dct's can (mean normal angle 17 vs 7.6 degrees).
   EXPECT_EQ (quality.invalid, 0u);
   EXPECT_EQ (quality_dct.invalid, 0u);
   EXPECT_LT (scan_quality.mean_distance, 1.2e-4);
-  EXPECT_LT (quality.mean_distance, 1.45 * scan_quality.mean_distance);
   EXPECT_LT (quality.mean_distance, 1.17 * scan_quality.mean_distance);
   EXPECT_LT (quality_dct.mean_distance, 1.17 * scan_quality.mean_distance);
   EXPECT_LT (quality.flipped, out.size () / 1000);
