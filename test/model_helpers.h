@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace pcl_sparse_test
@@ -48,6 +49,16 @@ namespace pcl_sparse_test
                     pcl_sparse::ModelStatistics* stats = nullptr)
   {
     return pcl_sparse::encodeModel (model, boundWriteOptions (model, vertices, stats));
+  }
+
+  /// The section \a tag of a file's \a info (a section of 0 bytes when the file has none).
+  inline pcl_sparse::ModelFileSection
+  fileSection (const pcl_sparse::ModelFileInfo& info, const std::string& tag)
+  {
+    for (const pcl_sparse::ModelFileSection& section : info.sections)
+      if (section.tag == tag)
+        return section;
+    return pcl_sparse::ModelFileSection ();
   }
 
   /// \a count points resampled from \a model with \a options (default: the default resampling options).

@@ -1,6 +1,8 @@
 /// The footprint slack a quantised file may use (resampling/footprint_slack.h): borders through same-side
 /// neighbours may move, open borders may not, and the writer's files stay as near the surface.
 
+#include "model_helpers.h"
+
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/encoder/sparse_surface_encoder.h>
 #include <pcl_sparse/format/model_file.h>
@@ -218,12 +220,7 @@ TEST (FootprintSlack, SmallerFilesAsNearTheSurface)
   const std::vector<std::uint8_t> without = encodeModel (model, options);
   const SparseSurfaceModel a = decodeModel (with.data (), with.size ()), b = decodeModel (without.data (), without.size ());
   const ModelFileInfo info_a = inspectModel (with.data (), with.size ()), info_b = inspectModel (without.data (), without.size ());
-  auto footBytes = [] (const ModelFileInfo& info) {
-    for (const auto& section : info.sections)
-      if (section.tag == "FOOT")
-        return section.stored_bytes;
-    return std::uint64_t (0);
-  };
+  auto footBytes = [] (const ModelFileInfo& info) { return pcl_sparse_test::fileSection (info, "FOOT").stored_bytes; };
   std::cout << "  " << model.patches.size () << " patches: " << with.size () << " bytes (FOOT " << footBytes (info_a)
             << ") with the slack, " << without.size () << " (FOOT " << footBytes (info_b) << ") without" << std::endl;
   EXPECT_LT (footBytes (info_a), 0.8 * footBytes (info_b));

@@ -16,15 +16,11 @@ using namespace pcl_sparse_test;
 
 namespace
 {
-  /// The raw bytes of the section \a tag of a model file.
+  /// The raw bytes of the section \a tag of a model file (0 without one).
   std::uint64_t
   rawSectionBytes (const std::vector<std::uint8_t>& file, const std::string& tag)
   {
-    for (const ModelFileSection& section : inspectModel (file.data (), file.size ()).sections)
-      if (section.tag == tag)
-        return section.raw_bytes;
-    ADD_FAILURE () << "no section " << tag;
-    return 0;
+    return fileSection (inspectModel (file.data (), file.size ()), tag).raw_bytes;
   }
 
   /// The largest |(x', y')| of a patch's vertices: 1 when its radius is the farthest vertex's distance.
