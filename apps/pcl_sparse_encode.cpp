@@ -91,6 +91,9 @@ namespace
       {"", "outer corners, in [0, 180] (default 17; 0: clipped at every border)"},
       {"--keep-redundant-patches", "keep the patches whose every vertex and triangle others also hold (default:"},
       {"", "dropped, up to 27 % of the patches of a mesh; -preset paper keeps them)"},
+      {"--keep-flipped-places", "meshes: keep the footprints where a code's normal points over 110 degrees away from"},
+      {"", "the nearest face (default: drawn in there, so resampling emits no flipped normal; -preset paper keeps"},
+      {"", "them; 0.3-5x the coding time, bench/results/flips.md)"},
       {"-merge-patches K", "merge each patch with at most K vertices and triangles of its own into its neighbours"},
       {"", "(default 8: up to a third off the file, bench/results/patch_merging.md; 0: none;"},
       {"", "-preset paper 0)"},
@@ -131,7 +134,7 @@ namespace
      "-footprint-steps", "-viewpoint", "-preset", "-png", "-size", "-view", "-tiles", "-memory", "-merge-patches",
      "-point-patches"},
     {"--json", "-q", "--authors-nyquist", "--store-vertices", "--varint-layout", "--exact-footprints",
-     "--keep-redundant-patches"}};
+     "--keep-redundant-patches", "--keep-flipped-places"}};
 } // namespace
 
 int
@@ -162,6 +165,8 @@ main (int argc, char** argv)
       options.coding.nyquist_rule = NyquistRule::AuthorsCode;
     if (args.has ("--keep-redundant-patches"))
       options.patches.drop_redundant_patches = false;
+    if (args.has ("--keep-flipped-places"))
+      options.trim_flipped_places = false;
     args.integer ("-merge-patches", options.patches.merge_own_elements, tools::Range::atLeast (0));
     args.number ("-point-patches", options.patches.unreferenced_patch_spacings, tools::Range::atLeast (0.0));
     if (args.has ("-basis"))
@@ -418,6 +423,8 @@ main (int argc, char** argv)
         .add ("uncovered", stats.uncovered)
         .add ("faces_in_no_patch", face_coverage.faces_in_no_patch)  // untiled only (0 tiled)
         .add ("area_in_no_patch", face_coverage.area_fraction)
+        .add ("flipped_places_cut", tiled ? 0 : encoder.getFlippedPlaceTrim ().places)  // untiled only
+        .add ("patches_cut_at_flips", tiled ? 0 : encoder.getFlippedPlaceTrim ().patches)
         .add ("tiles", tiled ? tiled_model.tiles.size () : 0)
         .add ("ranks", group.size ())
         .add ("spilled", bounded)

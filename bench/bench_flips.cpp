@@ -3,10 +3,12 @@
 // (evaluateCloudQuality: over 120 degrees from its nearest face's normal), tells the patch that emitted it
 // and what is special there, then counts the points per cause.
 //
-//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-hidden-gap G] [-merge K] [-basis B] [-file] [-v] [-far]
+//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-keep-flipped] [-hidden-gap G] [-merge K] [-basis B] [-file] [-v] [-far]
 //               [-patch P] [-o CLOUD.pcd]
 //
-// -keep-redundant encodes with every patch kept (PatchOptions::drop_redundant_patches false); -hidden-gap G
+// -keep-flipped encodes with the footprints as coded (SparseSurfaceEncoderOptions::trim_flipped_places false:
+// the flipped places the encoder would draw them in at are kept); -keep-redundant encodes with every patch kept
+// (PatchOptions::drop_redundant_patches false); -hidden-gap G
 // releases hidden triangles at gap G (PatchOptions::hidden_triangle_gap; 0: none); -merge K merges
 // the patches with at most K elements of their own (PatchOptions::merge_own_elements; 0: none); -basis B encodes
 // with that basis (paper, dct, quadric; default: the library's).
@@ -148,7 +150,7 @@ run (int argc, char** argv)
 {
   if (argc < 2)
   {
-    std::fprintf (stderr, "usage: %s MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-hidden-gap G] [-merge K] [-basis B] [-file] [-v] [-far] [-patch P] [-o CLOUD.pcd]\n", argv[0]);
+    std::fprintf (stderr, "usage: %s MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-keep-flipped] [-hidden-gap G] [-merge K] [-basis B] [-file] [-v] [-far] [-patch P] [-o CLOUD.pcd]\n", argv[0]);
     return 2;
   }
   std::size_t count = 0;
@@ -180,6 +182,8 @@ run (int argc, char** argv)
       through_file = true;
     else if (a == "-keep-redundant")
       encoder_options.patches.drop_redundant_patches = false;
+    else if (a == "-keep-flipped")
+      encoder_options.trim_flipped_places = false;
     else if (a == "-hidden-gap" && i + 1 < argc)
       encoder_options.patches.hidden_triangle_gap = std::stod (argv[++i]);
     else if (a == "-merge" && i + 1 < argc)

@@ -368,6 +368,7 @@ namespace pcl_sparse
         fail ("budget_growth_floors", growth_floor, "each >= 0");
     if (!(budget_sigma >= 0.0 && std::isfinite (budget_sigma)))
       fail ("budget_sigma", budget_sigma, "budget_sigma >= 0, finite");
+    flipped_places.validate ();
     if (!(atom_loss_allowance >= 0.0 && std::isfinite (atom_loss_allowance)))
       fail ("atom_loss_allowance", atom_loss_allowance, "atom_loss_allowance >= 0, finite");
   }
@@ -418,6 +419,7 @@ namespace pcl_sparse
       options.coding.radius_on_grid = false;
       options.max_compression_ratio = 0.0;
       options.atom_loss_allowance = 0.0;
+      options.trim_flipped_places = false;
     }
     return options;
   }
@@ -500,6 +502,16 @@ namespace pcl_sparse
     }
     if (options.atom_loss_allowance > 0.0)
       leaveOutCheapAtoms (options.atom_loss_allowance, context.threads, encoding, model);
+    if (options.trim_flipped_places)
+    {
+      const auto trim_start = std::chrono::steady_clock::now ();
+      if (context.progress)
+        context.progress ("flipped places", 0.0);
+      encoding.flipped_places = trimFlippedPlaces (mesh, model, options.flipped_places, context.threads);
+      if (context.progress)
+        context.progress ("flipped places", 1.0);
+      encoding.timings.coding += secondsSince (trim_start);
+    }
     orderPatchesForCoding (encoding, model, context.threads);
     // The prefixes served the bound and the allowance; kept, they would add up to 78 doubles a patch to the encoding.
     for (PatchCodingInfo& info : encoding.coding_info)

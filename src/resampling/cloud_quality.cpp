@@ -1,5 +1,6 @@
 #include <pcl_sparse/resampling/cloud_quality.h>
 
+#include <pcl_sparse/geometry/nearest_face_normal.h>
 #include <pcl_sparse/geometry/point_kd_tree.h>
 #include <pcl_sparse/geometry/triangle_tree.h>
 #include <pcl_sparse/mesh/bounding_box.h>
@@ -32,22 +33,13 @@ namespace pcl_sparse
     }
 
     /// Per point, the exact distance to the nearest triangle (TriangleTree) and the angle (degrees) between
-    /// its normal and that triangle's. Where the nearest surface point lies on an edge or corner, every face
-    /// sharing it is nearest (the distances agree up to rounding) and the surface normal there is any of
-    /// theirs: the closest of their normals counts, so that a point just past a knife edge matches the face
-    /// it came from, not the one the search happened to find first.
+    /// its normal and the surface normal there (NearestFaceNormal: at an edge or corner, the closest of the
+    /// normals of the faces sharing it).
     void
     measureSurfaceError (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& points,
                          std::vector<double>& distance, std::vector<double>& angle)
     {
-      const TriangleTree tree (mesh);  // first: it refuses corner indices out of range, which the normals would read
-      const std::vector<Eigen::Vector3d> face_normals = computeFaceNormals (mesh);
-      // Two faces' distances to their shared edge differ by rounding only (double arithmetic).
-      double largest = 0.0;
-      for (const Eigen::Vector3d& v : mesh.vertices)
-        largest = std::max (largest, v.cwiseAbs ().maxCoeff ());
-      const double tie = 1e-12 * largest;
-
+      const NearestFaceNormal surface (mesh);
       const std::size_t n = points.size ();
       distance.resize (n);
       angle.resize (n);
@@ -58,14 +50,10 @@ namespace pcl_sparse
         for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
         {
           const pcl::PointNormal& point = points[i];
-          const Eigen::Vector3d p = point.getVector3fMap ().cast<double> ();
-          const TriangleTree::Nearest nearest = tree.nearest (p);
-          tree.within (p, nearest.distance + tie, tied);
-          const Eigen::Vector3d normal = point.getNormalVector3fMap ().cast<double> ().normalized ();
-          double cosine = normal.dot (face_normals[nearest.triangle]);
-          for (const TriangleTree::Nearest& face : tied)
-            cosine = std::max (cosine, normal.dot (face_normals[face.triangle]));
-          distance[i] = nearest.distance;
+          double cosine;
+          distance[i] = surface.nearest (point.getVector3fMap ().cast<double> (),
+                                         point.getNormalVector3fMap ().cast<double> ().normalized (), cosine, tied)
+                          .distance;
           angle[i] = std::acos (std::clamp (cosine, -1.0, 1.0)) * 180.0 / M_PI;
         }
       }

@@ -25,6 +25,7 @@
 #include <pcl_sparse/model/vertex_attributes.h>
 #include <pcl_sparse/patches/patch.h>
 #include <pcl_sparse/patches/patch_options.h>
+#include <pcl_sparse/resampling/flipped_places.h>
 
 #include <cstdint>
 #include <memory>
@@ -84,12 +85,19 @@ namespace pcl_sparse
     /// a code moved further crosses it); scans are left alone (their codes stop at their noise floor).
     /// 0 = every code as OMP made it (the default and the `paper` preset).
     double atom_loss_allowance = 0.0;
+    /// Footprints drawn in where resampling would emit a place whose code's normal points away from the
+    /// input surface (trimFlippedPlaces, ours, issue 13): the flipped normals of the default resampling.
+    /// Off in the `paper` preset (the paper's footprints).
+    bool trim_flipped_places = true;
+    /// The angle, rays and rounds of that check.
+    FlippedPlaceOptions flipped_places;
 
     /// Throws pcl_sparse::Error naming the first option out of range ("SparseSurfaceEncoderOptions:
     /// coding.tolerance = 2 is out of range (0 < eps < 1)"): the patch options, rho > 0, 0 <= f <= 1,
     /// L >= 1, eps in (0, 1), quadric preference in [0, 1], m_min in [0, 100000], footprint angles in
     /// [3, 4096], triangle samples in [0, 16], n in [1, 64], attribute L >= 1 and tolerance >= 0,
-    /// max_compression_ratio >= 0, growth floors >= 0, budget_sigma >= 0, atom_loss_allowance >= 0.
+    /// max_compression_ratio >= 0, growth floors >= 0, budget_sigma >= 0, atom_loss_allowance >= 0,
+    /// flipped_places (FlippedPlaceOptions::validate).
     void validate () const;
   };
 
@@ -131,6 +139,7 @@ namespace pcl_sparse
     std::vector<Patch> patches;               ///< one per model patch, with frames and local coordinates
     std::vector<PatchCodingInfo> coding_info; ///< one per model patch
     EncoderTimings timings;
+    FlippedPlaceTrim flipped_places;          ///< what trim_flipped_places cut
   };
 
   /// \brief Whether some face of \a mesh has a finite, non-zero area (faces with invalid indices count as
@@ -234,6 +243,8 @@ namespace pcl_sparse
     const std::vector<Patch>& getPatches () const { return encoding_.patches; }
     /// \brief Per-patch diagnostics of the last compute, one per model patch.
     const std::vector<PatchCodingInfo>& getCodingInfo () const { return encoding_.coding_info; }
+    /// What the last compute() drew in at flipped places (SparseSurfaceEncoderOptions::trim_flipped_places).
+    const FlippedPlaceTrim& getFlippedPlaceTrim () const { return encoding_.flipped_places; }
     /// \brief The attribute values of the last compute that were not numbers and were filled, and the
     /// channels left out for having none (see setVertexAttributes).
     const AttributeGaps& getAttributeGaps () const { return attribute_gaps_; }

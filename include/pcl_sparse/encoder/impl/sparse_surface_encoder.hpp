@@ -58,6 +58,9 @@ namespace pcl_sparse
       // A scan's codes stop at its noise floor already, and leaving atoms out was measured on meshes only
       // (bench/results/atom_loss.md).
       options.atom_loss_allowance = 0.0;
+      // Drawing footprints in at flipped places was measured on meshes only (bench/results/flips.md): a
+      // scan's triangles tilt with its noise, and its codes stop at the noise floor.
+      options.trim_flipped_places = false;
     }
     options.patches = patchOptionsFor (options.patches, this->surfaceIsScan (), this->surfaceIsLidarRings ());
     VertexAttributes attributes = surfaceAttributes ();

@@ -1,0 +1,64 @@
+#pragma once
+/// \file flipped_places.h
+/// Footprints cut back where a code points the wrong way (ours, issue 13).
+///
+/// Near creases, corners and thin parts a height field of few atoms can bend past the surface it codes: at a
+/// place near the rim of its footprint the code's normal then points more than 120 degrees away from the
+/// normal of the nearest input face, and resampling emits a flipped normal there (cheese-cgal, a CAD part
+/// whose codes the compression bound keeps short; sword at a 74-degree crease; horse where the input folds).
+/// The encoder has the mesh: it samples every footprint on rays, finds the places resampling would emit
+/// (valid and owned, PatchOwnership) whose normal is off by more than max_normal_angle from the nearest
+/// face's, and draws the footprint in to just inside them. Cut places go to the overlapping patches that
+/// hold them, or stay empty; ownership then changes around the cut, so the patches there are checked again.
+
+#include <pcl_sparse/mesh/triangle_mesh.h>
+#include <pcl_sparse/model/sparse_surface_model.h>
+
+#include <cstddef>
+
+namespace pcl_sparse
+{
+  /// Options of trimFlippedPlaces.
+  struct FlippedPlaceOptions
+  {
+    /// A place is cut off when its code's normal is more than this many degrees from the surface normal at
+    /// its nearest input point (NearestFaceNormal). Below the 120 degrees that count as flipped in
+    /// evaluateCloudQuality: a flipped region is wider than the places the rays test, and its rim, a few
+    /// degrees short of 120, is where the next resampling's points land. In (90, 180].
+    double max_normal_angle = 110.0;
+    /// Places tested on each ray, at 1/n, 2/n, ..., n/n of the extent; rays on every footprint angle and
+    /// halfway between (2 K rays). >= 1.
+    int radial_steps = 8;
+    /// Rounds of testing and cutting at most (the first over every patch, the next over the patches
+    /// around a cut). >= 1.
+    int max_rounds = 3;
+
+    /// Checks the ranges. \throws pcl_sparse::Error naming the first field out of range
+    void validate () const;
+  };
+
+  /// What trimFlippedPlaces did.
+  struct FlippedPlaceTrim
+  {
+    std::size_t places = 0;   ///< places found pointing the wrong way, over all rounds
+    std::size_t patches = 0;  ///< patches whose footprint was cut
+    int rounds = 0;           ///< rounds run (the last found nothing, or was max_rounds)
+  };
+
+  /// \brief Draws in the footprints of \a model where resampling would emit a place whose normal points away
+  /// from the surface of \a mesh (see the file comment). The extent of a ray's footprint angle (both angles
+  /// around a ray halfway between them) is lowered to the tested place just inside the innermost one found.
+  /// Only patches with an input face within reach whose normal is over max_normal_angle minus the slope
+  /// bound (PatchOwnershipOptions::max_slope_angle) from the patch's normal can have such places: the
+  /// others are not sampled (most patches of a smooth mesh).
+  /// \param[in] mesh        the input surface (the model's)
+  /// \param[in,out] model   the model; only footprint extents change
+  /// \param[in] options     the angle, rays and rounds
+  /// \param[in] threads     OpenMP threads (0: OpenMP's default); the result does not depend on it
+  /// \return counts of what was cut
+  /// \throws pcl_sparse::Error for options out of range, or a mesh TriangleTree refuses (triangles with a
+  ///         corner out of range or not finite are left out first)
+  FlippedPlaceTrim
+  trimFlippedPlaces (const TriangleMesh& mesh, SparseSurfaceModel& model,
+                     const FlippedPlaceOptions& options = FlippedPlaceOptions (), int threads = 0);
+} // namespace pcl_sparse

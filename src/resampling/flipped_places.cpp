@@ -1,0 +1,347 @@
+#include <pcl_sparse/resampling/flipped_places.h>
+
+#include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/parallel_failure.h>
+#include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/geometry/nearest_face_normal.h>
+#include <pcl_sparse/geometry/point_triangle_distance.h>
+#include <pcl_sparse/resampling/patch_evaluator.h>
+#include <pcl_sparse/resampling/patch_geometry.h>
+#include <pcl_sparse/resampling/patch_ownership.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace pcl_sparse
+{
+  void
+  FlippedPlaceOptions::validate () const
+  {
+    auto fail = [] (const std::string& field, double value, const std::string& range) {
+      throwOutOfRange ("FlippedPlaceOptions", field, value, range);
+    };
+    if (!(max_normal_angle > 90.0 && max_normal_angle <= 180.0))
+      fail ("max_normal_angle", max_normal_angle, "90 < max_normal_angle <= 180 degrees");
+    if (radial_steps < 1)
+      fail ("radial_steps", radial_steps, "radial_steps >= 1");
+    if (max_rounds < 1)
+      fail ("max_rounds", max_rounds, "max_rounds >= 1");
+  }
+
+  namespace
+  {
+    /// Squared distance in the plane from \a p to the triangle \a a \a b \a c (0 inside).
+    double
+    planarTriangleSquaredDistance (const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                   const Eigen::Vector2d& c)
+    {
+      auto cross = [] (const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x () * v.y () - u.y () * v.x (); };
+      const double s0 = cross (b - a, p - a), s1 = cross (c - b, p - b), s2 = cross (a - c, p - c);
+      if ((s0 >= 0.0 && s1 >= 0.0 && s2 >= 0.0) || (s0 <= 0.0 && s1 <= 0.0 && s2 <= 0.0))
+        return 0.0;
+      auto segment = [&] (const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+        const Eigen::Vector2d d = v - u;
+        const double length = d.squaredNorm ();
+        const double t = length > 0.0 ? std::clamp ((p - u).dot (d) / length, 0.0, 1.0) : 0.0;
+        return (u + t * d - p).squaredNorm ();
+      };
+      return std::min ({segment (a, b), segment (b, c), segment (c, a)});
+    }
+
+    /// Where on patch \a p's plane a place can lie near an input face tilted far from the patch's normal: a
+    /// grid over the square of its footprint listing, per cell, the faces tilted over `tilt` from N whose
+    /// projection comes within `near` of the cell and whose heights within `near` of the slab of the
+    /// patch's. A place's normal is within its slope angle of N, so it can only be more than the limit from
+    /// the nearest face's normal where that face is tilted over the limit minus the slope; and that face
+    /// is nearest only if it lies within the place's distance from the surface, taken as at most `near`
+    /// (0.2 r: the flipped places of the shared meshes lie within 0.01 r of the mesh but a few, the
+    /// farthest 0.18 r).
+    struct TiltedFaceGrid
+    {
+      static constexpr int cells = 16;
+      /// How far (local units) a place may lie from the surface for its nearest face to be found here.
+      static constexpr double near = 0.2;
+      double start = 0.0, cell = 1.0;
+      /// A face near a cell: its normal (to compare first, from contiguous memory) and its index.
+      struct Face
+      {
+        Eigen::Vector3f normal;
+        int index;
+      };
+      std::vector<std::vector<Face>> faces;  ///< cells x cells, row by row
+
+      /// The faces near the place (x, y).
+      const std::vector<Face>&
+      facesNear (double x, double y) const
+      {
+        const int i = std::clamp (static_cast<int> ((x - start) / cell), 0, cells - 1);
+        const int j = std::clamp (static_cast<int> ((y - start) / cell), 0, cells - 1);
+        return faces[static_cast<std::size_t> (j) * cells + i];
+      }
+    };
+
+    /// The grid of patch \a p (\a found: scratch space); \a any tells whether some cell lists a face.
+    TiltedFaceGrid
+    tiltedFaces (const TriangleMesh& mesh, const NearestFaceNormal& surface, const PatchEvaluator& evaluator,
+                 std::size_t p, double tilt, std::vector<TriangleTree::Nearest>& found, bool& any)
+    {
+      const PatchCode& code = evaluator.model ().patches[p];
+      const double extent = evaluator.maxExtent (p);
+      const double height = std::min (code.heightBound (*evaluator.model ().basis), 1.0);
+      const double near = TiltedFaceGrid::near;
+      TiltedFaceGrid grid;
+      grid.start = -extent;
+      grid.cell = 2.0 * extent / TiltedFaceGrid::cells;
+      const double reach_squared = (near + grid.cell * M_SQRT1_2) * (near + grid.cell * M_SQRT1_2);
+      grid.faces.assign (TiltedFaceGrid::cells * TiltedFaceGrid::cells, {});
+      any = false;
+      surface.tree ().within (code.origin, code.radius * (std::sqrt (extent * extent + height * height) + near), found);
+      const Eigen::Vector3d n = code.frame.col (2);
+      const double tilt_cosine = std::cos (tilt);
+      for (const TriangleTree::Nearest& face : found)
+      {
+        const std::size_t f = static_cast<std::size_t> (face.triangle);
+        const double cosine = n.dot (surface.faceNormals ()[f]);
+        if (!(cosine < tilt_cosine))
+          continue;
+        Eigen::Vector3d corners[3];
+        Eigen::AlignedBox3d box;
+        for (int corner = 0; corner < 3; ++corner)
+          box.extend (corners[corner] = code.toLocal (mesh.vertices[static_cast<std::size_t> (mesh.triangles[f][corner])]));
+        if (box.min ().z () > height + near || box.max ().z () < -height - near)
+          continue;
+        const int i0 = std::max (0, static_cast<int> (std::floor ((box.min ().x () - near - grid.start) / grid.cell)));
+        const int i1 = std::min (TiltedFaceGrid::cells - 1, static_cast<int> (std::floor ((box.max ().x () + near - grid.start) / grid.cell)));
+        const int j0 = std::max (0, static_cast<int> (std::floor ((box.min ().y () - near - grid.start) / grid.cell)));
+        const int j1 = std::min (TiltedFaceGrid::cells - 1, static_cast<int> (std::floor ((box.max ().y () + near - grid.start) / grid.cell)));
+        for (int j = j0; j <= j1; ++j)
+          for (int i = i0; i <= i1; ++i)
+          {
+            const Eigen::Vector2d centre (grid.start + (i + 0.5) * grid.cell, grid.start + (j + 0.5) * grid.cell);
+            if (planarTriangleSquaredDistance (centre, corners[0].head<2> (), corners[1].head<2> (), corners[2].head<2> ()) >
+                reach_squared)
+              continue;
+            grid.faces[static_cast<std::size_t> (j) * TiltedFaceGrid::cells + i].push_back ({surface.faceNormals ()[f].cast<float> (), static_cast<int> (f)});
+            any = true;
+          }
+      }
+      return grid;
+    }
+
+    /// A place tested on a ray: where, and the code there.
+    struct RayPlace
+    {
+      int ray, step;
+      double x, y, centrality, turn;
+      HeightSample h;
+    };
+
+    /// Patch \a p's footprint cut just inside its places that point the wrong way, or an empty vector when
+    /// it has none; \a flagged receives their number.
+    std::vector<float>
+    cutFootprint (const TriangleMesh& mesh, const NearestFaceNormal& surface, const PatchEvaluator& evaluator,
+                  const PatchOwnership& ownership, std::size_t p, const FlippedPlaceOptions& options,
+                  std::size_t& flagged, std::vector<TriangleTree::Nearest>& scratch)
+    {
+      flagged = 0;
+      const PatchCode& code = evaluator.model ().patches[p];
+      const std::vector<float>& extent = code.footprint.extent;
+      const int k = static_cast<int> (extent.size ());
+      const int steps = options.radial_steps;
+      // The valid places on the rays, each ray from the seed outwards, and the steepest slope among them.
+      std::vector<RayPlace> places;
+      double steepest = 0.0;
+      for (int ray = 0; ray < 2 * k; ++ray)
+      {
+        const int before = ray / 2, after = (before + 1) % k;
+        const double angle = M_PI * ray / k, c = std::cos (angle), s = std::sin (angle);
+        const double e = ray % 2 == 1 ? 0.5 * (extent[before] + extent[after]) : extent[before];
+        for (int i = 1; i <= steps; ++i)
+        {
+          RayPlace place{ray, i, e * i / steps * c, e * i / steps * s, 0.0, 0.0, HeightSample ()};
+          place.centrality = evaluator.centrality (p, place.x, place.y, place.turn);
+          if (place.centrality > 1.0)
+            continue;
+          place.h = evaluator.sample (p, place.x, place.y, false);
+          if (!isValidPlace (place.h, ownership.options (), ownership.maxSlopeSquared ()))
+            continue;
+          steepest = std::max (steepest, place.h.gradient.squaredNorm ());
+          places.push_back (place);
+        }
+      }
+      // A place's normal is within its slope angle of N: it can only be past the limit from a face tilted
+      // over the limit minus the steepest slope.
+      const double limit = options.max_normal_angle * M_PI / 180.0;
+      bool any;
+      const TiltedFaceGrid tilted =
+        tiltedFaces (mesh, surface, evaluator, p, std::max (0.0, limit - std::atan (std::sqrt (steepest))), scratch, any);
+      if (!any)
+        return {};
+      const double flipped_cosine = std::cos (limit);
+      const double near_distance = TiltedFaceGrid::near * code.radius;
+      // A float normal is off by about 1e-7: the float test lets through every face the double one would.
+      const float flipped_cosine_f = static_cast<float> (flipped_cosine) + 1e-5f;
+      std::vector<float> cut = extent;
+      int done_ray = -1;  // the ray whose innermost flipped place was found
+      for (const RayPlace& place : places)
+      {
+        if (place.ray == done_ray)
+          continue;  // the places further out are cut off with the inner one
+        const Eigen::Vector3d normal = patchNormal (code, place.h);
+        const Eigen::Vector3d world = patchPoint (code, place.x, place.y, place.h);
+        const Eigen::Vector3f normal_f = normal.cast<float> ();
+        const std::vector<TiltedFaceGrid::Face>& near = tilted.facesNear (place.x, place.y);
+        if (std::none_of (near.begin (), near.end (), [&] (const TiltedFaceGrid::Face& f) {
+              if (!(normal_f.dot (f.normal) < flipped_cosine_f))
+                return false;
+              const Eigen::Vector3i& t = mesh.triangles[static_cast<std::size_t> (f.index)];
+              return pointTriangleDistance (world, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= near_distance;
+            }))
+          continue;
+        if (!ownership.owns (p, world, place.centrality, place.turn))
+          continue;
+        double cosine;
+        surface.nearest (world, normal, cosine, scratch);
+        if (cosine >= flipped_cosine)
+          continue;
+        ++flagged;
+        done_ray = place.ray;
+        // Down to the place tested just inside (the seed for the first).
+        const int before = place.ray / 2, after = (before + 1) % k;
+        const double rho = std::hypot (place.x, place.y);
+        const float inside = static_cast<float> (rho * (place.step - 1) / place.step);
+        cut[before] = std::min (cut[before], inside);
+        if (place.ray % 2 == 1)
+          cut[after] = std::min (cut[after], inside);
+      }
+      if (flagged == 0)
+        return {};
+      return cut;
+    }
+
+    /// The patches whose footprints hold a place of patch \a p between its footprint and the \a cut one
+    /// (tested on its rays, as cutFootprint).
+    std::vector<std::size_t>
+    patchesHoldingCut (const PatchEvaluator& evaluator, const PatchOwnership& ownership, std::size_t p,
+                       const std::vector<float>& cut, int steps)
+    {
+      const SparseSurfaceModel& model = evaluator.model ();
+      const PatchCode& code = model.patches[p];
+      const std::vector<float>& extent = code.footprint.extent;
+      const std::vector<int> neighbours = ownership.neighbours (p);
+      std::vector<char> holds (neighbours.size (), 0);
+      const int k = static_cast<int> (extent.size ());
+      for (int ray = 0; ray < k; ++ray)
+      {
+        if (!(cut[ray] < extent[ray]))
+          continue;
+        const double angle = 2.0 * M_PI * ray / k, c = std::cos (angle), s = std::sin (angle);
+        for (int i = 0; i <= steps; ++i)
+        {
+          const double rho = cut[ray] + (extent[ray] - cut[ray]) * i / steps;
+          const double x = rho * c, y = rho * s;
+          const Eigen::Vector3d place = code.toWorld (Eigen::Vector3d (x, y, evaluator.height (p, x, y)));
+          for (std::size_t j = 0; j < neighbours.size (); ++j)
+          {
+            const std::size_t q = static_cast<std::size_t> (neighbours[j]);
+            const Eigen::Vector3d local = model.patches[q].toLocal (place);
+            holds[j] = holds[j] || evaluator.centrality (q, local.x (), local.y ()) <= 1.0;
+          }
+        }
+      }
+      std::vector<std::size_t> takers;
+      for (std::size_t j = 0; j < neighbours.size (); ++j)
+        if (holds[j])
+          takers.push_back (static_cast<std::size_t> (neighbours[j]));
+      return takers;
+    }
+    /// \a mesh with the triangles whose corners are all finite and in range: the encoder leaves the others
+    /// out of its patches (and the triangle tree refuses them).
+    TriangleMesh
+    finiteTriangles (const TriangleMesh& mesh)
+    {
+      TriangleMesh finite;
+      finite.vertices = mesh.vertices;
+      const long n = static_cast<long> (mesh.vertices.size ());
+      for (const Eigen::Vector3i& t : mesh.triangles)
+        if (std::all_of (t.data (), t.data () + 3, [&] (int v) {
+              return v >= 0 && v < n && mesh.vertices[static_cast<std::size_t> (v)].allFinite ();
+            }))
+          finite.triangles.push_back (t);
+      return finite;
+    }
+  } // namespace
+
+  FlippedPlaceTrim
+  trimFlippedPlaces (const TriangleMesh& input, SparseSurfaceModel& model, const FlippedPlaceOptions& options, int threads)
+  {
+    options.validate ();
+    threads = resolveThreadCount (threads);
+    FlippedPlaceTrim trim;
+    const std::size_t m = model.numPatches ();
+    const TriangleMesh mesh = finiteTriangles (input);
+    if (m == 0 || mesh.triangles.empty ())
+      return trim;
+    const NearestFaceNormal surface (mesh);
+    std::vector<std::size_t> candidates (m);
+    for (std::size_t p = 0; p < m; ++p)
+      candidates[p] = p;
+    std::vector<char> trimmed (m, 0);
+    while (trim.rounds < options.max_rounds && !candidates.empty ())
+    {
+      ++trim.rounds;
+      const PatchEvaluator evaluator (model);
+      const PatchOwnership ownership (evaluator, PatchOwnershipOptions (), threads);
+      const long n = static_cast<long> (candidates.size ());
+      std::vector<std::vector<float>> cuts (candidates.size ());
+      std::vector<std::size_t> flagged (candidates.size (), 0);
+      ParallelFailure failure;
+#pragma omp parallel num_threads(threads)
+      {
+        std::vector<TriangleTree::Nearest> scratch;
+#pragma omp for schedule(dynamic, 8)
+        for (long w = 0; w < n; ++w)
+          failure.run ([&] {
+            const std::size_t i = static_cast<std::size_t> (w);
+            cuts[i] = cutFootprint (mesh, surface, evaluator, ownership, candidates[i], options, flagged[i], scratch);
+          });
+      }
+      failure.rethrow ();
+      // Places cut off go to the patches whose footprints hold them, or to none: those are the next
+      // round's candidates, with the patches cut (their new rims are tested).
+      std::vector<char> next (m, 0);
+      std::vector<std::vector<std::size_t>> takers (candidates.size ());
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+      for (long w = 0; w < n; ++w)
+      {
+        const std::size_t i = static_cast<std::size_t> (w);
+        if (!cuts[i].empty ())
+          takers[i] = patchesHoldingCut (evaluator, ownership, candidates[i], cuts[i], options.radial_steps);
+      }
+      for (std::size_t i = 0; i < candidates.size (); ++i)
+      {
+        if (cuts[i].empty ())
+          continue;
+        const std::size_t p = candidates[i];
+        trim.places += flagged[i];
+        trimmed[p] = 1;
+        next[p] = 1;
+        for (std::size_t q : takers[i])
+          next[q] = 1;
+      }
+      for (std::size_t i = 0; i < candidates.size (); ++i)
+        if (!cuts[i].empty ())
+          model.patches[candidates[i]].footprint.extent = std::move (cuts[i]);
+      candidates.clear ();
+      for (std::size_t p = 0; p < m; ++p)
+        if (next[p])
+          candidates.push_back (p);
+    }
+    trim.patches = static_cast<std::size_t> (std::count (trimmed.begin (), trimmed.end (), 1));
+    return trim;
+  }
+} // namespace pcl_sparse
