@@ -56,6 +56,15 @@ namespace
     return model;
   }
 
+  /// \a mesh encoded with default options but the footprints as coded (no trimFlippedPlaces).
+  SparseSurfaceModel::Ptr
+  encodeAsCoded (const TriangleMesh::ConstPtr& mesh)
+  {
+    SparseSurfaceEncoderOptions keep;
+    keep.trim_flipped_places = false;
+    return pcl_sparse_test::encodeMesh (mesh, keep);
+  }
+
   /// Flipped normals of 4 V points of \a model at resampling seed \a seed, and the 99th-percentile hole.
   struct Flips
   {
@@ -151,9 +160,7 @@ TEST (FlippedPlaces, CheeseCgalResamplesWithoutFlippedNormals)
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/../extra-meshes/cheese-cgal.off";
   PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-  SparseSurfaceEncoderOptions keep;
-  keep.trim_flipped_places = false;
-  const SparseSurfaceModel::Ptr as_coded = pcl_sparse_test::encodeMesh (mesh, keep);
+  const SparseSurfaceModel::Ptr as_coded = encodeAsCoded (mesh);
   SparseSurfaceEncoder<pcl::PointXYZ> encoder;
   encoder.setInputMesh (mesh);
   auto trimmed = std::make_shared<SparseSurfaceModel> ();
@@ -181,9 +188,7 @@ TEST (FlippedPlaces, SameCutsForAnyThreadCount)
   const std::string path = std::string (PCL_SPARSE_SHARED_MESHES) + "/wingnut.obj";
   PCL_SPARSE_NEED_SHARED_FILE (path);
   const auto mesh = std::make_shared<TriangleMesh> (loadTriangleMesh (path));
-  SparseSurfaceEncoderOptions keep;
-  keep.trim_flipped_places = false;
-  const SparseSurfaceModel::Ptr model = pcl_sparse_test::encodeMesh (mesh, keep);
+  const SparseSurfaceModel::Ptr model = encodeAsCoded (mesh);
   SparseSurfaceModel one = *model, two = *model;
   const FlippedPlaceTrim a = trimFlippedPlaces (*mesh, one, FlippedPlaceOptions (), 1);
   const FlippedPlaceTrim b = trimFlippedPlaces (*mesh, two, FlippedPlaceOptions (), 2);
