@@ -12,6 +12,7 @@
 
 #include "knife_mesh.h"
 #include "mesh_helpers.h"
+#include "shared_data.h"
 #include "test_file_helpers.h"
 
 #include <cstdio>
@@ -251,6 +252,24 @@ TEST_F (EncodeTool, FacesInNoPatchAreReported)
   ASSERT_EQ (run (input_ + " --json", json), 0);  // the sphere: every face in a patch, no note
   EXPECT_EQ (jsonNumber (json, "faces_in_no_patch"), 0.0) << json;
   EXPECT_EQ (notesOf (input_).find ("no patch"), std::string::npos);
+}
+
+TEST_F (EncodeTool, FlippedPlacesAreCutUnlessKept)
+{
+  // wingnut.obj: 190 places in 4 patches drawn in (bench/results/flips.md); --keep-flipped-places and the
+  // paper preset keep the footprints as coded.
+  const std::string wingnut = std::string (PCL_SPARSE_SHARED_MESHES) + "/wingnut.obj";
+  PCL_SPARSE_NEED_SHARED_FILE (wingnut);
+  std::string json;
+  ASSERT_EQ (run (wingnut + " --json", json), 0);
+  EXPECT_EQ (jsonNumber (json, "flipped_places_cut"), 190.0) << json;
+  EXPECT_EQ (jsonNumber (json, "patches_cut_at_flips"), 4.0) << json;
+  for (const char* keep : {" --keep-flipped-places", " -preset paper"})
+  {
+    ASSERT_EQ (run (wingnut + " --json" + keep, json), 0) << keep;
+    EXPECT_EQ (jsonNumber (json, "flipped_places_cut"), 0.0) << keep << json;
+    EXPECT_EQ (jsonNumber (json, "patches_cut_at_flips"), 0.0) << keep << json;
+  }
 }
 
 TEST_F (EncodeTool, TableRow)
