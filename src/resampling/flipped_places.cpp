@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -261,20 +263,25 @@ namespace pcl_sparse
           takers.push_back (static_cast<std::size_t> (neighbours[j]));
       return takers;
     }
-    /// \a mesh with the triangles whose corners are all finite and in range: the encoder leaves the others
-    /// out of its patches (and the triangle tree refuses them).
-    TriangleMesh
-    finiteTriangles (const TriangleMesh& mesh)
+
+    /// \a mesh without the triangles that have a corner out of range or not finite, or nothing when it has
+    /// none (the usual case: no copy of the mesh). The encoder leaves such triangles out of its patches, and
+    /// the triangle tree refuses them.
+    std::optional<TriangleMesh>
+    withoutBrokenTriangles (const TriangleMesh& mesh)
     {
-      TriangleMesh finite;
-      finite.vertices = mesh.vertices;
       const long n = static_cast<long> (mesh.vertices.size ());
-      for (const Eigen::Vector3i& t : mesh.triangles)
-        if (std::all_of (t.data (), t.data () + 3, [&] (int v) {
-              return v >= 0 && v < n && mesh.vertices[static_cast<std::size_t> (v)].allFinite ();
-            }))
-          finite.triangles.push_back (t);
-      return finite;
+      const auto sound = [&] (const Eigen::Vector3i& t) {
+        return std::all_of (t.data (), t.data () + 3, [&] (int v) {
+          return v >= 0 && v < n && mesh.vertices[static_cast<std::size_t> (v)].allFinite ();
+        });
+      };
+      if (std::all_of (mesh.triangles.begin (), mesh.triangles.end (), sound))
+        return std::nullopt;
+      TriangleMesh kept;
+      kept.vertices = mesh.vertices;
+      std::copy_if (mesh.triangles.begin (), mesh.triangles.end (), std::back_inserter (kept.triangles), sound);
+      return kept;
     }
   } // namespace
 
@@ -285,7 +292,8 @@ namespace pcl_sparse
     threads = resolveThreadCount (threads);
     FlippedPlaceTrim trim;
     const std::size_t m = model.numPatches ();
-    const TriangleMesh mesh = finiteTriangles (input);
+    const std::optional<TriangleMesh> sound = withoutBrokenTriangles (input);
+    const TriangleMesh& mesh = sound ? *sound : input;
     if (m == 0 || mesh.triangles.empty ())
       return trim;
     const NearestFaceNormal surface (mesh);
