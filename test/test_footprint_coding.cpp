@@ -7,6 +7,7 @@
 #include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/format/model_sections.h>
 #include <pcl_sparse/format/range_coder.h>
+#include <pcl_sparse/resampling/footprint_slack.h>
 
 #include "test_format_models.h"
 
@@ -14,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <string>
 
 using namespace pcl_sparse;
@@ -46,10 +48,11 @@ namespace
   }
 
   PatchFootprint
-  throughBytes (const PatchFootprint& footprint, const FootprintRefinement& refinement, std::size_t* bytes = nullptr)
+  throughBytes (const PatchFootprint& footprint, const FootprintRefinement& refinement, std::size_t* bytes = nullptr,
+                const FootprintSlack* slack = nullptr)
   {
     ByteWriter out;
-    putFootprint (out, footprint, kLevels, refinement);
+    putFootprint (out, footprint, kLevels, refinement, slack);
     if (bytes)
       *bytes = out.size ();
     ByteReader in (out.bytes ().data (), out.size (), "FOOT");
@@ -60,11 +63,12 @@ namespace
   }
 
   PatchFootprint
-  throughRangeCoder (const PatchFootprint& footprint, const FootprintRefinement& refinement)
+  throughRangeCoder (const PatchFootprint& footprint, const FootprintRefinement& refinement,
+                     const FootprintSlack* slack = nullptr)
   {
     RangeEncoder out;
     FootprintContexts write_contexts (kLevels.bits);
-    putFootprint (out, write_contexts, footprint, kLevels, refinement);
+    putFootprint (out, write_contexts, footprint, kLevels, refinement, slack);
     const std::vector<std::uint8_t> bytes = out.finish ();
     RangeDecoder in (bytes.data (), bytes.size (), "FOOT");
     FootprintContexts read_contexts (kLevels.bits);
@@ -112,6 +116,56 @@ TEST (FootprintCoding, ClippedBorderKeepsItsAnglesThereOnly)
   const PatchFootprint coarse = throughBytes (clipped, FootprintRefinement{8, 0.0});
   ASSERT_EQ (coarse.extent.size (), 8u);
   EXPECT_GT (largestFootprintDeviation (clipped, coarse), 3.0 * kLevels.step);
+}
+
+// A clipped footprint's cut as a knife edge (FootprintSlack::knife_edge): there no angle is drawn more than
+// a level inside its extent (resampling clears the other side's places a level past the border drawn,
+// SparseSurfaceModel::footprint_step), in both layouts, where the refinement alone draws some further in;
+// the round part is drawn as without the flags.
+TEST (FootprintCoding, KnifeEdgeAnglesAreDrawnWithinALevel)
+{
+  // A cut with a tooth three levels high at angle 2: the line between coded angles passes under the tooth.
+  PatchFootprint clipped = clippedFootprint (0.35);
+  clipped.extent[2] += static_cast<float> (3.0 * kLevels.step);
+  FootprintSlack knife{clipped.extent, clipped.extent, std::vector<char> (kAngles, 0)};
+  std::size_t knife_angles = 0;
+  for (int k = 0; k < kAngles; ++k)
+    if (clipped.extent[static_cast<std::size_t> (k)] < 0.9f)
+    {
+      knife.knife_edge[static_cast<std::size_t> (k)] = 1;
+      ++knife_angles;
+    }
+  ASSERT_GT (knife_angles, 20u);
+  auto decode = [&] (const FootprintRefinement& refinement, const FootprintSlack* slack, std::size_t& bytes) {
+    const PatchFootprint decoded = throughBytes (clipped, refinement, &bytes, slack);
+    EXPECT_EQ (throughRangeCoder (clipped, refinement, slack).extent, decoded.extent) << "the two layouts code the same footprint";
+    return decoded;
+  };
+  // The furthest inside its extent a knife angle is drawn, in levels.
+  auto deepestInside = [&] (const PatchFootprint& decoded) {
+    EXPECT_EQ (decoded.extent.size (), static_cast<std::size_t> (kAngles));
+    double deepest = 0.0;
+    for (std::size_t k = 0; k < decoded.extent.size (); ++k)
+      if (knife.knife_edge[k])
+        deepest = std::max (deepest, (static_cast<double> (clipped.extent[k]) - decoded.extent[k]) / kLevels.step);
+    return deepest;
+  };
+  for (double steps : {2.0, 4.0})
+  {
+    const FootprintRefinement refinement{2, steps};
+    std::size_t bytes_plain = 0, bytes_knife = 0;
+    const PatchFootprint plain = decode (refinement, nullptr, bytes_plain);
+    const PatchFootprint bounded = decode (refinement, &knife, bytes_knife);
+    std::cout << "  refinement " << steps << " steps: knife angles drawn up to " << deepestInside (plain)
+              << " levels inside without the flags (" << bytes_plain << " bytes), " << deepestInside (bounded)
+              << " with them (" << bytes_knife << " bytes)" << std::endl;
+    EXPECT_LE (deepestInside (bounded), 1.0 + 1e-6) << steps;
+    EXPECT_LE (bytes_knife, bytes_plain + 12) << steps;
+    for (std::size_t k = 20; k < 44; ++k)  // the round part, away from the cut
+      EXPECT_FLOAT_EQ (bounded.extent[k], plain.extent[k]) << k;
+    if (steps == 4.0)
+      EXPECT_GT (deepestInside (plain), 1.0) << "the refinement alone no longer draws a knife angle over a level in";
+  }
 }
 
 TEST (FootprintCoding, EveryAngleKeptWithoutACoarseBound)

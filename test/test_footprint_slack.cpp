@@ -1,6 +1,7 @@
 /// The footprint slack a quantised file may use (resampling/footprint_slack.h): borders through same-side
 /// neighbours may move, open borders may not, and the writer's files stay as near the surface.
 
+#include "knife_mesh.h"
 #include "model_helpers.h"
 
 #include <pcl_sparse/common/error.h>
@@ -138,6 +139,41 @@ TEST (FootprintSlack, OnlyBordersThroughNeighboursMoveAndNoPlaceIsLost)
   EXPECT_EQ (lost, 0u);
 }
 
+// A 20-degree knife (two bent sheets welded along x = 1): the borders at the edge, where each side's places
+// are left unsampled only within the other side's footprint, are knife edges; no other border is, and an open
+// sheet has none.
+TEST (FootprintSlack, KnifeEdgesAreFoundAtTheEdgeOnly)
+{
+  const TriangleMesh knife = pcl_sparse_test::makeKnife (40, 20.0);
+  const SparseSurfaceModel model = encode (knife, 0.001);
+  const std::vector<FootprintSlack> slack = footprintSlack (model);
+  const PatchEvaluator evaluator (model);
+  std::size_t flagged = 0, flagged_far = 0, patches = 0;
+  for (std::size_t p = 0; p < model.patches.size (); ++p)
+  {
+    if (slack[p].knife_edge.empty ())
+      continue;
+    ASSERT_EQ (slack[p].knife_edge.size (), model.patches[p].footprint.extent.size ());
+    ++patches;
+    for (std::size_t i = 0; i < slack[p].knife_edge.size (); ++i)
+      if (slack[p].knife_edge[i])
+      {
+        ++flagged;
+        EXPECT_EQ (slack[p].lower[i], model.patches[p].footprint.extent[i]) << "no slack at a knife edge";
+        flagged_far += borderPoint (evaluator, p, i, 1.0).x () < 0.8;
+      }
+  }
+  std::cout << "  " << model.patches.size () << " patches, " << patches << " with knife-edge angles, " << flagged
+            << " angles (" << flagged_far << " with their border place at x < 0.8)" << std::endl;
+  EXPECT_GE (patches, 10u);  // the edge is 2 long, patches there about 0.2 across on each side
+  EXPECT_EQ (flagged_far, 0u);
+
+  const TriangleMesh sheet =
+    makeHeightFieldGrid (48, 48, 1.0, 1.0, [] (double x, double y) { return 0.1 * std::sin (3.0 * x) * std::cos (2.0 * y); });
+  for (const FootprintSlack& s : footprintSlack (encode (sheet, 0.001)))
+    EXPECT_TRUE (s.knife_edge.empty ());
+}
+
 TEST (FootprintSlack, SameForAnyThreadCountAndAnyRunAndRejectsBadOptions)
 {
   const SparseSurfaceModel model = encode (makeTorus (48, 24, 1.0, 0.35), 0.001);
@@ -148,6 +184,7 @@ TEST (FootprintSlack, SameForAnyThreadCountAndAnyRunAndRejectsBadOptions)
   {
     EXPECT_EQ (one[p].lower, three[p].lower) << p;
     EXPECT_EQ (one[p].upper, three[p].upper) << p;
+    EXPECT_EQ (one[p].knife_edge, three[p].knife_edge) << p;
   }
   // A run of the patches (a tiled file's tile) gets the slack the whole model gives it, found among the
   // patches near it only.
@@ -158,6 +195,7 @@ TEST (FootprintSlack, SameForAnyThreadCountAndAnyRunAndRejectsBadOptions)
   {
     EXPECT_EQ (run[k].lower, one[first + k].lower) << first + k;
     EXPECT_EQ (run[k].upper, one[first + k].upper) << first + k;
+    EXPECT_EQ (run[k].knife_edge, one[first + k].knife_edge) << first + k;
   }
   EXPECT_THROW (footprintSlack (model, one.size (), 1), Error);
   using Change = void (*) (FootprintSlackOptions&);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 namespace pcl_sparse
@@ -75,6 +76,9 @@ namespace pcl_sparse
     {
       const std::vector<float>& lower;
       const std::vector<float>& upper;
+      const std::vector<char>* knife_edge;  ///< one per angle, or nullptr: no angle is one
+
+      bool isKnifeEdge (std::size_t a) const { return knife_edge && (*knife_edge)[a]; }
     };
 
     /// How far the extents strictly inside [a, a + len) (angles mod K) lie from the line between the levels at
@@ -92,6 +96,8 @@ namespace pcl_sparse
       for (std::size_t j = 1; j < len; ++j)
       {
         const double drawn = interpolatedExtent (level[a], level[b], static_cast<double> (j) / static_cast<double> (len), levels);
+        if (bounds.isKnifeEdge (a + j) && drawn < static_cast<double> (extent[a + j]) - levels.step)
+          return std::numeric_limits<double>::infinity ();  // over a level in at a knife edge: split
         const double nearest = std::clamp (drawn, static_cast<double> (bounds.lower[a + j]), static_cast<double> (bounds.upper[a + j]));
         deviation += std::abs (drawn - nearest);
         improvable = improvable || levelOf (static_cast<float> (nearest), levels) != levelOf (static_cast<float> (drawn), levels);
@@ -130,7 +136,9 @@ namespace pcl_sparse
       const std::vector<float>& extent = footprint.extent;
       const std::size_t k = extent.size ();
       const bool slack_given = slack && slack->lower.size () == k && slack->upper.size () == k;
-      const FootprintBounds bounds{slack_given ? slack->lower : extent, slack_given ? slack->upper : extent};
+      const bool knife_given = slack && slack->knife_edge.size () == k;
+      const FootprintBounds bounds{slack_given ? slack->lower : extent, slack_given ? slack->upper : extent,
+                                   knife_given ? &slack->knife_edge : nullptr};
       std::size_t stride = 1;
       unsigned stride_log2 = 0;
       while (refinement.max_coarse_angles > 0 && k / stride > static_cast<std::size_t> (refinement.max_coarse_angles) &&

@@ -1233,6 +1233,7 @@ namespace pcl_sparse
     {
       ByteReader in (shared.quantisation.data (), shared.quantisation.size (), name + ": section QUAN");
       q = readQuantisation (in);
+      model.footprint_step = q.extentStep ();
     }
     ByteReader seed = open ();
     ByteReader frame = open ();

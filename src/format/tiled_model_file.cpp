@@ -470,6 +470,7 @@ namespace pcl_sparse
           tiled.model.attribute_channels = tile.attribute_channels;
           tiled.model.attribute_basis = tile.attribute_basis;
         }
+        tiled.model.footprint_step = std::max (tiled.model.footprint_step, tile.footprint_step);
         tiled.tiles.push_back ({e.tile, e.first_patch, e.num_patches, {}});
         for (PatchCode& patch : tile.patches)
           tiled.model.patches.push_back (std::move (patch));
@@ -745,6 +746,7 @@ namespace pcl_sparse
     merged.model.basis = near.model.basis;
     merged.model.num_input_vertices = near.model.num_input_vertices;
     merged.model.bbox_diagonal = near.model.bbox_diagonal;
+    merged.model.footprint_step = std::max (near.model.footprint_step, far.model.footprint_step);
     merged.model.attribute_channels = near.model.attribute_channels;
     merged.model.attribute_basis = near.model.attribute_basis;
     merged.model.patches.reserve (near.model.patches.size () + far.model.patches.size ());

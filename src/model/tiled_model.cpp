@@ -23,6 +23,7 @@ namespace pcl_sparse
     sub.basis = model.basis;
     sub.num_input_vertices = model.num_input_vertices;
     sub.bbox_diagonal = model.bbox_diagonal;
+    sub.footprint_step = model.footprint_step;
     sub.attribute_channels = model.attribute_channels;
     sub.attribute_basis = model.attribute_basis;
     sub.patches.assign (model.patches.begin () + static_cast<std::ptrdiff_t> (first),

@@ -43,6 +43,9 @@ namespace pcl_sparse
       const long n = static_cast<long> (which.size ());
       std::vector<FootprintSlack> slack (which.size ());
       constexpr int steps = 3;  // places tested each way: a third of the way, two thirds, all of it
+      // A border on a knife edge is found at the extent or this far in (its place may lie just outside the
+      // other side's footprint, whose border meets it at the edge).
+      constexpr double knife_edge_depth = 0.1;
       ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads) if(n > 64)
       for (long w = 0; w < n; ++w)
@@ -73,8 +76,19 @@ namespace pcl_sparse
             };
             const double e = extent[i];
             Eigen::Vector3d border;
-            if (!(e > 0.0) || !place (e, border) || !ownership.heldByAnother (p, border, options.max_centrality, turn))
+            if (!(e > 0.0) || !place (e, border))
               continue;
+            if (!ownership.heldByAnother (p, border, options.max_centrality, turn))
+            {
+              Eigen::Vector3d inside;
+              if (ownership.clearedByFacingAway (p, border, turn) ||
+                  (place (e * (1.0 - knife_edge_depth), inside) && ownership.clearedByFacingAway (p, inside, turn)))
+              {
+                s.knife_edge.resize (k, 0);
+                s.knife_edge[i] = 1;
+              }
+              continue;
+            }
             // Drawn further in, the places left go to the neighbour, whose own border may be drawn as far in:
             // held that much more centrally, they stay inside it.
             const double inner_centrality = options.max_centrality * (1.0 - options.inward);
@@ -83,6 +97,14 @@ namespace pcl_sparse
                 s.lower[i] = static_cast<float> (e * (1.0 - options.inward * j / steps));
             for (int j = 1; j <= steps && held (e * (1.0 + options.outward * j / steps), options.max_centrality); ++j)
               s.upper[i] = static_cast<float> (e * (1.0 + options.outward * j / steps));
+          }
+          // A knife edge's border runs over neighbouring angles; one whose place lies a hair outside the other
+          // side's footprint is one too.
+          if (!s.knife_edge.empty ())
+          {
+            const std::vector<char> found = s.knife_edge;
+            for (std::size_t i = 0; i < k; ++i)
+              s.knife_edge[i] = found[i] || found[(i + 1) % k] || found[(i + k - 1) % k];
           }
         });
       failure.rethrow ();
@@ -134,6 +156,7 @@ namespace pcl_sparse
     near.basis = model.basis;
     near.num_input_vertices = model.num_input_vertices;
     near.bbox_diagonal = model.bbox_diagonal;
+    near.footprint_step = model.footprint_step;
     std::vector<std::size_t> which;
     for (std::size_t p = 0; p < m; ++p)
     {

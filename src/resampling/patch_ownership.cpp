@@ -256,7 +256,9 @@ namespace pcl_sparse
     if (std::abs (z) > height + widest)
       return false;
     const double x = other.t1.dot (d), y = other.t2.dot (d);
-    const double reach = other.max_extent * (1.0 + 1e-9);
+    // A quantised file's footprint may be drawn up to footprint_step inside the true one at a knife edge.
+    const double step = evaluator_.model ().footprint_step;
+    const double reach = other.max_extent * (1.0 + 1e-9) + step;
     if (x * x + y * y > reach * reach)
       return false;
     // The clearances are in the smaller radius of the two: a large Q (one that took a merged patch's
@@ -266,7 +268,9 @@ namespace pcl_sparse
     const double outside = widest * scale;
     if (std::abs (z) > height + outside)
       return false;
-    return evaluator_.centrality (other.patch, x, y) <= 1.0 && liesOnSurface (other, x, y, z, below, outside);
+    const double c = evaluator_.centrality (other.patch, x, y);
+    const double rho = std::sqrt (x * x + y * y);  // within step of the border: rho <= rho / c + step
+    return (c <= 1.0 || (step > 0.0 && c * (rho - step) <= rho)) && liesOnSurface (other, x, y, z, below, outside);
   }
 
   bool

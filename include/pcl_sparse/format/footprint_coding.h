@@ -5,7 +5,10 @@
 /// strays too far from the footprint (summed over the angles between them). Such an interval is split at its middle angle, whose level is coded
 /// against the mean of the ends, and each half is treated the same way. A footprint clipped at a crease
 /// keeps its angles there and only there; a round one keeps its coarse angles. Readers draw the footprint
-/// through the coded levels (linear between them, as resampling interpolates extents anyway).
+/// through the coded levels (linear between them, as resampling interpolates extents anyway). Where a
+/// border lies on a knife edge (FootprintSlack::knife_edge) it is drawn at most one level inside the extent:
+/// the other side's places there are left unsampled only within this footprint, which a reader widens by
+/// one level (SparseSurfaceModel::footprint_step, PatchOwnership).
 
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/range_coder.h>
@@ -66,7 +69,9 @@ namespace pcl_sparse
   /// \param[in] levels      the extent levels (QUAN)
   /// \param[in] refinement  which angles to keep
   /// \param[in] slack  where each extent may be drawn instead (nullptr, or vectors of another length: at the
-  ///                   extent itself); only which intervals split depends on it, never the levels coded
+  ///                   extent itself); only which intervals split depends on it (also where an interval's
+  ///                   line passes over a level inside the extent of a knife-edge angle,
+  ///                   FootprintSlack::knife_edge), never the levels coded
   /// \return the number of angles a reader gets (getFootprint)
   std::size_t
   putFootprint (ByteWriter& out, const PatchFootprint& footprint, const FootprintLevels& levels,

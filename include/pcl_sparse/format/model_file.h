@@ -63,7 +63,8 @@ namespace pcl_sparse
     /// (resampling/footprint_slack.h) instead of the exact extent. Only the writer's choice of angles changes;
     /// readers need nothing. On the 25 shared meshes: default files 1.2-11.2 % smaller, the Chamfer distance
     /// the same or lower on 22 (cheese-cgal +0.8 points, igea +0.2, couplingdown +0.1), the writer 10-180 ms
-    /// slower (bench/results/footprint_slack.md).
+    /// slower (bench/results/footprint_slack.md). With it, a border on a knife edge is also drawn at most one
+    /// level inside its extent (FootprintSlack::knife_edge), which readers clear past (footprint_step).
     bool footprint_slack = true;
     /// Store each patch's input vertices and their local (x', y') (needed only to reconstruct the
     /// input vertices, docs/METHOD.md step 10). Off by default: decoding and resampling do not need them.

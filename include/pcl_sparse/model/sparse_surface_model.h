@@ -99,6 +99,11 @@ namespace pcl_sparse
     std::vector<PatchCode> patches;
     std::size_t num_input_vertices = 0;
     double bbox_diagonal = 0.0;      ///< of the input mesh
+    /// How far inside its true extent a footprint may be drawn at a knife edge, in local units: 0 for an
+    /// encoded or lossless model, one extent level for a quantised file's (its writer keeps the border there
+    /// within a level, format/footprint_coding.h). Resampling clears the other side's places that much past
+    /// the border (PatchOwnership).
+    double footprint_step = 0.0;
     /// Colour / intensity channels every patch codes (PatchCode::attributes); empty: geometry only.
     std::vector<AttributeChannelInfo> attribute_channels;
     /// The basis the attribute codes are over (the encoder's default: half-period cosines, both parities,

@@ -21,6 +21,12 @@ namespace pcl_sparse
   struct FootprintSlack
   {
     std::vector<float> lower, upper;  ///< one per angle, lower <= extent <= upper
+    /// One per angle: 1 where the border lies on a knife edge or a thin part (its place, or the one a tenth
+    /// further in, lies on the surface of a patch facing away, PatchOwnership::clearedByFacingAway; and the
+    /// angles beside such an angle): that patch's places beside the edge are left unsampled only inside
+    /// this footprint, so a file draws the border there at most one level in, and its reader clears one
+    /// level past it (SparseSurfaceModel::footprint_step). Empty: no such angle.
+    std::vector<char> knife_edge;
   };
 
   /// Options of footprintSlack. The defaults, against exact extents (footprint_slack false), over the 25

@@ -18,7 +18,9 @@
 /// sides, the other side's surface may be the nearer one, and the point's normal would then be more than
 /// 120 degrees off the surface's there (a flipped normal). Both clearances are fractions of the smaller
 /// radius of P and Q: a large Q beside a small P would otherwise clear a band along the edge wider than the
-/// small patches there hold (holes at the tip of a 10-degree knife).
+/// small patches there hold (holes at the tip of a 10-degree knife). In a quantised file's model Q's footprint
+/// counts here up to SparseSurfaceModel::footprint_step past its border as drawn, which may lie that far
+/// inside the true one.
 
 #include <pcl_sparse/resampling/patch_evaluator.h>
 
@@ -120,11 +122,23 @@ namespace pcl_sparse
     bool
     owns (std::size_t p, const Eigen::Vector3d& q, double centrality, double turn) const
     {
+      return !clearedByFacingAway (p, q, turn) && !heldByAnother (p, q, centrality, turn);
+    }
+
+    /// Whether a place of patch \a p lies in the footprint of a patch facing away from it, within
+    /// opposite_clearance under that patch's surface or opposite_outside_clearance over it (a knife edge or
+    /// a thin part, see the file comment): the test of owns without the contenders.
+    /// \param[in] p     patch index
+    /// \param[in] q     world point
+    /// \param[in] turn  angle of q in p as a fraction of a turn (its sector)
+    bool
+    clearedByFacingAway (std::size_t p, const Eigen::Vector3d& q, double turn) const
+    {
       const std::size_t bin = p * sectors + std::min<std::size_t> (sectors - 1, static_cast<std::size_t> (turn * sectors));
       for (std::size_t k = opposite_begin_[bin]; k < opposite_begin_[bin + 1]; ++k)
         if (nearSurface (opposites_[opposite_contenders_[k]], q, evaluator_.model ().patches[p].radius))
-          return false;
-      return !heldByAnother (p, q, centrality, turn);
+          return true;
+      return false;
     }
 
     /// Whether a contender of patch \a p (on its surface there, facing p's side) holds a place at most as
