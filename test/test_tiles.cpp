@@ -472,6 +472,7 @@ TEST (TiledFile, LoadModelMergesAndRegionsReadOnlyTheirTiles)
   EXPECT_EQ (merged.patches.size (), tiled.model.patches.size ());
   EXPECT_EQ (merged.num_input_vertices, tiled.model.num_input_vertices);
   EXPECT_EQ (merged.bbox_diagonal, tiled.model.bbox_diagonal);
+  EXPECT_GT (merged.footprint_step, 0.0);  // quantised: its extents within a level
   const ModelFileInfo info = inspectModelFile (path);
   EXPECT_EQ (info.version, 3);
   EXPECT_EQ (info.num_tiles, tiled.tiles.size ());
@@ -489,6 +490,7 @@ TEST (TiledFile, LoadModelMergesAndRegionsReadOnlyTheirTiles)
     std::uint64_t bytes_read = 0;
     const TiledModel region = loadTiledModelRegion (path, box, &bytes_read);
     EXPECT_LT (region.tiles.size (), tiled.tiles.size ());
+    EXPECT_EQ (region.model.footprint_step, merged.footprint_step);
     EXPECT_LT (bytes_read, std::filesystem::file_size (path) / 2);
     // Exactly the header, shared sections and index (at most 16 bytes an entry) and the tiles it returns: at
     // least those whose reach box meets the box.
@@ -611,6 +613,9 @@ TEST (TiledFile, TilesDecodeAsTheUntiledFileDoes)
         EXPECT_EQ (listed, 0u);
       EXPECT_EQ (loaded.num_input_vertices, expected.num_input_vertices);
       EXPECT_EQ (loaded.bbox_diagonal, expected.bbox_diagonal);
+      // One extent level of the shared quantisation (the knife-edge clearance's margin), 0 when lossless.
+      EXPECT_EQ (loaded.footprint_step, expected.footprint_step);
+      EXPECT_EQ (loaded.footprint_step > 0.0, tolerance > 0.0);
       for (std::size_t p = 0; p < loaded.patches.size (); ++p)
       {
         const PatchCode &a = loaded.patches[p], &b = expected.patches[p];
