@@ -9,6 +9,7 @@
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 #include <pcl_sparse/resampling/footprint_slack.h>
+#include <pcl_sparse/resampling/patch_ownership.h>
 
 #include "knife_mesh.h"
 #include "model_helpers.h"
@@ -210,6 +211,32 @@ TEST (OppositeClearance, RightAnglesAreLeftAlone)
   ASSERT_EQ (a.size (), b.size ());
   for (std::size_t i = 0; i < a.size (); ++i)
     ASSERT_EQ (a[i].getVector3fMap (), b[i].getVector3fMap ()) << i;
+}
+
+TEST (OppositeClearance, FacingAwayListsTheOtherSideOnly)
+{
+  // PatchOwnership::facingAway: the patches whose footprints may clear a patch's places, those across a
+  // knife edge (frames over 95 degrees apart), never one of its own side (PatchOwnership::neighbours).
+  const auto knife = std::make_shared<TriangleMesh> (pcl_sparse_test::makeKnife (48, 20.0));
+  const SparseSurfaceModel::ConstPtr model = pcl_sparse_test::encodeMesh (knife);
+  const PatchEvaluator evaluator (*model);
+  const PatchOwnership ownership (evaluator);
+  std::size_t listed = 0;
+  for (std::size_t p = 0; p < model->numPatches (); ++p)
+  {
+    const Eigen::Vector3d n = model->patches[p].frame.col (2);
+    for (int q : ownership.facingAway (p))
+    {
+      ASSERT_NE (static_cast<std::size_t> (q), p);
+      EXPECT_LT (n.dot (model->patches[static_cast<std::size_t> (q)].frame.col (2)), std::cos (95.0 * M_PI / 180.0))
+        << "patches " << p << " and " << q;
+      ++listed;
+    }
+    const std::vector<int> same_side = ownership.neighbours (p);
+    for (int q : ownership.facingAway (p))
+      EXPECT_EQ (std::count (same_side.begin (), same_side.end (), q), 0) << "patches " << p << " and " << q;
+  }
+  EXPECT_GT (listed, 0u) << "the knife's sides face away from each other at its edge";
 }
 
 TEST (OppositeClearance, ASmallPatchBetweenFourKeptCornersIsStillCleared)

@@ -228,7 +228,8 @@ namespace pcl_sparse
     }
 
     /// The patches whose footprints hold a place of patch \a p between its footprint and the \a cut one
-    /// (tested on its rays, as cutFootprint).
+    /// (tested on its rays, as cutFootprint): those of its side may take the place, and those facing away
+    /// had their places there cleared (PatchOwnership::clearedByFacingAway), which the cut releases.
     std::vector<std::size_t>
     patchesHoldingCut (const PatchEvaluator& evaluator, const PatchOwnership& ownership, std::size_t p,
                        const std::vector<float>& cut, int steps)
@@ -236,7 +237,9 @@ namespace pcl_sparse
       const SparseSurfaceModel& model = evaluator.model ();
       const PatchCode& code = model.patches[p];
       const std::vector<float>& extent = code.footprint.extent;
-      const std::vector<int> neighbours = ownership.neighbours (p);
+      std::vector<int> neighbours = ownership.neighbours (p);
+      const std::vector<int> facing_away = ownership.facingAway (p);
+      neighbours.insert (neighbours.end (), facing_away.begin (), facing_away.end ());
       std::vector<char> holds (neighbours.size (), 0);
       const int k = static_cast<int> (extent.size ());
       for (int ray = 0; ray < k; ++ray)

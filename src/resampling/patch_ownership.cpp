@@ -323,4 +323,13 @@ namespace pcl_sparse
       list.push_back (static_cast<int> (contenders_[k].patch));
     return list;
   }
+
+  std::vector<int>
+  PatchOwnership::facingAway (std::size_t p) const
+  {
+    std::vector<int> list;
+    for (std::size_t k = opposite_patch_begin_[p]; k < opposite_patch_begin_[p + 1]; ++k)
+      list.push_back (static_cast<int> (opposites_[k].patch));
+    return list;
+  }
 } // namespace pcl_sparse

@@ -9,7 +9,9 @@
 /// The encoder has the mesh: it samples every footprint on rays, finds the places resampling would emit
 /// (valid and owned, PatchOwnership) whose normal is off by more than max_normal_angle from the nearest
 /// face's, and draws the footprint in to just inside them. Cut places go to the overlapping patches that
-/// hold them, or stay empty; ownership then changes around the cut, so the patches there are checked again.
+/// hold them, or stay empty; ownership then changes around the cut, so the patches there are checked again:
+/// those of the cut patch's side, and those facing away across a knife edge, whose places near its surface
+/// it no longer clears (PatchOwnership::clearedByFacingAway; sword's last flipped point came from one).
 
 #include <pcl_sparse/mesh/triangle_mesh.h>
 #include <pcl_sparse/model/sparse_surface_model.h>
@@ -30,7 +32,7 @@ namespace pcl_sparse
     /// halfway between (2 K rays). >= 1.
     int radial_steps = 8;
     /// Rounds of testing and cutting at most (the first over every patch, the next over the patches
-    /// around a cut). >= 1.
+    /// around a cut, both sides of a knife edge). >= 1.
     int max_rounds = 3;
 
     /// Checks the ranges. \throws pcl_sparse::Error naming the first field out of range

@@ -177,6 +177,11 @@ namespace pcl_sparse
     /// \return patch indices (never \a p), nearest seed first
     std::vector<int> neighbours (std::size_t p) const;
 
+    /// Patches facing away from a patch whose footprints may clear its places (clearedByFacingAway).
+    /// \param[in] p  patch index
+    /// \return patch indices (never \a p), nearest seed first
+    std::vector<int> facingAway (std::size_t p) const;
+
     /// Where the patches facing away from patch \a p may clear its places: per such patch that can reach
     /// them, a disk (x, y, radius) in p's local units that holds every place of p it may clear.
     std::vector<Eigen::Vector3d> oppositeDisks (std::size_t p) const;
