@@ -137,7 +137,8 @@ namespace pcl_sparse
     /// A place tested on a ray: where, and the code there.
     struct RayPlace
     {
-      int ray, step;
+      int ray;
+      double fraction, inside;  ///< of the ray's extent: this place's, and the place's tested just inside it
       double x, y, centrality, turn;
       HeightSample h;
     };
@@ -157,14 +158,23 @@ namespace pcl_sparse
       // The valid places on the rays, each ray from the seed outwards, and the steepest slope among them.
       std::vector<RayPlace> places;
       double steepest = 0.0;
+      // The last step is split twice more: a flipped sliver along the rim (a flat patch reaching over a face
+      // tilted 120 degrees, cheese-cgal) lies between the last two places, the border's often held by another.
+      std::vector<double> fractions;
+      for (int i = 1; i < steps; ++i)
+        fractions.push_back (static_cast<double> (i) / steps);
+      fractions.push_back (1.0 - 0.5 / steps);
+      fractions.push_back (1.0 - 0.25 / steps);
+      fractions.push_back (1.0);
       for (int ray = 0; ray < 2 * k; ++ray)
       {
         const int before = ray / 2, after = (before + 1) % k;
         const double angle = M_PI * ray / k, c = std::cos (angle), s = std::sin (angle);
         const double e = ray % 2 == 1 ? 0.5 * (extent[before] + extent[after]) : extent[before];
-        for (int i = 1; i <= steps; ++i)
+        for (std::size_t i = 0; i < fractions.size (); ++i)
         {
-          RayPlace place{ray, i, e * i / steps * c, e * i / steps * s, 0.0, 0.0, HeightSample ()};
+          const double f = fractions[i];
+          RayPlace place{ray, f, i == 0 ? 0.0 : fractions[i - 1], e * f * c, e * f * s, 0.0, 0.0, HeightSample ()};
           place.centrality = evaluator.centrality (p, place.x, place.y, place.turn);
           if (place.centrality > 1.0)
             continue;
@@ -217,7 +227,7 @@ namespace pcl_sparse
         // Down to the place tested just inside (the seed for the first).
         const int before = place.ray / 2, after = (before + 1) % k;
         const double rho = std::hypot (place.x, place.y);
-        const float inside = static_cast<float> (rho * (place.step - 1) / place.step);
+        const float inside = static_cast<float> (rho * place.inside / place.fraction);
         cut[before] = std::min (cut[before], inside);
         if (place.ray % 2 == 1)
           cut[after] = std::min (cut[after], inside);

@@ -28,8 +28,9 @@ namespace pcl_sparse
     /// evaluateCloudQuality: a flipped region is wider than the places the rays test, and its rim, a few
     /// degrees short of 120, is where the next resampling's points land. In (90, 180].
     double max_normal_angle = 110.0;
-    /// Places tested on each ray, at 1/n, 2/n, ..., n/n of the extent; rays on every footprint angle and
-    /// halfway between (2 K rays). >= 1.
+    /// Places tested on each ray, at 1/n, 2/n, ..., n/n of the extent, and at 1 - 1/(2n) and 1 - 1/(4n)
+    /// (a flipped sliver along the rim, where the border place is held by another patch: cheese-cgal's
+    /// last flipped point in memory); rays on every footprint angle and halfway between (2 K rays). >= 1.
     int radial_steps = 8;
     /// Rounds of testing and cutting at most (the first over every patch, the next over the patches
     /// around a cut, both sides of a knife edge). >= 1.
