@@ -201,35 +201,67 @@ namespace pcl_sparse
       const float flipped_cosine_f = static_cast<float> (flipped_cosine) + 1e-5f;
       std::vector<float> cut = extent;
       int done_ray = -1;  // the ray whose innermost flipped place was found
+      // Whether a face tilted over the limit from the place's normal lies near it (cheap, from the grid).
+      auto nearTiltedFace = [&] (const RayPlace& place, const Eigen::Vector3d& world, const Eigen::Vector3d& normal) {
+        const Eigen::Vector3f normal_f = normal.cast<float> ();
+        const std::vector<TiltedFaceGrid::Face>& near = tilted.facesNear (place.x, place.y);
+        return std::any_of (near.begin (), near.end (), [&] (const TiltedFaceGrid::Face& f) {
+          if (!(normal_f.dot (f.normal) < flipped_cosine_f))
+            return false;
+          const Eigen::Vector3i& t = mesh.triangles[static_cast<std::size_t> (f.index)];
+          return pointTriangleDistance (world, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= near_distance;
+        });
+      };
+      // Whether the place's normal is over the limit from the surface's at its nearest point.
+      auto flippedNormal = [&] (const Eigen::Vector3d& world, const Eigen::Vector3d& normal) {
+        double cosine;
+        surface.nearest (world, normal, cosine, scratch);
+        return cosine < flipped_cosine;
+      };
       for (const RayPlace& place : places)
       {
         if (place.ray == done_ray)
           continue;  // the places further out are cut off with the inner one
         const Eigen::Vector3d normal = patchNormal (code, place.h);
         const Eigen::Vector3d world = patchPoint (code, place.x, place.y, place.h);
-        const Eigen::Vector3f normal_f = normal.cast<float> ();
-        const std::vector<TiltedFaceGrid::Face>& near = tilted.facesNear (place.x, place.y);
-        if (std::none_of (near.begin (), near.end (), [&] (const TiltedFaceGrid::Face& f) {
-              if (!(normal_f.dot (f.normal) < flipped_cosine_f))
-                return false;
-              const Eigen::Vector3i& t = mesh.triangles[static_cast<std::size_t> (f.index)];
-              return pointTriangleDistance (world, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= near_distance;
-            }))
+        if (!nearTiltedFace (place, world, normal))
           continue;
-        if (!ownership.owns (p, world, place.centrality, place.turn))
-          continue;
-        double cosine;
-        surface.nearest (world, normal, cosine, scratch);
-        if (cosine >= flipped_cosine)
-          continue;
+        RayPlace flipped = place;
+        if (ownership.owns (p, world, place.centrality, place.turn))
+        {
+          if (!flippedNormal (world, normal))
+            continue;
+        }
+        else
+        {
+          // Held by another patch or cleared here, the place may still end a flipped stretch this patch
+          // emits between it and the place inside (cheese-cgal's file cloud: 0.66-0.75 of a ray tested at
+          // 0.625 and 0.75): the place halfway is tested too.
+          RayPlace half = place;
+          half.fraction = 0.5 * (place.inside + place.fraction);
+          half.x = place.x * half.fraction / place.fraction;
+          half.y = place.y * half.fraction / place.fraction;
+          half.centrality = evaluator.centrality (p, half.x, half.y, half.turn);
+          if (!(half.centrality <= 1.0))
+            continue;
+          half.h = evaluator.sample (p, half.x, half.y, false);
+          if (!isValidPlace (half.h, ownership.options (), ownership.maxSlopeSquared ()))
+            continue;
+          const Eigen::Vector3d half_normal = patchNormal (code, half.h);
+          const Eigen::Vector3d half_world = patchPoint (code, half.x, half.y, half.h);
+          if (!nearTiltedFace (half, half_world, half_normal) || !ownership.owns (p, half_world, half.centrality, half.turn) ||
+              !flippedNormal (half_world, half_normal))
+            continue;
+          flipped = half;
+        }
         ++flagged;
-        done_ray = place.ray;
+        done_ray = flipped.ray;
         // Down to the place tested just inside (the seed for the first).
-        const int before = place.ray / 2, after = (before + 1) % k;
-        const double rho = std::hypot (place.x, place.y);
-        const float inside = static_cast<float> (rho * place.inside / place.fraction);
+        const int before = flipped.ray / 2, after = (before + 1) % k;
+        const double rho = std::hypot (flipped.x, flipped.y);
+        const float inside = static_cast<float> (rho * flipped.inside / flipped.fraction);
         cut[before] = std::min (cut[before], inside);
-        if (place.ray % 2 == 1)
+        if (flipped.ray % 2 == 1)
           cut[after] = std::min (cut[after], inside);
       }
       if (flagged == 0)

@@ -51,6 +51,8 @@ namespace pcl_sparse
   /// \brief Draws in the footprints of \a model where resampling would emit a place whose normal points away
   /// from the surface of \a mesh (see the file comment). The extent of a ray's footprint angle (both angles
   /// around a ray halfway between them) is lowered to the tested place just inside the innermost one found.
+  /// Where a place near a tilted face is not emitted (held by another patch, or cleared), the place halfway
+  /// to the one inside is tested too: a flipped stretch of the patch's own may end there.
   /// Only a patch with an input face near its places whose normal is over max_normal_angle minus the
   /// steepest slope among those places from the patch's normal can have such places: the others are
   /// evaluated but not searched (most patches of a smooth mesh). About 0.3-5x the coding time
