@@ -315,21 +315,29 @@ namespace pcl_sparse
     return disks;
   }
 
+  namespace
+  {
+    /// The patch indices of entries [begin, end) of a contender list.
+    template <typename Contenders>
+    std::vector<int>
+    patchIndices (const Contenders& contenders, std::size_t begin, std::size_t end)
+    {
+      std::vector<int> list;
+      for (std::size_t k = begin; k < end; ++k)
+        list.push_back (static_cast<int> (contenders[k].patch));
+      return list;
+    }
+  } // namespace
+
   std::vector<int>
   PatchOwnership::neighbours (std::size_t p) const
   {
-    std::vector<int> list;
-    for (std::size_t k = contender_begin_[p]; k < contender_begin_[p + 1]; ++k)
-      list.push_back (static_cast<int> (contenders_[k].patch));
-    return list;
+    return patchIndices (contenders_, contender_begin_[p], contender_begin_[p + 1]);
   }
 
   std::vector<int>
   PatchOwnership::facingAway (std::size_t p) const
   {
-    std::vector<int> list;
-    for (std::size_t k = opposite_patch_begin_[p]; k < opposite_patch_begin_[p + 1]; ++k)
-      list.push_back (static_cast<int> (opposites_[k].patch));
-    return list;
+    return patchIndices (opposites_, opposite_patch_begin_[p], opposite_patch_begin_[p + 1]);
   }
 } // namespace pcl_sparse
