@@ -8,40 +8,33 @@
 # ENCODE_OPTIONS="..." adds options of pcl_sparse_encode (e.g. "--exact-footprints"); PCL_SPARSE_MESHES="a.obj b.off"
 # limits the meshes (names in ../shared/meshes or ../shared/extra-meshes). About 10 minutes for the 25 on 2 CPUs.
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
-build=$(cd "${1:-$root/build}" && pwd)
+# shellcheck source=bench/bench_setup.sh
+source "$(dirname "$0")/bench_setup.sh"
 shift || true
 seeds=("$@")
 [ ${#seeds[@]} -gt 0 ] || seeds=(42 1 2 3 4 5)
-shared=${PCL_SPARSE_SHARED:-$root/../shared}
-cmake --build "$build" --target pcl_sparse_encode pcl_sparse_resample bench_meshes -j2 > /dev/null
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+file_tools
 meshes=()
 if [ -n "${PCL_SPARSE_MESHES:-}" ]; then
   for name in $PCL_SPARSE_MESHES; do
     for dir in meshes extra-meshes; do [ -f "$shared/$dir/$name" ] && meshes+=("$shared/$dir/$name"); done
   done
 else
-  for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
-    [ -f "$mesh" ] && meshes+=("$mesh")
-  done
+  mapfile -t meshes < <(shared_mesh_files)
 fi
 printf '| mesh | file bytes |'; printf ' seed %s |' "${seeds[@]}"; printf ' sum | largest p99 (spacings) |\n|---|---|'
 printf -- '---|%.0s' "${seeds[@]}"; printf -- '---|---|\n'
 for mesh in "${meshes[@]}"; do
   name=$(basename "${mesh%.*}")
   # shellcheck disable=SC2086  # ENCODE_OPTIONS is a list of words
-  "$build/apps/pcl_sparse_encode" "$mesh" -o "$work/$name.psm" -q ${ENCODE_OPTIONS:-} > /dev/null
+  "$encode" "$mesh" -o "$work/$name.psm" -q ${ENCODE_OPTIONS:-} > /dev/null
   printf '| %s | %s |' "$name" "$(stat -c %s "$work/$name.psm")"
   sum=0
   p99=0
   for seed in "${seeds[@]}"; do
-    "$build/apps/pcl_sparse_resample" "$work/$name.psm" "$work/$name.pcd" -seed "$seed" -q
-    line=$("$build/bench/bench_meshes" "$mesh" "$work/$name.pcd" | tail -1)
-    flipped=$(sed -n 's/.*"flipped": \([0-9]*\).*/\1/p' <<< "$line")
-    p=$(sed -n 's/.*"p99_spacings": \([0-9.e+-]*\).*/\1/p' <<< "$line")
+    "$resample" "$work/$name.psm" "$work/$name.pcd" -seed "$seed" -q
+    measured=$("$quality" "$mesh" "$work/$name.pcd" | json flipped p99_spacings)
+    read -r flipped p <<< "$measured"
     p99=$(python3 -c "print(max($p99, $p))")
     sum=$((sum + flipped))
     printf ' %s |' "$flipped"

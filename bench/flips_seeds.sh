@@ -6,17 +6,14 @@
 # FLIPS_OPTIONS="..." adds options of bench_flips to every run (e.g. "-clearance 0.045").
 # The table of bench/results/flips.md, "Other resampling seeds", came from this (about 3 minutes on 2 CPUs).
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
-build=$(cd "${1:-$root/build}" && pwd)
+# shellcheck source=bench/bench_setup.sh
+source "$(dirname "$0")/bench_setup.sh"
 shift || true
 seeds=("$@")
 [ ${#seeds[@]} -gt 0 ] || seeds=(42 1 2 3 4 5)
-shared=${PCL_SPARSE_SHARED:-$root/../shared}
 cmake --build "$build" --target bench_flips -j2 > /dev/null
 printf '| mesh |'; printf ' %s |' "${seeds[@]}"; printf '\n|---|'; printf -- '---|%.0s' "${seeds[@]}"; printf '\n'
-for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
-  [ -f "$mesh" ] || continue
+for mesh in $(shared_mesh_files); do
   printf '| %s |' "$(basename "${mesh%.*}")"
   for seed in "${seeds[@]}"; do
     # shellcheck disable=SC2086  # FLIPS_OPTIONS is a list of words

@@ -8,26 +8,20 @@
 # face, mean cloud-to-mesh distance / diag). The same model is encoded for every bound (seeded), so only the
 # resampling differs.
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(dirname "$here")
-build=$(cd "${1:-$root/build}" && pwd)
+# shellcheck source=bench/bench_setup.sh
+source "$(dirname "$0")/bench_setup.sh"
 shift || true
 bounds=("$@")
 [ ${#bounds[@]} -gt 0 ] || bounds=(75 50 45)
-shared=${PCL_SPARSE_SHARED:-$root/../shared}
-cmake --build "$build" --target pcl_sparse_resample bench_format bench_meshes -j2 > /dev/null
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+file_tools
 tsv=$work/rows.tsv
-for mesh in "$shared"/meshes/*.{obj,off,ply} "$shared"/extra-meshes/*.{obj,off,ply}; do
-  [ -f "$mesh" ] || continue
+for mesh in $(shared_mesh_files); do
   name=$(basename "${mesh%.*}")
-  "$build/bench/bench_format" convert "$mesh" "$work/$name.obj" > /dev/null
-  vertices=$(grep -c '^v ' "$work/$name.obj")
+  vertices=$(vertex_count "$mesh")
   for bound in "${bounds[@]}"; do
-    "$build/apps/pcl_sparse_resample" "$mesh" "$work/$name.pcd" -n $((4 * vertices)) -max-slope "$bound" -q
-    "$build/bench/bench_meshes" "$mesh" "$work/$name.pcd" |
-      python3 "$here/json_fields.py" --tab p99_spacings max_spacings flipped mean_normal_angle mean_distance_over_diag |
+    "$resample" "$mesh" "$work/$name.pcd" -n $((4 * vertices)) -max-slope "$bound" -q
+    "$quality" "$mesh" "$work/$name.pcd" |
+      json --tab p99_spacings max_spacings flipped mean_normal_angle mean_distance_over_diag |
       sed "s/^/$name\t$bound\t/" >> "$tsv"
   done
   echo "$name done" >&2
