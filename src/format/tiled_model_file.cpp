@@ -743,12 +743,8 @@ namespace pcl_sparse
     TiledModel merged;
     merged.grid = near.grid;
     merged.total_patches = near.total_patches;
-    merged.model.basis = near.model.basis;
-    merged.model.num_input_vertices = near.model.num_input_vertices;
-    merged.model.bbox_diagonal = near.model.bbox_diagonal;
+    merged.model = subModel (near.model, 0, 0);
     merged.model.footprint_step = std::max (near.model.footprint_step, far.model.footprint_step);
-    merged.model.attribute_channels = near.model.attribute_channels;
-    merged.model.attribute_basis = near.model.attribute_basis;
     merged.model.patches.reserve (near.model.patches.size () + far.model.patches.size ());
     std::size_t a = 0, b = 0, pa = 0, pb = 0;
     while (a < near.tiles.size () || b < far.tiles.size ())

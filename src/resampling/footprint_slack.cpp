@@ -3,6 +3,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/model/tiled_model.h>
 #include <pcl_sparse/resampling/patch_evaluator.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
 #include <pcl_sparse/resampling/patch_ownership.h>
@@ -152,11 +153,7 @@ namespace pcl_sparse
       box.extend (model.patches[p].origin);
       run_reach = std::max (run_reach, reachBound (model.patches[p], max_height));
     }
-    SparseSurfaceModel near;
-    near.basis = model.basis;
-    near.num_input_vertices = model.num_input_vertices;
-    near.bbox_diagonal = model.bbox_diagonal;
-    near.footprint_step = model.footprint_step;
+    SparseSurfaceModel near = subModel (model, 0, 0);
     std::vector<std::size_t> which;
     for (std::size_t p = 0; p < m; ++p)
     {

@@ -64,8 +64,8 @@ namespace pcl_sparse
     std::vector<std::size_t> patchNumbers () const;
   };
 
-  /// \brief The patches of tile range \a range as a model of their own (same basis, vertex count, diagonal
-  /// and attribute channels as \a model).
+  /// \brief The patches of tile range \a range as a model of their own (same basis, vertex count, diagonal,
+  /// footprint step and attribute channels as \a model; \a count 0: those alone, to add patches to).
   /// \param[in] model the whole model
   /// \param[in] first first patch
   /// \param[in] count number of patches
