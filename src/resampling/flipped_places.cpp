@@ -279,10 +279,10 @@ namespace pcl_sparse
       const SparseSurfaceModel& model = evaluator.model ();
       const PatchCode& code = model.patches[p];
       const std::vector<float>& extent = code.footprint.extent;
-      std::vector<int> neighbours = ownership.neighbours (p);
+      std::vector<int> around = ownership.neighbours (p);  // its side's, then those facing away
       const std::vector<int> facing_away = ownership.facingAway (p);
-      neighbours.insert (neighbours.end (), facing_away.begin (), facing_away.end ());
-      std::vector<char> holds (neighbours.size (), 0);
+      around.insert (around.end (), facing_away.begin (), facing_away.end ());
+      std::vector<char> holds (around.size (), 0);
       const int k = static_cast<int> (extent.size ());
       for (int ray = 0; ray < k; ++ray)
       {
@@ -294,18 +294,18 @@ namespace pcl_sparse
           const double rho = cut[ray] + (extent[ray] - cut[ray]) * i / steps;
           const double x = rho * c, y = rho * s;
           const Eigen::Vector3d place = code.toWorld (Eigen::Vector3d (x, y, evaluator.height (p, x, y)));
-          for (std::size_t j = 0; j < neighbours.size (); ++j)
+          for (std::size_t j = 0; j < around.size (); ++j)
           {
-            const std::size_t q = static_cast<std::size_t> (neighbours[j]);
+            const std::size_t q = static_cast<std::size_t> (around[j]);
             const Eigen::Vector3d local = model.patches[q].toLocal (place);
             holds[j] = holds[j] || evaluator.centrality (q, local.x (), local.y ()) <= 1.0;
           }
         }
       }
       std::vector<std::size_t> takers;
-      for (std::size_t j = 0; j < neighbours.size (); ++j)
+      for (std::size_t j = 0; j < around.size (); ++j)
         if (holds[j])
-          takers.push_back (static_cast<std::size_t> (neighbours[j]));
+          takers.push_back (static_cast<std::size_t> (around[j]));
       return takers;
     }
 
