@@ -172,6 +172,14 @@ TEST (FlippedPlaces, FlippedStretchBeforeAPlaceHeldByAnotherIsFound)
   EXPECT_NEAR (model.patches[0].footprint.extent[0], 0.3, 1e-6) << "along +x";
   EXPECT_EQ (model.patches[0].footprint.extent[8], 0.8f) << "along -x";
   EXPECT_EQ (model.patches[1].footprint.extent[8], 0.0f) << "the other patch, flipped at its seed";
+  // The angles drawn in are marked (a file keeps its border there no further out), and only they.
+  for (std::size_t p = 0; p < 2; ++p)
+  {
+    const PatchFootprint& footprint = model.patches[p].footprint;
+    ASSERT_EQ (footprint.trimmed.size (), footprint.extent.size ()) << p;
+    for (std::size_t a = 0; a < footprint.extent.size (); ++a)
+      EXPECT_EQ (footprint.trimmed[a] != 0, footprint.extent[a] < (p == 0 ? 0.8f : 0.9f)) << p << " angle " << a;
+  }
 }
 
 TEST (FlippedPlaces, CheeseCgalResamplesWithoutFlippedNormals)

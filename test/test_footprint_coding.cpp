@@ -168,6 +168,55 @@ TEST (FootprintCoding, KnifeEdgeAnglesAreDrawnWithinALevel)
   }
 }
 
+// Trim cuts (PatchFootprint::trimmed): a round footprint drawn in at a few angles, each cut a fraction of a
+// level or a few levels deep. Without the flags the file draws some cuts outside (rounded to the nearest level,
+// or a shallow dent left to the line between coarse angles); with them no trimmed angle is drawn outside its
+// extent, none more than a level inside, in both layouts, and the other angles as before.
+TEST (FootprintCoding, TrimCutsAreNeverDrawnOutside)
+{
+  PatchFootprint cut = roundFootprint (static_cast<float> (12 * kLevels.step));
+  cut.trimmed.assign (kAngles, 0);
+  // angle: depth in levels (0.4: rounds back up to the uncut level; 0.7: a dent the line passes over)
+  const std::vector<std::pair<std::size_t, double>> cuts{{5, 0.4}, {20, 0.7}, {21, 0.7}, {40, 3.6}};
+  for (const auto& [angle, depth] : cuts)
+  {
+    cut.extent[angle] -= static_cast<float> (depth * kLevels.step);
+    cut.trimmed[angle] = 1;
+  }
+  PatchFootprint unflagged = cut;
+  unflagged.trimmed.clear ();
+  auto drawnAt = [] (const PatchFootprint& decoded, std::size_t angle) {
+    return decoded.extentAt (2.0 * M_PI * static_cast<double> (angle) / kAngles);
+  };
+  // The furthest outside its extent a trimmed angle is drawn, in levels (negative: inside).
+  auto furthestOutside = [&] (const PatchFootprint& decoded) {
+    double furthest = -1e9;
+    for (const auto& [angle, depth] : cuts)
+      furthest = std::max (furthest, (drawnAt (decoded, angle) - cut.extent[angle]) / kLevels.step);
+    return furthest;
+  };
+  for (double steps : {2.0, 4.0})
+  {
+    const FootprintRefinement refinement{2, steps};
+    std::size_t bytes_plain = 0, bytes_cut = 0;
+    const PatchFootprint plain = throughBytes (unflagged, refinement, &bytes_plain);
+    const PatchFootprint bounded = throughBytes (cut, refinement, &bytes_cut);
+    EXPECT_EQ (throughRangeCoder (cut, refinement).extent, bounded.extent) << "the two layouts code the same footprint";
+    std::cout << "  refinement " << steps << " steps: trimmed angles drawn up to " << furthestOutside (plain)
+              << " levels outside without the flags (" << bytes_plain << " bytes), " << furthestOutside (bounded)
+              << " with them (" << bytes_cut << " bytes)" << std::endl;
+    EXPECT_GT (furthestOutside (plain), 0.3) << steps << ": the nearest level alone draws a cut outside";
+    EXPECT_LE (furthestOutside (bounded), 1e-6) << steps;
+    for (const auto& [angle, depth] : cuts)
+      EXPECT_GE (drawnAt (bounded, angle), cut.extent[angle] - kLevels.step - 1e-6) << angle;
+    // Each cut's angle is coded: a chain of splits down from the coarse stride (32 here), per depth a split
+    // flag, a residual and the sibling's flag in the varint layout (the range coder's are smaller).
+    EXPECT_LE (bytes_cut, bytes_plain + 10 * cuts.size ()) << steps;
+    for (std::size_t k = 26; k < 36; ++k)  // away from every cut
+      EXPECT_NEAR (drawnAt (bounded, k), drawnAt (plain, k), 1e-6) << k;
+  }
+}
+
 TEST (FootprintCoding, EveryAngleKeptWithoutACoarseBound)
 {
   const PatchFootprint clipped = clippedFootprint (0.5);

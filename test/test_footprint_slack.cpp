@@ -139,6 +139,37 @@ TEST (FootprintSlack, OnlyBordersThroughNeighboursMoveAndNoPlaceIsLost)
   EXPECT_EQ (lost, 0u);
 }
 
+// Past a trim cut (PatchFootprint::trimmed) the code's normal points away from the surface: the border may
+// still be drawn in there, never out; the other angles keep their slack.
+TEST (FootprintSlack, NoOutwardSlackAtATrimCut)
+{
+  const TriangleMesh sheet =
+    makeHeightFieldGrid (48, 48, 1.0, 1.0, [] (double x, double y) { return 0.1 * std::sin (3.0 * x) * std::cos (2.0 * y); });
+  SparseSurfaceModel model = encode (sheet, 0.001);
+  const std::vector<FootprintSlack> before = footprintSlack (model);
+  std::size_t marked = 0;
+  for (std::size_t p = 0; p < model.patches.size (); ++p)
+  {
+    PatchFootprint& footprint = model.patches[p].footprint;
+    footprint.trimmed.assign (footprint.extent.size (), 0);
+    for (std::size_t i = 0; i < footprint.extent.size (); i += 2)
+      if (before[p].upper[i] > footprint.extent[i])
+      {
+        footprint.trimmed[i] = 1;
+        ++marked;
+      }
+  }
+  ASSERT_GT (marked, 100u);
+  const std::vector<FootprintSlack> after = footprintSlack (model);
+  for (std::size_t p = 0; p < model.patches.size (); ++p)
+  {
+    const PatchFootprint& footprint = model.patches[p].footprint;
+    EXPECT_EQ (after[p].lower, before[p].lower) << p;
+    for (std::size_t i = 0; i < footprint.extent.size (); ++i)
+      EXPECT_EQ (after[p].upper[i], footprint.trimmed[i] ? footprint.extent[i] : before[p].upper[i]) << p << " angle " << i;
+  }
+}
+
 // A 20-degree knife (two bent sheets welded along x = 1): the borders at the edge, where each side's places
 // are left unsampled only within the other side's footprint, are knife edges; no other border is, and an open
 // sheet has none.

@@ -77,9 +77,22 @@ namespace pcl_sparse
       const std::vector<float>& lower;
       const std::vector<float>& upper;
       const std::vector<char>* knife_edge;  ///< one per angle, or nullptr: no angle is one
+      const std::vector<char>* trimmed;     ///< one per angle (PatchFootprint::trimmed), or nullptr: none
 
       bool isKnifeEdge (std::size_t a) const { return knife_edge && (*knife_edge)[a]; }
+      bool isTrimmed (std::size_t a) const { return trimmed && (*trimmed)[a]; }
     };
+
+    /// The level coded for angle \a a: the nearest, but at a trim cut the nearest not outside it (past the
+    /// cut the code's normal points away from the surface; within a level inside, also as a knife edge needs).
+    unsigned
+    codedLevel (const std::vector<float>& extent, const FootprintBounds& bounds, std::size_t a, const FootprintLevels& levels)
+    {
+      if (!bounds.isTrimmed (a))
+        return levelOf (extent[a], levels);
+      const double below = std::floor (static_cast<double> (extent[a]) / levels.step * (1.0 + 1e-9));
+      return std::min (levelMask (levels), static_cast<unsigned> (below));
+    }
 
     /// How far the extents strictly inside [a, a + len) (angles mod K) lie from the line between the levels at
     /// its ends, summed over the angles: the area (steps x angles) between the border drawn and the true one,
@@ -98,6 +111,8 @@ namespace pcl_sparse
         const double drawn = interpolatedExtent (level[a], level[b], static_cast<double> (j) / static_cast<double> (len), levels);
         if (bounds.isKnifeEdge (a + j) && drawn < static_cast<double> (extent[a + j]) - levels.step)
           return std::numeric_limits<double>::infinity ();  // over a level in at a knife edge: split
+        if (bounds.isTrimmed (a + j) && drawn > static_cast<double> (extent[a + j]) * (1.0 + 1e-9))
+          return std::numeric_limits<double>::infinity ();  // past a trim cut: split
         const double nearest = std::clamp (drawn, static_cast<double> (bounds.lower[a + j]), static_cast<double> (bounds.upper[a + j]));
         deviation += std::abs (drawn - nearest);
         improvable = improvable || levelOf (static_cast<float> (nearest), levels) != levelOf (static_cast<float> (drawn), levels);
@@ -120,7 +135,7 @@ namespace pcl_sparse
       symbols.split (context, split);
       if (!split)
         return false;
-      level[middle] = levelOf (extent[middle], levels);
+      level[middle] = codedLevel (extent, bounds, middle, levels);
       symbols.residual (context, (level[middle] - midpointPrediction (level[a], level[b])) & levelMask (levels));
       putInterval (symbols, extent, bounds, level, a, half, depth + 1, levels, refinement);
       putInterval (symbols, extent, bounds, level, middle, half, depth + 1, levels, refinement);
@@ -138,7 +153,8 @@ namespace pcl_sparse
       const bool slack_given = slack && slack->lower.size () == k && slack->upper.size () == k;
       const bool knife_given = slack && slack->knife_edge.size () == k;
       const FootprintBounds bounds{slack_given ? slack->lower : extent, slack_given ? slack->upper : extent,
-                                   knife_given ? &slack->knife_edge : nullptr};
+                                   knife_given ? &slack->knife_edge : nullptr,
+                                   footprint.trimmed.size () == k ? &footprint.trimmed : nullptr};
       std::size_t stride = 1;
       unsigned stride_log2 = 0;
       while (refinement.max_coarse_angles > 0 && k / stride > static_cast<std::size_t> (refinement.max_coarse_angles) &&
@@ -153,7 +169,7 @@ namespace pcl_sparse
       unsigned previous = 0;
       for (std::size_t a = 0; a < k; a += stride)
       {
-        level[a] = levelOf (extent[a], levels);
+        level[a] = codedLevel (extent, bounds, a, levels);
         symbols.level (a == 0, (level[a] - previous) & levelMask (levels));
         previous = level[a];
       }

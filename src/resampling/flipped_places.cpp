@@ -309,6 +309,18 @@ namespace pcl_sparse
       return takers;
     }
 
+    /// Draws \a footprint in to \a cut (as many extents, none larger) and marks the angles lowered
+    /// (PatchFootprint::trimmed: a file keeps its border there no further out).
+    void
+    cutTo (PatchFootprint& footprint, std::vector<float> cut)
+    {
+      footprint.trimmed.resize (footprint.extent.size (), 0);
+      for (std::size_t a = 0; a < cut.size (); ++a)
+        if (cut[a] < footprint.extent[a])
+          footprint.trimmed[a] = 1;
+      footprint.extent = std::move (cut);
+    }
+
     /// \a mesh without the triangles that have a corner out of range or not finite, or nothing when it has
     /// none (the usual case: no copy of the mesh). The encoder leaves such triangles out of its patches, and
     /// the triangle tree refuses them.
@@ -345,7 +357,7 @@ namespace pcl_sparse
     std::vector<std::size_t> candidates (m);
     for (std::size_t p = 0; p < m; ++p)
       candidates[p] = p;
-    std::vector<char> trimmed (m, 0);
+    std::vector<char> was_cut (m, 0);
     while (trim.rounds < options.max_rounds && !candidates.empty ())
     {
       ++trim.rounds;
@@ -383,20 +395,20 @@ namespace pcl_sparse
           continue;
         const std::size_t p = candidates[i];
         trim.places += flagged[i];
-        trimmed[p] = 1;
+        was_cut[p] = 1;
         next[p] = 1;
         for (std::size_t q : takers[i])
           next[q] = 1;
       }
       for (std::size_t i = 0; i < candidates.size (); ++i)
         if (!cuts[i].empty ())
-          model.patches[candidates[i]].footprint.extent = std::move (cuts[i]);
+          cutTo (model.patches[candidates[i]].footprint, std::move (cuts[i]));
       candidates.clear ();
       for (std::size_t p = 0; p < m; ++p)
         if (next[p])
           candidates.push_back (p);
     }
-    trim.patches = static_cast<std::size_t> (std::count (trimmed.begin (), trimmed.end (), 1));
+    trim.patches = static_cast<std::size_t> (std::count (was_cut.begin (), was_cut.end (), 1));
     return trim;
   }
 } // namespace pcl_sparse

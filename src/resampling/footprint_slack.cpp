@@ -96,7 +96,10 @@ namespace pcl_sparse
             if (ownership.heldByAnother (p, border, inner_centrality, turn))
               for (int j = 1; j <= steps && held (e * (1.0 - options.inward * j / steps), inner_centrality); ++j)
                 s.lower[i] = static_cast<float> (e * (1.0 - options.inward * j / steps));
-            for (int j = 1; j <= steps && held (e * (1.0 + options.outward * j / steps), options.max_centrality); ++j)
+            // Past a trim cut the code's normal points away from the surface: a place there is the patch's
+            // own to leave, not one it may take from the neighbour.
+            const bool cut = code.footprint.trimmed.size () == k && code.footprint.trimmed[i];
+            for (int j = 1; !cut && j <= steps && held (e * (1.0 + options.outward * j / steps), options.max_centrality); ++j)
               s.upper[i] = static_cast<float> (e * (1.0 + options.outward * j / steps));
           }
           // A knife edge's border runs over neighbouring angles; one whose place lies a hair outside the other

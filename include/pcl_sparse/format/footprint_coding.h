@@ -8,7 +8,9 @@
 /// through the coded levels (linear between them, as resampling interpolates extents anyway). Where a
 /// border lies on a knife edge (FootprintSlack::knife_edge) it is drawn at most one level inside the extent:
 /// the other side's places there are left unsampled only within this footprint, which a reader widens by
-/// one level (SparseSurfaceModel::footprint_step, PatchOwnership).
+/// one level (SparseSurfaceModel::footprint_step, PatchOwnership). At a trim cut (PatchFootprint::trimmed) it
+/// is drawn nowhere outside the extent, its level rounded down: past the cut the code's normal points away
+/// from the surface, and a border rounded or interpolated out there emitted those places again.
 
 #include <pcl_sparse/format/byte_stream.h>
 #include <pcl_sparse/format/range_coder.h>
@@ -71,7 +73,8 @@ namespace pcl_sparse
   /// \param[in] slack  where each extent may be drawn instead (nullptr, or vectors of another length: at the
   ///                   extent itself); only which intervals split depends on it (also where an interval's
   ///                   line passes over a level inside the extent of a knife-edge angle,
-  ///                   FootprintSlack::knife_edge), never the levels coded
+  ///                   FootprintSlack::knife_edge), never the levels coded (those depend on the extents
+  ///                   and PatchFootprint::trimmed only)
   /// \return the number of angles a reader gets (getFootprint)
   std::size_t
   putFootprint (ByteWriter& out, const PatchFootprint& footprint, const FootprintLevels& levels,

@@ -21,6 +21,10 @@ namespace pcl_sparse
   struct PatchFootprint
   {
     std::vector<float> extent;  ///< K radii in [0, ~1]
+    /// One per angle, 1 where trimFlippedPlaces drew the extent in because the code's normal points away
+    /// from the input surface just past it (resampling/flipped_places.h): a quantised file draws the border
+    /// there no further out (format/footprint_coding.h). Empty: no angle was cut. Files do not store it.
+    std::vector<char> trimmed;
 
     /// Extent at \a angle (radians), linearly interpolated.
     double extentAt (double angle) const;

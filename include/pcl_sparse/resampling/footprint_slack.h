@@ -43,7 +43,8 @@ namespace pcl_sparse
     /// towards each other left places of a torus in neither). In [0, 1).
     double inward = 0.3;
     /// The extent may be drawn up to (1 + outward) times itself where the places out there are the
-    /// patch's valid surface and held at most max_centrality centrally. >= 0, finite.
+    /// patch's valid surface and held at most max_centrality centrally; not at a trim cut
+    /// (PatchFootprint::trimmed). >= 0, finite.
     double outward = 0.3;
     /// Checks the ranges. \throws pcl_sparse::Error naming the first field out of range
     void validate () const;
