@@ -3,7 +3,7 @@
 // (evaluateCloudQuality: over 120 degrees from its nearest face's normal), tells the patch that emitted it
 // and what is special there, then counts the points per cause.
 //
-//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-keep-flipped] [-hidden-gap G] [-merge K] [-basis B] [-file] [-v] [-far]
+//   bench_flips MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-keep-flipped] [-hidden-gap G] [-merge K] [-basis B] [-file] [-psm FILE] [-v] [-far]
 //               [-patch P] [-o CLOUD.pcd]
 //
 // -keep-flipped encodes with the footprints as coded (SparseSurfaceEncoderOptions::trim_flipped_places false:
@@ -13,7 +13,9 @@
 // the patches with at most K elements of their own (PatchOptions::merge_own_elements; 0: none); -basis B encodes
 // with that basis (paper, dct, quadric; default: the library's).
 // -file resamples the model as the default `-o` file holds it (quantised at derivedWriteOptions, decoded), as
-// pcl_sparse_resample FILE.psm does, instead of the lossless model in memory.
+// pcl_sparse_resample FILE.psm does, instead of the lossless model in memory; -psm FILE resamples that file
+// (pcl_sparse_encode MESH -o FILE, measured write options), and -v then also gives each flipped point's
+// centrality in the same patch of the model in memory and whether the nearest angle there is a trim cut.
 // -max-cr R encodes with that compression bound (SparseSurfaceEncoderOptions::max_compression_ratio, default
 // 1; 0: none), to tell the flipped points the bound's trimmed codes cause.
 // -seed S and -clearance C resample with that seed and knife-edge clearance (defaults: the library's, as
@@ -150,7 +152,7 @@ run (int argc, char** argv)
 {
   if (argc < 2)
   {
-    std::fprintf (stderr, "usage: %s MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-keep-flipped] [-hidden-gap G] [-merge K] [-basis B] [-file] [-v] [-far] [-patch P] [-o CLOUD.pcd]\n", argv[0]);
+    std::fprintf (stderr, "usage: %s MESH [-n COUNT] [-seed S] [-clearance C] [-max-cr R] [-keep-redundant] [-keep-flipped] [-hidden-gap G] [-merge K] [-basis B] [-file] [-psm FILE] [-v] [-far] [-patch P] [-o CLOUD.pcd]\n", argv[0]);
     return 2;
   }
   std::size_t count = 0;
@@ -158,6 +160,7 @@ run (int argc, char** argv)
   int dump_patch = -1;
   bool far = false;
   bool through_file = false;
+  std::string psm_path;    // -psm: resample this model file
   std::string cloud_path;  // -o: the cloud, for bench_meshes (p99 holes)
   SparseSurfaceResamplingOptions resampling_options;
   SparseSurfaceEncoderOptions encoder_options = encoderPresetOptions (EncoderPreset::Default);
@@ -180,6 +183,8 @@ run (int argc, char** argv)
       far = true;
     else if (a == "-file")
       through_file = true;
+    else if (a == "-psm" && i + 1 < argc)
+      psm_path = argv[++i];
     else if (a == "-keep-redundant")
       encoder_options.patches.drop_redundant_patches = false;
     else if (a == "-keep-flipped")
@@ -208,6 +213,9 @@ run (int argc, char** argv)
     *model = decodeModel (bytes.data (), bytes.size ());
     std::printf ("through the default file: tolerance %.4g of the diagonal\n", write_options.tolerance);
   }
+  const SparseSurfaceModel in_memory = *model;
+  if (!psm_path.empty ())
+    *model = loadModel (psm_path);
   SparseSurfaceResampling<pcl::PointNormal> resampling;
   resampling.setInputModel (model);
   resampling.setPointCount (count > 0 ? count : 4 * mesh->vertices.size ());
@@ -327,6 +335,16 @@ run (int argc, char** argv)
                    "angle %.1f (side face %.1f, faces %.1f), N-face %.1f, own %d, vertex gap %.3f, fold %.1f | %s\n",
                    i, p, code.radius, code.vertices.size (), local.x (), local.y (), c, h.value, slope, best / s,
                    best_agree / s, exact_angle, agree_angle, faces_angle, frame_angle, own_face ? 1 : 0, nearest_vertex, fold, cause.c_str ());
+    if (verbose && !psm_path.empty () && in_memory.numPatches () == model->numPatches ())
+    {
+      const PatchCode& there = in_memory.patches[p];
+      const Eigen::Vector3d l = there.toLocal (q);
+      const std::size_t k = there.footprint.extent.size ();
+      const double turn = std::atan2 (l.y (), l.x ()) / (2.0 * M_PI);
+      const std::size_t angle = k == 0 ? 0 : static_cast<std::size_t> (std::lround ((turn < 0 ? turn + 1.0 : turn) * k)) % k;
+      std::printf ("      in memory: c %.3f, nearest angle %zu %s\n", PatchEvaluator (in_memory).centrality (p, l.x (), l.y ()),
+                   angle, there.footprint.trimmed.size () == k && k > 0 && there.footprint.trimmed[angle] ? "trimmed" : "not trimmed");
+    }
     if (verbose)
       for (std::size_t o = 0; o < model->numPatches (); ++o)
       {
