@@ -54,6 +54,46 @@ namespace pcl_sparse
       return std::min ({segment (a, b), segment (b, c), segment (c, a)});
     }
 
+    /// A triangle in the plane tested against many points (a grid's cells): a point further than the reach
+    /// outside one of its edge lines is further than that from the triangle, found with one dot product;
+    /// only the others are measured exactly.
+    struct PlanarTriangle
+    {
+      Eigen::Vector2d corners[3];
+      Eigen::Vector2d outward[3];  ///< unit normal of the edge from corner k to k + 1, pointing out
+      bool has_area = false;       ///< false: no outward side, every point measured
+
+      PlanarTriangle (const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) : corners{a, b, c}
+      {
+        const double area = (b - a).x () * (c - a).y () - (b - a).y () * (c - a).x ();
+        has_area = area != 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          const Eigen::Vector2d edge = corners[(k + 1) % 3] - corners[k];
+          const double length = edge.norm ();
+          has_area = has_area && length > 0.0;
+          // (y, -x) points right of the edge: out of a counter-clockwise triangle.
+          outward[k] = Eigen::Vector2d (edge.y (), -edge.x ()) * (length > 0.0 ? (area > 0.0 ? 1.0 : -1.0) / length : 0.0);
+        }
+      }
+
+      /// Whether \a p lies within \a reach (its square: \a reach_squared) of the triangle. The corners are
+      /// tried before the exact distance: a triangle smaller than the reach (most faces) is near a point
+      /// near one of them.
+      bool
+      near (const Eigen::Vector2d& p, double reach, double reach_squared) const
+      {
+        if (has_area)
+          for (int k = 0; k < 3; ++k)
+            if (outward[k].dot (p - corners[k]) > reach)
+              return false;
+        for (int k = 0; k < 3; ++k)
+          if ((p - corners[k]).squaredNorm () <= reach_squared)
+            return true;
+        return planarTriangleSquaredDistance (p, corners[0], corners[1], corners[2]) <= reach_squared;
+      }
+    };
+
     /// Where on patch \a p's plane a place can lie near an input face tilted far from the patch's normal: a
     /// grid over the square of its footprint listing, per cell, the faces tilted over `tilt` from N whose
     /// projection comes within `near` of the cell and whose heights within `near` of the slab of the
@@ -68,10 +108,14 @@ namespace pcl_sparse
       /// How far (local units) a place may lie from the surface for its nearest face to be found here.
       static constexpr double near = 0.2;
       double start = 0.0, cell = 1.0;
-      /// A face near a cell: its normal (to compare first, from contiguous memory) and its index.
+      /// A face near a cell: its normal (to compare first, from contiguous memory), a ball around it in the
+      /// patch's local units (a place further than `near` from the ball is from the face: no exact distance
+      /// needed) and its index.
       struct Face
       {
         Eigen::Vector3f normal;
+        Eigen::Vector3f centre;
+        float radius;
         int index;
       };
       std::vector<std::vector<Face>> faces;  ///< cells x cells, row by row
@@ -98,7 +142,7 @@ namespace pcl_sparse
       TiltedFaceGrid grid;
       grid.start = -extent;
       grid.cell = 2.0 * extent / TiltedFaceGrid::cells;
-      const double reach_squared = (near + grid.cell * M_SQRT1_2) * (near + grid.cell * M_SQRT1_2);
+      const double reach = near + grid.cell * M_SQRT1_2, reach_squared = reach * reach;
       grid.faces.assign (TiltedFaceGrid::cells * TiltedFaceGrid::cells, {});
       any = false;
       surface.tree ().within (code.origin, code.radius * (std::sqrt (extent * extent + height * height) + near), found);
@@ -120,14 +164,19 @@ namespace pcl_sparse
         const int i1 = std::min (TiltedFaceGrid::cells - 1, static_cast<int> (std::floor ((box.max ().x () + near - grid.start) / grid.cell)));
         const int j0 = std::max (0, static_cast<int> (std::floor ((box.min ().y () - near - grid.start) / grid.cell)));
         const int j1 = std::min (TiltedFaceGrid::cells - 1, static_cast<int> (std::floor ((box.max ().y () + near - grid.start) / grid.cell)));
+        const PlanarTriangle projected (corners[0].head<2> (), corners[1].head<2> (), corners[2].head<2> ());
+        const Eigen::Vector3d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
+        const double radius = std::sqrt (std::max ({(corners[0] - centre).squaredNorm (), (corners[1] - centre).squaredNorm (),
+                                                    (corners[2] - centre).squaredNorm ()}));
+        const TiltedFaceGrid::Face listed{surface.faceNormals ()[f].cast<float> (), centre.cast<float> (),
+                                          static_cast<float> (radius), static_cast<int> (f)};
         for (int j = j0; j <= j1; ++j)
           for (int i = i0; i <= i1; ++i)
           {
             const Eigen::Vector2d centre (grid.start + (i + 0.5) * grid.cell, grid.start + (j + 0.5) * grid.cell);
-            if (planarTriangleSquaredDistance (centre, corners[0].head<2> (), corners[1].head<2> (), corners[2].head<2> ()) >
-                reach_squared)
+            if (!projected.near (centre, reach, reach_squared))
               continue;
-            grid.faces[static_cast<std::size_t> (j) * TiltedFaceGrid::cells + i].push_back ({surface.faceNormals ()[f].cast<float> (), static_cast<int> (f)});
+            grid.faces[static_cast<std::size_t> (j) * TiltedFaceGrid::cells + i].push_back (listed);
             any = true;
           }
       }
@@ -204,9 +253,14 @@ namespace pcl_sparse
       // Whether a face tilted over the limit from the place's normal lies near it (cheap, from the grid).
       auto nearTiltedFace = [&] (const RayPlace& place, const Eigen::Vector3d& world, const Eigen::Vector3d& normal) {
         const Eigen::Vector3f normal_f = normal.cast<float> ();
+        const Eigen::Vector3f local_f (static_cast<float> (place.x), static_cast<float> (place.y), static_cast<float> (place.h.value));
         const std::vector<TiltedFaceGrid::Face>& near = tilted.facesNear (place.x, place.y);
         return std::any_of (near.begin (), near.end (), [&] (const TiltedFaceGrid::Face& f) {
           if (!(normal_f.dot (f.normal) < flipped_cosine_f))
+            return false;
+          // Local units are about 1: 1e-4 covers the floats' rounding, so no face the exact test keeps is skipped.
+          const float ball = static_cast<float> (TiltedFaceGrid::near) + f.radius + 1e-4f;
+          if ((local_f - f.centre).squaredNorm () > ball * ball)
             return false;
           const Eigen::Vector3i& t = mesh.triangles[static_cast<std::size_t> (f.index)];
           return pointTriangleDistance (world, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= near_distance;
