@@ -130,20 +130,22 @@ namespace pcl_sparse
       }
     };
 
-    /// The grid of patch \a p (\a found: scratch space); \a any tells whether some cell lists a face.
-    TiltedFaceGrid
+    /// Fills \a grid with patch \a p's (its cells' lists keep their memory from the thread's last patch;
+    /// \a found: scratch space); \a any tells whether some cell lists a face.
+    void
     tiltedFaces (const TriangleMesh& mesh, const NearestFaceNormal& surface, const PatchEvaluator& evaluator,
-                 std::size_t p, double tilt, std::vector<TriangleTree::Nearest>& found, bool& any)
+                 std::size_t p, double tilt, std::vector<TriangleTree::Nearest>& found, TiltedFaceGrid& grid, bool& any)
     {
       const PatchCode& code = evaluator.model ().patches[p];
       const double extent = evaluator.maxExtent (p);
       const double height = std::min (code.heightBound (*evaluator.model ().basis), 1.0);
       const double near = TiltedFaceGrid::near;
-      TiltedFaceGrid grid;
       grid.start = -extent;
       grid.cell = 2.0 * extent / TiltedFaceGrid::cells;
       const double reach = near + grid.cell * M_SQRT1_2, reach_squared = reach * reach;
-      grid.faces.assign (TiltedFaceGrid::cells * TiltedFaceGrid::cells, {});
+      grid.faces.resize (TiltedFaceGrid::cells * TiltedFaceGrid::cells);
+      for (std::vector<TiltedFaceGrid::Face>& listed : grid.faces)
+        listed.clear ();
       any = false;
       surface.tree ().within (code.origin, code.radius * (std::sqrt (extent * extent + height * height) + near), found);
       const Eigen::Vector3d n = code.frame.col (2);
@@ -180,7 +182,6 @@ namespace pcl_sparse
             any = true;
           }
       }
-      return grid;
     }
 
     /// A place tested on a ray: where, and the code there.
@@ -197,7 +198,7 @@ namespace pcl_sparse
     std::vector<float>
     cutFootprint (const TriangleMesh& mesh, const NearestFaceNormal& surface, const PatchEvaluator& evaluator,
                   const PatchOwnership& ownership, std::size_t p, const FlippedPlaceOptions& options,
-                  std::size_t& flagged, std::vector<TriangleTree::Nearest>& scratch)
+                  std::size_t& flagged, std::vector<TriangleTree::Nearest>& scratch, TiltedFaceGrid& tilted)
     {
       flagged = 0;
       const PatchCode& code = evaluator.model ().patches[p];
@@ -240,8 +241,7 @@ namespace pcl_sparse
       // over the limit minus the steepest slope.
       const double limit = options.max_normal_angle * M_PI / 180.0;
       bool any;
-      const TiltedFaceGrid tilted =
-        tiltedFaces (mesh, surface, evaluator, p, std::max (0.0, limit - std::atan (std::sqrt (steepest))), scratch, any);
+      tiltedFaces (mesh, surface, evaluator, p, std::max (0.0, limit - std::atan (std::sqrt (steepest))), scratch, tilted, any);
       if (!any)
         return {};
       const double flipped_cosine = std::cos (limit);
@@ -424,11 +424,12 @@ namespace pcl_sparse
 #pragma omp parallel num_threads(threads)
       {
         std::vector<TriangleTree::Nearest> scratch;
+        TiltedFaceGrid tilted;
 #pragma omp for schedule(dynamic, 8)
         for (long w = 0; w < n; ++w)
           failure.run ([&] {
             const std::size_t i = static_cast<std::size_t> (w);
-            cuts[i] = cutFootprint (mesh, surface, evaluator, ownership, candidates[i], options, flagged[i], scratch);
+            cuts[i] = cutFootprint (mesh, surface, evaluator, ownership, candidates[i], options, flagged[i], scratch, tilted);
           });
       }
       failure.rethrow ();
