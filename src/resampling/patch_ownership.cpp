@@ -233,6 +233,14 @@ namespace pcl_sparse
           k += static_cast<std::uint32_t> (opposite_patch_begin_[p]);
       }
     }
+    std::size_t listed = 0, listed_opposite = 0;
+    for (std::size_t b = 0; b < bins.size (); ++b)
+    {
+      listed += bins[b].size ();
+      listed_opposite += opposite_bins[b].size ();
+    }
+    bin_contenders_.reserve (listed);
+    opposite_contenders_.reserve (listed_opposite);
     for (std::size_t b = 0; b < bins.size (); ++b)
     {
       bin_contenders_.insert (bin_contenders_.end (), bins[b].begin (), bins[b].end ());
