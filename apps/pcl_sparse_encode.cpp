@@ -93,7 +93,7 @@ namespace
       {"", "dropped, up to 27 % of the patches of a mesh; -preset paper keeps them)"},
       {"--keep-flipped-places", "meshes: keep the footprints where a code's normal points over 110 degrees away from"},
       {"", "the nearest face (default: drawn in there, so resampling emits no flipped normal; -preset paper keeps"},
-      {"", "them; 0.3-5x the coding time, bench/results/flips.md)"},
+      {"", "them; 0.03-1.4 s on 2 threads, bench/results/flips.md)"},
       {"-merge-patches K", "merge each patch with at most K vertices and triangles of its own into its neighbours"},
       {"", "(default 8: up to a third off the file, bench/results/patch_merging.md; 0: none;"},
       {"", "-preset paper 0)"},
