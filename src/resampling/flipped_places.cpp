@@ -128,6 +128,27 @@ namespace pcl_sparse
         const int j = std::clamp (static_cast<int> ((y - start) / cell), 0, cells - 1);
         return faces[static_cast<std::size_t> (j) * cells + i];
       }
+
+      /// Whether a face listed near a place (\a local (x, y, h) in the patch's units, \a world) lies within
+      /// \a near_distance (world: `near` local units) of it and has a normal whose cosine with \a normal is
+      /// below \a flipped_cosine. Cheap tests first: the normals, then the face's ball, then the exact distance.
+      bool
+      tiltedFaceNear (const TriangleMesh& mesh, const Eigen::Vector3d& local, const Eigen::Vector3d& world,
+                      const Eigen::Vector3d& normal, float flipped_cosine, double near_distance) const
+      {
+        const Eigen::Vector3f normal_f = normal.cast<float> (), local_f = local.cast<float> ();
+        const std::vector<Face>& listed = facesNear (local.x (), local.y ());
+        return std::any_of (listed.begin (), listed.end (), [&] (const Face& f) {
+          if (!(normal_f.dot (f.normal) < flipped_cosine))
+            return false;
+          // Local units are about 1: 1e-4 covers the floats' rounding, so no face the exact test keeps is skipped.
+          const float ball = static_cast<float> (near) + f.radius + 1e-4f;
+          if ((local_f - f.centre).squaredNorm () > ball * ball)
+            return false;
+          const Eigen::Vector3i& t = mesh.triangles[static_cast<std::size_t> (f.index)];
+          return pointTriangleDistance (world, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= near_distance;
+        });
+      }
     };
 
     /// Fills \a grid with patch \a p's (its cells' lists keep their memory from the thread's last patch;
@@ -252,19 +273,8 @@ namespace pcl_sparse
       int done_ray = -1;  // the ray whose innermost flipped place was found
       // Whether a face tilted over the limit from the place's normal lies near it (cheap, from the grid).
       auto nearTiltedFace = [&] (const RayPlace& place, const Eigen::Vector3d& world, const Eigen::Vector3d& normal) {
-        const Eigen::Vector3f normal_f = normal.cast<float> ();
-        const Eigen::Vector3f local_f (static_cast<float> (place.x), static_cast<float> (place.y), static_cast<float> (place.h.value));
-        const std::vector<TiltedFaceGrid::Face>& near = tilted.facesNear (place.x, place.y);
-        return std::any_of (near.begin (), near.end (), [&] (const TiltedFaceGrid::Face& f) {
-          if (!(normal_f.dot (f.normal) < flipped_cosine_f))
-            return false;
-          // Local units are about 1: 1e-4 covers the floats' rounding, so no face the exact test keeps is skipped.
-          const float ball = static_cast<float> (TiltedFaceGrid::near) + f.radius + 1e-4f;
-          if ((local_f - f.centre).squaredNorm () > ball * ball)
-            return false;
-          const Eigen::Vector3i& t = mesh.triangles[static_cast<std::size_t> (f.index)];
-          return pointTriangleDistance (world, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]) <= near_distance;
-        });
+        return tilted.tiltedFaceNear (mesh, Eigen::Vector3d (place.x, place.y, place.h.value), world, normal, flipped_cosine_f,
+                                      near_distance);
       };
       // Whether the place's normal is over the limit from the surface's at its nearest point.
       auto flippedNormal = [&] (const Eigen::Vector3d& world, const Eigen::Vector3d& normal) {
