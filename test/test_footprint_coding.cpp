@@ -176,13 +176,17 @@ TEST (FootprintCoding, TrimCutsAreNeverDrawnOutside)
 {
   PatchFootprint cut = roundFootprint (static_cast<float> (12 * kLevels.step));
   cut.trimmed.assign (kAngles, 0);
-  // angle: depth in levels (0.4: rounds back up to the uncut level; 0.7: a dent the line passes over)
-  const std::vector<std::pair<std::size_t, double>> cuts{{5, 0.4}, {20, 0.7}, {21, 0.7}, {40, 3.6}};
+  // angle: depth in levels (0.4: rounds back up to the uncut level; 0.7: a dent the line passes over; 1: a
+  // cut on a level, but for the floats' rounding)
+  const std::vector<std::pair<std::size_t, double>> cuts{{5, 0.4}, {20, 0.7}, {21, 0.7}, {40, 3.6}, {50, 1.0}};
   for (const auto& [angle, depth] : cuts)
   {
     cut.extent[angle] -= static_cast<float> (depth * kLevels.step);
     cut.trimmed[angle] = 1;
   }
+  // The level-1 cut a float step under 11 levels, as extents computed in floats land.
+  cut.extent[50] = std::nextafter (static_cast<float> (11 * kLevels.step), 0.0f);
+  ASSERT_LT (cut.extent[50] / kLevels.step, 11.0);
   PatchFootprint unflagged = cut;
   unflagged.trimmed.clear ();
   auto drawnAt = [] (const PatchFootprint& decoded, std::size_t angle) {
@@ -209,6 +213,7 @@ TEST (FootprintCoding, TrimCutsAreNeverDrawnOutside)
     EXPECT_LE (furthestOutside (bounded), 1e-6) << steps;
     for (const auto& [angle, depth] : cuts)
       EXPECT_GE (drawnAt (bounded, angle), cut.extent[angle] - kLevels.step - 1e-6) << angle;
+    EXPECT_NEAR (drawnAt (bounded, 50), cut.extent[50], 1e-6) << "a cut on a level keeps that level";
     // Each cut's angle is coded: a chain of splits down from the coarse stride (32 here), per depth a split
     // flag, a residual and the sibling's flag in the varint layout (the range coder's are smaller).
     EXPECT_LE (bytes_cut, bytes_plain + 10 * cuts.size ()) << steps;

@@ -83,6 +83,10 @@ namespace pcl_sparse
       bool isTrimmed (std::size_t a) const { return trimmed && (*trimmed)[a]; }
     };
 
+    /// How far outside a trim cut its border may be drawn, relative: the extent's float rounding (an extent
+    /// that is a whole number of levels but for it keeps that level).
+    constexpr double kTrimCutRounding = 1e-6;
+
     /// The level coded for angle \a a: the nearest, but at a trim cut the nearest not outside it (past the
     /// cut the code's normal points away from the surface; within a level inside, also as a knife edge needs).
     unsigned
@@ -90,7 +94,7 @@ namespace pcl_sparse
     {
       if (!bounds.isTrimmed (a))
         return levelOf (extent[a], levels);
-      const double below = std::floor (static_cast<double> (extent[a]) / levels.step * (1.0 + 1e-9));
+      const double below = std::floor (static_cast<double> (extent[a]) * (1.0 + kTrimCutRounding) / levels.step);
       return std::min (levelMask (levels), static_cast<unsigned> (below));
     }
 
@@ -111,7 +115,7 @@ namespace pcl_sparse
         const double drawn = interpolatedExtent (level[a], level[b], static_cast<double> (j) / static_cast<double> (len), levels);
         if (bounds.isKnifeEdge (a + j) && drawn < static_cast<double> (extent[a + j]) - levels.step)
           return std::numeric_limits<double>::infinity ();  // over a level in at a knife edge: split
-        if (bounds.isTrimmed (a + j) && drawn > static_cast<double> (extent[a + j]) * (1.0 + 1e-9))
+        if (bounds.isTrimmed (a + j) && drawn > static_cast<double> (extent[a + j]) * (1.0 + kTrimCutRounding))
           return std::numeric_limits<double>::infinity ();  // past a trim cut: split
         const double nearest = std::clamp (drawn, static_cast<double> (bounds.lower[a + j]), static_cast<double> (bounds.upper[a + j]));
         deviation += std::abs (drawn - nearest);
