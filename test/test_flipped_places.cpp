@@ -6,6 +6,8 @@
 
 #include <pcl_sparse/coding/cosine_atoms.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/format/file_tolerance.h>
+#include <pcl_sparse/format/model_file.h>
 #include <pcl_sparse/io/mesh_io.h>
 #include <pcl_sparse/mesh/mesh_normals.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
@@ -220,6 +222,41 @@ TEST (FlippedPlaces, CheeseCgalResamplesWithoutFlippedNormals)
   const FlippedPlaceTrim second = trimFlippedPlaces (*mesh, again);
   EXPECT_EQ (second.places, 0u);
   EXPECT_EQ (second.patches, 0u);
+  // The default quantised file draws no cut outside it (PatchFootprint::trimmed; format/footprint_coding.h),
+  // where without the marks it drew some outside (the nearest level, the line between coded angles, the slack).
+  std::vector<double> errors;
+  const ModelStatistics stats = trimmed->statistics (mesh->vertices, &errors);
+  const ModelWriteOptions write_options = derivedWriteOptions (stats, errors, trimmed->bbox_diagonal);
+  SparseSurfaceModel unmarked = *trimmed;
+  for (PatchCode& patch : unmarked.patches)
+    patch.footprint.trimmed.clear ();
+  // Marked angles of the file of \a model drawn outside their extent.
+  std::size_t marked = 0;
+  auto drawnOutside = [&] (const SparseSurfaceModel& model) {
+    const std::vector<std::uint8_t> bytes = encodeModel (model, write_options);
+    const SparseSurfaceModel decoded = decodeModel (bytes.data (), bytes.size ());
+    EXPECT_EQ (decoded.numPatches (), trimmed->numPatches ());
+    std::size_t outside = 0;
+    marked = 0;
+    for (std::size_t p = 0; p < trimmed->numPatches () && p < decoded.numPatches (); ++p)
+    {
+      const PatchFootprint& footprint = trimmed->patches[p].footprint;
+      for (std::size_t a = 0; a < footprint.trimmed.size (); ++a)
+        if (footprint.trimmed[a])
+        {
+          ++marked;
+          const double angle = 2.0 * M_PI * static_cast<double> (a) / static_cast<double> (footprint.extent.size ());
+          outside += decoded.patches[p].footprint.extentAt (angle) > footprint.extent[a] * (1.0 + 1e-5);
+        }
+    }
+    return outside;
+  };
+  const std::size_t outside_unmarked = drawnOutside (unmarked), outside = drawnOutside (*trimmed);
+  std::cout << "  marked angles drawn outside their cut in the default file: " << outside_unmarked << " of " << marked
+            << " without the marks, " << outside << " with them" << std::endl;
+  EXPECT_GE (marked, 50u);
+  EXPECT_GT (outside_unmarked, 10u) << "the file no longer tests the marks";
+  EXPECT_EQ (outside, 0u);
 }
 
 TEST (FlippedPlaces, SwordKnifeEdgesResampleWithoutFlippedNormals)
