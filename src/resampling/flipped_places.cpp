@@ -188,10 +188,10 @@ namespace pcl_sparse
         const int j0 = std::max (0, static_cast<int> (std::floor ((box.min ().y () - near - grid.start) / grid.cell)));
         const int j1 = std::min (TiltedFaceGrid::cells - 1, static_cast<int> (std::floor ((box.max ().y () + near - grid.start) / grid.cell)));
         const PlanarTriangle projected (corners[0].head<2> (), corners[1].head<2> (), corners[2].head<2> ());
-        const Eigen::Vector3d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
-        const double radius = std::sqrt (std::max ({(corners[0] - centre).squaredNorm (), (corners[1] - centre).squaredNorm (),
-                                                    (corners[2] - centre).squaredNorm ()}));
-        const TiltedFaceGrid::Face listed{surface.faceNormals ()[f].cast<float> (), centre.cast<float> (),
+        const Eigen::Vector3d face_centre = (corners[0] + corners[1] + corners[2]) / 3.0;
+        const double radius = std::sqrt (std::max ({(corners[0] - face_centre).squaredNorm (), (corners[1] - face_centre).squaredNorm (),
+                                                    (corners[2] - face_centre).squaredNorm ()}));
+        const TiltedFaceGrid::Face listed{surface.faceNormals ()[f].cast<float> (), face_centre.cast<float> (),
                                           static_cast<float> (radius), static_cast<int> (f)};
         for (int j = j0; j <= j1; ++j)
           for (int i = i0; i <= i1; ++i)
@@ -231,6 +231,15 @@ namespace pcl_sparse
       double steepest = 0.0;
       // The last step is split twice more: a flipped sliver along the rim (a flat patch reaching over a face
       // tilted 120 degrees, cheese-cgal) lies between the last two places, the border's often held by another.
+      // Whether a place is one resampling may emit, inside the footprint and valid there (its centrality and
+      // code filled in).
+      auto settle = [&] (RayPlace& place) {
+        place.centrality = evaluator.centrality (p, place.x, place.y, place.turn);
+        if (!(place.centrality <= 1.0))
+          return false;
+        place.h = evaluator.sample (p, place.x, place.y, false);
+        return isValidPlace (place.h, ownership.options (), ownership.maxSlopeSquared ());
+      };
       std::vector<double> fractions;
       for (int i = 1; i < steps; ++i)
         fractions.push_back (static_cast<double> (i) / steps);
@@ -246,11 +255,7 @@ namespace pcl_sparse
         {
           const double f = fractions[i];
           RayPlace place{ray, f, i == 0 ? 0.0 : fractions[i - 1], e * f * c, e * f * s, 0.0, 0.0, HeightSample ()};
-          place.centrality = evaluator.centrality (p, place.x, place.y, place.turn);
-          if (place.centrality > 1.0)
-            continue;
-          place.h = evaluator.sample (p, place.x, place.y, false);
-          if (!isValidPlace (place.h, ownership.options (), ownership.maxSlopeSquared ()))
+          if (!settle (place))
             continue;
           steepest = std::max (steepest, place.h.gradient.squaredNorm ());
           places.push_back (place);
@@ -305,11 +310,7 @@ namespace pcl_sparse
           half.fraction = 0.5 * (place.inside + place.fraction);
           half.x = place.x * half.fraction / place.fraction;
           half.y = place.y * half.fraction / place.fraction;
-          half.centrality = evaluator.centrality (p, half.x, half.y, half.turn);
-          if (!(half.centrality <= 1.0))
-            continue;
-          half.h = evaluator.sample (p, half.x, half.y, false);
-          if (!isValidPlace (half.h, ownership.options (), ownership.maxSlopeSquared ()))
+          if (!settle (half))
             continue;
           const Eigen::Vector3d half_normal = patchNormal (code, half.h);
           const Eigen::Vector3d half_world = patchPoint (code, half.x, half.y, half.h);
