@@ -4,7 +4,8 @@
 #   bench/resample_speed.sh [BUILD_DIR] [BASE_COMMIT]   (defaults: build, the merge base with main)
 # Env: N (points, default 4000000), REPEAT (runs per row, best counts, default 5), MESHES (file names in
 # ../shared/meshes), BASIS (paper, the default here as in the first runs; quadric: the library's default; dct),
-# OUT (the report, default bench/results/resample_speed.md).
+# OUT (the report, default bench/results/resample_speed.md; its "## Notes" section is kept), LABEL (this
+# build's rows, default "resample-speed" and the commit).
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
@@ -38,7 +39,7 @@ for mesh in $meshes; do
   [ -f "$path" ] || continue
   # Alternate the builds so both see the same load from other jobs.
   "$base_src/build/bench/bench_resample_speed" -n "$n" -repeat "$repeat" -basis "$basis" -label "main $(echo "$base_commit" | cut -c1-7)" "$path" >>"$rows"
-  "$build/bench/bench_resample_speed" -n "$n" -repeat "$repeat" -basis "$basis" -label "resample-speed $(git -C "$root" rev-parse --short HEAD)" "$path" >>"$rows"
+  "$build/bench/bench_resample_speed" -n "$n" -repeat "$repeat" -basis "$basis" -label "${LABEL:-resample-speed $(git -C "$root" rev-parse --short HEAD)}" "$path" >>"$rows"
 done
 {
   echo "# Resampling speed from an encoded model (issue 14)"
@@ -67,6 +68,11 @@ done
                      printf "| %s | %s | %.2f | %.2f | %.2fx | %.2f | %.2f | %.2fx | %.2f / %.2f | %.2fx / %.2fx |\n", f[1], f[2],
                             ow[key], nw[key], nw[key] / ow[key], oc[key], nc[key], nc[key] / oc[key], ou[key], nu[key],
                             ow[f[1] " 2"] / ow[f[1] " 1"], nw[f[1] " 2"] / nw[f[1] " 1"] } }' "$rows"
-} >"$out"
+} >"$out.tmp"
+# Hand-written notes (from a "## Notes" line on) stay below the new tables.
+if [ -f "$out" ] && grep -q '^## Notes' "$out"; then
+  { echo; sed -n '/^## Notes/,$p' "$out"; } >>"$out.tmp"
+fi
+mv "$out.tmp" "$out"
 rm -f "$rows"
 echo "wrote $out"

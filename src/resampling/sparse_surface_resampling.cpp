@@ -5,6 +5,7 @@
 #include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
+#include <pcl_sparse/common/huge_pages.h>
 
 #include <omp.h>
 
@@ -742,7 +743,9 @@ namespace pcl_sparse
         if (prefill && attempt == 0)
           failure.run ([&] {
             prefill->clear ();
-            prefill->resize (count_);
+            resizeOnHugePages (prefill->points, count_);
+            prefill->width = static_cast<std::uint32_t> (count_);
+            prefill->height = 1;
           });
 #pragma omp for schedule(dynamic, 4)
         for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
@@ -831,9 +834,10 @@ namespace pcl_sparse
     if (!prefilled || output.size () != offsets[m])
     {
       output.clear ();
-      output.resize (offsets[m]);
+      resizeOnHugePages (output.points, offsets[m]);
     }
-    point_patches_.assign (offsets[m], 0);
+    point_patches_.clear ();
+    resizeOnHugePages (point_patches_, offsets[m]);
     const std::size_t channels = with_attributes_ ? model_->attribute_channels.size () : 0;
     point_attributes_.assign (offsets[m] * channels, 0.0f);
     std::atomic<std::size_t> done (0);
@@ -884,9 +888,9 @@ namespace pcl_sparse
       const std::size_t end = std::min (total, begin + block_points);
       planBlock (offsets, begin, end, passes, plan);
       // Every point of the block is written below, as in selectAllPoints.
-      block.cloud.resize (end - begin);
-      block.patches.resize (end - begin);
-      block.attributes.resize ((end - begin) * channels);
+      resizeOnHugePages (block.cloud.points, end - begin);
+      resizeOnHugePages (block.patches, end - begin);
+      resizeOnHugePages (block.attributes, (end - begin) * channels);
       ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threadsToUse ())
       for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t> (plan.spans.size ()); ++k)
