@@ -10,8 +10,8 @@ namespace pcl_sparse
   /// \brief Asks the kernel to back [data, data + bytes) with transparent huge pages (2 MB) where the buffer
   /// holds whole ones, before it is first written. A resampled cloud of millions of points is otherwise
   /// faulted in 4 KB at a time: a fifth of a single-threaded resampling went to those faults and to the
-  /// points. Only a hint: buffers under 8 MB, systems
-  /// without transparent huge pages, or a refusal leave the buffer as it was.
+  /// points' construction (perf on horse, 4 M points; bench/results/resample_speed.md). Only a hint:
+  /// buffers under 8 MB, systems without transparent huge pages, or a refusal leave the buffer as it was.
   void
   adviseHugePages (const void* data, std::size_t bytes);
 
