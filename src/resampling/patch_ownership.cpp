@@ -1,6 +1,7 @@
 #include <pcl_sparse/resampling/patch_ownership.h>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/huge_pages.h>
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/point_kd_tree.h>
 
@@ -234,8 +235,9 @@ namespace pcl_sparse
       contender_begin_[p + 1] = contender_begin_[p] + same_side[p].size ();
       opposite_patch_begin_[p + 1] = opposite_patch_begin_[p] + facing_away[p].size ();
     }
-    contenders_.resize (contender_begin_[m]);
-    opposites_.resize (opposite_patch_begin_[m]);
+    // Tens of MB on CAD meshes, rebuilt for every round of trimFlippedPlaces: on huge pages.
+    resizeOnHugePages (contenders_, contender_begin_[m]);
+    resizeOnHugePages (opposites_, opposite_patch_begin_[m]);
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
     for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
     {
