@@ -68,3 +68,44 @@ draco, extrapolated = loglog(points, float(sys.argv[4]), envelope=True)
 print('%.2f%s' % (int(sys.argv[3]) / draco, '*' if extrapolated else '') if draco else '-')
 PY
 }
+# option_sets_description SET...: the lines a results file of option_sets_table describes its columns with.
+option_sets_description () {
+  echo "Each mesh encoded with the default options and each option set ($(IFS=';'; echo "$*" | sed 's/;/; /g')): atoms (nnz) from"
+  echo "\`pcl_sparse_encode MESH SET -o FILE --json\`; bytes of FILE (quantised at the derived tolerance); Chamfer:"
+  echo "\`bench_format model MESH FILE\` (mean point-to-surface distance both ways over 200k points a side, / bbox"
+  echo "diagonal); x Draco: bytes over Draco's at that Chamfer (bench/results/meshes.tsv, interpolated as bench/meshes.sh"
+  echo "does: * extrapolated, - too far out);"
+  echo "p99 / flipped: \`pcl_sparse_resample FILE\` at 4 V points, then \`bench_meshes\`. \"x\": over the first set's."
+  echo "CAD meshes (issue 13's limit 1.5x Draco): $(python3 -c "import sys; sys.path.insert(0, '$here'); from meshes_report import CAD; print(', '.join(sorted(CAD)))")."
+}
+# option_sets_table SET...: (after file_tools) a markdown table, a row per shared mesh: for each option set of
+# pcl_sparse_encode (a string such as "-rho 0.004"), its -o file's atoms, bytes, Chamfer / diag, x Draco
+# (draco_ratio), and its cloud's p99 hole and flipped normals (file_cloud_quality); for every set after the
+# first also its bytes and Chamfer over the first set's. Progress on stderr.
+option_sets_table () {
+  local header="| mesh" rule="|---" set mesh name vertices row atoms bytes chamfer p99 flipped first_bytes first_chamfer
+  local -a options
+  for set in "$@"; do
+    header="$header | $set: atoms | bytes | Chamfer | x Draco | p99 | flipped"; rule="$rule|---|---|---|---|---|---"
+    if [ "$set" != "$1" ]; then header="$header | bytes x | Chamfer x"; rule="$rule|---|---"; fi
+  done
+  echo "$header |"
+  echo "$rule|"
+  for mesh in $(shared_mesh_files); do
+    name=$(basename "${mesh%.*}")
+    vertices=$(vertex_count "$mesh")
+    row="| $name"
+    for set in "$@"; do
+      read -r -a options <<< "$set"
+      atoms=$("$encode" "$mesh" "${options[@]}" -o "$work/file.psm" -q --json | json nnz)
+      bytes=$(stat -c %s "$work/file.psm")
+      chamfer=$("$format" model "$mesh" "$work/file.psm" | json chamfer)
+      read -r p99 flipped < <(file_cloud_quality "$mesh" "$work/file.psm" "$vertices")
+      row="$row | $atoms | $bytes | $(printf '%.3e' "$chamfer") | $(draco_ratio "$name" "$bytes" "$chamfer") | $(printf '%.2f' "$p99") | $flipped"
+      if [ "$set" = "$1" ]; then first_bytes=$bytes; first_chamfer=$chamfer
+      else row="$row | $(ratio "$bytes" "$first_bytes") | $(ratio "$chamfer" "$first_chamfer")"; fi
+    done
+    echo "$row |"
+    echo "$name done" >&2
+  done
+}
