@@ -2,6 +2,7 @@
 
 #include <pcl_sparse/common/atomic_write.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/huge_pages.h>
 #include <pcl_sparse/common/signal_cleanup.h>
 
 #include "mesh_readers.h"
@@ -260,7 +261,7 @@ namespace pcl_sparse
     if (w.binary)
     {
       const std::size_t record = io_detail::binaryRecordSize (w.doubles, w.extra, w.ply);
-      buffer.resize (block.size () * record);
+      resizeOnHugePages (buffer, block.size () * record);  // tens of MB a block, written once through
       char* out = &buffer[0];
       for (const PointT& point : block)
       {
