@@ -109,3 +109,18 @@ option_sets_table () {
     echo "$name done" >&2
   done
 }
+# option_sets_report OUT TITLE SET...: (after file_tools) writes OUT: "# TITLE", generated_by, the description and
+# option_sets_table of the sets, keeping OUT's notes (write_keeping_notes).
+option_sets_report () {
+  local out=$1 title=$2
+  shift 2
+  {
+    echo "# $title"
+    echo
+    generated_by
+    option_sets_description "$@"
+    echo
+    option_sets_table "$@"
+  } > "$work/table.md"
+  write_keeping_notes "$work/table.md" "$out"
+}

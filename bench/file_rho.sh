@@ -10,13 +10,5 @@ set -euo pipefail
 source "$(dirname "$0")/bench_setup.sh"
 file_tools
 IFS=';' read -r -a sets <<< "${PCL_SPARSE_FILE_RHO_SETS:--rho 0.001;-rho 0.002;-rho 0.004;-rho 0.008}"
-out="$here/results/file_rho.md"
-{
-  echo "# Larger patches for smaller files: the default file against Draco as rho grows"
-  echo
-  generated_by
-  option_sets_description "${sets[@]}"
-  echo
-} > "$work/table.md"
-option_sets_table "${sets[@]}" >> "$work/table.md"
-write_keeping_notes "$work/table.md" "$out"
+option_sets_report "$here/results/file_rho.md" "Larger patches for smaller files: the default file against Draco as rho grows" \
+  "${sets[@]}"
