@@ -1,11 +1,11 @@
 #include <pcl_sparse/resampling/impl/sparse_surface_resampling.hpp>
 
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/huge_pages.h>
 #include <pcl_sparse/common/memory_limit.h>
 #include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
-#include <pcl_sparse/common/huge_pages.h>
 
 #include <omp.h>
 
