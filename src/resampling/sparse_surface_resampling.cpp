@@ -839,7 +839,8 @@ namespace pcl_sparse
     point_patches_.clear ();
     resizeOnHugePages (point_patches_, offsets[m]);
     const std::size_t channels = with_attributes_ ? model_->attribute_channels.size () : 0;
-    point_attributes_.assign (offsets[m] * channels, 0.0f);
+    point_attributes_.clear ();
+    resizeOnHugePages (point_attributes_, offsets[m] * channels);
     std::atomic<std::size_t> done (0);
     ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threadsToUse ())
