@@ -12,6 +12,8 @@ namespace pcl_sparse
   /// faulted in 4 KB at a time: a fifth of a single-threaded resampling went to those faults and to the
   /// points' construction (perf on horse, 4 M points; bench/results/resample_speed.md). Only a hint:
   /// buffers under 8 MB, systems without transparent huge pages, or a refusal leave the buffer as it was.
+  /// Where memory is fragmented, the kernel's defrag setting decides whether the first write waits for it
+  /// to compact memory into a huge page (the Debian default for advised buffers) or takes small pages.
   void
   adviseHugePages (const void* data, std::size_t bytes);
 
