@@ -513,6 +513,16 @@ namespace pcl_sparse
         ++parts[remainders[k % remainders.size ()].second];
       return parts;
     }
+
+    /// cloud.resize (n) as PCL's (width n, height 1), with the points on huge pages (common/huge_pages.h).
+    template <typename Cloud>
+    void
+    resizeCloudOnHugePages (Cloud& cloud, std::size_t n)
+    {
+      resizeOnHugePages (cloud.points, n);
+      cloud.width = static_cast<std::uint32_t> (n);
+      cloud.height = 1;
+    }
   } // namespace
 
   /// The tables and per-patch results the passes share.
@@ -743,9 +753,7 @@ namespace pcl_sparse
         if (prefill && attempt == 0)
           failure.run ([&] {
             prefill->clear ();
-            resizeOnHugePages (prefill->points, count_);
-            prefill->width = static_cast<std::uint32_t> (count_);
-            prefill->height = 1;
+            resizeCloudOnHugePages (*prefill, count_);
           });
 #pragma omp for schedule(dynamic, 4)
         for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t> (m); ++pi)
@@ -834,7 +842,7 @@ namespace pcl_sparse
     if (!prefilled || output.size () != offsets[m])
     {
       output.clear ();
-      resizeOnHugePages (output.points, offsets[m]);
+      resizeCloudOnHugePages (output, offsets[m]);
     }
     point_patches_.clear ();
     resizeOnHugePages (point_patches_, offsets[m]);
@@ -889,7 +897,7 @@ namespace pcl_sparse
       const std::size_t end = std::min (total, begin + block_points);
       planBlock (offsets, begin, end, passes, plan);
       // Every point of the block is written below, as in selectAllPoints.
-      resizeOnHugePages (block.cloud.points, end - begin);
+      resizeCloudOnHugePages (block.cloud, end - begin);
       resizeOnHugePages (block.patches, end - begin);
       resizeOnHugePages (block.attributes, (end - begin) * channels);
       ParallelFailure failure;
