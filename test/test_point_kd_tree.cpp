@@ -84,6 +84,57 @@ TEST (PointKdTree, SameNeighboursAsPclWhereDistancesTie)
   expectSameAsPcl (gridPoints (), 13, 1.5);
 }
 
+// nearestWithin is nearestK's first answer wherever that lies within the bound (ties too), and nothing where
+// it does not.
+TEST (PointKdTree, NearestWithinABoundIsTheNearestOrNothing)
+{
+  for (const auto& cloud : {randomPoints (3000, 11), gridPoints ()})
+  {
+    const PointKdTree tree (*cloud);
+    std::vector<int> indices;
+    std::vector<float> squared;
+    std::size_t found = 0, none = 0;
+    std::mt19937 random (3);
+    std::uniform_real_distribution<float> shift (-0.6f, 0.6f);
+    for (std::size_t i = 0; i < cloud->size (); ++i)
+    {
+      const pcl::PointXYZ& p = (*cloud)[i];
+      for (const pcl::PointXYZ& q : {p, pcl::PointXYZ (p.x + 0.5f, p.y + 0.25f, p.z),
+                                     pcl::PointXYZ (p.x + shift (random), p.y + shift (random), p.z + shift (random))})
+      {
+        tree.nearestK (q, 1, indices, squared);
+        ASSERT_EQ (indices.size (), 1u);
+        for (const float bound : {0.5f * squared[0], squared[0], std::nextafter (squared[0], 1e30f), 4.0f * squared[0] + 1e-6f,
+                                  std::numeric_limits<float>::infinity ()})
+        {
+          int index = -7;
+          float d = -1.0f;
+          const bool within = tree.nearestWithin (q, bound, index, d);
+          ASSERT_EQ (within, squared[0] < bound) << "query near point " << i << ", bound " << bound;
+          if (within)
+          {
+            ASSERT_EQ (index, indices[0]) << "query near point " << i << ", bound " << bound;
+            ASSERT_EQ (d, squared[0]);
+            ++found;
+          }
+          else
+          {
+            ASSERT_EQ (index, -7);  // left as it was
+            ASSERT_EQ (d, -1.0f);
+            ++none;
+          }
+        }
+      }
+    }
+    EXPECT_GT (found, 3 * cloud->size ());
+    EXPECT_GT (none, cloud->size ());
+  }
+  int index = -7;
+  float d = -1.0f;
+  EXPECT_FALSE (PointKdTree (pcl::PointCloud<pcl::PointXYZ> ()).nearestWithin (pcl::PointXYZ (0, 0, 0), 1.0f, index, d));
+  EXPECT_EQ (index, -7);
+}
+
 TEST (PointKdTree, KnownNeighboursOnAGrid)
 {
   const auto cloud = gridPoints ();

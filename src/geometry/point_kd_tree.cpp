@@ -12,6 +12,35 @@
 
 namespace pcl_sparse
 {
+  namespace
+  {
+    /// FLANN's result set for one neighbour nearer than a bound: KNNSimpleResultSet's rule for k 1 (the first
+    /// point found at the least distance is kept), with the bound as its starting worst distance.
+    class NearestWithinResultSet : public flann::ResultSet<float>
+    {
+    public:
+      explicit NearestWithinResultSet (float bound_squared) : worst_ (bound_squared) {}
+      bool full () const override { return found_; }
+      void
+      addPoint (float dist, std::size_t index) override
+      {
+        if (dist >= worst_)
+          return;
+        worst_ = dist;
+        index_ = index;
+        found_ = true;
+      }
+      float worstDist () const override { return worst_; }
+      bool found () const { return found_; }
+      std::size_t index () const { return index_; }
+
+    private:
+      float worst_;
+      std::size_t index_ = 0;
+      bool found_ = false;
+    };
+  } // namespace
+
   struct PointKdTree::Impl
   {
     using Tree = flann::KDTreeSingleIndex<flann::L2_Simple<float>>;
@@ -58,6 +87,21 @@ namespace pcl_sparse
     if (n > 0)
       found.copy (numbers.data (), squared.data (), n, true);
     indices.assign (numbers.begin (), numbers.end ());
+  }
+
+  bool
+  PointKdTree::nearestWithin (const pcl::PointXYZ& query, float bound_squared, int& index, float& squared) const
+  {
+    if (size_ == 0)
+      return false;
+    NearestWithinResultSet found (bound_squared);
+    const float q[3] = {query.x, query.y, query.z};
+    impl_->tree->findNeighbors (found, q, impl_->params);
+    if (!found.found ())
+      return false;
+    index = static_cast<int> (found.index ());
+    squared = found.worstDist ();
+    return true;
   }
 
   void

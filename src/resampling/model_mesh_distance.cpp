@@ -124,13 +124,17 @@ namespace pcl_sparse
     const auto [first, last] = reaches_->candidates (p);  // the nearest is taken: any order does
     for (const int* i = first; i != last; ++i)
       measure (*i);
-    // Per thread: a query allocates nothing.
-    thread_local std::vector<int> indices;
-    thread_local std::vector<float> squared;
     // A patch across a thin part can contain the projection of p and report the part's thickness, so the
-    // nearest resampled point (an upper bound: it lies on the decoded surface) always caps it.
-    cloud_->nearestK (q, 1, indices, squared);
-    return std::min (best, (p - points_[indices[0]]).norm ());
+    // nearest resampled point (an upper bound: it lies on the decoded surface) always caps it. Only a point
+    // nearer than best can: the search stops at best (a hair wider, for the float distances it compares),
+    // which prunes most of it, as best is mostly far below the points' spacing.
+    const float bound = std::isfinite (best) ? static_cast<float> (best * best * (1.0 + 1e-4)) + std::numeric_limits<float>::min ()
+                                             : std::numeric_limits<float>::infinity ();
+    int nearest = -1;
+    float squared = 0.0f;
+    if (!cloud_->nearestWithin (q, bound, nearest, squared))
+      return best;
+    return std::min (best, (p - points_[nearest]).norm ());
   }
 
   ChamferDistance

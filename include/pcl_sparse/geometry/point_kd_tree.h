@@ -36,6 +36,16 @@ namespace pcl_sparse
     /// \param[out] squared   their squared distances
     void nearestK (const pcl::PointXYZ& query, int k, std::vector<int>& indices, std::vector<float>& squared) const;
 
+    /// \brief The point nearest \a query if its squared distance is less than \a bound_squared: the nearestK (k 1)
+    /// answer, found sooner the tighter the bound (branches farther than it are not searched), and nothing
+    /// allocated. ModelSurfaceDistance caps a distance it already has by the nearest resampled point.
+    /// \param[in] query          where to search (finite)
+    /// \param[in] bound_squared  only points nearer than this (squared; infinity: any)
+    /// \param[out] index         its number in the points given (unchanged when there is none)
+    /// \param[out] squared       its squared distance (unchanged when there is none)
+    /// \return whether there was one
+    bool nearestWithin (const pcl::PointXYZ& query, float bound_squared, int& index, float& squared) const;
+
     /// \brief Every point whose squared distance to \a query is less than float (radius^2) (as
     /// pcl::KdTreeFLANN::radiusSearch without a neighbour limit: a point at exactly the radius is left out).
     /// \param[in] query      where to search (finite)
