@@ -83,6 +83,61 @@ TEST (TriangleTree, NearestIsExactOnASphereAndOnSlivers)
   }
 }
 
+// One walk for the nearest and the triangles within a margin of it: the same triangle as nearest, the same
+// set as within, at margins from none (ties at shared corners only) to past the neighbours.
+TEST (TriangleTree, NearestAndTiedIsNearestThenWithin)
+{
+  std::mt19937 random (17);
+  for (const TriangleMesh& mesh : {makeIcosphere (3), sliversAndGrid ()})
+  {
+    const TriangleTree tree (mesh);
+    std::uniform_real_distribution<double> u (-12.0, 13.0);
+    std::vector<Eigen::Vector3d> probes;
+    for (int i = 0; i < 300; ++i)
+      probes.emplace_back (u (random), u (random) / 5.0, u (random) / 20.0);
+    for (std::size_t v = 0; v < mesh.vertices.size (); v += 5)
+      probes.push_back (mesh.vertices[v] * 1.01);  // beside a corner: its faces tie
+    std::vector<TriangleTree::Nearest> tied, within;
+    std::size_t several = 0;
+    for (const Eigen::Vector3d& p : probes)
+      for (const double margin : {0.0, 1e-11, 0.05, 1.0})
+      {
+        const TriangleTree::Nearest expected = tree.nearest (p);
+        const TriangleTree::Nearest found = tree.nearestAndTied (p, margin, tied);
+        ASSERT_EQ (found.triangle, expected.triangle) << p.transpose ();
+        ASSERT_EQ (found.distance, expected.distance);
+        auto byTriangle = [] (std::vector<TriangleTree::Nearest> faces) {
+          std::vector<std::pair<int, double>> sorted;
+          for (const TriangleTree::Nearest& f : faces)
+            sorted.emplace_back (f.triangle, f.distance);
+          std::sort (sorted.begin (), sorted.end ());
+          return sorted;
+        };
+        std::vector<std::pair<int, double>> expected_tied;  // every triangle measured
+        for (std::size_t f = 0; f < mesh.triangles.size (); ++f)
+        {
+          const Eigen::Vector3i& t = mesh.triangles[f];
+          const double d = pointTriangleDistance (p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+          if (d <= expected.distance + margin)
+            expected_tied.emplace_back (static_cast<int> (f), d);
+        }
+        // Boxes are pruned by squared distances, which rounding can put a hair past a box that touches the
+        // nearest point: exact ties need a margin (NearestFaceNormal's is 1e-12 of the coordinates), as within's.
+        if (margin == 0.0)
+          continue;
+        ASSERT_EQ (byTriangle (tied), expected_tied) << p.transpose () << " margin " << margin;
+        tree.within (p, expected.distance + margin, within);
+        ASSERT_EQ (byTriangle (tied), byTriangle (within)) << p.transpose () << " margin " << margin;
+        several += tied.size () > 1 ? 1 : 0;
+      }
+    EXPECT_GT (several, probes.size ());  // ties and margins gave more than the nearest alone
+  }
+  std::vector<TriangleTree::Nearest> tied{{1.0, 3}};
+  const TriangleMesh one = makeIcosphere (0);
+  EXPECT_EQ (TriangleTree (one).nearestAndTied (Eigen::Vector3d (0.0, 0.0, std::nan ("")), 0.1, tied).triangle, -1);
+  EXPECT_TRUE (tied.empty ());
+}
+
 TEST (TriangleTree, WithinFindsEveryTriangleInTheRadius)
 {
   std::mt19937 random (5);

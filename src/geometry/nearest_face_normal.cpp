@@ -20,11 +20,10 @@ namespace pcl_sparse
   NearestFaceNormal::nearest (const Eigen::Vector3d& p, const Eigen::Vector3d& direction, double& cosine,
                               std::vector<TriangleTree::Nearest>& tied) const
   {
-    const TriangleTree::Nearest found = tree_.nearest (p);
+    const TriangleTree::Nearest found = tree_.nearestAndTied (p, tie_, tied);
     cosine = -1.0;
     if (found.triangle < 0)
       return found;
-    tree_.within (p, found.distance + tie_, tied);
     cosine = direction.dot (face_normals_[static_cast<std::size_t> (found.triangle)]);
     for (const TriangleTree::Nearest& face : tied)
       cosine = std::max (cosine, direction.dot (face_normals_[static_cast<std::size_t> (face.triangle)]));

@@ -150,6 +150,59 @@ namespace pcl_sparse
     return best;
   }
 
+  TriangleTree::Nearest
+  TriangleTree::nearestAndTied (const Eigen::Vector3d& p, double margin, std::vector<Nearest>& tied) const
+  {
+    tied.clear ();
+    Nearest best;
+    best.distance = std::numeric_limits<double>::infinity ();
+    double reach = best.distance;  // best + margin: every triangle as near is kept, every box as near searched
+    // As nearest: nearest box first, at most 31 levels pushing at most 2 each.
+    std::array<std::pair<int, double>, 64> stack;
+    int size = 0;
+    stack[size++] = {0, boxSquaredDistance (p, nodes_[0].lo, nodes_[0].hi)};
+    while (size > 0)
+    {
+      const auto [index, squared] = stack[--size];
+      if (squared > reach * reach)
+        continue;
+      const Node& node = nodes_[index];
+      if (node.count > 0)
+      {
+        for (int i = node.first; i < node.first + node.count; ++i)
+        {
+          const double d = pointTriangleDistance (p, corners_[i][0], corners_[i][1], corners_[i][2]);
+          if (!(d <= reach))
+            continue;
+          tied.push_back ({d, triangle_[i]});
+          if (d < best.distance)
+          {
+            best.distance = d;
+            best.triangle = triangle_[i];
+            reach = d + margin;
+          }
+        }
+        continue;
+      }
+      const double a = boxSquaredDistance (p, nodes_[node.first].lo, nodes_[node.first].hi);
+      const double b = boxSquaredDistance (p, nodes_[node.first + 1].lo, nodes_[node.first + 1].hi);
+      if (a <= b)
+      {
+        stack[size++] = {node.first + 1, b};
+        stack[size++] = {node.first, a};
+      }
+      else
+      {
+        stack[size++] = {node.first, a};
+        stack[size++] = {node.first + 1, b};
+      }
+    }
+    // Kept while the nearest was farther: only those within the final reach stay (within's test, d <= radius).
+    tied.erase (std::remove_if (tied.begin (), tied.end (), [&] (const Nearest& t) { return !(t.distance <= reach); }),
+                tied.end ());
+    return best;
+  }
+
   void
   TriangleTree::within (const Eigen::Vector3d& p, double radius, std::vector<Nearest>& found) const
   {

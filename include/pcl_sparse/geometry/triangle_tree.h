@@ -39,6 +39,14 @@ namespace pcl_sparse
     /// same point, whatever the thread).
     Nearest nearest (const Eigen::Vector3d& p) const;
 
+    /// \brief nearest (p), and in \a tied what within (p, nearest (p).distance + \a margin, tied) gives (in another
+    /// order), in one walk of the tree instead of two (NearestFaceNormal: the faces tied at the nearest edge
+    /// or corner). Thread-safe.
+    /// \param[in] p       the query point
+    /// \param[in] margin  how much farther than the nearest a triangle may be (>= 0)
+    /// \param[out] tied   the triangles within the nearest distance + \a margin, cleared first
+    Nearest nearestAndTied (const Eigen::Vector3d& p, double margin, std::vector<Nearest>& tied) const;
+
     /// \brief Every triangle within \a radius of \a p (distance <= radius) and its exact distance, in the
     /// tree's order (the same for the same point). With radius = nearest (p).distance + a rounding margin it
     /// gives every triangle tied at the nearest distance: those sharing the edge or corner nearest \a p.
