@@ -250,18 +250,23 @@ namespace pcl_sparse
       // A place is a valid one, no steeper than resampling's largest slope, so its normal is within that slope
       // of N: it can only be past the limit from a face tilted over the limit minus that slope. Where no face
       // in reach is (most patches of smooth meshes), none of the places is computed.
+      // The faces tilted that far are filed by the cells of the footprint's square (tiltedFaces), and a place
+      // in a cell that lists none is not computed either.
       const double limit = options.max_normal_angle * M_PI / 180.0;
+      const double tilt = std::max (0.0, limit - std::atan (std::sqrt (ownership.maxSlopeSquared ())));
       facesInReach (surface, evaluator, p, tilted.in_reach);
-      if (!anyTiltedFace (surface, evaluator, p, std::max (0.0, limit - std::atan (std::sqrt (ownership.maxSlopeSquared ()))),
-                          tilted.in_reach))
+      if (!anyTiltedFace (surface, evaluator, p, tilt, tilted.in_reach))
+        return {};
+      bool any;
+      tiltedFaces (mesh, surface, evaluator, p, tilt, tilted.in_reach, tilted, any);
+      if (!any)
         return {};
       const PatchCode& code = evaluator.model ().patches[p];
       const std::vector<float>& extent = code.footprint.extent;
       const int k = static_cast<int> (extent.size ());
       const int steps = options.radial_steps;
-      // The valid places on the rays, each ray from the seed outwards, and the steepest slope among them.
+      // The valid places on the rays near a tilted face, each ray from the seed outwards.
       std::vector<RayPlace> places;
-      double steepest = 0.0;
       // The last step is split twice more: a flipped sliver along the rim (a flat patch reaching over a face
       // tilted 120 degrees, cheese-cgal) lies between the last two places, the border's often held by another.
       // Whether a place is one resampling may emit, inside the footprint and valid there (its centrality and
@@ -288,19 +293,12 @@ namespace pcl_sparse
         {
           const double f = fractions[i];
           RayPlace place{ray, f, i == 0 ? 0.0 : fractions[i - 1], e * f * c, e * f * s, 0.0, 0.0, HeightSample ()};
-          if (!settle (place))
+          if (tilted.facesNear (place.x, place.y).empty () || !settle (place))
             continue;
-          steepest = std::max (steepest, place.h.gradient.squaredNorm ());
           places.push_back (place);
         }
       }
       if (places.empty ())
-        return {};
-      // A place's normal is within its slope angle of N: it can only be past the limit from a face tilted
-      // over the limit minus the steepest slope.
-      bool any;
-      tiltedFaces (mesh, surface, evaluator, p, std::max (0.0, limit - std::atan (std::sqrt (steepest))), tilted.in_reach, tilted, any);
-      if (!any)
         return {};
       const double flipped_cosine = std::cos (limit);
       const double near_distance = TiltedFaceGrid::near * code.radius;
