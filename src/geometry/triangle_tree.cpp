@@ -102,6 +102,24 @@ namespace pcl_sparse
     build (first + 1, middle, end, centroids, order);
   }
 
+  void
+  TriangleTree::pushChildren (const Node& node, const Eigen::Vector3d& p, std::array<std::pair<int, double>, 64>& stack,
+                              int& size) const
+  {
+    const double a = boxSquaredDistance (p, nodes_[node.first].lo, nodes_[node.first].hi);
+    const double b = boxSquaredDistance (p, nodes_[node.first + 1].lo, nodes_[node.first + 1].hi);
+    if (a <= b)
+    {
+      stack[size++] = {node.first + 1, b};
+      stack[size++] = {node.first, a};
+    }
+    else
+    {
+      stack[size++] = {node.first, a};
+      stack[size++] = {node.first + 1, b};
+    }
+  }
+
   TriangleTree::Nearest
   TriangleTree::nearest (const Eigen::Vector3d& p) const
   {
@@ -133,19 +151,7 @@ namespace pcl_sparse
         }
         continue;
       }
-      // The nearer child last, so that it is searched first and prunes the other.
-      const double a = boxSquaredDistance (p, nodes_[node.first].lo, nodes_[node.first].hi);
-      const double b = boxSquaredDistance (p, nodes_[node.first + 1].lo, nodes_[node.first + 1].hi);
-      if (a <= b)
-      {
-        stack[size++] = {node.first + 1, b};
-        stack[size++] = {node.first, a};
-      }
-      else
-      {
-        stack[size++] = {node.first, a};
-        stack[size++] = {node.first + 1, b};
-      }
+      pushChildren (node, p, stack, size);
     }
     return best;
   }
@@ -184,18 +190,7 @@ namespace pcl_sparse
         }
         continue;
       }
-      const double a = boxSquaredDistance (p, nodes_[node.first].lo, nodes_[node.first].hi);
-      const double b = boxSquaredDistance (p, nodes_[node.first + 1].lo, nodes_[node.first + 1].hi);
-      if (a <= b)
-      {
-        stack[size++] = {node.first + 1, b};
-        stack[size++] = {node.first, a};
-      }
-      else
-      {
-        stack[size++] = {node.first, a};
-        stack[size++] = {node.first + 1, b};
-      }
+      pushChildren (node, p, stack, size);
     }
     // Kept while the nearest was farther: only those within the final reach stay (within's test, d <= radius).
     tied.erase (std::remove_if (tied.begin (), tied.end (), [&] (const Nearest& t) { return !(t.distance <= reach); }),

@@ -249,9 +249,8 @@ namespace pcl_sparse
       flagged = 0;
       // A place is a valid one, no steeper than resampling's largest slope, so its normal is within that slope
       // of N: it can only be past the limit from a face tilted over the limit minus that slope. Where no face
-      // in reach is (most patches of smooth meshes), none of the places is computed.
-      // The faces tilted that far are filed by the cells of the footprint's square (tiltedFaces), and a place
-      // in a cell that lists none is not computed either.
+      // in reach is (most patches of smooth meshes), none of the places is computed; elsewhere those faces are
+      // filed by the cells of the footprint's square (tiltedFaces), and only the places in a cell listing one are.
       const double limit = options.max_normal_angle * M_PI / 180.0;
       const double tilt = std::max (0.0, limit - std::atan (std::sqrt (ownership.maxSlopeSquared ())));
       facesInReach (surface, evaluator, p, tilted.in_reach);

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace pcl_sparse
@@ -63,6 +64,10 @@ namespace pcl_sparse
       int first = 0;           ///< leaf: first triangle in corners_; inner: index of the first child
       int count = 0;           ///< leaf: number of triangles; 0 for an inner node (children first, first + 1)
     };
+
+    /// Pushes the children of inner node \a node with their squared box distances from \a p, the nearer last
+    /// (searched first, so that it prunes the other).
+    void pushChildren (const Node& node, const Eigen::Vector3d& p, std::array<std::pair<int, double>, 64>& stack, int& size) const;
 
     /// Fills node \a node (already allocated) over order[begin, end), allocating and filling its children.
     void build (int node, int begin, int end, const std::vector<Eigen::Vector3d>& centroids, std::vector<int>& order);
