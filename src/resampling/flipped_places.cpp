@@ -119,7 +119,6 @@ namespace pcl_sparse
         int index;
       };
       std::vector<std::vector<Face>> faces;  ///< cells x cells, row by row
-      std::vector<TriangleTree::Nearest> in_reach;  ///< the faces in the patch's reach (facesInReach)
 
       /// The faces near the place (x, y).
       const std::vector<Face>&
@@ -152,36 +151,11 @@ namespace pcl_sparse
       }
     };
 
-    /// The faces that may lie near a place of patch \a p (within `near` of its footprint's box under its height
-    /// bound) into \a found.
-    void
-    facesInReach (const NearestFaceNormal& surface, const PatchEvaluator& evaluator, std::size_t p,
-                  std::vector<TriangleTree::Nearest>& found)
-    {
-      const PatchCode& code = evaluator.model ().patches[p];
-      const double extent = evaluator.maxExtent (p);
-      const double height = std::min (code.heightBound (*evaluator.model ().basis), 1.0);
-      surface.tree ().within (code.origin, code.radius * (std::sqrt (extent * extent + height * height) + TiltedFaceGrid::near),
-                              found);
-    }
-
-    /// Whether a face of \a found (facesInReach) is tilted over \a tilt from patch \a p's normal.
-    bool
-    anyTiltedFace (const NearestFaceNormal& surface, const PatchEvaluator& evaluator, std::size_t p, double tilt,
-                   const std::vector<TriangleTree::Nearest>& found)
-    {
-      const Eigen::Vector3d n = evaluator.model ().patches[p].frame.col (2);
-      const double tilt_cosine = std::cos (tilt);
-      return std::any_of (found.begin (), found.end (), [&] (const TriangleTree::Nearest& face) {
-        return n.dot (surface.faceNormals ()[static_cast<std::size_t> (face.triangle)]) < tilt_cosine;
-      });
-    }
-
-    /// Fills \a grid with patch \a p's faces of \a found (facesInReach) tilted over \a tilt (its cells' lists keep
-    /// their memory from the thread's last patch); \a any tells whether some cell lists a face.
+    /// Fills \a grid with patch \a p's faces tilted over \a tilt from its normal (its cells' lists keep their memory
+    /// from the thread's last patch; \a found: scratch space); \a any tells whether some cell lists a face.
     void
     tiltedFaces (const TriangleMesh& mesh, const NearestFaceNormal& surface, const PatchEvaluator& evaluator,
-                 std::size_t p, double tilt, const std::vector<TriangleTree::Nearest>& found, TiltedFaceGrid& grid, bool& any)
+                 std::size_t p, double tilt, std::vector<TriangleTree::Nearest>& found, TiltedFaceGrid& grid, bool& any)
     {
       const PatchCode& code = evaluator.model ().patches[p];
       const double extent = evaluator.maxExtent (p);
@@ -194,6 +168,7 @@ namespace pcl_sparse
       for (std::vector<TiltedFaceGrid::Face>& listed : grid.faces)
         listed.clear ();
       any = false;
+      surface.tree ().within (code.origin, code.radius * (std::sqrt (extent * extent + height * height) + near), found);
       const Eigen::Vector3d n = code.frame.col (2);
       const double tilt_cosine = std::cos (tilt);
       for (const TriangleTree::Nearest& face : found)
@@ -253,11 +228,8 @@ namespace pcl_sparse
       // filed by the cells of the footprint's square (tiltedFaces), and only the places in a cell listing one are.
       const double limit = options.max_normal_angle * M_PI / 180.0;
       const double tilt = std::max (0.0, limit - std::atan (std::sqrt (ownership.maxSlopeSquared ())));
-      facesInReach (surface, evaluator, p, tilted.in_reach);
-      if (!anyTiltedFace (surface, evaluator, p, tilt, tilted.in_reach))
-        return {};
       bool any;
-      tiltedFaces (mesh, surface, evaluator, p, tilt, tilted.in_reach, tilted, any);
+      tiltedFaces (mesh, surface, evaluator, p, tilt, scratch, tilted, any);
       if (!any)
         return {};
       const PatchCode& code = evaluator.model ().patches[p];
