@@ -163,7 +163,7 @@ namespace pcl_sparse
     const int stride = (2 * r + 1) * static_cast<int> (columns.size ()) - 1;
     PointNeighborhoods hoods;
     hoods.spacing.assign (n, 0.0);
-    std::vector<int> found (n * static_cast<std::size_t> (stride), -1);
+    const std::unique_ptr<int[]> found = uninitialisedNeighborSlots (n, static_cast<std::size_t> (stride));
     std::vector<int> counts (n, 0);
     const int threads = resolveThreadCount (num_threads);
     const double gap2 = gap_factor * gap_factor;
@@ -180,7 +180,7 @@ namespace pcl_sparse
         sx = sx > 0.0 ? sx : sy;
         sy = sy > 0.0 ? sy : sx;
         hoods.spacing[i] = std::sqrt (sx * sy);
-        int* out = found.data () + static_cast<std::size_t> (i) * stride;
+        int* out = found.get () + static_cast<std::size_t> (i) * stride;
         int k = 1;  // pixels between window pixels
         const double step = steps ? steps->stepAbove (steps->level[i]) : 0.0;
         if (steps_reached > 0.0 && step > 0.0 && hoods.spacing[i] > 0.0)
@@ -201,7 +201,7 @@ namespace pcl_sparse
               out[counts[i]++] = j;
           }
       }
-    packNeighborSlots (found, static_cast<std::size_t> (stride), counts, hoods);
+    packNeighborSlots (found.get (), static_cast<std::size_t> (stride), counts, hoods, threads);
     return hoods;
   }
 } // namespace pcl_sparse

@@ -137,7 +137,8 @@ namespace pcl_sparse
       }
     }
     // Accepted neighbours per point in place (k slots), then compacted in point order.
-    std::vector<int> kept (graph.neighbors.size (), -1), count (n, 0);
+    const std::unique_ptr<int[]> kept = uninitialisedNeighborSlots (static_cast<std::size_t> (n), static_cast<std::size_t> (k));
+    std::vector<int> count (n, 0);
     std::size_t candidates = 0, refused = 0, shadowed = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) reduction(+ : candidates, refused, shadowed)
     for (std::ptrdiff_t i = 0; i < n; ++i)
@@ -158,7 +159,7 @@ namespace pcl_sparse
     counts.candidates = candidates;
     counts.refused = refused;
     counts.shadowed = shadowed;
-    packNeighborSlots (kept, static_cast<std::size_t> (k), count, hoods);
+    packNeighborSlots (kept.get (), static_cast<std::size_t> (k), count, hoods, threads);
     return hoods;
   }
 } // namespace pcl_sparse

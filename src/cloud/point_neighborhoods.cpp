@@ -57,16 +57,18 @@ namespace pcl_sparse
     return out;
   }
   void
-  packNeighborSlots (const std::vector<int>& slots, std::size_t stride, const std::vector<int>& counts,
-                     PointNeighborhoods& neighborhoods)
+  packNeighborSlots (const int* slots, std::size_t stride, const std::vector<int>& counts,
+                     PointNeighborhoods& neighborhoods, int num_threads)
   {
     const std::size_t n = counts.size ();
     neighborhoods.offsets.assign (n + 1, 0);
     for (std::size_t i = 0; i < n; ++i)
       neighborhoods.offsets[i + 1] = neighborhoods.offsets[i] + static_cast<std::size_t> (counts[i]);
     neighborhoods.neighbors.resize (neighborhoods.offsets[n]);
-    for (std::size_t i = 0; i < n; ++i)
-      std::copy_n (slots.begin () + static_cast<std::ptrdiff_t> (i * stride), counts[i],
+    const int threads = resolveThreadCount (num_threads);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (n); ++i)
+      std::copy_n (slots + static_cast<std::size_t> (i) * stride, counts[i],
                    neighborhoods.neighbors.begin () + static_cast<std::ptrdiff_t> (neighborhoods.offsets[i]));
   }
 } // namespace pcl_sparse

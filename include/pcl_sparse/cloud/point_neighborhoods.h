@@ -7,6 +7,7 @@
 #include <pcl_sparse/mesh/mesh_topology.h>
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace pcl_sparse
@@ -32,14 +33,24 @@ namespace pcl_sparse
   };
 
   /// \brief Fills \a neighborhoods' offsets and neighbours from fixed-size slots: point i's neighbours are
-  /// the first counts[i] of slots[i * stride ...], in order (the spacing is left as it is).
+  /// the first counts[i] of slots[i * stride ...], in order (the spacing is left as it is). Only those are
+  /// read, so the slots past them may be left uninitialised (NeighborSlots).
   /// \param[in] slots #points x stride neighbour indices
   /// \param[in] stride slots per point
   /// \param[in] counts #points: how many slots of each point are used
   /// \param[in,out] neighborhoods the lists
+  /// \param[in] num_threads OpenMP threads for the copy (0 = default); the lists do not depend on it
   void
-  packNeighborSlots (const std::vector<int>& slots, std::size_t stride, const std::vector<int>& counts,
-                     PointNeighborhoods& neighborhoods);
+  packNeighborSlots (const int* slots, std::size_t stride, const std::vector<int>& counts,
+                     PointNeighborhoods& neighborhoods, int num_threads);
+
+  /// #points x stride neighbour slots, uninitialised: a scan of a few hundred thousand points with a 7 x 7
+  /// window takes tens of megabytes of them, and filling them first cost a serial pass over every page.
+  inline std::unique_ptr<int[]>
+  uninitialisedNeighborSlots (std::size_t points, std::size_t stride)
+  {
+    return std::unique_ptr<int[]> (new int[points * stride]);
+  }
 
   /// The reverse lists of \a neighborhoods over the points \a sources: point j's list holds the sources
   /// whose lists hold j, in the order of \a sources (spacing left empty).
