@@ -1,5 +1,7 @@
 /// Huge-page advice for the resampled cloud's buffers (common/huge_pages.h): the vector's contract is
-/// kept, and where the kernel offers transparent huge pages on request, a large buffer gets them.
+/// kept, and where the kernel offers transparent huge pages on request, a large buffer gets them. This
+/// executable links the tools' operator new (apps/huge_page_new.cpp) when they do: its contract and its
+/// advice are checked here too.
 #include <pcl_sparse/common/huge_pages.h>
 
 #include <gtest/gtest.h>
@@ -8,7 +10,9 @@
 #include <pcl/point_types.h>
 
 #include <cstdint>
+#include <cstring>
 #include <fstream>
+#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -91,3 +95,61 @@ TEST (HugePages, LargeBufferIsBackedByHugePages)
   // Without the advice (mode madvise, this machine's) none of it is; a fragmented memory may refuse some.
   EXPECT_GE (kb, 2048) << "no huge page behind a 64 MB buffer advised as huge pages";
 }
+
+#ifdef PCL_SPARSE_HUGE_PAGE_NEW_LINKED
+namespace
+{
+  int new_handler_calls = 0;
+
+  /// Counts its call and stands down, so that operator new then throws.
+  void
+  countingNewHandler ()
+  {
+    ++new_handler_calls;
+    std::set_new_handler (nullptr);
+  }
+} // namespace
+
+TEST (HugePageNew, KeepsOperatorNewsContract)
+{
+  // Zero bytes: a pointer of its own. Calls of the function itself, which the compiler may not elide.
+  void* a = ::operator new (0);
+  void* b = ::operator new (0);
+  EXPECT_NE (a, nullptr);
+  EXPECT_NE (a, b);
+  ::operator delete (a);
+  ::operator delete (b);
+
+  // What malloc cannot give: the new handler is called until it stands down, then std::bad_alloc; the
+  // nothrow form (libstdc++'s, calling this one) gives nullptr.
+  const std::size_t impossible = std::size_t (1) << 62;
+  new_handler_calls = 0;
+  std::set_new_handler (countingNewHandler);
+  EXPECT_THROW (static_cast<void> (::operator new (impossible)), std::bad_alloc);
+  EXPECT_EQ (new_handler_calls, 1);
+  EXPECT_EQ (::operator new (impossible, std::nothrow), nullptr);
+  EXPECT_THROW (static_cast<void> (::operator new[] (impossible)), std::bad_alloc);
+
+  // A large block holds what is written to it, end to end.
+  const std::size_t bytes = std::size_t (24) << 20;
+  auto* block = static_cast<unsigned char*> (::operator new (bytes));
+  std::memset (block, 0xa5, bytes);
+  EXPECT_EQ (block[0], 0xa5);
+  EXPECT_EQ (block[bytes - 1], 0xa5);
+  ::operator delete (block);
+}
+
+TEST (HugePageNew, LargeAllocationIsBackedByHugePages)
+{
+  const std::string mode = transparentHugePageMode ();
+  if (mode != "madvise")
+    GTEST_SKIP () << "huge pages on request only tell the advice apart in mode madvise (this kernel: '" << mode
+                  << "')";
+  // A plain std::vector, as the stages allocate: malloc alone maps it in 4 KB pages in this mode.
+  const std::size_t bytes = std::size_t (64) << 20;
+  std::vector<char> buffer (bytes, 1);
+  const long kb = hugePagesKbAt (buffer.data () + bytes / 2);
+  ASSERT_GE (kb, 0) << "the buffer's mapping is not in /proc/self/smaps";
+  EXPECT_GE (kb, 2048) << "no huge page behind a 64 MB vector allocated through the tools' operator new";
+}
+#endif

@@ -13,7 +13,7 @@ namespace pcl_sparse
   {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     constexpr std::uintptr_t huge = std::uintptr_t (2) << 20;
-    if (data == nullptr || bytes < 4 * huge)
+    if (data == nullptr || bytes < huge)
       return;
     const std::uintptr_t first = reinterpret_cast<std::uintptr_t> (data);
     const std::uintptr_t begin = (first + huge - 1) & ~(huge - 1);
