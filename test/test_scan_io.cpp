@@ -170,6 +170,17 @@ TEST (ScanCleaning, DuplicatesKeepTheEarliestWhateverTheOrder)
   EXPECT_EQ (scan.indices, expected);
 }
 
+TEST (ScanCleaning, DuplicatesAreExactPositionsWithMinusZeroAsZero)
+{
+  // -0 and 0 compare equal: one point. Positions one ulp apart, or with the coordinates swapped, are not.
+  ScanCloud scan;
+  const double next = std::nextafter (1.0, 2.0);
+  scan.positions = {{0.0, 1.0, 2.0}, {-0.0, 1.0, 2.0}, {0.0, next, 2.0}, {1.0, 0.0, 2.0}, {0.0, 1.0, 2.0},
+                    {1.0, -0.0, 2.0}, {1.0, 0.0, -2.0}};
+  expectCounts (cleanScan (scan), 7, 0, 0, 3, 4);
+  EXPECT_EQ (scan.indices, (std::vector<std::size_t>{0, 2, 3, 6}));
+}
+
 TEST (ScanCleaning, SensorOriginAndOptions)
 {
   ScanCloud scan;

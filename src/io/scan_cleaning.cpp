@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <numeric>
 
 namespace pcl_sparse
@@ -31,6 +34,58 @@ namespace pcl_sparse
         if (keep[i])
           values[out++] = values[i];
       values.resize (out);
+    }
+
+    /// The bits of \a v, -0 as 0 (they compare equal, so they must hash alike).
+    std::uint64_t
+    bitsOf (double v)
+    {
+      v += 0.0;
+      std::uint64_t bits;
+      std::memcpy (&bits, &v, sizeof bits);
+      return bits;
+    }
+
+    /// splitmix64's finaliser: every input bit moves about half the output bits.
+    std::uint64_t
+    mixBits (std::uint64_t h)
+    {
+      h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
+      h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
+      return h ^ (h >> 31);
+    }
+
+    /// Unflags, in file order, each flagged point whose position (exactly, -0 and 0 alike) an earlier flagged
+    /// point has: the earliest of equal positions stays. An open-addressing table of point indices, at most
+    /// half full: O(n), where sorting the points by position took a sixth of loading a 200k-point frame.
+    /// Returns how many it unflagged.
+    std::size_t
+    dropRepeatedPositions (const std::vector<Eigen::Vector3d>& positions, std::vector<char>& keep)
+    {
+      const std::size_t flagged = static_cast<std::size_t> (std::count (keep.begin (), keep.end (), 1));
+      std::size_t capacity = 16;
+      while (capacity < 2 * flagged)
+        capacity *= 2;
+      constexpr std::size_t kEmpty = std::numeric_limits<std::size_t>::max ();
+      std::vector<std::size_t> table (capacity, kEmpty);
+      std::size_t dropped = 0;
+      for (std::size_t i = 0; i < positions.size (); ++i)
+      {
+        if (!keep[i])
+          continue;
+        const Eigen::Vector3d& p = positions[i];
+        std::size_t slot = mixBits (bitsOf (p.x ()) ^ mixBits (bitsOf (p.y ()) ^ mixBits (bitsOf (p.z ())))) & (capacity - 1);
+        while (table[slot] != kEmpty && positions[table[slot]] != p)
+          slot = (slot + 1) & (capacity - 1);
+        if (table[slot] == kEmpty)
+          table[slot] = i;
+        else
+        {
+          keep[i] = 0;
+          ++dropped;
+        }
+      }
+      return dropped;
     }
   } // namespace
 
@@ -69,33 +124,7 @@ namespace pcl_sparse
     }
 
     if (options.merge_duplicates)
-    {
-      // Sort the remaining points by position, ties by file order, so the first of each run of equal
-      // positions is the earliest in the file.
-      std::vector<std::size_t> order;
-      order.reserve (n);
-      for (std::size_t i = 0; i < n; ++i)
-        if (keep[i])
-          order.push_back (i);
-      const auto less = [&] (std::size_t a, std::size_t b) {
-        const Eigen::Vector3d& p = scan.positions[a];
-        const Eigen::Vector3d& q = scan.positions[b];
-        if (p.x () != q.x ())
-          return p.x () < q.x ();
-        if (p.y () != q.y ())
-          return p.y () < q.y ();
-        if (p.z () != q.z ())
-          return p.z () < q.z ();
-        return a < b;
-      };
-      std::sort (order.begin (), order.end (), less);
-      for (std::size_t k = 1; k < order.size (); ++k)
-        if (scan.positions[order[k]] == scan.positions[order[k - 1]])
-        {
-          keep[order[k]] = 0;
-          ++report.duplicates_merged;
-        }
-    }
+      report.duplicates_merged = dropRepeatedPositions (scan.positions, keep);
 
     keepFlagged (scan.positions, keep);
     keepFlagged (scan.normals, keep);
