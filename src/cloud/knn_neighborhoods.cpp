@@ -137,7 +137,8 @@ namespace pcl_sparse
       }
     }
     // Accepted neighbours per point in place (k slots), then compacted in point order.
-    const std::unique_ptr<int[]> kept = uninitialisedNeighborSlots (static_cast<std::size_t> (n), static_cast<std::size_t> (k));
+    const std::unique_ptr<int[]> kept =
+      uninitialisedNeighborSlots (static_cast<std::size_t> (n), static_cast<std::size_t> (k));
     std::vector<int> count (n, 0);
     std::size_t candidates = 0, refused = 0, shadowed = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) reduction(+ : candidates, refused, shadowed)

@@ -34,7 +34,7 @@ namespace pcl_sparse
 
   /// \brief Fills \a neighborhoods' offsets and neighbours from fixed-size slots: point i's neighbours are
   /// the first counts[i] of slots[i * stride ...], in order (the spacing is left as it is). Only those are
-  /// read, so the slots past them may be left uninitialised (NeighborSlots).
+  /// read, so the slots past them may be left uninitialised (uninitialisedNeighborSlots).
   /// \param[in] slots #points x stride neighbour indices
   /// \param[in] stride slots per point
   /// \param[in] counts #points: how many slots of each point are used
