@@ -3,7 +3,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/mesh_neighborhood.h>
-#include <pcl_sparse/geometry/point_kd_tree.h>
+#include <pcl_sparse/geometry/nearest_point_grid.h>
 #include <pcl_sparse/keypoints/harris3d.h>
 #include <pcl_sparse/mesh/mesh_components.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
@@ -78,7 +78,8 @@ namespace pcl_sparse
     }
 
     /// How near a point lies to the vertices of faces, in their local spacing (PatchOptions::
-    /// unreferenced_patch_spacings). The tree is built on the first question: most meshes never ask.
+    /// unreferenced_patch_spacings). The grid is built on the first question: most meshes never ask. Of
+    /// equally near vertices the lowest index counts: a vertex rather than its split copies (GrowthMesh).
     class NearestFaceVertex
     {
     public:
@@ -90,25 +91,21 @@ namespace pcl_sparse
       bool
       within (const Eigen::Vector3d& p, double spacings) const
       {
-        if (!tree_)
+        if (!grid_)
         {
-          pcl::PointCloud<pcl::PointXYZ> points;
+          std::vector<Eigen::Vector3f> points;
           for (std::size_t w = 0; w < in_faces_.size (); ++w)
             if (in_faces_[w])
             {
               vertices_.push_back (static_cast<int> (w));
-              const Eigen::Vector3f q = mesh_.vertices[w].cast<float> ();
-              points.push_back (pcl::PointXYZ (q.x (), q.y (), q.z ()));
+              points.push_back (mesh_.vertices[w].cast<float> ());
             }
-          tree_ = std::make_unique<PointKdTree> (points);
+          grid_ = std::make_unique<NearestPointGrid> (points);
         }
-        if (tree_->size () == 0)
+        const int nearest = grid_->nearest (p.cast<float> ());
+        if (nearest < 0)
           return false;
-        std::vector<int> nearest;
-        std::vector<float> squared;
-        const Eigen::Vector3f q = p.cast<float> ();
-        tree_->nearestK (pcl::PointXYZ (q.x (), q.y (), q.z ()), 1, nearest, squared);
-        const int w = vertices_[static_cast<std::size_t> (nearest[0])];
+        const int w = vertices_[static_cast<std::size_t> (nearest)];
         return (p - mesh_.vertices[w]).norm () <= spacings * meanEdgeLength (mesh_, topology_, w);
       }
 
@@ -116,7 +113,7 @@ namespace pcl_sparse
       const TriangleMesh& mesh_;
       const MeshTopology& topology_;
       const std::vector<std::uint8_t>& in_faces_;
-      mutable std::unique_ptr<PointKdTree> tree_;
+      mutable std::unique_ptr<NearestPointGrid> grid_;
       mutable std::vector<int> vertices_;
     };
 
