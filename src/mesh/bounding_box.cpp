@@ -1,6 +1,7 @@
 #include <pcl_sparse/mesh/bounding_box.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 
 namespace pcl_sparse
@@ -34,13 +35,16 @@ namespace pcl_sparse
   double
   surfaceBoundingBoxDiagonal (const TriangleMesh& mesh)
   {
-    Eigen::AlignedBox3d box;  // empty
+    // Each vertex once, not once per face using it (a scan's surface: 6 faces a vertex, random accesses).
     const long n = static_cast<long> (mesh.vertices.size ());
+    std::vector<std::uint8_t> used (mesh.vertices.size (), 0);
     for (const Eigen::Vector3i& t : mesh.triangles)
       if (t.minCoeff () >= 0 && t.maxCoeff () < n)
-        for (int k = 0; k < 3; ++k)
-          if (mesh.vertices[t[k]].allFinite ())
-            box.extend (mesh.vertices[t[k]]);
+        used[t[0]] = used[t[1]] = used[t[2]] = 1;
+    Eigen::AlignedBox3d box;  // empty
+    for (std::size_t v = 0; v < mesh.vertices.size (); ++v)
+      if (used[v] && mesh.vertices[v].allFinite ())
+        box.extend (mesh.vertices[v]);
     return box.isEmpty () ? 0.0 : (box.max () - box.min ()).norm ();
   }
 } // namespace pcl_sparse
