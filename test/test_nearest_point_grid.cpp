@@ -139,6 +139,15 @@ TEST (NearestPointGrid, EdgeCases)
     EXPECT_EQ (map_grid.nearest (map[i] + Eigen::Vector3f (0.3f, -0.2f, 0.1f)),
                linearNearest (map, map[i] + Eigen::Vector3f (0.3f, -0.2f, 0.1f)));
 
+  // Points near the largest float: their extent overflows a float, not the grid.
+  const float huge = 0.9f * std::numeric_limits<float>::max ();
+  const std::vector<Eigen::Vector3f> far = {Eigen::Vector3f (-huge, 0.0f, 0.0f), Eigen::Vector3f (huge, 1.0f, 0.0f),
+                                            Eigen::Vector3f (0.0f, -huge, huge), Eigen::Vector3f (1.0f, 2.0f, 3.0f)};
+  const NearestPointGrid far_grid (far);
+  EXPECT_EQ (far_grid.nearest (Eigen::Vector3f::Zero ()), 3);
+  EXPECT_EQ (far_grid.nearest (Eigen::Vector3f (huge, 1.0f, 0.0f)), 1);
+  EXPECT_EQ (far_grid.nearest (Eigen::Vector3f (0.5f * huge, 0.0f, 0.0f)), 0);  // every distance overflows: the lowest
+
   EXPECT_THROW (NearestPointGrid ({Eigen::Vector3f (0.0f, std::numeric_limits<float>::quiet_NaN (), 0.0f)}), Error);
   EXPECT_THROW (NearestPointGrid ({Eigen::Vector3f::Zero (), Eigen::Vector3f (std::numeric_limits<float>::infinity (), 0.0f, 0.0f)}),
                 Error);

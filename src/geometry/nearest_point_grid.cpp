@@ -20,11 +20,12 @@ namespace pcl_sparse
       return (d.x () * d.x () + d.y () * d.y ()) + d.z () * d.z ();
     }
 
-    /// The nearer of (\a squared, \a index) and the best so far; the lower index among equal distances.
+    /// The nearer of (\a squared, \a index) and the best so far (none: \a best < 0); the lower index among
+    /// equal distances, infinite ones too (coordinates near the largest float).
     void
     keepNearer (float squared, int index, float& best_squared, int& best)
     {
-      if (squared < best_squared || (squared == best_squared && index < best))
+      if (best < 0 || squared < best_squared || (squared == best_squared && index < best))
       {
         best_squared = squared;
         best = index;
@@ -47,11 +48,12 @@ namespace pcl_sparse
     }
     // Cubes filling the box about once per point; a flat axis counts as the side of a cube per point along
     // the longest one, so that a plane's points fill cells of a few points each.
-    const Eigen::Vector3d extent = (high - low_).cast<double> ();
+    // In double: the extent of floats near their largest value overflows a float.
+    const Eigen::Vector3d extent = high.cast<double> () - low_.cast<double> ();
     const double n = static_cast<double> (points_.size ());
     const double floor_extent = extent.maxCoeff () / std::cbrt (n);
     const double side = std::cbrt (extent.cwiseMax (floor_extent).prod () / n);
-    cell_ = side > 0.0 && std::isfinite (side) ? static_cast<float> (side) : 1.0f;
+    cell_ = side > 0.0 && std::isfinite (side) ? side : 1.0;
     for (int a = 0; a < 3; ++a)
       cells_[a] = static_cast<int> (std::min (extent[a] / cell_, n)) + 1;
 
@@ -115,7 +117,7 @@ namespace pcl_sparse
                 visit (i, j, k);
       // Every cell further out lies r full cells beyond the query's (half a cell off for rounding): no point
       // there is nearer. Far from every point the rings grow large; then one pass over all points is cheaper.
-      const double reach = (r - 0.5) * static_cast<double> (cell_);
+      const double reach = (r - 0.5) * cell_;
       if (best >= 0 && r >= 1 && static_cast<double> (best_squared) < reach * reach)
         break;
       if (cells_visited > points_.size ())

@@ -34,7 +34,7 @@ namespace pcl_sparse
 
     std::vector<Eigen::Vector3f> points_;
     Eigen::Vector3f low_ = Eigen::Vector3f::Zero ();
-    float cell_ = 1.0f;
+    double cell_ = 1.0;
     Eigen::Vector3i cells_ = Eigen::Vector3i::Ones ();
     std::vector<int> cell_begin_;  ///< #cells + 1 offsets into order_, cells x fastest
     std::vector<int> order_;       ///< point indices by cell, ascending within a cell
