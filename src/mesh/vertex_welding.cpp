@@ -23,21 +23,19 @@ namespace pcl_sparse
     }
   } // namespace
 
-  VertexWelder::VertexWelder (std::vector<Eigen::Vector3d>& vertices, std::size_t expected_corners)
-    : vertices_ (vertices)
+  FirstPositionTable::FirstPositionTable (const std::vector<Eigen::Vector3d>& points, std::size_t expected)
+    : points_ (points)
   {
-    // Closed meshes have about corners / 6 distinct vertices; the table grows when half full.
     std::size_t capacity = 64;
-    while (capacity < expected_corners / 3)
+    while (capacity < 2 * expected)
       capacity *= 2;
     slots_.assign (capacity, -1);
-    vertices_.clear ();
   }
 
-  int
-  VertexWelder::add (const Eigen::Vector3d& position)
+  std::size_t
+  FirstPositionTable::add (const Eigen::Vector3d& position, std::size_t i)
   {
-    if (2 * (vertices_.size () + 1) > slots_.size ())
+    if (2 * (count_ + 1) > slots_.size ())
       grow ();
     const std::size_t mask = slots_.size () - 1;
     for (std::size_t slot = positionHash (position) & mask;; slot = (slot + 1) & mask)
@@ -45,17 +43,17 @@ namespace pcl_sparse
       const int index = slots_[slot];
       if (index < 0)
       {
-        slots_[slot] = static_cast<int> (vertices_.size ());
-        vertices_.push_back (position);
-        return slots_[slot];
+        slots_[slot] = static_cast<int> (i);
+        ++count_;
+        return i;
       }
-      if (vertices_[static_cast<std::size_t> (index)] == position)
-        return index;
+      if (points_[static_cast<std::size_t> (index)] == position)
+        return static_cast<std::size_t> (index);
     }
   }
 
   void
-  VertexWelder::grow ()
+  FirstPositionTable::grow ()
   {
     std::vector<int> old;
     old.swap (slots_);
@@ -64,11 +62,27 @@ namespace pcl_sparse
     for (int index : old)
       if (index >= 0)
       {
-        std::size_t slot = positionHash (vertices_[static_cast<std::size_t> (index)]) & mask;
+        std::size_t slot = positionHash (points_[static_cast<std::size_t> (index)]) & mask;
         while (slots_[slot] >= 0)
           slot = (slot + 1) & mask;
         slots_[slot] = index;
       }
+  }
+
+  // Closed meshes have about corners / 6 distinct vertices.
+  VertexWelder::VertexWelder (std::vector<Eigen::Vector3d>& vertices, std::size_t expected_corners)
+    : vertices_ (vertices), first_ (vertices, expected_corners / 6)
+  {
+    vertices_.clear ();
+  }
+
+  int
+  VertexWelder::add (const Eigen::Vector3d& position)
+  {
+    const std::size_t first = first_.add (position, vertices_.size ());
+    if (first == vertices_.size ())
+      vertices_.push_back (position);
+    return static_cast<int> (first);
   }
 
   std::vector<int>

@@ -13,6 +13,31 @@
 
 namespace pcl_sparse
 {
+  /// \brief Of a caller's points, the first added at each exact position (+0 and -0 are the same position;
+  /// NaN is never equal). An open-addressing hash table of indices into the points,
+  /// at most half full (it grows): one lookup per point. Holds a reference to the points, which may grow
+  /// between calls (VertexWelder appends to them).
+  class FirstPositionTable
+  {
+  public:
+    /// \param[in] points    the points, indexed as add () is told
+    /// \param[in] expected  about how many distinct positions will be added (sizes the table)
+    FirstPositionTable (const std::vector<Eigen::Vector3d>& points, std::size_t expected);
+
+    /// \brief The index of an earlier added point at \a position; else \a i, now added, and points[i] must be
+    /// \a position from the next call on (VertexWelder appends it only when new).
+    std::size_t
+    add (const Eigen::Vector3d& position, std::size_t i);
+
+  private:
+    void
+    grow ();
+
+    const std::vector<Eigen::Vector3d>& points_;
+    std::vector<int> slots_;
+    std::size_t count_ = 0;
+  };
+
   /// \brief Numbers positions as they come, giving a position equal to an earlier one that one's index
   /// (+0 and -0 are the same position; NaN is never equal, so never welded). An open-addressing hash table:
   /// one lookup per position, several times faster than std::unordered_map (1.2 million corners of a
@@ -29,11 +54,8 @@ namespace pcl_sparse
     add (const Eigen::Vector3d& position);
 
   private:
-    void
-    grow ();
-
     std::vector<Eigen::Vector3d>& vertices_;
-    std::vector<int> slots_;
+    FirstPositionTable first_;
   };
 
   /// \brief For each vertex of \a mesh, the first vertex at exactly its position (itself if none; a vertex
