@@ -3,6 +3,7 @@
 #include <pcl_sparse/coding/patch_footprint.h>
 #include <pcl_sparse/coding/patch_samples.h>
 #include <pcl_sparse/common/error.h>
+#include <pcl_sparse/common/splitmix64.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
 #include <pcl_sparse/mesh/mesh_topology.h>
 
@@ -95,6 +96,17 @@ TEST (PatchSamples, ExtraSamplesLieOnTheSurfaceAndAreDeterministic)
   EXPECT_TRUE (drawPatchSurfaceSamples (patch, mesh, 0, 1).empty ());
   EXPECT_NE (mixSeed (1, 2), mixSeed (1, 3));
   EXPECT_NE (mixSeed (1, 2), mixSeed (2, 2));
+}
+
+TEST (Splitmix64, ReferenceStream)
+{
+  // splitmix64's published stream from state 0 (the state steps by the golden gamma before each output):
+  // the library's seeded random numbers are these on every platform.
+  constexpr std::uint64_t gamma = 0x9e3779b97f4a7c15ULL;
+  EXPECT_EQ (splitmix64 (0), 0xe220a8397b1dcdafULL);
+  EXPECT_EQ (splitmix64 (gamma), 0x6e789e6aa1b965f4ULL);
+  EXPECT_EQ (splitmix64 (2 * gamma), 0x06c45d188009454fULL);
+  static_assert (splitmix64 (0) == 0xe220a8397b1dcdafULL, "usable in constant expressions");
 }
 
 TEST (PatchFootprint, CoversEveryProjectedTriangle)

@@ -1,5 +1,6 @@
 #include <pcl_sparse/cloud/tangent_triangulation.h>
 
+#include <pcl_sparse/common/splitmix64.h>
 #include <pcl_sparse/common/thread_count.h>
 #include <pcl_sparse/geometry/quadric_fit.h>
 
@@ -36,10 +37,7 @@ namespace pcl_sparse
     Eigen::Vector2d
     perturbation (int index)
     {
-      std::uint64_t z = static_cast<std::uint64_t> (index) + 0x9e3779b97f4a7c15ull;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-      z ^= z >> 31;
+      const std::uint64_t z = splitmix64 (static_cast<std::uint64_t> (index));
       const double u = static_cast<double> (z & 0xffffffffull) / 4294967295.0;
       const double v = static_cast<double> (z >> 32) / 4294967295.0;
       return {2.0 * u - 1.0, 2.0 * v - 1.0};

@@ -1,4 +1,5 @@
 #include <pcl_sparse/coding/patch_samples.h>
+#include <pcl_sparse/common/splitmix64.h>
 
 #include "patch_local_index.h"
 
@@ -10,18 +11,6 @@
 
 namespace pcl_sparse
 {
-  namespace
-  {
-    std::uint64_t
-    splitmix64 (std::uint64_t x)
-    {
-      x += 0x9e3779b97f4a7c15ULL;
-      x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-      return x ^ (x >> 31);
-    }
-  } // namespace
-
   std::uint64_t
   mixSeed (std::uint64_t seed, std::uint64_t index)
   {

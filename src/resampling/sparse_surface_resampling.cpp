@@ -4,6 +4,7 @@
 #include <pcl_sparse/common/huge_pages.h>
 #include <pcl_sparse/common/memory_limit.h>
 #include <pcl_sparse/common/parallel_failure.h>
+#include <pcl_sparse/common/splitmix64.h>
 #include <pcl_sparse/mesh/bounding_box.h>
 #include <pcl_sparse/resampling/patch_geometry.h>
 
@@ -21,30 +22,20 @@ namespace pcl_sparse
 {
   namespace
   {
-    /// splitmix64 finaliser: a stateless hash, so a random number is a function of (seed, patch, cell,
-    /// draw) and the result does not depend on the order patches are processed in. (A per-patch
-    /// std::mt19937 would cost more to seed than drawing a small patch's points.)
-    inline std::uint64_t
-    mix (std::uint64_t z)
-    {
-      z += 0x9e3779b97f4a7c15ULL;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      return z ^ (z >> 31);
-    }
-
-    /// Uniform in [0, 1) from (key, index).
+    /// Uniform in [0, 1) from (key, index). A random number is a function of (seed, patch, cell, draw), so
+    /// the result does not depend on the order patches are processed in. (A per-patch std::mt19937 would
+    /// cost more to seed than drawing a small patch's points.)
     inline double
     uniform (std::uint64_t key, std::uint64_t index)
     {
-      return static_cast<double> (mix (key ^ mix (index)) >> 11) * 0x1.0p-53;
+      return static_cast<double> (splitmix64 (key ^ splitmix64 (index)) >> 11) * 0x1.0p-53;
     }
 
     /// Key of patch \a p in pass \a pass for \a seed.
     inline std::uint64_t
     patchKey (std::uint64_t seed, std::size_t p, std::uint64_t pass)
     {
-      return mix (mix (seed) ^ mix (static_cast<std::uint64_t> (p) * 4 + pass));
+      return splitmix64 (splitmix64 (seed) ^ splitmix64 (static_cast<std::uint64_t> (p) * 4 + pass));
     }
 
     /// A candidate place kept by its patch: local position, area weight sqrt(1 + |grad h|^2) and cell.
