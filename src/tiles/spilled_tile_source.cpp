@@ -5,6 +5,7 @@
 #include <pcl_sparse/cloud/sensor_evidence.h>
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/io/scan_stream.h>
+#include <pcl_sparse/mesh/vertex_welding.h>
 #include <pcl_sparse/tiles/tile_membership.h>
 
 #include "spill_files.h"
@@ -197,7 +198,8 @@ namespace pcl_sparse
 
     /// Points each tile owns after merging exact duplicates (all copies of a position own the same tile and
     /// lie in its file), and in \a duplicates the file indices of the copies merging removes (all but the
-    /// first in file order), ascending. Reads one tile's positions at a time.
+    /// first in file order, as a scan in memory: a tile's file is in file order), ascending. Reads one tile's
+    /// positions at a time.
     std::vector<std::size_t>
     ownedPoints (const TileGrid& grid, const std::vector<std::size_t>& spilled, const tiles_detail::SpillRecord& record,
                  const tiles_detail::SpillDirectory& directory, const SpillOptions& options,
@@ -205,29 +207,28 @@ namespace pcl_sparse
     {
       std::vector<std::size_t> owned (grid.size (), 0);
       duplicates.clear ();
-      std::vector<std::pair<Eigen::Vector3d, std::size_t>> points;  // position, file index
+      std::vector<Eigen::Vector3d> positions;
+      std::vector<std::size_t> file_indices;
       for (std::size_t t = 0; t < grid.size (); ++t)
       {
         report (options, "spill: counting", t, grid.size ());
-        points.clear ();
+        positions.clear ();
+        file_indices.clear ();
         tiles_detail::readSpillFile (directory.tileFile (t), spilled[t], record.bytes (), [&] (const char* in) {
           const Eigen::Vector3d p = record.position (in);
           if (grid.tileOf (p) != t)
             return;
-          points.emplace_back (p, record.index (in));
+          positions.push_back (p);
+          file_indices.push_back (record.index (in));
         });
-        owned[t] = points.size ();
+        owned[t] = positions.size ();
         if (!options.cleaning.merge_duplicates)
           continue;
-        std::sort (points.begin (), points.end (), [] (const auto& a, const auto& b) {
-          if (a.first != b.first)
-            return std::lexicographical_compare (a.first.data (), a.first.data () + 3, b.first.data (), b.first.data () + 3);
-          return a.second < b.second;
-        });
-        for (std::size_t i = 1; i < points.size (); ++i)
-          if (points[i].first == points[i - 1].first)
+        FirstPositionTable first (positions, positions.size ());
+        for (std::size_t i = 0; i < positions.size (); ++i)
+          if (first.add (positions[i], i) != i)
           {
-            duplicates.push_back (points[i].second);
+            duplicates.push_back (file_indices[i]);
             --owned[t];
           }
       }
