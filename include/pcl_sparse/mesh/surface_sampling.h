@@ -15,9 +15,61 @@
 
 namespace pcl_sparse
 {
+  /// \brief The face a draw by area falls on: the first index whose cumulative area reaches x, exactly as
+  /// std::lower_bound over the cumulative areas finds it (the last face if none does), but through a guide
+  /// table (Chen and Asau 1974): guide[j] is the first face reaching j total / T, so a draw searches its
+  /// own bucket, a face or two on most meshes, where a binary search over all T faces takes a cache miss
+  /// per step on large meshes. O(T) to build, O(1) expected per draw, O(log T) at worst.
+  class CumulativeAreaSearch
+  {
+  public:
+    /// \param[in] cumulative  the faces' areas summed in order (non-decreasing); kept by reference
+    explicit CumulativeAreaSearch (const std::vector<double>& cumulative)
+      : cumulative_ (cumulative), guide_ (cumulative.size ())
+    {
+      const std::size_t count = cumulative.size ();
+      std::size_t t = 0;
+      for (std::size_t j = 0; j < count; ++j)
+      {
+        const double threshold = total () * (static_cast<double> (j) / static_cast<double> (count));
+        while (t + 1 < count && cumulative[t] < threshold)
+          ++t;
+        guide_[j] = t;
+      }
+    }
+
+    /// \return the first face whose cumulative area is at least \a x, the last face if none is
+    std::size_t
+    find (double x) const
+    {
+      const std::size_t count = cumulative_.size ();
+      const double bucket = x / total () * static_cast<double> (count);
+      const std::size_t j = bucket >= 0.0 ? std::min (static_cast<std::size_t> (bucket), count - 1) : 0;
+      const auto begin = cumulative_.begin ();
+      std::size_t first = guide_[j];
+      if (first > 0 && cumulative_[first - 1] >= x)  // rounding put x in an earlier bucket than its face's
+        first = 0;
+      const std::size_t last = j + 1 < count ? guide_[j + 1] + 1 : count;
+      auto found = std::lower_bound (begin + static_cast<std::ptrdiff_t> (first), begin + static_cast<std::ptrdiff_t> (last), x);
+      if (found == begin + static_cast<std::ptrdiff_t> (last))  // rounding put x past its bucket
+        found = std::lower_bound (found, cumulative_.end (), x);
+      return std::min<std::size_t> (static_cast<std::size_t> (found - begin), count - 1);
+    }
+
+  private:
+    double
+    total () const
+    {
+      return cumulative_.back ();
+    }
+
+    const std::vector<double>& cumulative_;
+    std::vector<std::size_t> guide_;
+  };
+
   /// \brief \a n points drawn uniformly by area on \a mesh with \a engine (per point: a face by area, then
   /// two uniforms folded into the triangle), and the face each lies on when \a triangles is given. A mesh
-  /// without triangles gives no point. O(T + n log T).
+  /// without triangles gives no point. O(T + n) expected (CumulativeAreaSearch).
   /// \param[in]     mesh       the surface
   /// \param[in]     n          points to draw
   /// \param[in,out] engine     a uniform random bit generator (std::mt19937, std::mt19937_64, ...)
@@ -45,14 +97,13 @@ namespace pcl_sparse
     if (mesh.triangles.empty ())
       return;
     std::uniform_real_distribution<double> uniform (0.0, 1.0);
+    const CumulativeAreaSearch face_of (cumulative);
     points.resize (n);
     if (triangles)
       triangles->resize (n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      const std::size_t t = std::min<std::size_t> (
-        std::lower_bound (cumulative.begin (), cumulative.end (), uniform (engine) * total) - cumulative.begin (),
-        mesh.triangles.size () - 1);
+      const std::size_t t = face_of.find (uniform (engine) * total);
       double u = uniform (engine), v = uniform (engine);
       if (u + v > 1.0)
       {
