@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -34,7 +35,7 @@ namespace pcl_sparse
         const double threshold = total () * (static_cast<double> (j) / static_cast<double> (count));
         while (t + 1 < count && cumulative[t] < threshold)
           ++t;
-        guide_[j] = t;
+        guide_[j] = static_cast<std::uint32_t> (t);
       }
     }
 
@@ -64,7 +65,7 @@ namespace pcl_sparse
     }
 
     const std::vector<double>& cumulative_;
-    std::vector<std::size_t> guide_;
+    std::vector<std::uint32_t> guide_;  ///< face indices fit: a mesh's faces are indexed by int
   };
 
   /// \brief \a n points drawn uniformly by area on \a mesh with \a engine (per point: a face by area, then
