@@ -24,7 +24,7 @@ namespace pcl_sparse
   class CumulativeAreaSearch
   {
   public:
-    /// \param[in] cumulative  the faces' areas summed in order (non-decreasing); kept by reference
+    /// \param[in] cumulative  the faces' areas summed in order (non-empty, non-decreasing); kept by reference
     explicit CumulativeAreaSearch (const std::vector<double>& cumulative)
       : cumulative_ (cumulative), guide_ (cumulative.size ())
     {
@@ -44,8 +44,9 @@ namespace pcl_sparse
     find (double x) const
     {
       const std::size_t count = cumulative_.size ();
+      // Clamped in double: a NaN or an x far past the total (an infinite bucket) must not reach the cast.
       const double bucket = x / total () * static_cast<double> (count);
-      const std::size_t j = bucket >= 0.0 ? std::min (static_cast<std::size_t> (bucket), count - 1) : 0;
+      const std::size_t j = !(bucket > 0.0) ? 0 : bucket < static_cast<double> (count - 1) ? static_cast<std::size_t> (bucket) : count - 1;
       const auto begin = cumulative_.begin ();
       std::size_t first = guide_[j];
       if (first > 0 && cumulative_[first - 1] >= x)  // rounding put x in an earlier bucket than its face's
