@@ -120,6 +120,38 @@ TEST (ModelMeshDistance, DistancesRunOnTheThreadsAskedFor)
   }
 }
 
+// The Chamfer distance builds the model half's k-d tree on one thread while the others measure the model half
+// (model_mesh_distance.cpp): the same numbers as the two halves measured one after the other, on any count.
+TEST (ModelMeshDistance, ChamferIsItsHalvesMeasuredInTurnOnAnyThreadCount)
+{
+  const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (3));
+  const SparseSurfaceModel::ConstPtr model = encodeMesh (sphere);
+  const MeshSurfaceDistance to_mesh (*sphere);
+  std::vector<Eigen::Vector3d> on_mesh;
+  sampleMeshSurface (*sphere, 5000, 7, on_mesh);
+  const std::size_t points = 20000;
+
+  std::vector<Eigen::Vector3d> on_model;
+  for (const pcl::PointNormal& p : resampleModel (model, points))
+    on_model.emplace_back (p.x, p.y, p.z);
+  const ModelSurfaceDistance to_model (*model, on_model);
+  double model_to_mesh = 0.0, mesh_to_model = 0.0, largest_a = 0.0, largest_b = 0.0;
+  meanAndLargestDistance (on_model, to_mesh, model_to_mesh, largest_a, 1);
+  meanAndLargestDistance (on_mesh, to_model, mesh_to_model, largest_b, 1);
+  ASSERT_GT (model_to_mesh, 0.0);
+  ASSERT_GT (mesh_to_model, 0.0);
+
+  for (const int threads : {1, 2, 3})
+  {
+    const ChamferDistance chamfer =
+      modelChamferDistance (model, to_mesh, on_mesh, points, SparseSurfaceResamplingOptions (), threads);
+    EXPECT_EQ (chamfer.model_points, on_model.size ()) << threads;
+    EXPECT_EQ (chamfer.model_to_mesh, model_to_mesh) << threads;
+    EXPECT_EQ (chamfer.mesh_to_model, mesh_to_model) << threads;
+    EXPECT_EQ (chamfer.largest, std::max (largest_a, largest_b)) << threads;
+  }
+}
+
 // Every patch is measured within its own reach, however its reach compares with the others' (patches found
 // by a grid of the reach balls): the same distances as measuring every patch, on a model whose reaches spread
 // over 5x (a tenth of the patches with footprints 5 times as wide).

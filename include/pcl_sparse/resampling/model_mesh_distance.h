@@ -95,6 +95,20 @@ namespace pcl_sparse
     double value () const { return 0.5 * (model_to_mesh + mesh_to_model); }
   };
 
+  /// Mean and largest of \a d, summed in order (the same sum whatever thread computed each); both 0 when empty.
+  inline void
+  meanAndLargest (const std::vector<double>& d, double& mean, double& largest)
+  {
+    mean = 0.0;
+    largest = 0.0;
+    for (double x : d)
+    {
+      mean += x;
+      largest = std::max (largest, x);
+    }
+    mean /= static_cast<double> (std::max<std::size_t> (d.size (), 1));
+  }
+
   /// \brief Mean and largest of \a distance (a callable double (const Eigen::Vector3d&), thread-safe) over
   /// \a points on \a num_threads OpenMP threads (0: OpenMP's default, resolveThreadCount); both 0 without points.
   template <typename Distance>
@@ -107,14 +121,7 @@ namespace pcl_sparse
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t> (points.size ()); ++i)
       d[i] = distance (points[i]);
-    mean = 0.0;
-    largest = 0.0;
-    for (double x : d)
-    {
-      mean += x;
-      largest = std::max (largest, x);
-    }
-    mean /= static_cast<double> (std::max<std::size_t> (d.size (), 1));
+    meanAndLargest (d, mean, largest);
   }
 
   /// \brief The Chamfer distance between \a model and a mesh: \a points points resampled from the model
