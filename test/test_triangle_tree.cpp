@@ -3,6 +3,7 @@
 #include <pcl_sparse/geometry/point_triangle_distance.h>
 #include <pcl_sparse/geometry/triangle_tree.h>
 #include <pcl_sparse/mesh/mesh_primitives.h>
+#include <pcl_sparse/mesh/surface_sampling.h>
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,8 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
+#include <utility>
 #include <vector>
 
 using namespace pcl_sparse;
@@ -224,4 +227,55 @@ TEST (TriangleTree, BadMeshesAreRefused)
   const TriangleTree tree (makePlaneGrid (2, 1e70));
   EXPECT_GE (tree.nearest (Eigen::Vector3d (0.0, 0.0, 1e70)).triangle, 0);
   EXPECT_EQ (tree.nearest (Eigen::Vector3d (0.0, 0.0, std::nan (""))).triangle, -1);
+}
+
+// The build runs on the threads asked for (the halves of large nodes as tasks, the nodes laid out as a serial
+// depth-first build would): the same tree on any count, seen through the order within lists triangles in and
+// the nearest triangle of every probe.
+TEST (TriangleTree, SameTreeOnAnyThreadCount)
+{
+  const TriangleMesh sphere = makeIcosphere (6);  // 81920 triangles: the root's halves and theirs are tasks
+  ASSERT_GT (sphere.triangles.size (), 80000u);
+  std::vector<Eigen::Vector3d> probes;
+  sampleMeshSurface (sphere, 3000, 9, probes);
+  auto answers = [&] (int threads) {
+    const TriangleTree tree (sphere, threads);
+    std::vector<std::pair<int, double>> found;
+    std::vector<TriangleTree::Nearest> within;
+    for (std::size_t i = 0; i < probes.size (); ++i)
+    {
+      const Eigen::Vector3d p = probes[i] * (i % 2 ? 1.01 : 0.995);
+      const TriangleTree::Nearest nearest = tree.nearest (p);
+      found.emplace_back (nearest.triangle, nearest.distance);
+      tree.within (p, nearest.distance + 0.01, within);
+      for (const TriangleTree::Nearest& w : within)
+        found.emplace_back (w.triangle, w.distance);
+    }
+    return found;
+  };
+  const std::vector<std::pair<int, double>> one = answers (1);
+  EXPECT_GT (one.size (), 4 * probes.size ());  // within listed several triangles a probe
+  EXPECT_EQ (answers (2), one);
+  EXPECT_EQ (answers (3), one);
+}
+
+// Whatever the threads, a refused mesh's error names its first bad triangle.
+TEST (TriangleTree, ErrorNamesTheFirstBadTriangleOnAnyThreadCount)
+{
+  TriangleMesh sphere = makeIcosphere (5);
+  const std::size_t last = sphere.triangles.size () - 1;
+  sphere.triangles[last][1] = -1;
+  sphere.triangles[17][2] = static_cast<int> (sphere.vertices.size ());
+  for (const int threads : {1, 2})
+  {
+    try
+    {
+      const TriangleTree tree (sphere, threads);
+      ADD_FAILURE () << "accepted a corner out of range";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find ("triangle 17 has a corner index out of range"), std::string::npos) << e.what ();
+    }
+  }
 }

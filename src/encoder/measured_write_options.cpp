@@ -199,7 +199,7 @@ namespace pcl_sparse
         continue;
       if (lossless_confirmed < 0.0)
       {
-        confirm = {std::make_unique<MeshSurfaceDistance> (surface), pointsOn (surface, options.confirm_points, options.seed)};
+        confirm = {std::make_unique<MeshSurfaceDistance> (surface, options.num_threads), pointsOn (surface, options.confirm_points, options.seed)};
         lossless_confirmed = distanceOf (lossless, confirm);
         measured ();
         if (!(lossless_confirmed > 0.0) || !std::isfinite (lossless_confirmed))

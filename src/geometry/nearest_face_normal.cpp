@@ -6,8 +6,8 @@
 
 namespace pcl_sparse
 {
-  NearestFaceNormal::NearestFaceNormal (const TriangleMesh& mesh)
-    : tree_ (mesh), face_normals_ (computeFaceNormals (mesh))
+  NearestFaceNormal::NearestFaceNormal (const TriangleMesh& mesh, int num_threads)
+    : tree_ (mesh, num_threads), face_normals_ (computeFaceNormals (mesh))
   {
     // Double arithmetic: two faces' distances to their shared edge differ by rounding only.
     double largest = 0.0;

@@ -39,7 +39,7 @@ namespace pcl_sparse
     measureSurfaceError (const TriangleMesh& mesh, const pcl::PointCloud<pcl::PointNormal>& points,
                          std::vector<double>& distance, std::vector<double>& angle)
     {
-      const NearestFaceNormal surface (mesh);
+      const NearestFaceNormal surface (mesh, 0);  // every thread, as the distances below
       const std::size_t n = points.size ();
       distance.resize (n);
       angle.resize (n);

@@ -419,7 +419,7 @@ namespace pcl_sparse
     const TriangleMesh& mesh = sound ? *sound : input;
     if (m == 0 || mesh.triangles.empty ())
       return trim;
-    const NearestFaceNormal surface (mesh);
+    const NearestFaceNormal surface (mesh, threads);
     std::vector<std::size_t> candidates (m);
     for (std::size_t p = 0; p < m; ++p)
       candidates[p] = p;

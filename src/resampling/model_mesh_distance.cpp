@@ -34,8 +34,8 @@ namespace pcl_sparse
     }
   } // namespace
 
-  MeshSurfaceDistance::MeshSurfaceDistance (const TriangleMesh& mesh)
-    : mesh_ (mesh), triangles_ (std::make_unique<TriangleTree> (mesh))
+  MeshSurfaceDistance::MeshSurfaceDistance (const TriangleMesh& mesh, int num_threads)
+    : mesh_ (mesh), triangles_ (std::make_unique<TriangleTree> (mesh, num_threads))
   {
   }
 

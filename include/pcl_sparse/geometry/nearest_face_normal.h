@@ -18,8 +18,9 @@ namespace pcl_sparse
   {
   public:
     /// \param[in] mesh  the surface (kept by reference: it must outlive this object)
+    /// \param[in] num_threads  OpenMP threads of the triangle tree's build (TriangleTree)
     /// \throws pcl_sparse::Error as TriangleTree (no triangle, a corner out of range or not finite)
-    explicit NearestFaceNormal (const TriangleMesh& mesh);
+    explicit NearestFaceNormal (const TriangleMesh& mesh, int num_threads = 1);
 
     /// The nearest triangle of \a p, and the largest cosine between \a direction (unit) and the normals of
     /// the faces nearest \a p. Where the nearest surface point lies on an edge or a corner, every face

@@ -2,7 +2,8 @@
 /// \file triangle_tree.h
 /// Exact nearest-triangle queries on a mesh: a bounding-box tree over its triangles (median splits along the
 /// longest side of the centroids' box, up to 4 triangles a leaf), searched nearest box first and pruned by the
-/// distance found so far. Build O(T log T); a query visits O(log T) boxes on meshes of evenly sized triangles.
+/// distance found so far. Build O(T log T), the halves of large nodes in parallel; a query visits O(log T) boxes on
+/// meshes of evenly sized triangles.
 /// Unlike a k-d tree over points drawn on the triangles, it needs no sampling and misses no triangle, however
 /// long and thin: the distance is exact.
 
@@ -12,6 +13,7 @@
 
 #include <array>
 #include <cstddef>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -31,7 +33,9 @@ namespace pcl_sparse
     /// \brief Builds the tree over \a mesh's triangles (their corners copied).
     /// \throws pcl_sparse::Error for a mesh without triangles, a corner index out of range, a non-finite corner
     ///         or a corner coordinate over 1e75 in magnitude (distances to it overflow a double)
-    explicit TriangleTree (const TriangleMesh& mesh);
+    /// \param[in] mesh         the surface
+    /// \param[in] num_threads  OpenMP threads of the build (0: all, resolveThreadCount); the same tree on any
+    explicit TriangleTree (const TriangleMesh& mesh, int num_threads = 1);
 
     /// Number of triangles.
     std::size_t size () const { return triangle_.size (); }
@@ -69,8 +73,13 @@ namespace pcl_sparse
     /// (searched first, so that it prunes the other).
     void pushChildren (const Node& node, const Eigen::Vector3d& p, std::array<std::pair<int, double>, 64>& stack, int& size) const;
 
-    /// Fills node \a node (already allocated) over order[begin, end), allocating and filling its children.
-    void build (int node, int begin, int end, const std::vector<Eigen::Vector3d>& centroids, std::vector<int>& order);
+    /// Nodes below a node of \a triangles triangles (its descendants), as build splits it; \a below memoises
+    /// them by triangle count (at most two counts a level).
+    static int nodesBelow (int triangles, std::map<int, int>& below);
+    /// Fills node \a node over order[begin, end) and its descendants, which take nodes_[first_free ...] in
+    /// depth-first order (\a below: nodesBelow's counts); the halves of large nodes as OpenMP tasks.
+    void build (int node, int begin, int end, int first_free, const std::vector<Eigen::Vector3d>& centroids,
+                const std::map<int, int>& below, std::vector<int>& order);
 
     std::vector<Node> nodes_;
     std::vector<std::array<Eigen::Vector3d, 3>> corners_;  ///< the triangles in leaf order

@@ -7,6 +7,7 @@
 #include <pcl_sparse/mesh/triangle_mesh.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross: the faces' areas
 
 #include <algorithm>
 #include <cstddef>

@@ -35,9 +35,10 @@ namespace pcl_sparse
   {
   public:
     /// \brief Exact. Build O(T log T) for T triangles.
-    /// \param[in] mesh  the surface (its triangles copied)
+    /// \param[in] mesh         the surface (its triangles copied)
+    /// \param[in] num_threads  OpenMP threads of the triangle tree's build (TriangleTree)
     /// \throws pcl_sparse::Error for a mesh without triangles or with a non-finite corner
-    explicit MeshSurfaceDistance (const TriangleMesh& mesh);
+    explicit MeshSurfaceDistance (const TriangleMesh& mesh, int num_threads = 1);
 
     /// \brief From \a samples points drawn on \a mesh. Build O(S log S) for S samples, a query O(log S + k).
     /// \param[in] mesh     the surface (kept by reference: it must outlive this)
