@@ -275,7 +275,8 @@ TEST (TriangleTree, ErrorNamesTheFirstBadTriangleOnAnyThreadCount)
     }
     catch (const Error& e)
     {
-      EXPECT_NE (std::string (e.what ()).find ("triangle 17 has a corner index out of range"), std::string::npos) << e.what ();
+      const std::string what = e.what ();
+      EXPECT_NE (what.find ("triangle 17 has a corner index out of range"), std::string::npos) << what;
     }
   }
 }

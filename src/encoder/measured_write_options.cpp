@@ -62,13 +62,13 @@ namespace pcl_sparse
     /// with 2 T + 50000 points in a k-d tree, and options.points points on it). Both are serial (the yardstick
     /// 0.36 s on koala-loop1-200k): built side by side, after the footprints' slack (on every thread).
     std::vector<Tried>
-    encodeBesideQuickYardstick (const SparseSurfaceModel& model, const TriangleMesh& surface, const ModelWriteOptions& start,
-                                const MeasuredWriteOptions& options, Yardstick& quick)
+    encodeBesideQuickYardstick (const SparseSurfaceModel& model, const TriangleMesh& surface,
+                                const ModelWriteOptions& start, const MeasuredWriteOptions& options, Yardstick& quick)
     {
       // The footprints' slack depends on the model only: found once for every candidate.
-      const std::vector<FootprintSlack> slack = start.footprint_slack
-                                                  ? footprintSlack (model, FootprintSlackOptions (), options.num_threads)
-                                                  : std::vector<FootprintSlack> ();
+      std::vector<FootprintSlack> slack;
+      if (start.footprint_slack)
+        slack = footprintSlack (model, FootprintSlackOptions (), options.num_threads);
       std::vector<Tried> tried;
       ParallelFailure failure;
 #pragma omp parallel sections num_threads (std::min (2, resolveThreadCount (options.num_threads)))
@@ -199,7 +199,8 @@ namespace pcl_sparse
         continue;
       if (lossless_confirmed < 0.0)
       {
-        confirm = {std::make_unique<MeshSurfaceDistance> (surface, options.num_threads), pointsOn (surface, options.confirm_points, options.seed)};
+        confirm = {std::make_unique<MeshSurfaceDistance> (surface, options.num_threads),
+                   pointsOn (surface, options.confirm_points, options.seed)};
         lossless_confirmed = distanceOf (lossless, confirm);
         measured ();
         if (!(lossless_confirmed > 0.0) || !std::isfinite (lossless_confirmed))

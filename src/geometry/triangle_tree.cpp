@@ -87,7 +87,10 @@ namespace pcl_sparse
     }
     const auto first_flaw = std::find_if (flaw.begin (), flaw.end (), [] (std::uint8_t x) { return x != kSound; });
     if (first_flaw != flaw.end ())
-      throw Error ("TriangleTree: triangle " + std::to_string (first_flaw - flaw.begin ()) + flawDescription (*first_flaw));
+    {
+      const std::string index = std::to_string (first_flaw - flaw.begin ());
+      throw Error ("TriangleTree: triangle " + index + flawDescription (*first_flaw));
+    }
     std::vector<int> order (count);
     std::iota (order.begin (), order.end (), 0);
     // The nodes laid out as a depth-first build allocates them (both children next to each other, a left
