@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -123,6 +124,32 @@ TEST (MeasuredWriteOptions, BadOptionsAreRefused)
   EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, bad_candidate), Error);
   bad_candidate.candidates = {{2.0, -1, -1.0}};
   EXPECT_THROW (measuredWriteOptions (*model, *sphere, start, bad_candidate), Error);
+}
+
+// A surface the yardstick refuses (no triangle, a corner not finite) is an error, not a crash, though the
+// yardstick is built on another thread than the candidate files (measured_write_options.cpp).
+TEST (MeasuredWriteOptions, RefusedSurfaceIsAnErrorOnAnyThreadCount)
+{
+  const auto sphere = std::make_shared<const TriangleMesh> (makeIcosphere (2));
+  const SparseSurfaceModel::Ptr model = encodeMesh (sphere);
+  const ModelWriteOptions start = boundWriteOptions (*model, sphere->vertices);
+  TriangleMesh broken = *sphere;
+  broken.vertices[3].y () = std::numeric_limits<double>::infinity ();
+  for (const int threads : {1, 2})
+  {
+    MeasuredWriteOptions options;
+    options.num_threads = threads;
+    EXPECT_THROW (measuredWriteOptions (*model, TriangleMesh (), start, options), Error) << threads;
+    try
+    {
+      measuredWriteOptions (*model, broken, start, options);
+      ADD_FAILURE () << "a non-finite corner was measured against, threads " << threads;
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE (std::string (e.what ()).find ("non-finite"), std::string::npos) << e.what ();
+    }
+  }
 }
 
 // On a real mesh the measured file is smaller than the bound's, and bench_format's Chamfer distance (200k points a

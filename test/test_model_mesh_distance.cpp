@@ -93,6 +93,13 @@ TEST (ModelMeshDistance, EmptyInputsAreRefused)
   EXPECT_THROW (MeshSurfaceDistance {broken}, Error);
   EXPECT_THROW (MeshSurfaceDistance (TriangleMesh (), 100), Error);
   EXPECT_THROW (MeshSurfaceDistance (broken, 100), Error);
+  // An infinite corner makes the total area not finite and the draws land on sound faces: refused all the same.
+  TriangleMesh infinite = makeIcosphere (2);
+  infinite.vertices[3].y () = std::numeric_limits<double>::infinity ();
+  EXPECT_THROW (MeshSurfaceDistance (infinite, 2 * infinite.triangles.size () + 50000), Error);  // the write's count
+  TriangleMesh out_of_range = makePlaneGrid (2, 0.5);
+  out_of_range.triangles[0][1] = static_cast<int> (out_of_range.vertices.size ());
+  EXPECT_THROW (MeshSurfaceDistance (out_of_range, 100), Error);
   SparseSurfaceModel empty;
   EXPECT_THROW (ModelSurfaceDistance (empty, {Eigen::Vector3d::Zero ()}), Error);
 }

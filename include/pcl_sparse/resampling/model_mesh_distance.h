@@ -45,7 +45,8 @@ namespace pcl_sparse
     /// \param[in] samples  points drawn on it
     /// \param[in] seed     of the sampling
     /// \param[in] k        nearest samples whose triangles are measured
-    /// \throws pcl_sparse::Error for a mesh without triangles or with a non-finite corner
+    /// \throws pcl_sparse::Error for a mesh without triangles, with a non-finite corner or a corner index out of
+    ///         range
     MeshSurfaceDistance (const TriangleMesh& mesh, std::size_t samples, unsigned seed = 7, int k = 16);
 
     /// Distance from \a p to the mesh. Thread-safe.
