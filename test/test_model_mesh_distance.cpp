@@ -70,7 +70,8 @@ TEST (ModelMeshDistance, MeshDistanceIsTheNearestFace)
   // nearest samples of a sampling (where the k nearest samples hold a face several times, a face measured once
   // is the same minimum).
   const TriangleMesh sphere = makeIcosphere (2);
-  const MeshSurfaceDistance to_sphere (sphere), sampled (sphere, 2 * sphere.triangles.size () + 5000);
+  const MeshSurfaceDistance to_sphere (sphere);
+  const MeshSurfaceDistance sampled (sphere, MeshSurfaceDistance::Sampling {2 * sphere.triangles.size () + 5000});
   std::vector<Eigen::Vector3d> probes;
   sampleMeshSurface (sphere, 200, 5, probes);
   for (std::size_t i = 0; i < probes.size (); ++i)
@@ -91,15 +92,15 @@ TEST (ModelMeshDistance, EmptyInputsAreRefused)
   TriangleMesh broken = makePlaneGrid (2, 0.5);
   broken.vertices[0].x () = std::nan ("");
   EXPECT_THROW (MeshSurfaceDistance {broken}, Error);
-  EXPECT_THROW (MeshSurfaceDistance (TriangleMesh (), 100), Error);
-  EXPECT_THROW (MeshSurfaceDistance (broken, 100), Error);
+  EXPECT_THROW (MeshSurfaceDistance (TriangleMesh (), MeshSurfaceDistance::Sampling {100}), Error);
+  EXPECT_THROW (MeshSurfaceDistance (broken, MeshSurfaceDistance::Sampling {100}), Error);
   // An infinite corner makes the total area not finite and the draws land on sound faces: refused all the same.
   TriangleMesh infinite = makeIcosphere (2);
   infinite.vertices[3].y () = std::numeric_limits<double>::infinity ();
-  EXPECT_THROW (MeshSurfaceDistance (infinite, 2 * infinite.triangles.size () + 50000), Error);  // the write's count
+  EXPECT_THROW (MeshSurfaceDistance (infinite, MeshSurfaceDistance::Sampling {2 * infinite.triangles.size () + 50000}), Error);  // the write's count
   TriangleMesh out_of_range = makePlaneGrid (2, 0.5);
   out_of_range.triangles[0][1] = static_cast<int> (out_of_range.vertices.size ());
-  EXPECT_THROW (MeshSurfaceDistance (out_of_range, 100), Error);
+  EXPECT_THROW (MeshSurfaceDistance (out_of_range, MeshSurfaceDistance::Sampling {100}), Error);
   SparseSurfaceModel empty;
   EXPECT_THROW (ModelSurfaceDistance (empty, {Eigen::Vector3d::Zero ()}), Error);
 }

@@ -77,7 +77,8 @@ namespace pcl_sparse
         failure.run ([&] { tried = encodeCandidates (model, start, options.candidates, slack); });
 #pragma omp section
         failure.run ([&] {
-          quick = {std::make_unique<MeshSurfaceDistance> (surface, 2 * surface.triangles.size () + 50000),
+          quick = {std::make_unique<MeshSurfaceDistance> (
+                     surface, MeshSurfaceDistance::Sampling {2 * surface.triangles.size () + 50000}),
                    pointsOn (surface, options.points, options.seed)};
         });
       }

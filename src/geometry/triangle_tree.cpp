@@ -2,13 +2,12 @@
 
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/thread_count.h>
+#include <pcl_sparse/geometry/measurable_triangles.h>
 #include <pcl_sparse/geometry/point_triangle_distance.h>
 
 #include <algorithm>
-#include <cstdint>
 #include <limits>
 #include <numeric>
-#include <string>
 #include <utility>
 
 namespace pcl_sparse
@@ -18,32 +17,6 @@ namespace pcl_sparse
     constexpr int kLeafSize = 4;
     /// Halves with more triangles are built as tasks of their own.
     constexpr int kTaskTriangles = 20000;
-
-    /// What makes a triangle unusable (TriangleTree's constructor).
-    enum Flaw : std::uint8_t
-    {
-      kSound = 0,
-      kCornerOutOfRange,
-      kCornerNotFinite,
-      kCornerTooLarge
-    };
-
-    std::string
-    flawDescription (std::uint8_t flaw)
-    {
-      switch (flaw)
-      {
-        case kCornerOutOfRange:
-          return " has a corner index out of range";
-        case kCornerNotFinite:
-          return " has a non-finite corner";
-        default:
-          return " has a corner coordinate over 1e75 (distances to it overflow)";
-      }
-    }
-    /// pointTriangleDistance multiplies four coordinates (Ericson's barycentric tests): past this they overflow
-    /// a double, the distance is NaN and no triangle is the nearest.
-    constexpr double kLargestCoordinate = 1e75;
 
     /// Squared distance from \a p to the box [lo, hi] (0 inside).
     double
@@ -55,41 +28,22 @@ namespace pcl_sparse
 
   TriangleTree::TriangleTree (const TriangleMesh& mesh, int num_threads)
   {
+    // Every corner in range, finite and small enough to measure, before anything is copied.
+    requireMeasurableTriangles (mesh, "TriangleTree", num_threads);
     const std::size_t count = mesh.triangles.size ();
-    if (count == 0)
-      throw Error ("TriangleTree: the mesh has no triangle");
     if (count > static_cast<std::size_t> (std::numeric_limits<int>::max () / 2))
       throw Error ("TriangleTree: too many triangles");
     const int threads = resolveThreadCount (num_threads);
-    const int vertices = static_cast<int> (mesh.vertices.size ());
     corners_.resize (count);
     std::vector<Eigen::Vector3d> centroids (count);
-    // Per triangle what is wrong with it (Flaw), so that the error names the first such triangle, whatever the
-    // threads (the copy and the tree's build are serial passes of 0.05-0.17 s over 400k triangles otherwise).
-    std::vector<std::uint8_t> flaw (count, kSound);
+    // In parallel: the copy and the tree's build are serial passes of 0.05-0.17 s over 400k triangles otherwise.
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::ptrdiff_t f = 0; f < static_cast<std::ptrdiff_t> (count); ++f)
     {
       const Eigen::Vector3i& t = mesh.triangles[f];
-      for (int c = 0; c < 3 && flaw[f] == kSound; ++c)
-      {
-        if (t[c] < 0 || t[c] >= vertices)
-          flaw[f] = kCornerOutOfRange;
-        else if (!mesh.vertices[t[c]].allFinite ())
-          flaw[f] = kCornerNotFinite;
-        else if (mesh.vertices[t[c]].cwiseAbs ().maxCoeff () > kLargestCoordinate)
-          flaw[f] = kCornerTooLarge;
-        else
-          corners_[f][c] = mesh.vertices[t[c]];
-      }
-      if (flaw[f] == kSound)
-        centroids[f] = (corners_[f][0] + corners_[f][1] + corners_[f][2]) / 3.0;
-    }
-    const auto first_flaw = std::find_if (flaw.begin (), flaw.end (), [] (std::uint8_t x) { return x != kSound; });
-    if (first_flaw != flaw.end ())
-    {
-      const std::string index = std::to_string (first_flaw - flaw.begin ());
-      throw Error ("TriangleTree: triangle " + index + flawDescription (*first_flaw));
+      for (int c = 0; c < 3; ++c)
+        corners_[f][c] = mesh.vertices[t[c]];
+      centroids[f] = (corners_[f][0] + corners_[f][1] + corners_[f][2]) / 3.0;
     }
     std::vector<int> order (count);
     std::iota (order.begin (), order.end (), 0);

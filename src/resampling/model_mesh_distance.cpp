@@ -3,6 +3,7 @@
 #include <pcl_sparse/common/error.h>
 #include <pcl_sparse/common/parallel_failure.h>
 #include <pcl_sparse/common/upper_median.h>
+#include <pcl_sparse/geometry/measurable_triangles.h>
 #include <pcl_sparse/resampling/cloud_quality.h>
 
 #include <algorithm>
@@ -39,24 +40,14 @@ namespace pcl_sparse
   {
   }
 
-  MeshSurfaceDistance::MeshSurfaceDistance (const TriangleMesh& mesh, std::size_t samples, unsigned seed, int k)
-    : mesh_ (mesh), k_ (std::max (1, k))
+  MeshSurfaceDistance::MeshSurfaceDistance (const TriangleMesh& mesh, const Sampling& sampling)
+    : mesh_ (mesh), k_ (std::max (1, sampling.k))
   {
-    if (mesh.triangles.empty ())
-      throw Error ("MeshSurfaceDistance: the mesh has no triangle");
     // Every face, not only those the samples land on: one infinite corner makes the total area infinite or NaN,
     // and the draws then land where CumulativeAreaSearch puts non-finite draws, on sound faces as likely.
-    const int vertices = static_cast<int> (mesh.vertices.size ());
-    for (const Eigen::Vector3i& f : mesh.triangles)
-      for (int c = 0; c < 3; ++c)
-      {
-        if (f[c] < 0 || f[c] >= vertices)
-          throw Error ("MeshSurfaceDistance: the mesh has a face with a corner index out of range");
-        if (!mesh.vertices[f[c]].allFinite ())
-          throw Error ("MeshSurfaceDistance: the mesh has a face with a non-finite vertex");
-      }
+    requireMeasurableTriangles (mesh, "MeshSurfaceDistance");
     std::vector<Eigen::Vector3d> points;
-    sampleMeshSurface (mesh, std::max<std::size_t> (samples, 1), seed, points, &sample_triangle_);
+    sampleMeshSurface (mesh, std::max<std::size_t> (sampling.samples, 1), sampling.seed, points, &sample_triangle_);
     samples_ = std::make_unique<PointKdTree> (*toCloud (points));
   }
 

@@ -37,17 +37,24 @@ namespace pcl_sparse
     /// \brief Exact. Build O(T log T) for T triangles.
     /// \param[in] mesh         the surface (its triangles copied)
     /// \param[in] num_threads  OpenMP threads of the triangle tree's build (TriangleTree)
-    /// \throws pcl_sparse::Error for a mesh without triangles or with a non-finite corner
+    /// \throws pcl_sparse::Error for a mesh without triangles or with a triangle requireMeasurableTriangles refuses
     explicit MeshSurfaceDistance (const TriangleMesh& mesh, int num_threads = 1);
 
-    /// \brief From \a samples points drawn on \a mesh. Build O(S log S) for S samples, a query O(log S + k).
-    /// \param[in] mesh     the surface (kept by reference: it must outlive this)
-    /// \param[in] samples  points drawn on it
-    /// \param[in] seed     of the sampling
-    /// \param[in] k        nearest samples whose triangles are measured
-    /// \throws pcl_sparse::Error for a mesh without triangles, with a non-finite corner or a corner index out of
-    ///         range
-    MeshSurfaceDistance (const TriangleMesh& mesh, std::size_t samples, unsigned seed = 7, int k = 16);
+    /// How the sampled form draws its samples: a type of its own, so that a count is never taken for the exact
+    /// form's thread count (MeshSurfaceDistance (mesh, 100) is exact, on 100 threads).
+    struct Sampling
+    {
+      std::size_t samples = 0;  ///< points drawn on the mesh (at least one is)
+      unsigned seed = 7;        ///< of the draws (sampleMeshSurface)
+      int k = 16;               ///< nearest samples whose triangles are measured (at least one is)
+    };
+
+    /// \brief From sampling.samples points drawn on \a mesh. Build O(S log S) for S samples, a query O(log S + k).
+    /// \param[in] mesh      the surface (kept by reference: it must outlive this)
+    /// \param[in] sampling  how many points are drawn, their seed, how many are looked at a query
+    /// \throws pcl_sparse::Error for a mesh without triangles or with a triangle requireMeasurableTriangles refuses
+    ///         (a corner index out of range, a non-finite corner, a coordinate over 1e75), checked on every face
+    MeshSurfaceDistance (const TriangleMesh& mesh, const Sampling& sampling);
 
     /// Distance from \a p to the mesh. Thread-safe.
     double operator() (const Eigen::Vector3d& p) const;
