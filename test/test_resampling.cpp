@@ -563,7 +563,7 @@ TEST (Resampling, RefusesBadSetup)
     {
       EXPECT_NE (std::string (e.what ()).find (text), std::string::npos) << e.what ();
     }
-  resampling.setDensity (1e12);  // about 6e12 points
+  resampling.setDensity (1e12);  // about 4e12 points on the unit sphere (area 4 pi), over the limit
   EXPECT_THROW (resampling.compute (cloud), Error);
   auto empty = std::make_shared<SparseSurfaceModel> ();
   empty->basis = std::make_shared<CosineDictionary> (12);

@@ -23,7 +23,7 @@ namespace pcl_sparse
       return Eigen::Vector3d::UnitY ();
     if (name == "iso")
       return Eigen::Vector3d (1.0, 1.0, 1.0).normalized ();
-    Eigen::Vector3d v;
+    Eigen::Vector3d v = Eigen::Vector3d::Zero ();  // "1,2" sets two: the norm below must not read an unset third
     std::stringstream in (name);
     std::string item;
     int n = 0;
