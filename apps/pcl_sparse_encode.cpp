@@ -152,12 +152,14 @@ main (int argc, char** argv)
 
     SparseSurfaceEncoderOptions options = encoderPresetOptions (encoderPresetFromName (args.value ("-preset", "default")));
     args.number ("-rho", options.patches.rho, tools::Range::aboveUpTo (0.0, 1.0));  // A_p / A: 1 bounds nothing
-    args.number ("-f", options.coding.nyquist_factor);
-    args.integer ("-L", options.coding.max_atoms);
-    args.number ("-eps", options.coding.tolerance);
+    // The ranges of SparseSurfaceEncoderOptions::validate, checked here so that a refusal names the option
+    // ("option -f: 2 is not in [0, 1]"), not the field it sets ("coding.nyquist_factor = 2").
+    args.number ("-f", options.coding.nyquist_factor, tools::Range::closed (0.0, 1.0));
+    args.integer ("-L", options.coding.max_atoms, tools::Range::atLeast (1));
+    args.number ("-eps", options.coding.tolerance, tools::Range::open (0.0, 1.0));
     args.number ("-atom-loss", options.atom_loss_allowance, tools::Range::closed (0.0, 1e6));
-    args.integer ("-min-samples", options.coding.min_samples);
-    args.number ("-sigma", options.patches.sigma);
+    args.integer ("-min-samples", options.coding.min_samples, tools::Range::closed (0, 100000));
+    args.number ("-sigma", options.patches.sigma, tools::Range::atLeast (0.0));
     args.angle ("-cone", options.patches.cone_angle);
     args.number ("-footprint-reach", options.coding.footprint_reach_degrees, tools::Range::closed (0.0, 180.0));
     args.integer ("-seed", options.coding.seed, tools::Range::atLeast (0));
@@ -178,6 +180,11 @@ main (int argc, char** argv)
     const std::string model_path = args.value ("-o");
     ModelWriteOptions write_options;
     const bool tolerance_given = args.number ("-tolerance", write_options.tolerance, tools::Range::closed (0.0, 0.1));
+    // A file counts a seed's steps in 32 bits: under about 1.3e-9 of the diagonal they overflow, found only
+    // when the file is written, after the whole encoding.
+    if (write_options.tolerance > 0.0 && write_options.tolerance < 1e-8)
+      throw Error ("option -tolerance: " + shortestDecimal (write_options.tolerance) +
+                   " is finer than a file's 32-bit steps count (0 for the lossless file, or 1e-8 to 0.1)");
     const bool steps_given =
       args.number ("-footprint-steps", write_options.footprint_refine_steps, tools::Range::closed (0.0, 1e6));
     write_options.include_vertices = args.has ("--store-vertices");

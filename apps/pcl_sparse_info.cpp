@@ -297,6 +297,9 @@ main (int argc, char** argv)
         printModelInfo (path, json, timer);
         return 0;
       }
+      if (!isScanFileExtension (path))  // the meshes' loader would list its own four only
+        throw Error (path + ": unknown file extension (expected a mesh .obj .off .ply .stl, a model .psm, or a "
+                            "point cloud .pcd .xyz)");
       CloudInfo cloud;
       bool is_cloud = false;
       const TriangleMesh mesh = loadInput (path, load_options, cloud, is_cloud);

@@ -80,6 +80,8 @@ namespace pcl_sparse
       static Range above (double a) { return {a, std::numeric_limits<double>::infinity (), true, false}; }
       /// (a, b]
       static Range aboveUpTo (double a, double b) { return {a, b, true, false}; }
+      /// (a, b)
+      static Range open (double a, double b) { return {a, b, true, true}; }
 
       bool contains (double x) const;
       /// "[0, 1]", "(0, inf)", ...

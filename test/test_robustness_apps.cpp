@@ -851,6 +851,37 @@ namespace
     EXPECT_FALSE (fs::exists (out));
   }
 
+  /// pcl_sparse_encode names the option out of range, before reading the input ("-f 2" said
+  /// "coding.nyquist_factor = 2"; "-tolerance 1e-12" failed after the whole encoding, at the file's seeds).
+  TEST_F (RobustnessAppsPaths, EncodeNamesTheOptionOutOfRange)
+  {
+    const std::string obj = (dir_ / "c.obj").string (), out = (dir_ / "m.psm").string ();
+    saveTriangleMesh (obj, baseMesh ());
+    const std::vector<std::pair<std::string, std::string>> cases = {
+      {"-f", "2"}, {"-L", "0"}, {"-eps", "1"}, {"-min-samples", "100001"}, {"-sigma", "-1"}, {"-tolerance", "1e-12"}};
+    for (const auto& [option, value] : cases)
+    {
+      const RunResult r = runApp ("encode", {obj, "-o", out, option, value, "-q"}, dir_);
+      EXPECT_EQ (r.exit_code, 1) << r.err;
+      EXPECT_NE (r.err.find ("option " + option + ": " + value), std::string::npos) << r.err;
+      EXPECT_EQ (r.err.find ("coding."), std::string::npos) << r.err;
+      EXPECT_FALSE (fs::exists (out));
+    }
+    const RunResult fine = runApp ("encode", {obj, "-o", out, "-tolerance", "1e-8", "-q"}, dir_);
+    EXPECT_EQ (fine.exit_code, 0) << fine.err;
+  }
+
+  /// pcl_sparse_info names every kind of file it reads when it refuses an extension (it listed the meshes' four).
+  TEST_F (RobustnessAppsPaths, InfoListsEveryFormatItReads)
+  {
+    const std::string text = (dir_ / "notes.txt").string ();
+    std::ofstream (text) << "v 0 0 0\n";
+    const RunResult r = runApp ("info", {text, "-q"}, dir_);
+    EXPECT_EQ (r.exit_code, 1) << r.err;
+    for (const char* extension : {".obj", ".psm", ".pcd", ".xyz"})
+      EXPECT_NE (r.err.find (extension), std::string::npos) << r.err;
+  }
+
   /// A write over the file-size limit ends the tool by SIGXFSZ: the temporary goes as on Ctrl-C (it left
   /// OUT.pcd.tmpPID, 10 MB under `ulimit -f 10000`). SIGPIPE, a cloud piped into a reader that quit, takes the
   /// same handler; when it comes depends on the reader, so it is not timed here.

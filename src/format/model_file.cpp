@@ -247,7 +247,8 @@ namespace pcl_sparse
     {
       const double steps = std::round ((origin[i] - q.seed_min[i]) / q.seed_step);
       if (!(steps < kMaxStepCount))
-        throw Error ("encodeModel: tolerance too small for the seed range (more than 2^32 steps)");
+        throw Error ("encodeModel: tolerance too small for the seed range (more than 2^32 steps; 1e-8 of the bbox "
+                     "diagonal or more fits, 0 writes the lossless file)");
       return static_cast<std::uint64_t> (steps);
     }
 
