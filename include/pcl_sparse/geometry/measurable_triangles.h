@@ -12,8 +12,8 @@
 
 namespace pcl_sparse
 {
-  /// pointTriangleDistance multiplies four coordinates (Ericson's barycentric tests): past this magnitude they
-  /// overflow a double, and the distance is NaN.
+  /// pointTriangleDistance multiplies four coordinate differences (Ericson's barycentric tests): under this
+  /// magnitude their products stay under about 2e301; a triangle with corners 1e78 out measures NaN.
   constexpr double kLargestMeasurableCoordinate = 1e75;
 
   /// What keeps a triangle's distances from being measured.
