@@ -70,7 +70,8 @@ namespace
     {
       {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
       {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
-      {"", "when plausible, else consistently oriented, outward on closed surfaces; tiles too)"},
+      {"", "when plausible, else consistently oriented, outward on closed surfaces; tiles too);"},
+      {"", "points exactly there are dropped as no-returns (not those at the file's origin)"},
       {"-rho R", "patch size bound A_p / A (default 0.001; paper: 0.005, 0.001, 0.0002)"},
       {"-f F", "Nyquist factor in [0, 1] (default 0.5; 0 = plain OMP)"},
       {"--authors-nyquist", "the authors' cap lambda >= f mu instead of the paper's lambda / 2 > f mu"},
@@ -218,7 +219,7 @@ main (int argc, char** argv)
                    "-error and -png need the whole input in memory: raise -memory to use them");
     tools::SurfaceInput input;
     if (!bounded)
-      input = tools::loadSurfaceInput (path);
+      input = tools::loadSurfaceInput (path, has_viewpoint ? &viewpoint : nullptr);
     tools::refuseViewpointOnMesh (has_viewpoint, bounded ? spilled_mesh : input.mesh != nullptr, path);
     TileGridOptions grid_options;
     const bool tiled = tools::chooseTiling (args, bounded ? header_points : input.points (), grid_options);
@@ -238,6 +239,8 @@ main (int argc, char** argv)
       // in-memory path loads its own: the same tiles, no shared file system needed.
       SpillOptions spill;
       spill.grid = grid_options;
+      if (has_viewpoint)
+        spill.cleaning.sensor_position = viewpoint;
       spill.progress = makeConsoleProgress (quiet || json || group.rank () != 0);
       if (spilled_mesh)
       {

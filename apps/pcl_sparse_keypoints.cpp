@@ -38,7 +38,7 @@ namespace
     {
       {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
       {"OUT", "keypoints as PointXYZI (intensity = response), decreasing response"},
-      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face"},
+      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (points exactly there dropped)"},
       {"-fraction F", "keep F x #vertices 1-ring local maxima (default 0.01)"},
       {"-cluster C", "instead: keep local maxima at least C x bbox diagonal apart"},
       {"-rings K", "fixed K-ring neighbourhoods (the paper's option: 2)"},
@@ -160,12 +160,12 @@ main (int argc, char** argv)
 
     pcl::console::TicToc total;
     total.tic ();
-    const tools::SurfaceInput surface_input = tools::loadSurfaceInput (input);
+    Eigen::Vector3d viewpoint;
+    const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
+    const tools::SurfaceInput surface_input = tools::loadSurfaceInput (input, has_viewpoint ? &viewpoint : nullptr);
     if (!quiet && !json)
       pcl::console::print_info ("%s: %zu %s\n", input.c_str (), surface_input.points (),
                                 surface_input.mesh ? "vertices" : "points");
-    Eigen::Vector3d viewpoint;
-    const bool has_viewpoint = tools::parseViewpoint (args, viewpoint);
     tools::refuseViewpointOnMesh (has_viewpoint, surface_input.mesh != nullptr, input);
 
     pcl::console::TicToc timer;

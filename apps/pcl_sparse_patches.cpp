@@ -40,7 +40,7 @@ namespace
       {"IN", "a triangle mesh (.obj .off .ply .stl) or a scan (.pcd .xyz, .ply of points)"},
       {"OUT.ply", "the mesh (a scan's neighbourhood surface), each vertex coloured by one of its patches,"},
       {"", "seeds black"},
-      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face"},
+      {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (points exactly there dropped)"},
       {"-rho R", tools::format ("size bound A_p / A (default %g)", kDefaults.rho)},
       {"-delta D", tools::format ("smooth variation angle in degrees (default %g; %g on a lidar frame's rings)",
                                   kDefaults.delta * 180.0 / M_PI, kDefaults.lidar_delta * 180.0 / M_PI)},
@@ -120,7 +120,7 @@ main (int argc, char** argv)
       throw;
     }
 
-    const tools::SurfaceInput surface_input = tools::loadSurfaceInput (input);
+    const tools::SurfaceInput surface_input = tools::loadSurfaceInput (input, has_viewpoint ? &viewpoint : nullptr);
     tools::refuseViewpointOnMesh (has_viewpoint, surface_input.mesh != nullptr, input);
     pcl::console::TicToc timer;
     timer.tic ();

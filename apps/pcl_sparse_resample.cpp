@@ -54,7 +54,8 @@ namespace
       {"-basis B", "encoder: atoms, quadric (default: half-period cosines and the quadric's monomials,"},
       {"", "the least distance and normal error; see README), dct (the cosines alone) or paper"},
       {"-viewpoint X,Y,Z", "scans: the sensor position the normals face (default: the file's VIEWPOINT"},
-      {"", "when plausible, else consistently oriented, outward on closed surfaces)"},
+      {"", "when plausible, else consistently oriented, outward on closed surfaces);"},
+      {"", "points exactly there are dropped as no-returns (not those at the file's origin)"},
       {"-seed S", "seed of the sampling (default: 42)"},
       tools::maxSlopeHelpLine (),
       tools::clearanceHelpLine (),
@@ -245,7 +246,7 @@ main (int argc, char** argv)
     }
     else
     {
-      input = tools::loadSurfaceInput (s.input);
+      input = tools::loadSurfaceInput (s.input, s.has_viewpoint ? &s.viewpoint : nullptr);
       load_seconds = timer.toc () / 1000.0;
       tools::refuseViewpointOnMesh (s.has_viewpoint, input.mesh != nullptr, s.input);
       // A scan's default count is its kept points (a clean cloud of the same size); a mesh's 4 x its vertices.

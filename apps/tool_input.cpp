@@ -100,7 +100,7 @@ namespace pcl_sparse
     }
 
     SurfaceInput
-    loadSurfaceInput (const std::string& path)
+    loadSurfaceInput (const std::string& path, const Eigen::Vector3d* sensor)
     {
       SurfaceInput input;
       if (isMeshFileExtension (path) && !hasExtension (path, ".pcd") && !hasExtension (path, ".xyz"))
@@ -123,7 +123,10 @@ namespace pcl_sparse
       if (!isScanFileExtension (path))
         throw Error (path + ": unknown input extension (a mesh .obj .off .ply .stl, or a cloud .pcd .ply .xyz)");
       auto scan = std::make_shared<ScanCloud> ();
-      loadScanCloud (path, *scan);
+      ScanLoadOptions load;
+      if (sensor)
+        load.cleaning.sensor_position = *sensor;
+      loadScanCloud (path, *scan, load);
       // As the spilled path says it (spillIntoTiles): naming the file and the causes, not "the scan has no
       // points" from whichever stage met the empty scan first (a frame of no-returns, all NaN or all 0,0,0).
       if (scan->size () == 0)

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,11 @@ namespace pcl_sparse
     isSurfaceInputExtension (const std::string& path);
 
     /// Loads \a path: .pcd and .xyz as scans (loadScanCloud: cleaned, local frame), the mesh formats as
-    /// meshes (loadTriangleMesh), a mesh file without faces (a .ply of points) as a scan.
+    /// meshes (loadTriangleMesh), a mesh file without faces (a .ply of points) as a scan. A scan's points at
+    /// \a sensor (the -viewpoint given, if not null) are dropped as no-returns, not those at the file's sensor
+    /// origin.
     SurfaceInput
-    loadSurfaceInput (const std::string& path);
+    loadSurfaceInput (const std::string& path, const Eigen::Vector3d* sensor = nullptr);
 
     /// Throws when -viewpoint is given (\a has_viewpoint) for a mesh (\a is_mesh): a mesh's normals come from its
     /// faces, so the option would do nothing without a word.

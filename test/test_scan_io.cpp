@@ -202,6 +202,16 @@ TEST (ScanCleaning, SensorOriginAndOptions)
   copy = scan;
   expectCounts (cleanScan (copy, keep_all), 5, 0, 0, 2, 3);
   EXPECT_EQ (copy.indices, (std::vector<std::size_t>{0, 1, 3}));
+
+  // A sensor position the caller gives (file coordinates, as -viewpoint) replaces the file's: the points there go,
+  // those at the file's sensor origin stay.
+  ScanCleaningOptions given;
+  given.sensor_position = Eigen::Vector3d (102, 200, 300);  // local (2, 0, 0)
+  copy = scan;
+  expectCounts (cleanScan (copy, given), 5, 0, 2, 1, 2);
+  EXPECT_EQ (copy.indices, (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ (cleaningSensorPosition (given, scan.sensor_origin), Eigen::Vector3d (102, 200, 300));
+  EXPECT_EQ (cleaningSensorPosition (ScanCleaningOptions (), scan.sensor_origin), scan.sensor_origin);
 }
 
 TEST (ScanCleaning, RefusesAttributesOfTheWrongSize)

@@ -160,6 +160,35 @@ TEST_F (ScanTools, FramesWithNoPointLeftNameTheFileAndTheCause)
   }
 }
 
+// A point at (0, 0, 0) of a cloud without a pose is dropped as a no-return unless -viewpoint puts the sensor
+// elsewhere: then the points at the viewpoint are (an 11 x 11 grid from 0 to 1 lost its corner at the origin
+// with -viewpoint 5,5,5 given).
+TEST_F (ScanTools, ViewpointIsWhereNoReturnsAreDropped)
+{
+  std::ofstream grid (path ("grid.xyz"));
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 10; ++j)
+      grid << 0.1 * i << " " << 0.1 * j << " " << 0.01 * ((i * j) % 3) << "\n";
+  grid << "0.5 0.5 5\n";  // a return at the viewpoint given below: none is a surface point there
+  grid.close ();
+  const std::string in = path ("grid.xyz");
+  for (const std::string tool : {"pcl_sparse_resample", "pcl_sparse_encode"})
+  {
+    SCOPED_TRACE (tool);
+    const std::string output = tool == "pcl_sparse_encode" ? " -o " + path ("out.psm") : " " + path ("out.pcd");
+    std::string out, err;
+    ASSERT_EQ (runTool (tool, in + output + " --json -q", out, err), 0) << err;
+    EXPECT_EQ (jsonInteger (out, "dropped_at_sensor_origin"), 1);  // the file has no pose: (0, 0, 0)
+    EXPECT_EQ (jsonInteger (out, "kept_points"), 121);
+    ASSERT_EQ (runTool (tool, in + output + " -viewpoint 0.5,0.5,5 --json -q", out, err), 0) << err;
+    EXPECT_EQ (jsonInteger (out, "dropped_at_sensor_origin"), 1);  // the point at the viewpoint
+    EXPECT_EQ (jsonInteger (out, "kept_points"), 121);             // the origin among them
+    ASSERT_EQ (runTool (tool, in + output + " -viewpoint 5,5,5 --json -q", out, err), 0) << err;
+    EXPECT_EQ (jsonInteger (out, "dropped_at_sensor_origin"), 0);
+    EXPECT_EQ (jsonInteger (out, "kept_points"), 122);
+  }
+}
+
 TEST_F (ScanTools, BrokenCloudsAreRefusedWithOneLineAndNoOutput)
 {
   // A valid ascii PCD, then cut short; an .xyz with a word; a PCD whose header lies about its count.

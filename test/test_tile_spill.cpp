@@ -515,6 +515,38 @@ TEST (SpilledTileSource, TilesEqualTheCutOfTheCleanedInput)
   }
 }
 
+// A sensor position given by the caller (-viewpoint) is where both sources drop points, not the file's origin.
+TEST (SpilledTileSource, GivenSensorPositionCleansAsLoadScanCloud)
+{
+  TempDir dir;
+  const pcl::PointCloud<pcl::PointXYZRGBNormal> cloud = dirtyCloud (20000, 2);
+  pcl::io::savePCDFileBinary (dir.file ("dirty.pcd"), cloud);
+  ScanLoadOptions load;
+  load.cleaning.sensor_position = cloud[100].getVector3fMap ().cast<double> ();
+  ScanCloud whole;
+  loadScanCloud (dir.file ("dirty.pcd"), whole, load);
+  ASSERT_GE (whole.report.at_sensor_origin, 1u);  // point 100 and any copy of it
+  SpillOptions spill = tilesAlong (4);
+  spill.cleaning = load.cleaning;
+  const SpilledTileSource source (dir.file ("dirty.pcd"), spill);
+  EXPECT_EQ (source.cleaningReport ().at_sensor_origin, whole.report.at_sensor_origin);
+  EXPECT_EQ (source.cleaningReport ().duplicates_merged, whole.report.duplicates_merged);
+  EXPECT_EQ (source.totalPoints (), whole.size ());
+  expectTilesEqualReference (source, whole);
+  // The cloud's (0, 0, 0) points ("no returns" at the file's origin) are points now: one kept, its copies merged.
+  const auto at_zero = [] (const ScanCloud& scan) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < scan.size (); ++i)
+      count += scan.worldPosition (i) == Eigen::Vector3d::Zero ();
+    return count;
+  };
+  EXPECT_EQ (at_zero (whole), 1u);
+  ScanCloud file_sensor;
+  loadScanCloud (dir.file ("dirty.pcd"), file_sensor);
+  EXPECT_EQ (at_zero (file_sensor), 0u);
+  EXPECT_GT (file_sensor.report.at_sensor_origin, 1u);
+}
+
 // A tile of a camera frame is a window of the frame's image: its points keep their pixels (shifted alike),
 // so the tile's surface is the image grid's, as the untiled frame's. Whether the depth is stored in steps is
 // judged on the whole frame: a tile's part of the points may span a few hundred points over 20 steps, too

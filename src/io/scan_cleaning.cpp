@@ -71,7 +71,7 @@ namespace pcl_sparse
     ScanCleaningReport report;
     report.input_points = n;
     std::vector<char> keep (n, 1);
-    const Eigen::Vector3d sensor = scan.sensor_origin - scan.origin;
+    const Eigen::Vector3d sensor = cleaningSensorPosition (options, scan.sensor_origin) - scan.origin;
     for (std::size_t i = 0; i < n; ++i)
     {
       const Eigen::Vector3d& p = scan.positions[i];

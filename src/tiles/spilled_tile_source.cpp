@@ -121,7 +121,7 @@ namespace pcl_sparse
     {
       FirstPass pass;
       // cleanScan compares in the local frame, p == sensor_origin - origin; chunks are in the file's frame.
-      const Eigen::Vector3d sensor = reader.layout ().sensor_origin;
+      const Eigen::Vector3d sensor = cleaningSensorPosition (options.cleaning, reader.layout ().sensor_origin);
       const std::size_t stride = std::max<std::size_t> (1, reader.size () / 4096);
       pass.steps.emplace (reader.size ());
       ScanCloud chunk;
@@ -168,7 +168,7 @@ namespace pcl_sparse
       reader.rewind ();
       directory.clear ();
       tiles_detail::SpillWriter writer (directory, grid.size (), record.bytes (), options.buffer_bytes);
-      const Eigen::Vector3d sensor = reader.layout ().sensor_origin;
+      const Eigen::Vector3d sensor = cleaningSensorPosition (options.cleaning, reader.layout ().sensor_origin);
       ScanCleaningReport ignored;
       std::vector<char> bytes (record.bytes ());
       std::vector<std::size_t> tiles;

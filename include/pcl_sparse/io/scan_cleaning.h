@@ -6,6 +6,10 @@
 
 #include <pcl_sparse/io/scan_cloud.h>
 
+#include <Eigen/Core>
+
+#include <optional>
+
 namespace pcl_sparse
 {
   /// Options for cleanScan. Non-finite points are always dropped: nothing downstream can use them.
@@ -14,6 +18,10 @@ namespace pcl_sparse
     /// Drop points exactly at the sensor position (scan.sensor_origin; (0, 0, 0) when the file gives none):
     /// a surface point cannot be at the sensor, but "no return" is written there.
     bool drop_at_sensor_origin = true;
+    /// Where the sensor stood, in the file's coordinates, when the caller knows it (the tools' -viewpoint):
+    /// the points exactly there are dropped, not those at the file's sensor origin (a point at (0, 0, 0) of
+    /// a cloud without a pose is a surface point then). None: the file's sensor origin.
+    std::optional<Eigen::Vector3d> sensor_position;
     /// Keep only the first of points with exactly the same position (their attributes are dropped with them).
     bool merge_duplicates = true;
   };
@@ -30,4 +38,12 @@ namespace pcl_sparse
   /// empty nor one entry per point.
   ScanCleaningReport
   cleanScan (ScanCloud& scan, const ScanCleaningOptions& options = ScanCleaningOptions ());
+
+  /// The sensor position cleaning drops points at, in the file's coordinates: options.sensor_position if
+  /// given, else \a file_sensor_origin (the file's).
+  inline Eigen::Vector3d
+  cleaningSensorPosition (const ScanCleaningOptions& options, const Eigen::Vector3d& file_sensor_origin)
+  {
+    return options.sensor_position.value_or (file_sensor_origin);
+  }
 } // namespace pcl_sparse
