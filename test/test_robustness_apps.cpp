@@ -813,7 +813,7 @@ namespace
     const bool left = fs::exists (output) || !fs::is_empty (full);
     std::system (("umount " + full.string ()).c_str ());
     EXPECT_EQ (r.exit_code, 1) << r.command;
-    EXPECT_EQ (r.err, "pcl_sparse_keypoints: " + output + ": could not write the file\n");
+    EXPECT_EQ (r.err, "pcl_sparse_keypoints: " + output + ": could not write the file (No space left on device)\n");
     EXPECT_FALSE (left) << "a cut-short or temporary file stayed";
   }
 

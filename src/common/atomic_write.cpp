@@ -31,6 +31,7 @@ namespace pcl_sparse
     const std::string temporary = temporaryPathFor (path);
     const detail::RemovedOnSignal on_signal (temporary, detail::RemovedKind::File);  // Ctrl-C left it behind
     bool ok = false;
+    errno = 0;  // what the writer's last failing call sets (ENOSPC on a full disk) is the cause given below
     try
     {
       ok = write (temporary);
@@ -42,8 +43,9 @@ namespace pcl_sparse
     }
     if (!ok)
     {
+      const int cause = errno;
       std::remove (temporary.c_str ());
-      throw Error (path + ": could not write the file");
+      throw Error (path + ": could not write the file" + (cause != 0 ? " (" + std::string (std::strerror (cause)) + ")" : ""));
     }
     if (std::rename (temporary.c_str (), path.c_str ()) != 0)
     {

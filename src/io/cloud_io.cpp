@@ -122,6 +122,17 @@ namespace pcl_sparse
       std::fclose (file);
       return read_all && lines == points && last == '\n';
     }
+
+    /// True if the ascii PCD at \a temporary is complete (asciiPcdComplete); throws, naming \a path and the likely
+    /// cause, if it came out short (PCL's writer reports no error, and leaves no errno to name one).
+    bool
+    requireCompleteAsciiPcd (const std::string& temporary, std::size_t points, const std::string& path)
+    {
+      if (!asciiPcdComplete (temporary, points))
+        throw Error (path + ": could not write the file (it came out short: the disk is full or the file over a "
+                            "size limit)");
+      return true;
+    }
   } // namespace
 
   template <typename PointT>
@@ -158,12 +169,12 @@ namespace pcl_sparse
             if (binary)
               return writer.writeBinary (temporary, blob) == 0;
             return writer.writeASCII (temporary, blob, Eigen::Vector4f::Zero (), Eigen::Quaternionf::Identity (), 17) == 0 &&
-                   asciiPcdComplete (temporary, cloud.size ());
+                   requireCompleteAsciiPcd (temporary, cloud.size (), path);
           }
           if (binary)
             return writer.writeBinary (temporary, cloud) == 0;
           // 9 significant digits: ascii floats read back exactly.
-          return writer.writeASCII (temporary, cloud, 9) == 0 && asciiPcdComplete (temporary, cloud.size ());
+          return writer.writeASCII (temporary, cloud, 9) == 0 && requireCompleteAsciiPcd (temporary, cloud.size (), path);
         }
         catch (const pcl::PCLException&)
         {
