@@ -19,7 +19,11 @@ namespace pcl_sparse
       char* end = nullptr;
       const double value = std::strtod (text.c_str (), &end);
       double scale = 1.0;
-      const std::string suffix = end ? std::string (end) : std::string ();
+      std::string suffix = end ? std::string (end) : std::string ();
+      // "2GB" and "2GiB" mean what "2G" does (powers of 1024, as free -h and ulimit count)
+      for (const char* tail : {"iB", "ib", "B", "b"})
+        if (suffix.size () == 1 + std::char_traits<char>::length (tail) && suffix.compare (1, std::string::npos, tail) == 0)
+          suffix.resize (1);
       if (suffix == "K" || suffix == "k")
         scale = 1024.0;
       else if (suffix == "M" || suffix == "m")
@@ -29,7 +33,7 @@ namespace pcl_sparse
       else if (suffix == "T" || suffix == "t")
         scale = 1024.0 * 1024.0 * 1024.0 * 1024.0;
       else if (!suffix.empty ())
-        throw Error ("option " + option + ": '" + text + "' is not a size (a number with K, M, G or T)");
+        throw Error ("option " + option + ": '" + text + "' is not a size (a number with K, M, G or T, as 2G or 2GB)");
       const double bytes = value * scale;
       if (end == text.c_str () || !std::isfinite (bytes) || bytes < 1024.0 * 1024.0 || bytes > 1e18)
         throw Error ("option " + option + ": '" + text + "' is not a size of at least 1M");

@@ -5,6 +5,7 @@
 #include "error_message.h"
 #include "tool_input.h"
 #include "tool_support.h"
+#include "tool_tiling.h"
 
 #include <cstdint>
 #include <cstdlib>
@@ -200,6 +201,23 @@ TEST (ToolOptions, NumberListsAsStrictAsOneNumber)
   Eigen::Vector3d unchanged (7.0, 8.0, 9.0);
   EXPECT_FALSE (pcl_sparse::tools::parseViewpoint (none, unchanged));
   EXPECT_EQ (unchanged, Eigen::Vector3d (7.0, 8.0, 9.0));
+}
+
+// -memory's sizes: K, M, G, T in powers of 1024, also written KB / KiB ("2GB" was not a size).
+TEST (ToolOptions, ByteSizesWithOrWithoutB)
+{
+  using pcl_sparse::tools::parseByteSize;
+  const std::uint64_t two_g = 2ull << 30;
+  for (const char* text : {"2G", "2g", "2GB", "2GiB", "2gb", "2Gb"})
+    EXPECT_EQ (parseByteSize ("-memory", text), two_g) << text;
+  EXPECT_EQ (parseByteSize ("-memory", "1.5M"), 3ull << 19);
+  EXPECT_EQ (parseByteSize ("-memory", "1TiB"), 1ull << 40);
+  for (const char* text : {"2GBB", "2iB", "2B", "2 G", "G", "2X", "2GiBs"})
+    EXPECT_NE (pcl_sparse_test::errorMessage ([&] { parseByteSize ("-memory", text); }).find ("is not a size"),
+               std::string::npos)
+      << text;
+  EXPECT_NE (pcl_sparse_test::errorMessage ([&] { parseByteSize ("-memory", "512K"); }).find ("at least 1M"),
+             std::string::npos);
 }
 
 TEST (ToolJson, InvalidUtf8BecomesReplacementCharacters)
