@@ -120,6 +120,8 @@ namespace pcl_sparse
           return input;
         }
       }
+      if (hasExtension (path, ".psm"))
+        throw Error (path + ": a model file, not a mesh or a cloud (pcl_sparse_decode and pcl_sparse_resample read it)");
       if (!isScanFileExtension (path))
         throw Error (path + ": unknown input extension (a mesh .obj .off .ply .stl, or a cloud .pcd .ply .xyz)");
       auto scan = std::make_shared<ScanCloud> ();

@@ -869,6 +869,13 @@ namespace
     }
     const RunResult fine = runApp ("encode", {obj, "-o", out, "-tolerance", "1e-8", "-q"}, dir_);
     EXPECT_EQ (fine.exit_code, 0) << fine.err;
+    // A model given where a surface is expected is named for what it is ("unknown input extension").
+    const RunResult model = runApp ("encode", {out, "-o", (dir_ / "again.psm").string (), "-q"}, dir_);
+    EXPECT_EQ (model.exit_code, 1) << model.err;
+    EXPECT_NE (model.err.find ("m.psm: a model file, not a mesh or a cloud (pcl_sparse_decode and pcl_sparse_resample "
+                               "read it)"),
+               std::string::npos)
+      << model.err;
   }
 
   /// pcl_sparse_info names every kind of file it reads when it refuses an extension (it listed the meshes' four).
