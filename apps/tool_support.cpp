@@ -187,8 +187,10 @@ namespace pcl_sparse
     std::string
     Range::str () const
     {
-      return std::string (min_open ? "(" : "[") + shortestDecimal (min) + ", " + shortestDecimal (max) +
-             (max_open ? ")" : "]");
+      // An infinite bound is shown open: the number parser takes no "inf" ("-density 0" said "(0, inf]", and
+      // "-density inf" was "not a number").
+      return std::string (min_open || std::isinf (min) ? "(" : "[") + shortestDecimal (min) + ", " +
+             shortestDecimal (max) + (max_open || std::isinf (max) ? ")" : "]");
     }
 
     // ---- CommandLine ---------------------------------------------------------------------------------

@@ -161,6 +161,14 @@ TEST (ToolOptions, AbsentOrRefusedLeavesTheValue)
                commandLine ("-x", "0").number ("-x", value, Range::aboveUpTo (0.0, 90.0));
              }),
              "option -x: 0 is not in (0, 90]");
+  // An infinite bound is open: no number given is infinite (pcl_sparse_resample "-density 0" said "(0, inf]").
+  EXPECT_EQ (refusal ([] {
+               double value = 7.0;
+               commandLine ("-x", "0").number ("-x", value, Range::above (0.0));
+             }),
+             "option -x: 0 is not in (0, inf)");
+  EXPECT_EQ (Range::atLeast (1.0).str (), "[1, inf)");
+  EXPECT_EQ (Range ().str (), "(-inf, inf)");
 }
 
 namespace
